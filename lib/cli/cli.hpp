@@ -1,0 +1,77 @@
+// The command-line plumbing every tool shares (DESIGN.md "Command-line
+// conventions"): CLI11 set-up with the common flags, exit codes, one-line
+// errors, --stats JSON and terminal progress. A tool is:
+//
+//   int main(int argc, char** argv) {
+//     imgmesh::cli::Tool tool("img2wc", "Make a binary image well-composed");
+//     std::string in, out;
+//     tool.app.add_option("IN", in, "input image")->required();
+//     tool.add_seed();
+//     return tool.run(argc, argv, [&] {
+//       ... library calls; tool.stats["voxels"] = n; tool.info("...");
+//       return imgmesh::cli::kOk;
+//     });
+//   }
+#pragma once
+#include "util/json.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace imgmesh::cli {
+
+enum ExitCode : int {
+  kOk = 0,         // done
+  kFailure = 1,    // runtime or input error
+  kUsage = 2,      // usage error
+  kGuarantee = 3,  // output written, but a requested guarantee was not met
+};
+
+class Tool {
+public:
+  Tool(std::string name, std::string description);
+
+  CLI::App app;
+  Json stats = Json::object();  // written to --stats FILE|- at the end
+
+  // Optional common options (the always-present ones are -h, --version,
+  // -q, -v, --stats, --progress).
+  void add_seed(std::uint64_t default_seed = 0);
+  void add_threads();
+
+  // Parse, run body, catch: prints "name: path: what" on stderr and returns
+  // the exit code. Writes --stats (with "tool", "version", "exit_status",
+  // "seconds") even when body returns kGuarantee.
+  int run(int argc, char** argv, const std::function<int()>& body);
+
+  const std::string& name() const { return name_; }
+  bool quiet() const { return quiet_; }
+  bool verbose() const { return verbose_; }
+  std::uint64_t seed() const { return seed_; }
+  int threads() const { return threads_; }  // >= 1
+  // Progress wanted: stderr is a terminal or --progress, and not --quiet.
+  bool progress() const { return progress_; }
+
+  // A line on stderr, "name: msg", unless --quiet.
+  void info(const std::string& msg) const;
+  // Only with --verbose.
+  void debug(const std::string& msg) const;
+  // A progress line (overwritten in place on a terminal) when progress().
+  void report_progress(const std::string& msg) const;
+  double elapsed() const;
+
+private:
+  std::string name_;
+  std::string stats_path_;
+  bool quiet_ = false, verbose_ = false, progress_flag_ = false, progress_ = false;
+  std::uint64_t seed_ = 0;
+  int threads_ = 1;
+  std::chrono::steady_clock::time_point start_;
+  mutable bool progress_dirty_ = false;
+};
+
+} // namespace imgmesh::cli

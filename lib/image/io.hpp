@@ -1,0 +1,50 @@
+// Image I/O through ITK (NRRD .nrrd/.nhdr, MetaImage .mha/.mhd, NIfTI
+// .nii/.nii.gz, PNG for 2D), the only place ITK is included. "-" reads stdin
+// (spooled to a temporary file, format sniffed from the content) and writes
+// NRRD to stdout. Writers go through AtomicOutput: no partial files.
+#pragma once
+#include "image/grid.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace imgmesh {
+
+// Which voxels are foreground (DESIGN.md): nonzero by default, the union of
+// `labels` if any, or value >= threshold.
+struct Selection {
+  std::vector<long long> labels;
+  bool has_threshold = false;
+  double threshold = 0;
+};
+
+// What a file holds, without reading the voxels.
+struct ImageInfo {
+  Geometry geometry;
+  std::string component;  // "uint8", "int16", "float", ... (ITK's name)
+  bool integer = true;    // integer component type
+  int components = 1;     // pixel components (1 for scalar images)
+};
+
+// Read the header. Throws Error (unreadable, 1D, 4D, vector pixels...).
+ImageInfo read_image_info(const std::string& path);
+
+// Read a scalar 2D/3D image and select its foreground (0/1). Throws Error on
+// a label absent from the image, --label on a non-integer image, an empty
+// foreground, NaNs, or any unreadable input.
+BinaryImage read_foreground(const std::string& path, const Selection& sel);
+
+// Read an integer label image (2D or 3D). Throws Error on non-integer values.
+LabelImage read_labels(const std::string& path);
+
+// Read a float image and its NRRD key/value fields ("key:=value").
+FloatImage read_float(const std::string& path, std::map<std::string, std::string>* fields = nullptr);
+
+// Write; the format comes from the extension ("-": NRRD on stdout).
+// 2D images (dimension == 2) are written as 2D images.
+void write_image(const std::string& path, const BinaryImage& img);
+void write_image(const std::string& path, const FloatImage& img,
+                 const std::map<std::string, std::string>& fields = {});
+
+} // namespace imgmesh

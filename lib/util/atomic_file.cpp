@@ -1,0 +1,112 @@
+#include "util/atomic_file.hpp"
+
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+#include <unistd.h>
+#include <vector>
+
+namespace imgmesh {
+
+std::string extension_of(const std::string& path) {
+  auto slash = path.find_last_of('/');
+  std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+  std::transform(base.begin(), base.end(), base.begin(), [](unsigned char c) { return std::tolower(c); });
+  auto dot = base.rfind('.');
+  if (dot == std::string::npos || dot == 0) return "";
+  std::string ext = base.substr(dot);
+  if (ext == ".gz") {
+    auto dot2 = base.rfind('.', dot - 1);
+    if (dot2 != std::string::npos && dot2 != 0) ext = base.substr(dot2);
+  }
+  return ext;
+}
+
+std::string replace_extension(const std::string& path, const std::string& ext) {
+  std::string old = extension_of(path);
+  return path.substr(0, path.size() - old.size()) + ext;
+}
+
+static std::string make_temp(const std::string& dir_prefix, const std::string& ext) {
+  std::string templ = dir_prefix + ".imgmesh-XXXXXX" + ext;
+  std::vector<char> buf(templ.begin(), templ.end());
+  buf.push_back('\0');
+  int fd = mkstemps(buf.data(), static_cast<int>(ext.size()));
+  if (fd < 0) throw Error(std::string("cannot create a temporary file: ") + std::strerror(errno), templ);
+  close(fd);
+  return std::string(buf.data());
+}
+
+AtomicOutput::AtomicOutput(std::string target, bool binary) : target_(std::move(target)) {
+  if (target_.empty()) throw Error("empty output path");
+  if (target_ == "-") {
+    if (binary && isatty(STDOUT_FILENO))
+      throw UsageError("refusing to write binary data to a terminal (redirect it or give a file name)", "-");
+    const char* tmpdir = std::getenv("TMPDIR");
+    std::string dir = (tmpdir && *tmpdir) ? tmpdir : "/tmp";
+    tmp_ = make_temp(dir + "/stdout", "");
+  } else {
+    auto slash = target_.find_last_of('/');
+    std::string dir = slash == std::string::npos ? "" : target_.substr(0, slash + 1);
+    std::string base = slash == std::string::npos ? target_ : target_.substr(slash + 1);
+    if (base.empty()) throw Error("output path names a directory", target_);
+    tmp_ = make_temp(dir + base, extension_of(target_));
+  }
+}
+
+AtomicOutput::~AtomicOutput() {
+  if (out_.is_open()) out_.close();
+  if (!committed_) std::remove(tmp_.c_str());
+}
+
+std::ofstream& AtomicOutput::stream() {
+  if (!out_.is_open()) {
+    out_.open(tmp_, std::ios::binary | std::ios::trunc);
+    if (!out_) throw Error("cannot write", target_);
+    out_.precision(17);
+  }
+  return out_;
+}
+
+void AtomicOutput::commit() {
+  if (out_.is_open()) {
+    out_.flush();
+    if (!out_) throw Error("write failed (disk full?)", target_);
+    out_.close();
+  }
+  if (target_ == "-") {
+    std::ifstream in(tmp_, std::ios::binary);
+    if (!in) throw Error("output was not written", target_);
+    std::cout << in.rdbuf();
+    std::cout.flush();
+    if (!std::cout) throw Error("write to standard output failed", target_);
+    std::remove(tmp_.c_str());
+  } else {
+    if (std::rename(tmp_.c_str(), target_.c_str()) != 0)
+      throw Error(std::string("cannot move output into place: ") + std::strerror(errno), target_);
+  }
+  committed_ = true;
+}
+
+std::string read_all(const std::string& path) {
+  if (path == "-") {
+    std::ostringstream ss;
+    ss << std::cin.rdbuf();
+    return ss.str();
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw Error("read failed", path);
+  return ss.str();
+}
+
+} // namespace imgmesh

@@ -1,0 +1,45 @@
+// Output that never leaves a partial file: everything is written to a
+// temporary file beside the target (same extension, so writers that pick the
+// format by extension still work) and renamed over the target on commit().
+// "-" means standard output: the temporary file lives in $TMPDIR and is copied
+// to stdout on commit(). Without commit() the temporary file is removed.
+#pragma once
+#include <fstream>
+#include <string>
+
+namespace imgmesh {
+
+class AtomicOutput {
+public:
+  // binary: refuse "-" when stdout is a terminal.
+  explicit AtomicOutput(std::string target, bool binary = false);
+  ~AtomicOutput();
+  AtomicOutput(const AtomicOutput&) = delete;
+  AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+  // The path to write to now (a temporary file).
+  const std::string& path() const { return tmp_; }
+  // The path the user asked for ("-" for stdout).
+  const std::string& target() const { return target_; }
+  bool is_stdout() const { return target_ == "-"; }
+  // A text/binary stream on path(), opened on first use.
+  std::ofstream& stream();
+  // Flush, check, and move into place. Throws Error on failure.
+  void commit();
+
+private:
+  std::string target_, tmp_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
+
+// The extension of a path in lower case, with a leading dot, counting ".gz"
+// compound extensions (".nii.gz"); "" if none.
+std::string extension_of(const std::string& path);
+// Replace the extension (as extension_of sees it) by ext ("." included).
+std::string replace_extension(const std::string& path, const std::string& ext);
+
+// Read all of a file (or "-" for stdin) into memory. Throws Error.
+std::string read_all(const std::string& path);
+
+} // namespace imgmesh
