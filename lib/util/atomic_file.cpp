@@ -44,14 +44,15 @@ static std::string make_temp(const std::string& dir_prefix, const std::string& e
   return std::string(buf.data());
 }
 
-AtomicOutput::AtomicOutput(std::string target, bool binary) : target_(std::move(target)) {
+AtomicOutput::AtomicOutput(std::string target, bool binary, const std::string& stdout_extension)
+    : target_(std::move(target)) {
   if (target_.empty()) throw Error("empty output path");
   if (target_ == "-") {
     if (binary && isatty(STDOUT_FILENO))
       throw UsageError("refusing to write binary data to a terminal (redirect it or give a file name)", "-");
     const char* tmpdir = std::getenv("TMPDIR");
     std::string dir = (tmpdir && *tmpdir) ? tmpdir : "/tmp";
-    tmp_ = make_temp(dir + "/stdout", "");
+    tmp_ = make_temp(dir + "/stdout", stdout_extension);
   } else {
     auto slash = target_.find_last_of('/');
     std::string dir = slash == std::string::npos ? "" : target_.substr(0, slash + 1);

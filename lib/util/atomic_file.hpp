@@ -11,8 +11,10 @@ namespace imgmesh {
 
 class AtomicOutput {
 public:
-  // binary: refuse "-" when stdout is a terminal.
-  explicit AtomicOutput(std::string target, bool binary = false);
+  // binary: refuse "-" when stdout is a terminal. stdout_extension: the
+  // extension of the temporary file behind "-" (for writers that choose the
+  // format by extension, e.g. ".nrrd").
+  explicit AtomicOutput(std::string target, bool binary = false, const std::string& stdout_extension = "");
   ~AtomicOutput();
   AtomicOutput(const AtomicOutput&) = delete;
   AtomicOutput& operator=(const AtomicOutput&) = delete;

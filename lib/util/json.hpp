@@ -41,6 +41,7 @@ public:
   bool contains(const std::string& key) const;
   const Json& at(const std::string& key) const;
   const std::vector<Json>& items() const { return items_; }
+  const std::vector<std::string>& keys() const { return keys_; }  // object keys, parallel to items()
   double number() const { return kind_ == Kind::Integer ? double(i_) : d_; }
   long long integer() const { return kind_ == Kind::Integer ? i_ : static_cast<long long>(d_); }
   const std::string& string() const { return s_; }

@@ -1,0 +1,317 @@
+// ITK image I/O. Reading goes through itk::ImageIOBase on a raw buffer, so
+// every component type and both 2D and 3D files share one path; writing goes
+// through itk::Image + ImageFileWriter.
+#include "image/io.hpp"
+
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+#include <itkImage.h>
+#include <itkImageFileWriter.h>
+#include <itkImageIOBase.h>
+#include <itkImageIOFactory.h>
+#include <itkMetaDataObject.h>
+#include <itkMetaImageIOFactory.h>
+#include <itkNiftiImageIOFactory.h>
+#include <itkNrrdImageIOFactory.h>
+#include <itkPNGImageIOFactory.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <unistd.h>
+
+namespace imgmesh {
+namespace {
+
+void register_factories() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    itk::NrrdImageIOFactory::RegisterOneFactory();
+    itk::MetaImageIOFactory::RegisterOneFactory();
+    itk::NiftiImageIOFactory::RegisterOneFactory();
+    itk::PNGImageIOFactory::RegisterOneFactory();
+  });
+}
+
+// ITK's messages span lines and name source files: keep the description.
+std::string itk_message(const itk::ExceptionObject& e) {
+  std::string d = e.GetDescription();
+  while (!d.empty() && (d.back() == '\n' || d.back() == ' ')) d.pop_back();
+  return d.empty() ? "cannot read the image" : d;
+}
+
+// stdin is spooled to a temporary file whose extension comes from the content,
+// since ITK reads only from paths and picks readers by name and content.
+class Spool {
+public:
+  explicit Spool(const std::string& path) : path_(path) {
+    if (path != "-") return;
+    std::string data((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());
+    if (data.empty()) throw Error("standard input is empty", "-");
+    std::string ext;
+    auto starts = [&](const char* m) { return data.compare(0, std::strlen(m), m) == 0; };
+    if (starts("NRRD")) ext = ".nrrd";
+    else if (starts("\x89PNG")) ext = ".png";
+    else if (data.size() >= 2 && (unsigned char)data[0] == 0x1f && (unsigned char)data[1] == 0x8b) ext = ".nii.gz";
+    else if (starts("ObjectType") || starts("NDims")) ext = ".mha";
+    else if (data.size() > 348 && data.compare(344, 3, "n+1") == 0) ext = ".nii";
+    else throw Error("cannot tell the image format of standard input (NRRD, MetaImage, NIfTI or PNG expected)", "-");
+    const char* tmpdir = std::getenv("TMPDIR");
+    std::string templ = std::string(tmpdir && *tmpdir ? tmpdir : "/tmp") + "/stdin-XXXXXX" + ext;
+    std::vector<char> buf(templ.begin(), templ.end());
+    buf.push_back('\0');
+    int fd = mkstemps(buf.data(), int(ext.size()));
+    if (fd < 0) throw Error("cannot spool standard input", "-");
+    close(fd);
+    tmp_ = buf.data();
+    std::ofstream out(tmp_, std::ios::binary);
+    out.write(data.data(), std::streamsize(data.size()));
+    if (!out) throw Error("cannot spool standard input", "-");
+  }
+  ~Spool() { if (!tmp_.empty()) std::remove(tmp_.c_str()); }
+  const std::string& file() const { return tmp_.empty() ? path_ : tmp_; }
+
+private:
+  std::string path_, tmp_;
+};
+
+struct Opened {
+  itk::ImageIOBase::Pointer io;
+  ImageInfo info;
+};
+
+Opened open_image(const std::string& path, const std::string& file) {
+  register_factories();
+  {
+    std::ifstream probe(file, std::ios::binary);
+    if (!probe) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
+  }
+  Opened o;
+  o.io = itk::ImageIOFactory::CreateImageIO(file.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
+  if (!o.io) throw Error("not an image ITK can read (NRRD, MetaImage, NIfTI or PNG expected)", path);
+  try {
+    o.io->SetFileName(file);
+    o.io->ReadImageInformation();
+  } catch (const itk::ExceptionObject& e) {
+    throw Error(itk_message(e), path);
+  }
+  const unsigned n = o.io->GetNumberOfDimensions();
+  // Trailing axes of size 1 do not count (a 3D file holding one slice is 2D
+  // data, a "4D" file with one time point is 3D).
+  unsigned dim = n;
+  while (dim > 3 && o.io->GetDimensions(dim - 1) == 1) --dim;
+  if (n < 2) throw Error("a 1D image: 2D or 3D expected", path);
+  if (dim > 3) throw Error(std::to_string(dim) + "D image: 2D or 3D expected", path);
+  if (o.io->GetNumberOfComponents() != 1)
+    throw Error("pixels have " + std::to_string(o.io->GetNumberOfComponents()) +
+                    " components (colour or vector image): a scalar image is expected",
+                path);
+  ImageInfo& info = o.info;
+  info.components = 1;
+  info.component = itk::ImageIOBase::GetComponentTypeAsString(o.io->GetComponentType());
+  const auto ct = o.io->GetComponentType();
+  info.integer = !(ct == itk::IOComponentEnum::FLOAT || ct == itk::IOComponentEnum::DOUBLE ||
+                   ct == itk::IOComponentEnum::LDOUBLE);
+  Geometry& g = info.geometry;
+  g.dimension = n == 2 ? 2 : 3;  // a 3D file of one slice stays 3D (size[2] == 1)
+  for (unsigned i = 0; i < 3; ++i) {
+    g.size[i] = i < std::min(n, 3u) ? o.io->GetDimensions(i) : 1;
+    g.spacing[i] = i < std::min(n, 3u) ? o.io->GetSpacing(i) : 1.0;
+    g.origin[i] = i < std::min(n, 3u) ? o.io->GetOrigin(i) : 0.0;
+  }
+  g.direction = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  const unsigned m = std::min(n, 3u);
+  for (unsigned c = 0; c < m; ++c) {
+    auto col = o.io->GetDirection(c);
+    for (unsigned r = 0; r < m && r < col.size(); ++r) g.direction[r * 3 + c] = col[r];
+  }
+  std::size_t count = 1;
+  for (unsigned i = 0; i < n; ++i) {
+    const std::size_t s = o.io->GetDimensions(i);
+    if (s == 0) throw Error("image has an empty axis", path);
+    if (count > (std::size_t(1) << 40) / s) throw Error("image too large", path);
+    count *= s;
+  }
+  for (int i = 0; i < 3; ++i)
+    if (!(g.spacing[i] > 0) || !std::isfinite(g.spacing[i]))
+      throw Error("spacing must be positive and finite", path);
+  return o;
+}
+
+// All voxels as double (exact for every integer type up to 2^53).
+std::vector<double> read_values(const std::string& path, Opened& o) {
+  const unsigned n = o.io->GetNumberOfDimensions();
+  itk::ImageIORegion region(n);
+  for (unsigned i = 0; i < n; ++i) {
+    region.SetIndex(i, 0);
+    region.SetSize(i, o.io->GetDimensions(i));
+  }
+  o.io->SetIORegion(region);
+  const std::size_t count = o.info.geometry.count();
+  std::vector<char> raw(o.io->GetImageSizeInBytes());
+  try {
+    o.io->Read(raw.data());
+  } catch (const itk::ExceptionObject& e) {
+    throw Error(itk_message(e), path);
+  }
+  std::vector<double> v(count);
+  auto convert = [&](auto tag) {
+    using T = decltype(tag);
+    const T* p = reinterpret_cast<const T*>(raw.data());
+    for (std::size_t i = 0; i < count; ++i) v[i] = double(p[i]);
+  };
+  switch (o.io->GetComponentType()) {
+    case itk::IOComponentEnum::UCHAR: convert(std::uint8_t()); break;
+    case itk::IOComponentEnum::CHAR: convert(std::int8_t()); break;
+    case itk::IOComponentEnum::USHORT: convert(std::uint16_t()); break;
+    case itk::IOComponentEnum::SHORT: convert(std::int16_t()); break;
+    case itk::IOComponentEnum::UINT: convert(std::uint32_t()); break;
+    case itk::IOComponentEnum::INT: convert(std::int32_t()); break;
+    case itk::IOComponentEnum::ULONG: convert((unsigned long)0); break;
+    case itk::IOComponentEnum::LONG: convert(long(0)); break;
+    case itk::IOComponentEnum::ULONGLONG: convert((unsigned long long)0); break;
+    case itk::IOComponentEnum::LONGLONG: convert((long long)0); break;
+    case itk::IOComponentEnum::FLOAT: convert(float()); break;
+    case itk::IOComponentEnum::DOUBLE: convert(double()); break;
+    default: throw Error("unsupported pixel type " + o.info.component, path);
+  }
+  for (double x : v)
+    if (std::isnan(x)) throw Error("image contains NaN values", path);
+  return v;
+}
+
+template <unsigned D, class T>
+void write_itk(const std::string& file, const Image<T>& img, const std::map<std::string, std::string>& fields) {
+  using ItkImage = itk::Image<T, D>;
+  auto out = ItkImage::New();
+  typename ItkImage::RegionType region;
+  typename ItkImage::SpacingType spacing;
+  typename ItkImage::PointType origin;
+  typename ItkImage::DirectionType dir;
+  for (unsigned i = 0; i < D; ++i) {
+    region.SetSize(i, img.size[i]);
+    region.SetIndex(i, 0);
+    spacing[i] = img.spacing[i];
+    origin[i] = img.origin[i];
+    for (unsigned j = 0; j < D; ++j) dir(i, j) = img.direction[i * 3 + j];
+  }
+  out->SetRegions(region);
+  out->SetSpacing(spacing);
+  out->SetOrigin(origin);
+  out->SetDirection(dir);
+  out->Allocate();
+  std::copy(img.data.begin(), img.data.end(), out->GetBufferPointer());
+  auto& dict = out->GetMetaDataDictionary();
+  for (const auto& [k, v] : fields) itk::EncapsulateMetaData<std::string>(dict, k, v);
+  auto writer = itk::ImageFileWriter<ItkImage>::New();
+  writer->SetFileName(file);
+  writer->SetInput(out);
+  writer->SetUseCompression(true);
+  writer->Update();
+}
+
+template <class T>
+void write_any(const std::string& path, const Image<T>& img, const std::map<std::string, std::string>& fields) {
+  register_factories();
+  if (img.data.size() != img.count()) throw Error("internal: image data does not match its size", path);
+  const std::string ext = path == "-" ? ".nrrd" : extension_of(path);
+  static const std::set<std::string> known{".nrrd", ".nhdr", ".mha", ".mhd", ".nii", ".nii.gz", ".png"};
+  if (!known.count(ext))
+    throw UsageError("unknown image extension '" + ext + "' (use .nrrd, .nhdr, .mha, .mhd, .nii, .nii.gz or .png)", path);
+  if (ext == ".png" && (img.dimension != 2 || !std::is_same<T, std::uint8_t>::value))
+    throw UsageError("PNG holds only 2D 8-bit images", path);
+  if (ext == ".nhdr" || ext == ".mhd")
+    throw UsageError("detached-header formats write two files; use .nrrd or .mha", path);
+  AtomicOutput out(path, true, ".nrrd");
+  try {
+    if (img.dimension == 2) write_itk<2>(out.path(), img, fields);
+    else write_itk<3>(out.path(), img, fields);
+  } catch (const itk::ExceptionObject& e) {
+    throw Error(itk_message(e), path);
+  }
+  out.commit();
+}
+
+} // namespace
+
+ImageInfo read_image_info(const std::string& path) {
+  Spool spool(path);
+  return open_image(path, spool.file()).info;
+}
+
+BinaryImage read_foreground(const std::string& path, const Selection& sel) {
+  Spool spool(path);
+  Opened o = open_image(path, spool.file());
+  if (!sel.labels.empty() && sel.has_threshold)
+    throw UsageError("give either --label or --threshold, not both");
+  if (!sel.labels.empty() && !o.info.integer)
+    throw UsageError("--label needs an integer image, this one holds " + o.info.component +
+                         " values (use --threshold)",
+                     path);
+  std::vector<double> v = read_values(path, o);
+  BinaryImage out(o.info.geometry, 0);
+  std::size_t count = 0;
+  if (!sel.labels.empty()) {
+    std::set<double> wanted(sel.labels.begin(), sel.labels.end()), seen;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (wanted.count(v[i])) { out.data[i] = 1; seen.insert(v[i]); ++count; }
+    for (long long l : sel.labels)
+      if (!seen.count(double(l))) throw Error("label " + std::to_string(l) + " does not occur in the image", path);
+  } else if (sel.has_threshold) {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (v[i] >= sel.threshold) { out.data[i] = 1; ++count; }
+  } else {
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (v[i] != 0) { out.data[i] = 1; ++count; }
+  }
+  if (count == 0) throw Error("the foreground is empty (check --label/--threshold)", path);
+  return out;
+}
+
+LabelImage read_labels(const std::string& path) {
+  Spool spool(path);
+  Opened o = open_image(path, spool.file());
+  std::vector<double> v = read_values(path, o);
+  LabelImage out(o.info.geometry, 0);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (v[i] != std::floor(v[i]) || std::abs(v[i]) > 2147483647.0)
+      throw Error("not a label image: value " + std::to_string(v[i]) + " is not a 32-bit integer", path);
+    out.data[i] = std::int32_t(v[i]);
+  }
+  return out;
+}
+
+FloatImage read_float(const std::string& path, std::map<std::string, std::string>* fields) {
+  Spool spool(path);
+  Opened o = open_image(path, spool.file());
+  std::vector<double> v = read_values(path, o);
+  FloatImage out(o.info.geometry, 0.f);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) throw Error("image contains infinite values", path);
+    out.data[i] = float(v[i]);
+  }
+  if (fields) {
+    fields->clear();
+    const auto& dict = o.io->GetMetaDataDictionary();
+    for (const auto& key : dict.GetKeys()) {
+      std::string value;
+      if (itk::ExposeMetaData<std::string>(dict, key, value)) (*fields)[key] = value;
+    }
+  }
+  return out;
+}
+
+void write_image(const std::string& path, const BinaryImage& img) { write_any(path, img, {}); }
+
+void write_image(const std::string& path, const FloatImage& img, const std::map<std::string, std::string>& fields) {
+  write_any(path, img, fields);
+}
+
+} // namespace imgmesh

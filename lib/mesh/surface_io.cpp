@@ -1,0 +1,173 @@
+// Surface mesh I/O. OFF is read and written here directly (it is the format
+// on pipes, and reading it ourselves keeps non-manifold input intact so that
+// checks can report it); PLY, OBJ and STL go through OpenMesh.
+#include "mesh/surface_io.hpp"
+
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <cmath>
+#include <sstream>
+
+namespace imgmesh {
+namespace {
+
+struct Traits : OpenMesh::DefaultTraits {
+  typedef OpenMesh::Vec3d Point;
+  typedef OpenMesh::Vec3d Normal;
+};
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<Traits>;
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<Traits>;
+
+// Tokens of an OFF text with comments removed, with line numbers for errors.
+class OffTokens {
+public:
+  OffTokens(const std::string& text, const std::string& path) : in_(text), path_(path) {}
+  bool next(std::string& tok) {
+    while (!(line_ >> tok)) {
+      std::string l;
+      if (!std::getline(in_, l)) return false;
+      ++lineno_;
+      auto hash = l.find('#');
+      if (hash != std::string::npos) l.resize(hash);
+      line_.clear();
+      line_.str(l);
+    }
+    return true;
+  }
+  template <class T> T get(const char* what) {
+    std::string tok;
+    if (!next(tok)) fail(std::string("truncated: expected ") + what);
+    std::istringstream ss(tok);
+    T v;
+    if (!(ss >> v) || !ss.eof()) fail(std::string("expected ") + what + ", found '" + tok + "'");
+    return v;
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error("line " + std::to_string(lineno_) + ": " + what, path_);
+  }
+
+private:
+  std::istringstream in_;
+  std::istringstream line_;
+  std::string path_;
+  int lineno_ = 0;
+};
+
+SurfaceMesh read_off(const std::string& path) {
+  const std::string text = read_all(path);
+  OffTokens t(text, path);
+  std::string head;
+  if (!t.next(head)) throw Error("empty file", path);
+  if (head != "OFF") t.fail("not an OFF file (no OFF header; NOFF/COFF variants are not read)");
+  const long nv = t.get<long>("the vertex count"), nf = t.get<long>("the face count");
+  t.get<long>("the edge count");
+  if (nv < 0 || nf < 0 || nv > 1L << 31 || nf > 1L << 31) t.fail("bad counts");
+  SurfaceMesh m;
+  m.points.resize(std::size_t(nv));
+  for (auto& p : m.points)
+    for (double& c : p) {
+      c = t.get<double>("a coordinate");
+      if (!std::isfinite(c)) t.fail("coordinate is not finite");
+    }
+  m.triangles.resize(std::size_t(nf));
+  for (auto& f : m.triangles) {
+    const long k = t.get<long>("a face size");
+    if (k != 3) t.fail("face with " + std::to_string(k) + " vertices: triangles expected");
+    for (int& v : f) {
+      const long id = t.get<long>("a vertex id");
+      if (id < 0 || id >= nv) t.fail("vertex id " + std::to_string(id) + " out of range");
+      v = int(id);
+    }
+    // Colour values may follow a face; they are ignored by skipping to the
+    // next line in OffTokens only if present on the same line, so we do not
+    // try to be clever here: standard OFF from our tools has none.
+  }
+  return m;
+}
+
+void write_off(std::ostream& out, const SurfaceMesh& m) {
+  out.precision(17);
+  out << "OFF\n" << m.points.size() << ' ' << m.triangles.size() << " 0\n";
+  for (const auto& p : m.points) out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  for (const auto& f : m.triangles) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
+}
+
+} // namespace
+
+SurfaceMesh read_surface(const std::string& path) {
+  const std::string ext = path == "-" ? ".off" : extension_of(path);
+  if (ext == ".off") return read_off(path);
+  if (ext != ".ply" && ext != ".obj" && ext != ".stl")
+    throw Error("unknown mesh extension '" + ext + "' (OFF, PLY, OBJ or STL expected)", path);
+  {
+    std::ifstream probe(path);
+    if (!probe) throw Error("cannot open", path);
+  }
+  PolyMesh pm;
+  OpenMesh::IO::Options opt;
+  omerr().disable();
+  omlog().disable();
+  const bool ok = OpenMesh::IO::read_mesh(pm, path, opt);
+  if (!ok) throw Error("cannot read the mesh (corrupt or unsupported file)", path);
+  SurfaceMesh m;
+  m.points.reserve(pm.n_vertices());
+  for (auto v : pm.vertices()) {
+    const auto& p = pm.point(v);
+    for (int i = 0; i < 3; ++i)
+      if (!std::isfinite(p[i])) throw Error("coordinate is not finite", path);
+    m.points.push_back({p[0], p[1], p[2]});
+  }
+  for (auto f : pm.faces()) {
+    std::array<int, 3> tri{};
+    int k = 0;
+    for (auto v : pm.fv_range(f)) {
+      if (k == 3) throw Error("a face with more than 3 vertices: triangles expected", path);
+      tri[std::size_t(k++)] = v.idx();
+    }
+    if (k != 3) throw Error("a face with fewer than 3 vertices", path);
+    m.triangles.push_back(tri);
+  }
+  return m;
+}
+
+void write_surface(const std::string& path, const SurfaceMesh& m) {
+  const std::string ext = path == "-" ? ".off" : extension_of(path);
+  if (ext != ".off" && ext != ".ply" && ext != ".obj" && ext != ".stl")
+    throw UsageError("unknown mesh extension '" + ext + "' (use .off, .ply, .obj or .stl)", path);
+  for (const auto& f : m.triangles)
+    for (int v : f)
+      if (v < 0 || std::size_t(v) >= m.points.size()) throw Error("internal: triangle refers to a missing vertex", path);
+  AtomicOutput out(path, ext != ".off" && ext != ".obj");
+  if (ext == ".off") {
+    write_off(out.stream(), m);
+    out.commit();
+    return;
+  }
+  TriMesh tm;
+  const bool normals = !m.normals.empty() && m.normals.size() == m.points.size() && ext != ".stl";
+  if (normals) tm.request_vertex_normals();
+  std::vector<TriMesh::VertexHandle> vh;
+  vh.reserve(m.points.size());
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const auto& p = m.points[i];
+    vh.push_back(tm.add_vertex(TriMesh::Point(p[0], p[1], p[2])));
+    if (normals) tm.set_normal(vh.back(), TriMesh::Normal(m.normals[i][0], m.normals[i][1], m.normals[i][2]));
+  }
+  omerr().disable();
+  for (const auto& f : m.triangles) {
+    auto fh = tm.add_face(vh[std::size_t(f[0])], vh[std::size_t(f[1])], vh[std::size_t(f[2])]);
+    if (!fh.is_valid()) throw Error("the mesh is not a manifold that " + ext + " output can hold", path);
+  }
+  OpenMesh::IO::Options opt;
+  if (ext == ".ply" || ext == ".stl") opt += OpenMesh::IO::Options::Binary;
+  if (normals) opt += OpenMesh::IO::Options::VertexNormal;
+  if (!OpenMesh::IO::write_mesh(tm, out.path(), opt, 17)) throw Error("cannot write the mesh", path);
+  out.commit();
+}
+
+} // namespace imgmesh
