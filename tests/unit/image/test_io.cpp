@@ -1,0 +1,136 @@
+#include "image/io.hpp"
+#include "util/error.hpp"
+
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <unistd.h>
+
+using namespace imgmesh;
+
+namespace {
+std::string temp_dir() {
+  static std::string dir = [] {
+    char templ[] = "/tmp/imgmesh-io-XXXXXX";
+    return std::string(mkdtemp(templ));
+  }();
+  return dir;
+}
+
+BinaryImage sample(int dimension) {
+  Geometry g;
+  g.dimension = dimension;
+  g.size = {7, 5, dimension == 2 ? 1u : 4u};
+  g.origin = {-12.5, 3.25, 7};
+  g.spacing = {0.6, 0.7, dimension == 2 ? 1.0 : 1.3};
+  if (dimension == 3) g.direction = {0, -1, 0, 1, 0, 0, 0, 0, 1};
+  BinaryImage img(g, 0);
+  std::mt19937 rng(7);
+  for (auto& v : img.data) v = rng() % 3 == 0;
+  img.data[3] = 1;
+  return img;
+}
+
+void same(const BinaryImage& a, const BinaryImage& b) {
+  REQUIRE(a.size == b.size);
+  CHECK(a.dimension == b.dimension);
+  for (int i = 0; i < 3; ++i) {
+    CHECK(a.origin[i] == Approx(b.origin[i]).margin(1e-6));
+    CHECK(a.spacing[i] == Approx(b.spacing[i]).margin(1e-6));
+  }
+  for (int i = 0; i < 9; ++i) CHECK(a.direction[i] == Approx(b.direction[i]).margin(1e-6));
+  CHECK(a.data == b.data);
+}
+} // namespace
+
+TEST_CASE("3D images keep voxels and world geometry through every format") {
+  const BinaryImage img = sample(3);
+  for (const char* ext : {".nrrd", ".mha", ".nii.gz", ".nii"}) {
+    DYNAMIC_SECTION(ext) {
+      const std::string path = temp_dir() + "/img" + ext;
+      write_image(path, img);
+      same(read_foreground(path, {}), img);
+      const ImageInfo info = read_image_info(path);
+      CHECK(info.integer);
+      CHECK(info.geometry.dimension == 3);
+    }
+  }
+}
+
+TEST_CASE("2D images keep voxels and geometry (NRRD and PNG)") {
+  const BinaryImage img = sample(2);
+  for (const char* ext : {".nrrd", ".png"}) {
+    DYNAMIC_SECTION(ext) {
+      const std::string path = temp_dir() + "/img2" + ext;
+      write_image(path, img);
+      BinaryImage back = read_foreground(path, {});
+      REQUIRE(back.dimension == 2);
+      CHECK(back.data == img.data);
+      if (std::string(ext) == ".nrrd") same(back, img);
+    }
+  }
+}
+
+TEST_CASE("float images carry NRRD key/value fields") {
+  Geometry g;
+  g.size = {3, 3, 3};
+  g.spacing = {1, 2, 3};
+  FloatImage f(g, -1.5f);
+  f(1, 2, 0) = 4.25f;
+  const std::string path = temp_dir() + "/f.nrrd";
+  write_image(path, f, {{"imgmesh_kind", "test"}, {"imgmesh_d", "0.1 0.2 0.3"}});
+  std::map<std::string, std::string> fields;
+  FloatImage back = read_float(path, &fields);
+  CHECK(back.data == f.data);
+  CHECK(fields["imgmesh_kind"] == "test");
+  CHECK(fields["imgmesh_d"] == "0.1 0.2 0.3");
+}
+
+TEST_CASE("labels and thresholds select the foreground") {
+  Geometry g;
+  g.size = {4, 1, 1};
+  FloatImage f(g);
+  f.data = {0.f, 1.f, 2.f, 3.f};
+  const std::string fpath = temp_dir() + "/grey.nrrd";
+  write_image(fpath, f);
+  Selection thr;
+  thr.has_threshold = true;
+  thr.threshold = 2;
+  CHECK(read_foreground(fpath, thr).data == std::vector<std::uint8_t>{0, 0, 1, 1});
+  Selection lab;
+  lab.labels = {1};
+  CHECK_THROWS_AS(read_foreground(fpath, lab), UsageError);  // float image with --label
+
+  BinaryImage b(g);
+  b.data = {0, 1, 1, 0};
+  const std::string bpath = temp_dir() + "/b.nrrd";
+  write_image(bpath, b);
+  CHECK(read_foreground(bpath, lab).data == std::vector<std::uint8_t>{0, 1, 1, 0});
+  Selection absent;
+  absent.labels = {5};
+  CHECK_THROWS_WITH(read_foreground(bpath, absent), Catch::Contains("label 5"));
+  Selection none;
+  none.has_threshold = true;
+  none.threshold = 10;
+  CHECK_THROWS_WITH(read_foreground(bpath, none), Catch::Contains("empty"));
+}
+
+TEST_CASE("bad files give an Error, never a crash") {
+  const BinaryImage img = sample(3);
+  const std::string good = temp_dir() + "/good.nrrd";
+  write_image(good, img);
+  std::ifstream in(good, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string cut = temp_dir() + "/cut.nrrd";
+  std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  CHECK_THROWS_AS(read_foreground(cut, {}), Error);
+  const std::string junk = temp_dir() + "/junk.nrrd";
+  std::ofstream(junk) << "this is not an image\n";
+  CHECK_THROWS_AS(read_foreground(junk, {}), Error);
+  CHECK_THROWS_AS(read_foreground(temp_dir() + "/missing.nrrd", {}), Error);
+  CHECK_THROWS_AS(write_image(temp_dir() + "/x.jpg", img), UsageError);
+  // A failed write leaves no file.
+  CHECK(access((temp_dir() + "/x.jpg").c_str(), F_OK) != 0);
+}
