@@ -1,0 +1,288 @@
+// Chapter 5's repair, linear in time and memory: the working image is one
+// byte per voxel (the padded output itself), the queue R holds only points
+// whose blocks became critical during the repair, and the points of the
+// input's critical configurations come from the scan, in scan order, as they
+// are reached (a point is re-checked when taken, so the order only changes
+// which of equally good choices is made, never correctness).
+#include "wellcomposed/well_composed.hpp"
+
+#include "util/error.hpp"
+#include "wellcomposed/critical_configuration.hpp"
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+namespace imgmesh {
+namespace {
+
+using wc::candidate_sets;
+using wc::critical_configurations;
+
+int popcount(unsigned v) { return __builtin_popcount(v); }
+
+void add_counts(CriticalCounts& c, std::uint8_t flags) {
+  c.c1 += popcount(flags & (wc::kC1x | wc::kC1y | wc::kC1z));
+  c.c2 += (flags & wc::kC2) ? 1 : 0;
+}
+
+void check_size(const Geometry& g, const char* what) {
+  if (g.dimension != 2 && g.dimension != 3)
+    throw Error(std::string(what) + ": image must be 2D or 3D");
+  if (g.dimension == 2 && g.size[2] != 1) throw Error(std::string(what) + ": 2D image with depth > 1");
+  for (std::size_t s : g.size)
+    if (s == 0 || s > (std::size_t(1) << 20))
+      throw Error(std::string(what) + ": image size out of range");
+  if (g.size[0] * g.size[1] > (std::size_t(1) << 40) / g.size[2])
+    throw Error(std::string(what) + ": image too large");
+}
+
+// A byte image (0/1) whose border layers are background, so every block N(p)
+// with p in [0, n-2]^3 lies inside and no critical configuration can involve
+// the border or anything outside (the outside being background too).
+struct WorkGrid {
+  std::uint8_t* v;
+  std::size_t n[3];
+  std::size_t sy, sz;
+  std::size_t off[8];  // offset of block bit k from r
+
+  WorkGrid(std::uint8_t* data, std::size_t nx, std::size_t ny, std::size_t nz)
+      : v(data), n{nx, ny, nz}, sy(nx), sz(nx * ny) {
+    for (int k = 0; k < 8; ++k) off[k] = (k & 1) + ((k >> 1) & 1) * sy + ((k >> 2) & 1) * sz;
+  }
+  std::uint8_t code(std::size_t i) const {
+    const std::uint8_t* p = v + i;
+    return std::uint8_t(p[0] | p[1] << 1 | p[sy] << 2 | p[sy + 1] << 3 | p[sz] << 4 |
+                        p[sz + 1] << 5 | p[sz + sy] << 6 | p[sz + sy + 1] << 7);
+  }
+};
+
+// Rules (1)-(3) of section 5.2.4 with the queue R of Figure 5.2.
+class Repair {
+public:
+  Repair(WorkGrid g, std::uint64_t seed) : g_(g), rng_(seed) {}
+
+  // Figures 5.1 and 5.2: scan D; every point whose N_x, N_y, N_z or N is
+  // critical is eliminated, then R (points made critical by rule (3)) is
+  // drained before the scan goes on.
+  void run() {
+    if (g_.n[0] < 2 || g_.n[1] < 2 || g_.n[2] < 2) return;
+    for (std::size_t z = 0; z + 1 < g_.n[2]; ++z)
+      for (std::size_t y = 0; y + 1 < g_.n[1]; ++y) {
+        const std::size_t row = g_.sy * y + g_.sz * z;
+        for (std::size_t x = 0; x + 1 < g_.n[0]; ++x) {
+          const std::size_t r = row + x;
+          if (!critical_configurations(g_.code(r))) continue;
+          eliminate(r);
+          while (head_ < queue_.size()) eliminate(queue_[head_++]);
+          queue_.clear();
+          head_ = 0;
+        }
+      }
+  }
+
+  std::size_t changed = 0, created = 0;
+
+private:
+  static constexpr int kG = 27;  // blocks N(p), p in [r-1, r+1]^3: all that G(r) holds
+
+  // Flags of the 27 blocks around r (0 where a block would leave the grid:
+  // such blocks touch the background border and are never critical).
+  void flags_around(std::size_t r, std::uint8_t out[kG]) const {
+    const std::size_t c[3] = {r % g_.sy, (r / g_.sy) % g_.n[1], r / g_.sz};
+    int k = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx, ++k) {
+          const std::ptrdiff_t p[3] = {std::ptrdiff_t(c[0]) + dx, std::ptrdiff_t(c[1]) + dy,
+                                       std::ptrdiff_t(c[2]) + dz};
+          bool in = true;
+          for (int a = 0; a < 3; ++a) in = in && p[a] >= 0 && std::size_t(p[a]) + 1 < g_.n[a];
+          out[k] = in ? critical_configurations(
+                            g_.code(std::size_t(p[0]) + g_.sy * std::size_t(p[1]) + g_.sz * std::size_t(p[2])))
+                      : 0;
+        }
+  }
+  std::size_t neighbour(std::size_t r, int k) const {
+    const int dx = k % 3 - 1, dy = (k / 3) % 3 - 1, dz = k / 9 - 1;
+    return std::size_t(std::ptrdiff_t(r) + dx + std::ptrdiff_t(g_.sy) * dy + std::ptrdiff_t(g_.sz) * dz);
+  }
+  void set(std::size_t r, unsigned mask, std::uint8_t colour) {
+    for (int k = 0; k < 8; ++k)
+      if (mask & (1u << k)) g_.v[r + g_.off[k]] = colour;
+  }
+  // New critical configurations: flags set after that were not set before.
+  static int created_between(const std::uint8_t before[kG], const std::uint8_t after[kG]) {
+    int n = 0;
+    for (int k = 0; k < kG; ++k) n += popcount(after[k] & ~before[k]);
+    return n;
+  }
+
+  void eliminate(std::size_t r) {
+    const std::uint8_t code = g_.code(r);
+    if (!critical_configurations(code)) return;  // already eliminated by an earlier choice
+    const wc::CandidateSets& b = candidate_sets(code);
+    std::uint8_t before[kG], after[kG];
+    flags_around(r, before);
+    // Partition B(r) into B1(r) (creates nothing) and B2(r).
+    int created_by[6];
+    unsigned b1[6], b2[6];
+    int n1 = 0, n2 = 0;
+    for (int i = 0; i < b.count; ++i) {
+      set(r, b.sets[i], 1);
+      flags_around(r, after);
+      set(r, b.sets[i], 0);
+      created_by[i] = created_between(before, after);
+      if (created_by[i] == 0) b1[n1++] = unsigned(i);
+      else b2[n2++] = unsigned(i);
+    }
+    unsigned pick;
+    if (n1 == 1) pick = b1[0];                       // rule (1)
+    else if (n1 > 1) pick = b1[rng_() % unsigned(n1)];  // rule (2)
+    else pick = b2[rng_() % unsigned(n2)];           // rule (3)
+    set(r, b.sets[pick], 1);
+    changed += std::size_t(popcount(b.sets[pick]));
+    if (n1 == 0) {
+      // Rule (3): re-examine only G(r); queue every point whose N_x, N_y,
+      // N_z or N became critical.
+      created += std::size_t(created_by[pick]);
+      flags_around(r, after);
+      for (int k = 0; k < kG; ++k)
+        if (after[k] & ~before[k]) queue_.push_back(neighbour(r, k));
+    }
+  }
+
+  WorkGrid g_;
+  std::mt19937_64 rng_;
+  std::vector<std::size_t> queue_;  // R
+  std::size_t head_ = 0;
+};
+
+struct Padding {
+  std::array<std::size_t, 3> before{0, 0, 0}, after{0, 0, 0};
+  bool any() const {
+    for (int a = 0; a < 3; ++a)
+      if (before[a] || after[a]) return true;
+    return false;
+  }
+};
+
+// One voxel more on each side where foreground touches the border (2D: x, y).
+Padding border_padding(const BinaryImage& in) {
+  Padding p;
+  const std::size_t nx = in.size[0], ny = in.size[1], nz = in.size[2];
+  const int axes = in.dimension == 2 ? 2 : 3;
+  for (std::size_t z = 0; z < nz; ++z)
+    for (std::size_t y = 0; y < ny; ++y) {
+      const std::uint8_t* row = &in.data[in.index(0, y, z)];
+      const bool edge_row = y == 0 || y + 1 == ny || (axes == 3 && (z == 0 || z + 1 == nz));
+      if (edge_row) {
+        bool anyfg = false;
+        for (std::size_t x = 0; x < nx && !anyfg; ++x) anyfg = row[x] != 0;
+        if (anyfg) {
+          if (y == 0) p.before[1] = 1;
+          if (y + 1 == ny) p.after[1] = 1;
+          if (axes == 3 && z == 0) p.before[2] = 1;
+          if (axes == 3 && z + 1 == nz) p.after[2] = 1;
+        }
+      }
+      if (row[0]) p.before[0] = 1;
+      if (row[nx - 1]) p.after[0] = 1;
+    }
+  return p;
+}
+
+// Repair in one mode on a padded copy. Remove is the dual: complement, add,
+// complement back (the border stays background in the result, since the
+// complement's border is foreground and add never touches it).
+WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode mode, std::uint64_t seed) {
+  WellComposedResult res;
+  res.padded_before = pad.before;
+  res.padded_after = pad.after;
+  res.mode_used = mode;
+  res.image = pad.any() ? imgmesh::pad(in, pad.before, pad.after, std::uint8_t(0)) : in;
+  BinaryImage& out = res.image;
+  for (auto& v : out.data) v = v ? 1 : 0;
+  const bool remove = mode == RepairMode::Remove;
+  const std::size_t nx = out.size[0], ny = out.size[1];
+  if (out.dimension == 2) {
+    // A 2D image is the bottom layer of a two-layer grid whose top layer is
+    // background: then only N_z(r) squares can be critical, the 2D analogue.
+    std::vector<std::uint8_t> w(2 * nx * ny, 0);
+    for (std::size_t i = 0; i < nx * ny; ++i) w[i] = remove ? out.data[i] ^ 1 : out.data[i];
+    Repair rep(WorkGrid(w.data(), nx, ny, 2), seed);
+    rep.run();
+    for (std::size_t i = 0; i < nx * ny; ++i) out.data[i] = remove ? w[i] ^ 1 : w[i];
+    res.changed = rep.changed;
+    res.created = rep.created;
+    return res;
+  }
+  if (remove)
+    for (auto& v : out.data) v ^= 1;
+  Repair rep(WorkGrid(out.data.data(), nx, ny, out.size[2]), seed);
+  rep.run();
+  if (remove)
+    for (auto& v : out.data) v ^= 1;
+  res.changed = rep.changed;
+  res.created = rep.created;
+  return res;
+}
+
+} // namespace
+
+CriticalCounts count_critical_configurations(const BinaryImage& img) {
+  check_size(img, "count_critical_configurations");
+  if (img.data.size() != img.count()) throw Error("count_critical_configurations: image data size mismatch");
+  CriticalCounts c;
+  const std::size_t nx = img.size[0], ny = img.size[1], nz = img.size[2];
+  // Blocks N(r) for r in [0, n-1]^3 with the outside as background: blocks
+  // reaching below 0 have a background face or edge and are never critical.
+  const std::vector<std::uint8_t> zero(nx + 1, 0);
+  auto row = [&](std::size_t y, std::size_t z) -> const std::uint8_t* {
+    return (y < ny && z < nz) ? &img.data[img.index(0, y, z)] : zero.data();
+  };
+  for (std::size_t z = 0; z < nz; ++z)
+    for (std::size_t y = 0; y < ny; ++y) {
+      const std::uint8_t* r0 = row(y, z);
+      const std::uint8_t* r1 = row(y + 1, z);
+      const std::uint8_t* r2 = row(y, z + 1);
+      const std::uint8_t* r3 = row(y + 1, z + 1);
+      auto column = [&](std::size_t x) {
+        return unsigned(r0[x] != 0) | unsigned(r1[x] != 0) << 2 | unsigned(r2[x] != 0) << 4 |
+               unsigned(r3[x] != 0) << 6;
+      };
+      unsigned left = column(0);
+      for (std::size_t x = 0; x < nx; ++x) {
+        const unsigned right = x + 1 < nx ? column(x + 1) : 0u;
+        const unsigned code = left | right << 1;
+        if (code && code != 0xffu) add_counts(c, critical_configurations(std::uint8_t(code)));
+        left = right;
+      }
+    }
+  return c;
+}
+
+bool is_well_composed(const BinaryImage& img) { return count_critical_configurations(img).total() == 0; }
+
+WellComposedResult make_well_composed(const BinaryImage& in, const WellComposedOptions& opt) {
+  check_size(in, "make_well_composed");
+  if (in.data.size() != in.count()) throw Error("make_well_composed: image data size mismatch");
+  const CriticalCounts counts = count_critical_configurations(in);
+  const Padding pad = border_padding(in);
+  WellComposedResult res;
+  if (opt.mode == RepairMode::Min) {
+    WellComposedResult add = repair(in, pad, RepairMode::Add, opt.seed);
+    if (add.changed == 0) {
+      res = std::move(add);
+    } else {
+      WellComposedResult rem = repair(in, pad, RepairMode::Remove, opt.seed);
+      res = rem.changed < add.changed ? std::move(rem) : std::move(add);
+    }
+  } else {
+    res = repair(in, pad, opt.mode, opt.seed);
+  }
+  res.input = counts;
+  return res;
+}
+
+} // namespace imgmesh
