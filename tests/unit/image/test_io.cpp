@@ -23,7 +23,7 @@ BinaryImage sample(int dimension) {
   Geometry g;
   g.dimension = dimension;
   g.size = {7, 5, dimension == 2 ? 1u : 4u};
-  g.origin = {-12.5, 3.25, 7};
+  g.origin = {-12.5, 3.25, dimension == 2 ? 0.0 : 7.0};  // 2D files have no z
   g.spacing = {0.6, 0.7, dimension == 2 ? 1.0 : 1.3};
   if (dimension == 3) g.direction = {0, -1, 0, 1, 0, 0, 0, 0, 1};
   BinaryImage img(g, 0);
