@@ -1,0 +1,450 @@
+// Planar mesh formats other than Triangle's, and the choice by extension.
+#include "planar/planar_formats.hpp"
+
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace imgmesh {
+namespace {
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+bool exists(const std::string& p) {
+  struct stat st;
+  return ::stat(p.c_str(), &st) == 0;
+}
+
+double region_of(const PlanarMesh& m, std::size_t e) {
+  return m.element_attributes.empty() || m.element_attributes[e].empty() ? 0.0
+                                                                         : m.element_attributes[e][0];
+}
+
+void check_mesh(const PlanarMesh& m, const std::string& path) {
+  for (const auto& e : m.elements)
+    for (int v : e)
+      if (v < 0 || std::size_t(v) >= m.points.size())
+        throw Error("internal: element refers to a missing vertex", path);
+}
+
+void write_off(const std::string& path, const PlanarMesh& m) {
+  AtomicOutput out(path);
+  auto& o = out.stream();
+  o << "OFF\n" << m.points.size() << ' ' << m.elements.size() << " 0\n";
+  for (const auto& p : m.points) o << num(p[0]) << ' ' << num(p[1]) << " 0\n";
+  for (const auto& e : m.elements) {
+    o << e.size();
+    for (int v : e) o << ' ' << v;
+    o << '\n';
+  }
+  out.commit();
+}
+
+void write_vtk(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt) {
+  AtomicOutput out(path);
+  auto& o = out.stream();
+  o << "# vtk DataFile Version 3.0\nimgmesh planar mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+  o << "POINTS " << m.points.size() << " double\n";
+  for (const auto& p : m.points) o << num(p[0]) << ' ' << num(p[1]) << " 0\n";
+  std::size_t size = 0;
+  for (const auto& e : m.elements) size += e.size() + 1;
+  o << "CELLS " << m.elements.size() << ' ' << size << '\n';
+  for (const auto& e : m.elements) {
+    o << e.size();
+    for (int v : e) o << ' ' << v;
+    o << '\n';
+  }
+  o << "CELL_TYPES " << m.elements.size() << '\n';
+  for (const auto& e : m.elements) o << (e.size() == 3 ? 5 : e.size() == 4 ? 9 : 7) << '\n';
+  if (!m.elements.empty()) {
+    o << "CELL_DATA " << m.elements.size() << '\n';
+    o << "SCALARS region double 1\nLOOKUP_TABLE default\n";
+    for (std::size_t i = 0; i < m.elements.size(); ++i) o << num(region_of(m, i)) << '\n';
+    if (opt.element_scalar.size() == m.elements.size()) {
+      std::string name = opt.scalar_name.empty() ? "scalar" : opt.scalar_name;
+      std::replace(name.begin(), name.end(), ' ', '_');
+      o << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
+      for (double v : opt.element_scalar) o << num(v) << '\n';
+    }
+  }
+  if (m.point_markers.size() == m.points.size() && !m.points.empty()) {
+    o << "POINT_DATA " << m.points.size() << "\nSCALARS marker int 1\nLOOKUP_TABLE default\n";
+    for (int k : m.point_markers) o << k << '\n';
+  }
+  out.commit();
+}
+
+// Gmsh 2.2: elements carry (physical, elementary) tags = (region attribute,
+// region attribute); segments are line elements tagged with their marker.
+void write_msh(const std::string& path, const PlanarMesh& m) {
+  AtomicOutput out(path);
+  auto& o = out.stream();
+  o << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" << m.points.size() << '\n';
+  for (std::size_t i = 0; i < m.points.size(); ++i)
+    o << i + 1 << ' ' << num(m.points[i][0]) << ' ' << num(m.points[i][1]) << " 0\n";
+  o << "$EndNodes\n$Elements\n" << m.segments.size() + m.elements.size() << '\n';
+  std::size_t id = 1;
+  for (std::size_t i = 0; i < m.segments.size(); ++i) {
+    const int tag = m.segment_markers.empty() ? 0 : m.segment_markers[i];
+    o << id++ << " 1 2 " << tag << ' ' << tag << ' ' << m.segments[i][0] + 1 << ' '
+      << m.segments[i][1] + 1 << '\n';
+  }
+  for (std::size_t i = 0; i < m.elements.size(); ++i) {
+    const auto& e = m.elements[i];
+    const long tag = std::lround(region_of(m, i));
+    o << id++ << ' ' << (e.size() == 3 ? 2 : 3) << " 2 " << tag << ' ' << tag;
+    for (int v : e) o << ' ' << v + 1;
+    o << '\n';
+  }
+  o << "$EndElements\n";
+  out.commit();
+}
+
+// --- a minimal PNG encoder (stored deflate blocks) for SVG backgrounds -----
+std::uint32_t crc32(const std::uint8_t* d, std::size_t n, std::uint32_t c = 0xffffffffu) {
+  static std::uint32_t table[256];
+  static bool init = false;
+  if (!init) {
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t k = i;
+      for (int j = 0; j < 8; ++j) k = (k & 1) ? 0xedb88320u ^ (k >> 1) : k >> 1;
+      table[i] = k;
+    }
+    init = true;
+  }
+  for (std::size_t i = 0; i < n; ++i) c = table[(c ^ d[i]) & 0xff] ^ (c >> 8);
+  return c;
+}
+
+void be32(std::string& s, std::uint32_t v) {
+  for (int i = 3; i >= 0; --i) s.push_back(char((v >> (8 * i)) & 0xff));
+}
+
+void chunk(std::string& png, const char* type, const std::string& data) {
+  be32(png, std::uint32_t(data.size()));
+  std::string body = std::string(type, 4) + data;
+  png += body;
+  be32(png, crc32(reinterpret_cast<const std::uint8_t*>(body.data()), body.size()) ^ 0xffffffffu);
+}
+
+std::string grey_png(const SvgBackground& bg) {
+  std::string raw;
+  raw.reserve((bg.width + 1) * bg.height);
+  for (std::size_t r = 0; r < bg.height; ++r) {
+    raw.push_back(0);  // filter: none
+    raw.append(reinterpret_cast<const char*>(bg.grey.data()) + r * bg.width, bg.width);
+  }
+  std::string z = "\x78\x01";
+  std::uint32_t a = 1, b = 0;
+  for (unsigned char c : raw) {
+    a = (a + c) % 65521;
+    b = (b + a) % 65521;
+  }
+  for (std::size_t pos = 0; pos < raw.size() || pos == 0;) {
+    const std::size_t len = std::min<std::size_t>(65535, raw.size() - pos);
+    z.push_back(pos + len >= raw.size() ? 1 : 0);
+    z.push_back(char(len & 0xff));
+    z.push_back(char(len >> 8));
+    z.push_back(char(~len & 0xff));
+    z.push_back(char((~len >> 8) & 0xff));
+    z.append(raw, pos, len);
+    pos += len;
+    if (len == 0) break;
+  }
+  be32(z, (b << 16) | a);
+  std::string png = "\x89PNG\r\n\x1a\n";
+  std::string ihdr;
+  be32(ihdr, std::uint32_t(bg.width));
+  be32(ihdr, std::uint32_t(bg.height));
+  ihdr += std::string("\x08\x00\x00\x00\x00", 5);  // 8-bit grey, no interlace
+  chunk(png, "IHDR", ihdr);
+  chunk(png, "IDAT", z);
+  chunk(png, "IEND", "");
+  return png;
+}
+
+std::string base64(const std::string& in) {
+  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < in.size(); i += 3) {
+    const std::uint32_t v = (std::uint8_t(in[i]) << 16) | (std::uint8_t(in[i + 1]) << 8) | std::uint8_t(in[i + 2]);
+    for (int k = 3; k >= 0; --k) out.push_back(t[(v >> (6 * k)) & 63]);
+  }
+  if (i < in.size()) {
+    std::uint32_t v = std::uint8_t(in[i]) << 16;
+    if (i + 1 < in.size()) v |= std::uint8_t(in[i + 1]) << 8;
+    out.push_back(t[(v >> 18) & 63]);
+    out.push_back(t[(v >> 12) & 63]);
+    out.push_back(i + 1 < in.size() ? t[(v >> 6) & 63] : '=');
+    out.push_back('=');
+  }
+  return out;
+}
+
+std::string rgb(double r, double g, double b) {
+  char buf[16];
+  auto c = [](double v) { return int(std::lround(std::clamp(v, 0.0, 1.0) * 255)); };
+  std::snprintf(buf, sizeof buf, "#%02x%02x%02x", c(r), c(g), c(b));
+  return buf;
+}
+
+// Blue (low) to yellow (high), roughly viridis.
+std::string ramp(double t) {
+  static const double stops[5][3] = {{0.27, 0.00, 0.33}, {0.23, 0.32, 0.55}, {0.13, 0.57, 0.55},
+                                     {0.37, 0.79, 0.38}, {0.99, 0.91, 0.14}};
+  t = std::clamp(t, 0.0, 1.0) * 4;
+  const int i = std::min(3, int(t));
+  const double f = t - i;
+  return rgb(stops[i][0] + f * (stops[i + 1][0] - stops[i][0]), stops[i][1] + f * (stops[i + 1][1] - stops[i][1]),
+             stops[i][2] + f * (stops[i + 1][2] - stops[i][2]));
+}
+
+std::string category(double label) {
+  static const char* palette[] = {"#dddddd", "#e6a0a0", "#a0c8e6", "#b4e6a0", "#e6d2a0",
+                                  "#c8a0e6", "#a0e6d7", "#e6a0d2", "#d2e6a0", "#a0a0e6"};
+  const long k = std::lround(label);
+  return palette[((k % 10) + 10) % 10];
+}
+
+void write_svg(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  auto grow = [&](const Point2& p) {
+    x0 = std::min(x0, p[0]); x1 = std::max(x1, p[0]);
+    y0 = std::min(y0, p[1]); y1 = std::max(y1, p[1]);
+  };
+  for (const auto& p : m.points) grow(p);
+  const SvgBackground* bg = opt.background;
+  if (bg && bg->width && bg->height) {
+    for (double c : {-0.5, bg->width - 0.5})
+      for (double r : {-0.5, bg->height - 0.5})
+        grow({bg->origin[0] + c * bg->column[0] + r * bg->row[0], bg->origin[1] + c * bg->column[1] + r * bg->row[1]});
+  }
+  if (x0 > x1) { x0 = y0 = 0; x1 = y1 = 1; }
+  const double w = std::max(x1 - x0, 1e-300), h = std::max(y1 - y0, 1e-300);
+  const double s = opt.svg_width_px / w, margin = 10;
+  const double W = opt.svg_width_px + 2 * margin, H = h * s + 2 * margin;
+  // World y points up, SVG y down.
+  auto X = [&](double x) { return (x - x0) * s + margin; };
+  auto Y = [&](double y) { return (y1 - y) * s + margin; };
+  AtomicOutput out(path);
+  auto& o = out.stream();
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
+                "width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.3f %.3f\">\n",
+                W, H, W, H);
+  o << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  if (bg && bg->width && bg->height && bg->grey.size() == bg->width * bg->height) {
+    // Pixel (c, r) covers [c, c+1] x [r, r+1] in image units; map to the page.
+    const double ox = bg->origin[0] - 0.5 * bg->column[0] - 0.5 * bg->row[0];
+    const double oy = bg->origin[1] - 0.5 * bg->column[1] - 0.5 * bg->row[1];
+    std::snprintf(buf, sizeof buf, "<image transform=\"matrix(%.9g %.9g %.9g %.9g %.9g %.9g)\" ",
+                  bg->column[0] * s, -bg->column[1] * s, bg->row[0] * s, -bg->row[1] * s, X(ox), Y(oy));
+    o << buf << "width=\"" << bg->width << "\" height=\"" << bg->height
+      << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" xlink:href=\"data:image/png;base64,"
+      << base64(grey_png(*bg)) << "\"/>\n";
+  }
+  const bool scalar = opt.element_scalar.size() == m.elements.size() && !m.elements.empty();
+  double lo = 0, hi = 1;
+  if (scalar) {
+    lo = *std::min_element(opt.element_scalar.begin(), opt.element_scalar.end());
+    hi = *std::max_element(opt.element_scalar.begin(), opt.element_scalar.end());
+    if (!(hi > lo)) hi = lo + 1;
+  }
+  if (!m.elements.empty()) {
+    o << "<g stroke=\"#333333\" stroke-width=\"0.4\" stroke-linejoin=\"round\">\n";
+    for (std::size_t i = 0; i < m.elements.size(); ++i) {
+      o << "<polygon points=\"";
+      for (int v : m.elements[i]) {
+        std::snprintf(buf, sizeof buf, "%.2f,%.2f ", X(m.points[v][0]), Y(m.points[v][1]));
+        o << buf;
+      }
+      const std::string fill =
+          scalar ? ramp((opt.element_scalar[i] - lo) / (hi - lo)) : category(region_of(m, i));
+      o << "\" fill=\"" << fill << "\"/>\n";
+    }
+    o << "</g>\n";
+  }
+  if (!m.segments.empty()) {
+    o << "<g stroke-width=\"1.5\" stroke-linecap=\"round\">\n";
+    for (std::size_t i = 0; i < m.segments.size(); ++i) {
+      const auto& a = m.points[m.segments[i][0]];
+      const auto& b = m.points[m.segments[i][1]];
+      const int mk = m.segment_markers.empty() ? 0 : m.segment_markers[i];
+      std::snprintf(buf, sizeof buf, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\"/>\n",
+                    X(a[0]), Y(a[1]), X(b[0]), Y(b[1]), mk == 1 ? "#0000cc" : "#dd0000");
+      o << buf;
+    }
+    o << "</g>\n";
+  }
+  o << "</svg>\n";
+  out.commit();
+}
+
+// OFF: "OFF" [nv nf ne] on the first line or the next, '#' comments.
+PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t max_face) {
+  const std::string text = read_all(path);
+  std::vector<std::pair<int, std::vector<std::string>>> lines;
+  {
+    std::istringstream in(text);
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) {
+      ++n;
+      const auto hash = line.find('#');
+      if (hash != std::string::npos) line.resize(hash);
+      std::istringstream ls(line);
+      std::vector<std::string> f;
+      for (std::string t; ls >> t;) f.push_back(t);
+      if (!f.empty()) lines.push_back({n, std::move(f)});
+    }
+  }
+  std::size_t li = 0;
+  auto fail = [&](const std::string& what) -> void {
+    const int n = li < lines.size() ? lines[li].first : (lines.empty() ? 0 : lines.back().first);
+    throw Error("line " + std::to_string(n) + ": " + what, path);
+  };
+  auto real = [&](const std::string& s) {
+    char* e = nullptr;
+    const double v = std::strtod(s.c_str(), &e);
+    if (e == s.c_str() || *e || !std::isfinite(v)) fail("'" + s + "' is not a finite number");
+    return v;
+  };
+  auto integer = [&](const std::string& s) {
+    char* e = nullptr;
+    const long long v = std::strtoll(s.c_str(), &e, 10);
+    if (e == s.c_str() || *e) fail("'" + s + "' is not an integer");
+    return v;
+  };
+  if (lines.empty() || lines[0].second[0] != "OFF") {
+    li = 0;
+    fail("not an OFF file (no OFF header)");
+  }
+  std::vector<std::string> counts(lines[0].second.begin() + 1, lines[0].second.end());
+  li = 1;
+  if (counts.empty()) {
+    if (li >= lines.size()) fail("truncated: no counts");
+    counts = lines[li++].second;
+  }
+  if (counts.size() < 2) fail("expected vertex and face counts");
+  const long long nv = integer(counts[0]), nf = integer(counts[1]);
+  if (nv < 0 || nf < 0) fail("negative count");
+  if (std::size_t(nv + nf) > lines.size() - li) fail("truncated: fewer lines than the counts announce");
+  PlanarMesh m;
+  for (long long i = 0; i < nv; ++i, ++li) {
+    const auto& f = lines[li].second;
+    if (f.size() < 2) fail("a vertex needs x y [z]");
+    m.points.push_back({real(f[0]), real(f[1])});
+  }
+  for (long long i = 0; i < nf; ++i, ++li) {
+    const auto& f = lines[li].second;
+    const long long k = integer(f[0]);
+    if (k < (long long)min_face || k > (long long)max_face)
+      fail("faces must have " + std::to_string(min_face) + (max_face > 4 ? " or more" : " or 4") + " vertices");
+    if ((long long)f.size() < k + 1) fail("face has fewer vertices than announced");
+    std::vector<int> e;
+    for (long long j = 0; j < k; ++j) {
+      const long long v = integer(f[1 + j]);
+      if (v < 0 || v >= nv) fail("vertex " + f[1 + j] + " does not exist");
+      e.push_back(int(v));
+    }
+    m.elements.push_back(std::move(e));
+  }
+  return m;
+}
+
+} // namespace
+
+void write_planar_mesh(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt) {
+  check_mesh(m, path);
+  const std::string ext = extension_of(path);
+  if (ext == ".ele") {
+    if (path == "-") throw Error("an .ele output needs a file name (it has a .node beside it)", path);
+    write_node(replace_extension(path, ".node"), m);
+    if (!m.segments.empty()) write_poly(replace_extension(path, ".poly"), m, false);
+    write_ele(path, m);
+  } else if (ext == ".node") {
+    write_node(path, m);
+  } else if (ext == ".poly") {
+    write_poly(path, m, true);
+  } else if (ext == ".off") {
+    write_off(path, m);
+  } else if (ext == ".vtk") {
+    write_vtk(path, m, opt);
+  } else if (ext == ".msh") {
+    write_msh(path, m);
+  } else if (ext == ".svg") {
+    write_svg(path, m, opt);
+  } else {
+    throw UsageError("unknown planar mesh format '" + ext + "' (use .ele, .off, .vtk, .msh or .svg)", path);
+  }
+}
+
+PlanarMesh read_planar_mesh(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext == ".ele") {
+    PlanarMesh m = read_ele(path);
+    const std::string poly = replace_extension(path, ".poly");
+    if (exists(poly)) {
+      PlanarMesh p = read_poly(poly);
+      std::vector<int> map(p.points.size());
+      if (p.points == m.points) {
+        for (std::size_t i = 0; i < map.size(); ++i) map[i] = int(i);
+      } else {
+        // Inline vertices: match them to the mesh's by position.
+        std::map<Point2, int> at;
+        for (std::size_t i = 0; i < m.points.size(); ++i) at.emplace(m.points[i], int(i));
+        for (std::size_t i = 0; i < map.size(); ++i) {
+          auto it = at.find(p.points[i]);
+          if (it == at.end()) throw Error("a segment vertex of " + poly + " is not a mesh vertex", path);
+          map[i] = it->second;
+        }
+      }
+      for (const auto& s : p.segments) m.segments.push_back({map[s[0]], map[s[1]]});
+      m.segment_markers = p.segment_markers;
+      m.holes = p.holes;
+      m.regions = p.regions;
+    }
+    return m;
+  }
+  if (ext == ".off") return read_off(path, 3, 4);
+  throw Error("unknown planar mesh format '" + ext + "' (use .ele with its .node, or .off)", path);
+}
+
+PlanarMesh read_pslg(const std::string& path) {
+  const std::string ext = extension_of(path);
+  if (ext == ".poly") return read_poly(path);
+  if (ext == ".off") {
+    PlanarMesh m = read_off(path, 2, 1 << 30);
+    std::set<std::pair<int, int>> seen;
+    for (const auto& f : m.elements)
+      for (std::size_t i = 0; i < f.size(); ++i) {
+        int a = f[i], b = f[(i + 1) % f.size()];
+        if (f.size() == 2 && i == 1) break;
+        if (a == b) throw Error("a polygon repeats a vertex on consecutive corners", path);
+        if (seen.insert({std::min(a, b), std::max(a, b)}).second) {
+          m.segments.push_back({a, b});
+          m.segment_markers.push_back(1);
+        }
+      }
+    m.elements.clear();
+    return m;
+  }
+  throw Error("unknown PSLG format '" + ext + "' (use .poly or .off)", path);
+}
+
+} // namespace imgmesh

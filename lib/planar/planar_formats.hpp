@@ -1,0 +1,44 @@
+// Planar meshes in and out by file extension (DESIGN.md "Data contracts"):
+// Triangle's .ele/.node/.poly, OFF (z = 0), legacy VTK, Gmsh 2.2 and SVG.
+#pragma once
+#include "planar/triangle_io.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace imgmesh {
+
+// A grey raster drawn under an SVG picture: pixel (c, r)'s centre sits at
+// world (x, y) = origin + c * column + r * row.
+struct SvgBackground {
+  std::size_t width = 0, height = 0;
+  std::vector<std::uint8_t> grey;  // width * height, row r = c + width * r
+  Point2 origin{0, 0}, column{1, 0}, row{0, 1};
+};
+
+struct PlanarWriteOptions {
+  // Optional per-element scalar (one per element): VTK cell data and the SVG
+  // fill colour (a blue-to-yellow map over its range). Without it the SVG
+  // colours elements by their region attribute.
+  std::vector<double> element_scalar;
+  std::string scalar_name = "quality";
+  // SVG only.
+  const SvgBackground* background = nullptr;
+  double svg_width_px = 1000;  // picture width; the height follows the aspect ratio
+};
+
+// By extension: .ele (+ .node beside it, + .poly with the segments when there
+// are any), .off, .vtk, .msh, .svg. Every file is written atomically.
+// Throws Error on an unknown extension.
+void write_planar_mesh(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt = {});
+
+// .ele (with its .node, and the .poly beside it for segments if it exists)
+// or .off (z ignored; faces of 3 or 4 vertices). Throws Error.
+PlanarMesh read_planar_mesh(const std::string& path);
+
+// A planar straight-line graph: .poly, or an OFF of polygons (every polygon
+// edge a segment, marker 1). Throws Error.
+PlanarMesh read_pslg(const std::string& path);
+
+} // namespace imgmesh
