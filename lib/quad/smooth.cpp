@@ -1,0 +1,594 @@
+#include "quad/smooth.hpp"
+
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <unordered_set>
+
+namespace imgmesh {
+
+Json SmoothStats::to_json() const {
+  Json j = Json::object();
+  j["before"] = before.to_json();
+  j["after"] = after.to_json();
+  Json ops = Json::object();
+  ops["passes"] = passes;
+  ops["moves"] = moves;
+  ops["slides"] = slides;
+  ops["rejected_moves"] = rejected;
+  ops["diagonal_swaps"] = swaps;
+  ops["doublets_removed"] = doublets;
+  ops["quad_collapses"] = collapses;
+  ops["fixed_vertices"] = fixed_vertices;
+  j["operations"] = ops;
+  return j;
+}
+
+namespace {
+
+inline std::uint64_t edge_key(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
+// sin of the smallest angle of triangle (a, b, c). The smallest angle is at
+// most 60 degrees, where sin is monotone: comparing sines compares angles
+// without any trigonometry (the guard runs millions of times).
+inline double sin_min_angle(const Point2& a, const Point2& b, const Point2& c) {
+  const double abx = b[0] - a[0], aby = b[1] - a[1];
+  const double bcx = c[0] - b[0], bcy = c[1] - b[1];
+  const double cax = a[0] - c[0], cay = a[1] - c[1];
+  const double lab = abx * abx + aby * aby, lbc = bcx * bcx + bcy * bcy, lca = cax * cax + cay * cay;
+  const double cr = std::fabs(abx * cay - aby * cax);  // twice the area
+  // The smallest angle is opposite the shortest edge: sin = 2A / (product of the other two).
+  double den;
+  if (lab <= lbc && lab <= lca) den = lbc * lca;
+  else if (lbc <= lca) den = lab * lca;
+  else den = lab * lbc;
+  if (!(den > 0)) return 0;
+  return cr / std::sqrt(den);
+}
+
+// sin(Joe's mu); mu <= 45 degrees so the sine orders quads like mu does.
+inline double sin_mu(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+  return std::min(std::min(sin_min_angle(a, b, d), sin_min_angle(c, d, b)),
+                  std::min(sin_min_angle(a, b, c), sin_min_angle(d, a, c)));
+}
+
+class QuadImprover {
+public:
+  QuadImprover(PlanarMesh& m, const SmoothOptions& opt, SmoothStats& st)
+      : m_(m), opt_(opt), st_(st), P_(m.points) {}
+
+  void run();
+
+private:
+  using Quad = std::array<int, 4>;
+  PlanarMesh& m_;
+  const SmoothOptions& opt_;
+  SmoothStats& st_;
+  std::vector<Point2>& P_;
+  std::vector<Quad> Q_;                  // quads (copies of 4-node elements)
+  std::vector<int> q_elem_;              // element index of each quad
+  std::vector<char> q_dead_;
+  std::vector<double> q_smu_;            // cached sin(mu)
+  std::vector<std::vector<int>> vq_;     // vertex -> incident quads
+  std::vector<char> fixed_;              // never moves (and never merges away)
+  std::vector<char> v_dead_;
+  std::unordered_set<std::uint64_t> feature_;  // boundary, segment and region-boundary edges
+  // Sliding vertices: the fixed ends A, B of their straight chain and the two
+  // feature neighbours bounding the slide.
+  struct Slide { int v, A, B, u, w; };
+  std::vector<Slide> slides_;
+
+  void setup();
+  bool is_feature(int a, int b) const { return feature_.count(edge_key(a, b)) != 0; }
+  double quad_smu(const Quad& q) const { return sin_mu(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
+  bool convex(const Quad& q) const { return is_strictly_convex(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
+  // Try moving v to p (with back-off toward the current position); the guard.
+  bool try_move(int v, Point2 p, bool slide_line, const Slide* s);
+  bool angle_based_target(int v, Point2& out) const;
+  void smooth_pass();
+  void slide_pass();
+  void swap_pass();
+  void collapse_pass();
+  void doublet_pass();
+  void remove_from(int v, int q) {
+    auto& l = vq_[v];
+    l.erase(std::remove(l.begin(), l.end(), q), l.end());
+  }
+  void compact();
+};
+
+void QuadImprover::setup() {
+  const int n = int(P_.size());
+  vq_.assign(n, {});
+  fixed_.assign(n, 0);
+  v_dead_.assign(n, 0);
+  for (std::size_t e = 0; e < m_.elements.size(); ++e) {
+    const auto& el = m_.elements[e];
+    if (el.size() == 4) {
+      const int qi = int(Q_.size());
+      Q_.push_back({el[0], el[1], el[2], el[3]});
+      q_elem_.push_back(int(e));
+      for (int v : el) vq_[v].push_back(qi);
+    } else {
+      for (int v : el) fixed_[v] = 1;  // triangles stay as they are
+    }
+  }
+  q_dead_.assign(Q_.size(), 0);
+  q_smu_.resize(Q_.size());
+  for (std::size_t q = 0; q < Q_.size(); ++q) q_smu_[q] = quad_smu(Q_[q]);
+
+  // Feature edges: used once (boundary), between elements of different
+  // region attribute, or listed as segments.
+  struct HalfEdge { std::uint64_t key; int elem; };
+  std::vector<HalfEdge> he;
+  for (std::size_t e = 0; e < m_.elements.size(); ++e) {
+    const auto& el = m_.elements[e];
+    for (std::size_t i = 0; i < el.size(); ++i) he.push_back({edge_key(el[i], el[(i + 1) % el.size()]), int(e)});
+  }
+  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
+  auto region = [&](int e) {
+    return m_.element_attributes.empty() || m_.element_attributes[e].empty() ? 0.0 : m_.element_attributes[e][0];
+  };
+  for (std::size_t i = 0; i < he.size();) {
+    std::size_t j = i;
+    while (j < he.size() && he[j].key == he[i].key) ++j;
+    if (j - i == 1 || region(he[i].elem) != region(he[i + 1].elem)) feature_.insert(he[i].key);
+    i = j;
+  }
+  for (const auto& s : m_.segments) feature_.insert(edge_key(s[0], s[1]));
+  // Segment markers of feature edges, to tell one input segment from the next.
+  std::unordered_map<std::uint64_t, int> seg_marker;
+  for (std::size_t i = 0; i < m_.segments.size(); ++i)
+    seg_marker[edge_key(m_.segments[i][0], m_.segments[i][1])] =
+        m_.segment_markers.empty() ? 0 : m_.segment_markers[i];
+
+  std::vector<std::vector<int>> fnb(n);  // feature neighbours
+  for (std::uint64_t k : feature_) {
+    const int a = int(k >> 32), b = int(k & 0xffffffffu);
+    fnb[a].push_back(b);
+    fnb[b].push_back(a);
+  }
+  std::vector<char> can_slide(n, 0);
+  for (int v = 0; v < n; ++v) {
+    if (!fnb[v].empty()) fixed_[v] = 1;
+    if (!m_.point_markers.empty() && m_.point_markers[v] != 0) fixed_[v] = 1;
+    if (fnb[v].size() == 2 && opt_.slide_boundary && !vq_[v].empty()) {
+      const int u = fnb[v][0], w = fnb[v][1];
+      // Only inside one straight input segment: collinear (exactly), v between
+      // u and w, same segment marker on both sides, and only quads around.
+      const auto mu = seg_marker.find(edge_key(u, v)), mw = seg_marker.find(edge_key(v, w));
+      const bool same_marker = (mu == seg_marker.end() ? 0 : mu->second) == (mw == seg_marker.end() ? 0 : mw->second);
+      const double dot = (P_[u][0] - P_[v][0]) * (P_[w][0] - P_[v][0]) + (P_[u][1] - P_[v][1]) * (P_[w][1] - P_[v][1]);
+      can_slide[v] = orientation(P_[u], P_[v], P_[w]) == 0 && dot < 0 && same_marker;
+    }
+  }
+  // Vertices on triangles stay fixed even if they could slide.
+  for (const auto& el : m_.elements)
+    if (el.size() != 4)
+      for (int v : el) can_slide[v] = 0;
+  // Chains of sliding vertices end at fixed vertices A and B; slides are
+  // computed from A and B, which never move, so no rounding accumulates.
+  std::vector<char> seen(n, 0);
+  for (int v = 0; v < n; ++v) {
+    if (!can_slide[v] || seen[v]) continue;
+    std::vector<int> chain{v};
+    seen[v] = 1;
+    int ends[2];
+    for (int side = 0; side < 2; ++side) {
+      int prev = v, cur = fnb[v][side];
+      while (can_slide[cur] && !seen[cur]) {
+        seen[cur] = 1;
+        chain.push_back(cur);
+        const int nxt = fnb[cur][0] == prev ? fnb[cur][1] : fnb[cur][0];
+        prev = cur;
+        cur = nxt;
+      }
+      ends[side] = cur;
+    }
+    if (ends[0] == ends[1] || can_slide[ends[0]] || can_slide[ends[1]]) continue;  // closed straight loop: impossible, be safe
+    for (int c : chain) {
+      // Every vertex of the chain must be collinear with the ends, exactly.
+      if (orientation(P_[ends[0]], P_[c], P_[ends[1]]) != 0) { chain.clear(); break; }
+    }
+    for (int c : chain) slides_.push_back({c, ends[0], ends[1], fnb[c][0], fnb[c][1]});
+  }
+  std::size_t nf = 0;
+  for (int v = 0; v < n; ++v) nf += fixed_[v] && !vq_[v].empty();
+  st_.fixed_vertices = nf;
+}
+
+bool QuadImprover::angle_based_target(int v, Point2& out) const {
+  // Star of v: for each quad (v, x, y, z), the edge neighbour x sees the
+  // opposite corner y on one side, z sees y on the other. Zhou-Shimada
+  // rotate v about each edge neighbour onto the bisector of the star's angle
+  // there, then average.
+  struct Nb { int x; int y1 = -1, y2 = -1; };
+  Nb nb[16];
+  int k = 0;
+  auto slot = [&](int x) -> Nb* {
+    for (int i = 0; i < k; ++i)
+      if (nb[i].x == x) return &nb[i];
+    if (k == 16) return nullptr;
+    nb[k].x = x; nb[k].y1 = nb[k].y2 = -1;
+    return &nb[k++];
+  };
+  for (int q : vq_[v]) {
+    const Quad& Qd = Q_[q];
+    int i = 0;
+    while (Qd[i] != v) ++i;
+    const int x = Qd[(i + 1) & 3], y = Qd[(i + 2) & 3], z = Qd[(i + 3) & 3];
+    Nb* sx = slot(x);
+    Nb* sz = slot(z);
+    if (!sx || !sz) return false;
+    sx->y1 = y;
+    sz->y2 = y;
+  }
+  double sx = 0, sy = 0;
+  int cnt = 0;
+  const Point2& pv = P_[v];
+  for (int i = 0; i < k; ++i) {
+    if (nb[i].y1 < 0 || nb[i].y2 < 0) return false;  // open star: not interior
+    const Point2& px = P_[nb[i].x];
+    const double vx = pv[0] - px[0], vy = pv[1] - px[1];
+    const double len = std::hypot(vx, vy);
+    double ax = P_[nb[i].y1][0] - px[0], ay = P_[nb[i].y1][1] - px[1];
+    double bx = P_[nb[i].y2][0] - px[0], by = P_[nb[i].y2][1] - px[1];
+    const double la = std::hypot(ax, ay), lb = std::hypot(bx, by);
+    if (!(la > 0 && lb > 0 && len > 0)) return false;
+    ax /= la; ay /= la; bx /= lb; by /= lb;
+    // Bisector of the angle between a and b that contains v.
+    double cx = ax + bx, cy = ay + by;
+    const double cl = std::hypot(cx, cy);
+    if (cl < 1e-12) {  // a and b opposite: the bisector is perpendicular
+      cx = -ay; cy = ax;
+      if (cx * vx + cy * vy < 0) { cx = -cx; cy = -cy; }
+    } else {
+      cx /= cl; cy /= cl;
+      const double cab = ax * by - ay * bx;
+      const double c1 = ax * vy - ay * vx, c2 = vx * by - vy * bx;
+      const bool in_small = cab >= 0 ? (c1 >= 0 && c2 >= 0) : (c1 <= 0 && c2 <= 0);
+      if (!in_small) { cx = -cx; cy = -cy; }
+    }
+    sx += px[0] + len * cx;
+    sy += px[1] + len * cy;
+    ++cnt;
+  }
+  if (cnt == 0) return false;
+  out = {sx / cnt, sy / cnt};
+  return std::isfinite(out[0]) && std::isfinite(out[1]);
+}
+
+bool QuadImprover::try_move(int v, Point2 p, bool slide_line, const Slide* s) {
+  const Point2 old = P_[v];
+  double worst_old = 2;
+  for (int q : vq_[v]) worst_old = std::min(worst_old, q_smu_[q]);
+  double t = 1;
+  for (int attempt = 0; attempt < 3; ++attempt, t *= 0.5) {
+    Point2 c{old[0] + t * (p[0] - old[0]), old[1] + t * (p[1] - old[1])};
+    if (slide_line) {
+      // Recompute on the line through the fixed chain ends A and B.
+      const Point2 &A = P_[s->A], &B = P_[s->B];
+      const double dx = B[0] - A[0], dy = B[1] - A[1];
+      const double tt = ((c[0] - A[0]) * dx + (c[1] - A[1]) * dy) / (dx * dx + dy * dy);
+      c = {A[0] + tt * dx, A[1] + tt * dy};
+      if (dx == 0) c[0] = A[0];  // axis-parallel segments stay exact
+      if (dy == 0) c[1] = A[1];
+    }
+    if (c == old) return false;
+    P_[v] = c;
+    bool ok = true;
+    double worst = 2;
+    for (int q : vq_[v]) {
+      if (!convex(Q_[q])) { ok = false; break; }
+      worst = std::min(worst, quad_smu(Q_[q]));
+      if (worst < worst_old) { ok = false; break; }
+    }
+    if (ok) {
+      for (int q : vq_[v]) q_smu_[q] = quad_smu(Q_[q]);
+      return true;
+    }
+    P_[v] = old;
+  }
+  return false;
+}
+
+void QuadImprover::smooth_pass() {
+  const int n = int(P_.size());
+  for (int v = 0; v < n; ++v) {
+    if (fixed_[v] || v_dead_[v] || vq_[v].size() < 3) continue;
+    Point2 target;
+    if (!angle_based_target(v, target)) continue;
+    if (try_move(v, target, false, nullptr)) ++st_.moves;
+    else ++st_.rejected;
+  }
+}
+
+void QuadImprover::slide_pass() {
+  for (const Slide& s : slides_) {
+    // Even spacing along the segment: the midpoint of the two neighbours,
+    // strictly between them, projected back onto the line through A and B.
+    const Point2 &u = P_[s.u], &w = P_[s.w];
+    const Point2 mid{0.5 * (u[0] + w[0]), 0.5 * (u[1] + w[1])};
+    if (try_move(s.v, mid, true, &s)) ++st_.slides;
+  }
+}
+
+void QuadImprover::swap_pass() {
+  for (std::size_t q1 = 0; q1 < Q_.size(); ++q1) {
+    if (q_dead_[q1]) continue;
+    for (int i = 0; i < 4; ++i) {
+      const Quad A = Q_[q1];
+      const int u = A[i], w = A[(i + 1) & 3];
+      if (is_feature(u, w)) continue;
+      // The other quad, holding w -> u.
+      int q2 = -1, j = 0;
+      for (int q : vq_[u]) {
+        if (q == int(q1)) continue;
+        const Quad& B = Q_[q];
+        for (int k = 0; k < 4; ++k)
+          if (B[k] == w && B[(k + 1) & 3] == u) { q2 = q; j = k; }
+      }
+      if (q2 < 0 || int(q1) > q2) continue;  // each edge once
+      const Quad B = Q_[q2];
+      // Hexagon u, c, d, w, a, b (counter-clockwise).
+      const int a = A[(i + 2) & 3], b = A[(i + 3) & 3];
+      const int c = B[(j + 2) & 3], d = B[(j + 3) & 3];
+      const int H[6] = {u, c, d, w, a, b};
+      bool distinct = true;
+      for (int x = 0; x < 6; ++x)
+        for (int y = x + 1; y < 6; ++y) distinct = distinct && H[x] != H[y];
+      if (!distinct) continue;
+      const double cur = std::min(q_smu_[q1], q_smu_[q2]);
+      double best = cur * (1 + 1e-9) + 1e-15;
+      int best_k = -1;
+      for (int k = 1; k <= 2; ++k) {
+        const Quad N1{H[k], H[k + 1], H[k + 2], H[(k + 3) % 6]};
+        const Quad N2{H[(k + 3) % 6], H[(k + 4) % 6], H[(k + 5) % 6], H[k]};
+        if (!convex(N1) || !convex(N2)) continue;
+        const double s = std::min(quad_smu(N1), quad_smu(N2));
+        if (s <= best) continue;
+        // The new diagonal must not already be an edge of the mesh.
+        const int p = H[k], r = H[(k + 3) % 6];
+        bool exists = false;
+        for (int q : vq_[p]) {
+          const Quad& E = Q_[q];
+          for (int t = 0; t < 4; ++t)
+            if (E[t] == p && (E[(t + 1) & 3] == r || E[(t + 3) & 3] == r)) exists = true;
+        }
+        if (exists || is_feature(p, r)) continue;
+        best = s;
+        best_k = k;
+      }
+      if (best_k < 0) continue;
+      const int k = best_k;
+      for (int x : H) { remove_from(x, int(q1)); remove_from(x, q2); }
+      Q_[q1] = {H[k], H[k + 1], H[k + 2], H[(k + 3) % 6]};
+      Q_[q2] = {H[(k + 3) % 6], H[(k + 4) % 6], H[(k + 5) % 6], H[k]};
+      for (int x : Q_[q1]) vq_[x].push_back(int(q1));
+      for (int x : Q_[q2]) vq_[x].push_back(q2);
+      q_smu_[q1] = quad_smu(Q_[q1]);
+      q_smu_[q2] = quad_smu(Q_[q2]);
+      ++st_.swaps;
+      break;  // q1 changed: move on
+    }
+  }
+}
+
+void QuadImprover::doublet_pass() {
+  const int n = int(P_.size());
+  for (int v = 0; v < n; ++v) {
+    if (fixed_[v] || v_dead_[v] || vq_[v].size() != 2) continue;
+    const int q1 = vq_[v][0], q2 = vq_[v][1];
+    Quad A = Q_[q1];
+    while (A[0] != v) std::rotate(A.begin(), A.begin() + 1, A.end());
+    Quad B = Q_[q2];
+    while (B[0] != v) std::rotate(B.begin(), B.begin() + 1, B.end());
+    // A = (v, a, b, c), B = (v, c, d, a).
+    if (B[1] != A[3] || B[3] != A[1]) continue;
+    const Quad M{A[1], A[2], A[3], B[2]};
+    if (M[1] == M[3] || !convex(M) || quad_smu(M) < std::min(q_smu_[q1], q_smu_[q2])) continue;
+    for (int x : B) remove_from(x, q2);
+    remove_from(v, q1);
+    q_dead_[q2] = 1;
+    v_dead_[v] = 1;
+    Q_[q1] = M;
+    if (std::find(vq_[B[2]].begin(), vq_[B[2]].end(), q1) == vq_[B[2]].end()) vq_[B[2]].push_back(q1);
+    q_smu_[q1] = quad_smu(M);
+    ++st_.doublets;
+  }
+}
+
+void QuadImprover::collapse_pass() {
+  for (std::size_t q = 0; q < Q_.size(); ++q) {
+    if (q_dead_[q]) continue;
+    for (int diag = 0; diag < 2; ++diag) {
+      const Quad C = Q_[q];
+      int a = C[diag], c = C[diag + 2];
+      const int b = C[diag + 1], d = C[(diag + 3) & 3];
+      if (v_dead_[a] || v_dead_[c]) continue;
+      if (fixed_[a] && fixed_[c]) continue;
+      bool feat = false;
+      for (int t = 0; t < 4; ++t) feat = feat || is_feature(C[t], C[(t + 1) & 3]);
+      if (feat) continue;
+      if (fixed_[c]) std::swap(a, c);  // keep the fixed one (a), merge c into it
+      // Link condition: no other quad holds both a and c, and a and c share
+      // no edge neighbour besides b and d.
+      bool bad = false;
+      for (int o : vq_[c])
+        if (o != int(q) && std::find(Q_[o].begin(), Q_[o].end(), a) != Q_[o].end()) bad = true;
+      if (bad) continue;
+      std::vector<int> na;
+      for (int o : vq_[a]) {
+        if (o == int(q)) continue;
+        const Quad& E = Q_[o];
+        for (int t = 0; t < 4; ++t)
+          if (E[t] == a) { na.push_back(E[(t + 1) & 3]); na.push_back(E[(t + 3) & 3]); }
+      }
+      for (int o : vq_[c]) {
+        if (o == int(q)) continue;
+        const Quad& E = Q_[o];
+        for (int t = 0; t < 4; ++t)
+          if (E[t] == c)
+            for (int x : {E[(t + 1) & 3], E[(t + 3) & 3]})
+              if (x != b && x != d && std::find(na.begin(), na.end(), x) != na.end()) bad = true;
+      }
+      if (bad) continue;
+      // b and d lose a quad: interior ones of valence 3 would become
+      // doublets and boundary ones must keep one; leave those alone.
+      if (vq_[b].size() <= (fixed_[b] ? 1u : 3u) || vq_[d].size() <= (fixed_[d] ? 1u : 3u)) continue;
+      double worst_old = 2;
+      for (int o : vq_[a]) worst_old = std::min(worst_old, q_smu_[o]);
+      for (int o : vq_[c]) worst_old = std::min(worst_old, q_smu_[o]);
+      const Point2 pa = P_[a], pc = P_[c];
+      const Point2 pm = fixed_[a] ? pa : Point2{0.5 * (pa[0] + pc[0]), 0.5 * (pa[1] + pc[1])};
+      // Evaluate with c replaced by a at pm.
+      P_[a] = pm;
+      bool ok = true;
+      double worst = 2;
+      auto eval = [&](int o) {
+        if (o == int(q) || !ok) return;
+        Quad E = Q_[o];
+        for (int& x : E) if (x == c) x = a;
+        if (!is_strictly_convex(P_[E[0]], P_[E[1]], P_[E[2]], P_[E[3]])) { ok = false; return; }
+        worst = std::min(worst, quad_smu(E));
+      };
+      for (int o : vq_[a]) eval(o);
+      for (int o : vq_[c]) eval(o);
+      if (!ok || worst <= worst_old * (1 + 1e-9) + 1e-15) { P_[a] = pa; continue; }
+      // Commit.
+      for (int x : C) remove_from(x, int(q));
+      q_dead_[q] = 1;
+      for (int o : vq_[c]) {
+        for (int& x : Q_[o]) if (x == c) x = a;
+        vq_[a].push_back(o);
+      }
+      vq_[c].clear();
+      v_dead_[c] = 1;
+      for (int o : vq_[a]) q_smu_[o] = quad_smu(Q_[o]);
+      ++st_.collapses;
+      break;
+    }
+  }
+}
+
+void QuadImprover::compact() {
+  std::vector<int> newid(P_.size(), -1);
+  int k = 0;
+  for (std::size_t v = 0; v < P_.size(); ++v)
+    if (!v_dead_[v]) newid[v] = k++;
+  // Elements: quads from Q_, others as they were.
+  std::vector<int> quad_of_elem(m_.elements.size(), -1);
+  for (std::size_t q = 0; q < Q_.size(); ++q) quad_of_elem[q_elem_[q]] = int(q);
+  std::vector<std::vector<int>> elems;
+  std::vector<std::vector<double>> eattr;
+  for (std::size_t e = 0; e < m_.elements.size(); ++e) {
+    const int q = quad_of_elem[e];
+    std::vector<int> el;
+    if (q >= 0) {
+      if (q_dead_[q]) continue;
+      el.assign(Q_[q].begin(), Q_[q].end());
+    } else {
+      el = m_.elements[e];
+    }
+    for (int& x : el) x = newid[x];
+    elems.push_back(std::move(el));
+    if (!m_.element_attributes.empty()) eattr.push_back(m_.element_attributes[e]);
+  }
+  m_.elements = std::move(elems);
+  m_.element_attributes = std::move(eattr);
+  if (k == int(P_.size())) return;
+  std::vector<Point2> pts;
+  std::vector<std::vector<double>> pattr;
+  std::vector<int> pmark;
+  for (std::size_t v = 0; v < P_.size(); ++v) {
+    if (v_dead_[v]) continue;
+    pts.push_back(P_[v]);
+    if (!m_.point_attributes.empty()) pattr.push_back(m_.point_attributes[v]);
+    if (!m_.point_markers.empty()) pmark.push_back(m_.point_markers[v]);
+  }
+  for (auto& s : m_.segments) s = {newid[s[0]], newid[s[1]]};  // segment ends never die
+  m_.points = std::move(pts);
+  m_.point_attributes = std::move(pattr);
+  m_.point_markers = std::move(pmark);
+}
+
+void QuadImprover::run() {
+  setup();
+  const int passes = std::max(0, opt_.iterations);
+  for (int it = 0; it < passes; ++it) {
+    if (opt_.cleanup && (it == 0 || it == passes / 2)) {
+      swap_pass();
+      collapse_pass();
+      doublet_pass();
+    }
+    smooth_pass();
+    if (opt_.slide_boundary) slide_pass();
+    st_.passes = it + 1;
+    if (opt_.progress) opt_.progress(it + 1, passes);
+  }
+  if (opt_.cleanup && passes > 0) {
+    swap_pass();
+    doublet_pass();
+  }
+  compact();
+}
+
+} // namespace
+
+void check_quad_mesh(const PlanarMesh& m, const std::string& path) {
+  const long long n = static_cast<long long>(m.points.size());
+  if (m.elements.empty()) throw Error("mesh has no elements", path);
+  for (const auto& p : m.points)
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) throw Error("non-finite point coordinate", path);
+  struct HalfEdge { std::uint64_t key; bool forward; std::size_t elem; };
+  std::vector<HalfEdge> he;
+  he.reserve(m.elements.size() * 4);
+  for (std::size_t e = 0; e < m.elements.size(); ++e) {
+    const auto& el = m.elements[e];
+    const std::string where = "element " + std::to_string(e + m.first_index);
+    if (el.size() != 3 && el.size() != 4) throw Error(where + " has " + std::to_string(el.size()) + " nodes (want 3 or 4)", path);
+    for (std::size_t i = 0; i < el.size(); ++i) {
+      if (el[i] < 0 || el[i] >= n) throw Error(where + ": node id out of range", path);
+      for (std::size_t j = 0; j < i; ++j)
+        if (el[i] == el[j]) throw Error(where + ": repeated node", path);
+    }
+    const auto& P = m.points;
+    double area2 = 0;
+    for (std::size_t i = 0; i < el.size(); ++i) {
+      const Point2 &p = P[el[i]], &q = P[el[(i + 1) % el.size()]];
+      area2 += p[0] * q[1] - p[1] * q[0];
+    }
+    if (!(area2 > 0)) throw Error(where + " is clockwise or degenerate (want counter-clockwise)", path);
+    for (std::size_t i = 0; i < el.size(); ++i) {
+      const int a = el[i], b = el[(i + 1) % el.size()];
+      he.push_back({edge_key(a, b), a < b, e});
+    }
+  }
+  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
+  for (std::size_t i = 0; i + 1 < he.size(); ++i) {
+    if (he[i].key != he[i + 1].key) continue;
+    const std::string where = "edge " + std::to_string((he[i].key >> 32) + m.first_index) + "-" +
+                              std::to_string((he[i].key & 0xffffffffu) + m.first_index);
+    if (i + 2 < he.size() && he[i + 2].key == he[i].key) throw Error(where + " is shared by more than two elements", path);
+    if (he[i].forward == he[i + 1].forward) throw Error(where + ": neighbouring elements are oriented inconsistently", path);
+  }
+  for (const auto& s : m.segments)
+    if (s[0] < 0 || s[0] >= n || s[1] < 0 || s[1] >= n) throw Error("segment id out of range", path);
+}
+
+SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
+  check_quad_mesh(mesh);
+  SmoothStats st;
+  st.before = quality_report(mesh);
+  QuadImprover(mesh, opt, st).run();
+  st.after = quality_report(mesh);
+  return st;
+}
+
+} // namespace imgmesh

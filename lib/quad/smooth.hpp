@@ -1,0 +1,53 @@
+// Post-processing of strictly convex quad meshes (thesis 3.2.3): angle-based
+// smoothing (Zhou and Shimada, 2000) with a guard, and topological clean-up
+// (Canann, Muthukrishnan and Phillips, 1998): diagonal swaps, doublet removal
+// and quad collapse. Nothing ever makes a quad non-convex: every move and
+// every operation is checked with exact orientation predicates first.
+#pragma once
+#include "planar/triangle_io.hpp"
+#include "quad/quality.hpp"
+#include "util/json.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace imgmesh {
+
+struct SmoothOptions {
+  int iterations = 10;          // smoothing passes
+  bool cleanup = true;          // swaps, doublets, collapses
+  bool slide_boundary = false;  // boundary/constrained vertices may slide along their own straight segment
+  // Called after each pass with (pass, passes) for progress reports; may be empty.
+  std::function<void(int, int)> progress;
+};
+
+struct SmoothStats {
+  QualityReport before, after;
+  std::size_t moves = 0;       // accepted vertex moves (interior)
+  std::size_t slides = 0;      // accepted boundary slides
+  std::size_t rejected = 0;    // moves the guard refused
+  std::size_t swaps = 0, doublets = 0, collapses = 0;
+  int passes = 0;
+  std::size_t fixed_vertices = 0;  // boundary, constrained or region-boundary vertices
+  Json to_json() const;
+};
+
+// Smooths and cleans the quad mesh in place. Element attributes, point
+// attributes/markers and segments (with markers) are kept; removed vertices
+// and quads are compacted away and segment ids renumbered. Vertices on the
+// boundary, on a segment, on an edge between regions of different attribute,
+// with a nonzero point marker, or on a non-quad element stay fixed (or slide
+// along their straight segment with slide_boundary). Throws Error when the
+// input is not a conforming mesh (see check_quad_mesh); quads that come in
+// non-convex are counted in the reports and only moves that make them
+// strictly convex touch them.
+SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt);
+
+// Checks the input contract of smooth_quad_mesh: ids in range, no repeated id
+// in an element, every edge in at most two elements with opposite
+// orientations, positive area. Throws Error (naming the first
+// offending element) otherwise; `path` is used in the message.
+void check_quad_mesh(const PlanarMesh& mesh, const std::string& path = {});
+
+} // namespace imgmesh
