@@ -3,6 +3,10 @@
 // interpolants of the signed distance g (negative inside), weights built from
 // the C-infinity step eta (6.7, 6.8; see errata). Evaluation in world
 // coordinates, O(1), thread safe, no allocation per call.
+//
+// Anisotropic grids: the cells are boxes delta_0 x delta_1 x delta_2 and the
+// weight constant d is per axis (d_i); see partition_of_unity.cpp for why the
+// argument of thesis 6.4 still holds axis by axis.
 #pragma once
 #include "image/grid.hpp"
 
@@ -11,25 +15,54 @@ namespace imgmesh {
 class PartitionOfUnity {
 public:
   // g: signed distance to bdCA(X) at the voxel centres, physical units,
-  // negative inside, with the image's world geometry. d: the weight-function
-  // constant per axis; computed from g (thesis 6.3.2, Prop. 6.4.1) when all
-  // components are <= 0.
-  explicit PartitionOfUnity(FloatImage g, Vec3 d = {0, 0, 0});
+  // negative inside, with the image's world geometry (3D, >= 2 voxels per
+  // axis, finite and nonzero values: throws Error otherwise). d: the
+  // weight-function constant per axis; computed from g (thesis 6.3.2,
+  // Prop. 6.4.1) when all components are <= 0. threads: for the O(|D|)
+  // computation of d (0 = all cores).
+  explicit PartitionOfUnity(FloatImage g, Vec3 d = {0, 0, 0}, unsigned threads = 1);
 
-  // f at a world point inside the domain (the box of voxel centres).
+  // f at a world point inside the domain (the box of voxel centres). Outside
+  // the domain, f (and its gradient) at the nearest point of the domain.
   double value(const Vec3& p) const;
   // f and its analytic gradient (world coordinates).
   double value_gradient(const Vec3& p, Vec3& gradient) const;
-  // Inside the domain (the box spanned by the voxel centres).
+  // Inside the domain (the box spanned by the voxel centres), up to a
+  // relative rounding tolerance of 1e-9 of a voxel.
   bool in_domain(const Vec3& p) const;
 
   const FloatImage& samples() const { return g_; }
   const Vec3& d() const { return d_; }
 
+  // The quantities of thesis 6.3.2 (computed from g even when d was given):
+  // g_min = min |g| over D, L_max = max_k L_k with
+  // L_k = sqrt(3) * max_i max over the 8 vertices v of the 1.8-delta box C'_k
+  // of |d f_k / d x_i (v)| (physical units).
+  double g_min() const { return g_min_; }
+  double l_max() const { return l_max_; }
+  // The bound d_i = min(delta_i / 5, g_min / (2 L_max)) itself.
+  static Vec3 weight_constant(const FloatImage& g, double* g_min = nullptr, double* l_max = nullptr,
+                              unsigned threads = 1);
+
 private:
+  template <bool Gradient> double evaluate(const Vec3& p, Vec3* gradient) const;
+
   FloatImage g_;
   Vec3 d_;
-  // implementation data (per-axis delta, alpha_1, alpha_2, beta, ...) here
+  double g_min_ = 0, l_max_ = 0;
+  // Per axis: voxel spacing delta_i, 1/delta_i, 1/(2 d_i), and the number of
+  // cells (size_i - 1).
+  double delta_[3], inv_delta_[3], inv_2d_[3];
+  long cells_[3];
+  long stride_[3];
 };
+
+// The C-infinity step of (6.8): h(t) = exp(2 e^{-1/t} / (t - 1)) on (0, 1),
+// h(0) = 1, 0 for t >= 1. dh: its derivative (may be null).
+double pu_h(double t, double* dh = nullptr);
+// The blend of (6.7) with the errata fix, as a function of
+// u = (|t| - alpha_1) / beta: eta = h(u) / (h(u) + h(1 - u)); 1 for u <= 0,
+// 0 for u >= 1. deta: d eta / du (may be null).
+double pu_eta(double u, double* deta = nullptr);
 
 } // namespace imgmesh

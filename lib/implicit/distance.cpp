@@ -1,0 +1,170 @@
+// Exact Euclidean distance from voxel centres to the voxel-face boundary
+// bdCA(X), in linear time.
+//
+// Why this is exact. Let p be a foreground centre. bdCA(X) is the boundary of
+// the union of closed foreground voxel boxes, and p lies in its interior, so
+// dist(p, bdCA(X)) = dist(p, union of closed background boxes B_b) (voxels
+// outside the grid are background boxes too). The nearest point of the box
+// B_b (centre b, half-sides delta_i / 2) to p is the per-axis clamp, so with
+// m_i = p_i - b_i (integers, index units)
+//
+//   dist(p, B_b)^2 = sum_i F_i(m_i),  F_i(0) = 0,  F_i(m) = ((|m| - 1/2) delta_i)^2.
+//
+// The same holds for a background p and foreground boxes. So
+// D(p) = min_b sum_i F_i(p_i - b_i) is a separable min-plus convolution and
+// can be done one axis at a time: G_1 = (0 on the opposite class, inf on the
+// own class), G_{a+1}(y) = min_{y'} G_a(y') + F_a(y - y'), each pass exact.
+// One pass in one line: split off y' = y (F = 0), and for y' != y note that
+// F_a(y - y') = min_{s = +-1/2} ((y - y' - s) delta)^2 (the min picks the
+// half-shift towards y since |y - y'| >= 1), while for y' = y the parabolas
+// give G(y) + delta^2/4 >= G(y), so including them changes nothing:
+//
+//   G_new(y) = min(G(y), min_c [H(c) + ((y - c) delta)^2]),
+//   c = j - 1/2 (j = 0..n), H(c) = min(G(j - 1), G(j)),
+//
+// the lower envelope of n + 1 parabolas at half-integer sites, done in O(n)
+// by Felzenszwalb and Huttenlocher's algorithm. Out-of-grid neighbours G(-1),
+// G(n) are 0 for foreground targets (the outside is background) and inf for
+// background targets. Both classes share one buffer: a voxel is a site of
+// value 0 for the other class and carries its own running value for its own.
+#include "implicit/implicit_file.hpp"
+#include "implicit/parallel.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace imgmesh {
+namespace {
+
+using implicit_detail::parallel_for;
+using implicit_detail::resolve_threads;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct LineWork {
+  std::vector<double> h, z, out;
+  std::vector<long> v;
+  void reserve(long n) {
+    h.resize(n + 1);
+    z.resize(n + 2);
+    v.resize(n + 1);
+    out.resize(n);
+  }
+};
+
+// One pass on one line for the targets of class `cls` (1 foreground, 0
+// background). val: running squared distances; lab: the class of each voxel.
+void pass_line(double* val, const std::uint8_t* lab, long n, double delta2, std::uint8_t cls,
+               LineWork& w) {
+  bool any_target = false;
+  for (long j = 0; j < n; ++j)
+    if (lab[j] == cls) { any_target = true; break; }
+  if (!any_target) return;
+  const double outside = cls ? 0.0 : kInf;
+  auto site = [&](long j) -> double {
+    if (j < 0 || j >= n) return outside;
+    return lab[j] == cls ? val[j] : 0.0;
+  };
+  // Parabola heights in units of delta^2 at sites c_j = j - 1/2.
+  for (long j = 0; j <= n; ++j) w.h[j] = std::min(site(j - 1), site(j)) / delta2;
+  long k = -1;
+  for (long j = 0; j <= n; ++j) {
+    if (!(w.h[j] < kInf)) continue;
+    const double cj = j - 0.5;
+    if (k < 0) {
+      k = 0;
+      w.v[0] = j;
+      w.z[0] = -kInf;
+      w.z[1] = kInf;
+      continue;
+    }
+    double s;
+    for (;;) {
+      const long q = w.v[k];
+      const double cq = q - 0.5;
+      s = ((w.h[j] + cj * cj) - (w.h[q] + cq * cq)) / (2 * (cj - cq));
+      if (s <= w.z[k]) --k;  // z[0] = -inf stops this at k = 0
+      else break;
+    }
+    ++k;
+    w.v[k] = j;
+    w.z[k] = s;
+    w.z[k + 1] = kInf;
+  }
+  if (k < 0) return;  // no site: everything stays inf
+  long e = 0;
+  for (long y = 0; y < n; ++y) {
+    if (lab[y] != cls) continue;
+    while (w.z[e + 1] < y) ++e;
+    const double c = w.v[e] - 0.5;
+    const double env = (w.h[w.v[e]] + (y - c) * (y - c)) * delta2;
+    val[y] = std::min(val[y], env);
+  }
+}
+
+} // namespace
+
+FloatImage signed_distance_to_boundary(const BinaryImage& wc, unsigned threads) {
+  if (wc.dimension != 3) throw Error("needs a 3D image");
+  if (wc.data.size() != wc.count() || wc.count() == 0) throw Error("empty image");
+  threads = resolve_threads(threads);
+  const long n[3] = {long(wc.size[0]), long(wc.size[1]), long(wc.size[2])};
+  const long stride[3] = {1, n[0], n[0] * n[1]};
+  std::vector<std::uint8_t> lab(wc.count());
+  std::size_t fg = 0;
+  for (std::size_t i = 0; i < lab.size(); ++i) {
+    lab[i] = wc.data[i] != 0;
+    fg += lab[i];
+  }
+  if (fg == 0) throw Error("the foreground is empty");
+
+  FloatImage out(wc.geometry(), std::numeric_limits<float>::infinity());
+  float* buf = out.data.data();
+  constexpr long kBatch = 16;  // neighbouring lines gathered together (cache lines)
+  for (int a = 0; a < 3; ++a) {
+    const long len = n[a];
+    const double delta2 = wc.spacing[a] * wc.spacing[a];
+    // Lines along axis a: indexed by the other two coordinates; for a > 0 the
+    // x coordinate is innermost so batches of kBatch lines are contiguous.
+    const int b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
+    const long nb = n[b], nc = n[c];
+    const long batches_per_row = (nb + kBatch - 1) / kBatch;
+    const long jobs = nc * batches_per_row;
+    parallel_for(jobs, threads, [&](long j0, long j1, unsigned) {
+      LineWork w;
+      w.reserve(len);
+      std::vector<double> vals(len * kBatch);
+      std::vector<std::uint8_t> labs(len * kBatch);
+      for (long job = j0; job < j1; ++job) {
+        const long ic = job / batches_per_row, ib0 = (job % batches_per_row) * kBatch;
+        const long m = std::min(kBatch, nb - ib0);
+        for (long t = 0; t < len; ++t)
+          for (long q = 0; q < m; ++q) {
+            const long idx = (ib0 + q) * stride[b] + ic * stride[c] + t * stride[a];
+            vals[q * len + t] = buf[idx];
+            labs[q * len + t] = lab[idx];
+          }
+        for (long q = 0; q < m; ++q) {
+          pass_line(&vals[q * len], &labs[q * len], len, delta2, 1, w);
+          pass_line(&vals[q * len], &labs[q * len], len, delta2, 0, w);
+        }
+        for (long t = 0; t < len; ++t)
+          for (long q = 0; q < m; ++q) {
+            const long idx = (ib0 + q) * stride[b] + ic * stride[c] + t * stride[a];
+            buf[idx] = float(vals[q * len + t]);
+          }
+      }
+    });
+  }
+  for (std::size_t i = 0; i < out.data.size(); ++i) {
+    const float d2 = out.data[i];
+    if (!(d2 < std::numeric_limits<float>::infinity())) throw Error("the foreground is empty");
+    out.data[i] = lab[i] ? -std::sqrt(d2) : std::sqrt(d2);
+  }
+  return out;
+}
+
+} // namespace imgmesh

@@ -1,0 +1,92 @@
+// Construction (thesis 6.3.3) and the pu-implicit file format (DESIGN.md).
+#include "implicit/implicit_file.hpp"
+#include "image/io.hpp"
+#include "util/error.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+
+namespace imgmesh {
+namespace {
+
+constexpr const char* kKind = "pu-implicit";
+constexpr const char* kVersion = "1";
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+} // namespace
+
+PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitReport* report, unsigned threads) {
+  if (wc.dimension != 3) throw Error("wc2implicit needs a 3D image (thesis chapter 6 is 3D)");
+  if (wc.data.size() != wc.count() || wc.count() == 0) throw Error("empty image");
+  ImplicitReport rep;
+  // Restriction (2) of thesis 6.3: no foreground on the border of D.
+  for (int a = 0; a < 3; ++a) {
+    const std::size_t n = wc.size[a];
+    for (std::size_t z = 0; z < wc.size[2]; ++z)
+      for (std::size_t y = 0; y < wc.size[1]; ++y)
+        for (std::size_t x = 0; x < wc.size[0]; ++x) {
+          const std::size_t c = a == 0 ? x : a == 1 ? y : z;
+          if (c != 0 && c + 1 != n) continue;
+          if (wc(x, y, z)) {
+            if (c == 0) rep.padded_before[a] = 1;
+            if (c + 1 == n) rep.padded_after[a] = 1;
+          }
+        }
+  }
+  for (std::uint8_t v : wc.data) rep.foreground += v != 0;
+  if (rep.foreground == 0) throw Error("the foreground is empty");
+  const bool pad_needed = rep.padded_before != std::array<std::size_t, 3>{0, 0, 0} ||
+                          rep.padded_after != std::array<std::size_t, 3>{0, 0, 0};
+  auto t0 = std::chrono::steady_clock::now();
+  FloatImage g = pad_needed ? signed_distance_to_boundary(pad(wc, rep.padded_before, rep.padded_after, std::uint8_t(0)), threads)
+                            : signed_distance_to_boundary(wc, threads);
+  rep.distance_seconds = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
+  PartitionOfUnity f(std::move(g), {0, 0, 0}, threads);
+  rep.weights_seconds = seconds_since(t0);
+  if (report) *report = rep;
+  return f;
+}
+
+void write_implicit(const std::string& path, const PartitionOfUnity& f) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g", f.d()[0], f.d()[1], f.d()[2]);
+  write_image(path, f.samples(), {{"imgmesh_kind", kKind}, {"imgmesh_version", kVersion}, {"imgmesh_d", buf}});
+}
+
+PartitionOfUnity read_implicit(const std::string& path) {
+  std::map<std::string, std::string> fields;
+  FloatImage g = read_float(path, &fields);
+  auto it = fields.find("imgmesh_kind");
+  if (it == fields.end() || it->second != kKind)
+    throw Error("not an implicit function file (no imgmesh_kind:=pu-implicit field; make one with wc2implicit)", path);
+  it = fields.find("imgmesh_version");
+  if (it == fields.end() || it->second != kVersion)
+    throw Error("unsupported pu-implicit version '" + (it == fields.end() ? std::string("none") : it->second) +
+                    "' (this build reads version " + kVersion + ")",
+                path);
+  it = fields.find("imgmesh_d");
+  Vec3 d{0, 0, 0};
+  if (it == fields.end()) throw Error("missing imgmesh_d field", path);
+  {
+    std::istringstream in(it->second);
+    std::string extra;
+    if (!(in >> d[0] >> d[1] >> d[2]) || (in >> extra))
+      throw Error("bad imgmesh_d field '" + it->second + "' (want three numbers)", path);
+    for (double x : d)
+      if (!(x > 0) || !std::isfinite(x)) throw Error("bad imgmesh_d field '" + it->second + "' (must be > 0)", path);
+  }
+  try {
+    return PartitionOfUnity(std::move(g), d, 0);
+  } catch (const Error& e) {
+    throw Error(e.what(), path);
+  }
+}
+
+} // namespace imgmesh

@@ -1,0 +1,262 @@
+// The partition of unity f = sum_k phi_k f_k of thesis 6.3, on box cells.
+//
+// Cells. C_k = [k, k+1] (index units) on each axis, k_i in [0, n_i - 2]; the
+// corners are voxel centres, f_k is the trilinear interpolant of g there
+// (6.4, 6.5) written in the cell's own unit coordinates, so box cells
+// (delta_0, delta_1, delta_2 different) change nothing in it.
+//
+// Weights. w_k(p) = prod_i eta_i(t_i), t_i = (p_i - c^k_i) in physical units
+// along grid axis i, alpha_1 = delta_i/2 - d_i, alpha_2 = delta_i/2 + d_i,
+// beta = 2 d_i (6.6-6.8, errata for eta). Because w_k is a product and the
+// cells on one axis are translates, sum_j w_j = prod_i S_i with S_i the sum
+// of eta_i over the cells of axis i; two neighbouring cells' etas add up to 1
+// on their overlap (u and 1 - u), so S_i = 1 except within d_i of the two
+// ends of the domain, where only one cell exists. Hence phi_k = w_k / sum w_j
+// (6.9) factors into per-axis weights: (1 - eta, eta) where two cells meet,
+// 1 where a single cell covers the point. Per axis at most 2 cells have a
+// nonzero weight (d_i <= delta_i / 5 < delta_i / 2), so at most 8 of the 27
+// neighbouring cells contribute; we visit only those.
+//
+// Why the argument of 6.4 holds per axis on anisotropic grids. Replace the
+// thesis's balls and tubes by boxes: a point is in the vertex / edge / face /
+// centre region of a grid feature when it lies within d_i of the feature's
+// grid planes on 3 / 2 / 1 / 0 axes (|p_i - plane| < d_i), and farther on the
+// others. (1) Claims 6.4.1-6.4.4: supp(w_k) is c^k +- (delta_i/2 + d_i) on
+// axis i; a region of a feature that is not a feature of C_k is, on some axis,
+// at distance >= delta_i - 2 d_i >= 0.6 delta_i > 0 outside it, because the
+// bound d_i <= delta_i / 5 is per axis. (2) Prop. 6.4.2: the proof of
+// Prop. 6.4.1 is per coordinate (d f_k / d x_i is bilinear in the other two
+// coordinates, so |d f_k / d x_i| peaks at a vertex of any axis-aligned box,
+// cube or not); with M_i = max over the 1.8-delta box C'_k of |d f_k/d x_i|
+// and L = sqrt(3) max_i M_i, a vertex box v +- d_i lies in C'_k
+// (d_i <= 0.2 delta_i < 0.4 delta_i) and there
+// |f_k(q) - f_k(v)| <= sum_i M_i d_i <= 3 max_i M_i g_min / (2 L) = (sqrt(3)/2) g_min < |g(v)|,
+// so f_k keeps the sign of g(v) in the vertex box: the role of the radius-2d
+// ball. (3) Lemmas 6.4.5-6.4.7 use only that, inside an edge (face) region,
+// the weights do not vary along the edge (face) directions (true: those axes
+// are "far", eta = 1 for the one cell index there) and that f_k is linear
+// along axis-parallel lines: both are per-axis facts. So with
+// d_i = min(delta_i / 5, g_min / (2 L_max)) every step goes through.
+#include "implicit/partition_of_unity.hpp"
+#include "implicit/parallel.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace imgmesh {
+
+double pu_h(double t, double* dh) {
+  if (dh) *dh = 0;
+  if (t < 0 || t >= 1) return 0;
+  if (t == 0) return 1;
+  const double e = std::exp(-1.0 / t);
+  const double h = std::exp(2 * e / (t - 1));
+  if (dh) *dh = h * 2 * e * (1 / (t * t * (t - 1)) - 1 / ((t - 1) * (t - 1)));
+  return h;
+}
+
+double pu_eta(double u, double* deta) {
+  if (deta) *deta = 0;
+  if (u <= 0) return 1;
+  if (u >= 1) return 0;
+  double da = 0, db = 0;
+  const double a = pu_h(u, deta ? &da : nullptr);
+  const double b = pu_h(1 - u, deta ? &db : nullptr);
+  const double s = a + b;  // > 0 on (0, 1): h > 0 there
+  if (deta) *deta = (da * b + a * db) / (s * s);
+  return a / s;
+}
+
+Vec3 PartitionOfUnity::weight_constant(const FloatImage& g, double* g_min, double* l_max, unsigned threads) {
+  const long n0 = long(g.size[0]), n1 = long(g.size[1]), n2 = long(g.size[2]);
+  const long s1 = n0, s2 = n0 * n1;
+  const float* v = g.data.data();
+  const unsigned nt = implicit_detail::resolve_threads(threads);
+  std::vector<double> gmin(nt, std::numeric_limits<double>::infinity()), lmax(nt, 0.0);
+  const double inv[3] = {1 / g.spacing[0], 1 / g.spacing[1], 1 / g.spacing[2]};
+  // Per slab of cells along z: min |g| over its voxels, max L_k over its cells.
+  implicit_detail::parallel_for(n2, nt, [&](long z0, long z1, unsigned t) {
+    double gm = gmin[t], lm = lmax[t];
+    for (long z = z0; z < z1; ++z)
+      for (long y = 0; y < n1; ++y)
+        for (long x = 0; x < n0; ++x) gm = std::min(gm, double(std::fabs(v[x + y * s1 + z * s2])));
+    for (long z = z0; z < std::min(z1, n2 - 1); ++z)
+      for (long y = 0; y + 1 < n1; ++y)
+        for (long x = 0; x + 1 < n0; ++x) {
+          const float* c = v + x + y * s1 + z * s2;
+          double F[2][2][2];  // F[a][b][c], a: x offset
+          for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b)
+              for (int cz = 0; cz < 2; ++cz) F[a][b][cz] = c[a + b * s1 + cz * s2];
+          double m = 0;
+          // d u / d x_i is bilinear in the two other unit coordinates: its
+          // values at the vertices of C'_k (unit coordinates -0.4 and 1.4)
+          // are extrapolations of the four edge differences along axis i.
+          for (int axis = 0; axis < 3; ++axis) {
+            double e[2][2];
+            for (int p = 0; p < 2; ++p)
+              for (int q = 0; q < 2; ++q) {
+                if (axis == 0) e[p][q] = F[1][p][q] - F[0][p][q];
+                else if (axis == 1) e[p][q] = F[p][1][q] - F[p][0][q];
+                else e[p][q] = F[p][q][1] - F[p][q][0];
+              }
+            for (double s : {-0.4, 1.4})
+              for (double r : {-0.4, 1.4}) {
+                const double lo = (1 - r) * e[0][0] + r * e[0][1], hi = (1 - r) * e[1][0] + r * e[1][1];
+                m = std::max(m, std::fabs((1 - s) * lo + s * hi) * inv[axis]);
+              }
+          }
+          lm = std::max(lm, std::sqrt(3.0) * m);
+        }
+    gmin[t] = gm;
+    lmax[t] = lm;
+  });
+  const double gm = *std::min_element(gmin.begin(), gmin.end());
+  const double lm = *std::max_element(lmax.begin(), lmax.end());
+  if (g_min) *g_min = gm;
+  if (l_max) *l_max = lm;
+  Vec3 d;
+  for (int i = 0; i < 3; ++i) {
+    d[i] = g.spacing[i] / 5;
+    if (lm > 0) d[i] = std::min(d[i], gm / (2 * lm));
+  }
+  return d;
+}
+
+PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads) : g_(std::move(g)), d_(d) {
+  if (g_.dimension != 3) throw Error("the implicit function needs a 3D image");
+  for (int i = 0; i < 3; ++i) {
+    if (g_.size[i] < 2)
+      throw Error("the implicit function needs at least 2 voxels on every axis (axis " + std::to_string(i) +
+                  " has " + std::to_string(g_.size[i]) + ")");
+    if (!(g_.spacing[i] > 0) || !std::isfinite(g_.spacing[i]))
+      throw Error("voxel spacing must be positive and finite");
+  }
+  if (g_.data.size() != g_.count()) throw Error("internal: sample data does not match the grid size");
+  if (g_.count() > (std::size_t(1) << 40)) throw Error("grid too large");
+  for (float x : g_.data)
+    if (!std::isfinite(x) || x == 0)
+      throw Error("the samples of g must be finite and nonzero (g is a signed distance from voxel centres)");
+  const Vec3 bound = weight_constant(g_, &g_min_, &l_max_, threads);
+  const bool given = d_[0] > 0 || d_[1] > 0 || d_[2] > 0;
+  if (!given) d_ = bound;
+  for (int i = 0; i < 3; ++i) {
+    if (!(d_[i] > 0) || !std::isfinite(d_[i])) throw Error("the weight constant d must be positive on every axis");
+    // A larger d than the thesis's bound voids the topological guarantee.
+    if (d_[i] > bound[i] * (1 + 1e-6))
+      throw Error("the weight constant d (" + std::to_string(d_[i]) + " on axis " + std::to_string(i) +
+                  ") exceeds min(delta/5, g_min/(2 L_max)) = " + std::to_string(bound[i]));
+    delta_[i] = g_.spacing[i];
+    inv_delta_[i] = 1 / delta_[i];
+    inv_2d_[i] = 1 / (2 * d_[i]);
+    cells_[i] = long(g_.size[i]) - 1;
+  }
+  stride_[0] = 1;
+  stride_[1] = long(g_.size[0]);
+  stride_[2] = long(g_.size[0]) * long(g_.size[1]);
+}
+
+bool PartitionOfUnity::in_domain(const Vec3& p) const {
+  const Vec3 q = g_.continuous_index(p);
+  for (int i = 0; i < 3; ++i)
+    if (!(q[i] >= -1e-9 && q[i] <= double(cells_[i]) + 1e-9)) return false;
+  return true;
+}
+
+template <bool Gradient> double PartitionOfUnity::evaluate(const Vec3& p, Vec3* gradient) const {
+  const Vec3 q = g_.continuous_index(p);
+  long first[3];
+  int cnt[3];
+  double w[3][2], dw[3][2], loc[3][2];
+  for (int i = 0; i < 3; ++i) {
+    double qi = q[i];
+    if (std::isnan(qi)) {
+      if (Gradient) *gradient = {qi, qi, qi};
+      return qi;
+    }
+    qi = std::min(std::max(qi, 0.0), double(cells_[i]));  // outside: nearest domain point
+    long k0 = long(qi);
+    if (k0 > cells_[i] - 1) k0 = cells_[i] - 1;
+    const double r = qi - double(k0);
+    const double xlo = r * delta_[i], xhi = (1 - r) * delta_[i];
+    long plane = -1;
+    double x = 0;  // offset above the shared plane, physical units, in (-d, d)
+    if (xlo < d_[i] && k0 > 0) {
+      plane = k0;
+      x = xlo;
+    } else if (xhi < d_[i] && k0 + 1 < cells_[i]) {
+      plane = k0 + 1;
+      x = -xhi;
+    }
+    if (plane < 0) {
+      cnt[i] = 1;
+      first[i] = k0;
+      w[i][0] = 1;
+      dw[i][0] = 0;
+      loc[i][0] = r;
+    } else {
+      // Cell `plane` (above) has u = (|t| - alpha_1) / beta = (d - x) / (2 d).
+      double de = 0;
+      const double eb = pu_eta((d_[i] - x) * inv_2d_[i], Gradient ? &de : nullptr);
+      cnt[i] = 2;
+      first[i] = plane - 1;
+      w[i][0] = 1 - eb;
+      w[i][1] = eb;
+      dw[i][0] = de * inv_2d_[i];
+      dw[i][1] = -de * inv_2d_[i];
+      loc[i][0] = qi - double(plane - 1);
+      loc[i][1] = qi - double(plane);
+    }
+  }
+  // The (cnt+1)^3 corner samples the contributing cells use (at most 27).
+  double B[3][3][3];
+  const float* base = g_.data.data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
+  for (int c = 0; c <= cnt[2]; ++c)
+    for (int b = 0; b <= cnt[1]; ++b)
+      for (int a = 0; a <= cnt[0]; ++a) B[c][b][a] = base[a + b * stride_[1] + c * stride_[2]];
+
+  double f = 0, gs[3] = {0, 0, 0};
+  for (int c = 0; c < cnt[2]; ++c)
+    for (int b = 0; b < cnt[1]; ++b)
+      for (int a = 0; a < cnt[0]; ++a) {
+        const double x = loc[0][a], y = loc[1][b], z = loc[2][c];
+        const double v000 = B[c][b][a], v100 = B[c][b][a + 1], v010 = B[c][b + 1][a], v110 = B[c][b + 1][a + 1];
+        const double v001 = B[c + 1][b][a], v101 = B[c + 1][b][a + 1], v011 = B[c + 1][b + 1][a],
+                     v111 = B[c + 1][b + 1][a + 1];
+        const double c00 = v000 + (v100 - v000) * x, c10 = v010 + (v110 - v010) * x;
+        const double c01 = v001 + (v101 - v001) * x, c11 = v011 + (v111 - v011) * x;
+        const double c0 = c00 + (c10 - c00) * y, c1 = c01 + (c11 - c01) * y;
+        const double fk = c0 + (c1 - c0) * z;
+        const double wyz = w[1][b] * w[2][c];
+        const double wk = w[0][a] * wyz;
+        f += wk * fk;
+        if (Gradient) {
+          const double e0 = (v100 - v000) + ((v110 - v010) - (v100 - v000)) * y;
+          const double e1 = (v101 - v001) + ((v111 - v011) - (v101 - v001)) * y;
+          const double dfx = (e0 + (e1 - e0) * z) * inv_delta_[0];
+          const double dfy = ((c10 - c00) + ((c11 - c01) - (c10 - c00)) * z) * inv_delta_[1];
+          const double dfz = (c1 - c0) * inv_delta_[2];
+          gs[0] += dw[0][a] * wyz * fk + wk * dfx;
+          gs[1] += w[0][a] * dw[1][b] * w[2][c] * fk + wk * dfy;
+          gs[2] += w[0][a] * w[1][b] * dw[2][c] * fk + wk * dfz;
+        }
+      }
+  if (Gradient) {
+    // Grid-axis derivatives to world: p = origin + D s, so df/dp = D df/ds.
+    const auto& D = g_.direction;
+    for (int j = 0; j < 3; ++j) (*gradient)[j] = D[j * 3] * gs[0] + D[j * 3 + 1] * gs[1] + D[j * 3 + 2] * gs[2];
+  }
+  return f;
+}
+
+double PartitionOfUnity::value(const Vec3& p) const { return evaluate<false>(p, nullptr); }
+
+double PartitionOfUnity::value_gradient(const Vec3& p, Vec3& gradient) const {
+  return evaluate<true>(p, &gradient);
+}
+
+} // namespace imgmesh

@@ -1,0 +1,90 @@
+// The pu-implicit file: round trip and rejection of anything else.
+#include "helpers.hpp"
+#include "image/io.hpp"
+#include "implicit/implicit_file.hpp"
+#include "util/error.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <string>
+#include <unistd.h>
+
+using namespace imgmesh;
+using namespace imgmesh::test;
+
+namespace {
+std::string temp_path(const std::string& name) {
+  return "/tmp/imgmesh_test_implicit_" + std::to_string(::getpid()) + "_" + name;
+}
+} // namespace
+
+TEST_CASE("write_implicit / read_implicit round trip keeps g, d and the world geometry", "[file]") {
+  BinaryImage im = random_wc(10, 9, 11, 7, {0.7, 1.0, 1.3});
+  rotate(im);
+  const PartitionOfUnity f = implicit_from_well_composed(im);
+  const std::string path = temp_path("rt.nrrd");
+  write_implicit(path, f);
+  const PartitionOfUnity h = read_implicit(path);
+  std::remove(path.c_str());
+  const Geometry &a = h.samples(), &b = f.samples();
+  REQUIRE(a.size == b.size);
+  for (int i = 0; i < 3; ++i) {
+    REQUIRE(a.spacing[i] == Approx(b.spacing[i]).epsilon(1e-12));
+    REQUIRE(a.origin[i] == Approx(b.origin[i]).epsilon(1e-12).margin(1e-12));
+  }
+  for (int i = 0; i < 9; ++i) REQUIRE(a.direction[i] == Approx(b.direction[i]).margin(1e-12));
+  REQUIRE(h.samples().data == f.samples().data);
+  for (int i = 0; i < 3; ++i) REQUIRE(h.d()[i] == f.d()[i]);  // %.17g: exact
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  const FloatImage& g = f.samples();
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 p = g.world(u(rng) * (g.size[0] - 1), u(rng) * (g.size[1] - 1), u(rng) * (g.size[2] - 1));
+    REQUIRE(h.value(p) == Approx(f.value(p)).epsilon(1e-9).margin(1e-9));  // world geometry travels through NRRD text
+  }
+}
+
+TEST_CASE("read_implicit rejects other files", "[file]") {
+  FloatImage g(grid(5, 5, 5), 1.0f);
+  g(2, 2, 2) = -0.5f;
+  SECTION("a float image without the fields") {
+    const std::string path = temp_path("plain.nrrd");
+    write_image(path, g);
+    REQUIRE_THROWS_AS(read_implicit(path), Error);
+    std::remove(path.c_str());
+  }
+  SECTION("wrong kind, version or d") {
+    const std::string path = temp_path("bad.nrrd");
+    for (auto fields : std::vector<std::map<std::string, std::string>>{
+             {{"imgmesh_kind", "other"}, {"imgmesh_version", "1"}, {"imgmesh_d", "0.1 0.1 0.1"}},
+             {{"imgmesh_kind", "pu-implicit"}, {"imgmesh_version", "7"}, {"imgmesh_d", "0.1 0.1 0.1"}},
+             {{"imgmesh_kind", "pu-implicit"}, {"imgmesh_version", "1"}, {"imgmesh_d", "0.1 0.1"}},
+             {{"imgmesh_kind", "pu-implicit"}, {"imgmesh_version", "1"}, {"imgmesh_d", "0.1 nan 0.1"}},
+             {{"imgmesh_kind", "pu-implicit"}, {"imgmesh_version", "1"}, {"imgmesh_d", "0.5 0.5 0.5"}},
+             {{"imgmesh_kind", "pu-implicit"}, {"imgmesh_version", "1"}}}) {
+      write_image(path, g, fields);
+      REQUIRE_THROWS_AS(read_implicit(path), Error);
+    }
+    std::remove(path.c_str());
+  }
+  SECTION("a truncated file") {
+    const std::string path = temp_path("trunc.nrrd");
+    BinaryImage im = random_wc(10, 10, 10, 2);
+    write_implicit(path, implicit_from_well_composed(im));
+    std::string bytes;
+    {
+      std::ifstream in(path, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    {
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);
+      out.write(bytes.data(), std::streamsize(bytes.size() / 2));
+    }
+    REQUIRE_THROWS_AS(read_implicit(path), Error);
+    std::remove(path.c_str());
+  }
+  SECTION("a missing file") { REQUIRE_THROWS_AS(read_implicit(temp_path("nonexistent.nrrd")), Error); }
+}

@@ -1,0 +1,334 @@
+// The partition of unity f of thesis 6.3 and the properties of 6.4.
+#include "helpers.hpp"
+#include "image/io.hpp"
+#include "implicit/implicit_file.hpp"
+#include "implicit/partition_of_unity.hpp"
+#include "util/error.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <thread>
+#include <vector>
+
+using namespace imgmesh;
+using namespace imgmesh::test;
+
+namespace {
+
+// A torus (genus 1) of radii R, r around the grid centre, in index units.
+BinaryImage torus(std::size_t n, Vec3 sp = {1, 1, 1}) {
+  BinaryImage im(grid(n, n, n, sp), 0);
+  const double c = (n - 1) / 2.0, R = n / 4.0, r = n / 9.0;
+  for (std::size_t z = 0; z < n; ++z)
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x) {
+        const double q = std::hypot(x - c, y - c) - R;
+        im(x, y, z) = q * q + (z - c) * (z - c) <= r * r;
+      }
+  make_well_composed_slow(im);
+  return im;
+}
+
+Vec3 centre_world(const Geometry& g, long x, long y, long z) { return g.world(double(x), double(y), double(z)); }
+
+// Every voxel centre: f = g (so f has the image's sign).
+void check_sign_at_centres(const PartitionOfUnity& f) {
+  const FloatImage& g = f.samples();
+  for (long z = 0; z < long(g.size[2]); ++z)
+    for (long y = 0; y < long(g.size[1]); ++y)
+      for (long x = 0; x < long(g.size[0]); ++x) {
+        const double v = f.value(centre_world(g, x, y, z));
+        const double s = g(x, y, z);
+        if (!((v < 0) == (s < 0)) || std::abs(v - s) > 1e-9 * (1 + std::abs(s))) {
+          INFO(x << " " << y << " " << z << " f=" << v << " g=" << s);
+          REQUIRE(false);
+        }
+      }
+}
+
+double max_abs_g(const PartitionOfUnity& f) {
+  double m = 0;
+  for (float v : f.samples().data) m = std::max(m, double(std::abs(v)));
+  return m;
+}
+
+} // namespace
+
+TEST_CASE("eta: smooth step from 1 to 0 (errata form)", "[pu]") {
+  REQUIRE(pu_eta(0) == 1.0);
+  REQUIRE(pu_eta(1) == 0.0);
+  REQUIRE(pu_eta(-0.5) == 1.0);
+  REQUIRE(pu_eta(1.5) == 0.0);
+  REQUIRE(pu_h(0) == 1.0);
+  REQUIRE(pu_h(1) == 0.0);
+  double prev = 1;
+  for (int i = 1; i < 1000; ++i) {
+    const double u = i / 1000.0;
+    double de = 0;
+    const double e = pu_eta(u, &de);
+    REQUIRE(e <= prev);
+    REQUIRE(e + pu_eta(1 - u) == Approx(1).margin(1e-15));  // neighbouring cells add to 1
+    const double h = 1e-6;
+    REQUIRE(de == Approx((pu_eta(u + h) - pu_eta(u - h)) / (2 * h)).margin(1e-6));
+    prev = e;
+  }
+  // All derivatives vanish at the ends: eta is flat to high order there.
+  for (double t : {1e-3, 1e-2, 3e-2}) {
+    double d0 = 0, d1 = 0;
+    pu_eta(t, &d0);
+    pu_eta(1 - t, &d1);
+    REQUIRE(std::abs(d0) < 1e-6);
+    REQUIRE(std::abs(d1) < 1e-6);
+    REQUIRE(1 - pu_eta(t) < 1e-8);
+  }
+}
+
+TEST_CASE("f has the sign of the image at every voxel centre", "[pu]") {
+  SECTION("torus") { check_sign_at_centres(implicit_from_well_composed(torus(24))); }
+  SECTION("random well-composed images, anisotropic, rotated") {
+    for (unsigned seed = 1; seed <= 6; ++seed) {
+      BinaryImage im = random_wc(14, 12, 13, seed, seed % 2 ? Vec3{1, 1, 1} : Vec3{0.7, 1.0, 1.6});
+      if (seed % 3 == 0) rotate(im);
+      REQUIRE(count_critical(im) == 0);
+      check_sign_at_centres(implicit_from_well_composed(im, nullptr, 2));
+    }
+  }
+  SECTION("real image (bunny, made well-composed)") {
+    BinaryImage im = read_foreground(IMGMESH_TEST_DATA "/bunny00-96.nrrd", Selection{});
+    make_well_composed_slow(im);
+    REQUIRE(count_critical(im) == 0);
+    ImplicitReport rep;
+    const PartitionOfUnity f = implicit_from_well_composed(im, &rep, 2);
+    check_sign_at_centres(f);
+    // The sign of g is the image (padded where the foreground touched the border).
+    const FloatImage& g = f.samples();
+    for (std::size_t z = 0; z < im.size[2]; ++z)
+      for (std::size_t y = 0; y < im.size[1]; ++y)
+        for (std::size_t x = 0; x < im.size[0]; ++x)
+          REQUIRE((g(x + rep.padded_before[0], y + rep.padded_before[1], z + rep.padded_before[2]) < 0) ==
+                  (im(x, y, z) != 0));
+  }
+}
+
+TEST_CASE("f and grad f are continuous across cell faces, edges, corners and weight transitions", "[pu]") {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    BinaryImage im = random_wc(12, 11, 10, seed, seed == 2 ? Vec3{0.6, 1.0, 1.5} : Vec3{1, 1, 1});
+    if (seed == 3) rotate(im);
+    const PartitionOfUnity f = implicit_from_well_composed(im);
+    const FloatImage& g = f.samples();
+    const double scale = max_abs_g(f);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int trial = 0; trial < 4000; ++trial) {
+      // Snap 1, 2 or 3 coordinates to a grid plane (face, edge, corner), or
+      // to a plane +- d_i where the weights stop varying.
+      Vec3 q;
+      for (int i = 0; i < 3; ++i) q[i] = 1 + u(rng) * (g.size[i] - 3.0);
+      const int snapped = 1 + trial % 3;
+      const int first = int(rng() % 3);
+      const double shift = (trial / 3) % 3 == 0 ? 0.0 : ((trial / 3) % 3 == 1 ? 1.0 : -1.0);
+      for (int s = 0; s < snapped; ++s) {
+        const int i = (first + s) % 3;
+        q[i] = std::round(q[i]) + shift * f.d()[i] / g.spacing[i];
+      }
+      const double eps = 1e-9;  // index units, on every snapped axis
+      Vec3 a = q, b = q;
+      for (int s = 0; s < snapped; ++s) {
+        const int i = (first + s) % 3;
+        a[i] -= eps;
+        b[i] += eps;
+      }
+      Vec3 ga, gb;
+      const double fa = f.value_gradient(g.world(a[0], a[1], a[2]), ga);
+      const double fb = f.value_gradient(g.world(b[0], b[1], b[2]), gb);
+      INFO("seed " << seed << " q " << q[0] << " " << q[1] << " " << q[2]);
+      REQUIRE(std::abs(fa - fb) <= 1e-6 * scale);
+      for (int i = 0; i < 3; ++i) REQUIRE(std::abs(ga[i] - gb[i]) <= 1e-4 * (1 + std::abs(ga[i])));
+    }
+  }
+}
+
+TEST_CASE("analytic gradient matches central differences", "[pu]") {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    BinaryImage im = random_wc(12, 12, 12, seed + 10, seed == 1 ? Vec3{1, 1, 1} : Vec3{0.6, 1.1, 1.5});
+    if (seed == 3) rotate(im);
+    const PartitionOfUnity f = implicit_from_well_composed(im);
+    const FloatImage& g = f.samples();
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int trial = 0; trial < 3000; ++trial) {
+      Vec3 q;
+      for (int i = 0; i < 3; ++i) q[i] = 0.01 + u(rng) * (g.size[i] - 1.02);
+      // Half the points inside a weight transition (within d of a plane).
+      if (trial % 2) {
+        const int i = int(rng() % 3);
+        q[i] = std::max(0.01, std::min(g.size[i] - 1.01, std::round(q[i]) + (2 * u(rng) - 1) * f.d()[i] / g.spacing[i]));
+      }
+      const Vec3 p = g.world(q[0], q[1], q[2]);
+      Vec3 grad;
+      const double v = f.value_gradient(p, grad);
+      REQUIRE(v == Approx(f.value(p)).epsilon(1e-14).margin(1e-14));
+      const double h = 1e-6;
+      for (int j = 0; j < 3; ++j) {
+        Vec3 pp = p, pm = p;
+        pp[j] += h;
+        pm[j] -= h;
+        const double fd = (f.value(pp) - f.value(pm)) / (2 * h);
+        INFO("trial " << trial << " axis " << j);
+        REQUIRE(grad[j] == Approx(fd).margin(1e-5).epsilon(1e-5));
+      }
+    }
+  }
+}
+
+TEST_CASE("Lemmas 6.4.1, 6.4.2, 6.4.5: vertex boxes keep the sign; edge regions are monotone, one zero", "[pu]") {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    BinaryImage im = random_wc(12, 11, 12, seed + 20, seed % 2 ? Vec3{1, 1, 1} : Vec3{1.3, 0.7, 1.0});
+    const PartitionOfUnity f = implicit_from_well_composed(im);
+    const FloatImage& g = f.samples();
+    const Vec3 d = f.d();
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    int crossing_edges = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+      const int e = int(rng() % 3);  // edge axis
+      long v1[3];
+      for (int i = 0; i < 3; ++i) v1[i] = long(rng() % (g.size[i] - (i == e ? 1 : 0)));
+      long v2[3] = {v1[0], v1[1], v1[2]};
+      v2[e] += 1;
+      const double g1 = g(v1[0], v1[1], v1[2]), g2 = g(v2[0], v2[1], v2[2]);
+      // Vertex box of v1 (Lemma 6.4.1 with boxes): sign of g(v1).
+      Vec3 q;
+      for (int i = 0; i < 3; ++i)
+        q[i] = std::max(0.0, std::min(double(g.size[i] - 1), v1[i] + (2 * u(rng) - 1) * 0.999 * d[i] / g.spacing[i]));
+      REQUIRE((f.value(g.world(q[0], q[1], q[2])) < 0) == (g1 < 0));
+      // A segment parallel to the edge inside its edge region.
+      Vec3 base;
+      for (int i = 0; i < 3; ++i)
+        base[i] = i == e ? 0.0
+                         : std::max(0.0, std::min(double(g.size[i] - 1),
+                                                  v1[i] + (2 * u(rng) - 1) * 0.999 * d[i] / g.spacing[i]));
+      const double t0 = v1[e] + d[e] / g.spacing[e], t1 = v2[e] - d[e] / g.spacing[e];
+      const int steps = 200;
+      std::vector<double> vals;
+      for (int s = 0; s <= steps; ++s) {
+        Vec3 p = base;
+        p[e] = t0 + (t1 - t0) * s / steps;
+        vals.push_back(f.value(g.world(p[0], p[1], p[2])));
+      }
+      if ((g1 < 0) != (g2 < 0)) {
+        ++crossing_edges;
+        const double dir = g2 > g1 ? 1 : -1;
+        int zeros = 0;
+        for (int s = 0; s < steps; ++s) {
+          REQUIRE(dir * (vals[s + 1] - vals[s]) > 0);
+          zeros += (vals[s] < 0) != (vals[s + 1] < 0);
+        }
+        REQUIRE((vals.front() < 0) == (g1 < 0));
+        REQUIRE((vals.back() < 0) == (g2 < 0));
+        REQUIRE(zeros == 1);
+      } else {
+        for (double v : vals) REQUIRE((v < 0) == (g1 < 0));
+      }
+    }
+    REQUIRE(crossing_edges > 0);
+  }
+}
+
+namespace {
+
+// Brute force L_max: sample |d f_k / d x_i| on a dense lattice of the
+// 1.8-delta box C'_k (thesis 6.3.2), from the thesis's polynomial form.
+double brute_lmax(const FloatImage& g) {
+  double best = 0;
+  for (std::size_t z = 0; z + 1 < g.size[2]; ++z)
+    for (std::size_t y = 0; y + 1 < g.size[1]; ++y)
+      for (std::size_t x = 0; x + 1 < g.size[0]; ++x) {
+        auto F = [&](int m, int n, int l) { return double(g(x + m, y + n, z + l)); };
+        // u = a + b z + c y + d yz + e x + f xz + g xy + h xyz (proof of Prop. 6.4.1)
+        const double b = F(0, 0, 1) - F(0, 0, 0), c = F(0, 1, 0) - F(0, 0, 0);
+        const double d = F(0, 0, 0) + F(0, 1, 1) - F(0, 0, 1) - F(0, 1, 0);
+        const double e = F(1, 0, 0) - F(0, 0, 0);
+        const double f = F(0, 0, 0) + F(1, 0, 1) - F(0, 0, 1) - F(1, 0, 0);
+        const double gg = F(0, 0, 0) + F(1, 1, 0) - F(0, 1, 0) - F(1, 0, 0);
+        const double h = F(1, 1, 1) - F(1, 1, 0) - F(1, 0, 1) + F(1, 0, 0) - F(0, 1, 1) + F(0, 1, 0) + F(0, 0, 1) - F(0, 0, 0);
+        double m = 0;
+        const int N = 6;
+        for (int i = 0; i <= N; ++i)
+          for (int j = 0; j <= N; ++j)
+            for (int k = 0; k <= N; ++k) {
+              const double X = -0.4 + 1.8 * i / N, Y = -0.4 + 1.8 * j / N, Z = -0.4 + 1.8 * k / N;
+              m = std::max({m, std::abs(e + f * Z + gg * Y + h * Y * Z) / g.spacing[0],
+                            std::abs(c + d * Z + gg * X + h * X * Z) / g.spacing[1],
+                            std::abs(b + d * Y + f * X + h * X * Y) / g.spacing[2]});
+            }
+        best = std::max(best, std::sqrt(3.0) * m);
+      }
+  return best;
+}
+
+} // namespace
+
+TEST_CASE("d, g_min and L_max as the thesis defines them (brute force)", "[pu]") {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    const Vec3 sp = seed % 2 ? Vec3{1, 1, 1} : Vec3{0.5, 1.0, 1.75};
+    BinaryImage im = random_wc(9, 8, 10, seed + 30, sp, 4);
+    const PartitionOfUnity f = implicit_from_well_composed(im);
+    const FloatImage& g = f.samples();
+    // g_min from brute-force distances of the (possibly padded) grid.
+    BinaryImage sign(g.geometry(), 0);
+    for (std::size_t i = 0; i < g.data.size(); ++i) sign.data[i] = g.data[i] < 0;
+    double gmin = 1e300;
+    for (long z = 0; z < long(g.size[2]); ++z)
+      for (long y = 0; y < long(g.size[1]); ++y)
+        for (long x = 0; x < long(g.size[0]); ++x) gmin = std::min(gmin, std::abs(brute_distance(sign, x, y, z)));
+    REQUIRE(f.g_min() == Approx(gmin).epsilon(1e-6));
+    // Every voxel centre is at least half a voxel from bdCA(X).
+    REQUIRE(gmin >= 0.5 * std::min({sp[0], sp[1], sp[2]}) - 1e-6);
+    const double lmax = brute_lmax(g);
+    REQUIRE(f.l_max() == Approx(lmax).epsilon(1e-9));
+    for (int i = 0; i < 3; ++i) {
+      REQUIRE(f.d()[i] == Approx(std::min(sp[i] / 5, gmin / (2 * lmax))).epsilon(1e-6));
+      REQUIRE(f.d()[i] <= sp[i] / 5 * (1 + 1e-12));
+    }
+  }
+}
+
+TEST_CASE("copies evaluate identically; concurrent evaluation is consistent", "[pu]") {
+  const PartitionOfUnity f = implicit_from_well_composed(torus(16, {0.8, 1.0, 1.2}));
+  PartitionOfUnity copy = f;
+  PartitionOfUnity moved = std::move(copy);
+  const FloatImage& g = f.samples();
+  std::vector<Vec3> pts;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int i = 0; i < 20000; ++i) pts.push_back(g.world(u(rng) * 15, u(rng) * 15, u(rng) * 15));
+  std::vector<double> a(pts.size()), b(pts.size());
+  std::thread t1([&] { for (std::size_t i = 0; i < pts.size(); ++i) a[i] = f.value(pts[i]); });
+  std::thread t2([&] { for (std::size_t i = 0; i < pts.size(); ++i) b[i] = moved.value(pts[i]); });
+  t1.join();
+  t2.join();
+  REQUIRE(a == b);
+  REQUIRE(f.in_domain(g.world(0, 0, 0)));
+  REQUIRE(f.in_domain(g.world(15, 15, 15)));
+  REQUIRE_FALSE(f.in_domain(g.world(-0.01, 3, 3)));
+  REQUIRE_FALSE(f.in_domain(g.world(3, 15.01, 3)));
+}
+
+TEST_CASE("constructor rejects bad samples and a d beyond the bound", "[pu]") {
+  FloatImage g(grid(4, 4, 4), 1.0f);
+  g(1, 1, 1) = -0.5f;
+  REQUIRE_NOTHROW(PartitionOfUnity(g));
+  FloatImage zero = g;
+  zero(2, 2, 2) = 0;
+  REQUIRE_THROWS_AS(PartitionOfUnity(zero), Error);
+  FloatImage nan = g;
+  nan(2, 2, 2) = std::nanf("");
+  REQUIRE_THROWS_AS(PartitionOfUnity(nan), Error);
+  FloatImage thin(grid(4, 1, 4), 1.0f);
+  REQUIRE_THROWS_AS(PartitionOfUnity(thin), Error);
+  REQUIRE_THROWS_AS(PartitionOfUnity(g, Vec3{0.3, 0.3, 0.3}), Error);  // > delta/5
+}
