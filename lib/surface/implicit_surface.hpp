@@ -1,0 +1,67 @@
+// The surface S = f^-1(0) that implicit2mesh samples (thesis ch. 7-8), seen
+// through a small interface so the mesher can be developed and tested on
+// analytic shapes as well as on chapter 6's partition of unity.
+//
+// Everything is expressed in the grid's local frame q = diag(spacing) * index
+// (voxel centre (i,j,k) at q = (i sx, j sy, k sz)): the cubes C_k between
+// voxel centres are axis aligned there, and world = origin + direction * q is
+// a rigid motion, so Delaunay triangulations and distances are preserved.
+#pragma once
+#include "image/grid.hpp"
+
+#include <functional>
+
+namespace imgmesh {
+
+class PartitionOfUnity;
+
+class ImplicitSurface {
+public:
+  virtual ~ImplicitSurface() = default;
+  // f at a local point inside the box of voxel centres; negative inside.
+  virtual double value(const Vec3& q) const = 0;
+  // f and its gradient with respect to q.
+  virtual double value_gradient(const Vec3& q, Vec3& gradient) const = 0;
+  // g at the voxel centres with the world geometry: f has g's sign there,
+  // and f has no zero in a cube whose 8 corners share one sign (thesis F1).
+  virtual const FloatImage& samples() const = 0;
+
+  // Local frame <-> world coordinates.
+  Vec3 to_world(const Vec3& q) const;
+  Vec3 to_local(const Vec3& world) const;
+  Vec3 vector_to_world(const Vec3& v) const;  // directions (gradients)
+  Vec3 vector_to_local(const Vec3& v) const;
+  // det(direction) < 0: the world map reflects, flip facet orientation.
+  bool reflects() const;
+};
+
+// f given in world coordinates by a function (analytic test shapes); the
+// samples are f at the voxel centres of `grid`; gradient by central
+// differences.
+class FunctionSurface : public ImplicitSurface {
+public:
+  using Function = std::function<double(const Vec3& world)>;
+  FunctionSurface(const Geometry& grid, Function f);
+  double value(const Vec3& q) const override;
+  double value_gradient(const Vec3& q, Vec3& gradient) const override;
+  const FloatImage& samples() const override { return samples_; }
+
+private:
+  Function f_;
+  FloatImage samples_;
+};
+
+// Chapter 6's partition of unity (world coordinates) seen in the local frame.
+// Holds a reference: `pu` must outlive the adapter.
+class PartitionOfUnitySurface : public ImplicitSurface {
+public:
+  explicit PartitionOfUnitySurface(const PartitionOfUnity& pu);
+  double value(const Vec3& q) const override;
+  double value_gradient(const Vec3& q, Vec3& gradient) const override;
+  const FloatImage& samples() const override;
+
+private:
+  const PartitionOfUnity& pu_;
+};
+
+} // namespace imgmesh

@@ -1,0 +1,1047 @@
+// DELMESH (thesis 7.6.5) on CGAL's Delaunay_triangulation_3, kept
+// incremental: every insertion recomputes only the facets of the new cells
+// (all incident to the new vertex) and re-checks only the cavity's vertices.
+// See ../shared/notes/implicit2mesh.md for the CGAL calls this follows.
+#include "surface/restricted_delaunay.hpp"
+
+#include "util/error.hpp"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_with_circumcenter_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Robust_circumcenter_traits_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <queue>
+#include <random>
+#include <set>
+#include <sstream>
+#include <unordered_map>
+
+namespace imgmesh {
+
+double min_ratio_bound() { return (1 + 0.06) * (1 + 0.06); }
+double min_roughness_bound() { return 2 * (std::asin(0.06) + std::asin(2 * 0.06 / std::sqrt(3.0))); }
+
+namespace {
+
+using K0 = CGAL::Exact_predicates_inexact_constructions_kernel;
+// Circumcentres computed exactly then rounded (Surface_mesher does the same).
+using GT = CGAL::Robust_circumcenter_traits_3<K0>;
+using Point = GT::Point_3;
+
+// Why a vertex is in W; also the per-subroutine counters of --stats.
+enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kQuality, kSmooth, kDistance, kFallback, kOrigins };
+const char* const kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "quality", "smooth", "max_distance", "topology_fallback"};
+
+struct VInfo {
+  int id = -1;
+  std::uint8_t origin = kSeed;
+  int comp = -1;  // S component (active-cube component) the vertex lies on
+};
+
+enum : std::uint8_t { kComputed = 1, kRestricted = 2, kMulti = 4 };
+
+// EdgeSurface's answer for one Delaunay facet, stored on both of its sides.
+struct FacetInfo {
+  std::uint8_t state = 0;
+  double x[3] = {0, 0, 0};  // surface centre x_t: crossing farthest from the facet's vertices
+  double r2 = 0;            // squared radius of the surface Delaunay ball
+};
+
+template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_with_circumcenter_3<Gt>>
+class CellBase : public Cb {
+public:
+  template <class TDS2> struct Rebind_TDS {
+    using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
+    using Other = CellBase<Gt, Cb2>;
+  };
+  using Cb::Cb;
+  FacetInfo facet[4];
+};
+
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<VInfo, GT>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, CellBase<GT>>;
+using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;  // Compact_location: see the notes
+using Vh = Tr::Vertex_handle;
+using Ch = Tr::Cell_handle;
+using Facet = Tr::Facet;
+
+inline Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline double dist2(const Vec3& a, const Vec3& b) { Vec3 d = sub(a, b); return dot(d, d); }
+
+// Radius-edge ratio R / l_min (Def. 4.3.1).
+double ratio(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double la = std::sqrt(dist2(b, c)), lb = std::sqrt(dist2(c, a)), lc = std::sqrt(dist2(a, b));
+  const double area2 = norm(cross(sub(b, a), sub(c, a)));  // twice the area
+  const double lmin = std::min({la, lb, lc});
+  if (area2 <= 0 || lmin <= 0) return INFINITY;
+  return la * lb * lc / (2 * area2) / lmin;
+}
+
+// The cube grid between voxel centres (thesis ch. 6): signs, active cubes and
+// their components (F1, F4).
+struct CubeGrid {
+  const FloatImage& g;
+  long n[3];
+  double s[3];
+  double hi[3];
+  double delta;
+  std::unordered_map<long long, int> comp;  // active cube -> S component
+  int components = 0;
+
+  explicit CubeGrid(const FloatImage& img) : g(img) {
+    for (int i = 0; i < 3; ++i) {
+      n[i] = long(img.size[i]);
+      s[i] = img.spacing[i];
+      hi[i] = double(n[i] - 1) * s[i];
+    }
+    delta = std::min({s[0], s[1], s[2]});
+  }
+  bool neg(long x, long y, long z) const { return g(std::size_t(x), std::size_t(y), std::size_t(z)) < 0; }
+  long long key(long x, long y, long z) const { return x + (long long)n[0] * (y + (long long)n[1] * z); }
+  bool active(long x, long y, long z) const {
+    if (x < 0 || y < 0 || z < 0 || x > n[0] - 2 || y > n[1] - 2 || z > n[2] - 2) return false;
+    const bool s0 = neg(x, y, z);
+    for (int k = 1; k < 8; ++k)
+      if (neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) != s0) return true;
+    return false;
+  }
+  int comp_of(long x, long y, long z) const {
+    auto it = comp.find(key(x, y, z));
+    return it == comp.end() ? -1 : it->second;
+  }
+  // Label active cubes by components joined through mixed faces (F4).
+  void label() {
+    std::vector<std::array<long, 3>> stack;
+    for (long z = 0; z + 1 < n[2]; ++z)
+      for (long y = 0; y + 1 < n[1]; ++y)
+        for (long x = 0; x + 1 < n[0]; ++x) {
+          if (!active(x, y, z) || comp.count(key(x, y, z))) continue;
+          const int c = components++;
+          comp[key(x, y, z)] = c;
+          stack.push_back({x, y, z});
+          while (!stack.empty()) {
+            auto q = stack.back();
+            stack.pop_back();
+            for (int a = 0; a < 3; ++a)
+              for (int dir = -1; dir <= 1; dir += 2) {
+                std::array<long, 3> r = q;
+                r[a] += dir;
+                if (!active(r[0], r[1], r[2]) || comp.count(key(r[0], r[1], r[2]))) continue;
+                // The shared face: plane coordinate max(q[a], r[a]) on axis a.
+                const long pa = std::max(q[a], r[a]);
+                const int b = (a + 1) % 3, c2 = (a + 2) % 3;
+                bool any_neg = false, any_pos = false;
+                for (int k = 0; k < 4; ++k) {
+                  std::array<long, 3> v = q;
+                  v[a] = pa;
+                  v[b] += k & 1;
+                  v[c2] += (k >> 1) & 1;
+                  (neg(v[0], v[1], v[2]) ? any_neg : any_pos) = true;
+                }
+                if (!(any_neg && any_pos)) continue;
+                comp[key(r[0], r[1], r[2])] = c;
+                stack.push_back(r);
+              }
+          }
+        }
+  }
+  // Component of the active cube containing a local point (or a neighbour).
+  int comp_at(const Vec3& q) const {
+    long c[3];
+    for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(q[i] / s[i])), 0L, n[i] - 2);
+    int r = comp_of(c[0], c[1], c[2]);
+    if (r >= 0) return r;
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if ((r = comp_of(c[0] + dx, c[1] + dy, c[2] + dz)) >= 0) return r;
+    return -1;
+  }
+  // Euler characteristic of bdCA(X) per S component: the boundary quad dual
+  // to a mixed grid edge belongs to the component of the cubes around it.
+  std::vector<int> euler_by_component() const {
+    std::vector<std::pair<int, long long>> verts, edges;
+    std::vector<long long> faces(components, 0);
+    const long long cx = n[0] + 2, cy = n[1] + 2;
+    auto corner = [&](long x, long y, long z) { return x + cx * (y + cy * (long long)z); };
+    for (long z = 0; z < n[2]; ++z)
+      for (long y = 0; y < n[1]; ++y)
+        for (long x = 0; x < n[0]; ++x)
+          for (int a = 0; a < 3; ++a) {
+            long p[3] = {x, y, z};
+            p[a] += 1;
+            if (p[a] >= n[a] || neg(x, y, z) == neg(p[0], p[1], p[2])) continue;
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            long cube[3] = {x, y, z};
+            if (cube[b] > n[b] - 2) cube[b] -= 1;
+            if (cube[c] > n[c] - 2) cube[c] -= 1;
+            const int k = comp_of(cube[0], cube[1], cube[2]);
+            if (k < 0) continue;
+            faces[k] += 1;
+            // Quad corners in corner coordinates (voxel v spans [v, v+1]).
+            long o[3] = {x, y, z};
+            o[a] += 1;
+            long q[4][3];
+            for (int i = 0; i < 4; ++i) std::copy(o, o + 3, q[i]);
+            q[1][b] += 1; q[2][b] += 1; q[2][c] += 1; q[3][c] += 1;
+            for (int i = 0; i < 4; ++i) verts.emplace_back(k, corner(q[i][0], q[i][1], q[i][2]));
+            edges.emplace_back(k, corner(q[0][0], q[0][1], q[0][2]) * 3 + b);
+            edges.emplace_back(k, corner(q[0][0], q[0][1], q[0][2]) * 3 + c);
+            edges.emplace_back(k, corner(q[1][0], q[1][1], q[1][2]) * 3 + c);
+            edges.emplace_back(k, corner(q[3][0], q[3][1], q[3][2]) * 3 + b);
+          }
+    std::sort(verts.begin(), verts.end());
+    verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+    std::sort(edges.begin(), edges.end());
+    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    std::vector<int> chi(faces.begin(), faces.end());
+    for (auto& v : verts) chi[v.first] += 1;
+    for (auto& e : edges) chi[e.first] -= 1;
+    return chi;
+  }
+};
+
+struct EdgeCrossing {
+  int count = 0;  // 0, 1 or 2 (two or more)
+  Vec3 x{0, 0, 0};
+};
+
+class Mesher {
+public:
+  Mesher(const ImplicitSurface& surface, const RestrictedDelaunayOptions& opt)
+      : f_(surface), opt_(opt), grid_(surface.samples()) {}
+
+  RestrictedDelaunayResult run();
+
+private:
+  using Clock = std::chrono::steady_clock;
+  enum Kind { kQVorEdge, kQTopoDisk, kQQuality, kQSmooth, kQDistance };
+  struct Item {
+    int kind;
+    double prio;
+    std::uint64_t seq;
+    Vh a, b, c;  // a facet (a, b, c) or a vertex a
+    bool operator<(const Item& o) const {  // std::priority_queue pops the largest
+      if (kind != o.kind) return kind > o.kind;
+      if (prio != o.prio) return prio < o.prio;
+      return seq > o.seq;
+    }
+  };
+
+  const ImplicitSurface& f_;
+  RestrictedDelaunayOptions opt_;
+  CubeGrid grid_;
+  Tr tr_;
+  std::vector<Vh> vertices_;
+  std::priority_queue<Item> queue_;
+  std::uint64_t seq_ = 0;
+  long long inserted_[kOrigins] = {};
+  long long refused_ = 0, evaluations_ = 0;
+  bool max_hit_ = false;
+  std::size_t last_progress_ = 0;
+  std::string phase_ = "seeds";
+
+  double value(const Vec3& q) {
+    ++evaluations_;
+    Vec3 c = q;
+    for (int i = 0; i < 3; ++i) c[i] = std::clamp(c[i], 0.0, grid_.hi[i]);
+    return f_.value(c);
+  }
+  Vec3 gradient(const Vec3& q) {
+    Vec3 c = q, gr;
+    for (int i = 0; i < 3; ++i) c[i] = std::clamp(c[i], 0.0, grid_.hi[i]);
+    f_.value_gradient(c, gr);
+    return gr;
+  }
+  // Sign convention for zeros (8.4(1)): f == 0 counts as outside, i.e. we
+  // mesh f^-1(-eps) symbolically, consistently on every edge.
+  static bool inside(double v) { return v < 0; }
+
+  Vec3 bisect(Vec3 a, Vec3 b, double fa);
+  EdgeCrossing edge_surface(const Vec3& a, const Vec3& b, const Vec3& site);
+  void compute_facet(Ch c, int i);
+  void enqueue_facet(Ch c, int i);
+  void enqueue_vertex(Vh v);
+  bool insert(const Vec3& x, Origin origin, Ch hint);
+  void after_insertion(Vh v);
+  void seeds();
+  bool topo_disk(Vh v, Facet* worst);
+  bool smooth(Vh v, Facet* worst);
+  void drain();
+  bool facet_of(const Item& it, Ch& c, int& i) const;
+  Vec3 facet_center(const Facet& f) const {
+    const FacetInfo& fi = f.first->facet[f.second];
+    return {fi.x[0], fi.x[1], fi.x[2]};
+  }
+  void progress() {
+    if (opt_.progress && vertices_.size() >= last_progress_ + 5000) {
+      last_progress_ = vertices_.size();
+      opt_.progress(phase_ + ": " + std::to_string(vertices_.size()) + " points");
+    }
+  }
+  // Restricted facets in a deterministic order (by vertex ids).
+  std::vector<Facet> restricted_facets() const;
+  bool fallback(const std::vector<int>& bad_components);
+};
+
+Vec3 Mesher::bisect(Vec3 a, Vec3 b, double fa) {
+  // Illinois regula falsi with a bisection safeguard, to ~1e-12 delta.
+  double fb = value(b);
+  const bool ia = inside(fa);
+  const double tol2 = std::pow(1e-12 * grid_.delta, 2);
+  int side = 0;
+  for (int it = 0; it < 200 && dist2(a, b) > tol2; ++it) {
+    double t = (fa - fb) != 0 ? fa / (fa - fb) : 0.5;
+    if (!(t > 0.02 && t < 0.98) || it % 4 == 3) t = 0.5;
+    Vec3 m{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+    const double fm = value(m);
+    if (inside(fm) == ia) {
+      a = m; fa = fm;
+      if (side == -1) fb /= 2;
+      side = -1;
+    } else {
+      b = m; fb = fm;
+      if (side == 1) fa /= 2;
+      side = 1;
+    }
+  }
+  return std::abs(fa) <= std::abs(fb) ? a : b;
+}
+
+// EdgeSurface (8.2): clip the Voronoi edge to the box of voxel centres, walk
+// the cubes it crosses, look for roots only in active cubes (F1), and find the
+// first and the last crossing. Roots are isolated by sampling at delta/8
+// inside active cubes, then refined; two roots closer than that are missed
+// (documented limitation, see the man page).
+EdgeCrossing Mesher::edge_surface(const Vec3& a, const Vec3& b, const Vec3& site) {
+  EdgeCrossing out;
+  const Vec3 d = sub(b, a);
+  double t0 = 0, t1 = 1;
+  for (int i = 0; i < 3; ++i) {
+    if (d[i] == 0) {
+      if (a[i] < 0 || a[i] > grid_.hi[i]) return out;
+      continue;
+    }
+    double ta = (0 - a[i]) / d[i], tb = (grid_.hi[i] - a[i]) / d[i];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (!(t0 < t1)) return out;
+  auto at = [&](double t) -> Vec3 {
+    if (t == 0) return a;  // Voronoi vertices bit-exact: consistent signs (8.4(1))
+    if (t == 1) return b;
+    return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]};
+  };
+  // Breakpoints where the segment crosses grid planes (Amanatides-Woo's
+  // events, sorted); each piece lies in one cube.
+  std::vector<double> ts{t0, t1};
+  for (int i = 0; i < 3; ++i) {
+    if (d[i] == 0) continue;
+    const double lo = std::min(a[i] + t0 * d[i], a[i] + t1 * d[i]);
+    const double hi = std::max(a[i] + t0 * d[i], a[i] + t1 * d[i]);
+    for (long k = long(std::ceil(lo / grid_.s[i])); k <= long(std::floor(hi / grid_.s[i])); ++k) {
+      const double t = (double(k) * grid_.s[i] - a[i]) / d[i];
+      if (t > t0 && t < t1) ts.push_back(t);
+    }
+  }
+  std::sort(ts.begin(), ts.end());
+  struct Piece { double ta, tb; };
+  std::vector<Piece> pieces;
+  for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
+    const double ta = ts[k], tb = ts[k + 1];
+    if (!(tb > ta)) continue;
+    const Vec3 m = at((ta + tb) / 2);
+    long c[3];
+    for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(m[i] / grid_.s[i])), 0L, grid_.n[i] - 2);
+    if (!grid_.active(c[0], c[1], c[2])) continue;
+    if (!pieces.empty() && pieces.back().tb == ta) pieces.back().tb = tb;  // merge runs of active cubes
+    else pieces.push_back({ta, tb});
+  }
+  if (pieces.empty()) return out;
+  const double len = norm(d);
+  const double step = grid_.delta / 8;
+  // All sign changes of one piece, as sample pairs.
+  auto changes = [&](const Piece& p, std::vector<std::pair<double, double>>& ch, std::vector<double>& fv) {
+    const int m = std::max(2, int(std::ceil((p.tb - p.ta) * len / step)));
+    double tp = p.ta, fp = value(at(tp));
+    for (int k = 1; k <= m; ++k) {
+      const double t = k == m ? p.tb : p.ta + (p.tb - p.ta) * k / m;
+      const double fc = value(at(t));
+      if (inside(fc) != inside(fp)) {
+        ch.emplace_back(tp, t);
+        fv.push_back(fp);
+      }
+      tp = t;
+      fp = fc;
+    }
+  };
+  // Forward to the first piece with a root, backward to the last one.
+  std::size_t first = pieces.size();
+  std::vector<std::pair<double, double>> ch_first;
+  std::vector<double> fv_first;
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    changes(pieces[k], ch_first, fv_first);
+    if (!ch_first.empty()) { first = k; break; }
+  }
+  if (first == pieces.size()) return out;
+  std::vector<std::pair<double, double>> ch_last;
+  std::vector<double> fv_last;
+  for (std::size_t k = pieces.size() - 1; k > first; --k) {
+    changes(pieces[k], ch_last, fv_last);
+    if (!ch_last.empty()) break;
+  }
+  const Vec3 x0 = bisect(at(ch_first.front().first), at(ch_first.front().second), fv_first.front());
+  out.count = 1;
+  out.x = x0;
+  Vec3 x1 = x0;
+  if (!ch_last.empty()) {
+    x1 = bisect(at(ch_last.back().first), at(ch_last.back().second), fv_last.back());
+    out.count = 2;
+  } else if (ch_first.size() > 1) {
+    x1 = bisect(at(ch_first.back().first), at(ch_first.back().second), fv_first.back());
+    out.count = 2;
+  }
+  // x_t: the crossing farthest from the facet's vertices (7.6: largest ball).
+  if (out.count == 2 && dist2(x1, site) > dist2(x0, site)) out.x = x1;
+  return out;
+}
+
+void Mesher::compute_facet(Ch c, int i) {
+  Ch n = c->neighbor(i);
+  const int j = n->index(c);
+  FacetInfo fi;
+  fi.state = kComputed;
+  if (!tr_.is_infinite(c, i)) {
+    const Vec3 p0 = vec(c->vertex((i + 1) & 3)->point());
+    const bool ci = tr_.is_infinite(c), ni = tr_.is_infinite(n);
+    Vec3 a, b;
+    bool ok = true;
+    if (!ci && !ni) {
+      a = vec(tr_.dual(c));
+      b = vec(tr_.dual(n));
+      if (b < a) std::swap(a, b);  // lexicographic: both sides agree bit for bit
+      ok = a != b;                 // zero-length Voronoi edge: not restricted
+    } else {
+      // A ray from the finite cell's circumcentre, away from its fourth vertex.
+      Ch fc = ci ? n : c;
+      const int fi_ = ci ? j : i;
+      const Vec3 q0 = vec(fc->vertex((fi_ + 1) & 3)->point()), q1 = vec(fc->vertex((fi_ + 2) & 3)->point()),
+                 q2 = vec(fc->vertex((fi_ + 3) & 3)->point()), opp = vec(fc->vertex(fi_)->point());
+      Vec3 nrm = cross(sub(q1, q0), sub(q2, q0));
+      if (dot(nrm, sub(opp, q0)) > 0) nrm = {-nrm[0], -nrm[1], -nrm[2]};
+      const double nl = norm(nrm);
+      ok = nl > 0;
+      if (ok) {
+        a = vec(tr_.dual(fc));
+        double reach = 0;  // far enough to leave the box
+        for (int k = 0; k < 3; ++k) reach += std::abs(a[k]) + grid_.hi[k];
+        b = {a[0] + nrm[0] / nl * reach, a[1] + nrm[1] / nl * reach, a[2] + nrm[2] / nl * reach};
+      }
+    }
+    if (ok) {
+      const EdgeCrossing e = edge_surface(a, b, p0);
+      if (e.count > 0) {
+        fi.state |= kRestricted;
+        if (e.count > 1) fi.state |= kMulti;
+        std::copy(e.x.begin(), e.x.end(), fi.x);
+        fi.r2 = dist2(e.x, p0);
+      }
+    }
+  }
+  c->facet[i] = fi;
+  n->facet[j] = fi;
+  enqueue_facet(c, i);
+}
+
+void Mesher::enqueue_facet(Ch c, int i) {
+  const FacetInfo& fi = c->facet[i];
+  if (!(fi.state & kRestricted)) return;
+  Vh a = c->vertex((i + 1) & 3), b = c->vertex((i + 2) & 3), d = c->vertex((i + 3) & 3);
+  if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d});
+  const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
+  if (ratio(pa, pb, pd) > opt_.ratio) queue_.push({kQQuality, fi.r2, seq_++, a, b, d});
+  if (opt_.max_distance > 0) {
+    Vec3 nrm = cross(sub(pb, pa), sub(pd, pa));
+    const double nl = norm(nrm);
+    const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
+    if (nl > 0 && std::abs(dot(nrm, sub(x, pa))) / nl > opt_.max_distance)
+      queue_.push({kQDistance, fi.r2, seq_++, a, b, d});
+  }
+}
+
+void Mesher::enqueue_vertex(Vh v) {
+  queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh()});
+  queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh()});
+}
+
+bool Mesher::insert(const Vec3& x, Origin origin, Ch hint) {
+  if (vertices_.size() >= opt_.max_points) {
+    max_hit_ = true;
+    return false;
+  }
+  const Point p(x[0], x[1], x[2]);
+  if (tr_.dimension() < 3) {
+    const std::size_t before = tr_.number_of_vertices();
+    Vh v = tr_.insert(p);
+    if (tr_.number_of_vertices() == before) return false;
+    v->info() = {int(vertices_.size()), std::uint8_t(origin), grid_.comp_at(x)};
+    vertices_.push_back(v);
+    ++inserted_[origin];
+    if (tr_.dimension() == 3) {  // bootstrap: one scan, incremental afterwards
+      for (auto it = tr_.finite_facets_begin(); it != tr_.finite_facets_end(); ++it) compute_facet(it->first, it->second);
+      for (Vh w : vertices_) enqueue_vertex(w);
+    }
+    return true;
+  }
+  Tr::Locate_type lt;
+  int li, lj;
+  Ch c = tr_.locate(p, lt, li, lj, hint);
+  if (lt == Tr::VERTEX) {
+    ++refused_;
+    return false;
+  }
+  Vh v = tr_.insert(p, lt, c, li, lj);
+  v->info() = {int(vertices_.size()), std::uint8_t(origin), grid_.comp_at(x)};
+  vertices_.push_back(v);
+  ++inserted_[origin];
+  after_insertion(v);
+  progress();
+  return true;
+}
+
+// The new cells are exactly the cells incident to v: recompute their facets
+// (both sides), and re-check v and the cavity's vertices.
+void Mesher::after_insertion(Vh v) {
+  std::vector<Ch> cells;
+  tr_.incident_cells(v, std::back_inserter(cells));
+  for (Ch c : cells) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
+  for (Ch c : cells)
+    for (int i = 0; i < 4; ++i)
+      if (!(c->facet[i].state & kComputed)) compute_facet(c, i);
+  std::vector<Vh> around;
+  tr_.finite_adjacent_vertices(v, std::back_inserter(around));
+  enqueue_vertex(v);
+  for (Vh w : around) enqueue_vertex(w);
+}
+
+// Seeds (8.1): on every component of S, crossings of mixed cube edges in the
+// component's extremal cubes along +-x, +-y, +-z (at least two per
+// component); no critical points needed.
+void Mesher::seeds() {
+  std::vector<std::array<long, 4>> extreme(std::size_t(grid_.components) * 6, {-1, 0, 0, 0});
+  std::vector<std::pair<long long, int>> cubes(grid_.comp.begin(), grid_.comp.end());
+  std::sort(cubes.begin(), cubes.end());  // deterministic
+  for (auto& kc : cubes) {
+    long long k = kc.first;
+    const long x = long(k % grid_.n[0]), y = long((k / grid_.n[0]) % grid_.n[1]), z = long(k / grid_.n[0] / grid_.n[1]);
+    const long c[3] = {x, y, z};
+    for (int a = 0; a < 3; ++a)
+      for (int s = 0; s < 2; ++s) {
+        auto& e = extreme[std::size_t(kc.second) * 6 + a * 2 + s];
+        if (e[0] < 0 || (s == 0 ? c[a] < e[1 + a] : c[a] > e[1 + a])) e = {1, x, y, z};
+      }
+  }
+  // A crossing on a mixed edge of cube (x,y,z): unique, f monotone (F2).
+  auto crossing = [&](long x, long y, long z, Vec3& out) {
+    static const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+    for (auto& e : edges) {
+      long p[2][3];
+      for (int k = 0; k < 2; ++k) {
+        p[k][0] = x + (e[k] & 1);
+        p[k][1] = y + ((e[k] >> 1) & 1);
+        p[k][2] = z + ((e[k] >> 2) & 1);
+      }
+      if (grid_.neg(p[0][0], p[0][1], p[0][2]) == grid_.neg(p[1][0], p[1][1], p[1][2])) continue;
+      const Vec3 a{p[0][0] * grid_.s[0], p[0][1] * grid_.s[1], p[0][2] * grid_.s[2]};
+      const Vec3 b{p[1][0] * grid_.s[0], p[1][1] * grid_.s[1], p[1][2] * grid_.s[2]};
+      out = bisect(a, b, value(a));
+      return true;
+    }
+    return false;
+  };
+  std::vector<Vec3> pts;
+  for (auto& e : extreme) {
+    Vec3 x;
+    if (e[0] >= 0 && crossing(e[1], e[2], e[3], x)) pts.push_back(x);
+  }
+  std::sort(pts.begin(), pts.end());
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  std::mt19937_64 rng(opt_.seed);
+  std::shuffle(pts.begin(), pts.end(), rng);
+  for (const Vec3& x : pts) insert(x, kSeed, Ch());
+  // Degenerate seed sets (one flat component): add crossings until 3D.
+  for (std::size_t k = 0; tr_.dimension() < 3 && k < cubes.size(); k += std::max<std::size_t>(1, cubes.size() / 64)) {
+    long long key = cubes[k].first;
+    Vec3 x;
+    if (crossing(long(key % grid_.n[0]), long((key / grid_.n[0]) % grid_.n[1]), long(key / grid_.n[0] / grid_.n[1]), x))
+      insert(x, kSeed, Ch());
+  }
+  if (tr_.dimension() < 3) throw Error("cannot place four non-coplanar seed points on the surface");
+}
+
+// TopoDisk (7.6.1): the restricted facets around v form one closed disk.
+bool Mesher::topo_disk(Vh v, Facet* worst) {
+  std::vector<Facet> fs;
+  tr_.finite_incident_facets(v, std::back_inserter(fs));
+  std::map<int, std::vector<int>> link;
+  double best = -1;
+  for (const Facet& f : fs) {
+    const FacetInfo& fi = f.first->facet[f.second];
+    if (!(fi.state & kRestricted)) continue;
+    int ids[2], k = 0;
+    for (int m = 1; m < 4; ++m) {
+      Vh w = f.first->vertex((f.second + m) & 3);
+      if (w != v) ids[k++] = w->info().id;
+    }
+    link[ids[0]].push_back(ids[1]);
+    link[ids[1]].push_back(ids[0]);
+    if (fi.r2 > best) {
+      best = fi.r2;
+      *worst = f;
+    }
+  }
+  if (link.empty()) return true;
+  for (auto& kv : link)
+    if (kv.second.size() != 2) return false;
+  int start = link.begin()->first, prev = -1, cur = start;
+  std::size_t steps = 0;
+  do {
+    const auto& nb = link[cur];
+    const int next = nb[0] != prev ? nb[0] : nb[1];
+    prev = cur;
+    cur = next;
+    ++steps;
+  } while (cur != start && steps <= link.size());
+  return steps == link.size();
+}
+
+// SMOOTH (7.6.4): the roughness of an edge (v, u), the angle between the
+// oriented normals of its two restricted facets, stays below g.
+bool Mesher::smooth(Vh v, Facet* worst) {
+  std::vector<Facet> fs;
+  tr_.finite_incident_facets(v, std::back_inserter(fs));
+  std::map<int, std::vector<Vec3>> normals;  // by the other vertex of the edge
+  double best = -1;
+  for (const Facet& f : fs) {
+    const FacetInfo& fi = f.first->facet[f.second];
+    if (!(fi.state & kRestricted)) continue;
+    const Vec3 a = vec(f.first->vertex((f.second + 1) & 3)->point()), b = vec(f.first->vertex((f.second + 2) & 3)->point()),
+               c = vec(f.first->vertex((f.second + 3) & 3)->point());
+    Vec3 n = cross(sub(b, a), sub(c, a));
+    const double nl = norm(n);
+    if (nl <= 0) continue;
+    const Vec3 gr = gradient({fi.x[0], fi.x[1], fi.x[2]});
+    const double s = dot(n, gr) < 0 ? -1 / nl : 1 / nl;
+    n = {n[0] * s, n[1] * s, n[2] * s};
+    for (int m = 1; m < 4; ++m) {
+      Vh w = f.first->vertex((f.second + m) & 3);
+      if (w != v) normals[w->info().id].push_back(n);
+    }
+    if (fi.r2 > best) {
+      best = fi.r2;
+      *worst = f;
+    }
+  }
+  for (auto& kv : normals) {
+    if (kv.second.size() != 2) continue;  // TopoDisk's business
+    const double c = std::clamp(dot(kv.second[0], kv.second[1]), -1.0, 1.0);
+    if (std::acos(c) > opt_.roughness) return false;
+  }
+  return true;
+}
+
+bool Mesher::facet_of(const Item& it, Ch& c, int& i) const {
+  int i0, i1, i2;
+  if (!tr_.is_facet(it.a, it.b, it.c, c, i0, i1, i2)) return false;
+  i = 6 - i0 - i1 - i2;
+  return true;
+}
+
+// DELMESH as one loop over prioritised queues (notes 4.8): VorEdge, TopoDisk,
+// QUALITY, SMOOTH, max-distance; every insertion re-queues only what changed.
+void Mesher::drain() {
+  const double guard2 = std::pow(1e-3 * grid_.delta, 2);  // quality/smooth minimum distance
+  while (!queue_.empty() && !max_hit_) {
+    const Item it = queue_.top();
+    queue_.pop();
+    if (it.kind == kQTopoDisk || it.kind == kQSmooth) {
+      Facet worst;
+      if (it.kind == kQTopoDisk) {
+        phase_ = "topology";
+        if (topo_disk(it.a, &worst)) continue;
+        if (!insert(facet_center(worst), kTopoDisk, worst.first)) ++refused_;
+      } else {
+        phase_ = "smooth";
+        if (smooth(it.a, &worst)) continue;
+        if (worst.first->facet[worst.second].r2 < guard2 || !insert(facet_center(worst), kSmooth, worst.first)) ++refused_;
+      }
+      continue;
+    }
+    Ch c;
+    int i;
+    if (!facet_of(it, c, i)) continue;  // facet destroyed since
+    const FacetInfo& fi = c->facet[i];
+    if (!(fi.state & kRestricted) || fi.r2 != it.prio) continue;  // stale entry
+    const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
+    if (it.kind == kQVorEdge) {
+      phase_ = "topology";
+      if (!(fi.state & kMulti)) continue;
+      if (!insert(x, kVorEdge, c)) ++refused_;
+    } else {
+      phase_ = it.kind == kQQuality ? "quality" : "max-distance";
+      if (fi.r2 < guard2 || !insert(x, it.kind == kQQuality ? kQuality : kDistance, c)) ++refused_;
+    }
+  }
+}
+
+std::vector<Facet> Mesher::restricted_facets() const {
+  std::vector<std::pair<std::array<int, 3>, Facet>> out;
+  for (auto it = tr_.finite_facets_begin(); it != tr_.finite_facets_end(); ++it) {
+    if (!(it->first->facet[it->second].state & kRestricted)) continue;
+    std::array<int, 3> ids;
+    for (int m = 1; m < 4; ++m) ids[m - 1] = it->first->vertex((it->second + m) & 3)->info().id;
+    std::sort(ids.begin(), ids.end());
+    out.emplace_back(ids, *it);
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Facet> fs;
+  for (auto& p : out) fs.push_back(p.second);
+  return fs;
+}
+
+// Beyond FacetCycle/HandleDetection (not implemented): when the certificate
+// finds a component of S whose mesh has the wrong topology, refine it: the
+// largest surface Delaunay balls there, and the point of S (a mixed-edge
+// crossing) farthest from W. Denser samples end as an epsilon-sample, where
+// the restricted Delaunay surface is homeomorphic to S (Amenta-Bern, CDRR).
+bool Mesher::fallback(const std::vector<int>& bad) {
+  bool any = false;
+  std::vector<Facet> fs = restricted_facets();
+  for (int comp : bad) {
+    std::vector<std::pair<double, Facet>> mine;
+    for (const Facet& f : fs)
+      if (f.first->vertex((f.second + 1) & 3)->info().comp == comp) mine.emplace_back(f.first->facet[f.second].r2, f);
+    std::stable_sort(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    const std::size_t take = std::min<std::size_t>(mine.size(), std::max<std::size_t>(1, mine.size() / 10));
+    std::vector<Vec3> pts;
+    for (std::size_t k = 0; k < take; ++k) pts.push_back(facet_center(mine[k].second));
+    // Farthest mixed-edge crossing (linear estimate, then refined).
+    double far = -1;
+    Vec3 fa{}, fb{};
+    double ffa = 0;
+    std::size_t count = 0, stride = 1;
+    for (auto& kc : grid_.comp) count += kc.second == comp;
+    stride = std::max<std::size_t>(1, count / 4000);
+    std::size_t k = 0;
+    std::vector<std::pair<long long, int>> cubes(grid_.comp.begin(), grid_.comp.end());
+    std::sort(cubes.begin(), cubes.end());
+    for (auto& kc : cubes) {
+      if (kc.second != comp || (k++ % stride)) continue;
+      const long x = long(kc.first % grid_.n[0]), y = long((kc.first / grid_.n[0]) % grid_.n[1]),
+                 z = long(kc.first / grid_.n[0] / grid_.n[1]);
+      for (int a = 0; a < 3; ++a) {
+        long p[3] = {x, y, z}, q[3] = {x, y, z};
+        q[a] += 1;
+        if (grid_.neg(p[0], p[1], p[2]) == grid_.neg(q[0], q[1], q[2])) continue;
+        const Vec3 pa{p[0] * grid_.s[0], p[1] * grid_.s[1], p[2] * grid_.s[2]};
+        const Vec3 pb{q[0] * grid_.s[0], q[1] * grid_.s[1], q[2] * grid_.s[2]};
+        const double ga = grid_.g(p[0], p[1], p[2]), gb = grid_.g(q[0], q[1], q[2]);
+        const double t = ga / (ga - gb);
+        const Vec3 m{pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1]), pa[2] + t * (pb[2] - pa[2])};
+        Vh nv = tr_.nearest_vertex(Point(m[0], m[1], m[2]));
+        const double dd = dist2(m, vec(nv->point()));
+        if (dd > far) {
+          far = dd;
+          fa = pa;
+          fb = pb;
+          ffa = ga;
+        }
+      }
+    }
+    if (far > 0) pts.push_back(bisect(fa, fb, value(fa)));
+    (void)ffa;
+    for (const Vec3& x : pts) any = insert(x, kFallback, Ch()) || any;
+  }
+  return any;
+}
+
+RestrictedDelaunayResult Mesher::run() {
+  RestrictedDelaunayResult res;
+  const auto t_start = Clock::now();
+  auto secs = [](Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); };
+  const FloatImage& g = f_.samples();
+  if (g.dimension != 3 || g.size[0] < 2 || g.size[1] < 2 || g.size[2] < 2)
+    throw Error("the implicit function must be sampled on a 3D grid of at least 2x2x2 voxels");
+  for (float v : g.data)
+    if (!std::isfinite(v)) throw Error("the implicit function has non-finite samples");
+  // S must be closed inside the grid: no inside sample on the border.
+  for (long z = 0; z < grid_.n[2]; ++z)
+    for (long y = 0; y < grid_.n[1]; ++y)
+      for (long x = 0; x < grid_.n[0]; ++x) {
+        const bool border = x == 0 || y == 0 || z == 0 || x == grid_.n[0] - 1 || y == grid_.n[1] - 1 || z == grid_.n[2] - 1;
+        if (border && grid_.neg(x, y, z))
+          throw Error("the surface touches the border of the grid (the foreground must be padded by background)");
+        if (!border) x = grid_.n[0] - 2;  // only the border faces
+      }
+  grid_.label();
+  if (grid_.components == 0) throw Error("the surface is empty (no sign change in the implicit function)");
+  const std::vector<int> expected_by_comp = grid_.euler_by_component();
+  res.expected.euler = expected_by_comp;
+  std::sort(res.expected.euler.begin(), res.expected.euler.end());
+
+  phase_ = "seeds";
+  seeds();
+  const double t_seeds = secs(t_start);
+  const auto t_refine = Clock::now();
+  drain();
+
+  // Certificate: components and Euler characteristics per S component; on a
+  // mismatch, refine there (fallback) and run DELMESH's queues again.
+  int rounds = 0;
+  std::vector<int> bad;
+  SurfaceMesh mesh;
+  std::vector<Vec3> centers;
+  std::vector<int> tri_comp;
+  for (;;) {
+    mesh = SurfaceMesh();
+    centers.clear();
+    std::vector<Facet> fs = restricted_facets();
+    std::vector<int> index(vertices_.size(), -1);
+    std::vector<int> comp_of_vertex;
+    for (const Facet& f : fs) {
+      std::array<int, 3> t;
+      Vh vs[3];
+      for (int m = 1; m < 4; ++m) vs[m - 1] = f.first->vertex((f.second + m) & 3);
+      for (int m = 0; m < 3; ++m) {
+        int& id = index[vs[m]->info().id];
+        if (id < 0) {
+          id = int(mesh.points.size());
+          mesh.points.push_back(vec(vs[m]->point()));
+          comp_of_vertex.push_back(vs[m]->info().comp);
+        }
+        t[m] = id;
+      }
+      // Outward: along grad f at the surface centre.
+      const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
+      const Vec3 x = facet_center(f);
+      if (dot(n, gradient(x)) < 0) std::swap(t[1], t[2]);
+      mesh.triangles.push_back(t);
+      centers.push_back(x);
+    }
+    // Make orientation consistent per mesh component (BFS), by majority.
+    {
+      const std::size_t nt = mesh.triangles.size();
+      std::unordered_map<long long, std::vector<int>> by_edge;
+      auto key = [](int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); };
+      for (std::size_t t = 0; t < nt; ++t)
+        for (int k = 0; k < 3; ++k) by_edge[key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(int(t));
+      std::vector<int> flip(nt, -1);
+      tri_comp.assign(nt, -1);
+      int ncomp = 0;
+      for (std::size_t s0 = 0; s0 < nt; ++s0) {
+        if (flip[s0] >= 0) continue;
+        std::vector<int> members{int(s0)}, stack{int(s0)};
+        flip[s0] = 0;
+        tri_comp[s0] = ncomp;
+        while (!stack.empty()) {
+          const int t = stack.back();
+          stack.pop_back();
+          auto tt = mesh.triangles[t];
+          if (flip[t]) std::swap(tt[1], tt[2]);
+          for (int k = 0; k < 3; ++k) {
+            const int a = tt[k], b = tt[(k + 1) % 3];
+            for (int u : by_edge[key(a, b)]) {
+              if (u == t || flip[u] >= 0) continue;
+              // u must traverse the edge as (b, a).
+              const auto& tu = mesh.triangles[u];
+              bool forward = false;
+              for (int m = 0; m < 3; ++m) forward = forward || (tu[m] == a && tu[(m + 1) % 3] == b);
+              flip[u] = forward ? 1 : 0;
+              tri_comp[u] = ncomp;
+              members.push_back(u);
+              stack.push_back(u);
+            }
+          }
+        }
+        long long agree = 0;
+        for (int t : members) agree += flip[t] ? -1 : 1;
+        if (agree < 0)
+          for (int t : members) flip[t] = 1 - flip[t];
+        ++ncomp;
+      }
+      for (std::size_t t = 0; t < nt; ++t)
+        if (flip[t] == 1) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+    }
+    res.topology = mesh_topology(mesh);
+    // Per S component: exactly one mesh component with bdCA's Euler characteristic.
+    std::map<int, std::vector<int>> mesh_comps;  // S comp -> mesh components
+    {
+      std::map<int, int> seen;
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const int sc = comp_of_vertex[mesh.triangles[t][0]];
+        if (seen.emplace(tri_comp[t], sc).second) mesh_comps[sc].push_back(tri_comp[t]);
+      }
+    }
+    bad.clear();
+    for (int c = 0; c < grid_.components; ++c)
+      if (mesh_comps[c].size() != 1) bad.push_back(c);
+    if (mesh_comps.count(-1)) bad.push_back(-1);
+    const bool ok = bad.empty() && res.topology.manifold && res.topology.oriented && res.topology.same_as(res.expected);
+    if (ok || max_hit_ || rounds >= 40) break;
+    if (bad.empty()) {  // per-component χ differs: find which components
+      // χ of each mesh component vs. its S component.
+      std::map<int, long long> chi;  // mesh comp -> V - E + F
+      std::map<int, std::set<int>> vset;
+      std::map<int, std::set<long long>> eset;
+      for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const auto& tt = mesh.triangles[t];
+        chi[tri_comp[t]] += 1;
+        for (int k = 0; k < 3; ++k) {
+          vset[tri_comp[t]].insert(tt[k]);
+          const int a = tt[k], b = tt[(k + 1) % 3];
+          eset[tri_comp[t]].insert((static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b));
+        }
+      }
+      for (auto& kv : mesh_comps) {
+        const int mc = kv.second.front();
+        if (kv.first >= 0 && chi[mc] + long(vset[mc].size()) - long(eset[mc].size()) != expected_by_comp[kv.first])
+          bad.push_back(kv.first);
+      }
+    }
+    bad.erase(std::remove(bad.begin(), bad.end(), -1), bad.end());
+    ++rounds;
+    phase_ = "topology fallback";
+    if (bad.empty() || !fallback(bad)) break;
+    drain();
+  }
+  const double t_refine_s = secs(t_refine);
+  const auto t_final = Clock::now();
+
+  // Guarantees, measured on the output.
+  const TriangleQuality q = triangle_quality(mesh);
+  double max_f = 0, max_rough = 0, max_dist = 0;
+  for (const Vec3& p : mesh.points) max_f = std::max(max_f, std::abs(value(p)));
+  {
+    std::unordered_map<long long, std::vector<Vec3>> nrm;
+    for (const auto& t : mesh.triangles) {
+      Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
+      const double nl = norm(n);
+      if (nl > 0) n = {n[0] / nl, n[1] / nl, n[2] / nl};
+      for (int k = 0; k < 3; ++k) {
+        const int a = t[k], b = t[(k + 1) % 3];
+        nrm[(static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b)].push_back(n);
+      }
+    }
+    for (auto& kv : nrm)
+      if (kv.second.size() == 2) max_rough = std::max(max_rough, std::acos(std::clamp(dot(kv.second[0], kv.second[1]), -1.0, 1.0)));
+    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+      const auto& t = mesh.triangles[k];
+      const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
+      const double nl = norm(n);
+      if (nl > 0) max_dist = std::max(max_dist, std::abs(dot(n, sub(centers[k], mesh.points[t[0]]))) / nl);
+    }
+  }
+  // Restricted Delaunay property: each surface centre's nearest site is a
+  // vertex of its facet (its ball is empty).
+  long long rd_violations = 0;
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+    const Vec3& x = centers[k];
+    const double r2 = dist2(x, mesh.points[mesh.triangles[k][0]]);
+    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]));
+    if (dist2(x, vec(nv->point())) < r2 * (1 - 1e-9)) ++rd_violations;
+  }
+  res.topology_ok = res.topology.manifold && res.topology.oriented && res.topology.same_as(res.expected) && bad.empty();
+  res.ratio_ok = q.max_ratio <= opt_.ratio * (1 + 1e-9);
+  res.roughness_ok = max_rough <= opt_.roughness + 1e-9;
+  res.distance_ok = opt_.max_distance <= 0 || max_dist <= opt_.max_distance * (1 + 1e-9);
+  res.max_points_hit = max_hit_;
+  if (max_hit_) res.failure = "--max-points reached (" + std::to_string(opt_.max_points) + " points); ";
+  if (!res.topology_ok) res.failure += "topology differs from the voxel boundary bdCA(X); ";
+  if (!res.ratio_ok) res.failure += "radius-edge ratio above the bound; ";
+  if (!res.roughness_ok) res.failure += "roughness above the bound; ";
+  if (!res.distance_ok) res.failure += "distance to the surface above --max-distance; ";
+  if (rd_violations) res.failure += "restricted Delaunay property violated; ";
+  if (!res.failure.empty()) res.failure.resize(res.failure.size() - 2);
+
+  // World coordinates; a reflecting direction matrix flips orientation.
+  for (Vec3& p : mesh.points) p = f_.to_world(p);
+  for (Vec3& x : centers) x = f_.to_world(x);
+  if (f_.reflects())
+    for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  res.mesh = std::move(mesh);
+  res.centers = std::move(centers);
+
+  Json& st = res.stats;
+  Json pts = Json::object();
+  for (int o = 0; o < kOrigins; ++o) pts[kOriginName[o]] = inserted_[o];
+  st["points_inserted"] = pts;
+  st["points_refused"] = refused_;
+  st["topology_fallback_rounds"] = rounds;
+  st["vertices"] = res.mesh.points.size();
+  st["triangles"] = res.mesh.triangles.size();
+  Json comps = Json::array();
+  for (int e : res.topology.euler) comps.push_back(e);
+  st["components_euler"] = comps;
+  Json ex = Json::array();
+  for (int e : res.expected.euler) ex.push_back(e);
+  st["voxel_boundary_euler"] = ex;
+  st["closed_manifold"] = res.topology.manifold;
+  st["oriented"] = res.topology.oriented;
+  st["topology_matches"] = res.topology_ok;
+  st["min_angle_degrees"] = q.min_angle * 180 / M_PI;
+  st["max_radius_edge_ratio"] = q.max_ratio;
+  st["ratio_bound"] = opt_.ratio;
+  st["max_roughness_degrees"] = max_rough * 180 / M_PI;
+  st["roughness_bound_degrees"] = opt_.roughness * 180 / M_PI;
+  st["max_distance_to_plane"] = max_dist;
+  st["max_abs_f_at_vertices"] = max_f;
+  st["restricted_delaunay_violations"] = rd_violations;
+  st["function_evaluations"] = evaluations_;
+  Json times = Json::object();
+  times["seeds"] = t_seeds;
+  times["refinement"] = t_refine_s;
+  times["verification"] = secs(t_final);
+  st["seconds"] = times;
+  return res;
+}
+
+} // namespace
+
+RestrictedDelaunayResult restricted_delaunay_mesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions& options) {
+  if (!(options.ratio >= min_ratio_bound()))
+    throw UsageError("--ratio must be at least (1+k)^2 = " + std::to_string(min_ratio_bound()) + " (k = 0.06)");
+  if (!(options.roughness >= min_roughness_bound()))
+    throw UsageError("--roughness must be at least 2(arcsin k + arcsin(2k/sqrt 3)) = " + std::to_string(min_roughness_bound()) + " rad");
+  if (!(options.max_distance >= 0) || !std::isfinite(options.max_distance)) throw UsageError("--max-distance must be >= 0");
+  if (options.max_points < 4) throw UsageError("--max-points must be at least 4");
+  Mesher m(surface, options);
+  return m.run();
+}
+
+void add_normals(const ImplicitSurface& surface, SurfaceMesh& mesh) {
+  mesh.normals.resize(mesh.points.size());
+  for (std::size_t k = 0; k < mesh.points.size(); ++k) {
+    Vec3 q = surface.to_local(mesh.points[k]), gr;
+    const Geometry& g = surface.samples();
+    for (int i = 0; i < 3; ++i) q[i] = std::clamp(q[i], 0.0, double(g.size[i] - 1) * g.spacing[i]);
+    surface.value_gradient(q, gr);
+    Vec3 w = surface.vector_to_world(gr);
+    const double l = norm(w);
+    mesh.normals[k] = l > 0 ? Vec3{w[0] / l, w[1] / l, w[2] / l} : Vec3{0, 0, 0};
+  }
+}
+
+} // namespace imgmesh

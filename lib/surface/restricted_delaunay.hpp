@@ -1,0 +1,54 @@
+// implicit2mesh's library: the restricted Delaunay surface of S = f^-1(0)
+// after the thesis's simplification of Cheng-Dey-Ramos-Ray (ch. 7-8):
+// seeds from the components of bdCA(X) (8.1), TOPOLOGY (VorEdge with
+// EdgeSurface on the cube grid, TopoDisk), QUALITY(rho_0) and SMOOTH(g) as
+// in DELMESH, plus --max-distance, then a certificate: the output's
+// components and Euler characteristics are compared with bdCA(X).
+#pragma once
+#include "mesh/surface_io.hpp"
+#include "surface/implicit_surface.hpp"
+#include "surface/topology.hpp"
+#include "util/json.hpp"
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace imgmesh {
+
+// Termination limits of DELMESH (k = 0.06): rho_0 > (1+k)^2 and
+// g > 2 (arcsin k + arcsin(2k/sqrt 3)) (thesis 7.6.3-7.6.4, errata).
+double min_ratio_bound();
+double min_roughness_bound();
+
+struct RestrictedDelaunayOptions {
+  double ratio = 2.0;           // rho_0: radius-edge ratio bound
+  double roughness = 1.0471975511965976;  // g (radians), pi/3
+  double max_distance = 0;      // E > 0: surface Delaunay ball centre within E of the facet's plane
+  std::size_t max_points = 2000000;
+  std::uint64_t seed = 0;       // order of seed insertion
+  int threads = 1;              // final verification pass
+  // Called now and then with the phase and the number of points so far.
+  std::function<void(const std::string&)> progress;
+};
+
+struct RestrictedDelaunayResult {
+  SurfaceMesh mesh;                 // world coordinates, outward, normals empty
+  std::vector<Vec3> centers;        // per triangle: its surface Delaunay ball centre (world)
+  SurfaceTopology topology;         // of mesh
+  SurfaceTopology expected;         // of bdCA(X)
+  bool topology_ok = false;         // closed oriented manifold with expected topology
+  bool ratio_ok = false, roughness_ok = false, distance_ok = false;
+  bool max_points_hit = false;
+  std::string failure;              // which guarantee failed, empty if none
+  Json stats = Json::object();      // points per subroutine, times, quality
+};
+
+// Throws Error when S is empty or the options are out of range.
+RestrictedDelaunayResult restricted_delaunay_mesh(const ImplicitSurface& surface,
+                                                  const RestrictedDelaunayOptions& options);
+
+// Per-vertex unit normals from grad f (world coordinates).
+void add_normals(const ImplicitSurface& surface, SurfaceMesh& mesh);
+
+} // namespace imgmesh

@@ -1,0 +1,146 @@
+// implicit2mesh's guarantees on analytic surfaces (sampled on a grid, so that
+// the certificate compares with the voxel boundary of {f < 0}).
+#include "checks.hpp"
+#include "surface/restricted_delaunay.hpp"
+#include "util/error.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace imgmesh;
+
+namespace {
+
+Geometry grid(std::size_t nx, std::size_t ny, std::size_t nz) {
+  Geometry g;
+  g.size = {nx, ny, nz};
+  return g;
+}
+
+double sphere(const Vec3& p, const Vec3& c, double r) {
+  return std::sqrt(test::dist2(p, c)) - r;
+}
+double torus(const Vec3& p, const Vec3& c, double R, double r) {
+  const double dx = p[0] - c[0], dy = p[1] - c[1], dz = p[2] - c[2];
+  const double q = std::sqrt(dx * dx + dy * dy) - R;
+  return std::sqrt(q * q + dz * dz) - r;
+}
+
+// Every guarantee of the "Done when", checked from the output alone.
+void check_guarantees(const ImplicitSurface& s, const RestrictedDelaunayResult& r, double rho0) {
+  INFO("failure: " << r.failure);
+  CHECK(r.failure.empty());
+  REQUIRE(!r.mesh.triangles.empty());
+  const SurfaceTopology t = mesh_topology(r.mesh);
+  CHECK(t.manifold);
+  CHECK(t.oriented);
+  const SurfaceTopology expected = voxel_boundary_topology(s.samples());
+  CHECK(t.euler == expected.euler);
+  CHECK(triangle_quality(r.mesh).max_ratio <= rho0 * (1 + 1e-9));
+  double max_f = 0;
+  for (const Vec3& p : r.mesh.points) max_f = std::max(max_f, std::abs(s.value(s.to_local(p))));
+  CHECK(max_f < 1e-6);
+  CHECK(test::empty_ball_violations(r.mesh, r.centers) == 0);
+  // Voxel centres: inside the mesh exactly when inside S (away from S by
+  // more than the mesh's deviation, i.e. |g| > half a voxel).
+  const FloatImage& g = s.samples();
+  // The mesh deviates from S by about its facets' distance to their surface
+  // Delaunay ball centres: test the voxel centres farther than that.
+  const double margin = std::max(0.5, 2 * r.stats.at("max_distance_to_plane").number());
+  INFO("margin " << margin);
+  int wrong = 0, tested = 0;
+  for (std::size_t z = 0; z < g.size[2]; ++z)
+    for (std::size_t y = 0; y < g.size[1]; ++y)
+      for (std::size_t x = 0; x < g.size[0]; ++x) {
+        if (std::abs(g(x, y, z)) < margin) continue;
+        ++tested;
+        const double w = test::winding_number(r.mesh, g.world(double(x), double(y), double(z)));
+        if ((g(x, y, z) < 0) != (w > 0.5)) ++wrong;
+      }
+  CHECK(tested > 0);
+  CHECK(wrong == 0);
+}
+
+} // namespace
+
+TEST_CASE("ball: one sphere, chi 2") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  FunctionSurface s(grid(21, 21, 21), [&](const Vec3& p) { return sphere(p, c, 6.3); });
+  RestrictedDelaunayOptions o;
+  auto r = restricted_delaunay_mesh(s, o);
+  check_guarantees(s, r, o.ratio);
+  CHECK(r.topology.euler == std::vector<int>{2});
+}
+
+TEST_CASE("solid torus: chi 0, tighter ratio") {
+  const Vec3 c{12.2, 11.9, 7.1};
+  FunctionSurface s(grid(25, 25, 15), [&](const Vec3& p) { return torus(p, c, 7, 2.6); });
+  RestrictedDelaunayOptions o;
+  o.ratio = 1.5;
+  auto r = restricted_delaunay_mesh(s, o);
+  check_guarantees(s, r, o.ratio);
+  CHECK(r.topology.euler == std::vector<int>{0});
+}
+
+TEST_CASE("two balls and a hollow ball: several components") {
+  const Vec3 a{7.1, 8.2, 8.3}, b{17.3, 8.9, 8.1};
+  FunctionSurface two(grid(26, 17, 17), [&](const Vec3& p) { return std::min(sphere(p, a, 4.1), sphere(p, b, 3.7)); });
+  RestrictedDelaunayOptions o;
+  auto r = restricted_delaunay_mesh(two, o);
+  check_guarantees(two, r, o.ratio);
+  CHECK(r.topology.euler == std::vector<int>{2, 2});
+
+  const Vec3 c{10.2, 9.9, 10.3};
+  FunctionSurface shell(grid(21, 21, 21), [&](const Vec3& p) { const double d = sphere(p, c, 5.4); return std::abs(d) - 2.2; });
+  auto h = restricted_delaunay_mesh(shell, o);
+  check_guarantees(shell, h, o.ratio);
+  CHECK(h.topology.euler == std::vector<int>{2, 2});
+}
+
+TEST_CASE("world geometry: anisotropic spacing, rotated and reflected axes") {
+  Geometry g = grid(17, 17, 13);
+  g.spacing = {1.0, 1.0, 1.5};
+  g.origin = {-5, 3, 2};
+  g.direction = {0, 1, 0, 1, 0, 0, 0, 0, 1};  // swaps x and y: a reflection
+  const Vec3 c = g.world(8.3, 7.9, 6.2);
+  FunctionSurface s(g, [&](const Vec3& p) { return sphere(p, c, 5.3); });
+  RestrictedDelaunayOptions o;
+  auto r = restricted_delaunay_mesh(s, o);
+  check_guarantees(s, r, o.ratio);
+  CHECK(test::winding_number(r.mesh, c) == Approx(1).margin(1e-6));  // outward orientation
+}
+
+TEST_CASE("limits: refused parameters, max points, deterministic output") {
+  const Vec3 c{8.3, 8.1, 7.7};
+  FunctionSurface s(grid(17, 17, 17), [&](const Vec3& p) { return sphere(p, c, 5.1); });
+  RestrictedDelaunayOptions o;
+  o.ratio = 1.12;
+  CHECK_THROWS_AS(restricted_delaunay_mesh(s, o), UsageError);
+  o.ratio = 2;
+  o.roughness = 0.25;
+  CHECK_THROWS_AS(restricted_delaunay_mesh(s, o), UsageError);
+  o.roughness = M_PI / 3;
+  o.max_points = 12;
+  auto r = restricted_delaunay_mesh(s, o);
+  CHECK(r.max_points_hit);
+  CHECK_FALSE(r.failure.empty());
+  o.max_points = 1000000;
+  auto a = restricted_delaunay_mesh(s, o), b = restricted_delaunay_mesh(s, o);
+  CHECK(a.mesh.points == b.mesh.points);
+  CHECK(a.mesh.triangles == b.mesh.triangles);
+
+  FunctionSurface empty(grid(8, 8, 8), [](const Vec3&) { return 1.0; });
+  CHECK_THROWS_AS(restricted_delaunay_mesh(empty, o), Error);
+  FunctionSurface touching(grid(8, 8, 8), [](const Vec3& p) { return p[0] - 3.5; });
+  CHECK_THROWS_AS(restricted_delaunay_mesh(touching, o), Error);
+}
+
+TEST_CASE("max-distance bounds the surface Delaunay ball centre's distance to the facet plane") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  FunctionSurface s(grid(21, 21, 21), [&](const Vec3& p) { return sphere(p, c, 6.3); });
+  RestrictedDelaunayOptions o;
+  o.max_distance = 0.05;
+  auto r = restricted_delaunay_mesh(s, o);
+  check_guarantees(s, r, o.ratio);
+  CHECK(r.distance_ok);
+  CHECK(r.stats.at("max_distance_to_plane").number() <= 0.05);
+}
