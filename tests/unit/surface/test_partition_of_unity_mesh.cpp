@@ -1,0 +1,117 @@
+// The whole 3D pipeline on synthetic images: image -> well-composed ->
+// partition of unity f (ch. 6) -> restricted Delaunay surface (ch. 7-8).
+// The output must have the topology of bdCA(X') computed from the image's
+// boundary faces, genus 0 to 3 and several components.
+#include "checks.hpp"
+#include "implicit/implicit_file.hpp"
+#include "implicit/partition_of_unity.hpp"
+#include "surface/restricted_delaunay.hpp"
+#include "wellcomposed/well_composed.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <functional>
+
+using namespace imgmesh;
+
+namespace {
+
+BinaryImage make(std::size_t nx, std::size_t ny, std::size_t nz, const std::function<bool(double, double, double)>& in) {
+  Geometry g;
+  g.size = {nx, ny, nz};
+  BinaryImage img(g, 0);
+  for (std::size_t z = 0; z < nz; ++z)
+    for (std::size_t y = 0; y < ny; ++y)
+      for (std::size_t x = 0; x < nx; ++x) img(x, y, z) = in(double(x), double(y), double(z)) ? 1 : 0;
+  return img;
+}
+
+double torus(double x, double y, double z, double cx, double cy, double cz, double R) {
+  const double q = std::hypot(x - cx, y - cy) - R;
+  return std::hypot(q, z - cz);
+}
+
+struct Run {
+  SurfaceTopology expected, got;
+  RestrictedDelaunayResult result;
+};
+
+Run mesh(const BinaryImage& raw, double ratio = 2) {
+  const BinaryImage wc = make_well_composed(raw).image;
+  REQUIRE(is_well_composed(wc));
+  PartitionOfUnity pu = implicit_from_well_composed(wc);
+  PartitionOfUnitySurface s(pu);
+  RestrictedDelaunayOptions o;
+  o.ratio = ratio;
+  Run r;
+  r.result = restricted_delaunay_mesh(s, o);
+  r.expected = voxel_boundary_topology(pu.samples());
+  r.got = mesh_topology(r.result.mesh);
+  INFO("failure: " << r.result.failure);
+  CHECK(r.result.failure.empty());
+  CHECK(r.got.manifold);
+  CHECK(r.got.oriented);
+  CHECK(r.got.euler == r.expected.euler);
+  CHECK(triangle_quality(r.result.mesh).max_ratio <= ratio * (1 + 1e-9));
+  double max_f = 0;
+  for (const Vec3& p : r.result.mesh.points) max_f = std::max(max_f, std::abs(pu.value(p)));
+  CHECK(max_f < 1e-6);
+  CHECK(test::empty_ball_violations(r.result.mesh, r.result.centers) == 0);
+  // Foreground voxel centres inside, background outside (winding number),
+  // for centres farther from S than the mesh deviates from it.
+  const double margin = std::max(0.5, 2 * r.result.stats.at("max_distance_to_plane").number());
+  const FloatImage& g = pu.samples();
+  int wrong = 0, tested = 0;
+  for (std::size_t z = 0; z < g.size[2]; ++z)
+    for (std::size_t y = 0; y < g.size[1]; ++y)
+      for (std::size_t x = 0; x < g.size[0]; ++x) {
+        if (std::abs(g(x, y, z)) < margin) continue;
+        ++tested;
+        const double w = test::winding_number(r.result.mesh, g.world(double(x), double(y), double(z)));
+        if ((g(x, y, z) < 0) != (w > 0.5)) ++wrong;
+      }
+  CHECK(tested > 0);
+  CHECK(wrong == 0);
+  return r;
+}
+
+} // namespace
+
+TEST_CASE("pipeline: ball, chi 2") {
+  auto r = mesh(make(18, 18, 18, [](double x, double y, double z) {
+    return std::hypot(x - 8.6, y - 9.1, z - 8.3) < 5.3;
+  }));
+  CHECK(r.got.euler == std::vector<int>{2});
+}
+
+TEST_CASE("pipeline: solid torus, chi 0, rho_0 = 1.5") {
+  auto r = mesh(make(24, 24, 12, [](double x, double y, double z) { return torus(x, y, z, 11.7, 11.4, 5.6, 7) < 3.1; }), 1.5);
+  CHECK(r.got.euler == std::vector<int>{0});
+}
+
+TEST_CASE("pipeline: genus 2 and genus 3 solids") {
+  auto two = mesh(make(34, 20, 12, [](double x, double y, double z) {
+    return torus(x, y, z, 10.2, 9.6, 5.7, 6) < 2.7 || torus(x, y, z, 22.1, 9.6, 5.7, 6) < 2.7;
+  }));
+  CHECK(two.got.euler == std::vector<int>{-2});
+  // A slab with three square holes.
+  auto three = mesh(make(30, 14, 10, [](double x, double y, double z) {
+    if (x < 2 || x > 27 || y < 2 || y > 11 || z < 3 || z > 6) return false;
+    for (double hx : {6.0, 14.0, 22.0})
+      if (std::abs(x - hx) < 2 && y > 4 && y < 9) return false;
+    return true;
+  }));
+  CHECK(three.got.euler == std::vector<int>{-4});
+}
+
+TEST_CASE("pipeline: several components (two balls, a hollow ball)") {
+  auto r = mesh(make(30, 16, 16, [](double x, double y, double z) {
+    return std::hypot(x - 7.3, y - 7.8, z - 7.6) < 4.2 || std::hypot(x - 20.6, y - 8.1, z - 7.4) < 3.6;
+  }));
+  CHECK(r.got.euler == std::vector<int>{2, 2});
+  auto h = mesh(make(20, 20, 20, [](double x, double y, double z) {
+    const double d = std::hypot(x - 9.6, y - 9.2, z - 9.7);
+    return d < 7.2 && d > 3.4;
+  }));
+  CHECK(h.got.euler == std::vector<int>{2, 2});
+}
