@@ -1,0 +1,285 @@
+// poly2tri's engine: CGAL constrained Delaunay triangulation + Delaunay
+// refinement, then Triangle's conventions on the result (region attributes,
+// segment markers carried to the subsegments and their vertices).
+#include "planar/triangulate.hpp"
+
+#include "util/error.hpp"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesh_vertex_base_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+#include <vector>
+
+namespace imgmesh {
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+struct VertexInfo {
+  int input = -1;  // input vertex id, or -1 for a Steiner point
+  int id = -1;     // output id
+  int marker = 0;
+  bool near_small_angle = false;
+};
+struct FaceInfo {
+  double attribute = 0;
+  int region = -1;  // last regional point that reached this face
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<VertexInfo, K, CGAL::Delaunay_mesh_vertex_base_2<K>>;
+using Fb = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K, CGAL::Delaunay_mesh_face_base_2<K>>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+// Crossing segments are bad input, not something to split silently.
+using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
+using Vertex_handle = CDT::Vertex_handle;
+using Face_handle = CDT::Face_handle;
+
+// CGAL's shape + edge-length criteria, plus an area bound (Triangle's -a).
+class QualityCriteria : public CGAL::Delaunay_mesh_size_criteria_2<CDT> {
+public:
+  using Base = CGAL::Delaunay_mesh_size_criteria_2<CDT>;
+  QualityCriteria(double B, double edge, double area) : Base(B, edge), max_area_(area) {}
+
+  class Is_bad : public Base::Is_bad {
+  public:
+    Is_bad(double B, double edge, double area, const K& t) : Base::Is_bad(B, edge, t), max_area_(area) {}
+    using Base::Is_bad::operator();
+    CGAL::Mesh_2::Face_badness operator()(const Face_handle& fh, Quality& q) const {
+      const CGAL::Mesh_2::Face_badness r = Base::Is_bad::operator()(fh, q);
+      if (r == CGAL::Mesh_2::IMPERATIVELY_BAD || max_area_ <= 0) return r;
+      const double area = std::abs(CGAL::to_double(
+          CGAL::area(fh->vertex(0)->point(), fh->vertex(1)->point(), fh->vertex(2)->point())));
+      if (area > max_area_) {
+        q.second = std::max(q.second, area / max_area_);
+        q.first = 1;
+        return CGAL::Mesh_2::IMPERATIVELY_BAD;
+      }
+      return r;
+    }
+
+  private:
+    double max_area_;
+  };
+  Is_bad is_bad_object() const { return Is_bad(this->bound(), this->size_bound(), max_area_, this->traits); }
+
+private:
+  double max_area_;
+};
+
+double angle_deg(const K::Point_2& a, const K::Point_2& b, const K::Point_2& c) {
+  // Angle at a in triangle abc.
+  const double ux = b.x() - a.x(), uy = b.y() - a.y(), vx = c.x() - a.x(), vy = c.y() - a.y();
+  return std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180.0 / M_PI;
+}
+
+} // namespace
+
+TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOptions& opt) {
+  TriangulateResult res;
+  if (in.points.size() < 3) throw Error("a PSLG needs at least 3 vertices");
+  if (!(opt.min_angle >= 0 && opt.min_angle <= 34))
+    throw UsageError("the minimum angle must be between 0 and 34 degrees (refinement may not end beyond)");
+  for (const auto& p : in.points)
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) throw Error("a vertex has a non-finite coordinate");
+
+  CDT cdt;
+  std::vector<Vertex_handle> vh(in.points.size());
+  for (std::size_t i = 0; i < in.points.size(); ++i) {
+    vh[i] = cdt.insert(K::Point_2(in.points[i][0], in.points[i][1]));
+    // Duplicate points collapse onto one vertex; the first id wins.
+    if (vh[i]->info().input < 0) {
+      vh[i]->info().input = int(i);
+      if (!in.point_markers.empty()) vh[i]->info().marker = in.point_markers[i];
+    }
+  }
+  res.input_vertices = cdt.number_of_vertices();
+  res.input_segments = in.segments.size();
+  for (std::size_t s = 0; s < in.segments.size(); ++s) {
+    const auto [a, b] = in.segments[s];
+    if (vh[a] == vh[b])
+      throw Error("segment " + std::to_string(s + in.first_index) + " has zero length");
+    try {
+      cdt.insert_constraint(vh[a], vh[b]);
+    } catch (const CDT::Intersection_of_constraints_exception&) {
+      throw Error("segment " + std::to_string(s + in.first_index) + " (" + std::to_string(a + in.first_index) +
+                  ", " + std::to_string(b + in.first_index) +
+                  ") crosses or overlaps another segment (the PSLG must not self-intersect)");
+    }
+  }
+
+  // Input angles between segments at each vertex: below 60 degrees the
+  // mesher protects the corner with clusters and cannot promise the bound there.
+  std::vector<std::vector<std::size_t>> at(in.points.size());
+  for (std::size_t s = 0; s < in.segments.size(); ++s) {
+    at[in.segments[s][0]].push_back(s);
+    at[in.segments[s][1]].push_back(s);
+  }
+  std::vector<char> cluster_segment(in.segments.size(), 0);
+  for (std::size_t v = 0; v < in.points.size(); ++v) {
+    if (at[v].size() < 2) continue;
+    std::vector<std::pair<double, std::size_t>> dirs;
+    for (std::size_t s : at[v]) {
+      const int w = in.segments[s][0] == int(v) ? in.segments[s][1] : in.segments[s][0];
+      dirs.push_back({std::atan2(in.points[w][1] - in.points[v][1], in.points[w][0] - in.points[v][0]), s});
+    }
+    std::sort(dirs.begin(), dirs.end());
+    bool small = false;
+    for (std::size_t k = 0; k < dirs.size(); ++k) {
+      const auto& d0 = dirs[k];
+      const auto& d1 = dirs[(k + 1) % dirs.size()];
+      double a = (d1.first - d0.first) * 180 / M_PI;
+      if (k + 1 == dirs.size()) a += 360;
+      res.smallest_input_angle = std::min(res.smallest_input_angle, a);
+      if (a < 60) {
+        small = true;
+        cluster_segment[d0.second] = cluster_segment[d1.second] = 1;
+      }
+    }
+    if (small) ++res.small_input_angles;
+  }
+
+  std::vector<K::Point_2> seeds;
+  for (const auto& h : in.holes) seeds.emplace_back(h[0], h[1]);
+  const double B = opt.min_angle > 0 ? std::pow(std::sin(opt.min_angle * M_PI / 180), 2) : 0;
+  QualityCriteria criteria(B, opt.max_edge > 0 ? opt.max_edge : 0, opt.max_area);
+  CGAL::Delaunay_mesher_2<CDT, QualityCriteria> mesher(cdt, criteria);
+  mesher.set_seeds(seeds.begin(), seeds.end(), false);
+  mesher.init();
+  if (opt.min_angle > 0 || opt.max_area > 0 || opt.max_edge > 0) {
+    std::size_t steps = 0;
+    while (!mesher.is_refinement_done()) {
+      mesher.step_by_step_refine_mesh();
+      if (++steps % 4096 == 0) {
+        if (opt.progress) opt.progress(cdt.number_of_vertices());
+        if (cdt.number_of_vertices() > opt.max_vertices) {
+          res.limit_reached = true;
+          break;
+        }
+      }
+    }
+  }
+
+  // Regions: flood fill across unconstrained edges, in the order given
+  // (a later regional point overrides an earlier one, as in Triangle).
+  for (std::size_t r = 0; r < in.regions.size(); ++r) {
+    const auto& reg = in.regions[r];
+    Face_handle f = cdt.locate(K::Point_2(reg.point[0], reg.point[1]));
+    if (f == Face_handle() || cdt.is_infinite(f) || !f->is_in_domain()) {
+      ++res.regions_outside_domain;
+      continue;
+    }
+    std::vector<Face_handle> stack{f};
+    f->info().region = int(r);
+    while (!stack.empty()) {
+      Face_handle g = stack.back();
+      stack.pop_back();
+      g->info().attribute = reg.attribute;
+      for (int i = 0; i < 3; ++i) {
+        if (g->is_constrained(i)) continue;
+        Face_handle n = g->neighbor(i);
+        if (cdt.is_infinite(n) || !n->is_in_domain() || n->info().region == int(r)) continue;
+        n->info().region = int(r);
+        stack.push_back(n);
+      }
+    }
+  }
+
+  // Output vertices: those of domain triangles.
+  PlanarMesh& m = res.mesh;
+  m.first_index = in.first_index;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    if (!f->is_in_domain()) continue;
+    std::vector<int> tri(3);
+    for (int i = 0; i < 3; ++i) {
+      Vertex_handle v = f->vertex(i);
+      if (v->info().id < 0) {
+        v->info().id = int(m.points.size());
+        m.points.push_back({v->point().x(), v->point().y()});
+      }
+      tri[i] = v->info().id;
+    }
+    m.elements.push_back(std::move(tri));
+    m.element_attributes.push_back({f->info().attribute});
+  }
+  if (m.elements.empty()) throw Error("the segments enclose no area to triangulate");
+
+  // Each input segment is now a chain of constrained edges; walk it from a
+  // to b (the split points are midpoints, inexact, so "on the segment" is a
+  // tolerance test), giving its subsegments and their vertices its marker.
+  for (std::size_t s = 0; s < in.segments.size(); ++s) {
+    const Vertex_handle va = vh[in.segments[s][0]], vb = vh[in.segments[s][1]];
+    const int marker = in.segment_markers.empty() ? 0 : in.segment_markers[s];
+    const double ax = va->point().x(), ay = va->point().y();
+    const double dx = vb->point().x() - ax, dy = vb->point().y() - ay;
+    const double len2 = dx * dx + dy * dy;
+    Vertex_handle cur = va;
+    double tcur = 0;
+    for (std::size_t guard = 0; cur != vb; ++guard) {
+      Vertex_handle best;
+      double best_d = 1e300, best_t = 0;
+      auto circ = cdt.incident_edges(cur), end = circ;
+      do {
+        if (cdt.is_infinite(*circ) || !cdt.is_constrained(*circ)) continue;
+        const Face_handle f = circ->first;
+        const int i = circ->second;
+        Vertex_handle w = f->vertex(CDT::cw(i)) == cur ? f->vertex(CDT::ccw(i)) : f->vertex(CDT::cw(i));
+        const double px = w->point().x() - ax, py = w->point().y() - ay;
+        const double t = (px * dx + py * dy) / len2;
+        const double d = std::abs(px * dy - py * dx) / std::sqrt(len2);  // distance to the line
+        if (t > tcur && t <= 1 + 1e-9 && d < best_d) {
+          best = w;
+          best_d = d;
+          best_t = t;
+        }
+      } while (++circ != end);
+      if (best == Vertex_handle() || best_d > 1e-6 * std::sqrt(len2) || guard > cdt.number_of_vertices())
+        throw Error("internal: segment " + std::to_string(s + in.first_index) + " is not a chain of mesh edges");
+      if (cur->info().id >= 0 && best->info().id >= 0) {
+        m.segments.push_back({cur->info().id, best->info().id});
+        m.segment_markers.push_back(marker);
+      }
+      if (best != vb && best->info().marker == 0) best->info().marker = marker;
+      if (cluster_segment[s]) cur->info().near_small_angle = best->info().near_small_angle = true;
+      cur = best;
+      tcur = best_t;
+    }
+  }
+  // Input vertices keep their own marker, or take one of their segments'.
+  for (std::size_t s = 0; s < in.segments.size(); ++s)
+    for (int e : {0, 1}) {
+      auto v = vh[in.segments[s][e]];
+      if (v->info().marker == 0 && !in.segment_markers.empty()) v->info().marker = in.segment_markers[s];
+    }
+  m.point_markers.assign(m.points.size(), 0);
+  for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
+    if (v->info().id >= 0) m.point_markers[v->info().id] = v->info().marker;
+  m.holes = in.holes;
+
+  // Quality report.
+  res.steiner_points = cdt.number_of_vertices() - res.input_vertices;
+  res.min_angle = 180;
+  res.min_angle_away_from_small_input_angles = 180;
+  for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f) {
+    if (!f->is_in_domain()) continue;
+    const auto &a = f->vertex(0)->point(), &b = f->vertex(1)->point(), &c = f->vertex(2)->point();
+    const double mn = std::min({angle_deg(a, b, c), angle_deg(b, c, a), angle_deg(c, a, b)});
+    res.min_angle = std::min(res.min_angle, mn);
+    bool near = false;
+    for (int i = 0; i < 3; ++i) near |= f->vertex(i)->info().near_small_angle;
+    if (!near)
+      res.min_angle_away_from_small_input_angles = std::min(res.min_angle_away_from_small_input_angles, mn);
+    else if (mn < opt.min_angle)
+      ++res.below_bound_near_small_angles;
+  }
+  return res;
+}
+
+} // namespace imgmesh

@@ -1,0 +1,50 @@
+// Constrained Delaunay refinement of a planar straight-line graph (PSLG), the
+// job Triangle did in the thesis (section 3.3.3), done with CGAL's
+// Constrained_Delaunay_triangulation_2 and Delaunay_mesher_2 (Ruppert /
+// Shewchuk refinement with clusters at small input angles).
+#pragma once
+#include "planar/triangle_io.hpp"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace imgmesh {
+
+struct TriangulateOptions {
+  // Smallest angle wanted, degrees; 20.7 is the bound B = sqrt(2) for which
+  // refinement provably terminates (CGAL's shape bound 0.125 = sin^2 20.7).
+  // 0 = no quality refinement (plain constrained Delaunay triangulation).
+  double min_angle = 20.7;
+  double max_area = 0;  // > 0: no triangle larger
+  double max_edge = 0;  // > 0: no edge longer
+  // Stop refining beyond this many vertices (the result is then reported as
+  // not meeting the bounds).
+  std::size_t max_vertices = 50'000'000;
+  std::function<void(std::size_t)> progress;  // called now and then with the vertex count
+};
+
+struct TriangulateResult {
+  // Points, CCW triangles with one attribute each (the region attribute:
+  // Triangle's -A semantics, flood fill from the regional points across
+  // unconstrained edges; 0 where no regional point reaches), point markers
+  // (input marker, else the marker of the segment a vertex lies on), the
+  // input segments subdivided into mesh edges with their markers, the holes.
+  PlanarMesh mesh;
+  std::size_t input_vertices = 0, input_segments = 0, steiner_points = 0;
+  std::size_t small_input_angles = 0;  // input vertices where segments meet at < 60 degrees
+  double smallest_input_angle = 180;   // degrees, between segments at a vertex
+  double min_angle = 0;                // smallest triangle angle, degrees
+  // Smallest angle among triangles with no vertex on a segment that meets
+  // another at a small input angle (where the bound is guaranteed).
+  double min_angle_away_from_small_input_angles = 0;
+  std::size_t below_bound_near_small_angles = 0;  // triangles below the bound, all near small input angles
+  std::size_t regions_outside_domain = 0;        // regional points in a hole or outside
+  bool limit_reached = false;                     // max_vertices stopped the refinement
+};
+
+// Throws Error on a bad PSLG: intersecting or overlapping segments, a
+// zero-length segment, no enclosed area, non-finite coordinates.
+TriangulateResult triangulate_pslg(const PlanarMesh& pslg, const TriangulateOptions& opt = {});
+
+} // namespace imgmesh

@@ -1,0 +1,102 @@
+// poly2tri: constrained quality triangulation of a PSLG (what the thesis did
+// with Triangle, section 3.3.3), with CGAL's Delaunay refinement.
+#include "cli/cli.hpp"
+#include "planar/planar_formats.hpp"
+#include "planar/triangulate.hpp"
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+#include <cmath>
+#include <sstream>
+
+using namespace imgmesh;
+
+int main(int argc, char** argv) {
+  cli::Tool tool("poly2tri",
+                 "Triangulate a planar straight-line graph (Triangle .poly, or OFF polygons) into a "
+                 "constrained Delaunay mesh with a minimum angle, conforming to every segment");
+  std::string in, out, svg;
+  TriangulateOptions opt;
+  double max_vertices = double(opt.max_vertices);
+  tool.app.add_option("IN", in, "Input PSLG: Triangle .poly (or its .node) or OFF of polygons")->required();
+  tool.app.add_option("OUT", out,
+                      "Output mesh: NAME.ele (writes NAME.node and NAME.poly beside it); .off, .vtk, .msh "
+                      "or .svg also work")
+      ->required();
+  tool.app.add_option("--min-angle", opt.min_angle,
+                      "Smallest angle in degrees (0 = no quality refinement; at most 34); the bound holds "
+                      "except near input angles below 60 degrees")
+      ->capture_default_str()
+      ->type_name("A");
+  auto* area = tool.app.add_option("--max-area", opt.max_area, "No triangle larger than S (world units squared)")
+                   ->type_name("S")
+                   ->check(CLI::PositiveNumber);
+  tool.app.add_option("--max-edge", opt.max_edge, "No edge longer than L (world units)")
+      ->type_name("L")
+      ->check(CLI::PositiveNumber)
+      ->excludes(area);
+  tool.app.add_option("--max-vertices", max_vertices,
+                      "Stop refining beyond this many vertices (exit status 3)")
+      ->capture_default_str()
+      ->type_name("N")
+      ->check(CLI::PositiveNumber);
+  tool.app.add_option("--svg", svg, "Also draw the mesh (regions coloured, segments on top) to this SVG file")
+      ->type_name("FILE");
+
+  return tool.run(argc, argv, [&] {
+    const std::string ext = extension_of(out);
+    if (ext != ".ele" && ext != ".off" && ext != ".vtk" && ext != ".msh" && ext != ".svg")
+      throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg", out);
+    opt.max_vertices = std::size_t(max_vertices);
+    if (tool.progress())
+      opt.progress = [&](std::size_t n) { tool.report_progress(std::to_string(n) + " vertices"); };
+    const PlanarMesh pslg = extension_of(in) == ".node" ? read_pslg(replace_extension(in, ".poly"))
+                                                        : read_pslg(in);
+    TriangulateResult r;
+    try {
+      r = triangulate_pslg(pslg, opt);
+    } catch (const UsageError&) {
+      throw;
+    } catch (const Error& e) {
+      if (!e.path().empty()) throw;
+      throw Error(e.what(), in);  // name the input file
+    }
+    write_planar_mesh(out, r.mesh);
+    if (!svg.empty()) write_planar_mesh(svg, r.mesh);
+
+    tool.stats["input"] = in;
+    tool.stats["input_vertices"] = r.input_vertices;
+    tool.stats["input_segments"] = r.input_segments;
+    tool.stats["holes"] = pslg.holes.size();
+    tool.stats["regions"] = pslg.regions.size();
+    tool.stats["vertices"] = r.mesh.points.size();
+    tool.stats["triangles"] = r.mesh.elements.size();
+    tool.stats["steiner_points"] = r.steiner_points;
+    tool.stats["subsegments"] = r.mesh.segments.size();
+    tool.stats["min_angle_bound"] = opt.min_angle;
+    tool.stats["min_angle"] = r.min_angle;
+    tool.stats["min_angle_away_from_small_input_angles"] = r.min_angle_away_from_small_input_angles;
+    tool.stats["smallest_input_angle"] = r.smallest_input_angle;
+    tool.stats["small_input_angles"] = r.small_input_angles;
+    tool.stats["below_bound_near_small_input_angles"] = r.below_bound_near_small_angles;
+    tool.stats["regions_outside_domain"] = r.regions_outside_domain;
+    tool.stats["limit_reached"] = r.limit_reached;
+
+    std::ostringstream msg;
+    msg << r.mesh.elements.size() << " triangles, " << r.mesh.points.size() << " vertices ("
+        << r.steiner_points << " Steiner), smallest angle " << r.min_angle << " degrees";
+    tool.info(msg.str());
+    if (r.regions_outside_domain)
+      tool.info(std::to_string(r.regions_outside_domain) + " regional point(s) lie outside the domain (ignored)");
+    if (r.limit_reached) {
+      tool.info("refinement stopped at --max-vertices: the angle/size bounds are not met everywhere");
+      return cli::kGuarantee;
+    }
+    if (opt.min_angle > 0 && r.min_angle_away_from_small_input_angles < opt.min_angle - 1e-6) {
+      tool.info("smallest angle away from small input angles is " +
+                std::to_string(r.min_angle_away_from_small_input_angles) + " degrees, below the bound");
+      return cli::kGuarantee;
+    }
+    return cli::kOk;
+  });
+}
