@@ -1,0 +1,284 @@
+#include "mesh/meshinfo.hpp"
+
+#include "mesh/surface_io.hpp"
+#include "planar/planar_formats.hpp"
+#include "quad/quality.hpp"
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace imgmesh {
+
+namespace {
+
+constexpr double kDeg = 180.0 / 3.14159265358979323846;
+
+// OFF with any polygons and real z (the planar reader drops z, OpenMesh's
+// wants triangles). '#' comments; "OFF" header; counts; vertices; faces.
+PolyMesh read_off_polygons(const std::string& path) {
+  const std::string text = read_all(path);
+  std::istringstream in(text);
+  std::vector<std::string> tok;
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto h = line.find('#');
+    if (h != std::string::npos) line.resize(h);
+    std::istringstream ls(line);
+    std::string w;
+    while (ls >> w) tok.push_back(w);
+  }
+  std::size_t k = 0;
+  auto next = [&](const char* what) -> const std::string& {
+    if (k >= tok.size()) throw Error(std::string("truncated OFF file (expected ") + what + ")", path);
+    return tok[k++];
+  };
+  auto integer = [&](const char* what, long long lo, long long hi) {
+    const std::string& s = next(what);
+    char* end = nullptr;
+    const long long v = std::strtoll(s.c_str(), &end, 10);
+    if (end == s.c_str() || *end || v < lo || v > hi) throw Error(std::string("bad ") + what + " '" + s + "'", path);
+    return v;
+  };
+  auto real = [&](const char* what) {
+    const std::string& s = next(what);
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (end == s.c_str() || *end || !std::isfinite(v)) throw Error(std::string("bad ") + what + " '" + s + "'", path);
+    return v;
+  };
+  if (tok.empty() || tok[0] != "OFF") throw Error("not an OFF file (no OFF header)", path);
+  k = 1;
+  const long long nv = integer("vertex count", 0, 1LL << 31), nf = integer("face count", 0, 1LL << 31);
+  integer("edge count", 0, 1LL << 40);
+  // Each vertex needs 3 numbers and each face at least 4: refuse impossible
+  // counts before allocating (a bogus header must not eat the memory).
+  if (std::size_t(nv) * 3 + std::size_t(nf) * 4 > tok.size()) throw Error("truncated OFF file (fewer numbers than the counts say)", path);
+  PolyMesh m;
+  m.format = "off";
+  m.points.resize(std::size_t(nv));
+  for (auto& p : m.points) {
+    p[0] = real("vertex coordinate");
+    p[1] = real("vertex coordinate");
+    p[2] = real("vertex coordinate");
+  }
+  m.faces.resize(std::size_t(nf));
+  for (auto& f : m.faces) {
+    const long long n = integer("face size", 3, 1 << 20);
+    f.resize(std::size_t(n));
+    for (int& v : f) v = int(integer("vertex id", 0, nv - 1));
+    // Colour values may follow on the same line: they were tokenised away
+    // with the line structure, so OFF colours are not supported here.
+  }
+  if (k != tok.size()) throw Error("unexpected data after the faces (face colours are not supported)", path);
+  return m;
+}
+
+double tri_area3(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c) {
+  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
+  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
+  const double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
+  return 0.5 * std::sqrt(x * x + y * y + z * z);
+}
+
+double dist(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+Json triangle_quality(const PolyMesh& m) {
+  Json j = Json::object();
+  std::size_t n = 0, degenerate = 0;
+  double min_ang = 180, max_ang = 0, sum_min = 0, max_re = 0, sum_re = 0;
+  double amin = 0, amax = 0, asum = 0;
+  // Smallest-angle histogram, 10 degree bins up to 60.
+  std::vector<std::size_t> hist(6, 0);
+  for (const auto& f : m.faces) {
+    if (f.size() != 3) continue;
+    const auto &a = m.points[f[0]], &b = m.points[f[1]], &c = m.points[f[2]];
+    const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
+    const double area = tri_area3(a, b, c);
+    if (!(area > 0)) { ++degenerate; continue; }
+    // Angles by the law of cosines, clamped.
+    auto ang = [](double opp, double s1, double s2) {
+      return std::acos(std::max(-1.0, std::min(1.0, (s1 * s1 + s2 * s2 - opp * opp) / (2 * s1 * s2)))) * kDeg;
+    };
+    const double A = ang(la, lb, lc), B = ang(lb, lc, la), C = 180 - A - B;
+    const double mn = std::min({A, B, C}), mx = std::max({A, B, C});
+    const double R = la * lb * lc / (4 * area);
+    const double re = R / std::min({la, lb, lc});
+    if (n == 0) amin = amax = area;
+    ++n;
+    min_ang = std::min(min_ang, mn);
+    max_ang = std::max(max_ang, mx);
+    sum_min += mn;
+    max_re = std::max(max_re, re);
+    sum_re += re;
+    amin = std::min(amin, area);
+    amax = std::max(amax, area);
+    asum += area;
+    ++hist[std::min<std::size_t>(5, std::size_t(mn / 10))];
+  }
+  j["triangles"] = n;
+  j["degenerate"] = degenerate;
+  if (n == 0) return j;
+  j["min_angle"] = min_ang;
+  j["max_angle"] = max_ang;
+  j["mean_min_angle"] = sum_min / double(n);
+  j["max_radius_edge_ratio"] = max_re;
+  j["mean_radius_edge_ratio"] = sum_re / double(n);
+  j["min_area"] = amin;
+  j["max_area"] = amax;
+  j["total_area"] = asum;
+  Json h = Json::array();
+  for (std::size_t i = 0; i < hist.size(); ++i) h.push_back(hist[i]);
+  j["min_angle_histogram_10deg"] = h;
+  return j;
+}
+
+} // namespace
+
+PolyMesh read_poly_mesh(const std::string& path) {
+  const std::string ext = path == "-" ? ".off" : extension_of(path);
+  if (ext == ".off") {
+    PolyMesh m = read_off_polygons(path);
+    m.planar = std::all_of(m.points.begin(), m.points.end(), [](const auto& p) { return p[2] == 0; });
+    return m;
+  }
+  if (ext == ".ele") {
+    const PlanarMesh pm = read_planar_mesh(path);
+    PolyMesh m;
+    m.format = "ele";
+    m.planar = true;
+    for (const auto& p : pm.points) m.points.push_back({p[0], p[1], 0.0});
+    m.faces = pm.elements;
+    return m;
+  }
+  if (ext == ".ply" || ext == ".obj" || ext == ".stl") {
+    const SurfaceMesh s = read_surface(path);
+    PolyMesh m;
+    m.format = ext.substr(1);
+    m.points = s.points;
+    for (const auto& t : s.triangles) m.faces.push_back({t[0], t[1], t[2]});
+    return m;
+  }
+  throw Error("unknown mesh format '" + ext + "' (use .off, .ply, .obj, .stl or .ele)", path);
+}
+
+Json mesh_report(const PolyMesh& m) {
+  const MeshTopology t = mesh_topology(m.points.size(), m.faces);
+  Json j = Json::object();
+  // The two keys scripts rely on come first.
+  j["components"] = t.components.size();
+  j["euler"] = t.euler_list();
+  j["format"] = m.format;
+  j["vertices"] = m.points.size();
+  j["faces"] = m.faces.size();
+  std::size_t tris = 0, quads = 0, other = 0;
+  for (const auto& f : m.faces) (f.size() == 3 ? tris : f.size() == 4 ? quads : other)++;
+  j["triangles"] = tris;
+  j["quads"] = quads;
+  j["other_polygons"] = other;
+  j["planar"] = m.planar;
+  const Json tj = t.to_json();
+  Json topo = Json::object();
+  for (const char* k : {"component_list", "euler_total", "closed", "manifold", "oriented", "boundary_loops",
+                        "boundary_edges", "nonmanifold_edges", "nonmanifold_vertices", "inconsistent_edges",
+                        "isolated_vertices"})
+    topo[k] = tj.at(k);
+  j["topology"] = topo;
+  // Bounding box.
+  if (!m.points.empty()) {
+    std::array<double, 3> lo = m.points[0], hi = m.points[0];
+    for (const auto& p : m.points)
+      for (int i = 0; i < 3; ++i) { lo[i] = std::min(lo[i], p[i]); hi[i] = std::max(hi[i], p[i]); }
+    Json bb = Json::object();
+    bb["min"] = std::vector<double>(lo.begin(), lo.end());
+    bb["max"] = std::vector<double>(hi.begin(), hi.end());
+    j["bounding_box"] = bb;
+  }
+  if (tris) j["triangle_quality"] = triangle_quality(m);
+  if (quads && m.planar) {
+    std::vector<Point2> pts;
+    for (const auto& p : m.points) pts.push_back({p[0], p[1]});
+    std::vector<std::array<int, 4>> qs;
+    for (const auto& f : m.faces)
+      if (f.size() == 4) qs.push_back({f[0], f[1], f[2], f[3]});
+    j["quad_quality"] = quality_report(pts, qs).to_json();
+  }
+  return j;
+}
+
+Json image_comparison(const MeshTopology& mesh, const MeshTopology& image) {
+  Json j = Json::object();
+  j["components"] = image.components.size();
+  j["euler"] = image.euler_list();
+  j["manifold"] = image.manifold;
+  j["matches"] = same_topology(mesh, image);
+  return j;
+}
+
+std::string format_report(const Json& r) {
+  std::ostringstream o;
+  char buf[256];
+  o << "format      " << r.at("format").string() << (r.at("planar").boolean() ? " (planar)" : "") << "\n";
+  o << "vertices    " << r.at("vertices").integer() << "\n";
+  o << "faces       " << r.at("faces").integer() << " (" << r.at("triangles").integer() << " triangles, "
+    << r.at("quads").integer() << " quads, " << r.at("other_polygons").integer() << " other)\n";
+  const Json& t = r.at("topology");
+  o << "components  " << r.at("components").integer() << "\n";
+  int i = 0;
+  for (const Json& c : t.at("component_list").items()) {
+    std::snprintf(buf, sizeof buf, "  #%d: V %lld E %lld F %lld, euler %lld, genus %lld, %s, %s, %s, %lld boundary loop(s)\n",
+                  i++, c.at("vertices").integer(), c.at("edges").integer(), c.at("faces").integer(),
+                  c.at("euler").integer(), c.at("genus").integer(), c.at("closed").boolean() ? "closed" : "open",
+                  c.at("manifold").boolean() ? "manifold" : "NON-MANIFOLD",
+                  c.at("oriented").boolean() ? "oriented" : (c.at("orientable").boolean() ? "NOT oriented" : "non-orientable"),
+                  c.at("boundary_loops").integer());
+    o << buf;
+    if (i == 20 && t.at("component_list").items().size() > 21) {
+      o << "  ... (" << t.at("component_list").items().size() - 20 << " more)\n";
+      break;
+    }
+  }
+  o << "closed " << (t.at("closed").boolean() ? "yes" : "no") << ", manifold "
+    << (t.at("manifold").boolean() ? "yes" : "no") << ", oriented " << (t.at("oriented").boolean() ? "yes" : "no")
+    << ", boundary loops " << t.at("boundary_loops").integer() << ", non-manifold edges "
+    << t.at("nonmanifold_edges").integer() << ", non-manifold vertices " << t.at("nonmanifold_vertices").integer()
+    << "\n";
+  if (r.contains("triangle_quality")) {
+    const Json& q = r.at("triangle_quality");
+    if (q.contains("min_angle")) {
+      std::snprintf(buf, sizeof buf,
+                    "triangles   angles %.2f..%.2f deg (mean smallest %.2f), radius-edge max %.3f mean %.3f, area %.4g..%.4g\n",
+                    q.at("min_angle").number(), q.at("max_angle").number(), q.at("mean_min_angle").number(),
+                    q.at("max_radius_edge_ratio").number(), q.at("mean_radius_edge_ratio").number(),
+                    q.at("min_area").number(), q.at("max_area").number());
+      o << buf;
+    }
+  }
+  if (r.contains("quad_quality")) {
+    const Json& q = r.at("quad_quality");
+    std::snprintf(buf, sizeof buf,
+                  "quads       non-convex %lld, Joe's mu min %.2f median %.2f mean %.2f, scaled Jacobian min %.3f, "
+                  "angles in [45,135] %.1f%%, area mean %.4g sd %.4g\n",
+                  q.at("non_convex").integer(), q.at("min_mu").number(), q.at("median_mu").number(),
+                  q.at("mean_mu").number(), q.at("min_scaled_jacobian").number(),
+                  100 * q.at("angles_45_135").number(), q.at("mean_area").number(), q.at("area_stddev").number());
+    o << buf << "  mu histogram:";
+    for (const Json& b : q.at("mu_histogram").items())
+      o << " [" << b.at("from").number() << "," << b.at("to").number() << ") " << b.at("count").integer();
+    o << "\n";
+  }
+  if (r.contains("image")) {
+    const Json& im = r.at("image");
+    o << "bdCA(X)     " << im.at("components").integer() << " component(s), euler";
+    for (const Json& e : im.at("euler").items()) o << ' ' << e.integer();
+    o << "; mesh " << (im.at("matches").boolean() ? "MATCHES" : "DOES NOT MATCH") << " component by component\n";
+  }
+  return o.str();
+}
+
+} // namespace imgmesh

@@ -1,0 +1,37 @@
+// meshinfo's library: read any mesh of the suite and describe it (topology
+// and element quality) as one ordered JSON object, or as text.
+#pragma once
+#include "mesh/topology.hpp"
+#include "util/json.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace imgmesh {
+
+// A polygon mesh of any origin: surfaces (OFF/PLY/OBJ/STL) or planar meshes
+// (.ele/.node, OFF with z = 0).
+struct PolyMesh {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::vector<int>> faces;
+  bool planar = false;  // every z is 0: planar quality (quad convexity, Joe's mu) applies
+  std::string format;   // "ele", "off", "ply", ...
+};
+
+// By extension: .ele (+ .node), .off (any polygons), .ply/.obj/.stl
+// (triangles). "-" reads OFF from stdin. Throws Error.
+PolyMesh read_poly_mesh(const std::string& path);
+
+// Everything meshinfo reports: counts, topology (MeshTopology::to_json, with
+// "components" and "euler" first), triangle and quad quality.
+Json mesh_report(const PolyMesh& m);
+
+// The "image" section for --image: bdCA(X)'s components and whether the
+// mesh matches it component by component ("matches").
+Json image_comparison(const MeshTopology& mesh, const MeshTopology& image);
+
+// Human-readable lines for a report made by mesh_report.
+std::string format_report(const Json& report);
+
+} // namespace imgmesh

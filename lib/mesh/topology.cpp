@@ -1,0 +1,345 @@
+#include "mesh/topology.hpp"
+
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <string>
+
+namespace imgmesh {
+
+namespace {
+
+struct UnionFind {
+  std::vector<std::size_t> p;
+  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), std::size_t(0)); }
+  std::size_t find(std::size_t x) {
+    while (p[x] != x) { p[x] = p[p[x]]; x = p[x]; }
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a); b = find(b);
+    if (a != b) p[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Union-find that also tracks the parity (flip or not) of each face relative
+// to its root, to tell orientable components from non-orientable ones.
+struct ParityUnionFind {
+  std::vector<std::size_t> p;
+  std::vector<std::uint8_t> par;  // parity to parent
+  explicit ParityUnionFind(std::size_t n) : p(n), par(n, 0) { std::iota(p.begin(), p.end(), std::size_t(0)); }
+  std::size_t find(std::size_t x, std::uint8_t& parity) {
+    parity = 0;
+    std::size_t r = x;
+    while (p[r] != r) { parity ^= par[r]; r = p[r]; }
+    // Path compression with parities.
+    std::uint8_t acc = parity;
+    while (p[x] != r) {
+      const std::size_t next = p[x];
+      const std::uint8_t px = par[x];
+      p[x] = r;
+      par[x] = acc;
+      acc ^= px;
+      x = next;
+    }
+    return r;
+  }
+  // Returns false on a contradiction.
+  bool unite(std::size_t a, std::size_t b, std::uint8_t rel) {
+    std::uint8_t pa, pb;
+    const std::size_t ra = find(a, pa), rb = find(b, pb);
+    if (ra == rb) return (pa ^ pb) == rel;
+    p[rb] = ra;
+    par[rb] = pa ^ pb ^ rel;
+    return true;
+  }
+};
+
+} // namespace
+
+std::vector<long long> MeshTopology::euler_list() const {
+  std::vector<long long> e;
+  for (const auto& c : components) e.push_back(c.euler);
+  return e;
+}
+
+Json MeshTopology::to_json() const {
+  Json j = Json::object();
+  j["components"] = components.size();
+  j["euler"] = euler_list();
+  Json comps = Json::array();
+  for (const auto& c : components) {
+    Json o = Json::object();
+    o["vertices"] = c.vertices;
+    o["edges"] = c.edges;
+    o["faces"] = c.faces;
+    o["euler"] = c.euler;
+    o["genus"] = c.genus;
+    o["boundary_loops"] = c.boundary_loops;
+    o["closed"] = c.closed;
+    o["manifold"] = c.manifold;
+    o["oriented"] = c.oriented;
+    o["orientable"] = c.orientable;
+    comps.push_back(o);
+  }
+  j["component_list"] = comps;
+  j["euler_total"] = euler;
+  j["closed"] = closed;
+  j["manifold"] = manifold;
+  j["oriented"] = oriented;
+  j["boundary_loops"] = boundary_loops;
+  j["boundary_edges"] = boundary_edges;
+  j["nonmanifold_edges"] = nonmanifold_edges;
+  j["nonmanifold_vertices"] = nonmanifold_vertices;
+  j["inconsistent_edges"] = inconsistent_edges;
+  j["isolated_vertices"] = isolated_vertices;
+  return j;
+}
+
+MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
+                           const std::vector<std::size_t>& offsets) {
+  MeshTopology t;
+  if (offsets.empty()) throw Error("no face offsets");
+  const std::size_t nf = offsets.size() - 1;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::size_t b = offsets[f], e = offsets[f + 1];
+    if (e < b + 3 || e > corners.size()) throw Error("face " + std::to_string(f) + " has fewer than 3 corners");
+    for (std::size_t i = b; i < e; ++i) {
+      if (corners[i] < 0 || std::size_t(corners[i]) >= nv)
+        throw Error("face " + std::to_string(f) + ": vertex id out of range");
+      for (std::size_t k = b; k < i; ++k)
+        if (corners[k] == corners[i]) throw Error("face " + std::to_string(f) + ": repeated vertex");
+    }
+  }
+  // Half-edges sorted by undirected edge.
+  struct HalfEdge { std::uint64_t key; std::size_t corner; bool forward; };
+  std::vector<HalfEdge> he;
+  he.reserve(corners.size());
+  std::vector<std::size_t> face_of(corners.size());
+  for (std::size_t f = 0; f < nf; ++f)
+    for (std::size_t i = offsets[f]; i < offsets[f + 1]; ++i) {
+      face_of[i] = f;
+      const std::size_t j = i + 1 == offsets[f + 1] ? offsets[f] : i + 1;
+      const std::uint32_t a = std::uint32_t(corners[i]), b = std::uint32_t(corners[j]);
+      he.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), i, a < b});
+    }
+  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.key != y.key ? x.key < y.key : x.corner < y.corner;
+  });
+  auto next_corner = [&](std::size_t i) { return i + 1 == offsets[face_of[i] + 1] ? offsets[face_of[i]] : i + 1; };
+
+  UnionFind vuf(nv), cuf(corners.size()), buf(nv);
+  ParityUnionFind fuf(nf);
+  std::vector<char> used(nv, 0), on_boundary(nv, 0), bad_vertex(nv, 0);
+  for (int v : corners) used[v] = 1;
+  std::vector<char> comp_nonorientable_root(nv, 0);  // marked on a vertex of the face
+  std::vector<std::size_t> nonorientable_faces;
+  std::vector<std::uint64_t> edges;  // unique edges
+  for (std::size_t i = 0; i < he.size();) {
+    std::size_t j = i;
+    while (j < he.size() && he[j].key == he[i].key) ++j;
+    const std::uint32_t a = std::uint32_t(he[i].key >> 32), b = std::uint32_t(he[i].key & 0xffffffffu);
+    edges.push_back(he[i].key);
+    vuf.unite(a, b);
+    const std::size_t n = j - i;
+    if (n == 1) {
+      ++t.boundary_edges;
+      on_boundary[a] = on_boundary[b] = 1;
+      buf.unite(a, b);
+    } else if (n == 2) {
+      const HalfEdge &h1 = he[i], &h2 = he[i + 1];
+      if (h1.forward == h2.forward) ++t.inconsistent_edges;
+      if (!fuf.unite(face_of[h1.corner], face_of[h2.corner], h1.forward == h2.forward ? 1 : 0))
+        nonorientable_faces.push_back(face_of[h1.corner]);
+      // Corners of the same vertex across the edge belong to one fan.
+      const std::size_t c1a = h1.corner, c1b = next_corner(h1.corner);
+      const std::size_t c2a = h2.corner, c2b = next_corner(h2.corner);
+      if (corners[c1a] == corners[c2a]) { cuf.unite(c1a, c2a); cuf.unite(c1b, c2b); }
+      else { cuf.unite(c1a, c2b); cuf.unite(c1b, c2a); }
+    } else {
+      ++t.nonmanifold_edges;
+      bad_vertex[a] = bad_vertex[b] = 1;
+    }
+    i = j;
+  }
+  // A vertex whose corners form more than one fan is non-manifold (bow-tie).
+  {
+    std::vector<std::pair<int, std::size_t>> vr;
+    vr.reserve(corners.size());
+    for (std::size_t i = 0; i < corners.size(); ++i) vr.push_back({corners[i], cuf.find(i)});
+    std::sort(vr.begin(), vr.end());
+    vr.erase(std::unique(vr.begin(), vr.end()), vr.end());
+    for (std::size_t i = 1; i < vr.size(); ++i)
+      if (vr[i].first == vr[i - 1].first) bad_vertex[vr[i].first] = 1;
+  }
+  // Components, keyed by the root vertex.
+  std::vector<long long> comp_id(nv, -1);
+  std::vector<ComponentTopology> comps;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!used[v]) { ++t.isolated_vertices; continue; }
+    const std::size_t r = vuf.find(v);
+    if (comp_id[r] < 0) { comp_id[r] = (long long)comps.size(); comps.emplace_back(); comps.back().manifold = true; }
+    auto& c = comps[comp_id[r]];
+    ++c.vertices;
+    if (bad_vertex[v]) { c.manifold = false; ++t.nonmanifold_vertices; }
+    if (on_boundary[v] && buf.find(v) == v) ++c.boundary_loops;
+  }
+  auto comp_of = [&](int v) -> ComponentTopology& { return comps[comp_id[vuf.find(std::size_t(v))]]; };
+  for (std::uint64_t k : edges) ++comp_of(int(k >> 32)).edges;
+  for (std::size_t f = 0; f < nf; ++f) ++comp_of(corners[offsets[f]]).faces;
+  for (auto& c : comps) { c.oriented = true; c.orientable = true; c.closed = true; }
+  for (std::size_t i = 0; i < he.size();) {
+    std::size_t j = i;
+    while (j < he.size() && he[j].key == he[i].key) ++j;
+    auto& c = comp_of(int(he[i].key >> 32));
+    if (j - i == 1) c.closed = false;
+    if (j - i > 2) c.manifold = false;
+    if (j - i == 2 && he[i].forward == he[i + 1].forward) c.oriented = false;
+    i = j;
+  }
+  for (std::size_t f : nonorientable_faces) comp_of(corners[offsets[f]]).orientable = false;
+  for (auto& c : comps) {
+    c.euler = (long long)c.vertices - (long long)c.edges + (long long)c.faces;
+    if (!c.manifold) c.oriented = c.orientable = false;
+    if (c.manifold) {
+      const long long x = 2 - c.euler - (long long)c.boundary_loops;
+      c.genus = c.orientable ? (x % 2 == 0 && x >= 0 ? x / 2 : -1) : x;
+    }
+  }
+  std::stable_sort(comps.begin(), comps.end(),
+                   [](const ComponentTopology& a, const ComponentTopology& b) { return a.faces > b.faces; });
+  t.components = std::move(comps);
+  t.closed = t.manifold = t.oriented = !t.components.empty();
+  for (const auto& c : t.components) {
+    t.euler += c.euler;
+    t.boundary_loops += c.boundary_loops;
+    t.closed = t.closed && c.closed;
+    t.manifold = t.manifold && c.manifold;
+    t.oriented = t.oriented && c.oriented;
+  }
+  return t;
+}
+
+MeshTopology mesh_topology(std::size_t nv, const std::vector<std::vector<int>>& faces) {
+  std::vector<int> corners;
+  std::vector<std::size_t> offsets{0};
+  for (const auto& f : faces) {
+    corners.insert(corners.end(), f.begin(), f.end());
+    offsets.push_back(corners.size());
+  }
+  return mesh_topology(nv, corners, offsets);
+}
+
+namespace {
+
+MeshTopology pixel_boundary_topology(const BinaryImage& img) {
+  // Lattice points (x, y) of pixel corners; boundary edges between a
+  // foreground pixel and a background/outside one.
+  const std::size_t nx = img.size[0], ny = img.size[1];
+  const std::size_t W = nx + 1;
+  std::vector<std::uint64_t> verts;
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> edges;
+  auto fg = [&](std::ptrdiff_t x, std::ptrdiff_t y) { return img.at(x, y, 0, 0) != 0; };
+  for (std::size_t y = 0; y < ny; ++y)
+    for (std::size_t x = 0; x < nx; ++x) {
+      if (!img(x, y, 0)) continue;
+      const std::ptrdiff_t X = std::ptrdiff_t(x), Y = std::ptrdiff_t(y);
+      auto id = [&](std::size_t i, std::size_t j) { return std::uint64_t(j) * W + i; };
+      if (!fg(X - 1, Y)) edges.push_back({id(x, y), id(x, y + 1)});
+      if (!fg(X + 1, Y)) edges.push_back({id(x + 1, y), id(x + 1, y + 1)});
+      if (!fg(X, Y - 1)) edges.push_back({id(x, y), id(x + 1, y)});
+      if (!fg(X, Y + 1)) edges.push_back({id(x, y + 1), id(x + 1, y + 1)});
+    }
+  for (const auto& e : edges) { verts.push_back(e.first); verts.push_back(e.second); }
+  std::sort(verts.begin(), verts.end());
+  std::vector<std::size_t> degree;
+  std::vector<std::uint64_t> uniq;
+  for (std::size_t i = 0; i < verts.size();) {
+    std::size_t j = i;
+    while (j < verts.size() && verts[j] == verts[i]) ++j;
+    uniq.push_back(verts[i]);
+    degree.push_back(j - i);
+    i = j;
+  }
+  auto idx = [&](std::uint64_t v) { return std::size_t(std::lower_bound(uniq.begin(), uniq.end(), v) - uniq.begin()); };
+  UnionFind uf(uniq.size());
+  for (const auto& e : edges) uf.unite(idx(e.first), idx(e.second));
+  MeshTopology t;
+  std::vector<long long> cid(uniq.size(), -1);
+  for (std::size_t v = 0; v < uniq.size(); ++v) {
+    const std::size_t r = uf.find(v);
+    if (cid[r] < 0) {
+      cid[r] = (long long)t.components.size();
+      t.components.emplace_back();
+      t.components.back().manifold = t.components.back().closed = true;
+      t.components.back().oriented = t.components.back().orientable = true;
+    }
+    auto& c = t.components[cid[r]];
+    ++c.vertices;
+    if (degree[v] != 2) { c.manifold = false; ++t.nonmanifold_vertices; }
+  }
+  for (const auto& e : edges) ++t.components[cid[uf.find(idx(e.first))]].edges;
+  t.manifold = t.closed = t.oriented = true;
+  for (auto& c : t.components) {
+    c.euler = (long long)c.vertices - (long long)c.edges;
+    c.genus = c.manifold ? 0 : -1;
+    t.euler += c.euler;
+    t.manifold = t.manifold && c.manifold;
+  }
+  std::stable_sort(t.components.begin(), t.components.end(),
+                   [](const ComponentTopology& a, const ComponentTopology& b) { return a.edges > b.edges; });
+  return t;
+}
+
+} // namespace
+
+MeshTopology voxel_boundary_topology(const BinaryImage& img) {
+  bool any = false;
+  for (auto v : img.data) if (v) { any = true; break; }
+  if (!any) throw Error("the image has no foreground");
+  if (img.dimension == 2 || img.size[2] == 1) return pixel_boundary_topology(img);
+  const std::size_t nx = img.size[0], ny = img.size[1], nz = img.size[2];
+  const std::uint64_t W = nx + 1, H = ny + 1;
+  auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return (std::uint64_t(k) * H + j) * W + i; };
+  auto fg = [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) { return img.at(x, y, z, 0) != 0; };
+  // Outward-oriented unit squares; corners as lattice ids, compacted below.
+  std::vector<std::uint64_t> lat;
+  for (std::size_t z = 0; z < nz; ++z)
+    for (std::size_t y = 0; y < ny; ++y)
+      for (std::size_t x = 0; x < nx; ++x) {
+        if (!img(x, y, z)) continue;
+        const std::ptrdiff_t X = std::ptrdiff_t(x), Y = std::ptrdiff_t(y), Z = std::ptrdiff_t(z);
+        auto quad = [&](std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {
+          lat.push_back(a); lat.push_back(b); lat.push_back(c); lat.push_back(d);
+        };
+        // Counter-clockwise seen from outside: (e_u x e_v) points outward.
+        if (!fg(X + 1, Y, Z)) quad(id(x + 1, y, z), id(x + 1, y + 1, z), id(x + 1, y + 1, z + 1), id(x + 1, y, z + 1));
+        if (!fg(X - 1, Y, Z)) quad(id(x, y, z), id(x, y, z + 1), id(x, y + 1, z + 1), id(x, y + 1, z));
+        if (!fg(X, Y + 1, Z)) quad(id(x, y + 1, z), id(x, y + 1, z + 1), id(x + 1, y + 1, z + 1), id(x + 1, y + 1, z));
+        if (!fg(X, Y - 1, Z)) quad(id(x, y, z), id(x + 1, y, z), id(x + 1, y, z + 1), id(x, y, z + 1));
+        if (!fg(X, Y, Z + 1)) quad(id(x, y, z + 1), id(x + 1, y, z + 1), id(x + 1, y + 1, z + 1), id(x, y + 1, z + 1));
+        if (!fg(X, Y, Z - 1)) quad(id(x, y, z), id(x, y + 1, z), id(x + 1, y + 1, z), id(x + 1, y, z));
+      }
+  std::vector<std::uint64_t> uniq(lat);
+  std::sort(uniq.begin(), uniq.end());
+  uniq.erase(std::unique(uniq.begin(), uniq.end()), uniq.end());
+  std::vector<int> corners(lat.size());
+  for (std::size_t i = 0; i < lat.size(); ++i)
+    corners[i] = int(std::lower_bound(uniq.begin(), uniq.end(), lat[i]) - uniq.begin());
+  lat.clear();
+  lat.shrink_to_fit();
+  std::vector<std::size_t> offsets(corners.size() / 4 + 1);
+  for (std::size_t f = 0; f < offsets.size(); ++f) offsets[f] = 4 * f;
+  return mesh_topology(uniq.size(), corners, offsets);
+}
+
+bool same_topology(const MeshTopology& a, const MeshTopology& b) {
+  auto ea = a.euler_list(), eb = b.euler_list();
+  std::sort(ea.begin(), ea.end());
+  std::sort(eb.begin(), eb.end());
+  return ea == eb;
+}
+
+} // namespace imgmesh

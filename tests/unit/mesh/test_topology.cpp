@@ -1,0 +1,366 @@
+// meshinfo's topology against an independent count made here (sets of
+// edges, breadth-first components) and against known surfaces; bdCA(X) of
+// small images against known values.
+#include "mesh/meshinfo.hpp"
+#include "mesh/topology.hpp"
+#include "util/error.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <queue>
+#include <random>
+#include <set>
+
+using namespace imgmesh;
+
+namespace {
+
+struct Faces {
+  std::size_t nv = 0;
+  std::vector<std::vector<int>> f;
+  void add(const Faces& o) {
+    for (auto face : o.f) {
+      for (int& v : face) v += int(nv);
+      f.push_back(face);
+    }
+    nv += o.nv;
+  }
+};
+
+// An (n x m) grid of quads, split into triangles; wrap_u / wrap_v glue
+// opposite sides (torus when both, cylinder when one).
+Faces grid(int n, int m, bool wrap_u, bool wrap_v) {
+  Faces s;
+  const int cu = wrap_u ? n : n + 1, cv = wrap_v ? m : m + 1;
+  s.nv = std::size_t(cu * cv);
+  auto id = [&](int i, int j) { return (j % cv) * cu + (i % cu); };
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      s.f.push_back({a, b, c});
+      s.f.push_back({a, c, d});
+    }
+  return s;
+}
+
+// A closed sphere: the boundary of an (n x n x n) cube of quads.
+Faces cube_sphere(int n) {
+  Faces s;
+  std::map<std::array<int, 3>, int> id;
+  auto v = [&](int x, int y, int z) {
+    auto it = id.find({x, y, z});
+    if (it != id.end()) return it->second;
+    const int k = int(id.size());
+    id[{x, y, z}] = k;
+    return k;
+  };
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      // Outward orientation on each of the six sides.
+      s.f.push_back({v(a, b, 0), v(a, b + 1, 0), v(a + 1, b + 1, 0), v(a + 1, b, 0)});
+      s.f.push_back({v(a, b, n), v(a + 1, b, n), v(a + 1, b + 1, n), v(a, b + 1, n)});
+      s.f.push_back({v(a, 0, b), v(a + 1, 0, b), v(a + 1, 0, b + 1), v(a, 0, b + 1)});
+      s.f.push_back({v(a, n, b), v(a, n, b + 1), v(a + 1, n, b + 1), v(a + 1, n, b)});
+      s.f.push_back({v(0, a, b), v(0, a, b + 1), v(0, a + 1, b + 1), v(0, a + 1, b)});
+      s.f.push_back({v(n, a, b), v(n, a + 1, b), v(n, a + 1, b + 1), v(n, a, b + 1)});
+    }
+  s.nv = id.size();
+  return s;
+}
+
+// Independent count: components by breadth-first search over face-sharing
+// vertices, V - E + F per component from sets.
+std::vector<long long> independent_euler(const Faces& s) {
+  std::vector<std::vector<int>> vf(s.nv);
+  for (std::size_t i = 0; i < s.f.size(); ++i)
+    for (int v : s.f[i]) vf[v].push_back(int(i));
+  std::vector<int> comp(s.f.size(), -1);
+  int nc = 0;
+  for (std::size_t i = 0; i < s.f.size(); ++i) {
+    if (comp[i] >= 0) continue;
+    std::queue<int> q;
+    q.push(int(i));
+    comp[i] = nc;
+    while (!q.empty()) {
+      const int f = q.front();
+      q.pop();
+      for (int v : s.f[f])
+        for (int g : vf[v])
+          if (comp[g] < 0) { comp[g] = nc; q.push(g); }
+    }
+    ++nc;
+  }
+  std::vector<long long> out;
+  for (int c = 0; c < nc; ++c) {
+    std::set<int> V;
+    std::set<std::pair<int, int>> E;
+    long long F = 0;
+    for (std::size_t i = 0; i < s.f.size(); ++i) {
+      if (comp[i] != c) continue;
+      ++F;
+      for (std::size_t k = 0; k < s.f[i].size(); ++k) {
+        const int a = s.f[i][k], b = s.f[i][(k + 1) % s.f[i].size()];
+        V.insert(a);
+        E.insert(std::minmax(a, b));
+      }
+    }
+    out.push_back((long long)V.size() - (long long)E.size() + F);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::vector<long long> sorted(std::vector<long long> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+BinaryImage image3(int n) {
+  Geometry g;
+  g.dimension = 3;
+  g.size = {std::size_t(n), std::size_t(n), std::size_t(n)};
+  return BinaryImage(g, 0);
+}
+
+} // namespace
+
+TEST_CASE("closed and open surfaces: Euler characteristic, genus, loops", "[topology]") {
+  SECTION("sphere") {
+    const Faces s = cube_sphere(3);
+    const auto t = mesh_topology(s.nv, s.f);
+    REQUIRE(t.components.size() == 1);
+    CHECK(t.components[0].euler == 2);
+    CHECK(t.components[0].genus == 0);
+    CHECK(t.closed);
+    CHECK(t.manifold);
+    CHECK(t.oriented);
+    CHECK(t.boundary_loops == 0);
+  }
+  SECTION("torus") {
+    const Faces s = grid(7, 5, true, true);
+    const auto t = mesh_topology(s.nv, s.f);
+    REQUIRE(t.components.size() == 1);
+    CHECK(t.components[0].euler == 0);
+    CHECK(t.components[0].genus == 1);
+    CHECK(t.closed);
+    CHECK(t.oriented);
+  }
+  SECTION("disk") {
+    const Faces s = grid(4, 6, false, false);
+    const auto t = mesh_topology(s.nv, s.f);
+    REQUIRE(t.components.size() == 1);
+    CHECK(t.components[0].euler == 1);
+    CHECK(t.components[0].boundary_loops == 1);
+    CHECK(t.components[0].genus == 0);
+    CHECK_FALSE(t.closed);
+    CHECK(t.manifold);
+  }
+  SECTION("cylinder (annulus)") {
+    const Faces s = grid(6, 3, true, false);
+    const auto t = mesh_topology(s.nv, s.f);
+    REQUIRE(t.components.size() == 1);
+    CHECK(t.components[0].euler == 0);
+    CHECK(t.components[0].boundary_loops == 2);
+    CHECK(t.components[0].genus == 0);
+  }
+  SECTION("two spheres, a torus and a disk") {
+    Faces s;
+    s.add(cube_sphere(2));
+    s.add(cube_sphere(3));
+    s.add(grid(5, 5, true, true));
+    s.add(grid(3, 2, false, false));
+    s.nv += 4;  // isolated vertices are not components
+    const auto t = mesh_topology(s.nv, s.f);
+    REQUIRE(t.components.size() == 4);
+    CHECK(sorted(t.euler_list()) == std::vector<long long>{0, 1, 2, 2});
+    CHECK(t.isolated_vertices == 4);
+    CHECK_FALSE(t.closed);
+    CHECK(t.boundary_loops == 1);
+    CHECK(sorted(t.euler_list()) == independent_euler(s));
+  }
+  SECTION("Moebius strip: manifold, not orientable") {
+    // A strip of n quads whose ends are glued with a half twist.
+    const int n = 8;
+    Faces s;
+    s.nv = 2 * n;
+    for (int i = 0; i < n; ++i) {
+      const int a = i, b = n + i;
+      const int c = i + 1 < n ? n + i + 1 : 0;  // twisted: top meets bottom
+      const int d = i + 1 < n ? i + 1 : n;
+      s.f.push_back({a, d, c, b});
+    }
+    const auto t = mesh_topology(s.nv, s.f);
+    REQUIRE(t.components.size() == 1);
+    CHECK(t.components[0].euler == 0);
+    CHECK(t.components[0].manifold);
+    CHECK_FALSE(t.components[0].orientable);
+    CHECK_FALSE(t.components[0].oriented);
+    CHECK(t.components[0].boundary_loops == 1);
+    CHECK(t.components[0].genus == 1);  // one cross-cap
+  }
+}
+
+TEST_CASE("orientation and manifold defects are found", "[topology]") {
+  Faces s = cube_sphere(2);
+  std::reverse(s.f[3].begin(), s.f[3].end());
+  auto t = mesh_topology(s.nv, s.f);
+  CHECK_FALSE(t.oriented);
+  CHECK(t.components[0].orientable);
+  CHECK(t.inconsistent_edges == 4);
+  // Three triangles on one edge.
+  Faces fin;
+  fin.nv = 5;
+  fin.f = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  t = mesh_topology(fin.nv, fin.f);
+  CHECK(t.nonmanifold_edges == 1);
+  CHECK_FALSE(t.manifold);
+  // Two closed spheres sharing one vertex (a pinch).
+  Faces pinch = cube_sphere(1);
+  Faces other = cube_sphere(1);
+  const std::size_t base = pinch.nv, first_faces = pinch.f.size();
+  pinch.add(other);
+  for (std::size_t i = first_faces; i < pinch.f.size(); ++i)
+    for (int& v : pinch.f[i])
+      if (v == int(base)) v = 0;  // glue the second sphere's vertex 0 onto the first's
+  t = mesh_topology(pinch.nv, pinch.f);
+  CHECK(t.components.size() == 1);
+  CHECK(t.nonmanifold_vertices == 1);
+  CHECK_FALSE(t.manifold);
+  // Bad ids.
+  CHECK_THROWS_AS(mesh_topology(3, {{0, 1, 5}}), Error);
+  CHECK_THROWS_AS(mesh_topology(3, {{0, 1, 1}}), Error);
+}
+
+TEST_CASE("random surfaces agree with the independent count", "[topology]") {
+  std::mt19937 rng(42);
+  for (int trial = 0; trial < 30; ++trial) {
+    Faces s;
+    std::uniform_int_distribution<int> pick(0, 3);
+    const int parts = 1 + trial % 4;
+    for (int p = 0; p < parts; ++p) {
+      switch (pick(rng)) {
+        case 0: s.add(cube_sphere(1 + trial % 3)); break;
+        case 1: s.add(grid(3 + trial % 4, 3, true, true)); break;
+        case 2: s.add(grid(2 + trial % 3, 4, true, false)); break;
+        default: s.add(grid(3, 2 + trial % 3, false, false)); break;
+      }
+    }
+    // Drop random faces: open surfaces with holes and several pieces.
+    std::bernoulli_distribution drop(0.15);
+    Faces cut;
+    cut.nv = s.nv;
+    for (const auto& f : s.f)
+      if (!drop(rng)) cut.f.push_back(f);
+    if (cut.f.empty()) continue;
+    const auto t = mesh_topology(cut.nv, cut.f);
+    CHECK(sorted(t.euler_list()) == independent_euler(cut));
+  }
+}
+
+TEST_CASE("bdCA(X) of small images", "[topology][bdca]") {
+  SECTION("ball: one component, euler 2") {
+    BinaryImage img = image3(12);
+    for (int z = 0; z < 12; ++z)
+      for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 12; ++x)
+          img(x, y, z) = (x - 5.5) * (x - 5.5) + (y - 5.5) * (y - 5.5) + (z - 5.5) * (z - 5.5) < 16;
+    const auto t = voxel_boundary_topology(img);
+    REQUIRE(t.components.size() == 1);
+    CHECK(t.components[0].euler == 2);
+    CHECK(t.manifold);
+    CHECK(t.oriented);
+    CHECK(t.closed);
+  }
+  SECTION("a box touching the image border") {
+    BinaryImage img = image3(4);
+    for (auto& v : img.data) v = 1;
+    const auto t = voxel_boundary_topology(img);
+    REQUIRE(t.components.size() == 1);
+    CHECK(t.components[0].euler == 2);
+    CHECK(t.components[0].faces == 6 * 16);
+  }
+  SECTION("solid torus: euler 0") {
+    BinaryImage img = image3(10);
+    for (int z = 3; z <= 5; ++z)
+      for (int y = 1; y <= 8; ++y)
+        for (int x = 1; x <= 8; ++x)
+          img(x, y, z) = !(x >= 4 && x <= 5 && y >= 4 && y <= 5);
+    const auto t = voxel_boundary_topology(img);
+    REQUIRE(t.components.size() == 1);
+    CHECK(t.components[0].euler == 0);
+    CHECK(t.components[0].genus == 1);
+  }
+  SECTION("ball with a cavity: two components") {
+    BinaryImage img = image3(9);
+    for (int z = 1; z <= 7; ++z)
+      for (int y = 1; y <= 7; ++y)
+        for (int x = 1; x <= 7; ++x) img(x, y, z) = !(x >= 3 && x <= 5 && y >= 3 && y <= 5 && z >= 3 && z <= 5);
+    const auto t = voxel_boundary_topology(img);
+    REQUIRE(t.components.size() == 2);
+    CHECK(t.euler_list() == std::vector<long long>{2, 2});
+    CHECK(t.oriented);
+  }
+  SECTION("not well-composed: two voxels sharing an edge") {
+    BinaryImage img = image3(4);
+    img(1, 1, 1) = 1;
+    img(2, 2, 1) = 1;
+    const auto t = voxel_boundary_topology(img);
+    CHECK_FALSE(t.manifold);
+  }
+  SECTION("not well-composed: two voxels sharing a vertex") {
+    BinaryImage img = image3(4);
+    img(1, 1, 1) = 1;
+    img(2, 2, 2) = 1;
+    const auto t = voxel_boundary_topology(img);
+    CHECK_FALSE(t.manifold);
+  }
+  SECTION("2D: a ring gives two loops") {
+    Geometry g;
+    g.dimension = 2;
+    g.size = {8, 8, 1};
+    BinaryImage img(g, 0);
+    for (int y = 1; y <= 6; ++y)
+      for (int x = 1; x <= 6; ++x) img(x, y) = !(x >= 3 && x <= 4 && y >= 3 && y <= 4);
+    const auto t = voxel_boundary_topology(img);
+    CHECK(t.components.size() == 2);
+    CHECK(t.euler_list() == std::vector<long long>{0, 0});
+    CHECK(t.manifold);
+  }
+  SECTION("empty image") {
+    CHECK_THROWS_AS(voxel_boundary_topology(image3(3)), Error);
+  }
+}
+
+TEST_CASE("the voxel-boundary mesh of a ball matches bdCA(X)", "[topology][bdca]") {
+  // Mesh the cube sphere and compare with a voxel box: same topology.
+  const Faces s = cube_sphere(2);
+  BinaryImage img = image3(5);
+  img(2, 2, 2) = 1;
+  const auto mt = mesh_topology(s.nv, s.f);
+  const auto it = voxel_boundary_topology(img);
+  CHECK(same_topology(mt, it));
+  const Json j = image_comparison(mt, it);
+  CHECK(j.at("matches").boolean());
+  Faces two = cube_sphere(2);
+  two.add(cube_sphere(1));
+  CHECK_FALSE(same_topology(mesh_topology(two.nv, two.f), it));
+}
+
+TEST_CASE("mesh_report puts components and euler first", "[meshinfo]") {
+  PolyMesh m;
+  const Faces s = grid(3, 3, true, true);
+  for (std::size_t i = 0; i < s.nv; ++i) m.points.push_back({double(i), double(i * i % 7), 1.0});
+  m.faces = s.f;
+  m.format = "off";
+  const Json j = mesh_report(m);
+  CHECK(j.at("components").integer() == 1);
+  REQUIRE(j.at("euler").items().size() == 1);
+  CHECK(j.at("euler").items()[0].integer() == 0);
+  const std::string text = format_report(j);
+  CHECK(text.find("components  1") != std::string::npos);
+  // Round trip through the JSON parser.
+  const Json back = Json::parse(j.dump(-1));
+  CHECK(back.at("faces").integer() == long(s.f.size()));
+}
