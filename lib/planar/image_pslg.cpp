@@ -1,0 +1,358 @@
+// img2poly's engine (thesis 2.3 and 3.3.3).
+//
+// Well-composedness. A binary image (two values) goes through
+// lib/wellcomposed's repair (background -> foreground only). A label image is
+// repaired here with the same rule generalised: a 2x2 block whose diagonals
+// hold two different labels (a b / b a) is the one configuration where the
+// pixel boundary is ambiguous (a vertex of degree 4 between two regions); we
+// give one of the lower-labelled pixels the higher label, and look again at
+// the four blocks around it. Every change raises the sum of the labels, so
+// the repair ends; blocks with three or four labels are junctions and stay
+// (vertices of degree 3 or 4 are fine for a PSLG). Afterwards the grid grows
+// by one pixel of the lowest label on the sides a higher label touches, so
+// every curve of bdCA lies strictly inside the rectangle Omega, whose pixel
+// centres are then all strictly inside it too (thesis 2.3 assumes this).
+//
+// Curves. Every vertex of bdCA has degree 2 except junctions; we cut bdCA at
+// the junctions into open curves (each between two labels a < b) and closed
+// ones, simplify them together with the four sides of Omega, and number the
+// markers: 1 for Omega, 2, 3, ... for the label pairs in increasing order.
+//
+// Regions are the 4-connected components of equal label (the faces of bdCA);
+// each gets a regional point at its deepest pixel centre. Since simplification
+// never sweeps a pixel centre, that point is still inside its region after.
+#include "planar/image_pslg.hpp"
+
+#include "planar/curve_simplification.hpp"
+#include "util/error.hpp"
+#include "wellcomposed/well_composed.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <map>
+
+namespace imgmesh {
+namespace {
+
+struct Grid2 {
+  std::size_t W, H;
+  std::size_t at(std::size_t x, std::size_t y) const { return x + W * y; }
+};
+
+bool two_label_diagonal(const LabelImage& L, std::size_t x, std::size_t y) {
+  const auto p = L(x, y), q = L(x + 1, y);
+  return p != q && L(x + 1, y + 1) == p && L(x, y + 1) == q;
+}
+
+// The label repair described at the top. Returns the number of changes.
+std::size_t repair_labels(LabelImage& L, std::size_t* initial) {
+  const std::size_t W = L.size[0], H = L.size[1];
+  std::vector<std::array<std::size_t, 2>> work;
+  if (W < 2 || H < 2) return 0;
+  for (std::size_t y = 0; y + 1 < H; ++y)
+    for (std::size_t x = 0; x + 1 < W; ++x)
+      if (two_label_diagonal(L, x, y)) work.push_back({x, y});
+  *initial = work.size();
+  std::size_t changed = 0;
+  while (!work.empty()) {
+    const auto [x, y] = work.back();
+    work.pop_back();
+    if (!two_label_diagonal(L, x, y)) continue;
+    const auto p = L(x, y), q = L(x + 1, y);
+    std::size_t cx = x, cy = y;
+    if (p > q) {
+      cx = x + 1;
+      L(cx, cy) = p;
+    } else {
+      L(cx, cy) = q;
+    }
+    ++changed;
+    for (std::size_t by = cy ? cy - 1 : 0; by <= cy && by + 1 < H; ++by)
+      for (std::size_t bx = cx ? cx - 1 : 0; bx <= cx && bx + 1 < W; ++bx) work.push_back({bx, by});
+  }
+  return changed;
+}
+
+// Grow the grid by one pixel of `background` on each side a different label touches.
+LabelImage pad_border(const LabelImage& L, std::int32_t background, std::array<std::size_t, 2>& before,
+                      std::array<std::size_t, 2>& after) {
+  const std::size_t W = L.size[0], H = L.size[1];
+  bool left = false, right = false, top = false, bottom = false;
+  for (std::size_t y = 0; y < H; ++y) {
+    left |= L(0, y) != background;
+    right |= L(W - 1, y) != background;
+  }
+  for (std::size_t x = 0; x < W; ++x) {
+    top |= L(x, 0) != background;
+    bottom |= L(x, H - 1) != background;
+  }
+  const std::array<std::size_t, 3> b{std::size_t(left), std::size_t(top), 0},
+      a{std::size_t(right), std::size_t(bottom), 0};
+  before[0] += b[0];
+  before[1] += b[1];
+  after[0] += a[0];
+  after[1] += a[1];
+  if (!(left || right || top || bottom)) return L;
+  return pad(L, b, a, background);
+}
+
+} // namespace
+
+ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt) {
+  if (img.dimension == 3 && img.size[2] != 1)
+    throw Error("a 3D image with " + std::to_string(img.size[2]) + " slices: img2poly needs a 2D image");
+  if (img.size[0] == 0 || img.size[1] == 0 || img.data.size() != img.count()) throw Error("empty image");
+  if (img.size[0] > 65536 || img.size[1] > 65536 || img.count() > (std::size_t(1) << 28))
+    throw Error("image too large for img2poly (at most 65536 pixels a side and 2^28 pixels)");
+  if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance)) throw UsageError("the tolerance must be >= 0");
+
+  ImagePslgResult res;
+  std::vector<std::int32_t> values(img.data);
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  const std::int32_t background = values.front();
+
+  LabelImage L;
+  if (values.size() == 2) {
+    // Binary: the chapter 5 repair (2D mode), foreground = the higher value.
+    BinaryImage b(img.geometry());
+    for (std::size_t i = 0; i < img.data.size(); ++i) b.data[i] = img.data[i] == values[1];
+    b.dimension = 2;
+    b.size[2] = 1;
+    WellComposedOptions wo;
+    wo.seed = opt.seed;
+    const WellComposedResult wc = make_well_composed(b, wo);
+    L = LabelImage(wc.image.geometry());
+    for (std::size_t i = 0; i < L.data.size(); ++i) L.data[i] = wc.image.data[i] ? values[1] : values[0];
+    res.padded_before = {wc.padded_before[0], wc.padded_before[1]};
+    res.padded_after = {wc.padded_after[0], wc.padded_after[1]};
+    res.critical_configurations = wc.input.total();
+    res.changed_pixels = wc.changed;
+  } else {
+    L = img;
+    res.changed_pixels = repair_labels(L, &res.critical_configurations);
+  }
+  L.dimension = 2;
+  L = pad_border(L, background, res.padded_before, res.padded_after);
+  const std::size_t W = L.size[0], H = L.size[1];
+  const Grid2 px{W, H}, cn{W + 1, H + 1};
+
+  // bdCA: edge bits per corner (i, j) at index point (i - 0.5, j - 0.5):
+  // bit 0 the edge to (i + 1, j), bit 1 the edge to (i, j + 1).
+  std::vector<std::uint8_t> edges(cn.W * cn.H, 0);
+  for (std::size_t j = 1; j < H; ++j)
+    for (std::size_t i = 0; i < W; ++i)
+      if (L(i, j - 1) != L(i, j)) edges[cn.at(i, j)] |= 1;
+  for (std::size_t j = 0; j < H; ++j)
+    for (std::size_t i = 1; i < W; ++i)
+      if (L(i - 1, j) != L(i, j)) edges[cn.at(i, j)] |= 2;
+  auto degree = [&](std::size_t i, std::size_t j) {
+    int d = 0;
+    const std::uint8_t e = edges[cn.at(i, j)];
+    d += (e & 1) + ((e >> 1) & 1);
+    if (i > 0) d += edges[cn.at(i - 1, j)] & 1;
+    if (j > 0) d += (edges[cn.at(i, j - 1)] >> 1) & 1;
+    return d;
+  };
+  for (std::size_t j = 0; j <= H; ++j)
+    for (std::size_t i = 0; i <= W; ++i) {
+      const int d = degree(i, j);
+      if (d) ++res.boundary_vertices;
+      if (d >= 3) ++res.junctions;
+      if (d == 4) {
+        const std::int32_t a = L(i - 1, j - 1), b = L(i, j - 1), c = L(i - 1, j), e = L(i, j);
+        if (a == e && b == c) throw Error("internal: a two-label diagonal configuration survived the repair");
+      }
+    }
+
+  // Trace the curves: from every junction along each of its edges, then the
+  // closed curves that are left.
+  std::vector<std::uint8_t> seen(edges.size(), 0);
+  std::map<std::pair<std::int32_t, std::int32_t>, int> pair_marker;
+  struct Curve { std::vector<Point2> pts; bool closed; std::pair<std::int32_t, std::int32_t> labels; };
+  std::vector<Curve> curves;
+  // Direction 0: +x, 1: +y, 2: -x, 3: -y. Returns false if that edge is absent or seen.
+  auto edge_bit = [&](std::size_t i, std::size_t j, int d, std::size_t& ci, std::size_t& cj, int& bit) {
+    switch (d) {
+      case 0: if (i >= W) return false; ci = i; cj = j; bit = 1; break;
+      case 1: if (j >= H) return false; ci = i; cj = j; bit = 2; break;
+      case 2: if (i == 0) return false; ci = i - 1; cj = j; bit = 1; break;
+      default: if (j == 0) return false; ci = i; cj = j - 1; bit = 2; break;
+    }
+    return (edges[cn.at(ci, cj)] & bit) != 0;
+  };
+  auto trace = [&](std::size_t i0, std::size_t j0, int d0) {
+    Curve c;
+    // Labels on both sides of the first edge.
+    std::size_t ci, cj;
+    int bit;
+    edge_bit(i0, j0, d0, ci, cj, bit);
+    std::int32_t a, b;
+    if (bit == 1) { a = L(ci, cj - 1); b = L(ci, cj); } else { a = L(ci - 1, cj); b = L(ci, cj); }
+    c.labels = {std::min(a, b), std::max(a, b)};
+    std::size_t i = i0, j = j0;
+    int d = d0;
+    c.pts.push_back({double(i) - 0.5, double(j) - 0.5});
+    for (;;) {
+      edge_bit(i, j, d, ci, cj, bit);
+      seen[cn.at(ci, cj)] |= bit;
+      switch (d) { case 0: ++i; break; case 1: ++j; break; case 2: --i; break; default: --j; }
+      if (i == i0 && j == j0) { c.closed = true; break; }
+      c.pts.push_back({double(i) - 0.5, double(j) - 0.5});
+      if (degree(i, j) != 2) { c.closed = false; break; }
+      int next = -1;
+      for (int nd = 0; nd < 4; ++nd) {
+        if (nd == (d + 2) % 4) continue;
+        if (edge_bit(i, j, nd, ci, cj, bit) && !(seen[cn.at(ci, cj)] & bit)) next = nd;
+      }
+      if (next < 0) throw Error("internal: broken pixel-boundary curve");
+      d = next;
+    }
+    pair_marker.emplace(c.labels, 0);
+    curves.push_back(std::move(c));
+  };
+  for (std::size_t j = 0; j <= H; ++j)
+    for (std::size_t i = 0; i <= W; ++i) {
+      if (degree(i, j) < 3) continue;
+      for (int d = 0; d < 4; ++d) {
+        std::size_t ci, cj;
+        int bit;
+        if (edge_bit(i, j, d, ci, cj, bit) && !(seen[cn.at(ci, cj)] & bit)) trace(i, j, d);
+      }
+    }
+  for (std::size_t j = 0; j <= H; ++j)
+    for (std::size_t i = 0; i <= W; ++i)
+      for (int d = 0; d < 2; ++d) {
+        std::size_t ci, cj;
+        int bit;
+        if (edge_bit(i, j, d, ci, cj, bit) && !(seen[cn.at(ci, cj)] & bit)) trace(i, j, d);
+      }
+  {
+    int m = 2;
+    for (auto& [pair, marker] : pair_marker) {
+      marker = m++;
+      res.interfaces.push_back({marker, pair.first, pair.second});
+    }
+  }
+  res.curves = curves.size();
+  for (const auto& c : curves) res.closed_curves += c.closed;
+
+  std::vector<PlanarMesh::Region> regions;
+  // The regional points are the obstacles of the simplification: no curve
+  // may sweep over one, so each region keeps its point.
+  std::vector<Point2> obstacles;
+  // Regions: 4-connected components of equal label; the deepest pixel of each.
+  std::vector<std::int32_t> depth(W * H, -1);
+  std::deque<std::size_t> queue;
+  for (std::size_t y = 0; y < H; ++y)
+    for (std::size_t x = 0; x < W; ++x) {
+      const auto v = L(x, y);
+      const bool edge = x == 0 || y == 0 || x + 1 == W || y + 1 == H || L(x - 1, y) != v ||
+                        L(x + 1, y) != v || L(x, y - 1) != v || L(x, y + 1) != v;
+      if (edge) {
+        depth[px.at(x, y)] = 1;
+        queue.push_back(px.at(x, y));
+      }
+    }
+  while (!queue.empty()) {
+    const std::size_t p = queue.front();
+    queue.pop_front();
+    const std::size_t x = p % W, y = p / W;
+    const std::size_t nb[4] = {x > 0 ? p - 1 : p, x + 1 < W ? p + 1 : p, y > 0 ? p - W : p, y + 1 < H ? p + W : p};
+    for (std::size_t q : nb)
+      if (depth[q] < 0) {
+        depth[q] = depth[p] + 1;
+        queue.push_back(q);
+      }
+  }
+  std::vector<std::int32_t> comp(W * H, -1);
+  for (std::size_t s = 0; s < W * H; ++s) {
+    if (comp[s] >= 0) continue;
+    const std::int32_t c = std::int32_t(regions.size());
+    const std::int32_t label = L.data[s];
+    std::size_t best = s;
+    std::vector<std::size_t> stack{s};
+    comp[s] = c;
+    while (!stack.empty()) {
+      const std::size_t p = stack.back();
+      stack.pop_back();
+      if (depth[p] > depth[best] || (depth[p] == depth[best] && p < best)) best = p;
+      const std::size_t x = p % W, y = p / W;
+      const std::size_t nb[4] = {x > 0 ? p - 1 : p, x + 1 < W ? p + 1 : p, y > 0 ? p - W : p, y + 1 < H ? p + W : p};
+      for (std::size_t q : nb)
+        if (comp[q] < 0 && L.data[q] == label) {
+          comp[q] = c;
+          stack.push_back(q);
+        }
+    }
+    const Vec3 w = L.world(double(best % W), double(best / W), 0);
+    regions.push_back({{w[0], w[1]}, double(label), -1});
+    obstacles.push_back({double(best % W), double(best / W)});
+  }
+  // Simplify the curves together with the four sides of Omega.
+  PolylineSet set;
+  for (const auto& c : curves) {
+    set.lines.push_back(c.pts);
+    set.closed.push_back(c.closed);
+  }
+  const double x0 = -0.5, y0 = -0.5, x1 = double(W) - 0.5, y1 = double(H) - 0.5;
+  const std::vector<Point2> corners{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+  for (int k = 0; k < 4; ++k) {
+    set.lines.push_back({corners[k], corners[(k + 1) % 4]});
+    set.closed.push_back(0);
+  }
+  const SimplifyReport rep = simplify_polylines(set, obstacles, opt.tolerance);
+  res.hausdorff = rep.hausdorff;
+
+  // The PSLG in world coordinates.
+  PlanarMesh& m = res.pslg;
+  std::map<Point2, int> id;
+  auto vertex = [&](const Point2& p) {
+    auto [it, fresh] = id.emplace(p, int(m.points.size()));
+    if (fresh) {
+      const Vec3 w = L.world(p[0], p[1], 0);
+      m.points.push_back({w[0], w[1]});
+    }
+    return it->second;
+  };
+  for (std::size_t k = 0; k < set.lines.size(); ++k) {
+    const auto& line = set.lines[k];
+    const int marker = k < curves.size() ? pair_marker[curves[k].labels] : 1;
+    const std::size_t n = line.size();
+    if (n < 2) throw Error("internal: a curve lost its segments");
+    const std::size_t segs = set.closed[k] ? n : n - 1;
+    for (std::size_t s = 0; s < segs; ++s) {
+      m.segments.push_back({vertex(line[s]), vertex(line[(s + 1) % n])});
+      m.segment_markers.push_back(marker);
+    }
+  }
+  res.simplified_vertices = m.points.size() - 4;
+
+  m.regions = std::move(regions);
+  res.regions = m.regions.size();
+  res.labels = std::move(L);
+  return res;
+}
+
+SvgBackground label_background(const LabelImage& L) {
+  SvgBackground bg;
+  bg.width = L.size[0];
+  bg.height = L.size[1];
+  std::vector<std::int32_t> values(L.data);
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  bg.grey.resize(L.data.size());
+  const double span = values.size() > 1 ? double(values.size() - 1) : 1.0;
+  for (std::size_t i = 0; i < L.data.size(); ++i) {
+    const auto r = std::lower_bound(values.begin(), values.end(), L.data[i]) - values.begin();
+    bg.grey[i] = std::uint8_t(40 + std::lround(175.0 * double(r) / span));
+  }
+  const Vec3 o = L.world(0, 0, 0), c = L.world(1, 0, 0), r = L.world(0, 1, 0);
+  bg.origin = {o[0], o[1]};
+  bg.column = {c[0] - o[0], c[1] - o[1]};
+  bg.row = {r[0] - o[0], r[1] - o[1]};
+  return bg;
+}
+
+} // namespace imgmesh

@@ -1,0 +1,56 @@
+// From a 2D segmented image to a PSLG (thesis 2.3, 3.3.3): the pixel-boundary
+// complex bdCA(X) of a well-composed image plus the rectangle conv(D),
+// simplified with topology kept and a Hausdorff bound, with one regional
+// point per region carrying its label.
+#pragma once
+#include "image/grid.hpp"
+#include "planar/planar_formats.hpp"
+#include "planar/triangle_io.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace imgmesh {
+
+struct ImagePslgOptions {
+  double tolerance = 1.0;  // E: Hausdorff bound between each simplified curve and bdCA, in pixels
+  std::uint64_t seed = 0;  // for the well-composed repair
+};
+
+// The interface between two labels a < b, written as segment marker `marker`.
+struct PixelInterface {
+  int marker = 0;
+  std::int32_t a = 0, b = 0;
+};
+
+struct ImagePslgResult {
+  // World coordinates. Segment marker 1 = the rectangle, 2, 3, ... = the
+  // interfaces (see `interfaces`); one regional point per region (a pixel
+  // centre deep inside it) with the region's label; no holes.
+  PlanarMesh pslg;
+  // The label image the curves bound: repaired (no two-label diagonal 2x2
+  // pattern) and grown by one background pixel on the sides where a nonzero
+  // label touched the border, so every curve lies inside the rectangle.
+  LabelImage labels;
+  std::array<std::size_t, 2> padded_before{0, 0}, padded_after{0, 0};
+  std::vector<PixelInterface> interfaces;
+  std::size_t critical_configurations = 0;  // two-label diagonal 2x2 blocks in the input
+  std::size_t changed_pixels = 0;           // pixels the repair changed
+  std::size_t curves = 0, closed_curves = 0, junctions = 0;
+  std::size_t boundary_vertices = 0;    // vertices of bdCA (before simplification)
+  std::size_t simplified_vertices = 0;  // curve vertices after
+  std::size_t regions = 0;
+  double hausdorff = 0;  // measured, pixels: max over curves of the distance between each and its original
+};
+
+// `img` must be 2D (or one slice). Labels are the pixel values; two distinct
+// values make a binary image (well-composed by lib/wellcomposed's repair);
+// more make a label image (repaired here, see image_pslg.cpp). Throws Error.
+ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt = {});
+
+// The label image as a grey SVG background (labels spread over 40..215).
+SvgBackground label_background(const LabelImage& labels);
+
+} // namespace imgmesh

@@ -1,0 +1,126 @@
+// img2poly: from a 2D segmented image to a PSLG of its simplified pixel
+// boundary plus the domain rectangle (thesis 2.3, 3.3.3).
+#include "cli/cli.hpp"
+#include "image/io.hpp"
+#include "planar/image_pslg.hpp"
+#include "planar/planar_formats.hpp"
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+using namespace imgmesh;
+
+int main(int argc, char** argv) {
+  cli::Tool tool("img2poly",
+                 "Turn a 2D binary or label image into a Triangle .poly: the pixel boundary of its "
+                 "well-composed version, simplified within a Hausdorff tolerance with its topology kept, "
+                 "plus the image rectangle, with one regional point per region giving its label");
+  std::string in, out, svg;
+  std::vector<long long> labels;
+  double threshold = 0;
+  ImagePslgOptions opt;
+  tool.app.add_option("IN", in, "Input 2D image (PNG, NRRD, MetaImage, NIfTI; - for stdin)")->required();
+  tool.app.add_option("OUT", out, "Output PSLG, Triangle .poly (- for stdout)")->required();
+  auto* label = tool.app.add_option("--label", labels,
+                                    "Keep this label (repeatable); other pixels become background 0. "
+                                    "Default: every value is a label")
+                    ->type_name("L")
+                    ->allow_extra_args(false);
+  auto* thr = tool.app.add_option("--threshold", threshold, "Binary image: foreground is value >= T")
+                  ->type_name("T")
+                  ->excludes(label);
+  tool.app.add_option("--tolerance", opt.tolerance,
+                      "Hausdorff bound E between each simplified curve and the pixel boundary, in pixels "
+                      "(0 keeps every corner)")
+      ->capture_default_str()
+      ->type_name("E")
+      ->check(CLI::Range(0.0, 1e6));
+  tool.app.add_option("--svg", svg, "Also draw the curves over the image to this SVG file")->type_name("FILE");
+  tool.add_seed();
+
+  return tool.run(argc, argv, [&] {
+    if (extension_of(out) != ".poly" && out != "-") throw UsageError("OUT must end in .poly", out);
+    if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
+    opt.seed = tool.seed();
+    LabelImage img;
+    if (thr->count()) {
+      Selection sel;
+      sel.has_threshold = true;
+      sel.threshold = threshold;
+      const BinaryImage b = read_foreground(in, sel);
+      img = LabelImage(b.geometry());
+      std::copy(b.data.begin(), b.data.end(), img.data.begin());
+    } else {
+      img = read_labels(in);
+      if (!labels.empty()) {
+        std::set<long long> keep(labels.begin(), labels.end()), found;
+        for (auto& v : img.data) {
+          if (keep.count(v)) found.insert(v);
+          else v = 0;
+        }
+        for (long long l : keep)
+          if (!found.count(l)) throw Error("label " + std::to_string(l) + " does not occur in the image", in);
+      }
+    }
+    if (img.dimension == 3 && img.size[2] != 1)
+      throw Error("a 3D image (" + std::to_string(img.size[2]) + " slices): img2poly needs a 2D image", in);
+
+    tool.report_progress("tracing and simplifying the pixel boundary");
+    ImagePslgResult r;
+    try {
+      r = image_to_pslg(img, opt);
+    } catch (const UsageError&) {
+      throw;
+    } catch (const Error& e) {
+      if (!e.path().empty()) throw;
+      throw Error(e.what(), in);
+    }
+    write_poly(out, r.pslg);
+    if (!svg.empty()) {
+      const SvgBackground bg = label_background(r.labels);
+      PlanarWriteOptions wo;
+      wo.background = &bg;
+      write_planar_mesh(svg, r.pslg, wo);
+    }
+
+    tool.stats["input"] = in;
+    tool.stats["width"] = img.size[0];
+    tool.stats["height"] = img.size[1];
+    tool.stats["padded_before"] = std::vector<std::size_t>{r.padded_before[0], r.padded_before[1]};
+    tool.stats["padded_after"] = std::vector<std::size_t>{r.padded_after[0], r.padded_after[1]};
+    tool.stats["critical_configurations"] = r.critical_configurations;
+    tool.stats["changed_pixels"] = r.changed_pixels;
+    tool.stats["curves"] = r.curves;
+    tool.stats["closed_curves"] = r.closed_curves;
+    tool.stats["junctions"] = r.junctions;
+    tool.stats["boundary_vertices"] = r.boundary_vertices;
+    tool.stats["vertices"] = r.pslg.points.size();
+    tool.stats["segments"] = r.pslg.segments.size();
+    tool.stats["regions"] = r.regions;
+    tool.stats["tolerance"] = opt.tolerance;
+    tool.stats["hausdorff"] = r.hausdorff;
+    Json interfaces = Json::array();
+    for (const auto& f : r.interfaces) {
+      Json j = Json::object();
+      j["marker"] = f.marker;
+      j["labels"] = std::vector<long long>{f.a, f.b};
+      interfaces.push_back(j);
+    }
+    tool.stats["interfaces"] = interfaces;
+
+    std::ostringstream msg;
+    msg << r.curves << " curves, " << r.pslg.points.size() << " vertices (from " << r.boundary_vertices
+        << "), " << r.regions << " regions, Hausdorff " << r.hausdorff << " px";
+    tool.info(msg.str());
+    if (r.padded_before[0] + r.padded_before[1] + r.padded_after[0] + r.padded_after[1])
+      tool.info("a label touches the image border: the rectangle grows by one background pixel there");
+    if (r.hausdorff > opt.tolerance + 1e-9) {
+      tool.info("the Hausdorff bound " + std::to_string(opt.tolerance) + " is not met");
+      return cli::kGuarantee;
+    }
+    return cli::kOk;
+  });
+}
