@@ -1,0 +1,79 @@
+#!/bin/bash
+# implicit2mesh end to end: the real pipeline on a bundled image, the
+# topology certificate checked independently (surface_check computes bdCA(X)
+# of the well-composed image from its boundary faces), exit codes, atomic
+# outputs, and share/examples/Makefile on a generated three-label image.
+set -euo pipefail
+mkdir -p "$TMP"
+cd "$TMP"
+rm -rf ./*
+tool="$BIN/implicit2mesh"
+check="$BIN/../tests/unit/surface/surface_check"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+[ -x "$tool" ] || fail "no $tool"
+[ -x "$check" ] || fail "no $check"
+
+expect_status() {  # expect_status CODE command...
+  local want=$1; shift
+  set +e; "$@" 2>err.txt; local got=$?; set -e
+  [ "$got" = "$want" ] || { cat err.txt >&2; fail "exit $got, want $want: $*"; }
+  [ "$want" = 0 ] || [ "$(wc -l < err.txt)" -ge 1 ] || fail "no message on stderr: $*"
+}
+
+# Usage errors (2) and bad input (1) leave no output behind.
+expect_status 2 "$tool"
+expect_status 2 "$tool" in.nrrd out.xyz
+expect_status 2 "$tool" in.nrrd out.off --ratio 1.1
+expect_status 2 "$tool" in.nrrd out.off --roughness 0.2
+expect_status 2 "$tool" in.nrrd out.off --max-distance -1
+expect_status 1 "$tool" missing.nrrd out.off
+expect_status 1 "$tool" "$DATA/bunny00-96.nrrd" out.off    # not an implicit function file
+grep -q "implicit" err.txt || fail "unclear message for a non-implicit file"
+: > empty.nrrd
+expect_status 1 "$tool" empty.nrrd out.off
+[ ! -e out.off ] || fail "output written on error"
+
+if [ ! -x "$BIN/img2wc" ] || [ ! -x "$BIN/wc2implicit" ]; then
+  echo "img2wc or wc2implicit not built: pipeline part skipped"
+  exit 0
+fi
+
+# The pipeline through pipes, default bounds; then rho_0 = 1.2.
+"$BIN/img2wc" -q "$DATA/bunny00-96.nrrd" bunny-wc.nrrd
+"$BIN/img2wc" -q "$DATA/bunny00-96.nrrd" - | "$BIN/wc2implicit" -q - - | "$tool" -q - bunny.ply --stats stats.json
+"$check" bunny.ply bunny-wc.nrrd 2 || fail "bunny: topology or ratio"
+grep -q '"topology_matches": true' stats.json || fail "stats: topology_matches"
+grep -q '"restricted_delaunay_violations": 0' stats.json || fail "stats: restricted Delaunay"
+"$BIN/wc2implicit" -q bunny-wc.nrrd bunny-f.nrrd
+"$tool" -q bunny-f.nrrd bunny12.off --ratio 1.2 --normals
+"$check" bunny12.off bunny-wc.nrrd 1.2 || fail "bunny at rho_0 = 1.2"
+"$tool" -q bunny-f.nrrd - > stdout.off
+[ "$(head -1 stdout.off)" = OFF ] || fail "OFF on stdout"
+"$check" stdout.off bunny-wc.nrrd 2 || fail "OFF on stdout: topology"
+"$tool" -q bunny-f.nrrd bunny-n.ply --normals --max-distance 0.02
+"$check" bunny-n.ply bunny-wc.nrrd 2 || fail "bunny with normals and --max-distance"
+
+# --max-points: the mesh is written, status 3, the failed guarantee named.
+expect_status 3 "$tool" bunny-f.nrrd small.off --max-points 40
+grep -q "max-points" err.txt || fail "max-points not named"
+[ -s small.off ] || fail "max-points: no mesh written"
+
+# share/examples/Makefile on a three-label image (ball, solid torus, box).
+awk 'BEGIN {
+  nx = 34; ny = 20; nz = 16
+  print "NRRD0004"; print "type: uint8"; print "dimension: 3"
+  print "sizes: " nx " " ny " " nz; print "spacings: 1 1 1.5"; print "encoding: ascii"; print ""
+  for (z = 0; z < nz; z++) for (y = 0; y < ny; y++) for (x = 0; x < nx; x++) {
+    v = 0
+    if ((x - 7.3)^2 + (y - 9.6)^2 + ((z - 7.4) * 1.5)^2 < 4.6^2) v = 1
+    q = sqrt((x - 20.4)^2 + (y - 9.7)^2) - 5.2
+    if (q^2 + ((z - 7.6) * 1.5)^2 < 2.4^2) v = 2
+    if (x >= 28 && x <= 31 && y >= 13 && y <= 17 && z >= 4 && z <= 10) v = 3
+    printf "%d\n", v
+  } }' > labels.nrrd
+make -s -f "$SRC/share/examples/Makefile" SCAN=labels.nrrd LABELS="1 2 3" BIN="$BIN/" OUT=ex -j2
+for l in 1 2 3; do
+  "$check" "ex/label-$l.ply" "ex/label-$l.wc.nrrd" 2 || fail "example label $l"
+done
+"$check" ex/label-2.ply ex/label-2.wc.nrrd 2 | grep -q "euler 0 expected 0" || fail "torus label: Euler characteristic 0 expected"
+echo "implicit2mesh e2e: ok"
