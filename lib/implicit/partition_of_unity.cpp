@@ -43,9 +43,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 namespace imgmesh {
 
@@ -127,6 +132,30 @@ Vec3 PartitionOfUnity::weight_constant(const FloatImage& g, double* g_min, doubl
   return d;
 }
 
+namespace {
+
+// Random evaluations touch the sample array all over; with 4 KiB pages
+// nearly every one misses the TLB. Move large arrays into memory that the
+// kernel may back with transparent huge pages (a hint; no effect elsewhere).
+void prefer_huge_pages(std::vector<float>& data) {
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  const std::size_t bytes = data.size() * sizeof(float);
+  if (bytes < (std::size_t(8) << 20)) return;
+  std::vector<float> fresh;
+  fresh.reserve(data.size());  // untouched pages: the hint applies when they fault in
+  const std::uintptr_t huge = std::uintptr_t(2) << 20;
+  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(fresh.data()) + huge - 1) & ~(huge - 1);
+  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(fresh.data()) + bytes) & ~(huge - 1);
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+  fresh.assign(data.begin(), data.end());
+  data.swap(fresh);
+#else
+  (void)data;
+#endif
+}
+
+} // namespace
+
 PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads) : g_(std::move(g)), d_(d) {
   if (g_.dimension != 3) throw Error("the implicit function needs a 3D image");
   for (int i = 0; i < 3; ++i) {
@@ -138,6 +167,7 @@ PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads) : g_(
   }
   if (g_.data.size() != g_.count()) throw Error("internal: sample data does not match the grid size");
   if (g_.count() > (std::size_t(1) << 40)) throw Error("grid too large");
+  prefer_huge_pages(g_.data);
   for (float x : g_.data)
     if (!std::isfinite(x) || x == 0)
       throw Error("the samples of g must be finite and nonzero (g is a signed distance from voxel centres)");
@@ -155,6 +185,9 @@ PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads) : g_(
     inv_2d_[i] = 1 / (2 * d_[i]);
     cells_[i] = long(g_.size[i]) - 1;
   }
+  // continuous index = diag(1/spacing) D^T (p - origin) (D orthonormal)
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) to_index_[i * 3 + j] = g_.direction[j * 3 + i] / g_.spacing[i];
   stride_[0] = 1;
   stride_[1] = long(g_.size[0]);
   stride_[2] = long(g_.size[0]) * long(g_.size[1]);
@@ -168,7 +201,10 @@ bool PartitionOfUnity::in_domain(const Vec3& p) const {
 }
 
 template <bool Gradient> double PartitionOfUnity::evaluate(const Vec3& p, Vec3* gradient) const {
-  const Vec3 q = g_.continuous_index(p);
+  const double u0 = p[0] - g_.origin[0], u1 = p[1] - g_.origin[1], u2 = p[2] - g_.origin[2];
+  const double q[3] = {to_index_[0] * u0 + to_index_[1] * u1 + to_index_[2] * u2,
+                       to_index_[3] * u0 + to_index_[4] * u1 + to_index_[5] * u2,
+                       to_index_[6] * u0 + to_index_[7] * u1 + to_index_[8] * u2};
   long first[3];
   int cnt[3];
   double w[3][2], dw[3][2], loc[3][2];
@@ -212,14 +248,49 @@ template <bool Gradient> double PartitionOfUnity::evaluate(const Vec3& p, Vec3* 
       loc[i][1] = qi - double(plane);
     }
   }
+  const float* base = g_.data.data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
+  double gs[3];
+  double f;
+  if (cnt[0] == 1 && cnt[1] == 1 && cnt[2] == 1) {
+    // Centre region of a cell (most points): phi_k = 1, f = f_k.
+    const long s1 = stride_[1], s2 = stride_[2];
+    const double x = loc[0][0], y = loc[1][0], z = loc[2][0];
+    const double v000 = base[0], v100 = base[1], v010 = base[s1], v110 = base[s1 + 1];
+    const double v001 = base[s2], v101 = base[s2 + 1], v011 = base[s2 + s1], v111 = base[s2 + s1 + 1];
+    const double c00 = v000 + (v100 - v000) * x, c10 = v010 + (v110 - v010) * x;
+    const double c01 = v001 + (v101 - v001) * x, c11 = v011 + (v111 - v011) * x;
+    const double c0 = c00 + (c10 - c00) * y, c1 = c01 + (c11 - c01) * y;
+    f = c0 + (c1 - c0) * z;
+    if (!Gradient) return f;
+    const double e0 = (v100 - v000) + ((v110 - v010) - (v100 - v000)) * y;
+    const double e1 = (v101 - v001) + ((v111 - v011) - (v101 - v001)) * y;
+    gs[0] = (e0 + (e1 - e0) * z) * inv_delta_[0];
+    gs[1] = ((c10 - c00) + ((c11 - c01) - (c10 - c00)) * z) * inv_delta_[1];
+    gs[2] = (c1 - c0) * inv_delta_[2];
+  } else {
+    f = blend<Gradient>(base, cnt, w, dw, loc, gs);
+  }
+  if (Gradient) {
+    // Grid-axis derivatives to world: p = origin + D s, so df/dp = D df/ds.
+    const auto& D = g_.direction;
+    for (int j = 0; j < 3; ++j) (*gradient)[j] = D[j * 3] * gs[0] + D[j * 3 + 1] * gs[1] + D[j * 3 + 2] * gs[2];
+  }
+  return f;
+}
+
+// Several cells contribute: f = sum_k phi_k f_k over the (at most 8) cells
+// with a nonzero weight, phi_k the product of the per-axis weights.
+template <bool Gradient>
+double PartitionOfUnity::blend(const float* base, const int* cnt, const double (*w)[2], const double (*dw)[2],
+                               const double (*loc)[2], double* gs) const {
   // The (cnt+1)^3 corner samples the contributing cells use (at most 27).
   double B[3][3][3];
-  const float* base = g_.data.data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
   for (int c = 0; c <= cnt[2]; ++c)
     for (int b = 0; b <= cnt[1]; ++b)
       for (int a = 0; a <= cnt[0]; ++a) B[c][b][a] = base[a + b * stride_[1] + c * stride_[2]];
 
-  double f = 0, gs[3] = {0, 0, 0};
+  double f = 0;
+  gs[0] = gs[1] = gs[2] = 0;
   for (int c = 0; c < cnt[2]; ++c)
     for (int b = 0; b < cnt[1]; ++b)
       for (int a = 0; a < cnt[0]; ++a) {
@@ -245,11 +316,6 @@ template <bool Gradient> double PartitionOfUnity::evaluate(const Vec3& p, Vec3* 
           gs[2] += w[0][a] * w[1][b] * dw[2][c] * fk + wk * dfz;
         }
       }
-  if (Gradient) {
-    // Grid-axis derivatives to world: p = origin + D s, so df/dp = D df/ds.
-    const auto& D = g_.direction;
-    for (int j = 0; j < 3; ++j) (*gradient)[j] = D[j * 3] * gs[0] + D[j * 3 + 1] * gs[1] + D[j * 3 + 2] * gs[2];
-  }
   return f;
 }
 

@@ -46,6 +46,9 @@ public:
 
 private:
   template <bool Gradient> double evaluate(const Vec3& p, Vec3* gradient) const;
+  template <bool Gradient>
+  double blend(const float* base, const int* cnt, const double (*w)[2], const double (*dw)[2],
+               const double (*loc)[2], double* gs) const;
 
   FloatImage g_;
   Vec3 d_;
@@ -53,6 +56,7 @@ private:
   // Per axis: voxel spacing delta_i, 1/delta_i, 1/(2 d_i), and the number of
   // cells (size_i - 1).
   double delta_[3], inv_delta_[3], inv_2d_[3];
+  double to_index_[9];  // world offset -> continuous index
   long cells_[3];
   long stride_[3];
 };
