@@ -1,12 +1,13 @@
 // Polyline_simplification_2 over a constrained triangulation with a
 // constraint hierarchy. Its removal test (is_removable) refuses to remove a
 // vertex when any vertex of the triangulation lies in or on the triangle the
-// removal sweeps; inserting the pixel centres near the curves as plain points
-// therefore keeps every pixel centre on its side of every curve (topology
-// kept), on top of CGAL's guarantee that curves never cross. The cost is the
-// largest distance from the original points to the new segment and the stop
-// threshold E^2, so every simplified segment is within E of its original
-// stretch (and the stretch within E of the segment, see image_pslg.cpp).
+// removal sweeps, so curves never cross, and points inserted as plain
+// vertices (the obstacles: img2poly's regional points) never change side.
+// The cost is the largest distance from the original points to the new
+// segment and the stop threshold E^2, so every simplified segment is within
+// E of its original stretch; the stretch is then within E of the segment too
+// (its projection onto the segment covers it), which bounds the Hausdorff
+// distance both ways.
 #include "planar/curve_simplification.hpp"
 
 #include "util/error.hpp"

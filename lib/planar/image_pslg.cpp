@@ -19,8 +19,12 @@
 // markers: 1 for Omega, 2, 3, ... for the label pairs in increasing order.
 //
 // Regions are the 4-connected components of equal label (the faces of bdCA);
-// each gets a regional point at its deepest pixel centre. Since simplification
-// never sweeps a pixel centre, that point is still inside its region after.
+// each gets a regional point at its deepest pixel centre, and these points are
+// obstacles of the simplification, so each is still inside its region after.
+// Pixel centres closer than E to bdCA may change side: that is what moving a
+// curve by up to E means (no chord between pixel corners avoids it). A point
+// farther than E from bdCA keeps its side: it lies in no region between a
+// curve and its simplification, all of whose points are within E of bdCA.
 #include "planar/image_pslg.hpp"
 
 #include "planar/curve_simplification.hpp"
