@@ -89,8 +89,6 @@ int main(int argc, char** argv) {
     tool.stats["input"] = in;
     tool.stats["width"] = img.size[0];
     tool.stats["height"] = img.size[1];
-    tool.stats["padded_before"] = std::vector<std::size_t>{r.padded_before[0], r.padded_before[1]};
-    tool.stats["padded_after"] = std::vector<std::size_t>{r.padded_after[0], r.padded_after[1]};
     tool.stats["critical_configurations"] = r.critical_configurations;
     tool.stats["changed_pixels"] = r.changed_pixels;
     tool.stats["curves"] = r.curves;
@@ -115,8 +113,6 @@ int main(int argc, char** argv) {
     msg << r.curves << " curves, " << r.pslg.points.size() << " vertices (from " << r.boundary_vertices
         << "), " << r.regions << " regions, Hausdorff " << r.hausdorff << " px";
     tool.info(msg.str());
-    if (r.padded_before[0] + r.padded_before[1] + r.padded_after[0] + r.padded_after[1])
-      tool.info("a label touches the image border: the rectangle grows by one background pixel there");
     if (r.hausdorff > opt.tolerance + 1e-9) {
       tool.info("the Hausdorff bound " + std::to_string(opt.tolerance) + " is not met");
       return cli::kGuarantee;

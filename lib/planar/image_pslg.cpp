@@ -8,13 +8,17 @@
 // give one of the lower-labelled pixels the higher label, and look again at
 // the four blocks around it. Every change raises the sum of the labels, so
 // the repair ends; blocks with three or four labels are junctions and stay
-// (vertices of degree 3 or 4 are fine for a PSLG). Afterwards the grid grows
-// by one pixel of the lowest label on the sides a higher label touches, so
-// every curve of bdCA lies strictly inside the rectangle Omega, whose pixel
-// centres are then all strictly inside it too (thesis 2.3 assumes this).
+// (vertices of degree 3 or 4 are fine for a PSLG).
+//
+// The rectangle Omega is the image's extent (the union of its pixel squares).
+// Thesis 2.3 takes conv(D), the hull of the pixel centres, and assumes no
+// foreground on the border; we allow it: a curve reaching the border ends on
+// Omega at a vertex of degree 3, and Omega is cut there. (Growing the grid
+// instead would leave one-pixel strips along the border that the mesher must
+// fill with tiny triangles.)
 //
 // Curves. Every vertex of bdCA has degree 2 except junctions; we cut bdCA at
-// the junctions into open curves (each between two labels a < b) and closed
+// the junctions and at Omega into open curves (each between two labels a < b) and closed
 // ones, simplify them together with the four sides of Omega, and number the
 // markers: 1 for Omega, 2, 3, ... for the label pairs in increasing order.
 //
@@ -78,29 +82,6 @@ std::size_t repair_labels(LabelImage& L, std::size_t* initial) {
   return changed;
 }
 
-// Grow the grid by one pixel of `background` on each side a different label touches.
-LabelImage pad_border(const LabelImage& L, std::int32_t background, std::array<std::size_t, 2>& before,
-                      std::array<std::size_t, 2>& after) {
-  const std::size_t W = L.size[0], H = L.size[1];
-  bool left = false, right = false, top = false, bottom = false;
-  for (std::size_t y = 0; y < H; ++y) {
-    left |= L(0, y) != background;
-    right |= L(W - 1, y) != background;
-  }
-  for (std::size_t x = 0; x < W; ++x) {
-    top |= L(x, 0) != background;
-    bottom |= L(x, H - 1) != background;
-  }
-  const std::array<std::size_t, 3> b{std::size_t(left), std::size_t(top), 0},
-      a{std::size_t(right), std::size_t(bottom), 0};
-  before[0] += b[0];
-  before[1] += b[1];
-  after[0] += a[0];
-  after[1] += a[1];
-  if (!(left || right || top || bottom)) return L;
-  return pad(L, b, a, background);
-}
-
 } // namespace
 
 ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt) {
@@ -115,7 +96,6 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
   std::vector<std::int32_t> values(img.data);
   std::sort(values.begin(), values.end());
   values.erase(std::unique(values.begin(), values.end()), values.end());
-  const std::int32_t background = values.front();
 
   LabelImage L;
   if (values.size() == 2) {
@@ -127,10 +107,14 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
     WellComposedOptions wo;
     wo.seed = opt.seed;
     const WellComposedResult wc = make_well_composed(b, wo);
-    L = LabelImage(wc.image.geometry());
-    for (std::size_t i = 0; i < L.data.size(); ++i) L.data[i] = wc.image.data[i] ? values[1] : values[0];
-    res.padded_before = {wc.padded_before[0], wc.padded_before[1]};
-    res.padded_after = {wc.padded_after[0], wc.padded_after[1]};
+    // The repair may grow the grid where foreground touches the border; the
+    // blocks inside the original grid are what matters here (the rectangle
+    // is the image's own extent), so crop back to it.
+    L = LabelImage(img.geometry());
+    L.dimension = 2;
+    for (std::size_t y = 0; y < L.size[1]; ++y)
+      for (std::size_t x = 0; x < L.size[0]; ++x)
+        L(x, y) = wc.image(x + wc.padded_before[0], y + wc.padded_before[1]) ? values[1] : values[0];
     res.critical_configurations = wc.input.total();
     res.changed_pixels = wc.changed;
   } else {
@@ -138,7 +122,6 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
     res.changed_pixels = repair_labels(L, &res.critical_configurations);
   }
   L.dimension = 2;
-  L = pad_border(L, background, res.padded_before, res.padded_after);
   const std::size_t W = L.size[0], H = L.size[1];
   const Grid2 px{W, H}, cn{W + 1, H + 1};
 
@@ -159,11 +142,17 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
     if (j > 0) d += (edges[cn.at(i, j - 1)] >> 1) & 1;
     return d;
   };
+  // Curve ends: junctions, and the points where a curve meets the rectangle.
+  auto on_border = [&](std::size_t i, std::size_t j) { return i == 0 || j == 0 || i == W || j == H; };
+  auto fixed = [&](std::size_t i, std::size_t j) {
+    const int d = degree(i, j);
+    return d >= 3 || (d >= 1 && on_border(i, j));
+  };
   for (std::size_t j = 0; j <= H; ++j)
     for (std::size_t i = 0; i <= W; ++i) {
       const int d = degree(i, j);
       if (d) ++res.boundary_vertices;
-      if (d >= 3) ++res.junctions;
+      if (fixed(i, j)) ++res.junctions;
       if (d == 4) {
         const std::int32_t a = L(i - 1, j - 1), b = L(i, j - 1), c = L(i - 1, j), e = L(i, j);
         if (a == e && b == c) throw Error("internal: a two-label diagonal configuration survived the repair");
@@ -204,7 +193,7 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
       switch (d) { case 0: ++i; break; case 1: ++j; break; case 2: --i; break; default: --j; }
       if (i == i0 && j == j0) { c.closed = true; break; }
       c.pts.push_back({double(i) - 0.5, double(j) - 0.5});
-      if (degree(i, j) != 2) { c.closed = false; break; }
+      if (fixed(i, j)) { c.closed = false; break; }
       int next = -1;
       for (int nd = 0; nd < 4; ++nd) {
         if (nd == (d + 2) % 4) continue;
@@ -218,7 +207,7 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
   };
   for (std::size_t j = 0; j <= H; ++j)
     for (std::size_t i = 0; i <= W; ++i) {
-      if (degree(i, j) < 3) continue;
+      if (!fixed(i, j)) continue;
       for (int d = 0; d < 4; ++d) {
         std::size_t ci, cj;
         int bit;
@@ -300,11 +289,27 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
     set.lines.push_back(c.pts);
     set.closed.push_back(c.closed);
   }
-  const double x0 = -0.5, y0 = -0.5, x1 = double(W) - 0.5, y1 = double(H) - 0.5;
-  const std::vector<Point2> corners{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
-  for (int k = 0; k < 4; ++k) {
-    set.lines.push_back({corners[k], corners[(k + 1) % 4]});
-    set.closed.push_back(0);
+  // The rectangle, cut where curves end on it (counter-clockwise in index space).
+  {
+    std::vector<std::array<std::size_t, 2>> perimeter;
+    for (std::size_t i = 0; i < W; ++i) perimeter.push_back({i, 0});
+    for (std::size_t j = 0; j < H; ++j) perimeter.push_back({W, j});
+    for (std::size_t i = W; i > 0; --i) perimeter.push_back({i, H});
+    for (std::size_t j = H; j > 0; --j) perimeter.push_back({0, j});
+    auto corner = [&](const std::array<std::size_t, 2>& c) {
+      return (c[0] == 0 || c[0] == W) && (c[1] == 0 || c[1] == H);
+    };
+    std::vector<Point2> piece;
+    for (std::size_t k = 0; k <= perimeter.size(); ++k) {
+      const auto c = perimeter[k % perimeter.size()];
+      const Point2 p{double(c[0]) - 0.5, double(c[1]) - 0.5};
+      if (k > 0 && (corner(c) || fixed(c[0], c[1]))) {
+        set.lines.push_back({piece.back(), p});
+        set.closed.push_back(0);
+        piece.clear();
+      }
+      if (piece.empty()) piece.push_back(p);
+    }
   }
   const SimplifyReport rep = simplify_polylines(set, obstacles, opt.tolerance);
   res.hausdorff = rep.hausdorff;

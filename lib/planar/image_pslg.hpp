@@ -26,19 +26,19 @@ struct PixelInterface {
 };
 
 struct ImagePslgResult {
-  // World coordinates. Segment marker 1 = the rectangle, 2, 3, ... = the
+  // World coordinates. The rectangle is the image's extent (pixel squares
+  // included); curves may end on it. Segment marker 1 = the rectangle, 2, 3, ... = the
   // interfaces (see `interfaces`); one regional point per region (a pixel
   // centre deep inside it) with the region's label; no holes.
   PlanarMesh pslg;
-  // The label image the curves bound: repaired (no two-label diagonal 2x2
-  // pattern) and grown by one background pixel on the sides where a nonzero
-  // label touched the border, so every curve lies inside the rectangle.
+  // The label image the curves bound (same grid as the input): repaired, no
+  // two-label diagonal 2x2 pattern left.
   LabelImage labels;
-  std::array<std::size_t, 2> padded_before{0, 0}, padded_after{0, 0};
   std::vector<PixelInterface> interfaces;
   std::size_t critical_configurations = 0;  // two-label diagonal 2x2 blocks in the input
   std::size_t changed_pixels = 0;           // pixels the repair changed
-  std::size_t curves = 0, closed_curves = 0, junctions = 0;
+  std::size_t curves = 0, closed_curves = 0;
+  std::size_t junctions = 0;  // curve ends: vertices of degree 3 or 4, and where curves meet the rectangle
   std::size_t boundary_vertices = 0;    // vertices of bdCA (before simplification)
   std::size_t simplified_vertices = 0;  // curve vertices after
   std::size_t regions = 0;

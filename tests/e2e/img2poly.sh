@@ -162,19 +162,18 @@ for E in 0.5 1 2; do
   python3 -c "import json; h = json.load(open('s.json'))['hausdorff']; assert h <= $E + 1e-9, h" || fail "Hausdorff above $E"
   grep -q "<svg" shapes.svg || fail "no SVG"
   expect 0 "$T" shapes.poly shapes.1.ele
-  # The blob touches the border: the grid grew by one pixel there, so the
-  # image index of a world point is (x - 10) / 0.5, (y + 5) / 0.8 still.
+  # Image index of a world point: (x - 10) / 0.5, (y + 5) / 0.8.
   python3 check.py shapes.1.ele shapes.poly 20.7 shapes.raw 80 60 10 -5 0.5 0.8 100 $E > c.txt || { cat c.txt; fail "mesh check, E=$E"; }
 done
-# World coordinates: the rectangle spans the (grown) image in physical units.
+# World coordinates: the rectangle spans the image in physical units.
 python3 - <<'PYEOF' || fail "rectangle not in world coordinates"
 L = [l.split('#')[0].split() for l in open("shapes.poly")]
 L = [l for l in L if l]
 n = int(L[0][0])
 xs = [float(r[1]) for r in L[1:1 + n]]; ys = [float(r[2]) for r in L[1:1 + n]]
-# pixels 0..79 (+1 grown) at x = 10 + 0.5 i, half a pixel beyond; y = -5 + 0.8 j
-assert abs(min(xs) - (10 - 0.25)) < 1e-9 and abs(max(xs) - (10 + 0.5 * 80 + 0.25)) < 1e-9, (min(xs), max(xs))
-assert abs(min(ys) - (-5 - 0.4)) < 1e-9 and abs(max(ys) - (-5 + 0.8 * 60 + 0.4)) < 1e-9, (min(ys), max(ys))
+# pixels 0..79 at x = 10 + 0.5 i, half a pixel beyond; y = -5 + 0.8 j, j = 0..59
+assert abs(min(xs) - (10 - 0.25)) < 1e-9 and abs(max(xs) - (10 + 0.5 * 79 + 0.25)) < 1e-9, (min(xs), max(xs))
+assert abs(min(ys) - (-5 - 0.4)) < 1e-9 and abs(max(ys) - (-5 + 0.8 * 59 + 0.4)) < 1e-9, (min(ys), max(ys))
 PYEOF
 
 # Three labels: junctions, one marker per touching pair, attributes = labels.
@@ -193,10 +192,8 @@ for r in L[1:]:
     x = sum(p[0] for p in c) / 3; y = sum(p[1] for p in c) / 3
     d = math.hypot(x - 40, y - 30)
     want = 3 if d < 12 else (1 if x < 40 else 2)
-    # far from the curves (circle r 12, line x = 39.5, and the grown border
-    # of label 1 around the 80 x 60 image) the label must match
-    inside = 2 < x < 77 and 2 < y < 57
-    if inside and abs(d - 12) > 2 and abs(x - 39.5) > 2 and float(r[4]) != want: bad += 1
+    # far from the curves (circle r 12, line x = 39.5) the label must match
+    if abs(d - 12) > 2 and abs(x - 39.5) > 2 and float(r[4]) != want: bad += 1
 assert bad == 0, bad
 PYEOF
 # --label keeps some labels, the others become 0.
