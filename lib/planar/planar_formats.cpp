@@ -427,7 +427,7 @@ PlanarMesh read_planar_mesh(const std::string& path) {
 
 PlanarMesh read_pslg(const std::string& path) {
   const std::string ext = extension_of(path);
-  if (ext == ".poly") return read_poly(path);
+  if (ext == ".poly" || path == "-") return read_poly(path);  // stdin: .poly text
   if (ext == ".off") {
     PlanarMesh m = read_off(path, 2, 1 << 30);
     std::set<std::pair<int, int>> seen;
