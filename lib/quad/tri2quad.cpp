@@ -1,0 +1,754 @@
+// tri2quad: the mesh-level algorithm of thesis 3.2.1 and 3.3 (see the header
+// for the outline). No recursion: BFS orders are explicit arrays, so meshes
+// of 10^7 triangles run in linear time and bounded stack.
+#include "quad/tri2quad.hpp"
+
+#include "quad/tri2quad_polygons.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <unordered_map>
+
+namespace imgmesh {
+namespace {
+
+using t2q::LocalPatch;
+using t2q::P2;
+using t2q::Ring;
+
+enum Case : int {
+  kQuadConvex,        // 4(c) shortcut / 5(c): two triangles form a convex quad
+  kQuadPassedUp,      // 4(c): non-convex pair, handled with the grandparent
+  kPentagonEar,       // B.2.1, leftover triangle is an ear (no point)
+  kPentagonType1,     // 4(b), B.2.1 type 1
+  kPentagonType2,     // 4(c)(ii), B.2.1 type 2
+  kHexagon,           // 4(c)(i)/(iii), B.1.1
+  kHeptagon,          // 4(c)(v)(f), B.3.1 (ear form)
+  kNonEmptyTriangle,  // Fig. 3.6: non-empty triangle formed
+  kNonEmptySplit,     // non-empty triangle: one quad and a leftover triangle
+  kQuadPoint,         // 3(b), 4(c)(iii)/(v)(d)-(e): B.1.2
+  kPentagonPoint,     // 3(c), 4(c)(v)(a)-(c): B.2.2
+  kHexagonPoint,      // 4(c)(iv)
+  kRootJoe,           // step 5(b)/(d) without an outside point (Joe's split)
+  kRootOutside,       // step 5(b)/(d) as in the thesis (--allow-outside)
+  kRootNested,        // step 5(c): non-convex quad with a free point, B.1.2
+  kFallback,          // safe odd-degree split of a region (see header)
+  kRepair,            // Fig. 3.23: parent component triangle split
+  kNumCases
+};
+const char* kCaseNames[kNumCases] = {
+    "4c_convex_quad",        "4c_quad_to_grandparent", "B21_pentagon_ear",
+    "4b_B21_type1",          "4cii_B21_type2",         "4ci_4ciii_B11_hexagon",
+    "4cvf_B31_heptagon",     "3_nonempty_triangle",    "3_nonempty_triangle_split",
+    "3b_B12_quad_point",     "3c_B22_pentagon_point",  "4civ_hexagon_point",
+    "5bd_joe_split",         "5bd_outside_point",      "5c_B12_nested",
+    "fallback_split",        "3_3_repair_split"};
+
+enum RegType : std::uint8_t { kEmpty = 0, kTri, kQuadR, kNTri };
+struct Region {
+  RegType type = kEmpty;
+  std::uint8_t diag = 0;
+  int x = -1, y = -1;
+};
+
+std::uint64_t ekey(int a, int b) {
+  if (a > b) std::swap(a, b);
+  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
+}
+
+struct Converter {
+  const Tri2QuadInput& in;
+  const Tri2QuadOptions& opt;
+  Tri2QuadResult& out;
+  std::vector<P2>& pts;
+  std::vector<std::array<int, 3>> T;
+  std::vector<std::array<int, 3>> nb;
+  std::vector<std::uint8_t> con;
+  std::vector<double> attr;
+  std::vector<int> comp;
+  std::vector<int> par;
+  std::vector<std::int8_t> pslot;
+  std::vector<Region> reg;
+  std::unordered_map<std::uint64_t, int> segs;  // current constraint/boundary edges -> marker
+  std::size_t cases[kNumCases] = {};
+  bool has_attr = false;
+
+  Converter(const Tri2QuadInput& i, const Tri2QuadOptions& o, Tri2QuadResult& r)
+      : in(i), opt(o), out(r), pts(r.points) {}
+
+  std::string vid(int v) const { return std::to_string(v + in.index_base); }
+  std::string edge_name(int a, int b) const { return "(" + vid(a) + ", " + vid(b) + ")"; }
+
+  // ------------------------------------------------------------ set-up
+  void setup() {
+    const std::size_t n = in.points.size();
+    if (in.triangles.empty()) throw Error("the triangle mesh has no triangles", in.path);
+    if (n > std::size_t(1) << 30 || in.triangles.size() > std::size_t(1) << 29)
+      throw Error("mesh too large", in.path);
+    pts = in.points;
+    for (const P2& p : pts)
+      if (!std::isfinite(p[0]) || !std::isfinite(p[1])) throw Error("non-finite coordinate", in.path);
+    T.resize(in.triangles.size());
+    has_attr = in.region.size() == in.triangles.size();
+    attr.assign(T.size(), 0.0);
+    for (std::size_t t = 0; t < T.size(); ++t) {
+      auto tr = in.triangles[t];
+      for (int v : tr)
+        if (v < 0 || std::size_t(v) >= n)
+          throw Error("triangle " + std::to_string(t + in.index_base) + " has a vertex id out of range", in.path);
+      const int o = t2q::orient(pts[tr[0]], pts[tr[1]], pts[tr[2]]);
+      if (o == 0)
+        throw Error("triangle " + std::to_string(t + in.index_base) + " (" + vid(tr[0]) + ", " + vid(tr[1]) +
+                        ", " + vid(tr[2]) + ") is degenerate (zero area)",
+                    in.path);
+      if (o < 0) std::swap(tr[1], tr[2]);
+      T[t] = tr;
+      if (has_attr) attr[t] = in.region[t];
+    }
+    // Edge adjacency by sorting (key, slot): 16 bytes an edge, no hash map.
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> e;
+    e.reserve(3 * T.size());
+    for (std::size_t t = 0; t < T.size(); ++t)
+      for (int j = 0; j < 3; ++j) e.push_back({ekey(T[t][j], T[t][(j + 1) % 3]), std::uint32_t(3 * t + j)});
+    std::sort(e.begin(), e.end());
+    nb.assign(T.size(), {-1, -1, -1});
+    con.assign(T.size(), 0);
+    for (std::size_t i = 0; i < e.size();) {
+      std::size_t j = i + 1;
+      while (j < e.size() && e[j].first == e[i].first) ++j;
+      const int a = int(e[i].first >> 32), b = int(e[i].first & 0xffffffffu);
+      if (j - i > 2) throw Error("edge " + edge_name(a, b) + " is shared by more than two triangles (not a 2-manifold)", in.path);
+      if (j - i == 2) {
+        const int t0 = int(e[i].second / 3), s0 = int(e[i].second % 3);
+        const int t1 = int(e[i + 1].second / 3), s1 = int(e[i + 1].second % 3);
+        if (T[t0][s0] == T[t1][s1])
+          throw Error("triangles on both sides of edge " + edge_name(a, b) + " overlap (folded mesh)", in.path);
+        nb[t0][s0] = t1;
+        nb[t1][s1] = t0;
+      }
+      i = j;
+    }
+    // Constraint segments.
+    for (std::size_t k = 0; k < in.constraints.size(); ++k) {
+      const auto s = in.constraints[k];
+      const int marker = k < in.constraint_markers.size() ? in.constraint_markers[k] : 1;
+      if (s[0] < 0 || s[1] < 0 || std::size_t(s[0]) >= n || std::size_t(s[1]) >= n)
+        throw Error("constraint segment " + std::to_string(k + in.index_base) + " has a vertex id out of range", in.path);
+      const std::uint64_t key = ekey(s[0], s[1]);
+      auto it = std::lower_bound(e.begin(), e.end(), std::make_pair(key, std::uint32_t(0)));
+      if (it == e.end() || it->first != key)
+        throw Error("constraint segment " + edge_name(s[0], s[1]) + " is not an edge of the triangle mesh", in.path);
+      for (; it != e.end() && it->first == key; ++it) con[it->second / 3] |= std::uint8_t(1u << (it->second % 3));
+      segs[key] = marker;
+    }
+    // Every boundary edge is a constraint too.
+    for (std::size_t t = 0; t < T.size(); ++t)
+      for (int j = 0; j < 3; ++j)
+        if (nb[t][j] < 0) {
+          con[t] |= std::uint8_t(1u << j);
+          segs.emplace(ekey(T[t][j], T[t][(j + 1) % 3]), 1);
+        }
+    // Input restriction (3.3): the constraint complex has no dangling end.
+    std::vector<std::uint8_t> deg(n, 0);
+    for (std::size_t t = 0; t < T.size(); ++t)
+      for (int j = 0; j < 3; ++j)
+        if ((con[t] >> j & 1) && (nb[t][j] < 0 || std::size_t(nb[t][j]) > t)) {
+          for (int v : {T[t][j], T[t][(j + 1) % 3]}) deg[v] = std::uint8_t(std::min(deg[v] + 1, 3));
+        }
+    for (std::size_t t = 0; t < T.size(); ++t)
+      for (int j = 0; j < 3; ++j)
+        if (con[t] >> j & 1)
+          for (int v : {T[t][(j + 1) % 3], T[t][j]})
+            if (deg[v] == 1)
+              throw Error("constraint edge " + edge_name(T[t][j], T[t][(j + 1) % 3]) + " dangles at vertex " + vid(v) +
+                              " (no other constraint or boundary edge ends there): the input restriction of "
+                              "thesis 3.3 (Fig. 3.26) is not met",
+                          in.path);
+    out.input_points = n;
+    out.triangles = T.size();
+  }
+
+  // ------------------------------------------------------------ components
+  std::vector<int> comp_order, comp_parent, comp_seed;
+  void components() {
+    comp.assign(T.size(), -1);
+    std::vector<int> q;
+    q.reserve(T.size());
+    int h = 0;
+    for (std::size_t s = 0; s < T.size(); ++s) {
+      if (comp[s] >= 0) continue;
+      comp[s] = h;
+      comp_seed.push_back(int(s));
+      q.clear();
+      q.push_back(int(s));
+      for (std::size_t i = 0; i < q.size(); ++i) {
+        const int t = q[i];
+        for (int j = 0; j < 3; ++j) {
+          const int u = nb[t][j];
+          if (u >= 0 && !(con[t] >> j & 1) && comp[u] < 0) { comp[u] = h; q.push_back(u); }
+        }
+      }
+      ++h;
+    }
+    for (std::size_t t = 0; t < T.size(); ++t)
+      for (int j = 0; j < 3; ++j)
+        if ((con[t] >> j & 1) && nb[t][j] >= 0 && comp[nb[t][j]] == comp[t])
+          throw Error("constraint edge " + edge_name(T[t][j], T[t][(j + 1) % 3]) +
+                          " has the same region on both sides (an open constraint curve): the input "
+                          "restriction of thesis 3.3 (Fig. 3.26) is not met",
+                      in.path);
+    out.components = std::size_t(h);
+    // Triangles of each component (CSR), then T^c by BFS from components
+    // with a boundary edge.
+    std::vector<int> start(h + 1, 0), list(T.size());
+    for (int c : comp) ++start[c + 1];
+    for (int c = 0; c < h; ++c) start[c + 1] += start[c];
+    {
+      std::vector<int> pos(start.begin(), start.end() - 1);
+      for (std::size_t t = 0; t < T.size(); ++t) list[pos[comp[t]]++] = int(t);
+    }
+    comp_parent.assign(h, -2);
+    for (std::size_t t = 0; t < T.size(); ++t) {
+      const bool boundary = nb[t][0] < 0 || nb[t][1] < 0 || nb[t][2] < 0;
+      if (!boundary || comp_parent[comp[t]] != -2) continue;
+      const std::size_t first = comp_order.size();
+      comp_parent[comp[t]] = -1;
+      comp_order.push_back(comp[t]);
+      for (std::size_t i = first; i < comp_order.size(); ++i) {
+        const int c = comp_order[i];
+        for (int k = start[c]; k < start[c + 1]; ++k) {
+          const int u = list[k];
+          for (int j = 0; j < 3; ++j) {
+            const int w = nb[u][j];
+            if (w >= 0 && comp_parent[comp[w]] == -2) {
+              comp_parent[comp[w]] = c;
+              comp_order.push_back(comp[w]);
+            }
+          }
+        }
+      }
+    }
+  }
+
+  // ------------------------------------------------------------ output
+  int commit(const LocalPatch& lp, double a, std::size_t first_quad = 0) {
+    std::vector<int> id(lp.p.size());
+    for (std::size_t i = 0; i < lp.p.size(); ++i) {
+      if (lp.gid[i] >= 0) { id[i] = lp.gid[i]; continue; }
+      id[i] = int(pts.size());
+      pts.push_back(lp.p[i]);
+      ++out.steiner;
+    }
+    for (std::size_t k = first_quad; k < lp.quads.size(); ++k) {
+      const auto& q = lp.quads[k];
+      out.quads.push_back({id[q[0]], id[q[1]], id[q[2]], id[q[3]]});
+      if (has_attr) out.region.push_back(a);
+    }
+    return 0;
+  }
+
+  void split_segment(int a, int b, int m) {
+    auto it = segs.find(ekey(a, b));
+    if (it == segs.end()) return;
+    const int marker = it->second;
+    segs.erase(it);
+    segs[ekey(a, m)] = marker;
+    segs[ekey(m, b)] = marker;
+  }
+
+  // Fig. 3.23: the triangle across (a, b) from `from` gets the point m.
+  void repair(int from, int a, int b, int m) {
+    int N = -1, sN = -1;
+    for (int j = 0; j < 3; ++j) {
+      const int w = nb[from][j];
+      if (w >= 0 && ((T[from][j] == a && T[from][(j + 1) % 3] == b))) N = w;
+    }
+    if (N < 0) return;
+    for (int j = 0; j < 3; ++j)
+      if (T[N][j] == b && T[N][(j + 1) % 3] == a) sN = j;
+    if (sN < 0) return;
+    const int z = T[N][(sN + 2) % 3];
+    const int oldnb = nb[N][(sN + 1) % 3];
+    const int oldbit = con[N] >> ((sN + 1) % 3) & 1;
+    const int N2 = int(T.size());
+    T.push_back({m, a, z});
+    nb.push_back({from, oldnb, N});
+    con.push_back(std::uint8_t(1u | (oldbit << 1)));
+    attr.push_back(attr[N]);
+    comp.push_back(comp[N]);
+    par.push_back(-1);
+    pslot.push_back(0);
+    reg.push_back({});
+    T[N][(sN + 1) % 3] = m;
+    nb[N][(sN + 1) % 3] = N2;
+    con[N] = std::uint8_t((con[N] & ~(1u << ((sN + 1) % 3))) | (1u << sN));
+    if (oldnb >= 0)
+      for (int j = 0; j < 3; ++j)
+        if (nb[oldnb][j] == N && T[oldnb][j] == z && T[oldnb][(j + 1) % 3] == a) nb[oldnb][j] = N2;
+    ++cases[kRepair];
+    ++out.repairs;
+  }
+
+  // ------------------------------------------------------------ regions
+  // Triangles of a child's region attached to its outgoing edge (p, q).
+  static void region_triangles(const Region& r, int p, int q, std::vector<std::array<int, 3>>& tris) {
+    switch (r.type) {
+      case kEmpty: break;
+      case kTri: tris.push_back({p, q, r.x}); break;
+      case kQuadR:
+        if (r.diag == 0) { tris.push_back({p, q, r.y}); tris.push_back({r.y, q, r.x}); }
+        else { tris.push_back({p, q, r.x}); tris.push_back({p, r.x, r.y}); }
+        break;
+      case kNTri:
+        tris.push_back({p, q, r.y}); tris.push_back({r.y, q, r.x}); tris.push_back({p, r.y, r.x});
+        break;
+    }
+  }
+  static void region_ext(const Region& r, std::vector<int>& b, std::vector<int>& inner) {
+    switch (r.type) {
+      case kEmpty: break;
+      case kTri: b.push_back(r.x); break;
+      case kQuadR: b.push_back(r.x); b.push_back(r.y); break;
+      case kNTri: b.push_back(r.x); inner.push_back(r.y); break;
+    }
+  }
+
+  // The safe split. tris[0] is the node's triangle with its outgoing edge
+  // first. Returns the leftover region (kEmpty or kTri) and fills lp.
+  Region fallback(LocalPatch& lp, const std::vector<std::array<int, 3>>& tris, bool root, int* split_m) {
+    const int n = int(tris.size());
+    // Spanning tree of the region's dual graph (shared edges).
+    std::vector<int> parent(n, -1), order{0}, pe(n, -1);  // pe: slot in child of edge to parent
+    std::vector<char> seen(n, 0);
+    seen[0] = 1;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      const int u = order[i];
+      for (int j = 0; j < 3; ++j) {
+        const int a = tris[u][j], b = tris[u][(j + 1) % 3];
+        for (int w = 0; w < n; ++w) {
+          if (seen[w]) continue;
+          for (int k = 0; k < 3; ++k)
+            if (tris[w][k] == b && tris[w][(k + 1) % 3] == a) {
+              seen[w] = 1; parent[w] = u; pe[w] = k; order.push_back(w);
+            }
+        }
+      }
+    }
+    if (int(order.size()) != n) throw Error("internal error: disconnected region in tri2quad fallback", in.path);
+    // Odd-degree edge subset (a T-join): every triangle but a non-root
+    // node's own triangle ends with 1 or 3 split edges.
+    std::vector<std::array<int, 3>> split(n, {-1, -1, -1});  // local point id per slot
+    std::vector<int> deg(n, 0);
+    std::vector<std::pair<int, int>> chosen;  // (child, slot)
+    for (int i = n - 1; i > 0; --i) {
+      const int w = order[i];
+      if (deg[w] % 2 == 0) { ++deg[w]; ++deg[parent[w]]; chosen.push_back({w, pe[w]}); }
+    }
+    const bool split_root_edge = root && deg[0] % 2 == 0;
+    if (split_root_edge) ++deg[0];
+    auto local = [&](int g) {
+      for (std::size_t i = 0; i < lp.p.size(); ++i) if (lp.gid[i] == g) return int(i);
+      return lp.add_known(pts[g], g);
+    };
+    for (const auto& t : tris) for (int v : t) local(v);
+    const auto base = lp.mark();
+    for (double push : {0.0, 0.05, 0.01, 0.002}) {
+      if (push > 0 && deg[0] != 2) break;
+      lp.rollback(base);
+      for (auto& s : split) s = {-1, -1, -1};
+      bool ok = true;
+      for (const auto& [w, k] : chosen) {
+        const int a = tris[w][k], b = tris[w][(k + 1) % 3];
+        const int m = lp.add_new({0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])});
+        split[w][k] = m;
+        const int u = parent[w];
+        for (int j = 0; j < 3; ++j)
+          if (tris[u][j] == b && tris[u][(j + 1) % 3] == a) split[u][j] = m;
+      }
+      if (split_root_edge) {
+        const int a = tris[0][0], b = tris[0][1];
+        split[0][0] = lp.add_new({0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])});
+      }
+      Region res;
+      int pushed_tri = -1;
+      if (deg[0] == 2) {
+        // Step 2 of the thesis: quad (a, m1, c, m2) and the triangle
+        // (a, b, m1), with m2 pushed off its edge into the child.
+        if (push == 0) continue;
+        const int a = local(tris[0][0]), b = local(tris[0][1]), c = local(tris[0][2]);
+        const int m1 = split[0][1], m2 = split[0][2];
+        // Child across (c, a): the triangle whose split point is m2.
+        for (int w = 1; w < n; ++w) for (int k = 0; k < 3; ++k) if (split[w][k] == m2) pushed_tri = w;
+        if (pushed_tri < 0) { ok = false; }
+        else {
+          int opp = -1;
+          for (int k = 0; k < 3; ++k) if (split[pushed_tri][k] == m2) opp = tris[pushed_tri][(k + 2) % 3];
+          lp.p[m2] = {lp.p[m2][0] + push * (pts[opp][0] - lp.p[m2][0]), lp.p[m2][1] + push * (pts[opp][1] - lp.p[m2][1])};
+          lp.quads.push_back({a, m1, c, m2});
+          if (!t2q::good_quad(lp.p[a], lp.p[m1], lp.p[c], lp.p[m2]) ||
+              !t2q::good_triangle(lp.p[a], lp.p[b], lp.p[m1]))
+            ok = false;
+          res.type = kTri;
+          res.x = m1;  // local id; mapped below
+        }
+      } else if (deg[0] == 0) {
+        res.type = kTri;
+        res.x = local(tris[0][2]);
+      }
+      for (int w = 0; w < n && ok; ++w) {
+        if (w == 0 && (deg[0] == 0 || deg[0] == 2)) continue;
+        const int A = local(tris[w][0]), B = local(tris[w][1]), C = local(tris[w][2]);
+        const int L[3] = {A, B, C};
+        int cnt = 0, slot = -1;
+        for (int k = 0; k < 3; ++k) if (split[w][k] >= 0) { ++cnt; slot = k; }
+        if (cnt == 3) ok = t2q::deberg_split(lp, A, B, C, split[w][0], split[w][1], split[w][2]);
+        else if (cnt == 1)
+          ok = t2q::joe_split(lp, L[(slot + 2) % 3], L[slot], split[w][slot], L[(slot + 1) % 3]);
+        else ok = false;
+      }
+      if (!ok) continue;
+      if (split_root_edge && split_m) *split_m = split[0][0];
+      ++cases[kFallback];
+      return res;
+    }
+    throw Error("internal error: tri2quad could not quadrangulate a region near vertex " + vid(tris[0][0]), in.path);
+  }
+
+  // Commit a patch whose returned region refers to local ids.
+  Region commit_region(LocalPatch& lp, Region r, double a, int* local_to_global = nullptr) {
+    std::vector<int> id(lp.p.size());
+    for (std::size_t i = 0; i < lp.p.size(); ++i) {
+      if (lp.gid[i] >= 0) { id[i] = lp.gid[i]; continue; }
+      id[i] = int(pts.size());
+      pts.push_back(lp.p[i]);
+      ++out.steiner;
+    }
+    for (const auto& q : lp.quads) {
+      out.quads.push_back({id[q[0]], id[q[1]], id[q[2]], id[q[3]]});
+      if (has_attr) out.region.push_back(a);
+    }
+    if (r.x >= 0) r.x = id[r.x];
+    if (r.y >= 0) r.y = id[r.y];
+    if (local_to_global && *local_to_global >= 0) *local_to_global = id[*local_to_global];
+    return r;
+  }
+
+  // Node u with outgoing edge (a, b): combine with the children's regions.
+  void process(int u, bool is_root) {
+    const int s0 = pslot[u];
+    const int a = T[u][s0], b = T[u][(s0 + 1) % 3], c = T[u][(s0 + 2) % 3];
+    std::vector<int> B = {a, b}, I;
+    std::vector<std::array<int, 3>> tris = {{a, b, c}};
+    for (int k = 1; k <= 2; ++k) {
+      const int j = (s0 + k) % 3;
+      const int w = nb[u][j];
+      if (k == 2) B.push_back(c);
+      if (w < 0 || (con[u] >> j & 1) || par[w] != u) continue;
+      const int p = T[u][(j + 1) % 3], q = T[u][j];  // child's outgoing edge (p, q)
+      region_ext(reg[w], B, I);
+      region_triangles(reg[w], p, q, tris);
+    }
+    // Close "x, c, x" (a vertex surrounded by the region: Fig. 3.6).
+    bool changed = true;
+    while (changed && B.size() >= 4) {
+      changed = false;
+      const std::size_t n = B.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (B[(i + n - 1) % n] == B[(i + 1) % n] && i != 0 && i != 1 && (i + 1) % n != 0 && (i + 1) % n != 1) {
+          I.push_back(B[i]);
+          const std::size_t j = (i + 1) % n;
+          if (j > i) { B.erase(B.begin() + j); B.erase(B.begin() + i); }
+          else { B.erase(B.begin() + i); B.erase(B.begin() + j); }
+          changed = true;
+          break;
+        }
+      }
+    }
+    bool pinched = false;
+    {
+      std::vector<int> s = B;
+      s.insert(s.end(), I.begin(), I.end());
+      std::sort(s.begin(), s.end());
+      pinched = std::adjacent_find(s.begin(), s.end()) != s.end();
+    }
+    LocalPatch lp;
+    int split_m = -1;  // local id of a point put on the root edge
+    std::vector<int> LB, LI;
+    for (int v : B) LB.push_back(lp.add_known(pts[v], v));
+    for (int v : I) LI.push_back(lp.add_known(pts[v], v));
+    const double at = attr[u];
+    Region r;
+    bool done = false;
+    const std::size_t nb_ = B.size(), ni = I.size();
+    if (!pinched) {
+      if (nb_ == 3 && ni == 0) {
+        if (!is_root) { reg[u] = {kTri, 0, c, -1}; return; }
+        r = {kTri, 0, 2, -1};  // local id of c
+        done = true;
+      } else if (nb_ == 4 && ni == 0) {
+        if (t2q::good_quad(lp.p[0], lp.p[1], lp.p[2], lp.p[3])) {
+          lp.quads.push_back({0, 1, 2, 3});
+          ++cases[kQuadConvex];
+          r = {};
+          done = true;
+        } else if (!is_root && tris.size() == 2) {
+          Region q{kQuadR, std::uint8_t(B[3] == c ? 0 : 1), B[2], B[3]};
+          ++cases[kQuadPassedUp];
+          reg[u] = q;
+          return;
+        } else if (t2q::quad_nested_free(lp, {0, 1, 2, 3})) {
+          ++cases[kRootNested];
+          r = {};
+          done = true;
+        }
+      } else if (nb_ == 5 && ni == 0) {
+        int kind = 0;
+        const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind);
+        if (apex >= 0) {
+          ++cases[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kPentagonType2];
+          r = {kTri, 0, apex, -1};
+          done = true;
+        }
+      } else if (nb_ == 6 && ni == 0) {
+        if (t2q::hexagon(lp, {0, 1, 2, 3, 4, 5})) { ++cases[kHexagon]; r = {}; done = true; }
+      } else if (nb_ == 7 && ni == 0) {
+        done = heptagon(lp, r);
+      } else if (nb_ == 3 && ni == 1) {
+        // Non-empty triangle (a, b, w) around I: one quad and a leftover
+        // triangle if (b, w, a, I) is convex; else it goes up (Fig. 3.6).
+        if (t2q::good_quad(lp.p[1], lp.p[2], lp.p[0], lp.p[3]) && t2q::good_triangle(lp.p[0], lp.p[1], lp.p[3])) {
+          lp.quads.push_back({1, 2, 0, 3});
+          ++cases[kNonEmptySplit];
+          r = {kTri, 0, 3, -1};
+          done = true;
+        } else if (!is_root && tris.size() == 3) {
+          ++cases[kNonEmptyTriangle];
+          reg[u] = {kNTri, 0, B[2], I[0]};
+          return;
+        } else if (is_root) {
+          // Step 5(a) without an outside point: a point on the root edge
+          // makes the quad (a, m, b, w) around I (B.1.2, flat corner at m).
+          const auto mk = lp.mark();
+          const int m = lp.add_new({0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])});
+          if (t2q::quad_with_point(lp, {0, m, 1, 2}, 3)) {
+            ++cases[kQuadPoint];
+            split_m = m;
+            r = {};
+            done = true;
+          } else {
+            lp.rollback(mk);
+          }
+        }
+      } else if (nb_ == 4 && ni == 1) {
+        if (t2q::quad_with_point(lp, {0, 1, 2, 3}, 4)) { ++cases[kQuadPoint]; r = {}; done = true; }
+      } else if (nb_ == 5 && ni == 1) {
+        done = pentagon_point(lp, r);
+      } else if (nb_ == 6 && ni == 1) {
+        done = hexagon_point(lp, r);
+      }
+    }
+    if (!done) {
+      lp = LocalPatch{};
+      r = fallback(lp, tris, is_root, &split_m);
+      done = true;
+    }
+    r = commit_region(lp, r, at, &split_m);  // split_m: a point put on the root edge
+    if (is_root) finish_root(u, a, b, r, at, split_m);
+    else reg[u] = r;
+  }
+
+  bool heptagon(LocalPatch& lp, Region& r) {
+    // Leftover ear on the outgoing edge and a hexagon (B.1.1) for the rest.
+    const Ring v = {0, 1, 2, 3, 4, 5, 6};
+    for (int side = 0; side < 2; ++side) {
+      const int apex = side == 0 ? 2 : 6;
+      Ring rest = side == 0 ? Ring{0, 2, 3, 4, 5, 6} : Ring{1, 2, 3, 4, 5, 6};
+      const bool tri_ok = side == 0 ? t2q::good_triangle(lp.p[0], lp.p[1], lp.p[2])
+                                    : t2q::good_triangle(lp.p[6], lp.p[0], lp.p[1]);
+      if (!tri_ok) continue;
+      std::vector<P2> rp;
+      for (int i : rest) rp.push_back(lp.p[i]);
+      if (!t2q::simple_ccw(rp)) continue;
+      const auto m = lp.mark();
+      if (t2q::hexagon(lp, rest)) { ++cases[kHeptagon]; r = {kTri, 0, apex, -1}; return true; }
+      lp.rollback(m);
+    }
+    (void)v;
+    return false;
+  }
+
+  bool pentagon_point(LocalPatch& lp, Region& r) {
+    // B.2.2: pentagon 0..4 with the point 5.
+    const auto m = lp.mark();
+    // (i) leftover (v0, v1, q), hexagon (v1, v2, v3, v4, v0, q).
+    if (t2q::good_triangle(lp.p[0], lp.p[1], lp.p[5])) {
+      std::vector<P2> hp = {lp.p[1], lp.p[2], lp.p[3], lp.p[4], lp.p[0], lp.p[5]};
+      if (t2q::simple_ccw(hp) && t2q::hexagon(lp, {1, 2, 3, 4, 0, 5})) {
+        ++cases[kPentagonPoint]; r = {kTri, 0, 5, -1}; return true;
+      }
+      lp.rollback(m);
+    }
+    // (ii) an ear on the outgoing edge, B.1.2 on the rest.
+    for (int side = 0; side < 2; ++side) {
+      const Ring tri = side == 0 ? Ring{0, 1, 2} : Ring{4, 0, 1};
+      const Ring quad = side == 0 ? Ring{0, 2, 3, 4} : Ring{1, 2, 3, 4};
+      if (!t2q::good_triangle(lp.p[tri[0]], lp.p[tri[1]], lp.p[tri[2]])) continue;
+      // q strictly inside the quad's side of the ear's diagonal.
+      if (side == 0 && t2q::orient(lp.p[0], lp.p[2], lp.p[5]) <= 0) continue;
+      if (side == 1 && t2q::orient(lp.p[4], lp.p[1], lp.p[5]) <= 0) continue;
+      std::vector<P2> qp;
+      for (int i : quad) qp.push_back(lp.p[i]);
+      if (!t2q::simple_ccw(qp)) continue;
+      if (t2q::quad_with_point(lp, quad, 5)) {
+        ++cases[kPentagonPoint]; r = {kTri, 0, side == 0 ? 2 : 4, -1}; return true;
+      }
+      lp.rollback(m);
+    }
+    return false;
+  }
+
+  bool hexagon_point(LocalPatch& lp, Region& r) {
+    // A diagonal splits off a convex quad; B.1.2 on the quad with the point.
+    const auto m = lp.mark();
+    for (int i = 0; i < 3; ++i) {
+      const Ring q1 = {i, i + 1, i + 2, (i + 3) % 6}, q2 = {(i + 3) % 6, (i + 4) % 6, (i + 5) % 6, i};
+      for (int s = 0; s < 2; ++s) {
+        const Ring& cv = s ? q2 : q1;
+        const Ring& pt = s ? q1 : q2;
+        if (!t2q::good_quad(lp.p[cv[0]], lp.p[cv[1]], lp.p[cv[2]], lp.p[cv[3]])) continue;
+        std::vector<P2> pp;
+        for (int k : pt) pp.push_back(lp.p[k]);
+        if (!t2q::simple_ccw(pp)) continue;
+        if (t2q::orient(pp[3], pp[0], lp.p[6]) <= 0) continue;  // the point is on pt's side
+        lp.quads.push_back({cv[0], cv[1], cv[2], cv[3]});
+        if (t2q::quad_with_point(lp, pt, 6)) { ++cases[kHexagonPoint]; r = {}; return true; }
+        lp.rollback(m);
+      }
+    }
+    return false;
+  }
+
+  // Step 5: whatever the root leaves on its edge (a, b).
+  void finish_root(int u, int a, int b, Region r, double at, int split_m) {
+    if (split_m >= 0) {
+      split_segment(a, b, split_m);
+      repair(u, a, b, split_m);
+    }
+    if (r.type == kEmpty) return;
+    // r is a triangle (a, b, z).
+    const int z = r.x;
+    const bool outer = comp_parent[comp[u]] < 0;
+    if (outer && opt.allow_outside) {
+      LocalPatch lp;
+      const int la = lp.add_known(pts[a], a), lb = lp.add_known(pts[b], b), lz = lp.add_known(pts[z], z);
+      const P2 mm = {0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])};
+      const double dx = pts[b][0] - pts[a][0], dy = pts[b][1] - pts[a][1];
+      // Outward normal (right of a -> b), a small height as in Fig. 3.16.
+      for (double d : {0.1, 0.03, 0.01}) {
+        const P2 s = {mm[0] + d * dy, mm[1] - d * dx};
+        lp.rollback({3, 0});
+        const int ls = lp.add_new(s);
+        if (t2q::good_quad(lp.p[la], lp.p[ls], lp.p[lb], lp.p[lz])) {
+          lp.quads.push_back({la, ls, lb, lz});
+          commit_region(lp, {}, at);
+          split_segment(a, b, int(pts.size()) - 1);
+          ++out.steiner_outside;
+          ++cases[kRootOutside];
+          return;
+        }
+      }
+    }
+    // Joe's split of (a, b, z) with its point on the edge (a, b).
+    LocalPatch lp;
+    const int la = lp.add_known(pts[a], a), lb = lp.add_known(pts[b], b), lz = lp.add_known(pts[z], z);
+    const int lm = lp.add_new({0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])});
+    if (!t2q::joe_split(lp, lz, la, lm, lb))
+      throw Error("internal error: Joe's split failed at edge " + edge_name(a, b), in.path);
+    const std::size_t before = pts.size();
+    commit_region(lp, {}, at);
+    const int m = int(before);  // the first new point is lm
+    ++cases[kRootJoe];
+    split_segment(a, b, m);
+    repair(u, a, b, m);
+  }
+
+  // ------------------------------------------------------------ driver
+  void run() {
+    components();
+    par.assign(T.size(), -1);
+    pslot.assign(T.size(), 0);
+    reg.assign(T.size(), Region{});
+    std::vector<int> order;
+    for (auto ci = comp_order.rbegin(); ci != comp_order.rend(); ++ci) {
+      const int C = *ci, PC = comp_parent[C];
+      // Collect the component (it may have grown by repairs), find the root.
+      order.clear();
+      order.push_back(comp_seed[C]);
+      par[comp_seed[C]] = -2;
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const int t = order[i];
+        for (int j = 0; j < 3; ++j) {
+          const int w = nb[t][j];
+          if (w >= 0 && !(con[t] >> j & 1) && par[w] == -1) { par[w] = -2; order.push_back(w); }
+        }
+      }
+      int root = -1, rslot = -1;
+      for (int t : order) {
+        for (int j = 0; j < 3 && root < 0; ++j) {
+          const int w = nb[t][j];
+          if ((PC < 0 && w < 0) || (PC >= 0 && w >= 0 && (con[t] >> j & 1) && comp[w] == PC)) { root = t; rslot = j; }
+        }
+        if (root >= 0) break;
+      }
+      if (root < 0) throw Error("internal error: component without a root edge", in.path);
+      for (int t : order) par[t] = -1;
+      // BFS tree from the root over non-constraint dual edges.
+      order.clear();
+      order.push_back(root);
+      par[root] = -3;
+      pslot[root] = std::int8_t(rslot);
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        const int t = order[i];
+        for (int j = 0; j < 3; ++j) {
+          const int w = nb[t][j];
+          if (w >= 0 && !(con[t] >> j & 1) && par[w] == -1) {
+            par[w] = t;
+            for (int k = 0; k < 3; ++k) if (nb[w][k] == t && T[w][k] == T[t][(j + 1) % 3]) pslot[w] = std::int8_t(k);
+            order.push_back(w);
+          }
+        }
+      }
+      // Bottom-up: reverse BFS order visits the levels V_d, ..., V_0.
+      for (std::size_t i = order.size(); i-- > 1;) process(order[i], false);
+      process(root, true);
+    }
+  }
+};
+
+} // namespace
+
+Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Tri2QuadResult out;
+  Converter cv(in, opt, out);
+  cv.setup();
+  out.points.reserve(in.points.size() + in.triangles.size() / 4);
+  out.quads.reserve(in.triangles.size() * 2 / 3 + 16);
+  cv.run();
+  // Segments: the constraint and boundary edges as chains of quad edges.
+  std::vector<std::pair<std::uint64_t, int>> s(cv.segs.begin(), cv.segs.end());
+  std::sort(s.begin(), s.end());
+  for (const auto& [k, m] : s) {
+    out.segments.push_back({int(k >> 32), int(k & 0xffffffffu)});
+    out.segment_markers.push_back(m);
+  }
+  for (int i = 0; i < kNumCases; ++i) out.cases.push_back({kCaseNames[i], cv.cases[i]});
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+} // namespace imgmesh

@@ -1,0 +1,520 @@
+// Appendix B of the thesis and the triangle splits, as constructions that
+// place Steiner points in floating point and verify every quad exactly.
+// The reconstructions follow notes/tri2quad.md (sections 1, 3.2-3.4, 3.8).
+#include "quad/tri2quad_polygons.hpp"
+
+#include "quad/quality.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+
+namespace imgmesh::t2q {
+
+int orient(const P2& a, const P2& b, const P2& c) { return orientation(a, b, c); }
+
+namespace {
+double cross(const P2& o, const P2& a, const P2& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+double cross2(double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; }
+P2 lerp(const P2& a, const P2& b, double t) { return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])}; }
+P2 mid(const P2& a, const P2& b) { return lerp(a, b, 0.5); }
+
+// Margin relative to the element size: the independent checker accepts a
+// turn only above 1e-12 * diag^2; we ask for 1e-10 so both agree.
+constexpr double kMargin = 1e-10;
+
+bool margin_ok(const P2* q, int n) {
+  double x0 = q[0][0], x1 = x0, y0 = q[0][1], y1 = y0;
+  for (int i = 1; i < n; ++i) {
+    x0 = std::min(x0, q[i][0]); x1 = std::max(x1, q[i][0]);
+    y0 = std::min(y0, q[i][1]); y1 = std::max(y1, q[i][1]);
+  }
+  const double d2 = (x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0);
+  if (!(d2 > 0) || !std::isfinite(d2)) return false;
+  for (int i = 0; i < n; ++i)
+    if (!(cross(q[i], q[(i + 1) % n], q[(i + 2) % n]) > kMargin * d2)) return false;
+  return true;
+}
+
+bool good_local(const LocalPatch& lp, const Quad& q) {
+  return good_quad(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]);
+}
+
+// Candidate points of a region: centroid, then toward each vertex.
+std::vector<P2> candidates(const std::vector<P2>& region) {
+  std::vector<P2> out;
+  if (region.size() < 3) return out;
+  const P2 c = centroid(region);
+  out.push_back(c);
+  for (double f : {0.5, 0.85, 0.25})
+    for (const P2& v : region) out.push_back(lerp(c, v, f));
+  return out;
+}
+
+// The placement rule: x is the only unknown of each quad of qs and each
+// triangle of ts (x last in the triangle). For every candidate that passes
+// the local exact checks, call then(); stop at the first success.
+bool place(LocalPatch& lp, int x, const std::vector<P2>& bound, const std::vector<Quad>& qs,
+           const std::vector<std::array<int, 3>>& ts, std::vector<HalfPlane> hp,
+           const std::function<bool()>& then) {
+  for (const Quad& q : qs) {
+    int i = 0;
+    while (q[i] != x) ++i;
+    const P2& B = lp.p[q[(i + 1) % 4]];
+    const P2& D = lp.p[q[(i + 2) % 4]];
+    const P2& A = lp.p[q[(i + 3) % 4]];
+    hp.push_back({B, A});  // turn at x
+    hp.push_back({D, A});  // turn at A
+    hp.push_back({B, D});  // turn at B
+  }
+  for (const auto& t : ts) hp.push_back({lp.p[t[0]], lp.p[t[1]]});
+  const auto region = clip(bound, hp);
+  for (const P2& c : candidates(region)) {
+    lp.p[x] = c;
+    bool ok = true;
+    for (const Quad& q : qs) ok = ok && good_local(lp, q);
+    for (const auto& t : ts) ok = ok && good_triangle(lp.p[t[0]], lp.p[t[1]], lp.p[t[2]]);
+    if (ok && then()) return true;
+  }
+  return false;
+}
+
+std::vector<P2> pts(const LocalPatch& lp, const Ring& r) {
+  std::vector<P2> v;
+  for (int i : r) v.push_back(lp.p[i]);
+  return v;
+}
+
+std::vector<P2> bbox_poly(const std::vector<P2>& v, double grow) {
+  double x0 = v[0][0], x1 = x0, y0 = v[0][1], y1 = y0;
+  for (const P2& p : v) {
+    x0 = std::min(x0, p[0]); x1 = std::max(x1, p[0]);
+    y0 = std::min(y0, p[1]); y1 = std::max(y1, p[1]);
+  }
+  const double g = grow * std::max(x1 - x0, y1 - y0);
+  return {{x0 - g, y0 - g}, {x1 + g, y0 - g}, {x1 + g, y1 + g}, {x0 - g, y1 + g}};
+}
+
+// Parameter t > 0 where the ray o + t d leaves the convex polygon k.
+double exit_param(const std::vector<P2>& k, const P2& o, const P2& d) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < k.size(); ++i) {
+    const P2& u = k[i];
+    const P2& v = k[(i + 1) % k.size()];
+    const double ex = v[0] - u[0], ey = v[1] - u[1];
+    const double den = cross2(ex, ey, d[0], d[1]);
+    if (den < 0) {
+      const double t = -cross2(ex, ey, o[0] - u[0], o[1] - u[1]) / den;
+      if (t > 0) best = std::min(best, t);
+    }
+  }
+  return best;
+}
+
+// Parameter rho of o + rho w on the line (u, v); NaN when parallel.
+double line_param(const P2& o, const P2& w, const P2& u, const P2& v) {
+  const double ex = v[0] - u[0], ey = v[1] - u[1];
+  const double den = cross2(ex, ey, w[0], w[1]);
+  if (den == 0) return std::numeric_limits<double>::quiet_NaN();
+  return -cross2(ex, ey, o[0] - u[0], o[1] - u[1]) / den;
+}
+
+bool all_good(const LocalPatch& lp, std::size_t from) {
+  for (std::size_t i = from; i < lp.quads.size(); ++i)
+    if (!good_local(lp, lp.quads[i])) return false;
+  return true;
+}
+
+// The nested template of B.1.2: ring quads (c_i, c_i+1, in_i+1, in_i) and
+// the inner quad, with in_i = h + lambda_i (c_i - h).
+bool nested_homothety(LocalPatch& lp, const Ring& c, int k, int q, const P2& h,
+                      const std::array<double, 4>& lambda) {
+  const auto m = lp.mark();
+  std::array<int, 4> in{};
+  for (int i = 0; i < 4; ++i)
+    in[i] = (i == k) ? q : lp.add_new(lerp(h, lp.p[c[i]], lambda[i]));
+  for (int i = 0; i < 4; ++i) lp.quads.push_back({c[i], c[(i + 1) % 4], in[(i + 1) % 4], in[i]});
+  lp.quads.push_back({in[0], in[1], in[2], in[3]});
+  if (all_good(lp, m.nq)) return true;
+  lp.rollback(m);
+  return false;
+}
+
+std::vector<P2> kernel(const LocalPatch& lp, const Ring& c) {
+  const auto v = pts(lp, c);
+  std::vector<HalfPlane> hp;
+  for (std::size_t i = 0; i < c.size(); ++i) hp.push_back({v[i], v[(i + 1) % v.size()]});
+  return clip(bbox_poly(v, 1.0), hp);
+}
+
+// Pushed homothety about h for a quad whose corner r is reflex or flat
+// (notes 3.3), with in_r = h + sigma (c_r - h).
+bool pushed_homothety(LocalPatch& lp, const Ring& c, int r, int q, const P2& h, double sigma) {
+  const P2 cr = lp.p[c[r]];
+  const P2 w = {cr[0] - h[0], cr[1] - h[1]};
+  const P2 cm = lp.p[c[(r + 3) % 4]];
+  const P2 cp = lp.p[c[(r + 1) % 4]];
+  const P2 co = lp.p[c[(r + 2) % 4]];
+  const double rx = line_param(h, w, cm, cp);
+  if (!(rx > 0)) return false;
+  double rhi = std::numeric_limits<double>::infinity();
+  for (double t : {line_param(h, w, co, cm), line_param(h, w, cp, co)})
+    if (t > rx) rhi = std::min(rhi, t);
+  for (double f : {0.5, 0.25, 0.75, 0.1, 0.9}) {
+    const double rho = std::isfinite(rhi) ? rx + f * (rhi - rx) : rx * (1 + 2 * f);
+    std::array<double, 4> lam{};
+    for (int i = 0; i < 4; ++i) lam[i] = sigma / rho;
+    lam[r] = sigma;
+    if (nested_homothety(lp, c, q >= 0 ? r : -1, q, h, lam)) return true;
+  }
+  return false;
+}
+
+int reflex_corner(const LocalPatch& lp, const Ring& c) {
+  for (int i = 0; i < 4; ++i)
+    if (orient(lp.p[c[(i + 3) % 4]], lp.p[c[i]], lp.p[c[(i + 1) % 4]]) <= 0) return i;
+  return -1;
+}
+} // namespace
+
+bool good_quad(const P2& a, const P2& b, const P2& c, const P2& d) {
+  const P2 q[4] = {a, b, c, d};
+  return margin_ok(q, 4) && is_strictly_convex(a, b, c, d);
+}
+
+bool good_triangle(const P2& a, const P2& b, const P2& c) {
+  const P2 q[3] = {a, b, c};
+  return margin_ok(q, 3) && orient(a, b, c) > 0;
+}
+
+bool simple_ccw(const std::vector<P2>& v) {
+  const std::size_t n = v.size();
+  double area = 0;
+  for (std::size_t i = 0; i < n; ++i) area += cross({0, 0}, v[i], v[(i + 1) % n]);
+  if (!(area > 0)) return false;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const P2 &a = v[i], &b = v[(i + 1) % n], &c = v[j], &d = v[(j + 1) % n];
+      if (j == i + 1 || (i == 0 && j == n - 1)) {
+        // Neighbouring edges meet only at their shared vertex: no fold-back.
+        const P2& s = (j == i + 1) ? b : a;
+        const P2& x = (j == i + 1) ? a : b;
+        const P2& y = (j == i + 1) ? d : c;
+        if (orient(x, s, y) == 0 &&
+            ((x[0] - s[0]) * (y[0] - s[0]) + (x[1] - s[1]) * (y[1] - s[1])) > 0)
+          return false;
+        continue;
+      }
+      const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+      if (o1 * o2 <= 0 && o3 * o4 <= 0) {
+        if (o1 == 0 && o2 == 0) {  // collinear: overlap test on the bounding boxes
+          if (std::max(std::min(a[0], b[0]), std::min(c[0], d[0])) <=
+                  std::min(std::max(a[0], b[0]), std::max(c[0], d[0])) &&
+              std::max(std::min(a[1], b[1]), std::min(c[1], d[1])) <=
+                  std::min(std::max(a[1], b[1]), std::max(c[1], d[1])))
+            return false;
+          continue;
+        }
+        return false;
+      }
+    }
+  return true;
+}
+
+std::vector<P2> clip(const std::vector<P2>& poly, const std::vector<HalfPlane>& hps) {
+  std::vector<P2> cur = poly, next;
+  for (const auto& h : hps) {
+    next.clear();
+    const std::size_t n = cur.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const P2& s = cur[i];
+      const P2& e = cur[(i + 1) % n];
+      const double ds = cross(h.a, h.b, s), de = cross(h.a, h.b, e);
+      // Closed half-planes (points on a line kept), so regions touching a
+      // clip line survive; the candidates are interior points anyway.
+      if (ds >= 0) next.push_back(s);
+      if ((ds > 0 && de < 0) || (ds < 0 && de > 0)) next.push_back(lerp(s, e, ds / (ds - de)));
+    }
+    cur.swap(next);
+    if (cur.size() < 3) return {};
+  }
+  return cur;
+}
+
+P2 centroid(const std::vector<P2>& v) {
+  double a = 0, cx = 0, cy = 0;
+  const std::size_t n = v.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = cross2(v[i][0] - v[0][0], v[i][1] - v[0][1], v[(i + 1) % n][0] - v[0][0],
+                            v[(i + 1) % n][1] - v[0][1]);
+    a += w;
+    cx += w * (v[i][0] + v[(i + 1) % n][0] - 2 * v[0][0]);
+    cy += w * (v[i][1] + v[(i + 1) % n][1] - 2 * v[0][1]);
+  }
+  if (!(std::fabs(a) > 0)) {
+    double sx = 0, sy = 0;
+    for (const P2& p : v) { sx += p[0]; sy += p[1]; }
+    return {sx / double(n), sy / double(n)};
+  }
+  return {v[0][0] + cx / (3 * a), v[0][1] + cy / (3 * a)};
+}
+
+// ---------------------------------------------------------------- B.1.1
+bool hexagon(LocalPatch& lp, const Ring& h, int budget) {
+  auto H = [&](int i) { return h[((i % 6) + 6) % 6]; };
+  auto P = [&](int i) -> const P2& { return lp.p[H(i)]; };
+  const auto m = lp.mark();
+  // T0: a diagonal between opposite vertices, two quads, no point.
+  for (int i = 0; i < 3; ++i) {
+    const Quad a{H(i), H(i + 1), H(i + 2), H(i + 3)}, b{H(i + 3), H(i + 4), H(i + 5), H(i)};
+    if (good_local(lp, a) && good_local(lp, b)) {
+      lp.quads.push_back(a);
+      lp.quads.push_back(b);
+      return true;
+    }
+  }
+  if (budget < 1) return false;
+  // T1: one point joined to alternate vertices, three quads.
+  for (int pi = 0; pi < 2; ++pi) {
+    if (!good_triangle(P(pi), P(pi + 2), P(pi + 4))) continue;
+    const int s = lp.add_new();
+    std::vector<Quad> qs;
+    for (int j = pi; j < pi + 6; j += 2) qs.push_back({H(j), H(j + 1), H(j + 2), s});
+    if (place(lp, s, {P(pi), P(pi + 2), P(pi + 4)}, qs, {}, {}, [] { return true; })) {
+      for (const Quad& q : qs) lp.quads.push_back(q);
+      return true;
+    }
+    lp.rollback(m);
+  }
+  if (budget < 2) return false;
+  // PEEL: cut one quad off a convex corner, recurse on the hexagon left.
+  const auto hv = pts(lp, h);
+  for (int j = 0; j < 6; ++j) {
+    if (orient(P(j - 1), P(j), P(j + 1)) <= 0) continue;
+    for (int variant = 0; variant < 2; ++variant) {
+      const int s = lp.add_new();
+      std::vector<HalfPlane> hp = {{P(j - 1), P(j)}, {P(j), P(j + 1)}, {P(j - 1), P(j + 1)}};
+      if (variant == 0) {
+        hp.push_back({P(j - 2), P(j - 1)});
+        hp.push_back({P(j + 1), P(j + 2)});
+      }
+      const auto region = clip(hv, hp);
+      if (region.size() < 3) { lp.rollback(m); continue; }
+      const P2 X = centroid(region), M = mid(P(j - 1), P(j + 1));
+      for (double f : {1.0, 0.5, 0.25, 0.1, 0.03}) {
+        lp.p[s] = lerp(M, X, f);
+        const Quad q{H(j - 1), H(j), H(j + 1), s};
+        if (!good_local(lp, q)) continue;
+        Ring rest = h;
+        rest[((j % 6) + 6) % 6] = s;
+        if (!simple_ccw(pts(lp, rest))) continue;
+        const auto m2 = lp.mark();
+        lp.quads.push_back(q);
+        if (hexagon(lp, rest, budget - 1)) return true;
+        lp.rollback(m2);
+      }
+      lp.rollback(m);
+    }
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------- B.1.2
+bool quad_with_point(LocalPatch& lp, const Ring& c, int q) {
+  const P2 qp = lp.p[q];
+  const int r = reflex_corner(lp, c);
+  if (r < 0) {
+    // Convex: closed form, each corner in turn as the one joined to q.
+    const auto poly = pts(lp, c);
+    for (int k = 0; k < 4; ++k) {
+      const P2& ck = lp.p[c[k]];
+      const P2 d = {qp[0] - ck[0], qp[1] - ck[1]};
+      const double ts = exit_param(poly, qp, d);
+      if (!std::isfinite(ts)) continue;
+      for (double frac : {0.5, 0.3, 0.7}) {
+        const double mu = ts * frac;
+        const P2 hc = {qp[0] + mu * d[0], qp[1] + mu * d[1]};
+        const double lam = mu / (1 + mu);
+        if (nested_homothety(lp, c, k, q, hc, {lam, lam, lam, lam})) return true;
+      }
+    }
+  } else {
+    const auto K = kernel(lp, c);
+    bool inK = K.size() >= 3;
+    for (int i = 0; i < 4 && inK; ++i)
+      inK = orient(lp.p[c[i]], lp.p[c[(i + 1) % 4]], qp) > 0;
+    if (inK) {
+      const P2& cr = lp.p[c[r]];
+      const P2 d = {qp[0] - cr[0], qp[1] - cr[1]};
+      const double ts = exit_param(K, qp, d);
+      if (std::isfinite(ts))
+        for (double frac : {0.5, 0.3, 0.7}) {
+          const double mu = ts * frac;
+          const P2 hc = {qp[0] + mu * d[0], qp[1] + mu * d[1]};
+          if (pushed_homothety(lp, c, r, q, hc, mu / (1 + mu))) return true;
+        }
+    }
+  }
+  // Search (the "arm" case, and a safety net): q joined to corner k, the
+  // other three inner points placed one at a time by the placement rule.
+  const auto Q = pts(lp, c);
+  for (int k = 0; k < 4; ++k) {
+    const auto m = lp.mark();
+    std::array<int, 4> in{};
+    for (int i = 0; i < 4; ++i) in[i] = (i == k) ? q : lp.add_new();
+    std::vector<Quad> ring;
+    for (int i = 0; i < 4; ++i) ring.push_back({c[i], c[(i + 1) % 4], in[(i + 1) % 4], in[i]});
+    const Quad inner{in[0], in[1], in[2], in[3]};
+    const int a1 = (k + 1) % 4, a2 = (k + 3) % 4, a3 = (k + 2) % 4;
+    // in[a1]: ring quad k (c_k, c_k+1, in_k+1, q); in[a2]: ring quad k-1.
+    bool ok = place(lp, in[a1], Q, {ring[k]}, {}, {}, [&] {
+      return place(lp, in[a2], Q, {ring[(k + 3) % 4]}, {}, {{lp.p[q], lp.p[in[a1]]}}, [&] {
+        return place(lp, in[a3], Q, {ring[a1], ring[a3], inner}, {}, {}, [&] {
+          for (const Quad& x : ring) if (!good_local(lp, x)) return false;
+          return good_local(lp, inner);
+        });
+      });
+    });
+    if (ok) {
+      for (const Quad& x : ring) lp.quads.push_back(x);
+      lp.quads.push_back(inner);
+      return true;
+    }
+    lp.rollback(m);
+  }
+  return false;
+}
+
+bool quad_nested_free(LocalPatch& lp, const Ring& c) {
+  const auto K = kernel(lp, c);
+  if (K.size() < 3) return false;
+  const auto m = lp.mark();
+  for (double f : {0.0, 0.3, 0.6}) {
+    const P2 k0 = centroid(K);
+    for (const P2& v : K) {
+      const int q = lp.add_new(lerp(k0, v, f));
+      if (quad_with_point(lp, c, q)) return true;
+      lp.rollback(m);
+      if (f == 0.0) break;
+    }
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------- B.2.1
+int pentagon(LocalPatch& lp, const Ring& v, int* kind) {
+  auto P = [&](int i) -> const P2& { return lp.p[v[i]]; };
+  auto V = [&](int i) { return v[i]; };
+  const auto m = lp.mark();
+  auto set = [&](int k) { if (kind) *kind = k; };
+  // Ears on the outgoing edge: no Steiner point.
+  if (good_triangle(P(0), P(1), P(2)) && good_quad(P(0), P(2), P(3), P(4))) {
+    lp.quads.push_back({V(0), V(2), V(3), V(4)});
+    set(0);
+    return V(2);
+  }
+  if (good_triangle(P(4), P(0), P(1)) && good_quad(P(1), P(2), P(3), P(4))) {
+    lp.quads.push_back({V(1), V(2), V(3), V(4)});
+    set(0);
+    return V(4);
+  }
+  // Type 1: the outgoing edge in the centre triangle (v0, v1, v3).
+  if (good_triangle(P(0), P(1), P(3)) && good_triangle(P(1), P(2), P(3)) &&
+      good_triangle(P(3), P(4), P(0))) {
+    const int p1 = lp.add_new();
+    const std::vector<Quad> qs = {{V(0), p1, V(3), V(4)}, {V(3), p1, V(1), V(2)}};
+    if (place(lp, p1, {P(0), P(1), P(3)}, qs, {{V(0), V(1), p1}}, {}, [] { return true; })) {
+      for (const Quad& q : qs) lp.quads.push_back(q);
+      set(1);
+      return p1;
+    }
+    lp.rollback(m);
+  }
+  // Type 2 and its mirror image: the outgoing edge in an ear not at the
+  // common vertex. Labels w1..w5 of notes 3.4 (w[1..5]).
+  for (int mirror = 0; mirror < 2; ++mirror) {
+    int w[6];
+    if (!mirror) { w[2] = V(0); w[3] = V(1); w[4] = V(2); w[5] = V(3); w[1] = V(4); }
+    else { w[5] = V(0); w[1] = V(1); w[2] = V(2); w[3] = V(3); w[4] = V(4); }
+    auto W = [&](int i) -> const P2& { return lp.p[w[i]]; };
+    if (!(good_triangle(W(4), W(1), W(2)) && good_triangle(W(2), W(3), W(4)) &&
+          good_triangle(W(4), W(5), W(1))))
+      continue;
+    const int p1 = lp.add_new(), p2 = lp.add_new();
+    std::vector<Quad> proxy, fin;
+    std::vector<P2> b2;
+    std::array<int, 3> tri{};
+    if (!mirror) {
+      proxy = {{w[1], p1, w[4], w[5]}, {w[4], p1, w[2], w[3]}};
+      fin = {{w[1], p1, w[4], w[5]}, {w[2], p2, p1, w[1]}, {w[3], w[4], p1, p2}};
+      tri = {w[2], w[3], p2};
+    } else {
+      proxy = {{w[3], w[4], p1, w[2]}, {w[5], w[1], p1, w[4]}};
+      fin = {{w[3], w[4], p1, w[2]}, {w[2], p1, p2, w[1]}, {p2, p1, w[4], w[5]}};
+      tri = {w[5], w[1], p2};
+    }
+    bool ok = place(lp, p1, {W(4), W(1), W(2)}, proxy, {}, {}, [&] {
+      const std::vector<P2> bound = !mirror ? std::vector<P2>{lp.p[p1], W(2), W(3)}
+                                            : std::vector<P2>{lp.p[p1], W(5), W(1)};
+      std::vector<Quad> q2;
+      for (const Quad& q : fin)
+        if (std::find(q.begin(), q.end(), p2) != q.end()) q2.push_back(q);
+      return place(lp, p2, bound, q2, {tri}, {}, [&] {
+        for (const Quad& q : fin) if (!good_local(lp, q)) return false;
+        return true;
+      });
+    });
+    if (ok) {
+      for (const Quad& q : fin) lp.quads.push_back(q);
+      set(2);
+      return p2;
+    }
+    lp.rollback(m);
+  }
+  return -1;
+}
+
+// ---------------------------------------------------------------- splits
+bool joe_split(LocalPatch& lp, int a, int b, int m, int c) {
+  const P2 A = lp.p[a], B = lp.p[b], C = lp.p[c], M = lp.p[m];  // copies: lp.p grows below
+  const P2 h = {(A[0] + B[0] + C[0]) / 3, (A[1] + B[1] + C[1]) / 3};
+  const P2 w = {M[0] - h[0], M[1] - h[1]};
+  const double rx = line_param(h, w, B, C);
+  if (!(rx > 0)) return false;
+  double rhi = std::numeric_limits<double>::infinity();
+  for (double t : {line_param(h, w, A, B), line_param(h, w, C, A)})
+    if (t > rx) rhi = std::min(rhi, t);
+  const auto mk = lp.mark();
+  for (double sigma : {0.5, 0.35, 0.65, 0.2})
+    for (double f : {0.5, 0.25, 0.75, 0.1}) {
+      const double rho = std::isfinite(rhi) ? rx + f * (rhi - rx) : rx * (1 + 2 * f);
+      const double lam = sigma / rho;
+      const int ia = lp.add_new(lerp(h, A, lam)), ib = lp.add_new(lerp(h, B, lam));
+      const int ic = lp.add_new(lerp(h, C, lam)), im = lp.add_new(lerp(h, M, sigma));
+      lp.quads.push_back({a, b, ib, ia});
+      lp.quads.push_back({b, m, im, ib});
+      lp.quads.push_back({m, c, ic, im});
+      lp.quads.push_back({c, a, ia, ic});
+      lp.quads.push_back({ia, ib, im, ic});
+      if (all_good(lp, mk.nq)) return true;
+      lp.rollback(mk);
+    }
+  return false;
+}
+
+bool deberg_split(LocalPatch& lp, int a, int b, int c, int mab, int mbc, int mca) {
+  const auto mk = lp.mark();
+  const int g = lp.add_new();
+  const std::vector<Quad> qs = {{a, mab, g, mca}, {b, mbc, g, mab}, {c, mca, g, mbc}};
+  if (place(lp, g, {lp.p[a], lp.p[b], lp.p[c]}, qs, {}, {}, [] { return true; })) {
+    for (const Quad& q : qs) lp.quads.push_back(q);
+    return true;
+  }
+  lp.rollback(mk);
+  return false;
+}
+
+} // namespace imgmesh::t2q

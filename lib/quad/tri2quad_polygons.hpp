@@ -1,0 +1,77 @@
+// Quadrangulations of the small polygons of the thesis's appendix B and the
+// triangle splits of section 3.2 (de Berg's 3-quad split, Joe's 5-quad
+// split), as used by tri2quad. Internal to the quad module (and its tests).
+//
+// Every construction works on a LocalPatch: known vertices (with their ids in
+// the output mesh) and new Steiner points (id -1). Steiner points are placed
+// in floating point by the placement rule of notes/tri2quad.md (each output
+// quad turn in which the point is the only unknown is an open half-plane;
+// clip a bounding polygon by them and take the centroid, then other points
+// of the region), and every output quad is then checked with exact
+// predicates (CGAL orientation) plus a relative margin. A construction that
+// fails its checks returns false and leaves the patch as it was, so the
+// caller can fall back to another one.
+#pragma once
+#include "planar/triangle_io.hpp"
+
+#include <array>
+#include <vector>
+
+namespace imgmesh::t2q {
+
+using P2 = Point2;
+using Quad = std::array<int, 4>;  // local indices, counter-clockwise
+
+struct LocalPatch {
+  std::vector<P2> p;
+  std::vector<int> gid;  // output id, or -1 for a new Steiner point
+  std::vector<Quad> quads;
+  int add_known(const P2& x, int id) { p.push_back(x); gid.push_back(id); return int(p.size()) - 1; }
+  int add_new(const P2& x = {0, 0}) { p.push_back(x); gid.push_back(-1); return int(p.size()) - 1; }
+  struct Mark { std::size_t np, nq; };
+  Mark mark() const { return {p.size(), quads.size()}; }
+  void rollback(Mark m) { p.resize(m.np); gid.resize(m.np); quads.resize(m.nq); }
+};
+
+// Exact orientation: +1 left turn.
+int orient(const P2& a, const P2& b, const P2& c);
+// Strictly convex (exact) and every turn above a tiny relative margin, so
+// that independent floating-point checkers agree.
+bool good_quad(const P2& a, const P2& b, const P2& c, const P2& d);
+bool good_triangle(const P2& a, const P2& b, const P2& c);
+// Simple polygon, counter-clockwise (exact segment tests).
+bool simple_ccw(const std::vector<P2>& poly);
+
+// A polygon as local indices, counter-clockwise.
+using Ring = std::vector<int>;
+
+// Lemma B.1.1: hexagon H fully quadrangulated with at most `budget` interior
+// Steiner points (templates T0, T1, then peeling, notes 3.2).
+bool hexagon(LocalPatch& lp, const Ring& h, int budget = 3);
+
+// Lemma B.1.2: quadrilateral c with the interior point q: 5 quads, 3 new
+// points (nested template; convex closed form, pushed homothety, search).
+bool quad_with_point(LocalPatch& lp, const Ring& c, int q);
+// Step 5(c): a quadrilateral that is not strictly convex, with a free
+// interior point at the centre of its kernel: 5 quads, 4 new points.
+bool quad_nested_free(LocalPatch& lp, const Ring& c);
+
+// Lemma B.2.1 for a pentagon v (v[0]v[1] the outgoing edge): quads plus a
+// leftover triangle on the outgoing edge; returns the apex of that triangle
+// (a local index) or -1. kind: 0 ear (no point), 1 type 1, 2 type 2.
+int pentagon(LocalPatch& lp, const Ring& v, int* kind = nullptr);
+
+// Joe's split of triangle (a, b, c) with the point m on edge bc (section
+// 3.8 of the notes): 5 quads, 4 new interior points.
+bool joe_split(LocalPatch& lp, int a, int b, int m, int c);
+// de Berg's split: m_ab, m_bc, m_ca on the edges, one new centre point.
+bool deberg_split(LocalPatch& lp, int a, int b, int c, int mab, int mbc, int mca);
+
+// A point in the open region left of every (a_i -> b_i), inside `bound`
+// (a polygon), satisfying `ok`; candidates are the centroid of the clipped
+// region, then points toward its vertices. Returns false if none passes.
+struct HalfPlane { P2 a, b; };
+std::vector<P2> clip(const std::vector<P2>& poly, const std::vector<HalfPlane>& hp);
+P2 centroid(const std::vector<P2>& poly);
+
+} // namespace imgmesh::t2q
