@@ -29,6 +29,7 @@ struct VertexInfo {
   int id = -1;     // output id
   int marker = 0;
   bool near_small_angle = false;
+  int visit = -1;  // last apex whose disc walk reached this vertex
 };
 struct FaceInfo {
   double attribute = 0;
@@ -122,7 +123,13 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
     at[in.segments[s][0]].push_back(s);
     at[in.segments[s][1]].push_back(s);
   }
-  std::vector<char> cluster_segment(in.segments.size(), 0);
+  // Apexes of small angles, with the radius of the disc where the bound may fail.
+  std::vector<std::pair<std::size_t, double>> apexes;
+  auto seg_length = [&](std::size_t s) {
+    const auto& a = in.points[in.segments[s][0]];
+    const auto& b = in.points[in.segments[s][1]];
+    return std::hypot(b[0] - a[0], b[1] - a[1]);
+  };
   for (std::size_t v = 0; v < in.points.size(); ++v) {
     if (at[v].size() < 2) continue;
     std::vector<std::pair<double, std::size_t>> dirs;
@@ -140,7 +147,7 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
       res.smallest_input_angle = std::min(res.smallest_input_angle, a);
       if (a < 60) {
         small = true;
-        cluster_segment[d0.second] = cluster_segment[d1.second] = 1;
+        apexes.push_back({v, std::min(seg_length(d0.second), seg_length(d1.second))});
       }
     }
     if (small) ++res.small_input_angles;
@@ -247,7 +254,6 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
         m.segment_markers.push_back(marker);
       }
       if (best != vb && best->info().marker == 0) best->info().marker = marker;
-      if (cluster_segment[s]) cur->info().near_small_angle = best->info().near_small_angle = true;
       cur = best;
       tcur = best_t;
     }
@@ -262,6 +268,30 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
   for (auto v = cdt.finite_vertices_begin(); v != cdt.finite_vertices_end(); ++v)
     if (v->info().id >= 0) m.point_markers[v->info().id] = v->info().marker;
   m.holes = in.holes;
+
+  // "Near a small input angle": within the disc around the apex whose radius
+  // is the shorter of the two segments, where CGAL's clusters (like
+  // Triangle) give up the bound. Marked by a walk over the mesh from the apex.
+  for (std::size_t k = 0; k < apexes.size(); ++k) {
+    const auto [v, r] = apexes[k];
+    const Vertex_handle apex = vh[v];
+    const K::Point_2 c = apex->point();
+    std::vector<Vertex_handle> stack{apex};
+    apex->info().near_small_angle = true;
+    apex->info().visit = int(k);
+    while (!stack.empty()) {
+      Vertex_handle u = stack.back();
+      stack.pop_back();
+      auto circ = cdt.incident_vertices(u), end = circ;
+      do {
+        if (cdt.is_infinite(circ) || circ->info().visit == int(k)) continue;
+        if (std::sqrt(CGAL::to_double(CGAL::squared_distance(circ->point(), c))) > r * (1 + 1e-9)) continue;
+        circ->info().visit = int(k);
+        circ->info().near_small_angle = true;
+        stack.push_back(circ);
+      } while (++circ != end);
+    }
+  }
 
   // Quality report.
   res.steiner_points = cdt.number_of_vertices() - res.input_vertices;

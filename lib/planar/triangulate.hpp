@@ -35,8 +35,9 @@ struct TriangulateResult {
   std::size_t small_input_angles = 0;  // input vertices where segments meet at < 60 degrees
   double smallest_input_angle = 180;   // degrees, between segments at a vertex
   double min_angle = 0;                // smallest triangle angle, degrees
-  // Smallest angle among triangles with no vertex on a segment that meets
-  // another at a small input angle (where the bound is guaranteed).
+  // Smallest angle among triangles away from small input angles: with no
+  // vertex in the disc around an apex where two segments meet at < 60
+  // degrees, of radius the shorter of the two (the bound is promised there).
   double min_angle_away_from_small_input_angles = 0;
   std::size_t below_bound_near_small_angles = 0;  // triangles below the bound, all near small input angles
   std::size_t regions_outside_domain = 0;        // regional points in a hole or outside

@@ -19,7 +19,8 @@ json() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.arg
 cat > check.py <<'PYEOF'
 # Independent checks of a poly2tri mesh (stdlib only): CCW non-degenerate
 # triangles, every PSLG segment a chain of mesh edges, smallest angle >= A
-# except at triangles touching a segment that meets another below 60 degrees,
+# except near small input angles (a vertex within the disc around an apex
+# where two segments meet below 60 degrees, radius the shorter of the two),
 # and optionally the region attribute against the image under each centroid.
 import math, sys
 
@@ -79,15 +80,16 @@ def main(a):
     x0, y0 = min(xs), min(ys); h = max(max(xs) - x0, max(ys) - y0) / 200 or 1
     grid = {}
     for i, p in enumerate(pts): grid.setdefault((int((p[0] - x0) / h), int((p[1] - y0) / h)), []).append(i)
-    small = set(); at = {}
+    apex = []  # (point, radius): small input angles and their discs
+    at = {}
     for s, (u, v, m) in enumerate(segs): at.setdefault(u, []).append(s); at.setdefault(v, []).append(s)
+    seglen = lambda s: math.dist(ppts[segs[s][0]], ppts[segs[s][1]])
     for v, ss in at.items():
         for i in range(len(ss)):
             for j in range(i + 1, len(ss)):
                 w1 = segs[ss[i]][0] if segs[ss[i]][1] == v else segs[ss[i]][1]
                 w2 = segs[ss[j]][0] if segs[ss[j]][1] == v else segs[ss[j]][1]
-                if angle(ppts[v], ppts[w1], ppts[w2]) < 60: small.add(ss[i]); small.add(ss[j])
-    near_small = set()
+                if angle(ppts[v], ppts[w1], ppts[w2]) < 60: apex.append((ppts[v], min(seglen(ss[i]), seglen(ss[j]))))
     for s, (u, v, m) in enumerate(segs):
         a_, b_ = ppts[u], ppts[v]; L = math.hypot(b_[0] - a_[0], b_[1] - a_[1])
         on = []
@@ -100,13 +102,12 @@ def main(a):
         if len(on) < 2: fail.append('segment %d has no mesh vertices' % s); continue
         for k in range(len(on) - 1):
             if frozenset((on[k][1], on[k + 1][1])) not in edges: fail.append('segment %d not covered' % s); break
-        if s in small: near_small.update(i for _, i in on)
     worst = 180.0; below = 0
     for e in els:
         m = min(angle(pts[e[0]], pts[e[1]], pts[e[2]]), angle(pts[e[1]], pts[e[2]], pts[e[0]]), angle(pts[e[2]], pts[e[0]], pts[e[1]]))
         if m < amin - 1e-6:
             below += 1
-            if not any(i in near_small for i in e): worst = min(worst, m)
+            if not any(math.dist(pts[i], c) <= r * (1 + 1e-9) for i in e for c, r in apex): worst = min(worst, m)
     if worst < amin - 1e-6: fail.append('angle %.3f below %.3f away from small input angles' % (worst, amin))
     res = {'triangles': len(els), 'area': area, 'below_bound_near_small_angles': below}
     if len(a) > 3:  # RAW W H OX OY SX SY THRESHOLD TOL: attributes against the image

@@ -184,39 +184,34 @@ void check_pipeline(const LabelImage& img, double E) {
     for (std::size_t k = 0; k + 1 < on.size(); ++k)
       CHECK(mesh_edges.count({std::min(on[k].second, on[k + 1].second), std::max(on[k].second, on[k + 1].second)}));
   }
-  // Smallest angle >= 20.7 degrees except for triangles touching a segment
-  // that meets another at less than 60 degrees (small input angle).
+  // Smallest angle >= 20.7 degrees except near small input angles: a vertex
+  // in the disc around an apex where two segments meet at < 60 degrees, of
+  // radius the shorter of the two.
   std::vector<std::vector<int>> at(p.points.size());
   for (std::size_t s = 0; s < p.segments.size(); ++s) {
     at[p.segments[s][0]].push_back(int(s));
     at[p.segments[s][1]].push_back(int(s));
   }
-  std::vector<char> small_seg(p.segments.size(), 0);
+  std::vector<std::pair<Point2, double>> apex;
   for (std::size_t v = 0; v < p.points.size(); ++v)
     for (int s1 : at[v])
       for (int s2 : at[v]) {
         if (s1 >= s2) continue;
         const int w1 = p.segments[s1][0] == int(v) ? p.segments[s1][1] : p.segments[s1][0];
         const int w2 = p.segments[s2][0] == int(v) ? p.segments[s2][1] : p.segments[s2][0];
-        if (min_angle_deg(p.points[v], p.points[w1], p.points[w2]) < 60 - 1e-9 ||
-            [&] {  // the angle at v itself
-              const double ux = p.points[w1][0] - p.points[v][0], uy = p.points[w1][1] - p.points[v][1];
-              const double vx = p.points[w2][0] - p.points[v][0], vy = p.points[w2][1] - p.points[v][1];
-              return std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI < 60;
-            }())
-          small_seg[s1] = small_seg[s2] = 1;
+        const Point2 o = p.points[v], a = p.points[w1], b = p.points[w2];
+        const double ux = a[0] - o[0], uy = a[1] - o[1], vx = b[0] - o[0], vy = b[1] - o[1];
+        if (std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI < 60)
+          apex.push_back({o, std::min(std::hypot(ux, uy), std::hypot(vx, vy))});
       }
   std::size_t exempt = 0;
   for (const auto& e : m.elements) {
     const double mn = min_angle_deg(m.points[e[0]], m.points[e[1]], m.points[e[2]]);
     if (mn >= 20.7 - 1e-6) continue;
     bool near = false;
-    for (int k = 0; k < 3 && !near; ++k)
-      for (std::size_t s = 0; s < p.segments.size() && !near; ++s)
-        if (small_seg[s]) {
-          const Point2 a = p.points[p.segments[s][0]], b = p.points[p.segments[s][1]];
-          near = seg_dist(m.points[e[k]], a, b) < 1e-9 * std::hypot(b[0] - a[0], b[1] - a[1]);
-        }
+    for (int k = 0; k < 3; ++k)
+      for (const auto& [o, r] : apex)
+        near |= std::hypot(m.points[e[k]][0] - o[0], m.points[e[k]][1] - o[1]) <= r * (1 + 1e-9);
     CHECK(near);
     ++exempt;
   }
