@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
                            "remains, changing as few voxels as the repair of Siqueira (2006), ch. 5, finds.");
   std::string in, out, mode = "add";
   Selection sel;
-  bool check = false;
+  bool check = false, thesis_rules = false;
   tool.app.add_option("IN", in, "Input image (NRRD, MetaImage, NIfTI, PNG; - for stdin)")->required();
   tool.app.add_option("OUT", out, "Output 0/1 uint8 image, format by extension (- for NRRD on stdout)");
   auto* label = tool.app.add_option("--label", sel.labels,
@@ -35,6 +35,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"add", "remove", "min"}))
       ->capture_default_str();
   tool.add_seed();
+  tool.app.add_flag("--thesis-rules", thesis_rules,
+                    "Draw at random among all of B1(r) (rule 2) or B2(r) (rule 3), as the thesis does, "
+                    "instead of among the sets that eliminate the most configurations");
   tool.app.add_flag("--check", check,
                     "Write nothing: print whether IN is well-composed and its counts; exit 0 if it is, 1 if not");
 
@@ -61,6 +64,7 @@ int main(int argc, char** argv) {
     WellComposedOptions opt;
     opt.mode = mode == "remove" ? RepairMode::Remove : mode == "min" ? RepairMode::Min : RepairMode::Add;
     opt.seed = tool.seed();
+    opt.greedy = !thesis_rules;
     tool.report_progress("repairing " + std::to_string(img.count()) + " voxels");
     const WellComposedResult res = make_well_composed(img, opt);
 
@@ -81,6 +85,7 @@ int main(int argc, char** argv) {
     tool.stats["mode"] = mode_name(opt.mode);
     tool.stats["mode_used"] = mode_name(res.mode_used);
     tool.stats["seed"] = static_cast<unsigned long long>(opt.seed);
+    tool.stats["rules"] = thesis_rules ? "thesis" : "greedy";
     tool.stats["c1"] = res.input.c1;
     tool.stats["c2"] = res.input.c2;
     tool.stats["changed"] = res.changed;

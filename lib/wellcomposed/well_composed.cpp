@@ -60,31 +60,54 @@ struct WorkGrid {
 // Rules (1)-(3) of section 5.2.4 with the queue R of Figure 5.2.
 class Repair {
 public:
-  Repair(WorkGrid g, std::uint64_t seed) : g_(g), rng_(seed) {}
+  Repair(WorkGrid g, std::uint64_t seed, bool greedy)
+      : g_(g), rng_(seed), greedy_(greedy), active_(g.n[1] * g.n[2], 1) {}
 
   // Figures 5.1 and 5.2: scan D; every point whose N_x, N_y, N_z or N is
   // critical is eliminated, then R (points made critical by rule (3)) is
   // drained before the scan goes on.
+  //
+  // Greedy mode first makes a few passes that apply only choices removing
+  // at least `gate` configurations per inserted point (so that the points
+  // that serve several configurations at once are taken before their
+  // configurations are repaired one by one), then the thesis's full pass.
+  // Later passes visit only rows near critical blocks or changes.
   void run() {
     if (g_.n[0] < 2 || g_.n[1] < 2 || g_.n[2] < 2) return;
-    for (std::size_t z = 0; z + 1 < g_.n[2]; ++z)
-      for (std::size_t y = 0; y + 1 < g_.n[1]; ++y) {
-        const std::size_t row = g_.sy * y + g_.sz * z;
-        for (std::size_t x = 0; x + 1 < g_.n[0]; ++x) {
-          const std::size_t r = row + x;
-          if (!critical_configurations(g_.code(r))) continue;
-          eliminate(r);
-          while (head_ < queue_.size()) eliminate(queue_[head_++]);
-          queue_.clear();
-          head_ = 0;
-        }
-      }
+    if (greedy_)
+      for (int gate : kGates) pass(gate);
+    pass(0);
   }
 
   std::size_t changed = 0, created = 0;
 
 private:
   static constexpr int kG = 27;  // blocks N(p), p in [r-1, r+1]^3: all that G(r) holds
+  static constexpr int kPoint = 6;  // gains are in 1/6 configuration per point (|S| <= 3)
+
+  // Passes with decreasing gates: 3, 2, then 1.5 configurations per point.
+  static constexpr int kGates[] = {3 * kPoint, 2 * kPoint, 3 * kPoint / 2};
+
+  void pass(int gate) {
+    for (std::size_t z = 0; z + 1 < g_.n[2]; ++z)
+      for (std::size_t y = 0; y + 1 < g_.n[1]; ++y) {
+        std::uint8_t& act = active_[y + g_.n[1] * z];
+        if (!act) continue;
+        act = 0;
+        const std::size_t row = g_.sy * y + g_.sz * z;
+        for (std::size_t x = 0; x + 1 < g_.n[0]; ++x) {
+          const std::size_t r = row + x;
+          if (!critical_configurations(g_.code(r))) continue;
+          if (!eliminate(r, gate)) {
+            act = 1;  // left for a later pass
+            continue;
+          }
+          while (head_ < queue_.size()) eliminate(queue_[head_++], gate);
+          queue_.clear();
+          head_ = 0;
+        }
+      }
+  }
 
   // Flags of the 27 blocks around r (0 where a block would leave the grid:
   // such blocks touch the background border and are never critical).
@@ -111,37 +134,56 @@ private:
     for (int k = 0; k < 8; ++k)
       if (mask & (1u << k)) g_.v[r + g_.off[k]] = colour;
   }
-  // New critical configurations: flags set after that were not set before.
-  static int created_between(const std::uint8_t before[kG], const std::uint8_t after[kG]) {
-    int n = 0;
-    for (int k = 0; k < kG; ++k) n += popcount(after[k] & ~before[k]);
-    return n;
+  // Rows whose blocks may have changed: those of N(p), p in [r-1, r+1]^3.
+  void touch(std::size_t r) {
+    const std::size_t y = (r / g_.sy) % g_.n[1], z = r / g_.sz;
+    for (std::size_t zz = z ? z - 1 : 0; zz <= z + 1 && zz + 1 < g_.n[2]; ++zz)
+      for (std::size_t yy = y ? y - 1 : 0; yy <= y + 1 && yy + 1 < g_.n[1]; ++yy)
+        active_[yy + g_.n[1] * zz] = 1;
   }
 
-  void eliminate(std::size_t r) {
+  // Eliminates the configurations at r unless the chosen set gains less than
+  // `gate` (then nothing changes and false is returned).
+  bool eliminate(std::size_t r, int gate) {
     const std::uint8_t code = g_.code(r);
-    if (!critical_configurations(code)) return;  // already eliminated by an earlier choice
+    if (!critical_configurations(code)) return true;  // already eliminated by an earlier choice
     const wc::CandidateSets& b = candidate_sets(code);
     std::uint8_t before[kG], after[kG];
     flags_around(r, before);
-    // Partition B(r) into B1(r) (creates nothing) and B2(r).
-    int created_by[6];
-    unsigned b1[6], b2[6];
-    int n1 = 0, n2 = 0;
+    // Partition B(r) into B1(r) (creates nothing) and B2(r). Greedy: within
+    // the part a rule draws from, the draw is among the sets that eliminate
+    // the most critical configurations of G(r) per inserted point, then
+    // create the fewest: one well-chosen point often removes several.
+    int created_by[6], gain[6];
+    int n1 = 0;
     for (int i = 0; i < b.count; ++i) {
       set(r, b.sets[i], 1);
       flags_around(r, after);
       set(r, b.sets[i], 0);
-      created_by[i] = created_between(before, after);
-      if (created_by[i] == 0) b1[n1++] = unsigned(i);
-      else b2[n2++] = unsigned(i);
+      int removed = 0, made = 0;
+      for (int k = 0; k < kG; ++k) {
+        removed += popcount(before[k] & ~after[k]);
+        made += popcount(after[k] & ~before[k]);
+      }
+      created_by[i] = made;
+      if (made == 0) ++n1;
+      gain[i] = removed * kPoint / popcount(b.sets[i]);
     }
-    unsigned pick;
-    if (n1 == 1) pick = b1[0];                       // rule (1)
-    else if (n1 > 1) pick = b1[rng_() % unsigned(n1)];  // rule (2)
-    else pick = b2[rng_() % unsigned(n2)];           // rule (3)
+    unsigned cand[6];
+    int nc = 0;
+    long best = 0;
+    for (int i = 0; i < b.count; ++i) {
+      if (n1 > 0 && created_by[i] != 0) continue;  // rules (1), (2): B1(r) only
+      const long score = greedy_ ? long(gain[i]) * 64 - created_by[i] : 0;
+      if (nc == 0 || score > best) { best = score; nc = 0; }
+      if (score == best) cand[nc++] = unsigned(i);
+    }
+    if (gate > 0 && gain[cand[0]] < gate) return false;
+    // Rule (1) when one candidate is left, else rules (2)/(3): at random.
+    const unsigned pick = nc == 1 ? cand[0] : cand[rng_() % unsigned(nc)];
     set(r, b.sets[pick], 1);
     changed += std::size_t(popcount(b.sets[pick]));
+    touch(r);
     if (n1 == 0) {
       // Rule (3): re-examine only G(r); queue every point whose N_x, N_y,
       // N_z or N became critical.
@@ -150,11 +192,14 @@ private:
       for (int k = 0; k < kG; ++k)
         if (after[k] & ~before[k]) queue_.push_back(neighbour(r, k));
     }
+    return true;
   }
 
   WorkGrid g_;
   std::mt19937_64 rng_;
-  std::vector<std::size_t> queue_;  // R
+  bool greedy_;
+  std::vector<std::uint8_t> active_;  // per row (y, z): may hold a critical block
+  std::vector<std::size_t> queue_;    // R
   std::size_t head_ = 0;
 };
 
@@ -195,7 +240,8 @@ Padding border_padding(const BinaryImage& in) {
 // Repair in one mode on a padded copy. Remove is the dual: complement, add,
 // complement back (the border stays background in the result, since the
 // complement's border is foreground and add never touches it).
-WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode mode, std::uint64_t seed) {
+WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode mode, std::uint64_t seed,
+                          bool greedy) {
   WellComposedResult res;
   res.padded_before = pad.before;
   res.padded_after = pad.after;
@@ -210,7 +256,7 @@ WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode 
     // background: then only N_z(r) squares can be critical, the 2D analogue.
     std::vector<std::uint8_t> w(2 * nx * ny, 0);
     for (std::size_t i = 0; i < nx * ny; ++i) w[i] = remove ? out.data[i] ^ 1 : out.data[i];
-    Repair rep(WorkGrid(w.data(), nx, ny, 2), seed);
+    Repair rep(WorkGrid(w.data(), nx, ny, 2), seed, greedy);
     rep.run();
     for (std::size_t i = 0; i < nx * ny; ++i) out.data[i] = remove ? w[i] ^ 1 : w[i];
     res.changed = rep.changed;
@@ -219,7 +265,7 @@ WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode 
   }
   if (remove)
     for (auto& v : out.data) v ^= 1;
-  Repair rep(WorkGrid(out.data.data(), nx, ny, out.size[2]), seed);
+  Repair rep(WorkGrid(out.data.data(), nx, ny, out.size[2]), seed, greedy);
   rep.run();
   if (remove)
     for (auto& v : out.data) v ^= 1;
@@ -271,15 +317,15 @@ WellComposedResult make_well_composed(const BinaryImage& in, const WellComposedO
   const Padding pad = border_padding(in);
   WellComposedResult res;
   if (opt.mode == RepairMode::Min) {
-    WellComposedResult add = repair(in, pad, RepairMode::Add, opt.seed);
+    WellComposedResult add = repair(in, pad, RepairMode::Add, opt.seed, opt.greedy);
     if (add.changed == 0) {
       res = std::move(add);
     } else {
-      WellComposedResult rem = repair(in, pad, RepairMode::Remove, opt.seed);
+      WellComposedResult rem = repair(in, pad, RepairMode::Remove, opt.seed, opt.greedy);
       res = rem.changed < add.changed ? std::move(rem) : std::move(add);
     }
   } else {
-    res = repair(in, pad, opt.mode, opt.seed);
+    res = repair(in, pad, opt.mode, opt.seed, opt.greedy);
   }
   res.input = counts;
   return res;

@@ -31,6 +31,10 @@ enum class RepairMode { Add, Remove, Min };
 struct WellComposedOptions {
   RepairMode mode = RepairMode::Add;
   std::uint64_t seed = 0;
+  // Rules (2) and (3) draw only among the sets of B(r) that eliminate the
+  // most critical configurations of G(r) per inserted point. false: draw
+  // among all of B1(r) (resp. B2(r)), the thesis's literal rules.
+  bool greedy = true;
 };
 
 struct WellComposedResult {
