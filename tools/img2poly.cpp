@@ -45,6 +45,15 @@ int main(int argc, char** argv) {
     if (extension_of(out) != ".poly" && out != "-") throw UsageError("OUT must end in .poly", out);
     if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
     opt.seed = tool.seed();
+    if (in != "-") {
+      // Refuse a volume or a huge grid from the header, before reading voxels.
+      const ImageInfo info = read_image_info(in);
+      const auto& g = info.geometry;
+      if (g.dimension == 3 && g.size[2] != 1)
+        throw Error("a 3D image (" + std::to_string(g.size[2]) + " slices): img2poly needs a 2D image", in);
+      if (g.size[0] > 65536 || g.size[1] > 65536 || g.size[0] * g.size[1] > (std::size_t(1) << 28))
+        throw Error("image too large for img2poly (at most 65536 pixels a side and 2^28 pixels)", in);
+    }
     LabelImage img;
     if (thr->count()) {
       Selection sel;

@@ -155,6 +155,11 @@ open("labels.nrrd", "wb").write(hdr.encode() + L)
 # A 3D volume and a truncated file.
 open("vol.nrrd", "wb").write(b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n" + bytes(64))
 open("trunc.nrrd", "wb").write(hdr.encode() + L[:100])
+# Huge sizes announced in a tiny file; a NaN in a float image.
+open("huge.nrrd", "wb").write(b"NRRD0004\ntype: uint8\ndimension: 2\nsizes: 100000 100000\nencoding: raw\n\n" + bytes(100))
+import struct
+open("nan.nrrd", "wb").write(b"NRRD0004\ntype: float\ndimension: 2\nsizes: 4 3\nendian: little\nencoding: raw\n\n"
+                             + struct.pack("<12f", *([1.0] * 5 + [float("nan")] + [0.0] * 6)))
 PYEOF
 
 for E in 0.5 1 2; do
@@ -210,6 +215,8 @@ python3 check.py lung.1.ele lung.poly 20.7 "$DATA/RatLungSlice1.raw" 128 128 0 0
 rm -f bad.poly
 expect 1 "$P" vol.nrrd bad.poly
 expect 1 "$P" trunc.nrrd bad.poly
+expect 1 "$P" huge.nrrd bad.poly
+expect 1 "$P" nan.nrrd bad.poly --threshold 0.5
 expect 1 "$P" missing.nrrd bad.poly
 expect 1 "$P" shapes.nrrd bad.poly --threshold 250
 expect 1 "$P" labels.nrrd bad.poly --label 9
