@@ -26,6 +26,7 @@ enum Case : int {
   kPentagonEar,       // B.2.1, leftover triangle is an ear (no point)
   kPentagonType1,     // 4(b), B.2.1 type 1
   kPentagonType2,     // 4(c)(ii), B.2.1 type 2
+  kPentagonType3,     // in place of B.2.1 type 3: new apex + B.1.1
   kHexagon,           // 4(c)(i)/(iii), B.1.1
   kHeptagon,          // 4(c)(v)(f), B.3.1 (ear form)
   kNonEmptyTriangle,  // Fig. 3.6: non-empty triangle formed
@@ -36,19 +37,21 @@ enum Case : int {
   kRootJoe,           // step 5(b)/(d) without an outside point (Joe's split)
   kRootOutside,       // step 5(b)/(d) as in the thesis (--allow-outside)
   kRootNested,        // step 5(c): non-convex quad with a free point, B.1.2
+  kDentTri,           // Fig. 3.16 inside: a leftover triangle closed by a point on its edge
+  kDentNonEmpty,      // the same for a non-empty triangle (B.1.2)
   kFallback,          // safe odd-degree split of a region (see header)
   kRepair,            // Fig. 3.23: parent component triangle split
   kNumCases
 };
 const char* kCaseNames[kNumCases] = {
     "4c_convex_quad",        "4c_quad_to_grandparent", "B21_pentagon_ear",
-    "4b_B21_type1",          "4cii_B21_type2",         "4ci_4ciii_B11_hexagon",
+    "4b_B21_type1",          "4cii_B21_type2",         "B21_type3_apex_hexagon",         "4ci_4ciii_B11_hexagon",
     "4cvf_B31_heptagon",     "3_nonempty_triangle",    "3_nonempty_triangle_split",
     "3b_B12_quad_point",     "3c_B22_pentagon_point",  "4civ_hexagon_point",
     "5bd_joe_split",         "5bd_outside_point",      "5c_B12_nested",
-    "fallback_split",        "3_3_repair_split"};
+    "degenerate_quad_triangle", "degenerate_quad_nonempty", "fallback_split",        "3_3_repair_split"};
 
-enum RegType : std::uint8_t { kEmpty = 0, kTri, kQuadR, kNTri };
+enum RegType : std::uint8_t { kEmpty = 0, kTri, kQuadR, kNTri, kDent };
 struct Region {
   RegType type = kEmpty;
   std::uint8_t diag = 0;
@@ -306,6 +309,7 @@ struct Converter {
       case kNTri:
         tris.push_back({p, q, r.y}); tris.push_back({r.y, q, r.x}); tris.push_back({p, r.y, r.x});
         break;
+      case kDent: break;
     }
   }
   static void region_ext(const Region& r, std::vector<int>& b, std::vector<int>& inner) {
@@ -314,6 +318,7 @@ struct Converter {
       case kTri: b.push_back(r.x); break;
       case kQuadR: b.push_back(r.x); b.push_back(r.y); break;
       case kNTri: b.push_back(r.x); inner.push_back(r.y); break;
+      case kDent: b.push_back(r.x); break;
     }
   }
 
@@ -441,8 +446,10 @@ struct Converter {
   void process(int u, bool is_root) {
     const int s0 = pslot[u];
     const int a = T[u][s0], b = T[u][(s0 + 1) % 3], c = T[u][(s0 + 2) % 3];
+    for (int attempt = 0;; ++attempt) {
     std::vector<int> B = {a, b}, I;
     std::vector<std::array<int, 3>> tris = {{a, b, c}};
+    std::vector<std::array<int, 3>> kids;
     for (int k = 1; k <= 2; ++k) {
       const int j = (s0 + k) % 3;
       const int w = nb[u][j];
@@ -450,8 +457,10 @@ struct Converter {
       if (w < 0 || (con[u] >> j & 1) || par[w] != u) continue;
       const int p = T[u][(j + 1) % 3], q = T[u][j];  // child's outgoing edge (p, q)
       region_ext(reg[w], B, I);
-      region_triangles(reg[w], p, q, tris);
+      if (reg[w].type == kDent) split_own(tris, q, p, reg[w].x);
+      else region_triangles(reg[w], p, q, kids);
     }
+    tris.insert(tris.end(), kids.begin(), kids.end());
     // Close "x, c, x" (a vertex surrounded by the region: Fig. 3.6).
     bool changed = true;
     while (changed && B.size() >= 4) {
@@ -509,7 +518,7 @@ struct Converter {
         int kind = 0;
         const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind);
         if (apex >= 0) {
-          ++cases[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kPentagonType2];
+          ++cases[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kind == 2 ? kPentagonType2 : kPentagonType3];
           r = {kTri, 0, apex, -1};
           done = true;
         }
@@ -551,6 +560,7 @@ struct Converter {
         done = hexagon_point(lp, r);
       }
     }
+    if (!done && attempt == 0 && make_dents(u, s0)) continue;
     if (!done) {
       lp = LocalPatch{};
       r = fallback(lp, tris, is_root, &split_m);
@@ -559,26 +569,70 @@ struct Converter {
     r = commit_region(lp, r, at, &split_m);  // split_m: a point put on the root edge
     if (is_root) finish_root(u, a, b, r, at, split_m);
     else reg[u] = r;
+    return;
+    }
+  }
+
+  // Split the node's own triangle that has the edge (p, q) at the dent m.
+  static void split_own(std::vector<std::array<int, 3>>& tris, int p, int q, int m) {
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      for (int k = 0; k < 3; ++k)
+        if (tris[i][k] == p && tris[i][(k + 1) % 3] == q) {
+          const int r = tris[i][(k + 2) % 3];
+          tris[i] = {p, m, r};
+          tris.push_back({m, q, r});
+          return;
+        }
+  }
+
+  // The thesis's degenerate quadrilaterals (Fig. 3.4/3.5): a child whose
+  // leftover (a triangle or a non-empty triangle) does not combine with this
+  // node is closed with a point m on the shared edge, pushed slightly into
+  // this node's triangle; the node keeps m as a (reflex) boundary vertex.
+  bool make_dents(int u, int s0) {
+    bool any = false;
+    for (int k = 1; k <= 2; ++k) {
+      const int j = (s0 + k) % 3;
+      const int w = nb[u][j];
+      if (w < 0 || (con[u] >> j & 1) || par[w] != u) continue;
+      if (reg[w].type != kTri && reg[w].type != kNTri) continue;
+      const int p = T[u][(j + 1) % 3], q = T[u][j], opp = T[u][(j + 2) % 3];
+      const P2 mm = {0.5 * (pts[p][0] + pts[q][0]), 0.5 * (pts[p][1] + pts[q][1])};
+      for (double d : {0.15, 0.05, 0.015}) {
+        LocalPatch lp;
+        const int lp_ = lp.add_known(pts[p], p), lq = lp.add_known(pts[q], q), lo = lp.add_known(pts[opp], opp);
+        const int lx = lp.add_known(pts[reg[w].x], reg[w].x);
+        const int lm = lp.add_new({mm[0] + d * (pts[opp][0] - mm[0]), mm[1] + d * (pts[opp][1] - mm[1])});
+        // This node keeps the dent: both halves of its triangle stay proper.
+        if (!t2q::good_triangle(lp.p[lq], lp.p[lm], lp.p[lo]) || !t2q::good_triangle(lp.p[lm], lp.p[lp_], lp.p[lo]))
+          continue;
+        bool ok;
+        if (reg[w].type == kTri) {
+          ok = t2q::good_quad(lp.p[lp_], lp.p[lm], lp.p[lq], lp.p[lx]);
+          if (ok) lp.quads.push_back({lp_, lm, lq, lx});
+        } else {
+          const int li = lp.add_known(pts[reg[w].y], reg[w].y);
+          ok = t2q::quad_with_point(lp, {lp_, lm, lq, lx}, li);
+        }
+        if (!ok) continue;
+        int mg = lm;
+        commit_region(lp, {}, attr[w], &mg);
+        ++cases[reg[w].type == kTri ? kDentTri : kDentNonEmpty];
+        reg[w] = {kDent, 0, mg, -1};
+        any = true;
+        break;
+      }
+    }
+    return any;
   }
 
   bool heptagon(LocalPatch& lp, Region& r) {
-    // Leftover ear on the outgoing edge and a hexagon (B.1.1) for the rest.
-    const Ring v = {0, 1, 2, 3, 4, 5, 6};
-    for (int side = 0; side < 2; ++side) {
-      const int apex = side == 0 ? 2 : 6;
-      Ring rest = side == 0 ? Ring{0, 2, 3, 4, 5, 6} : Ring{1, 2, 3, 4, 5, 6};
-      const bool tri_ok = side == 0 ? t2q::good_triangle(lp.p[0], lp.p[1], lp.p[2])
-                                    : t2q::good_triangle(lp.p[6], lp.p[0], lp.p[1]);
-      if (!tri_ok) continue;
-      std::vector<P2> rp;
-      for (int i : rest) rp.push_back(lp.p[i]);
-      if (!t2q::simple_ccw(rp)) continue;
-      const auto m = lp.mark();
-      if (t2q::hexagon(lp, rest)) { ++cases[kHeptagon]; r = {kTri, 0, apex, -1}; return true; }
-      lp.rollback(m);
-    }
-    (void)v;
-    return false;
+    int kind = 0;
+    const int apex = t2q::heptagon(lp, {0, 1, 2, 3, 4, 5, 6}, &kind);
+    if (apex < 0) return false;
+    ++cases[kHeptagon];
+    r = {kTri, 0, apex, -1};
+    return true;
   }
 
   bool pentagon_point(LocalPatch& lp, Region& r) {

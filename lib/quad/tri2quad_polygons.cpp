@@ -474,6 +474,56 @@ int pentagon(LocalPatch& lp, const Ring& v, int* kind) {
     }
     lp.rollback(m);
   }
+  // Only fans from v0 or v1 exist (type 3 in the thesis, which puts a point
+  // on the outgoing edge). Instead: leftover (v0, v1, p) with a new apex p,
+  // and the hexagon (v1, v2, v3, v4, v0, p) by B.1.1, fewest points first.
+  const P2 e0 = P(0), e1 = P(1), em = mid(e0, e1);
+  const std::vector<P2> targets = {P(2), P(3), P(4), centroid(pts(lp, v))};
+  for (int budget = 0; budget <= 3; ++budget)
+    for (const P2& X : targets)
+      for (double f : {0.3, 0.5, 0.15, 0.7}) {
+        const int p = lp.add_new(lerp(em, X, f));
+        const Ring hex = {V(1), V(2), V(3), V(4), V(0), p};
+        if (good_triangle(e0, e1, lp.p[p]) && simple_ccw(pts(lp, hex)) && hexagon(lp, hex, budget)) {
+          set(3);
+          return p;
+        }
+        lp.rollback(m);
+      }
+  return -1;
+}
+
+// ---------------------------------------------------------------- B.3.1
+int heptagon(LocalPatch& lp, const Ring& v, int* kind) {
+  auto P = [&](int i) -> P2 { return lp.p[v[i]]; };
+  const auto m = lp.mark();
+  // A leftover ear on the outgoing edge and B.1.1 for the hexagon left.
+  for (int side = 0; side < 2; ++side) {
+    const int apex = side == 0 ? v[2] : v[6];
+    const Ring rest = side == 0 ? Ring{v[0], v[2], v[3], v[4], v[5], v[6]} : Ring{v[1], v[2], v[3], v[4], v[5], v[6]};
+    const bool tri_ok = side == 0 ? good_triangle(P(0), P(1), P(2)) : good_triangle(P(6), P(0), P(1));
+    if (!tri_ok || !simple_ccw(pts(lp, rest))) continue;
+    if (hexagon(lp, rest)) { if (kind) *kind = 0; return apex; }
+    lp.rollback(m);
+  }
+  // General form (notes 3.6): leftover (v0, v1, p3) and the path p3-p1-v4
+  // cut the rest into two hexagons, quadrangulated with 2 points at most.
+  const P2 em = mid(P(0), P(1)), ctr = {(P(0)[0] + P(1)[0] + P(4)[0]) / 3, (P(0)[1] + P(1)[1] + P(4)[1]) / 3};
+  for (const P2& X : {ctr, P(4)})
+    for (double f3 : {0.3, 0.5, 0.15})
+      for (double f1 : {0.5, 0.3, 0.7}) {
+        const int p3 = lp.add_new(lerp(em, X, f3));
+        const int p1 = lp.add_new(lerp(lp.p[p3], P(4), f1));
+        const Ring hl = {v[1], v[2], v[3], v[4], p1, p3}, hr = {p3, p1, v[4], v[5], v[6], v[0]};
+        if (good_triangle(P(0), P(1), lp.p[p3]) && simple_ccw(pts(lp, hl)) && simple_ccw(pts(lp, hr))) {
+          for (const auto& bb : {std::pair<int, int>{0, 0}, {0, 1}, {1, 0}, {1, 1}, {0, 2}, {2, 0}}) {
+            const auto m2 = lp.mark();
+            if (hexagon(lp, hl, bb.first) && hexagon(lp, hr, bb.second)) { if (kind) *kind = 1; return p3; }
+            lp.rollback(m2);
+          }
+        }
+        lp.rollback(m);
+      }
   return -1;
 }
 

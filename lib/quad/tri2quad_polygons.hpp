@@ -58,8 +58,15 @@ bool quad_nested_free(LocalPatch& lp, const Ring& c);
 
 // Lemma B.2.1 for a pentagon v (v[0]v[1] the outgoing edge): quads plus a
 // leftover triangle on the outgoing edge; returns the apex of that triangle
-// (a local index) or -1. kind: 0 ear (no point), 1 type 1, 2 type 2.
+// (a local index) or -1. kind: 0 ear (no point), 1 type 1, 2 type 2, 3 in
+// place of type 3 (which would put a point on the outgoing edge): a new apex
+// and B.1.1 on the hexagon left.
 int pentagon(LocalPatch& lp, const Ring& v, int* kind = nullptr);
+
+// Lemma B.3.1 for a heptagon v (v[0]v[1] the outgoing edge): a leftover
+// triangle on the outgoing edge (an ear, or with a new apex and the path of
+// notes 3.6), hexagons for the rest. Returns the apex or -1.
+int heptagon(LocalPatch& lp, const Ring& v, int* kind = nullptr);
 
 // Joe's split of triangle (a, b, c) with the point m on edge bc (section
 // 3.8 of the notes): 5 quads, 4 new interior points.
