@@ -10,6 +10,7 @@
 #include "wellcomposed/critical_configuration.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -37,6 +38,17 @@ void check_size(const Geometry& g, const char* what) {
     throw Error(std::string(what) + ": image too large");
 }
 
+// Four rows of 8 bytes, all equal to 0 or all to 1: no block among them is
+// critical (the common case, checked with four 64-bit loads).
+bool uniform_rows(const std::uint8_t* a, const std::uint8_t* b, const std::uint8_t* c, const std::uint8_t* d) {
+  std::uint64_t w[4];
+  std::memcpy(&w[0], a, 8);
+  std::memcpy(&w[1], b, 8);
+  std::memcpy(&w[2], c, 8);
+  std::memcpy(&w[3], d, 8);
+  return w[0] == w[1] && w[0] == w[2] && w[0] == w[3] && (w[0] == 0 || w[0] == 0x0101010101010101ull);
+}
+
 // A byte image (0/1) whose border layers are background, so every block N(p)
 // with p in [0, n-2]^3 lies inside and no critical configuration can involve
 // the border or anything outside (the outside being background too).
@@ -50,6 +62,8 @@ struct WorkGrid {
       : v(data), n{nx, ny, nz}, sy(nx), sz(nx * ny) {
     for (int k = 0; k < 8; ++k) off[k] = (k & 1) + ((k >> 1) & 1) * sy + ((k >> 2) & 1) * sz;
   }
+  // The 2x2 rows of 8 voxels from i on are all 0 or all 1.
+  bool uniform8(std::size_t i) const { return uniform_rows(v + i, v + i + sy, v + i + sz, v + i + sz + sy); }
   std::uint8_t code(std::size_t i) const {
     const std::uint8_t* p = v + i;
     return std::uint8_t(p[0] | p[1] << 1 | p[sy] << 2 | p[sy + 1] << 3 | p[sz] << 4 |
@@ -97,6 +111,10 @@ private:
         const std::size_t row = g_.sy * y + g_.sz * z;
         for (std::size_t x = 0; x + 1 < g_.n[0]; ++x) {
           const std::size_t r = row + x;
+          if (x + 8 <= g_.n[0] && g_.uniform8(r)) {
+            x += 6;  // blocks x .. x+6 lie in one colour
+            continue;
+          }
           if (!critical_configurations(g_.code(r))) continue;
           if (!eliminate(r, gate)) {
             act = 1;  // left for a later pass
@@ -150,6 +168,12 @@ private:
     const wc::CandidateSets& b = candidate_sets(code);
     std::uint8_t before[kG], after[kG];
     flags_around(r, before);
+    if (gate > 0) {
+      // No set can eliminate more than all the configurations of G(r).
+      int all = 0;
+      for (int k = 0; k < kG; ++k) all += popcount(before[k]);
+      if (all * kPoint < gate) return false;
+    }
     // Partition B(r) into B1(r) (creates nothing) and B2(r). Greedy: within
     // the part a rule draws from, the draw is among the sets that eliminate
     // the most critical configurations of G(r) per inserted point, then
@@ -299,6 +323,11 @@ CriticalCounts count_critical_configurations(const BinaryImage& img) {
       };
       unsigned left = column(0);
       for (std::size_t x = 0; x < nx; ++x) {
+        if (x + 8 <= nx && uniform_rows(r0 + x, r1 + x, r2 + x, r3 + x)) {
+          x += 6;  // blocks x .. x+6 lie in one colour
+          left = column(x + 1);
+          continue;
+        }
         const unsigned right = x + 1 < nx ? column(x + 1) : 0u;
         const unsigned code = left | right << 1;
         if (code && code != 0xffu) add_counts(c, critical_configurations(std::uint8_t(code)));
