@@ -105,6 +105,28 @@ void pass_line(double* val, const std::uint8_t* lab, long n, double delta2, std:
   }
 }
 
+// The first pass, where G is 0 on the opposite class and inf on the own
+// class: the envelope reduces to the distance to the nearest opposite voxel
+// of the line, (m - 1/2) delta for m voxels away (outside = background).
+void first_pass_line(double* val, const std::uint8_t* lab, long n, double delta2) {
+  constexpr long kNone = std::numeric_limits<long>::min() / 4;
+  long last[2] = {-1, kNone};  // last background (outside at -1) and foreground position
+  for (long y = 0; y < n; ++y) {
+    const int c = lab[y];
+    const long o = last[1 - c];
+    val[y] = o == kNone ? kInf : double(y - o);
+    last[c] = y;
+  }
+  long next[2] = {n, -kNone};
+  for (long y = n - 1; y >= 0; --y) {
+    const int c = lab[y];
+    const long o = next[1 - c];
+    const double m = std::min(val[y], o == -kNone ? kInf : double(o - y));
+    val[y] = m < kInf ? (m - 0.5) * (m - 0.5) * delta2 : kInf;
+    next[c] = y;
+  }
+}
+
 } // namespace
 
 FloatImage signed_distance_to_boundary(const BinaryImage& wc, unsigned threads) {
@@ -148,8 +170,12 @@ FloatImage signed_distance_to_boundary(const BinaryImage& wc, unsigned threads) 
             labs[q * len + t] = lab[idx];
           }
         for (long q = 0; q < m; ++q) {
-          pass_line(&vals[q * len], &labs[q * len], len, delta2, 1, w);
-          pass_line(&vals[q * len], &labs[q * len], len, delta2, 0, w);
+          if (a == 0) {
+            first_pass_line(&vals[q * len], &labs[q * len], len, delta2);
+          } else {
+            pass_line(&vals[q * len], &labs[q * len], len, delta2, 1, w);
+            pass_line(&vals[q * len], &labs[q * len], len, delta2, 0, w);
+          }
         }
         for (long t = 0; t < len; ++t)
           for (long q = 0; q < m; ++q) {
