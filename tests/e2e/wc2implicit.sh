@@ -85,6 +85,11 @@ c2=$(grep '"checksum"' r2.json)
 grep -q '"evaluations_per_second"' r1.json || fail "no evaluations_per_second"
 grep -q '"gradient_checksum"' r3.json || fail "no gradient_checksum"
 
+# The output does not depend on the number of threads.
+expect 0 "$W" box.nrrd box-t1.nrrd --threads 1
+expect 0 "$W" box.nrrd box-t2.nrrd --threads 2
+cmp -s box-t1.nrrd box-t2.nrrd || fail "output depends on --threads"
+
 # NRRD on stdout, stdin input.
 "$W" box.nrrd - -q > piped.nrrd
 expect 0 "$E" piped.nrrd pts.txt
