@@ -51,6 +51,7 @@ struct FacetInfo {
   std::uint8_t state = 0;
   double x[3] = {0, 0, 0};  // surface centre x_t: crossing farthest from the facet's vertices
   double r2 = 0;            // squared radius of the surface Delaunay ball
+  float grad[3] = {0, 0, 0};  // grad f at x_t (orients the facet for SMOOTH and output)
 };
 
 template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_with_circumcenter_3<Gt>>
@@ -297,14 +298,21 @@ private:
 };
 
 Vec3 Mesher::bisect(Vec3 a, Vec3 b, double fa) {
-  // Illinois regula falsi with a bisection safeguard, to ~1e-12 delta.
+  // Illinois regula falsi with a bisection safeguard (when the bracket
+  // shrinks slowly), to ~1e-11 delta.
   double fb = value(b);
   const bool ia = inside(fa);
-  const double tol2 = std::pow(1e-12 * grid_.delta, 2);
+  const double tol2 = std::pow(1e-11 * grid_.delta, 2);
   int side = 0;
+  double width2 = dist2(a, b);
   for (int it = 0; it < 200 && dist2(a, b) > tol2; ++it) {
     double t = (fa - fb) != 0 ? fa / (fa - fb) : 0.5;
-    if (!(t > 0.02 && t < 0.98) || it % 4 == 3) t = 0.5;
+    if (!(t > 0 && t < 1)) t = 0.5;
+    if (it % 3 == 2) {  // less than halved in three steps: bisect
+      const double w2 = dist2(a, b);
+      if (w2 > width2 / 4) t = 0.5;
+      width2 = w2;
+    }
     Vec3 m{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
     const double fm = value(m);
     if (inside(fm) == ia) {
@@ -458,6 +466,8 @@ void Mesher::compute_facet(Ch c, int i) {
         if (e.count > 1) fi.state |= kMulti;
         std::copy(e.x.begin(), e.x.end(), fi.x);
         fi.r2 = dist2(e.x, p0);
+        const Vec3 gr = gradient(e.x);
+        for (int k = 0; k < 3; ++k) fi.grad[k] = float(gr[k]);
       }
     }
   }
@@ -643,7 +653,7 @@ bool Mesher::smooth(Vh v, Facet* worst) {
     Vec3 n = cross(sub(b, a), sub(c, a));
     const double nl = norm(n);
     if (nl <= 0) continue;
-    const Vec3 gr = gradient({fi.x[0], fi.x[1], fi.x[2]});
+    const Vec3 gr{fi.grad[0], fi.grad[1], fi.grad[2]};
     const double s = dot(n, gr) < 0 ? -1 / nl : 1 / nl;
     n = {n[0] * s, n[1] * s, n[2] * s};
     for (int m = 1; m < 4; ++m) {
@@ -837,7 +847,8 @@ RestrictedDelaunayResult Mesher::run() {
       // Outward: along grad f at the surface centre.
       const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
       const Vec3 x = facet_center(f);
-      if (dot(n, gradient(x)) < 0) std::swap(t[1], t[2]);
+      const FacetInfo& fi = f.first->facet[f.second];
+      if (dot(n, Vec3{fi.grad[0], fi.grad[1], fi.grad[2]}) < 0) std::swap(t[1], t[2]);
       mesh.triangles.push_back(t);
       centers.push_back(x);
     }
@@ -954,6 +965,14 @@ RestrictedDelaunayResult Mesher::run() {
       if (nl > 0) max_dist = std::max(max_dist, std::abs(dot(n, sub(centers[k], mesh.points[t[0]]))) / nl);
     }
   }
+  // Geometric error estimate: |f| at the triangles' centroids (f
+  // interpolates g, the signed distance to the voxel boundary, world units).
+  double max_centroid = 0;
+  for (const auto& t : mesh.triangles) {
+    Vec3 c;
+    for (int i = 0; i < 3; ++i) c[i] = (mesh.points[t[0]][i] + mesh.points[t[1]][i] + mesh.points[t[2]][i]) / 3;
+    max_centroid = std::max(max_centroid, std::abs(value(c)));
+  }
   // Restricted Delaunay property: each surface centre's nearest site is a
   // vertex of its facet (its ball is empty).
   long long rd_violations = 0;
@@ -1008,6 +1027,7 @@ RestrictedDelaunayResult Mesher::run() {
   st["roughness_bound_degrees"] = opt_.roughness * 180 / M_PI;
   st["max_distance_to_plane"] = max_dist;
   st["max_abs_f_at_vertices"] = max_f;
+  st["max_abs_f_at_centroids"] = max_centroid;
   st["restricted_delaunay_violations"] = rd_violations;
   st["function_evaluations"] = evaluations_;
   Json times = Json::object();

@@ -3,7 +3,8 @@
 # images, and CGAL's Surface_mesher (make_surface_mesh, 30-degree angle bound,
 # Manifold_tag) on the same implicit function f, side by side: time,
 # triangles, smallest angle, largest radius-edge ratio, topology equal to the
-# voxel boundary bdCA(X') or not.   $1: the build's tool folder.
+# voxel boundary bdCA(X') or not, and max |f| at the triangles' centroids
+# (f ~ signed distance: a geometric error estimate).   $1: the build's tool folder.
 set -euo pipefail
 tools=${1:?tool folder}
 build=$(cd "$tools/.." && pwd)
@@ -14,33 +15,35 @@ cmake --build "$build" --target surface_check surface_mesher_peer >/dev/null
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-row() {  # row NAME MESH WC SECONDS BOUND
+row() {  # row NAME MESH WC SECONDS BOUND MAX|f|-AT-CENTROIDS
   local line status=yes
   line=$("$check" "$2" "$3" "$5") || status=no
-  awk -v name="$1" -v secs="$4" -v ok="$status" '{
+  awk -v name="$1" -v secs="$4" -v ok="$status" -v err="$6" '{
     for (i = 1; i <= NF; ++i) { if ($i == "triangles") t = $(i+1); if ($i == "max_ratio") r = $(i+1); if ($i == "min_angle_deg") a = $(i+1) }
-    printf "  %-34s %8.2f s %9d %9.2f %9.3f   %s\n", name, secs, t, a, r, ok }' <<< "$line"
+    printf "  %-34s %8.2f s %9d %9.2f %9.3f %9.3f   %s\n", name, secs, t, a, r, err, ok }' <<< "$line"
 }
+centroid_error() { grep -o '"max_abs_f_at_centroids": [0-9.e+-]*' "$1" | awk '{print $2}'; }
 
 for img in bunny00-96 elephant-96 armadillo-96; do
   "$tools/img2wc" -q "$src/share/data/$img.nrrd" "$work/$img-wc.nrrd"
   "$tools/wc2implicit" -q "$work/$img-wc.nrrd" "$work/$img-f.nrrd"
   echo "$img:"
-  printf "  %-34s %10s %9s %9s %9s   %s\n" "mesher" "time" "triangles" "min angle" "max ratio" "topology ok"
+  printf "  %-34s %10s %9s %9s %9s %9s   %s\n" "mesher" "time" "triangles" "min angle" "max ratio" "max |f|" "topology ok"
   for r in 2 1.5 1.2; do
     start=$(date +%s.%N)
-    "$tools/implicit2mesh" -q "$work/$img-f.nrrd" "$work/$img-$r.off" --ratio "$r" || true
+    "$tools/implicit2mesh" -q "$work/$img-f.nrrd" "$work/$img-$r.off" --ratio "$r" --stats "$work/s.json" || true
     secs=$(echo "$(date +%s.%N) - $start" | bc)
-    row "implicit2mesh --ratio $r" "$work/$img-$r.off" "$work/$img-wc.nrrd" "$secs" "$r"
+    row "implicit2mesh --ratio $r" "$work/$img-$r.off" "$work/$img-wc.nrrd" "$secs" "$r" "$(centroid_error "$work/s.json")"
   done
   start=$(date +%s.%N)
-  "$tools/implicit2mesh" -q "$work/$img-f.nrrd" "$work/$img-d.off" --max-distance 0.1 || true
+  "$tools/implicit2mesh" -q "$work/$img-f.nrrd" "$work/$img-d.off" --max-distance 0.1 --stats "$work/s.json" || true
   secs=$(echo "$(date +%s.%N) - $start" | bc)
-  row "implicit2mesh --max-distance 0.1" "$work/$img-d.off" "$work/$img-wc.nrrd" "$secs" 2
+  row "implicit2mesh --max-distance 0.1" "$work/$img-d.off" "$work/$img-wc.nrrd" "$secs" 2 "$(centroid_error "$work/s.json")"
   # Surface_mesher: no size bound, distance bound 0.25 and 0.1 voxel.
   for d in 0.25 0.1; do
     if out=$(timeout 600 "$peer" "$work/$img-f.nrrd" "$work/$img-peer.off" 0 "$d"); then
-      row "CGAL Surface_mesher distance $d" "$work/$img-peer.off" "$work/$img-wc.nrrd" "${out%% *}" 1000
+      read -r psecs ptris perr <<< "$out"
+      row "CGAL Surface_mesher distance $d" "$work/$img-peer.off" "$work/$img-wc.nrrd" "$psecs" 1000 "$perr"
     else
       echo "  CGAL Surface_mesher distance $d: failed or timed out (600 s)"
     fi

@@ -4,7 +4,8 @@
 // bound) and Manifold_tag.
 //   surface_mesher_peer IN.nrrd OUT.off [RADIUS DISTANCE]
 // RADIUS, DISTANCE: the criteria's size and distance bounds in voxels of the
-// smallest spacing (default 2 and 0.1). Prints "seconds triangles".
+// smallest spacing (default 2 and 0.1). Prints "seconds triangles
+// max|f|-at-centroids".
 #include "implicit/implicit_file.hpp"
 
 #include <CGAL/Complex_2_in_triangulation_3.h>
@@ -60,7 +61,17 @@ int main(int argc, char** argv) {
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::ofstream out(argv[2]);
     CGAL::output_surface_facets_to_off(out, c2t3);
-    std::cout << secs << ' ' << c2t3.number_of_facets() << '\n';
+    // |f| at the triangles' centroids, as implicit2mesh's --stats reports it.
+    double max_centroid = 0;
+    for (auto it = c2t3.facets_begin(); it != c2t3.facets_end(); ++it) {
+      imgmesh::Vec3 m{0, 0, 0};
+      for (int k = 1; k < 4; ++k) {
+        const Point& p = it->first->vertex((it->second + k) & 3)->point();
+        m[0] += p.x() / 3; m[1] += p.y() / 3; m[2] += p.z() / 3;
+      }
+      max_centroid = std::max(max_centroid, std::abs(pu.value(m)));
+    }
+    std::cout << secs << ' ' << c2t3.number_of_facets() << ' ' << max_centroid << '\n';
     return out ? 0 : 1;
   } catch (const std::exception& e) {
     std::cerr << "surface_mesher_peer: " << e.what() << '\n';
