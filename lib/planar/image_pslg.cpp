@@ -91,6 +91,15 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
   if (img.size[0] > 65536 || img.size[1] > 65536 || img.count() > (std::size_t(1) << 28))
     throw Error("image too large for img2poly (at most 65536 pixels a side and 2^28 pixels)");
   if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance)) throw UsageError("the tolerance must be >= 0");
+  {
+    // The PSLG lives in the world x-y plane: the image's in-plane axes must
+    // map onto it (2D images; axial slices of 3D files).
+    const Vec3 o = img.world(0, 0, 0), a = img.world(1, 0, 0), b = img.world(0, 1, 0);
+    const double det = (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    if (!(std::abs(det) > 1e-9 * img.spacing[0] * img.spacing[1]) || std::abs(a[2] - o[2]) > 1e-9 ||
+        std::abs(b[2] - o[2]) > 1e-9)
+      throw Error("the slice is not in the world x-y plane (not an axial slice)");
+  }
 
   ImagePslgResult res;
   std::vector<std::int32_t> values(img.data);
