@@ -91,6 +91,7 @@ public:
     if (greedy_)
       for (int gate : kGates) pass(gate);
     pass(0);
+    if (greedy_) prune();
   }
 
   std::size_t changed = 0, created = 0;
@@ -207,6 +208,8 @@ private:
     const unsigned pick = nc == 1 ? cand[0] : cand[rng_() % unsigned(nc)];
     set(r, b.sets[pick], 1);
     changed += std::size_t(popcount(b.sets[pick]));
+    for (int k = 0; k < 8; ++k)
+      if (b.sets[pick] & (1u << k)) inserted_.push_back(r + g_.off[k]);
     touch(r);
     if (n1 == 0) {
       // Rule (3): re-examine only G(r); queue every point whose N_x, N_y,
@@ -225,6 +228,21 @@ private:
   std::vector<std::uint8_t> active_;  // per row (y, z): may hold a critical block
   std::vector<std::size_t> queue_;    // R
   std::size_t head_ = 0;
+  std::vector<std::size_t> inserted_;  // P, in insertion order
+
+  // A point of P that later insertions made unnecessary goes back to the
+  // background when none of the 8 blocks holding it becomes critical (only
+  // those blocks see it). P only shrinks, so X stays a subset of X'.
+  void prune() {
+    for (std::size_t i : inserted_) {
+      g_.v[i] = 0;
+      bool ok = true;
+      for (int k = 0; k < 8 && ok; ++k) ok = !critical_configurations(g_.code(i - g_.off[k]));
+      if (ok) --changed;
+      else g_.v[i] = 1;
+    }
+    inserted_.clear();
+  }
 };
 
 struct Padding {

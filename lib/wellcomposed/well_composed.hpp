@@ -32,8 +32,10 @@ struct WellComposedOptions {
   RepairMode mode = RepairMode::Add;
   std::uint64_t seed = 0;
   // Rules (2) and (3) draw only among the sets of B(r) that eliminate the
-  // most critical configurations of G(r) per inserted point. false: draw
-  // among all of B1(r) (resp. B2(r)), the thesis's literal rules.
+  // most critical configurations of G(r) per inserted point; gated first
+  // passes take the points that serve several configurations first; a last
+  // pass drops inserted points that became unnecessary. false: the thesis's
+  // literal rules (draw among all of B1(r), resp. B2(r); one pass).
   bool greedy = true;
 };
 
