@@ -33,8 +33,9 @@ with open(out, "wb") as f:
 PY
 }
 
+echo "Wall-clock seconds, and process CPU seconds (all threads) where the machine is shared."
 echo "threads: $threads ($(nproc) cores); load: $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-22s %10s %10s %10s %12s %10s\n' image voxels "EDT s" "weights s" "construct s" "write s"
+printf '%-22s %10s %10s %10s %12s %12s %10s\n' image voxels "EDT s" "weights s" "construct s" "constr. cpu" "write s"
 for n in 256 512; do
   make_ball "$n" "$work/ball$n.nrrd"
   if [[ -x "$bin/img2wc" ]]; then
@@ -45,15 +46,16 @@ for n in 256 512; do
   if ! "$bin/wc2implicit" "$work/wc$n.nrrd" "$work/f$n.nrrd" -q --threads "$threads" --stats "$work/s$n.json"; then
     echo "ball $n^3: wc2implicit failed"; continue
   fi
-  printf '%-22s %10s %10.3f %10.3f %12.3f %10.3f\n' "ball+tunnel $n^3" "$((n * n * n))" \
+  printf '%-22s %10s %10.3f %10.3f %12.3f %12.3f %10.3f\n' "ball+tunnel $n^3" "$((n * n * n))" \
     "$(field "$work/s$n.json" distance_seconds)" "$(field "$work/s$n.json" weights_seconds)" \
-    "$(field "$work/s$n.json" construction_seconds)" "$(field "$work/s$n.json" write_seconds)"
+    "$(field "$work/s$n.json" construction_seconds)" "$(field "$work/s$n.json" construction_cpu_seconds)" \
+    "$(field "$work/s$n.json" write_seconds)"
   [[ $n == 512 ]] && rm -f "$work/ball$n.nrrd" "$work/wc$n.nrrd" "$work/f$n.nrrd"
 done
 
 echo
 echo "Table 6.1 (thesis: 2006 PowerBook G4, one core: about 417 s for f, 715 s for grad f)"
-printf '%-22s %10s %12s %14s %14s\n' image points "f s" "f+grad s" "evals/s (f)"
+printf '%-14s %10s %10s %12s %12s %14s %14s\n' image points "f s" "f cpu s" "f+grad s" "f+grad cpu s" "evals/s (f)"
 for img in ball256 bunny; do
   if [[ $img == bunny ]]; then
     [[ -x "$bin/img2wc" ]] || continue
@@ -66,6 +68,7 @@ for img in ball256 bunny; do
   [[ -f $f ]] || continue
   "$bin/implicit-eval" "$f" --random 20000000 --seed 1 --threads "$threads" --stats "$work/e.json" -q
   "$bin/implicit-eval" "$f" --random 20000000 --seed 1 --threads "$threads" --gradient --stats "$work/eg.json" -q
-  printf '%-22s %10s %12.3f %14.3f %14.3g\n' "$img" 20000000 "$(field "$work/e.json" evaluation_seconds)" \
-    "$(field "$work/eg.json" evaluation_seconds)" "$(field "$work/e.json" evaluations_per_second)"
+  printf '%-14s %10s %10.3f %12.3f %12.3f %14.3f %14.3g\n' "$img" 20000000 "$(field "$work/e.json" evaluation_seconds)" \
+    "$(field "$work/e.json" evaluation_cpu_seconds)" "$(field "$work/eg.json" evaluation_seconds)" \
+    "$(field "$work/eg.json" evaluation_cpu_seconds)" "$(field "$work/e.json" evaluations_per_second)"
 done
