@@ -1,0 +1,128 @@
+#!/bin/bash
+# tri2quad end to end: a real image through img2poly and poly2tri (when they
+# are built), a hand-made constrained mesh, every output format, and bad
+# input (dangling constraint edge, truncated file, usage errors).
+set -u
+mkdir -p "$TMP"
+cd "$TMP" || exit 1
+fail() { echo "FAIL: $*" >&2; exit 1; }
+T="$BIN/tri2quad"
+[ -x "$T" ] || fail "no $T"
+
+# Statistic from a --stats JSON (first match, numbers and booleans).
+stat() { sed -n "s/^ *\"$1\": *\([^,]*\),*$/\1/p" "$2" | head -1; }
+
+check_stats() {  # stats file: strictly convex and within the size bounds
+  [ "$(stat non_convex "$1")" = 0 ] || fail "$1: non-convex quads"
+  [ "$(stat within_bounds "$1")" = true ] || fail "$1: size bounds exceeded"
+  q=$(stat quads "$1"); s=$(stat steiner_points "$1")
+  qb=$(stat quad_bound "$1"); sb=$(stat steiner_bound "$1")
+  [ "$q" -le "$qb" ] && [ "$s" -le "$sb" ] || fail "$1: bounds"
+}
+
+# 1. A real image, when the upstream tools exist.
+if [ -x "$BIN/img2poly" ] && [ -x "$BIN/poly2tri" ]; then
+  "$BIN/img2poly" -q "$DATA/RatLungSlice1.mha" lung.poly --threshold 100 || fail "img2poly"
+  "$BIN/poly2tri" -q lung.poly lung.1.ele --min-angle 20 || fail "poly2tri"
+  "$T" -q lung.1.ele lung.q.ele --svg lung.q.svg --stats lung.json || fail "tri2quad on the lung mesh"
+  check_stats lung.json
+  grep -v '^ *#' lung.q.ele | head -1 | awk '{ if ($2 != 4) exit 1 }' || fail "lung.q.ele: not 4 nodes an element"
+  [ -s lung.q.node ] && [ -s lung.q.poly ] && [ -s lung.q.svg ] || fail "lung outputs missing"
+  # Every element line has 4 node ids (plus the region attribute).
+  grep -v '^ *#' lung.q.ele | tail -n +2 | awk 'NF > 0 && NF < 5 { exit 1 }' || fail "short element line"
+fi
+
+# 2. A hand-made constrained mesh: a square with an interior constraint loop
+# (a diamond around the centre), 1-based ids like Triangle's.
+cat > sq.node <<'N'
+9 2 0 0
+1 0 0
+2 4 0
+3 4 4
+4 0 4
+5 2 1
+6 3 2
+7 2 3
+8 1 2
+9 2 2
+N
+cat > sq.ele <<'N'
+12 3 1
+1 1 2 5 1
+2 2 6 5 1
+3 2 3 6 1
+4 3 7 6 1
+5 3 4 7 1
+6 4 8 7 1
+7 4 1 8 1
+8 1 5 8 1
+9 5 6 9 2
+10 6 7 9 2
+11 7 8 9 2
+12 8 5 9 2
+N
+cat > sq.poly <<'N'
+0 2 0 1
+8 1
+1 1 2 1
+2 2 3 1
+3 3 4 1
+4 4 1 1
+5 5 6 2
+6 6 7 2
+7 7 8 2
+8 8 5 2
+0
+N
+"$T" -q sq.ele sq.q.ele --stats sq.json || fail "tri2quad on sq"
+check_stats sq.json
+[ "$(stat components sq.json)" = 2 ] || fail "sq: expected 2 components"
+[ "$(stat triangles sq.json)" = 12 ] || fail "sq: 12 triangles"
+# The interior loop is kept: the output .poly has the loop's marker 2 on
+# segments that chain 5-6-7-8.
+grep -q " 2$" sq.q.poly || fail "sq.q.poly: constraint marker lost"
+# Regions carried: both attributes 1 and 2 appear on quads.
+grep -v '^ *#' sq.q.ele | tail -n +2 | awk 'NF >= 6 { seen[$6] = 1 } END { exit !(seen[1] && seen[2]) }' \
+  || fail "region attributes not carried"
+for ext in off vtk msh svg; do
+  "$T" -q sq.ele "sq.q.$ext" || fail "output .$ext"
+  [ -s "sq.q.$ext" ] || fail "empty .$ext"
+done
+grep -q '^\$MeshFormat' sq.q.msh || fail "msh header"
+"$T" -q sq.ele sq.o.ele --allow-outside --stats sq.o.json || fail "--allow-outside"
+check_stats sq.o.json
+
+# 3. Bad input: a dangling constraint edge (Fig. 3.26) names the edge.
+cat > bad.node <<'N'
+5 2 0 0
+1 0 0
+2 2 0
+3 2 2
+4 0 2
+5 1 1
+N
+cat > bad.ele <<'N'
+4 3 0
+1 1 2 5
+2 2 3 5
+3 3 4 5
+4 4 1 5
+N
+printf '0 2 0 1\n1 1\n1 1 5 1\n0\n' > bad.poly
+"$T" bad.ele bad.q.ele 2> bad.err; rc=$?
+[ $rc = 1 ] || fail "dangling edge: exit $rc, expected 1"
+grep -Eq '\((1, 5|5, 1)\)' bad.err || fail "dangling edge not named: $(cat bad.err)"
+[ "$(wc -l < bad.err)" = 1 ] || fail "error is not one line"
+[ ! -e bad.q.ele ] || fail "output written on error"
+
+# Truncated input.
+head -3 sq.ele > trunc.ele; cp sq.node trunc.node
+"$T" trunc.ele trunc.q.ele 2> trunc.err; rc=$?
+[ $rc = 1 ] || fail "truncated .ele: exit $rc"
+# Missing file, unknown output extension, unknown option: exit 1, 2, 2.
+"$T" nothere.ele x.ele 2>/dev/null; [ $? = 1 ] || fail "missing input"
+"$T" sq.ele x.txt 2>/dev/null; [ $? = 2 ] || fail "bad output extension"
+"$T" sq.ele x.ele --bogus 2>/dev/null; [ $? = 2 ] || fail "unknown option"
+# Quads as input are refused.
+"$T" sq.q.ele x.ele 2>/dev/null; [ $? = 1 ] || fail "quad input accepted"
+echo "tri2quad e2e: ok"
