@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
     sel.has_threshold = thr->count() > 0;
     if (!check && out.empty()) throw UsageError("OUT is required (or use --check)");
     if (check && !out.empty()) throw UsageError("--check writes nothing: give no OUT");
+    if (out == "-" && tool.app.get_option("--stats")->as<std::string>() == "-")
+      throw UsageError("OUT and --stats cannot both be standard output");
 
     const BinaryImage img = read_foreground(in, sel);
     tool.stats["input"] = in;

@@ -150,6 +150,7 @@ bad 1 "not an image" "$TMP/junk.nrrd" "$TMP/bad.mha"
 bad 2 "unknown mode" "$DATA/bunny00-96.nrrd" "$TMP/bad.mha" --mode sideways
 bad 2 "no OUT" "$DATA/bunny00-96.nrrd"
 bad 2 "--label with --threshold" "$DATA/bunny00-96.nrrd" "$TMP/bad.mha" --label 1 --threshold 1
+bad 2 "OUT and --stats both stdout" "$DATA/bunny00-96.nrrd" - --stats -
 bad 2 "unknown output format" "$DATA/bunny00-96.nrrd" "$TMP/bad.xyz"
 
 echo "img2wc e2e: $([[ $fail -eq 0 ]] && echo ok || echo FAILED)"
