@@ -42,6 +42,7 @@ struct VInfo {
   int id = -1;
   std::uint8_t origin = kSeed;
   int comp = -1;  // S component (active-cube component) the vertex lies on
+  std::uint8_t queued = 0;  // 1: TopoDisk check queued, 2: SMOOTH check queued
 };
 
 enum : std::uint8_t { kComputed = 1, kRestricted = 2, kMulti = 4 };
@@ -253,6 +254,12 @@ private:
   bool max_hit_ = false;
   std::size_t last_progress_ = 0;
   std::string phase_ = "seeds";
+  // Scratch buffers of the vertex checks (no allocation per check).
+  std::vector<Facet> facets_buf_;
+  std::vector<std::pair<int, int>> link_;
+  std::vector<int> ends_;
+  std::vector<char> used_;
+  std::vector<std::pair<int, Vec3>> normals_;
 
   double value(const Vec3& q) {
     ++evaluations_;
@@ -492,9 +499,12 @@ void Mesher::enqueue_facet(Ch c, int i) {
   }
 }
 
+// A vertex is queued at most once per check: the check runs on the state at
+// pop time, which includes every change since it was queued.
 void Mesher::enqueue_vertex(Vh v) {
-  queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh()});
-  queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh()});
+  if (!(v->info().queued & 1)) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh()});
+  if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh()});
+  v->info().queued = 3;
 }
 
 bool Mesher::insert(const Vec3& x, Origin origin, Ch hint) {
@@ -602,13 +612,14 @@ void Mesher::seeds() {
   if (tr_.dimension() < 3) throw Error("cannot place four non-coplanar seed points on the surface");
 }
 
-// TopoDisk (7.6.1): the restricted facets around v form one closed disk.
+// TopoDisk (7.6.1): the restricted facets around v form one closed disk:
+// every link vertex in two link edges, and the link edges one cycle.
 bool Mesher::topo_disk(Vh v, Facet* worst) {
-  std::vector<Facet> fs;
-  tr_.finite_incident_facets(v, std::back_inserter(fs));
-  std::map<int, std::vector<int>> link;
+  facets_buf_.clear();
+  tr_.finite_incident_facets(v, std::back_inserter(facets_buf_));
+  link_.clear();
   double best = -1;
-  for (const Facet& f : fs) {
+  for (const Facet& f : facets_buf_) {
     const FacetInfo& fi = f.first->facet[f.second];
     if (!(fi.state & kRestricted)) continue;
     int ids[2], k = 0;
@@ -616,36 +627,47 @@ bool Mesher::topo_disk(Vh v, Facet* worst) {
       Vh w = f.first->vertex((f.second + m) & 3);
       if (w != v) ids[k++] = w->info().id;
     }
-    link[ids[0]].push_back(ids[1]);
-    link[ids[1]].push_back(ids[0]);
+    link_.emplace_back(ids[0], ids[1]);
     if (fi.r2 > best) {
       best = fi.r2;
       *worst = f;
     }
   }
-  if (link.empty()) return true;
-  for (auto& kv : link)
-    if (kv.second.size() != 2) return false;
-  int start = link.begin()->first, prev = -1, cur = start;
-  std::size_t steps = 0;
-  do {
-    const auto& nb = link[cur];
-    const int next = nb[0] != prev ? nb[0] : nb[1];
-    prev = cur;
-    cur = next;
+  if (link_.empty()) return true;
+  ends_.clear();
+  for (auto& e : link_) {
+    ends_.push_back(e.first);
+    ends_.push_back(e.second);
+  }
+  std::sort(ends_.begin(), ends_.end());
+  for (std::size_t i = 0; i < ends_.size(); i += 2)
+    if (ends_[i] != ends_[i + 1] || (i + 2 < ends_.size() && ends_[i + 2] == ends_[i])) return false;
+  // Walk the cycle from the first edge.
+  used_.assign(link_.size(), 0);
+  used_[0] = 1;
+  const int start = link_[0].first;
+  int cur = link_[0].second;
+  std::size_t steps = 1;
+  while (cur != start) {
+    std::size_t k = 0;
+    for (; k < link_.size(); ++k)
+      if (!used_[k] && (link_[k].first == cur || link_[k].second == cur)) break;
+    if (k == link_.size()) return false;
+    used_[k] = 1;
+    cur = link_[k].first == cur ? link_[k].second : link_[k].first;
     ++steps;
-  } while (cur != start && steps <= link.size());
-  return steps == link.size();
+  }
+  return steps == link_.size();
 }
 
 // SMOOTH (7.6.4): the roughness of an edge (v, u), the angle between the
 // oriented normals of its two restricted facets, stays below g.
 bool Mesher::smooth(Vh v, Facet* worst) {
-  std::vector<Facet> fs;
-  tr_.finite_incident_facets(v, std::back_inserter(fs));
-  std::map<int, std::vector<Vec3>> normals;  // by the other vertex of the edge
+  facets_buf_.clear();
+  tr_.finite_incident_facets(v, std::back_inserter(facets_buf_));
+  normals_.clear();  // (other vertex of the edge, oriented unit normal)
   double best = -1;
-  for (const Facet& f : fs) {
+  for (const Facet& f : facets_buf_) {
     const FacetInfo& fi = f.first->facet[f.second];
     if (!(fi.state & kRestricted)) continue;
     const Vec3 a = vec(f.first->vertex((f.second + 1) & 3)->point()), b = vec(f.first->vertex((f.second + 2) & 3)->point()),
@@ -658,17 +680,22 @@ bool Mesher::smooth(Vh v, Facet* worst) {
     n = {n[0] * s, n[1] * s, n[2] * s};
     for (int m = 1; m < 4; ++m) {
       Vh w = f.first->vertex((f.second + m) & 3);
-      if (w != v) normals[w->info().id].push_back(n);
+      if (w != v) normals_.emplace_back(w->info().id, n);
     }
     if (fi.r2 > best) {
       best = fi.r2;
       *worst = f;
     }
   }
-  for (auto& kv : normals) {
-    if (kv.second.size() != 2) continue;  // TopoDisk's business
-    const double c = std::clamp(dot(kv.second[0], kv.second[1]), -1.0, 1.0);
-    if (std::acos(c) > opt_.roughness) return false;
+  std::sort(normals_.begin(), normals_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (std::size_t i = 0; i + 1 < normals_.size();) {
+    std::size_t j = i;
+    while (j < normals_.size() && normals_[j].first == normals_[i].first) ++j;
+    if (j - i == 2) {  // other counts are TopoDisk's business
+      const double c = std::clamp(dot(normals_[i].second, normals_[i + 1].second), -1.0, 1.0);
+      if (std::acos(c) > opt_.roughness) return false;
+    }
+    i = j;
   }
   return true;
 }
@@ -688,6 +715,7 @@ void Mesher::drain() {
     const Item it = queue_.top();
     queue_.pop();
     if (it.kind == kQTopoDisk || it.kind == kQSmooth) {
+      it.a->info().queued &= std::uint8_t(it.kind == kQTopoDisk ? ~1 : ~2);
       Facet worst;
       if (it.kind == kQTopoDisk) {
         phase_ = "topology";
