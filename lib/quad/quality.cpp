@@ -23,6 +23,15 @@ double angle_at(const Point2& p, const Point2& q, const Point2& r) {
 } // namespace
 
 int orientation(const Point2& a, const Point2& b, const Point2& c) {
+  // Shewchuk's static filter for orient2d: when the double determinant is
+  // larger than its worst rounding error its sign is exact; only the rare
+  // near-degenerate cases pay for CGAL's exact evaluation.
+  const double l = (a[0] - c[0]) * (b[1] - c[1]);
+  const double r = (a[1] - c[1]) * (b[0] - c[0]);
+  const double det = l - r;
+  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
   const auto o = CGAL::orientation(K::Point_2(a[0], a[1]), K::Point_2(b[0], b[1]),
                                    K::Point_2(c[0], c[1]));
   return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);
@@ -43,10 +52,31 @@ double min_triangle_angle(const Point2& a, const Point2& b, const Point2& c) {
   return std::min({A, B, C});
 }
 
+namespace {
+// sin of the smallest angle of (a, b, c): it is opposite the shortest edge
+// and at most 60 degrees, where sin is monotone, so no trigonometry is
+// needed to compare (sin = twice the area over the other two edges).
+double sin_min_angle(const Point2& a, const Point2& b, const Point2& c) {
+  const double abx = b[0] - a[0], aby = b[1] - a[1];
+  const double bcx = c[0] - b[0], bcy = c[1] - b[1];
+  const double cax = a[0] - c[0], cay = a[1] - c[1];
+  const double lab = abx * abx + aby * aby, lbc = bcx * bcx + bcy * bcy, lca = cax * cax + cay * cay;
+  const double cr = std::fabs(abx * cay - aby * cax);
+  double den;
+  if (lab <= lbc && lab <= lca) den = lbc * lca;
+  else if (lbc <= lca) den = lab * lca;
+  else den = lab * lbc;
+  if (!(den > 0)) return 0;
+  return std::min(1.0, cr / std::sqrt(den));
+}
+} // namespace
+
 double joe_mu(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
   // Diagonal bd: T1 = [a,b,d], T2 = [c,d,b]; diagonal ac: T3 = [a,b,c], T4 = [d,a,c].
-  return std::min({min_triangle_angle(a, b, d), min_triangle_angle(c, d, b),
-                   min_triangle_angle(a, b, c), min_triangle_angle(d, a, c)});
+  // mu <= 45 degrees, so one asin of the smallest sine gives it.
+  const double s = std::min(std::min(sin_min_angle(a, b, d), sin_min_angle(c, d, b)),
+                            std::min(sin_min_angle(a, b, c), sin_min_angle(d, a, c)));
+  return std::asin(s) * kDeg;
 }
 
 double scaled_jacobian(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {

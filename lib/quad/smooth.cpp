@@ -58,6 +58,27 @@ inline double sin_mu(const Point2& a, const Point2& b, const Point2& c, const Po
                   std::min(sin_min_angle(a, b, c), sin_min_angle(d, a, c)));
 }
 
+// Exact orientation with the static filter inlined (the guard calls it tens
+// of millions of times); near-degenerate cases go to the exact predicate.
+inline int orient(const Point2& a, const Point2& b, const Point2& c) {
+  const double l = (a[0] - c[0]) * (b[1] - c[1]);
+  const double r = (a[1] - c[1]) * (b[0] - c[0]);
+  const double det = l - r;
+  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
+  if (det > bound) return 1;
+  if (-det > bound) return -1;
+  return orientation(a, b, c);
+}
+
+inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+  return orient(a, b, c) > 0 && orient(b, c, d) > 0 && orient(c, d, a) > 0 && orient(d, a, b) > 0;
+}
+
+// Clean-up is tried only around poor quads: sin(30 deg) for swaps (a quad of
+// the pair below the usual bar), sin(15 deg) for collapses.
+constexpr double kSwapBelow = 0.5;
+constexpr double kCollapseBelow = 0.25881904510252074;
+
 class QuadImprover {
 public:
   QuadImprover(PlanarMesh& m, const SmoothOptions& opt, SmoothStats& st)
@@ -83,11 +104,13 @@ private:
   // feature neighbours bounding the slide.
   struct Slide { int v, A, B, u, w; };
   std::vector<Slide> slides_;
+  std::vector<char> active_;             // smoothing work list (see smooth_pass)
 
   void setup();
-  bool is_feature(int a, int b) const { return feature_.count(edge_key(a, b)) != 0; }
+  // Feature edges join two fixed vertices: test that first, hash rarely.
+  bool is_feature(int a, int b) const { return fixed_[a] && fixed_[b] && feature_.count(edge_key(a, b)) != 0; }
   double quad_smu(const Quad& q) const { return sin_mu(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
-  bool convex(const Quad& q) const { return is_strictly_convex(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
+  bool convex(const Quad& q) const { return strictly_convex(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
   // Try moving v to p (with back-off toward the current position); the guard.
   bool try_move(int v, Point2 p, bool slide_line, const Slide* s);
   bool angle_based_target(int v, Point2& out) const;
@@ -157,6 +180,9 @@ void QuadImprover::setup() {
   std::vector<char> can_slide(n, 0);
   for (int v = 0; v < n; ++v) {
     if (!fnb[v].empty()) fixed_[v] = 1;
+    // A marked vertex off every feature edge is an input point: keep it.
+    // Marked vertices on feature edges (Triangle marks the boundary) follow
+    // the feature rules below, so they may slide.
     if (!m_.point_markers.empty() && m_.point_markers[v] != 0) fixed_[v] = 1;
     if (fnb[v].size() == 2 && opt_.slide_boundary && !vq_[v].empty()) {
       const int u = fnb[v][0], w = fnb[v][1];
@@ -236,15 +262,15 @@ bool QuadImprover::angle_based_target(int v, Point2& out) const {
     if (nb[i].y1 < 0 || nb[i].y2 < 0) return false;  // open star: not interior
     const Point2& px = P_[nb[i].x];
     const double vx = pv[0] - px[0], vy = pv[1] - px[1];
-    const double len = std::hypot(vx, vy);
+    const double len = std::sqrt(vx * vx + vy * vy);
     double ax = P_[nb[i].y1][0] - px[0], ay = P_[nb[i].y1][1] - px[1];
     double bx = P_[nb[i].y2][0] - px[0], by = P_[nb[i].y2][1] - px[1];
-    const double la = std::hypot(ax, ay), lb = std::hypot(bx, by);
+    const double la = std::sqrt(ax * ax + ay * ay), lb = std::sqrt(bx * bx + by * by);
     if (!(la > 0 && lb > 0 && len > 0)) return false;
     ax /= la; ay /= la; bx /= lb; by /= lb;
     // Bisector of the angle between a and b that contains v.
     double cx = ax + bx, cy = ay + by;
-    const double cl = std::hypot(cx, cy);
+    const double cl = std::sqrt(cx * cx + cy * cy);
     if (cl < 1e-12) {  // a and b opposite: the bisector is perpendicular
       cx = -ay; cy = ax;
       if (cx * vx + cy * vy < 0) { cx = -cx; cy = -cy; }
@@ -269,7 +295,7 @@ bool QuadImprover::try_move(int v, Point2 p, bool slide_line, const Slide* s) {
   double worst_old = 2;
   for (int q : vq_[v]) worst_old = std::min(worst_old, q_smu_[q]);
   double t = 1;
-  for (int attempt = 0; attempt < 3; ++attempt, t *= 0.5) {
+  for (int attempt = 0; attempt < 2; ++attempt, t *= 0.5) {
     Point2 c{old[0] + t * (p[0] - old[0]), old[1] + t * (p[1] - old[1])};
     if (slide_line) {
       // Recompute on the line through the fixed chain ends A and B.
@@ -299,13 +325,27 @@ bool QuadImprover::try_move(int v, Point2 p, bool slide_line, const Slide* s) {
 }
 
 void QuadImprover::smooth_pass() {
+  // Active set: a vertex is revisited only after something around it moved
+  // (a rejected or negligible move would be rejected or negligible again).
   const int n = int(P_.size());
+  if (active_.size() != P_.size()) active_.assign(P_.size(), 1);
   for (int v = 0; v < n; ++v) {
-    if (fixed_[v] || v_dead_[v] || vq_[v].size() < 3) continue;
+    if (!active_[v] || fixed_[v] || v_dead_[v] || vq_[v].size() < 3) continue;
+    active_[v] = 0;
     Point2 target;
     if (!angle_based_target(v, target)) continue;
-    if (try_move(v, target, false, nullptr)) ++st_.moves;
-    else ++st_.rejected;
+    const Point2& p = P_[v];
+    const Point2& x = P_[Q_[vq_[v][0]][0] == v ? Q_[vq_[v][0]][1] : Q_[vq_[v][0]][0]];
+    const double d2 = (target[0] - p[0]) * (target[0] - p[0]) + (target[1] - p[1]) * (target[1] - p[1]);
+    const double h2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]);
+    if (d2 < 1e-4 * h2) continue;  // converged to 1e-2 of an edge
+    if (try_move(v, target, false, nullptr)) {
+      ++st_.moves;
+      for (int q : vq_[v])
+        for (int w : Q_[q]) active_[w] = 1;
+    } else {
+      ++st_.rejected;
+    }
   }
 }
 
@@ -315,7 +355,12 @@ void QuadImprover::slide_pass() {
     // strictly between them, projected back onto the line through A and B.
     const Point2 &u = P_[s.u], &w = P_[s.w];
     const Point2 mid{0.5 * (u[0] + w[0]), 0.5 * (u[1] + w[1])};
-    if (try_move(s.v, mid, true, &s)) ++st_.slides;
+    if (try_move(s.v, mid, true, &s)) {
+      ++st_.slides;
+      if (!active_.empty())
+        for (int q : vq_[s.v])
+          for (int w : Q_[q]) active_[w] = 1;
+    }
   }
 }
 
@@ -325,6 +370,7 @@ void QuadImprover::swap_pass() {
     for (int i = 0; i < 4; ++i) {
       const Quad A = Q_[q1];
       const int u = A[i], w = A[(i + 1) & 3];
+      if (q_smu_[q1] >= kSwapBelow) break;  // only pairs with a poor quad are worth a swap
       if (is_feature(u, w)) continue;
       // The other quad, holding w -> u.
       int q2 = -1, j = 0;
@@ -334,7 +380,8 @@ void QuadImprover::swap_pass() {
         for (int k = 0; k < 4; ++k)
           if (B[k] == w && B[(k + 1) & 3] == u) { q2 = q; j = k; }
       }
-      if (q2 < 0 || int(q1) > q2) continue;  // each edge once
+      // Each pair once: from the lower index when both are poor.
+      if (q2 < 0 || (q_smu_[q2] < kSwapBelow && q2 < int(q1))) continue;
       const Quad B = Q_[q2];
       // Hexagon u, c, d, w, a, b (counter-clockwise).
       const int a = A[(i + 2) & 3], b = A[(i + 3) & 3];
@@ -406,7 +453,8 @@ void QuadImprover::doublet_pass() {
 
 void QuadImprover::collapse_pass() {
   for (std::size_t q = 0; q < Q_.size(); ++q) {
-    if (q_dead_[q]) continue;
+    // Collapses are for the worst quads only (short diagonal, squashed).
+    if (q_dead_[q] || q_smu_[q] >= kCollapseBelow) continue;
     for (int diag = 0; diag < 2; ++diag) {
       const Quad C = Q_[q];
       int a = C[diag], c = C[diag + 2];
@@ -455,7 +503,7 @@ void QuadImprover::collapse_pass() {
         if (o == int(q) || !ok) return;
         Quad E = Q_[o];
         for (int& x : E) if (x == c) x = a;
-        if (!is_strictly_convex(P_[E[0]], P_[E[1]], P_[E[2]], P_[E[3]])) { ok = false; return; }
+        if (!strictly_convex(P_[E[0]], P_[E[1]], P_[E[2]], P_[E[3]])) { ok = false; return; }
         worst = std::min(worst, quad_smu(E));
       };
       for (int o : vq_[a]) eval(o);
@@ -522,10 +570,13 @@ void QuadImprover::run() {
   setup();
   const int passes = std::max(0, opt_.iterations);
   for (int it = 0; it < passes; ++it) {
-    if (opt_.cleanup && (it == 0 || it == passes / 2)) {
+    // Clean-up after smoothing has done what it can: only the quads that
+    // stay poor get swaps and collapses, then smoothing resumes.
+    if (opt_.cleanup && it == (passes + 1) / 2) {
       swap_pass();
       collapse_pass();
       doublet_pass();
+      active_.assign(P_.size(), 1);  // the topology changed: revisit everything
     }
     smooth_pass();
     if (opt_.slide_boundary) slide_pass();

@@ -36,9 +36,10 @@ struct SmoothStats {
 // Smooths and cleans the quad mesh in place. Element attributes, point
 // attributes/markers and segments (with markers) are kept; removed vertices
 // and quads are compacted away and segment ids renumbered. Vertices on the
-// boundary, on a segment, on an edge between regions of different attribute,
-// with a nonzero point marker, or on a non-quad element stay fixed (or slide
-// along their straight segment with slide_boundary). Throws Error when the
+// boundary, on a segment, on an edge between regions of different attribute
+// or on a non-quad element stay fixed (or, with slide_boundary, slide along
+// their own straight segment); so do vertices with a nonzero point marker
+// that lie on no such edge (input points). Throws Error when the
 // input is not a conforming mesh (see check_quad_mesh); quads that come in
 // non-convex are counted in the reports and only moves that make them
 // strictly convex touch them.
