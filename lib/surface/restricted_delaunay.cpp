@@ -574,8 +574,9 @@ void Mesher::seeds() {
         if (e[0] < 0 || (s == 0 ? c[a] < e[1 + a] : c[a] > e[1 + a])) e = {1, x, y, z};
       }
   }
-  // A crossing on a mixed edge of cube (x,y,z): unique, f monotone (F2).
-  auto crossing = [&](long x, long y, long z, Vec3& out) {
+  // The crossing on the `which`-th mixed edge of cube (x,y,z): unique, f
+  // monotone along the edge (F2).
+  auto crossing = [&](long x, long y, long z, Vec3& out, int which = 0) {
     static const int edges[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
     for (auto& e : edges) {
       long p[2][3];
@@ -585,6 +586,7 @@ void Mesher::seeds() {
         p[k][2] = z + ((e[k] >> 2) & 1);
       }
       if (grid_.neg(p[0][0], p[0][1], p[0][2]) == grid_.neg(p[1][0], p[1][1], p[1][2])) continue;
+      if (which-- > 0) continue;
       const Vec3 a{p[0][0] * grid_.s[0], p[0][1] * grid_.s[1], p[0][2] * grid_.s[2]};
       const Vec3 b{p[1][0] * grid_.s[0], p[1][1] * grid_.s[1], p[1][2] * grid_.s[2]};
       out = bisect(a, b, value(a));
@@ -602,12 +604,14 @@ void Mesher::seeds() {
   std::mt19937_64 rng(opt_.seed);
   std::shuffle(pts.begin(), pts.end(), rng);
   for (const Vec3& x : pts) insert(x, kSeed, Ch());
-  // Degenerate seed sets (one flat component): add crossings until 3D.
+  // Degenerate seed sets (a single voxel, a one-voxel rod): add crossings of
+  // other mixed edges until the triangulation is 3D.
   for (std::size_t k = 0; tr_.dimension() < 3 && k < cubes.size(); k += std::max<std::size_t>(1, cubes.size() / 64)) {
-    long long key = cubes[k].first;
+    const long long key = cubes[k].first;
     Vec3 x;
-    if (crossing(long(key % grid_.n[0]), long((key / grid_.n[0]) % grid_.n[1]), long(key / grid_.n[0] / grid_.n[1]), x))
-      insert(x, kSeed, Ch());
+    for (int which = 0; tr_.dimension() < 3 && which < 12; ++which)
+      if (crossing(long(key % grid_.n[0]), long((key / grid_.n[0]) % grid_.n[1]), long(key / grid_.n[0] / grid_.n[1]), x, which))
+        insert(x, kSeed, Ch());
   }
   if (tr_.dimension() < 3) throw Error("cannot place four non-coplanar seed points on the surface");
 }

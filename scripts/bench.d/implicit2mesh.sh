@@ -25,6 +25,8 @@ row() {  # row NAME MESH WC SECONDS BOUND MAX|f|-AT-CENTROIDS
 centroid_error() { grep -o '"max_abs_f_at_centroids": [0-9.e+-]*' "$1" | awk '{print $2}'; }
 
 for img in bunny00-96 elephant-96 armadillo-96; do
+  # A quarter voxel in world units (the images' spacings), as the peer's bound.
+  case $img in bunny*) E=0.0026;; elephant*) E=0.0026;; armadillo*) E=0.394;; esac
   "$tools/img2wc" -q "$src/share/data/$img.nrrd" "$work/$img-wc.nrrd"
   "$tools/wc2implicit" -q "$work/$img-wc.nrrd" "$work/$img-f.nrrd"
   echo "$img:"
@@ -36,16 +38,16 @@ for img in bunny00-96 elephant-96 armadillo-96; do
     row "implicit2mesh --ratio $r" "$work/$img-$r.off" "$work/$img-wc.nrrd" "$secs" "$r" "$(centroid_error "$work/s.json")"
   done
   start=$(date +%s.%N)
-  "$tools/implicit2mesh" -q "$work/$img-f.nrrd" "$work/$img-d.off" --max-distance 0.1 --stats "$work/s.json" || true
+  "$tools/implicit2mesh" -q "$work/$img-f.nrrd" "$work/$img-d.off" --max-distance "$E" --stats "$work/s.json" || true
   secs=$(echo "$(date +%s.%N) - $start" | bc)
-  row "implicit2mesh --max-distance 0.1" "$work/$img-d.off" "$work/$img-wc.nrrd" "$secs" 2 "$(centroid_error "$work/s.json")"
-  # Surface_mesher: no size bound, distance bound 0.25 and 0.1 voxel.
-  for d in 0.25 0.1; do
+  row "implicit2mesh --max-distance 1/4 vx" "$work/$img-d.off" "$work/$img-wc.nrrd" "$secs" 2 "$(centroid_error "$work/s.json")"
+  # Surface_mesher: no size bound, distance bound 0.25 voxel.
+  for d in 0.25; do
     if out=$(timeout 600 "$peer" "$work/$img-f.nrrd" "$work/$img-peer.off" 0 "$d"); then
       read -r psecs ptris perr <<< "$out"
-      row "CGAL Surface_mesher distance $d" "$work/$img-peer.off" "$work/$img-wc.nrrd" "$psecs" 1000 "$perr"
+      row "CGAL Surface_mesher dist. $d vx" "$work/$img-peer.off" "$work/$img-wc.nrrd" "$psecs" 1000 "$perr"
     else
-      echo "  CGAL Surface_mesher distance $d: failed or timed out (600 s)"
+      echo "  CGAL Surface_mesher dist. $d vx: failed or timed out (600 s)"
     fi
   done
 done

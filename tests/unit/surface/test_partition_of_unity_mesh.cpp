@@ -115,3 +115,16 @@ TEST_CASE("pipeline: several components (two balls, a hollow ball)") {
   }));
   CHECK(h.got.euler == std::vector<int>{2, 2});
 }
+
+TEST_CASE("pipeline: degenerate and symmetric inputs (single voxel, 1-voxel rod and plate, centred ball)") {
+  // Symmetric shapes put many sites on common spheres (zero-length Voronoi
+  // edges) and one-voxel features give coplanar or collinear seeds.
+  auto voxel = mesh(make(9, 9, 9, [](double x, double y, double z) { return x == 4 && y == 4 && z == 4; }));
+  CHECK(voxel.got.euler == std::vector<int>{2});
+  auto rod = mesh(make(15, 9, 9, [](double x, double y, double z) { return x >= 3 && x <= 11 && y == 4 && z == 4; }));
+  CHECK(rod.got.euler == std::vector<int>{2});
+  auto plate = mesh(make(13, 13, 9, [](double x, double y, double z) { return x >= 3 && x <= 9 && y >= 3 && y <= 9 && z == 4; }));
+  CHECK(plate.got.euler == std::vector<int>{2});
+  auto ball = mesh(make(17, 17, 17, [](double x, double y, double z) { return (x - 8) * (x - 8) + (y - 8) * (y - 8) + (z - 8) * (z - 8) < 30; }));
+  CHECK(ball.got.euler == std::vector<int>{2});
+}
