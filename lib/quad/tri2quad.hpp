@@ -55,7 +55,8 @@ struct Tri2QuadResult {
   std::size_t steiner = 0, steiner_outside = 0, repairs = 0;
   // How often each step / case ran, in a fixed order (name, count).
   std::vector<std::pair<std::string, std::size_t>> cases;
-  double seconds = 0;  // library time without I/O
+  double seconds = 0;      // library time without I/O (wall clock)
+  double cpu_seconds = 0;  // the same in processor time (meaningful on a loaded machine)
   std::size_t quad_bound() const { return 3 * triangles / 2 + 4 * components; }
   std::size_t steiner_bound(bool allow_outside) const {
     return triangles + (allow_outside ? 3 : 7) * components;
