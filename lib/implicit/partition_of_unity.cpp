@@ -64,16 +64,23 @@ double pu_h(double t, double* dh) {
   return h;
 }
 
+// eta = h(u) / (h(u) + h(1 - u)) = 1 / (1 + exp(B - A)) with A = log h(u),
+// B = log h(1 - u): three exponentials instead of four, no overflow.
 double pu_eta(double u, double* deta) {
   if (deta) *deta = 0;
-  if (u <= 0) return 1;
+  if (!(u > 0)) return 1;
   if (u >= 1) return 0;
-  double da = 0, db = 0;
-  const double a = pu_h(u, deta ? &da : nullptr);
-  const double b = pu_h(1 - u, deta ? &db : nullptr);
-  const double s = a + b;  // > 0 on (0, 1): h > 0 there
-  if (deta) *deta = (da * b + a * db) / (s * s);
-  return a / s;
+  const double iu = 1 / u, iv = 1 / (1 - u);
+  const double ea = std::exp(-iu), eb = std::exp(-iv);
+  const double A = -2 * ea * iv, B = -2 * eb * iu;  // 1/(u-1) = -iv, 1/((1-u)-1) = -iu
+  const double eta = 1 / (1 + std::exp(B - A));
+  if (deta) {
+    // d/dt log h(t) = 2 e^{-1/t} (1/(t^2 (t-1)) - 1/(t-1)^2), at t = u and t = 1 - u.
+    const double la = ea == 0 ? 0 : 2 * ea * (-iu * iu * iv - iv * iv);
+    const double lb = eb == 0 ? 0 : 2 * eb * (-iv * iv * iu - iu * iu);
+    *deta = eta * (1 - eta) * (la + lb);
+  }
+  return eta;
 }
 
 Vec3 PartitionOfUnity::weight_constant(const FloatImage& g, double* g_min, double* l_max, unsigned threads) {
