@@ -235,6 +235,8 @@ private:
     double prio;
     std::uint64_t seq;
     Vh a, b, c;  // a facet (a, b, c) or a vertex a
+    Ch cell;     // the facet as (cell, index) when it was queued
+    int index;
     bool operator<(const Item& o) const {  // std::priority_queue pops the largest
       if (kind != o.kind) return kind > o.kind;
       if (prio != o.prio) return prio < o.prio;
@@ -487,23 +489,23 @@ void Mesher::enqueue_facet(Ch c, int i) {
   const FacetInfo& fi = c->facet[i];
   if (!(fi.state & kRestricted)) return;
   Vh a = c->vertex((i + 1) & 3), b = c->vertex((i + 2) & 3), d = c->vertex((i + 3) & 3);
-  if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d});
+  if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i});
   const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
-  if (ratio(pa, pb, pd) > opt_.ratio) queue_.push({kQQuality, fi.r2, seq_++, a, b, d});
+  if (ratio(pa, pb, pd) > opt_.ratio) queue_.push({kQQuality, fi.r2, seq_++, a, b, d, c, i});
   if (opt_.max_distance > 0) {
     Vec3 nrm = cross(sub(pb, pa), sub(pd, pa));
     const double nl = norm(nrm);
     const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
     if (nl > 0 && std::abs(dot(nrm, sub(x, pa))) / nl > opt_.max_distance)
-      queue_.push({kQDistance, fi.r2, seq_++, a, b, d});
+      queue_.push({kQDistance, fi.r2, seq_++, a, b, d, c, i});
   }
 }
 
 // A vertex is queued at most once per check: the check runs on the state at
 // pop time, which includes every change since it was queued.
 void Mesher::enqueue_vertex(Vh v) {
-  if (!(v->info().queued & 1)) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh()});
-  if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh()});
+  if (!(v->info().queued & 1)) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh(), Ch(), 0});
+  if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh(), Ch(), 0});
   v->info().queued = 3;
 }
 
@@ -704,10 +706,17 @@ bool Mesher::smooth(Vh v, Facet* worst) {
   return true;
 }
 
+// The queued facet, if its cell is still alive and still holds its three
+// vertices at the queued index (O(1); a dead facet's cell died with it, and a
+// re-created facet was queued again from its new cell).
 bool Mesher::facet_of(const Item& it, Ch& c, int& i) const {
-  int i0, i1, i2;
-  if (!tr_.is_facet(it.a, it.b, it.c, c, i0, i1, i2)) return false;
-  i = 6 - i0 - i1 - i2;
+  if (!tr_.tds().cells().is_used(it.cell)) return false;
+  c = it.cell;
+  i = it.index;
+  for (int m = 1; m < 4; ++m) {
+    Vh w = c->vertex((i + m) & 3);
+    if (w != it.a && w != it.b && w != it.c) return false;
+  }
   return true;
 }
 
