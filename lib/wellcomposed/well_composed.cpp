@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -18,9 +19,21 @@ namespace imgmesh {
 namespace {
 
 using wc::candidate_sets;
-using wc::critical_configurations;
 
-int popcount(unsigned v) { return __builtin_popcount(v); }
+// Local copies of the block tables, so that lookups inline (and popcount
+// needs no CPU extension).
+struct LocalTables {
+  std::uint8_t flags[256], ones[256];
+  LocalTables() {
+    for (unsigned c = 0; c < 256; ++c) {
+      flags[c] = wc::critical_configurations(std::uint8_t(c));
+      ones[c] = std::uint8_t(__builtin_popcount(c));
+    }
+  }
+};
+const LocalTables kTables;  // built at start-up (the wc tables build on first use)
+inline std::uint8_t critical_configurations(std::uint8_t code) { return kTables.flags[code]; }
+inline int popcount(unsigned v) { return kTables.ones[v & 0xffu]; }
 
 void add_counts(CriticalCounts& c, std::uint8_t flags) {
   c.c1 += popcount(flags & (wc::kC1x | wc::kC1y | wc::kC1z));
@@ -75,7 +88,7 @@ struct WorkGrid {
 class Repair {
 public:
   Repair(WorkGrid g, std::uint64_t seed, bool greedy)
-      : g_(g), rng_(seed), greedy_(greedy), active_(g.n[1] * g.n[2], 1) {}
+      : g_(g), rng_(seed), greedy_(greedy), active_(g.n[1] * g.n[2], kGatedRow | kFinalRow) {}
 
   // Figures 5.1 and 5.2: scan D; every point whose N_x, N_y, N_z or N is
   // critical is eliminated, then R (points made critical by rule (3)) is
@@ -103,12 +116,19 @@ private:
   // Passes with decreasing gates: 3, 2, then 1.5 configurations per point.
   static constexpr int kGates[] = {3 * kPoint, 2 * kPoint, 3 * kPoint / 2};
 
+  // Row flags: kGatedRow = visit in the gated passes, kFinalRow = in the
+  // last pass. A row keeps a flag only while it may hold a critical block
+  // that pass would take.
+  static constexpr std::uint8_t kGatedRow = 1, kFinalRow = 2;
+  enum Outcome { kDone, kLeft, kHopeless };  // kHopeless: below every gate
+
   void pass(int gate) {
+    const std::uint8_t want = gate > 0 ? kGatedRow : kFinalRow;
     for (std::size_t z = 0; z + 1 < g_.n[2]; ++z)
       for (std::size_t y = 0; y + 1 < g_.n[1]; ++y) {
         std::uint8_t& act = active_[y + g_.n[1] * z];
-        if (!act) continue;
-        act = 0;
+        if (!(act & want)) continue;
+        act = gate > 0 ? 0 : std::uint8_t(act & ~kFinalRow);
         const std::size_t row = g_.sy * y + g_.sz * z;
         for (std::size_t x = 0; x + 1 < g_.n[0]; ++x) {
           const std::size_t r = row + x;
@@ -117,8 +137,9 @@ private:
             continue;
           }
           if (!critical_configurations(g_.code(r))) continue;
-          if (!eliminate(r, gate)) {
-            act = 1;  // left for a later pass
+          const Outcome o = eliminate(r, gate);
+          if (o != kDone) {  // left for a later pass
+            act |= o == kLeft ? kGatedRow | kFinalRow : kFinalRow;
             continue;
           }
           while (head_ < queue_.size()) eliminate(queue_[head_++], gate);
@@ -128,22 +149,62 @@ private:
       }
   }
 
-  // Flags of the 27 blocks around r (0 where a block would leave the grid:
-  // such blocks touch the background border and are never critical).
-  void flags_around(std::size_t r, std::uint8_t out[kG]) const {
-    const std::size_t c[3] = {r % g_.sy, (r / g_.sy) % g_.n[1], r / g_.sz};
-    int k = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx, ++k) {
-          const std::ptrdiff_t p[3] = {std::ptrdiff_t(c[0]) + dx, std::ptrdiff_t(c[1]) + dy,
-                                       std::ptrdiff_t(c[2]) + dz};
-          bool in = true;
-          for (int a = 0; a < 3; ++a) in = in && p[a] >= 0 && std::size_t(p[a]) + 1 < g_.n[a];
-          out[k] = in ? critical_configurations(
-                            g_.code(std::size_t(p[0]) + g_.sy * std::size_t(p[1]) + g_.sz * std::size_t(p[2])))
-                      : 0;
+  // G(r) = [r-1, r+2]^3 as 64 bits (bit x + 4y + 16z; outside the grid: 0),
+  // and which of the 27 blocks N(p), p in [r-1, r+1]^3, lie in the grid
+  // (the others touch the background border and are never critical).
+  std::uint64_t load_grid(std::size_t r, std::uint32_t& valid) const {
+    const std::ptrdiff_t c[3] = {std::ptrdiff_t(r % g_.sy), std::ptrdiff_t((r / g_.sy) % g_.n[1]),
+                                 std::ptrdiff_t(r / g_.sz)};
+    std::uint64_t grid = 0;
+    if (c[0] >= 1 && c[1] >= 1 && c[2] >= 1 && std::size_t(c[0]) + 3 <= g_.n[0] &&
+        std::size_t(c[1]) + 3 <= g_.n[1] && std::size_t(c[2]) + 3 <= g_.n[2]) {
+      // Inside: 16 rows of 4 bytes (0/1), each gathered into 4 bits.
+      const std::uint8_t* base = g_.v + r - 1 - g_.sy - g_.sz;
+      for (int dz = 0; dz < 4; ++dz)
+        for (int dy = 0; dy < 4; ++dy) {
+          std::uint32_t w;
+          std::memcpy(&w, base + std::size_t(dy) * g_.sy + std::size_t(dz) * g_.sz, 4);
+          const std::uint64_t bits = ((std::uint64_t(w & 0x01010101u) * 0x01020408u) >> 24) & 0xfu;
+          grid |= bits << (4 * dy + 16 * dz);
         }
+      valid = (1u << kG) - 1;
+      return grid;
+    }
+    for (int dz = 0; dz < 4; ++dz)
+      for (int dy = 0; dy < 4; ++dy)
+        for (int dx = 0; dx < 4; ++dx) {
+          const std::ptrdiff_t x = c[0] + dx - 1, y = c[1] + dy - 1, z = c[2] + dz - 1;
+          if (x < 0 || y < 0 || z < 0 || std::size_t(x) >= g_.n[0] || std::size_t(y) >= g_.n[1] ||
+              std::size_t(z) >= g_.n[2])
+            continue;
+          if (g_.v[std::size_t(x) + g_.sy * std::size_t(y) + g_.sz * std::size_t(z)])
+            grid |= std::uint64_t(1) << (dx + 4 * dy + 16 * dz);
+        }
+    valid = 0;
+    for (int k = 0; k < kG; ++k) {
+      const std::ptrdiff_t p[3] = {c[0] + k % 3 - 1, c[1] + (k / 3) % 3 - 1, c[2] + k / 9 - 1};
+      bool in = true;
+      for (int a = 0; a < 3; ++a) in = in && p[a] >= 0 && std::size_t(p[a]) + 1 < g_.n[a];
+      if (in) valid |= 1u << k;
+    }
+    return grid;
+  }
+  // Flags of the 27 blocks of a loaded G(r).
+  static void flags_of(std::uint64_t grid, std::uint32_t valid, std::uint8_t out[kG]) {
+    for (int k = 0; k < kG; ++k) {
+      const int p = k % 3 + 4 * ((k / 3) % 3) + 16 * (k / 9);
+      const std::uint64_t w = grid >> p;
+      const unsigned code = unsigned(w & 3u) | unsigned((w >> 4) & 3u) << 2 | unsigned((w >> 16) & 3u) << 4 |
+                            unsigned((w >> 20) & 3u) << 6;
+      out[k] = (valid >> k) & 1u ? critical_configurations(std::uint8_t(code)) : 0;
+    }
+  }
+  // A set of block bits of N(r) as bits of G(r) (r itself is bit 21).
+  static std::uint64_t in_grid(unsigned mask) {
+    std::uint64_t m = 0;
+    for (int k = 0; k < 8; ++k)
+      if (mask & (1u << k)) m |= std::uint64_t(1) << (21 + (k & 1) + 4 * ((k >> 1) & 1) + 16 * ((k >> 2) & 1));
+    return m;
   }
   std::size_t neighbour(std::size_t r, int k) const {
     const int dx = k % 3 - 1, dy = (k / 3) % 3 - 1, dz = k / 9 - 1;
@@ -158,33 +219,34 @@ private:
     const std::size_t y = (r / g_.sy) % g_.n[1], z = r / g_.sz;
     for (std::size_t zz = z ? z - 1 : 0; zz <= z + 1 && zz + 1 < g_.n[2]; ++zz)
       for (std::size_t yy = y ? y - 1 : 0; yy <= y + 1 && yy + 1 < g_.n[1]; ++yy)
-        active_[yy + g_.n[1] * zz] = 1;
+        active_[yy + g_.n[1] * zz] = kGatedRow | kFinalRow;
   }
 
   // Eliminates the configurations at r unless the chosen set gains less than
-  // `gate` (then nothing changes and false is returned).
-  bool eliminate(std::size_t r, int gate) {
+  // `gate` (then nothing changes).
+  Outcome eliminate(std::size_t r, int gate) {
     const std::uint8_t code = g_.code(r);
-    if (!critical_configurations(code)) return true;  // already eliminated by an earlier choice
+    if (!critical_configurations(code)) return kDone;  // already eliminated by an earlier choice
     const wc::CandidateSets& b = candidate_sets(code);
     std::uint8_t before[kG], after[kG];
-    flags_around(r, before);
+    std::uint32_t valid;
+    const std::uint64_t grid = load_grid(r, valid);
+    flags_of(grid, valid, before);
     if (gate > 0) {
       // No set can eliminate more than all the configurations of G(r).
       int all = 0;
       for (int k = 0; k < kG; ++k) all += popcount(before[k]);
-      if (all * kPoint < gate) return false;
+      if (all * kPoint < kGates[std::size(kGates) - 1]) return kHopeless;
+      if (all * kPoint < gate) return kLeft;
     }
     // Partition B(r) into B1(r) (creates nothing) and B2(r). Greedy: within
     // the part a rule draws from, the draw is among the sets that eliminate
     // the most critical configurations of G(r) per inserted point, then
     // create the fewest: one well-chosen point often removes several.
-    int created_by[6], gain[6];
+    int created_by[6] = {}, gain[6] = {};
     int n1 = 0;
     for (int i = 0; i < b.count; ++i) {
-      set(r, b.sets[i], 1);
-      flags_around(r, after);
-      set(r, b.sets[i], 0);
+      flags_of(grid | in_grid(b.sets[i]), valid, after);
       int removed = 0, made = 0;
       for (int k = 0; k < kG; ++k) {
         removed += popcount(before[k] & ~after[k]);
@@ -194,7 +256,7 @@ private:
       if (made == 0) ++n1;
       gain[i] = removed * kPoint / popcount(b.sets[i]);
     }
-    unsigned cand[6];
+    unsigned cand[6] = {};
     int nc = 0;
     long best = 0;
     for (int i = 0; i < b.count; ++i) {
@@ -203,7 +265,7 @@ private:
       if (nc == 0 || score > best) { best = score; nc = 0; }
       if (score == best) cand[nc++] = unsigned(i);
     }
-    if (gate > 0 && gain[cand[0]] < gate) return false;
+    if (gate > 0 && gain[cand[0]] < gate) return kLeft;
     // Rule (1) when one candidate is left, else rules (2)/(3): at random.
     const unsigned pick = nc == 1 ? cand[0] : cand[rng_() % unsigned(nc)];
     set(r, b.sets[pick], 1);
@@ -215,11 +277,11 @@ private:
       // Rule (3): re-examine only G(r); queue every point whose N_x, N_y,
       // N_z or N became critical.
       created += std::size_t(created_by[pick]);
-      flags_around(r, after);
+      flags_of(grid | in_grid(b.sets[pick]), valid, after);
       for (int k = 0; k < kG; ++k)
         if (after[k] & ~before[k]) queue_.push_back(neighbour(r, k));
     }
-    return true;
+    return kDone;
   }
 
   WorkGrid g_;

@@ -136,6 +136,23 @@ TEST_CASE("repair leaves no critical configuration (2D and 3D, all modes)", "[we
   CHECK(configs > 5000);  // the test exercises the repair, not empty images
 }
 
+TEST_CASE("repair on larger random volumes (interior neighbourhoods)", "[wellcomposed]") {
+  std::mt19937_64 rng(2024);
+  for (double density : {0.15, 0.5, 0.85})
+    for (int i = 0; i < 20; ++i) {
+      BinaryImage img = make_image(3, 14, 13, 12);
+      std::bernoulli_distribution fg(density);
+      for (auto& v : img.data) v = fg(rng) ? 1 : 0;
+      for (RepairMode mode : {RepairMode::Add, RepairMode::Remove}) {
+        WellComposedOptions opt;
+        opt.mode = mode;
+        opt.seed = std::uint64_t(i);
+        opt.greedy = i % 2 == 0;
+        check_result(img, make_well_composed(img, opt), mode);
+      }
+    }
+}
+
 TEST_CASE("min keeps the smaller change", "[wellcomposed]") {
   std::mt19937_64 rng(99);
   for (int i = 0; i < 200; ++i) {
