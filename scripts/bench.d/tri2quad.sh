@@ -65,6 +65,7 @@ gmsh_row() {  # Blossom recombination of grid.msh
   cat > rec.geo <<'G'
 Merge "grid.msh";
 Mesh.RecombinationAlgorithm = 1;
+Mesh.MshFileVersion = 2.2;
 RecombineMesh;
 Save "rec.msh";
 G
