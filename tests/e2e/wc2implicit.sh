@@ -132,6 +132,37 @@ if [[ -x "$BIN/img2wc" ]]; then
       fail "$name: g_min $gmin, want half the spacing $sp"
     awk -v d="$d0" -v s="$sp" 'BEGIN { exit !(d > 0 && d <= s / 5) }' || fail "$name: d $d0 not in (0, delta/5]"
     expect 0 "$E" "$name-f.nrrd" --random 100000 --gradient --stats "$name-r.json"
+    # f = g at voxel centres: read g back with a small independent NRRD
+    # reader, evaluate f at 200 random centres (world coordinates).
+    python3 - "$name-f.nrrd" centres.txt expected.txt <<'PY'
+import gzip, random, re, struct, sys
+raw = open(sys.argv[1], "rb").read()
+end = raw.index(b"\n\n")
+hdr = {}
+for line in raw[:end].decode().splitlines()[1:]:
+    if ":" in line and not line.startswith("#") and ":=" not in line:
+        k, v = line.split(":", 1)
+        hdr[k.strip()] = v.strip()
+assert hdr["type"] == "float" and hdr.get("endian", "little") == "little"
+n = [int(x) for x in hdr["sizes"].split()]
+body = raw[end + 2:]
+if hdr["encoding"] == "gzip":
+    body = gzip.decompress(body)
+g = struct.unpack("<%df" % (n[0] * n[1] * n[2]), body[: 4 * n[0] * n[1] * n[2]])
+vec = lambda s: [float(x) for x in s.strip("()").split(",")]
+dirs = [vec(v) for v in re.findall(r"\([^)]*\)", hdr["space directions"])]
+org = vec(hdr["space origin"])
+rng = random.Random(5)
+with open(sys.argv[2], "w") as pts, open(sys.argv[3], "w") as exp:
+    for _ in range(200):
+        i, j, k = (rng.randrange(m) for m in n)
+        w = [org[a] + i * dirs[0][a] + j * dirs[1][a] + k * dirs[2][a] for a in range(3)]
+        pts.write("%.17g %.17g %.17g\n" % tuple(w))
+        exp.write("%.9g\n" % g[i + n[0] * (j + n[1] * k)])
+PY
+    expect 0 "$E" "$name-f.nrrd" centres.txt
+    paste out.txt expected.txt | awk '{ d = $1 - $2; if (d < 0) d = -d; if (d > 1e-6 || ($1 < 0) != ($2 < 0)) bad++ }
+      END { exit bad > 0 }' || fail "$name: f differs from g at a voxel centre"
   done
 else
   echo "note: $BIN/img2wc not built; skipping the sample images through img2wc"
