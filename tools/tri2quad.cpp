@@ -7,7 +7,11 @@
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
+#include <cstdio>
+#include <cstdlib>
 #include <map>
+
+#include <unistd.h>
 
 using namespace imgmesh;
 
@@ -51,10 +55,10 @@ int main(int argc, char** argv) {
   std::string in, out, constraints, svg;
   Tri2QuadOptions opt;
   tool.app.add_option("IN", in, "Input triangle mesh: Triangle .ele (with its .node; segments from the .poly "
-                                "of the same basename when it exists) or OFF")
+                                "of the same basename when it exists) or OFF (- for OFF on stdin)")
       ->required();
   tool.app.add_option("OUT", out, "Output quad mesh by extension: .ele (+ .node, + .poly of the segments), "
-                                  ".off, .vtk, .msh (Gmsh 2.2) or .svg")
+                                  ".off, .vtk, .msh (Gmsh 2.2) or .svg; - for OFF on stdout")
       ->required();
   tool.app.add_option("--constraints", constraints, "Constraint segments from this .poly instead")
       ->type_name("FILE");
@@ -65,11 +69,33 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
 
   return tool.run(argc, argv, [&] {
-    const std::string ext = extension_of(out);
+    // "-": OFF on standard output (the one single-file format for quads).
+    const std::string ext = out == "-" ? std::string(".off") : extension_of(out);
     if (ext != ".ele" && ext != ".off" && ext != ".vtk" && ext != ".msh" && ext != ".svg")
-      throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg", out);
+      throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg (or be - for OFF on stdout)", out);
     if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
-    PlanarMesh m = read_planar_mesh(in);
+    PlanarMesh m;
+    if (in == "-") {
+      // OFF on standard input, spooled to a temporary .off (the readers
+      // choose the format by extension).
+      const std::string text = read_all("-");
+      const char* dir = std::getenv("TMPDIR");
+      std::string tmp = std::string(dir && *dir ? dir : "/tmp") + "/tri2quad-stdin-XXXXXX.off";
+      const int fd = mkstemps(tmp.data(), 4);
+      if (fd < 0) throw Error("cannot create a temporary file", tmp);
+      const bool ok = ::write(fd, text.data(), text.size()) == ssize_t(text.size());
+      ::close(fd);
+      try {
+        if (!ok) throw Error("cannot write a temporary file", tmp);
+        m = read_planar_mesh(tmp);
+      } catch (const Error& e) {
+        std::remove(tmp.c_str());
+        throw Error(e.what(), "-");
+      }
+      std::remove(tmp.c_str());
+    } else {
+      m = read_planar_mesh(in);
+    }
     Tri2QuadInput ti;
     ti.path = in;
     ti.index_base = m.first_index;
@@ -115,7 +141,13 @@ int main(int argc, char** argv) {
     for (const auto& f : r.quads)
       mu.push_back(joe_mu(r.points[f[0]], r.points[f[1]], r.points[f[2]], r.points[f[3]]));
     if (ext == ".svg" || ext == ".vtk") { wo.element_scalar = mu; wo.scalar_name = "mu"; }
-    write_planar_mesh(out, q, wo);
+    if (out == "-") {
+      AtomicOutput o("-", false, ".off");
+      write_planar_mesh(o.path(), q, wo);
+      o.commit();
+    } else {
+      write_planar_mesh(out, q, wo);
+    }
     if (!svg.empty()) {
       PlanarWriteOptions so;
       so.element_scalar = mu;

@@ -72,12 +72,23 @@ bool place(LocalPatch& lp, int x, const std::vector<P2>& bound, const std::vecto
   }
   for (const auto& t : ts) hp.push_back({lp.p[t[0]], lp.p[t[1]]});
   const auto region = clip(bound, hp);
+  // Every valid candidate, best shaped first (Joe's mu of the quads it
+  // makes), so the point is not merely valid but as good as we can cheaply get.
+  std::vector<std::pair<double, P2>> valid;
   for (const P2& c : candidates(region)) {
     lp.p[x] = c;
     bool ok = true;
     for (const Quad& q : qs) ok = ok && good_local(lp, q);
     for (const auto& t : ts) ok = ok && good_triangle(lp.p[t[0]], lp.p[t[1]], lp.p[t[2]]);
-    if (ok && then()) return true;
+    if (!ok) continue;
+    double score = 90;
+    for (const Quad& q : qs) score = std::min(score, joe_mu(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]));
+    valid.push_back({score, c});
+  }
+  std::stable_sort(valid.begin(), valid.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (const auto& [score, c] : valid) {
+    lp.p[x] = c;
+    if (then()) return true;
   }
   return false;
 }
@@ -538,20 +549,32 @@ bool joe_split(LocalPatch& lp, int a, int b, int m, int c) {
   for (double t : {line_param(h, w, A, B), line_param(h, w, C, A)})
     if (t > rx) rhi = std::min(rhi, t);
   const auto mk = lp.mark();
-  for (double sigma : {0.5, 0.35, 0.65, 0.2})
-    for (double f : {0.5, 0.25, 0.75, 0.1}) {
-      const double rho = std::isfinite(rhi) ? rx + f * (rhi - rx) : rx * (1 + 2 * f);
-      const double lam = sigma / rho;
-      const int ia = lp.add_new(lerp(h, A, lam)), ib = lp.add_new(lerp(h, B, lam));
-      const int ic = lp.add_new(lerp(h, C, lam)), im = lp.add_new(lerp(h, M, sigma));
-      lp.quads.push_back({a, b, ib, ia});
-      lp.quads.push_back({b, m, im, ib});
-      lp.quads.push_back({m, c, ic, im});
-      lp.quads.push_back({c, a, ia, ic});
-      lp.quads.push_back({ia, ib, im, ic});
-      if (all_good(lp, mk.nq)) return true;
-      lp.rollback(mk);
-    }
+  // The best shaped of a few valid parameter choices (Joe's mu).
+  double best = -1, best_sigma = 0, best_f = 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (double sigma : {0.5, 0.35, 0.65, 0.2})
+      for (double f : {0.5, 0.25, 0.75, 0.1}) {
+        if (pass == 1 && (sigma != best_sigma || f != best_f)) continue;
+        const double rho = std::isfinite(rhi) ? rx + f * (rhi - rx) : rx * (1 + 2 * f);
+        const double lam = sigma / rho;
+        const int ia = lp.add_new(lerp(h, A, lam)), ib = lp.add_new(lerp(h, B, lam));
+        const int ic = lp.add_new(lerp(h, C, lam)), im = lp.add_new(lerp(h, M, sigma));
+        lp.quads.push_back({a, b, ib, ia});
+        lp.quads.push_back({b, m, im, ib});
+        lp.quads.push_back({m, c, ic, im});
+        lp.quads.push_back({c, a, ia, ic});
+        lp.quads.push_back({ia, ib, im, ic});
+        if (all_good(lp, mk.nq)) {
+          if (pass == 1) return true;
+          double score = 90;
+          for (std::size_t k = mk.nq; k < lp.quads.size(); ++k) {
+            const Quad& q = lp.quads[k];
+            score = std::min(score, joe_mu(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]));
+          }
+          if (score > best) { best = score; best_sigma = sigma; best_f = f; }
+        }
+        lp.rollback(mk);
+      }
   return false;
 }
 

@@ -89,6 +89,11 @@ for ext in off vtk msh svg; do
   [ -s "sq.q.$ext" ] || fail "empty .$ext"
 done
 grep -q '^\$MeshFormat' sq.q.msh || fail "msh header"
+# OFF through pipes.
+"$T" -q sq.q.off - < /dev/null > /dev/null 2>&1 && fail "quad OFF accepted as triangles"
+"$T" -q sq.ele - | head -1 | grep -q '^OFF' || fail "OFF on stdout"
+printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' | "$T" -q - - | head -2 | tail -1 | awk '{ if ($2 != 5) exit 1 }' \
+  || fail "one triangle from stdin: expected Joe's 5 quads"
 "$T" -q sq.ele sq.o.ele --allow-outside --stats sq.o.json || fail "--allow-outside"
 check_stats sq.o.json
 
