@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
     if (out == "-" && tool.app.get_option("--stats")->as<std::string>() == "-")
       throw UsageError("OUT and --stats cannot both be standard output");
 
-    const BinaryImage img = read_foreground(in, sel);
+    BinaryImage img = read_foreground(in, sel);
     tool.stats["input"] = in;
     tool.stats["dimension"] = img.dimension;
     tool.stats["voxels"] = img.count();
@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
     opt.greedy = !thesis_rules;
     tool.report_progress("repairing " + std::to_string(img.count()) + " voxels");
     const WellComposedResult res = make_well_composed(img, opt);
+    std::vector<std::uint8_t>().swap(img.data);  // the input is no longer needed: less memory while writing
 
     // The guarantee, checked on the result rather than assumed.
     const CriticalCounts left = count_critical_configurations(res.image);

@@ -350,7 +350,9 @@ WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode 
   res.padded_before = pad.before;
   res.padded_after = pad.after;
   res.mode_used = mode;
-  res.image = pad.any() ? imgmesh::pad(in, pad.before, pad.after, std::uint8_t(0)) : in;
+  // Not a conditional expression: its const prvalue would be copied twice.
+  if (pad.any()) res.image = imgmesh::pad(in, pad.before, pad.after, std::uint8_t(0));
+  else res.image = in;
   BinaryImage& out = res.image;
   for (auto& v : out.data) v = v ? 1 : 0;
   const bool remove = mode == RepairMode::Remove;
