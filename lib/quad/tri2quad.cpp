@@ -503,6 +503,25 @@ struct Converter {
         }
       }
     }
+    // Fast paths for the two commonest nodes (no pinch is possible with
+    // fewer than five boundary vertices): a lone triangle, and a pair that
+    // is a convex quad (the 4(c) shortcut) or goes to the grandparent.
+    if (!is_root && I.empty() && B.size() == 3) {
+      reg[u] = {kTri, 0, c, -1};
+      return;
+    }
+    if (!is_root && I.empty() && B.size() == 4 && tris.size() == 2) {
+      if (t2q::good_quad(pts[B[0]], pts[B[1]], pts[B[2]], pts[B[3]])) {
+        out.quads.push_back({B[0], B[1], B[2], B[3]});
+        if (has_attr) out.region.push_back(attr[u]);
+        ++cases[kQuadConvex];
+        reg[u] = {};
+      } else {
+        ++cases[kQuadPassedUp];
+        reg[u] = {kQuadR, std::uint8_t(B[3] == c ? 0 : 1), B[2], B[3]};
+      }
+      return;
+    }
     bool pinched = false;
     {
       std::vector<int>& s = sSort;
