@@ -31,7 +31,6 @@ enum Case : int {
   kHexagon,           // 4(c)(i)/(iii), B.1.1
   kHeptagon,          // 4(c)(v)(f), B.3.1 (ear form)
   kNonEmptyTriangle,  // Fig. 3.6: non-empty triangle formed
-  kNonEmptySplit,     // non-empty triangle: one quad and a leftover triangle
   kQuadPoint,         // 3(b), 4(c)(iii)/(v)(d)-(e): B.1.2
   kPentagonPoint,     // 3(c), 4(c)(v)(a)-(c): B.2.2
   kHexagonPoint,      // 4(c)(iv)
@@ -47,7 +46,7 @@ enum Case : int {
 const char* kCaseNames[kNumCases] = {
     "4c_convex_quad",        "4c_quad_to_grandparent", "B21_pentagon_ear",
     "4b_B21_type1",          "4cii_B21_type2",         "B21_type3_apex_hexagon",         "4ci_4ciii_B11_hexagon",
-    "4cvf_B31_heptagon",     "3_nonempty_triangle",    "3_nonempty_triangle_split",
+    "4cvf_B31_heptagon",     "3_nonempty_triangle",
     "3b_B12_quad_point",     "3c_B22_pentagon_point",  "4civ_hexagon_point",
     "5bd_joe_split",         "5bd_outside_point",      "5c_B12_nested",
     "degenerate_quad_triangle", "degenerate_quad_nonempty", "fallback_split",        "3_3_repair_split"};
@@ -580,14 +579,10 @@ struct Converter {
       } else if (nb_ == 7 && ni == 0) {
         done = heptagon(lp, r);
       } else if (nb_ == 3 && ni == 1) {
-        // Non-empty triangle (a, b, w) around I: one quad and a leftover
-        // triangle if (b, w, a, I) is convex; else it goes up (Fig. 3.6).
-        if (t2q::good_quad(lp.p[1], lp.p[2], lp.p[0], lp.p[3]) && t2q::good_triangle(lp.p[0], lp.p[1], lp.p[3])) {
-          lp.quads.push_back({1, 2, 0, 3});
-          ++cases[kNonEmptySplit];
-          r = {kTri, 0, 3, -1};
-          done = true;
-        } else if (!is_root && tris.size() == 3) {
+        // Non-empty triangle (a, b, w) around I (Fig. 3.6): it goes up to
+        // the parent (a quad plus a leftover triangle is impossible here:
+        // the remainder would be reflex at I).
+        if (!is_root && tris.size() == 3) {
           ++cases[kNonEmptyTriangle];
           reg[u] = {kNTri, 0, B[2], I[0]};
           return;
