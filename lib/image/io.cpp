@@ -17,6 +17,7 @@
 #include <itkPNGImageIOFactory.h>
 
 #include <cmath>
+#include <zlib.h>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -40,11 +41,45 @@ void register_factories() {
   });
 }
 
-// ITK's messages span lines and name source files: keep the description.
+// ITK's descriptions carry "ITK ERROR: Class(0x...): " and, for NRRD, a
+// chain of "[nrrd] function:" frames: keep the innermost reason only.
 std::string itk_message(const itk::ExceptionObject& e) {
   std::string d = e.GetDescription();
-  while (!d.empty() && (d.back() == '\n' || d.back() == ' ')) d.pop_back();
-  return d.empty() ? "cannot read the image" : d;
+  for (char& c : d)
+    if (c == '\n' || c == '\r') c = ' ';
+  auto frame = d.rfind("[nrrd] ");
+  if (frame != std::string::npos) {
+    auto colon = d.find(": ", frame);
+    d = colon == std::string::npos ? d.substr(frame + 7) : d.substr(colon + 2);
+  } else if (d.rfind("ITK ERROR: ", 0) == 0) {
+    auto colon = d.find("): ");
+    if (colon != std::string::npos) d = d.substr(colon + 3);
+  }
+  while (!d.empty() && d.back() == ' ') d.pop_back();
+  return d.empty() ? "cannot read the image" : "cannot read the image: " + d;
+}
+
+// ITK's NIfTI reader returns a zero-padded image for a truncated file (the
+// gzip stream or the raw data ends early) instead of failing: check that the
+// file holds the whole voxel block before trusting what it read.
+void check_nifti_complete(const std::string& path, const std::string& file, std::size_t data_bytes) {
+  const std::string ext = extension_of(file);
+  if (ext != ".nii" && ext != ".nii.gz") return;
+  gzFile gz = gzopen(file.c_str(), "rb");  // reads plain files too
+  if (!gz) throw Error("cannot open", path);
+  std::vector<char> buf(1 << 20);
+  std::size_t total = 0;
+  int got = 0;
+  while ((got = gzread(gz, buf.data(), unsigned(buf.size()))) > 0) total += std::size_t(got);
+  int err = 0;
+  gzerror(gz, &err);
+  gzclose(gz);
+  if (got < 0 || (err != Z_OK && err != Z_STREAM_END))
+    throw Error("cannot read the image: corrupt or truncated compressed data", path);
+  if (total < 348 + data_bytes)
+    throw Error("cannot read the image: truncated (" + std::to_string(total) + " bytes, the header needs " +
+                    std::to_string(348 + data_bytes) + ")",
+                path);
 }
 
 // stdin is spooled to a temporary file whose extension comes from the content,
@@ -109,12 +144,13 @@ Opened open_image(const std::string& path, const std::string& file) {
   while (dim > 3 && o.io->GetDimensions(dim - 1) == 1) --dim;
   if (n < 2) throw Error("a 1D image: 2D or 3D expected", path);
   if (dim > 3) throw Error(std::to_string(dim) + "D image: 2D or 3D expected", path);
-  if (o.io->GetNumberOfComponents() != 1)
-    throw Error("pixels have " + std::to_string(o.io->GetNumberOfComponents()) +
-                    " components (colour or vector image): a scalar image is expected",
+  const unsigned comps = o.io->GetNumberOfComponents();
+  // RGB(A) is accepted for grey images saved as colour (checked per pixel).
+  if (comps != 1 && comps != 3 && comps != 4)
+    throw Error("pixels have " + std::to_string(comps) + " components (vector image): a scalar image is expected",
                 path);
   ImageInfo& info = o.info;
-  info.components = 1;
+  info.components = int(comps);
   info.component = itk::ImageIOBase::GetComponentTypeAsString(o.io->GetComponentType());
   const auto ct = o.io->GetComponentType();
   info.integer = !(ct == itk::IOComponentEnum::FLOAT || ct == itk::IOComponentEnum::DOUBLE ||
@@ -145,8 +181,11 @@ Opened open_image(const std::string& path, const std::string& file) {
   return o;
 }
 
-// All voxels as double (exact for every integer type up to 2^53).
-std::vector<double> read_values(const std::string& path, Opened& o) {
+// Calls f(i, value) for every voxel i, value as double (exact for every
+// integer type up to 2^53), straight from ITK's buffer: no per-voxel copy
+// wider than the file's own type. Grey images stored as RGB(A) or palette
+// PNG (R = G = B) read as their grey value; real colour is refused.
+template <class F> void visit_values(const std::string& path, Opened& o, F&& f) {
   const unsigned n = o.io->GetNumberOfDimensions();
   itk::ImageIORegion region(n);
   for (unsigned i = 0; i < n; ++i) {
@@ -155,17 +194,25 @@ std::vector<double> read_values(const std::string& path, Opened& o) {
   }
   o.io->SetIORegion(region);
   const std::size_t count = o.info.geometry.count();
+  const std::size_t c = o.io->GetNumberOfComponents();
   std::vector<char> raw(o.io->GetImageSizeInBytes());
+  check_nifti_complete(path, o.io->GetFileName(), raw.size());
   try {
     o.io->Read(raw.data());
   } catch (const itk::ExceptionObject& e) {
     throw Error(itk_message(e), path);
   }
-  std::vector<double> v(count);
   auto convert = [&](auto tag) {
     using T = decltype(tag);
     const T* p = reinterpret_cast<const T*>(raw.data());
-    for (std::size_t i = 0; i < count; ++i) v[i] = double(p[i]);
+    for (std::size_t i = 0; i < count; ++i) {
+      const T* px = p + i * c;
+      if (c > 1 && (px[0] != px[1] || px[0] != px[2]))
+        throw Error("a colour image (R, G, B differ): a grey or label image is expected", path);
+      const double v = double(px[0]);
+      if (std::isnan(v)) throw Error("image contains NaN values", path);
+      f(i, v);
+    }
   };
   switch (o.io->GetComponentType()) {
     case itk::IOComponentEnum::UCHAR: convert(std::uint8_t()); break;
@@ -182,9 +229,6 @@ std::vector<double> read_values(const std::string& path, Opened& o) {
     case itk::IOComponentEnum::DOUBLE: convert(double()); break;
     default: throw Error("unsupported pixel type " + o.info.component, path);
   }
-  for (double x : v)
-    if (std::isnan(x)) throw Error("image contains NaN values", path);
-  return v;
 }
 
 template <unsigned D, class T>
@@ -255,21 +299,23 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel) {
     throw UsageError("--label needs an integer image, this one holds " + o.info.component +
                          " values (use --threshold)",
                      path);
-  std::vector<double> v = read_values(path, o);
   BinaryImage out(o.info.geometry, 0);
   std::size_t count = 0;
   if (!sel.labels.empty()) {
     std::set<double> wanted(sel.labels.begin(), sel.labels.end()), seen;
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (wanted.count(v[i])) { out.data[i] = 1; seen.insert(v[i]); ++count; }
+    visit_values(path, o, [&](std::size_t i, double v) {
+      if (wanted.count(v)) { out.data[i] = 1; seen.insert(v); ++count; }
+    });
     for (long long l : sel.labels)
       if (!seen.count(double(l))) throw Error("label " + std::to_string(l) + " does not occur in the image", path);
   } else if (sel.has_threshold) {
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (v[i] >= sel.threshold) { out.data[i] = 1; ++count; }
+    visit_values(path, o, [&](std::size_t i, double v) {
+      if (v >= sel.threshold) { out.data[i] = 1; ++count; }
+    });
   } else {
-    for (std::size_t i = 0; i < v.size(); ++i)
-      if (v[i] != 0) { out.data[i] = 1; ++count; }
+    visit_values(path, o, [&](std::size_t i, double v) {
+      if (v != 0) { out.data[i] = 1; ++count; }
+    });
   }
   if (count == 0) throw Error("the foreground is empty (check --label/--threshold)", path);
   return out;
@@ -278,25 +324,23 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel) {
 LabelImage read_labels(const std::string& path) {
   Spool spool(path);
   Opened o = open_image(path, spool.file());
-  std::vector<double> v = read_values(path, o);
   LabelImage out(o.info.geometry, 0);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    if (v[i] != std::floor(v[i]) || std::abs(v[i]) > 2147483647.0)
-      throw Error("not a label image: value " + std::to_string(v[i]) + " is not a 32-bit integer", path);
-    out.data[i] = std::int32_t(v[i]);
-  }
+  visit_values(path, o, [&](std::size_t i, double v) {
+    if (v != std::floor(v) || std::abs(v) > 2147483647.0)
+      throw Error("not a label image: value " + std::to_string(v) + " is not a 32-bit integer", path);
+    out.data[i] = std::int32_t(v);
+  });
   return out;
 }
 
 FloatImage read_float(const std::string& path, std::map<std::string, std::string>* fields) {
   Spool spool(path);
   Opened o = open_image(path, spool.file());
-  std::vector<double> v = read_values(path, o);
   FloatImage out(o.info.geometry, 0.f);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    if (!std::isfinite(v[i])) throw Error("image contains infinite values", path);
-    out.data[i] = float(v[i]);
-  }
+  visit_values(path, o, [&](std::size_t i, double v) {
+    if (!std::isfinite(v)) throw Error("image contains infinite values", path);
+    out.data[i] = float(v);
+  });
   if (fields) {
     fields->clear();
     const auto& dict = o.io->GetMetaDataDictionary();

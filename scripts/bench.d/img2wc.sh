@@ -2,8 +2,8 @@
 # img2wc: time and peak memory of the repair on 256^3 and 512^3 volumes with
 # scattered critical configurations, next to a plain pass over an already
 # well-composed volume of the same size (the bar: at most +50%);
-# then |P|/(C1+C2) on a real brain segmentation when ITK's example data is
-# installed (apt-get install insighttoolkit5-examples). $1: the tool folder.
+# then |P|/(C1+C2) on the real brain segmentation in share/data.
+# $1: the tool folder.
 set -euo pipefail
 BIN=${1:?usage: img2wc.sh TOOL_DIR}
 W="$BIN/img2wc"
@@ -68,7 +68,7 @@ for n in 256 512; do
   rm -f "$work"/*.nrrd
 done
 
-data=/usr/share/doc/insighttoolkit5-examples/examples/Data/KmeansTest_T1KmeansPrelimSegmentation.nii.gz
+data=$(dirname "$0")/../../share/data/brain-kmeans-labels.nii.gz
 if [[ -f "$data" ]]; then
   echo "img2wc on a real brain segmentation (ITK's KmeansTest, 128x128x62, labels 1-5):"
   for l in 1 2 3 4 5; do
@@ -82,6 +82,4 @@ print('  label %s %-15s C1 %6d  C2 %5d  |P| %6d  |P|/(C1+C2) %.3f  created %d' %
 PY
     done
   done
-else
-  echo "img2wc: real brain segmentation skipped (apt-get install insighttoolkit5-examples)"
 fi

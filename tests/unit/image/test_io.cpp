@@ -126,6 +126,16 @@ TEST_CASE("bad files give an Error, never a crash") {
   const std::string cut = temp_dir() + "/cut.nrrd";
   std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
   CHECK_THROWS_AS(read_foreground(cut, {}), Error);
+  // ITK's NIfTI reader zero-fills a truncated file; we must refuse it.
+  for (const char* ext : {".nii.gz", ".nii"}) {
+    const std::string whole = temp_dir() + "/whole" + ext;
+    write_image(whole, img);
+    std::ifstream nin(whole, std::ios::binary);
+    std::string nbytes((std::istreambuf_iterator<char>(nin)), std::istreambuf_iterator<char>());
+    const std::string part = temp_dir() + "/part" + ext;
+    std::ofstream(part, std::ios::binary) << nbytes.substr(0, nbytes.size() - 20);
+    CHECK_THROWS_WITH(read_foreground(part, {}), Catch::Contains("truncated"));
+  }
   const std::string junk = temp_dir() + "/junk.nrrd";
   std::ofstream(junk) << "this is not an image\n";
   CHECK_THROWS_AS(read_foreground(junk, {}), Error);
