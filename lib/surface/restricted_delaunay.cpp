@@ -391,8 +391,46 @@ EdgeCrossing Mesher::edge_surface(const Vec3& a, const Vec3& b, const Vec3& site
   const double len = norm(d);
   const double step = grid_.delta / 8;
   // All sign changes of one piece, as sample pairs.
+  // Near-tangential crossings (8.4(2)): where |f| has a local minimum between
+  // three samples of one sign that may dip through zero, search the minimum
+  // (golden section). A sign change there gives two crossings; a minimum at
+  // |f| ~ 0 is a tangency, reported as a double root at that point (VorEdge
+  // inserts it, Lemma 8.4.1).
+  auto dip = [&](double ta, double tb, bool in, std::vector<std::pair<double, double>>& ch, std::vector<double>& fv) {
+    const double g = 0.6180339887498949;
+    const double s = in ? -1 : 1;  // minimise s * f
+    double a = ta, b = tb, c = b - g * (b - a), d = a + g * (b - a);
+    double fc = value(at(c)), fd = value(at(d));
+    for (int it = 0; it < 40; ++it) {
+      for (double tt : {c, d}) {
+        const double ft = tt == c ? fc : fd;
+        if (inside(ft) != in) {  // crossed: two sign changes around tt
+          ch.emplace_back(ta, tt);
+          fv.push_back(value(at(ta)));
+          ch.emplace_back(tt, tb);
+          fv.push_back(ft);
+          return;
+        }
+      }
+      if ((b - a) * len < 1e-9 * grid_.delta) break;
+      if (s * fc < s * fd) {
+        b = d; d = c; fd = fc; c = b - g * (b - a); fc = value(at(c));
+      } else {
+        a = c; c = d; fc = fd; d = a + g * (b - a); fd = value(at(d));
+      }
+    }
+    const double tm = s * fc < s * fd ? c : d, fm = std::min(std::abs(fc), std::abs(fd));
+    if (fm < 1e-9 * grid_.delta) {  // tangency: a double root
+      ch.emplace_back(tm, tm);
+      fv.push_back(fm);
+      ch.emplace_back(tm, tm);
+      fv.push_back(fm);
+    }
+  };
+  // All sign changes of one piece, as sample pairs, in order.
   auto changes = [&](const Piece& p, std::vector<std::pair<double, double>>& ch, std::vector<double>& fv) {
     const int m = std::max(2, int(std::ceil((p.tb - p.ta) * len / step)));
+    double tq = p.ta, fq = 0;  // the sample before the previous one
     double tp = p.ta, fp = value(at(tp));
     for (int k = 1; k <= m; ++k) {
       const double t = k == m ? p.tb : p.ta + (p.tb - p.ta) * k / m;
@@ -400,7 +438,12 @@ EdgeCrossing Mesher::edge_surface(const Vec3& a, const Vec3& b, const Vec3& site
       if (inside(fc) != inside(fp)) {
         ch.emplace_back(tp, t);
         fv.push_back(fp);
+      } else if (k >= 2 && inside(fq) == inside(fp) && std::abs(fp) < std::abs(fq) && std::abs(fp) < std::abs(fc) &&
+                 std::abs(fp) < std::abs(fq - fp) + std::abs(fc - fp)) {
+        dip(tq, t, inside(fp), ch, fv);
       }
+      tq = tp;
+      fq = fp;
       tp = t;
       fp = fc;
     }
