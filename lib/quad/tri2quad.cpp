@@ -645,8 +645,22 @@ struct Converter {
       const int j = (s0 + k) % 3;
       const int w = nb[u][j];
       if (w < 0 || (con[u] >> j & 1) || par[w] != u) continue;
-      if (reg[w].type != kTri && reg[w].type != kNTri) continue;
       const int p = T[u][(j + 1) % 3], q = T[u][j], opp = T[u][(j + 2) % 3];
+      if (reg[w].type == kQuadR) {
+        // A non-convex pair closes by itself (nested template with a free
+        // point, as in step 5(c)); the shared edge stays whole.
+        LocalPatch lp;
+        const int l0 = lp.add_known(pts[p], p), l1 = lp.add_known(pts[q], q);
+        const int l2 = lp.add_known(pts[reg[w].x], reg[w].x), l3 = lp.add_known(pts[reg[w].y], reg[w].y);
+        if (t2q::quad_nested_free(lp, {l0, l1, l2, l3})) {
+          commit_region(lp, {}, attr[w]);
+          ++cases[kRootNested];
+          reg[w] = {};
+          any = true;
+        }
+        continue;
+      }
+      if (reg[w].type != kTri && reg[w].type != kNTri) continue;
       const P2 mm = {0.5 * (pts[p][0] + pts[q][0]), 0.5 * (pts[p][1] + pts[q][1])};
       for (double d : {0.15, 0.05, 0.015}) {
         LocalPatch lp;
