@@ -553,7 +553,7 @@ void Mesher::enqueue_vertex(Vh v) {
 }
 
 bool Mesher::insert(const Vec3& x, Origin origin, Ch hint) {
-  if (vertices_.size() >= opt_.max_points) {
+  if (origin != kSeed && vertices_.size() >= opt_.max_points) {  // seeds always go in
     max_hit_ = true;
     return false;
   }
