@@ -268,8 +268,10 @@ std::string format_report(const Json& r) {
                   q.at("mean_mu").number(), q.at("min_scaled_jacobian").number(),
                   100 * q.at("angles_45_135").number(), q.at("mean_area").number(), q.at("area_stddev").number());
     o << buf << "  mu histogram:";
-    for (const Json& b : q.at("mu_histogram").items())
-      o << " [" << b.at("from").number() << "," << b.at("to").number() << ") " << b.at("count").integer();
+    const auto& bins = q.at("mu_histogram").items();
+    for (std::size_t i = 0; i < bins.size(); ++i)
+      o << " [" << bins[i].at("from").number() << "," << bins[i].at("to").number()
+        << (i + 1 == bins.size() ? "] " : ") ") << bins[i].at("count").integer();
     o << "\n";
   }
   if (r.contains("image")) {
