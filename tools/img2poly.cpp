@@ -38,6 +38,12 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->type_name("E")
       ->check(CLI::Range(0.0, 1e6));
+  tool.app.add_option("--min-angle", opt.min_angle,
+                      "Do not simplify into angles below A degrees between segments (keeps thin parts from "
+                      "becoming slivers; 0 = off)")
+      ->capture_default_str()
+      ->type_name("A")
+      ->check(CLI::Range(0.0, 60.0));
   tool.app.add_option("--svg", svg, "Also draw the curves over the image to this SVG file")->type_name("FILE");
   tool.add_seed();
 
@@ -109,6 +115,8 @@ int main(int argc, char** argv) {
     tool.stats["regions"] = r.regions;
     tool.stats["tolerance"] = opt.tolerance;
     tool.stats["hausdorff"] = r.hausdorff;
+    tool.stats["min_angle"] = opt.min_angle;
+    tool.stats["smallest_angle"] = r.smallest_angle;
     Json interfaces = Json::array();
     for (const auto& f : r.interfaces) {
       Json j = Json::object();

@@ -19,6 +19,7 @@
 #include <CGAL/Polyline_simplification_2/Stop_above_cost_threshold.h>
 #include <CGAL/Polyline_simplification_2/simplify.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace imgmesh {
@@ -31,6 +32,41 @@ using TDS = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using CDT = CGAL::Constrained_Delaunay_triangulation_2<K, TDS, CGAL::Exact_predicates_tag>;
 using CT = CGAL::Constrained_triangulation_plus_2<CDT>;
 
+// Squared_distance_cost, but a removal that would make an angle below
+// `min_angle` between the new segment and another constrained edge at either
+// end is not offered (cost undefined); it is reconsidered whenever a
+// neighbour goes. Thin spikes keep their square ends instead of collapsing
+// into slivers that force tiny triangles downstream.
+struct AngleAwareCost {
+  double cos_max;  // cos(min_angle)
+  bool ok_at(const CT& ct, CT::Vertex_handle a, CT::Vertex_handle skip, CT::Vertex_handle b) const {
+    const double bx = b->point().x() - a->point().x(), by = b->point().y() - a->point().y();
+    const double lb = std::hypot(bx, by);
+    auto e = ct.incident_edges(a), end = e;
+    if (e == nullptr) return true;
+    do {
+      if (ct.is_infinite(*e) || !ct.is_constrained(*e)) continue;
+      const auto f = e->first;
+      const int i = e->second;
+      const CT::Vertex_handle x = f->vertex(CT::cw(i)) == a ? f->vertex(CT::ccw(i)) : f->vertex(CT::cw(i));
+      if (x == skip || x == b) continue;
+      const double xx = x->point().x() - a->point().x(), xy = x->point().y() - a->point().y();
+      if ((bx * xx + by * xy) > cos_max * lb * std::hypot(xx, xy)) return false;
+    } while (++e != end);
+    return true;
+  }
+  boost::optional<double> operator()(const CT& ct, CT::Vertices_in_constraint_iterator v) const {
+    const boost::optional<double> d = PS::Squared_distance_cost()(ct, v);
+    if (!d) return d;
+    auto pv = v, nv = v;  // CGAL's constraint iterators are not std::prev-able
+    --pv;
+    ++nv;
+    const CT::Vertex_handle u = *pv, w = *nv;
+    if (!ok_at(ct, u, *v, w) || !ok_at(ct, w, *v, u)) return boost::none;
+    return d;
+  }
+};
+
 double segment_distance(const K::Point_2& a, const K::Point_2& b, const K::Point_2& p) {
   const double dx = b.x() - a.x(), dy = b.y() - a.y();
   const double px = p.x() - a.x(), py = p.y() - a.y();
@@ -41,7 +77,8 @@ double segment_distance(const K::Point_2& a, const K::Point_2& b, const K::Point
 }
 } // namespace
 
-SimplifyReport simplify_polylines(PolylineSet& set, const std::vector<Point2>& obstacles, double tolerance) {
+SimplifyReport simplify_polylines(PolylineSet& set, const std::vector<Point2>& obstacles, double tolerance,
+                                  double min_angle) {
   if (!(tolerance >= 0) || !std::isfinite(tolerance)) throw Error("the tolerance must be a finite number >= 0");
   CT ct;
   {
@@ -59,8 +96,8 @@ SimplifyReport simplify_polylines(PolylineSet& set, const std::vector<Point2>& o
     ids.push_back(ct.insert_constraint(pts.begin(), pts.end(), set.closed[i] != 0));
   }
   SimplifyReport rep;
-  rep.removed = PS::simplify(ct, PS::Squared_distance_cost(), PS::Stop_above_cost_threshold(tolerance * tolerance),
-                             false);
+  const double cos_max = std::cos(std::clamp(min_angle, 0.0, 90.0) * M_PI / 180);
+  rep.removed = PS::simplify(ct, AngleAwareCost{cos_max}, PS::Stop_above_cost_threshold(tolerance * tolerance), false);
   for (std::size_t i = 0; i < ids.size(); ++i) {
     std::vector<Point2> out;
     auto b = ct.vertices_in_constraint_begin(ids[i]), e = ct.vertices_in_constraint_end(ids[i]);

@@ -21,6 +21,9 @@ struct SimplifyReport {
 // original (Hausdorff) and no removal sweeps over another polyline or any of
 // the `obstacles` points: the curves stay simple, disjoint, and separate the
 // obstacles as before. Lines may share endpoints (junctions), never cross.
-SimplifyReport simplify_polylines(PolylineSet& set, const std::vector<Point2>& obstacles, double tolerance);
+// A removal that would make an angle below `min_angle` degrees between two
+// segments at a vertex is not made (checked when it is considered).
+SimplifyReport simplify_polylines(PolylineSet& set, const std::vector<Point2>& obstacles, double tolerance,
+                                  double min_angle = 0);
 
 } // namespace imgmesh

@@ -91,6 +91,7 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
   if (img.size[0] > 65536 || img.size[1] > 65536 || img.count() > (std::size_t(1) << 28))
     throw Error("image too large for img2poly (at most 65536 pixels a side and 2^28 pixels)");
   if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance)) throw UsageError("the tolerance must be >= 0");
+  if (!(opt.min_angle >= 0 && opt.min_angle <= 60)) throw UsageError("the minimum angle must be in [0, 60] degrees");
   {
     // The PSLG lives in the world x-y plane: the image's in-plane axes must
     // map onto it (2D images; axial slices of 3D files).
@@ -320,7 +321,7 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
       if (piece.empty()) piece.push_back(p);
     }
   }
-  const SimplifyReport rep = simplify_polylines(set, obstacles, opt.tolerance);
+  const SimplifyReport rep = simplify_polylines(set, obstacles, opt.tolerance, opt.min_angle);
   res.hausdorff = rep.hausdorff;
 
   // The PSLG in world coordinates.
@@ -346,6 +347,21 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
     }
   }
   res.simplified_vertices = m.points.size() - 4;
+  {
+    std::vector<std::vector<int>> nb(m.points.size());
+    for (const auto& sg : m.segments) {
+      nb[sg[0]].push_back(sg[1]);
+      nb[sg[1]].push_back(sg[0]);
+    }
+    for (std::size_t v = 0; v < nb.size(); ++v)
+      for (std::size_t a = 0; a < nb[v].size(); ++a)
+        for (std::size_t b = a + 1; b < nb[v].size(); ++b) {
+          const Point2 &o = m.points[v], &p = m.points[nb[v][a]], &q = m.points[nb[v][b]];
+          const double ux = p[0] - o[0], uy = p[1] - o[1], vx = q[0] - o[0], vy = q[1] - o[1];
+          res.smallest_angle = std::min(
+              res.smallest_angle, std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI);
+        }
+  }
 
   m.regions = std::move(regions);
   res.regions = m.regions.size();

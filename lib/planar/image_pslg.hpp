@@ -16,6 +16,9 @@ namespace imgmesh {
 
 struct ImagePslgOptions {
   double tolerance = 1.0;  // E: Hausdorff bound between each simplified curve and bdCA, in pixels
+  // Simplification does not create angles below this (degrees) between the
+  // segments at a vertex, so no needlessly small input angles reach the mesher.
+  double min_angle = 30;
   std::uint64_t seed = 0;  // for the well-composed repair
 };
 
@@ -42,6 +45,7 @@ struct ImagePslgResult {
   std::size_t boundary_vertices = 0;    // vertices of bdCA (before simplification)
   std::size_t simplified_vertices = 0;  // curve vertices after
   std::size_t regions = 0;
+  double smallest_angle = 180;  // measured: smallest angle between two segments at a vertex, degrees
   double hausdorff = 0;  // measured, pixels: max over curves of the distance between each and its original
 };
 

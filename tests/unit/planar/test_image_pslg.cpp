@@ -141,6 +141,21 @@ void check_pipeline(const LabelImage& img, double E) {
   CHECK(h1 <= E + 1e-6);
   CHECK(h2 <= E + 1e-6);
   CHECK(r.hausdorff <= E + 1e-9);
+  // The reported smallest angle between segments at a vertex is the real one.
+  {
+    double smallest = 180;
+    for (std::size_t s1 = 0; s1 < p.segments.size(); ++s1)
+      for (std::size_t s2 = s1 + 1; s2 < p.segments.size(); ++s2)
+        for (int i : {0, 1})
+          for (int j : {0, 1}) {
+            if (p.segments[s1][i] != p.segments[s2][j]) continue;
+            const Point2 o = p.points[p.segments[s1][i]];
+            const Point2 a = p.points[p.segments[s1][1 - i]], b = p.points[p.segments[s2][1 - j]];
+            const double ux = a[0] - o[0], uy = a[1] - o[1], vx = b[0] - o[0], vy = b[1] - o[1];
+            smallest = std::min(smallest, std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI);
+          }
+    CHECK(r.smallest_angle == Approx(smallest).margin(1e-9));
+  }
   // One regional point per region, each on a pixel of its label.
   for (const auto& reg : p.regions) {
     const Point2 q = to_index(L, reg.point);
