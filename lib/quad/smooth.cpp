@@ -19,6 +19,7 @@ Json SmoothStats::to_json() const {
   ops["moves"] = moves;
   ops["slides"] = slides;
   ops["rejected_moves"] = rejected;
+  ops["worst_mu_climbs"] = optimized;
   ops["diagonal_swaps"] = swaps;
   ops["doublets_removed"] = doublets;
   ops["quad_collapses"] = collapses;
@@ -78,6 +79,9 @@ inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, c
 // the pair below the usual bar), sin(15 deg) for collapses.
 constexpr double kSwapBelow = 0.5;
 constexpr double kCollapseBelow = 0.25881904510252074;
+// Vertices next to a quad with mu below 25 degrees also get a direct climb
+// on the worst mu around them.
+constexpr double kOptimizeBelow = 0.42261826174069944;  // sin(25 deg)
 
 class QuadImprover {
 public:
@@ -114,6 +118,7 @@ private:
   // Try moving v to p (with back-off toward the current position); the guard.
   bool try_move(int v, Point2 p, bool slide_line, const Slide* s);
   bool angle_based_target(int v, Point2& out) const;
+  bool optimize_worst(int v, double h2);
   void smooth_pass();
   void slide_pass();
   void swap_pass();
@@ -324,6 +329,41 @@ bool QuadImprover::try_move(int v, Point2 p, bool slide_line, const Slide* s) {
   return false;
 }
 
+bool QuadImprover::optimize_worst(int v, double h2) {
+  double worst0 = 2;
+  for (int q : vq_[v]) worst0 = std::min(worst0, q_smu_[q]);
+  if (worst0 >= kOptimizeBelow) return false;
+  const Point2 start = P_[v];
+  Point2 p = start;
+  double best = worst0, h = 0.25 * std::sqrt(h2);
+  static const double dirs[8][2] = {{1, 0}, {0.7071067811865476, 0.7071067811865476}, {0, 1},
+                                    {-0.7071067811865476, 0.7071067811865476}, {-1, 0},
+                                    {-0.7071067811865476, -0.7071067811865476}, {0, -1},
+                                    {0.7071067811865476, -0.7071067811865476}};
+  for (int round = 0; round < 6; ++round) {
+    Point2 bp = p;
+    bool improved = false;
+    for (const auto& d : dirs) {
+      P_[v] = {p[0] + h * d[0], p[1] + h * d[1]};
+      double w = 2;
+      bool ok = true;
+      for (int q : vq_[v]) {
+        if (!convex(Q_[q])) { ok = false; break; }
+        w = std::min(w, quad_smu(Q_[q]));
+        if (w <= best) { ok = false; break; }
+      }
+      if (ok && w > best * (1 + 1e-12)) { best = w; bp = P_[v]; improved = true; }
+    }
+    P_[v] = p;
+    if (improved) p = bp;
+    else h *= 0.5;
+  }
+  if (!(best > worst0 * (1 + 1e-9))) { P_[v] = start; return false; }
+  P_[v] = p;
+  for (int q : vq_[v]) q_smu_[q] = quad_smu(Q_[q]);
+  return true;
+}
+
 void QuadImprover::smooth_pass() {
   // Active set: a vertex is revisited only after something around it moved
   // (a rejected or negligible move would be rejected or negligible again).
@@ -338,14 +378,15 @@ void QuadImprover::smooth_pass() {
     const Point2& x = P_[Q_[vq_[v][0]][0] == v ? Q_[vq_[v][0]][1] : Q_[vq_[v][0]][0]];
     const double d2 = (target[0] - p[0]) * (target[0] - p[0]) + (target[1] - p[1]) * (target[1] - p[1]);
     const double h2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]);
-    if (d2 < 1e-4 * h2) continue;  // converged to 1e-2 of an edge
-    if (try_move(v, target, false, nullptr)) {
-      ++st_.moves;
+    bool moved = d2 >= 1e-4 * h2 && try_move(v, target, false, nullptr);  // else converged to 1e-2 of an edge
+    if (moved) ++st_.moves;
+    else if (d2 >= 1e-4 * h2) ++st_.rejected;
+    // Where the angle-based position cannot help a poor quad, climb on the
+    // worst mu itself (compass search, guarded the same way).
+    if (optimize_worst(v, h2)) { moved = true; ++st_.optimized; }
+    if (moved)
       for (int q : vq_[v])
         for (int w : Q_[q]) active_[w] = 1;
-    } else {
-      ++st_.rejected;
-    }
   }
 }
 

@@ -27,6 +27,7 @@ struct SmoothStats {
   std::size_t moves = 0;       // accepted vertex moves (interior)
   std::size_t slides = 0;      // accepted boundary slides
   std::size_t rejected = 0;    // moves the guard refused
+  std::size_t optimized = 0;   // guarded climbs on the worst mu around a vertex
   std::size_t swaps = 0, doublets = 0, collapses = 0;
   int passes = 0;
   std::size_t fixed_vertices = 0;  // boundary, constrained or region-boundary vertices
