@@ -1,0 +1,96 @@
+#!/bin/bash
+# meshinfo end to end: hand-made closed and open surfaces with several
+# components (OFF), a planar quad mesh (.ele), --json keys, --image against a
+# hand-written well-composed NRRD, and bad input.
+set -u
+mkdir -p "$TMP"
+cd "$TMP" || exit 1
+fail() { echo "FAIL: $*" >&2; exit 1; }
+M="$BIN/meshinfo"
+[ -x "$M" ] || fail "no $M"
+# First line of a compact JSON value: "components" and "euler" are the first keys.
+comps() { "$M" --json "$1" | tr -d ' \n' | sed -n 's/^{"components":\([0-9]*\),"euler":\[\([-0-9,]*\)\].*/\1 \2/p'; }
+
+# A cube (a sphere, euler 2) as OFF quads, outward.
+cat > cube.off <<'O'
+OFF
+8 6 0
+0 0 0
+1 0 0
+0 1 0
+1 1 0
+0 0 1
+1 0 1
+0 1 1
+1 1 1
+4 0 2 3 1
+4 4 5 7 6
+4 0 1 5 4
+4 2 6 7 3
+4 0 4 6 2
+4 1 3 7 5
+O
+[ "$(comps cube.off)" = "1 2" ] || fail "cube: $(comps cube.off)"
+# Two cubes and an open box (cube without its top: a disk, euler 1).
+{
+  echo OFF; echo "24 17 0"
+  for s in 0 3 6; do sed -n '3,10p' cube.off | awk -v s=$s '{ print $1 + s, $2, $3 }'; done
+  for s in 0 8; do sed -n '11,16p' cube.off | awk -v s=$s '{ print $1, $2 + s, $3 + s, $4 + s, $5 + s }'; done
+  sed -n '11,16p' cube.off | grep -v '^4 4 5 7 6$' | awk '{ print $1, $2 + 16, $3 + 16, $4 + 16, $5 + 16 }'
+} > three.off
+out=$(comps three.off)
+[ "$out" = "3 2,2,1" ] || fail "two cubes and an open box: '$out'"
+"$M" three.off > three.txt || fail "text report"
+grep -q "1 boundary loop" three.txt || fail "open box: no boundary loop in the text report"
+# A torus: 6 x 4 quads, opposite sides glued (euler 0, genus 1).
+awk 'BEGIN { n = 6; m = 4; print "OFF"; print n * m, n * m, 0
+  for (j = 0; j < m; j++) for (i = 0; i < n; i++) {
+    u = 2 * 3.14159265 * i / n; v = 2 * 3.14159265 * j / m
+    printf "%.6f %.6f %.6f\n", (3 + cos(v)) * cos(u), (3 + cos(v)) * sin(u), sin(v) }
+  for (j = 0; j < m; j++) for (i = 0; i < n; i++)
+    print 4, j * n + i, j * n + (i + 1) % n, ((j + 1) % m) * n + (i + 1) % n, ((j + 1) % m) * n + i }' > torus.off
+[ "$(comps torus.off)" = "1 0" ] || fail "torus: $(comps torus.off)"
+"$M" --json torus.off | grep -q '"genus": 1' || fail "torus genus"
+# OFF on stdin.
+[ "$("$M" --json - < cube.off | tr -d ' \n' | grep -c '^{"components":1,"euler":\[2\],')" = 1 ] || fail "stdin"
+
+# A planar quad mesh (.ele/.node): a 2 x 1 strip, one component, euler 1.
+printf '6 2 0 0\n0 0 0\n1 1 0\n2 2 0\n3 0 1\n4 1 1\n5 2 1\n' > strip.node
+printf '2 4 0\n0 0 1 4 3\n1 1 2 5 4\n' > strip.ele
+[ "$(comps strip.ele)" = "1 1" ] || fail "strip: $(comps strip.ele)"
+"$M" --json strip.ele | grep -q '"non_convex": 0' || fail "strip quads convex"
+"$M" --json strip.ele | sed -n 's/.*"min_mu": *\([0-9.e+-]*\).*/\1/p' | awk '{ exit !($1 > 44.999 && $1 <= 45) }' \
+  || fail "strip: squares have mu 45"
+
+# --image: one voxel in a 4^3 NRRD (well-composed); the cube matches it,
+# three.off does not (exit 3).
+{ printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n'
+  for i in $(seq 0 63); do if [ $i = 21 ]; then printf '\001'; else printf '\000'; fi; done; } > voxel.nrrd
+"$M" -q cube.off --image voxel.nrrd > img.txt; rc=$?
+[ $rc = 0 ] || fail "cube vs one voxel: exit $rc"
+grep -q "MATCHES" img.txt || fail "no match line"
+"$M" -q three.off --image voxel.nrrd > /dev/null; rc=$?
+[ $rc = 3 ] || fail "three.off vs one voxel: exit $rc, expected 3"
+# Two voxels sharing only an edge: not well-composed, refused.
+{ printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n'
+  for i in $(seq 0 63); do if [ $i = 21 ] || [ $i = 26 ]; then printf '\001'; else printf '\000'; fi; done; } > edge.nrrd
+"$M" cube.off --image edge.nrrd 2> edge.err > /dev/null; rc=$?
+[ $rc = 1 ] || fail "non-well-composed image: exit $rc"
+grep -q "well-composed" edge.err || fail "message does not say well-composed"
+
+# Bad input: truncated, missing, unknown format, usage.
+head -c 40 cube.off > trunc.off
+"$M" trunc.off 2> trunc.err > /dev/null; [ $? = 1 ] || fail "truncated OFF"
+[ "$(wc -l < trunc.err)" = 1 ] || fail "error is not one line"
+printf 'OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n' > nan.off
+"$M" nan.off 2> /dev/null > /dev/null; [ $? = 1 ] || fail "NaN accepted"
+printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n' > id.off
+"$M" id.off 2> /dev/null > /dev/null; [ $? = 1 ] || fail "bad id accepted"
+printf 'OFF\n999999999 999999999 0\n' > huge.off
+"$M" huge.off 2> /dev/null > /dev/null; [ $? = 1 ] || fail "huge counts accepted"
+"$M" nothere.off 2> /dev/null; [ $? = 1 ] || fail "missing file"
+cp cube.off cube.xyz
+"$M" cube.xyz 2> /dev/null; [ $? = 1 ] || fail "unknown format"
+"$M" 2> /dev/null; [ $? = 2 ] || fail "no argument"
+"$M" cube.off --bogus 2> /dev/null; [ $? = 2 ] || fail "unknown option"
+echo "meshinfo e2e: ok"
