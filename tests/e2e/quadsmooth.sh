@@ -1,0 +1,84 @@
+#!/bin/bash
+# quadsmooth end to end: a jittered triangle grid through tri2quad (when it is
+# built) or a jittered quad grid, smoothed with and without clean-up and
+# boundary sliding; checks strict convexity, fixed boundary, kept topology
+# (meshinfo when built), formats, and bad input.
+set -u
+mkdir -p "$TMP"
+cd "$TMP" || exit 1
+fail() { echo "FAIL: $*" >&2; exit 1; }
+Q="$BIN/quadsmooth"
+[ -x "$Q" ] || fail "no $Q"
+stat() { sed -n "s/^ *\"$1\": *\([^,]*\),*$/\1/p" "$2"; }  # every match, in order
+
+N=24
+# Jittered N x N grid, boundary nodes marked 1 (awk's fixed seed).
+awk -v n=$N 'BEGIN { srand(6); m = n + 1; print m * m, 2, 0, 1
+  for (j = 0; j < m; j++) for (i = 0; i < m; i++) {
+    b = (i == 0 || i == n || j == 0 || j == n)
+    x = i + (b ? 0 : 0.6 * (rand() - 0.5)); y = j + (b ? 0 : 0.6 * (rand() - 0.5))
+    print j * m + i, x, y, b } }' > grid.node
+if [ -x "$BIN/tri2quad" ]; then
+  awk -v n=$N 'BEGIN { srand(7); m = n + 1; print 2 * n * n, 3, 0; k = 0
+    for (j = 0; j < n; j++) for (i = 0; i < n; i++) {
+      a = i + m * j; b = a + 1; c = b + m; d = a + m
+      if (rand() < 0.5) { print k++, a, b, c; print k++, a, c, d } else { print k++, a, b, d; print k++, b, c, d } } }' > grid.ele
+  "$BIN/tri2quad" -q grid.ele in.ele || fail "tri2quad"
+else
+  cp grid.node in.node
+  awk -v n=$N 'BEGIN { m = n + 1; print n * n, 4, 1; k = 0
+    for (j = 0; j < n; j++) for (i = 0; i < n; i++) { a = i + m * j; print k++, a, a + 1, a + m + 1, a + m, (i < n / 2 ? 1 : 2) } }' > in.ele
+fi
+
+# Boundary nodes (on the square's sides) as sorted "x y" lines.
+boundary() { awk -v n=$N 'NR > 1 && !/^ *#/ && NF >= 3 && ($2 == 0 || $2 == n || $3 == 0 || $3 == n) { print $2, $3 }' "$1" | sort; }
+
+"$Q" -q in.ele out.ele --stats s.json --svg out.svg || fail "quadsmooth exit $?"
+nc=$(stat non_convex s.json | tr '\n' ' ')
+[ "$nc" = "0 0 " ] || fail "non-convex quads before/after: $nc"
+mins=($(stat min_mu s.json))
+awk -v b="${mins[0]}" -v a="${mins[1]}" 'BEGIN { exit !(a >= b - 1e-9) }' || fail "min mu dropped: ${mins[*]}"
+means=($(stat mean_mu s.json))
+awk -v b="${means[0]}" -v a="${means[1]}" 'BEGIN { exit !(a > b) }' || fail "mean mu did not improve: ${means[*]}"
+[ "$(stat strictly_convex s.json)" = true ] || fail "guarantee flag"
+[ "$(boundary in.node)" = "$(boundary out.node)" ] || fail "boundary vertices moved"
+[ -s out.svg ] || fail "no svg"
+if [ -x "$BIN/meshinfo" ]; then
+  a=$("$BIN/meshinfo" --json in.ele | tr -d ' \n' | sed 's/,"format".*//')
+  b=$("$BIN/meshinfo" --json out.ele | tr -d ' \n' | sed 's/,"format".*//')
+  [ "$a" = "$b" ] && [ "$a" = '{"components":1,"euler":[1]' ] || fail "topology changed: $a -> $b"
+  "$BIN/meshinfo" --json out.ele | grep -q '"non_convex": 0' || fail "meshinfo sees non-convex quads"
+fi
+
+# Without clean-up: same number of quads; with sliding: boundary nodes stay
+# on their side of the square, corners stay.
+"$Q" -q in.ele nc.ele --no-cleanup --stats nc.json || fail "--no-cleanup"
+q=($(stat quads nc.json))
+[ "${q[0]}" = "${q[1]}" ] || fail "--no-cleanup changed the quad count: ${q[*]}"
+[ "$(stat diagonal_swaps nc.json)" = 0 ] || fail "--no-cleanup swapped"
+"$Q" -q in.ele sl.ele --slide-boundary --iterations 5 --stats sl.json || fail "--slide-boundary"
+[ "$(boundary in.node | wc -l)" = "$(boundary sl.node | wc -l)" ] || fail "a boundary vertex left the boundary"
+for c in "0 0" "0 $N" "$N 0" "$N $N"; do boundary sl.node | grep -qx "$c" || fail "corner $c moved"; done
+[ "$(stat non_convex sl.json | tail -1)" = 0 ] || fail "sliding made a non-convex quad"
+
+# Formats by extension.
+for ext in off vtk msh; do
+  "$Q" -q in.ele "out.$ext" --iterations 2 || fail "output .$ext"
+  [ -s "out.$ext" ] || fail "empty .$ext"
+done
+"$Q" -q out.off again.ele --iterations 1 || fail "OFF input"
+
+# Bad input: truncated, clockwise, missing, usage.
+head -4 in.ele > trunc.ele; cp in.node trunc.node
+"$Q" trunc.ele t.ele 2> trunc.err; [ $? = 1 ] || fail "truncated .ele"
+[ "$(wc -l < trunc.err)" = 1 ] || fail "error is not one line"
+[ ! -e t.ele ] || fail "output written on error"
+printf '4 2 0 0\n0 0 0\n1 1 0\n2 1 1\n3 0 1\n' > cw.node
+printf '1 4 0\n0 0 3 2 1\n' > cw.ele
+"$Q" cw.ele c.ele 2> cw.err; [ $? = 1 ] || fail "clockwise quad accepted"
+grep -q clockwise cw.err || fail "clockwise not named: $(cat cw.err)"
+"$Q" nothere.ele x.ele 2> /dev/null; [ $? = 1 ] || fail "missing input"
+"$Q" in.ele x.ele --iterations -1 2> /dev/null; [ $? = 2 ] || fail "negative iterations"
+"$Q" in.ele 2> /dev/null; [ $? = 2 ] || fail "missing OUT"
+"$Q" in.ele x.ele --bogus 2> /dev/null; [ $? = 2 ] || fail "unknown option"
+echo "quadsmooth e2e: ok"
