@@ -31,7 +31,8 @@ else
 fi
 
 # Boundary nodes (on the square's sides) as sorted "x y" lines.
-boundary() { awk -v n=$N 'NR > 1 && !/^ *#/ && NF >= 3 && ($2 == 0 || $2 == n || $3 == 0 || $3 == n) { print $2, $3 }' "$1" | sort; }
+boundary() { awk -v n=$N '/^ *#/ || NF == 0 { next } !h { h = 1; next }
+  $2 == 0 || $2 == n || $3 == 0 || $3 == n { print $2, $3 }' "$1" | sort; }
 
 "$Q" -q in.ele out.ele --stats s.json --svg out.svg || fail "quadsmooth exit $?"
 nc=$(stat non_convex s.json | tr '\n' ' ')
