@@ -1118,7 +1118,7 @@ RestrictedDelaunayResult Mesher::run() {
   times["seeds"] = t_seeds;
   times["refinement"] = t_refine_s;
   times["verification"] = secs(t_final);
-  st["seconds"] = times;
+  st["phase_seconds"] = times;
   return res;
 }
 
