@@ -1,0 +1,133 @@
+#!/usr/bin/env bash
+# quadsmooth: (1) speed: 10^6 quads (jittered 1000 x 1000 grid), 10 passes,
+# library time from --stats (smooth_seconds) and wall time with text I/O;
+# (2) quality: tri2quad + quadsmooth on a jittered-grid Delaunay-like mesh of
+# 2048 triangles and on 20000 triangles, side by side with Gmsh's Blossom
+# recombination of the very same triangles (when gmsh is installed): min,
+# median, mean mu, min scaled Jacobian, share of quads with angles in
+# [45, 135].   $1: tool folder.
+set -euo pipefail
+BIN=${1:?usage: quadsmooth.sh TOOL_FOLDER}
+work=$(mktemp -d "${TMPDIR:-/tmp}/quadsmooth-bench.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+cd "$work"
+stat() { sed -n "s/^ *\"$1\": *\([^,]*\),*$/\1/p" "$2"; }
+
+if [ "${QUADSMOOTH_BENCH_SPEED:-1}" = 1 ]; then
+echo "speed: 10^6 quads, 10 passes"
+python3 - <<'PY'
+import random
+n = 1000; m = n + 1; r = random.Random(1)
+with open("big.node", "w") as f:
+    f.write("%d 2 0 1\n" % (m * m))
+    out = []
+    for j in range(m):
+        for i in range(m):
+            b = i in (0, n) or j in (0, n)
+            x = i + (0 if b else r.uniform(-0.25, 0.25)); y = j + (0 if b else r.uniform(-0.25, 0.25))
+            out.append("%d %.10g %.10g %d\n" % (j * m + i, x, y, b))
+    f.writelines(out)
+with open("big.ele", "w") as f:
+    f.write("%d 4 0\n" % (n * n))
+    f.writelines("%d %d %d %d %d\n" % (j * n + i, j * m + i, j * m + i + 1, j * m + i + m + 1, j * m + i + m)
+                 for j in range(n) for i in range(n))
+PY
+/usr/bin/time -f "%e %M" -o time.txt "$BIN/quadsmooth" -q big.ele big.s.ele --iterations 10 --stats big.json
+read -r wall kb < time.txt
+mins=($(stat min_mu big.json)); means=($(stat mean_mu big.json))
+echo "  smooth (library) $(stat smooth_seconds big.json) s, wall with I/O $wall s, peak $((kb / 1024)) MB;" \
+     "min mu ${mins[0]} -> ${mins[1]}, mean mu ${means[0]} -> ${means[1]}"
+fi
+
+# grid N SEED: jittered N x N grid cut along random diagonals (2 N^2 triangles)
+# as g.node/g.ele and g.msh (Gmsh 2.2).
+grid() {
+  python3 - "$1" "$2" <<'PY'
+import random, sys
+n = int(sys.argv[1]); r = random.Random(int(sys.argv[2])); m = n + 1
+P = []
+for j in range(m):
+    for i in range(m):
+        P.append((i + (0 if i in (0, n) else r.uniform(-0.3, 0.3)), j + (0 if j in (0, n) else r.uniform(-0.3, 0.3))))
+T = []
+for j in range(n):
+    for i in range(n):
+        a, b, c, d = i + m * j, i + 1 + m * j, i + 1 + m * (j + 1), i + m * (j + 1)
+        T += [(a, b, c), (a, c, d)] if r.random() < 0.5 else [(a, b, d), (b, c, d)]
+with open("g.node", "w") as f:
+    f.write("%d 2 0 0\n" % len(P)); f.writelines("%d %.12g %.12g\n" % (k, x, y) for k, (x, y) in enumerate(P))
+with open("g.ele", "w") as f:
+    f.write("%d 3 0\n" % len(T)); f.writelines("%d %d %d %d\n" % (k, *t) for k, t in enumerate(T))
+with open("g.msh", "w") as f:
+    f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n%d\n" % len(P))
+    f.writelines("%d %.12g %.12g 0\n" % (k + 1, x, y) for k, (x, y) in enumerate(P))
+    f.write("$EndNodes\n$Elements\n%d\n" % len(T))
+    f.writelines("%d 2 2 1 1 %d %d %d\n" % (k + 1, t[0] + 1, t[1] + 1, t[2] + 1) for k, t in enumerate(T))
+    f.write("$EndElements\n")
+PY
+}
+
+# Quality figures of a quad mesh given as .msh (Gmsh 2.2): one line.
+msh_quality() {
+  python3 - "$1" "$2" <<'PY'
+import math, sys
+text = open(sys.argv[1]).read()
+L = text.split("$Nodes")[1].split("\n"); n = int(L[1]); P = {}
+for l in L[2:2 + n]:
+    k, x, y, z = l.split(); P[int(k)] = (float(x), float(y))
+E = text.split("$Elements")[1].split("\n"); ne = int(E[1])
+def ang(a, b, c):
+    ux, uy = b[0] - a[0], b[1] - a[1]; vx, vy = c[0] - a[0], c[1] - a[1]
+    return math.degrees(math.atan2(abs(ux * vy - uy * vx), ux * vx + uy * vy))
+def tmin(a, b, c): return min(ang(a, b, c), ang(b, c, a), ang(c, a, b))
+mus, sjs, good, tris = [], [], 0, 0
+for l in E[2:2 + ne]:
+    f = l.split(); t = int(f[1]); nt = int(f[2]); v = [P[int(x)] for x in f[3 + nt:]]
+    if t == 2: tris += 1
+    if t != 3: continue
+    if sum(v[i][0] * v[(i + 1) % 4][1] - v[i][1] * v[(i + 1) % 4][0] for i in range(4)) < 0:
+        v = v[::-1]  # Gmsh may write quads clockwise
+    a, b, c, d = v
+    mus.append(min(tmin(a, b, d), tmin(c, d, b), tmin(a, b, c), tmin(d, a, c)))
+    sj, ok = 1, True
+    for i in range(4):
+        o, nx, pr = v[i], v[(i + 1) % 4], v[(i + 3) % 4]
+        ux, uy = nx[0] - o[0], nx[1] - o[1]; vx, vy = pr[0] - o[0], pr[1] - o[1]
+        cr = ux * vy - uy * vx
+        sj = min(sj, cr / math.hypot(ux, uy) / math.hypot(vx, vy))
+        an = ang(o, nx, pr)
+        if cr < 0: an = 360 - an
+        ok = ok and 45 <= an <= 135
+    sjs.append(sj); good += ok
+mus.sort()
+print("  %-22s quads=%6d tris left=%4d  mu min %5.2f median %5.2f mean %5.2f  min SJ %.3f  angles in [45,135] %5.1f%%" %
+      (sys.argv[2], len(mus), tris, mus[0], mus[len(mus) // 2], sum(mus) / len(mus), min(sjs), 100.0 * good / len(mus)))
+PY
+}
+
+for n in 32 100; do
+  rm -f rec.msh
+  grid "$n" 5
+  echo "quality: jittered grid of $((2 * n * n)) triangles"
+  if [ -x "$BIN/tri2quad" ]; then
+    "$BIN/tri2quad" -q g.ele q.ele
+    "$BIN/tri2quad" -q g.ele q.msh
+    msh_quality q.msh "tri2quad"
+    /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q q.ele qs.msh --stats qs.json
+    msh_quality qs.msh "tri2quad+quadsmooth"
+    echo "  (quadsmooth $(stat smooth_seconds qs.json) s library, $(cat t.txt) s wall)"
+  else
+    echo "  tri2quad not built"
+  fi
+  if command -v gmsh > /dev/null; then
+    printf 'Merge "g.msh";\nMesh.RecombinationAlgorithm = 1;\nRecombineMesh;\nMesh.MshFileVersion = 2.2;\nSave "rec.msh";\n' > rec.geo
+    if /usr/bin/time -f "%e" -o gt.txt timeout 600 gmsh -v 0 rec.geo -0 > /dev/null 2>&1 && [ -s rec.msh ]; then
+      msh_quality rec.msh "gmsh blossom"
+      echo "  (gmsh $(cat gt.txt) s wall)"
+    else
+      echo "  gmsh blossom: failed"
+    fi
+  else
+    echo "  gmsh: not installed (apt-get install gmsh)"
+  fi
+done
