@@ -82,6 +82,7 @@ struct Converter {
   std::vector<std::array<int, 3>> sTris, sKids;
   LocalPatch sLp;
   bool has_attr = false;
+  int root_pick = 0;
 
   Converter(const Tri2QuadInput& i, const Tri2QuadOptions& o, Tri2QuadResult& r)
       : in(i), opt(o), out(r), pts(r.points) {}
@@ -814,13 +815,18 @@ struct Converter {
           if (w >= 0 && !(con[t] >> j & 1) && par[w] == -1) { par[w] = -2; order.push_back(w); }
         }
       }
-      int root = -1, rslot = -1;
+      // The root edge: the first candidate, or the root_pick-th one (the
+      // size-bound retry in tri2quad() tries other spanning trees).
+      int root = -1, rslot = -1, seen_roots = 0;
       for (int t : order) {
-        for (int j = 0; j < 3 && root < 0; ++j) {
+        for (int j = 0; j < 3; ++j) {
           const int w = nb[t][j];
-          if ((PC < 0 && w < 0) || (PC >= 0 && w >= 0 && (con[t] >> j & 1) && comp[w] == PC)) { root = t; rslot = j; }
+          if ((PC < 0 && w < 0) || (PC >= 0 && w >= 0 && (con[t] >> j & 1) && comp[w] == PC)) {
+            if (root < 0 || seen_roots <= root_pick) { root = t; rslot = j; }
+            ++seen_roots;
+          }
         }
-        if (root >= 0) break;
+        if (root >= 0 && seen_roots > root_pick) break;
       }
       if (root < 0) throw Error("internal error: component without a root edge", in.path);
       for (int t : order) par[t] = -1;
@@ -858,6 +864,29 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   out.points.reserve(in.points.size() + in.triangles.size() / 4);
   out.quads.reserve(in.triangles.size() * 2 / 3 + 16);
   cv.run();
+  // The local constructions do not all stay inside the per-node budget of
+  // Table 3.1 (notes: B.1.1 and B.2.2 may need one quad more, a dent or a
+  // nested closing costs extra), which only shows on small meshes where the
+  // additive 4h does not absorb it. Then other root edges (other BFS trees)
+  // are tried, and the smallest result kept.
+  auto excess = [&](const Tri2QuadResult& r) {
+    return std::max<long>(0, long(r.quads.size()) - long(r.quad_bound())) +
+           std::max<long>(0, long(r.steiner) - long(r.steiner_bound(opt.allow_outside)));
+  };
+  std::size_t retries = 0;
+  for (int pick = 1; pick <= 12 && excess(out) > 0; ++pick) {
+    Tri2QuadResult alt;
+    Converter c2(in, opt, alt);
+    c2.root_pick = pick;
+    c2.setup();
+    c2.run();
+    ++retries;
+    if (excess(alt) < excess(out)) {
+      out = std::move(alt);
+      std::copy(std::begin(c2.cases), std::end(c2.cases), std::begin(cv.cases));
+      cv.segs.swap(c2.segs);
+    }
+  }
   // Segments: the constraint and boundary edges as chains of quad edges.
   std::vector<std::pair<std::uint64_t, int>> s(cv.segs.begin(), cv.segs.end());
   std::sort(s.begin(), s.end());
@@ -866,6 +895,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     out.segment_markers.push_back(m);
   }
   for (int i = 0; i < kNumCases; ++i) out.cases.push_back({kCaseNames[i], cv.cases[i]});
+  out.cases.push_back({"size_bound_retry", retries});
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
   return out;

@@ -17,6 +17,9 @@
 // odd-degree edge subset on the region's dual tree: triangles with three
 // split edges get de Berg's 3 quads, with one split edge Joe's 5 quads),
 // counted in the stats, so the output is always strictly convex.
+// A result above the size bounds (only seen on meshes of a few dozen
+// triangles, where 4h cannot absorb a construction that overspends its
+// per-step budget) is redone from other root edges and the smallest kept.
 #pragma once
 #include "planar/triangle_io.hpp"
 
