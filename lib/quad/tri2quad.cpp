@@ -41,6 +41,7 @@ enum Case : int {
   kDentNonEmpty,      // the same for a non-empty triangle (B.1.2)
   kFallback,          // safe odd-degree split of a region (see header)
   kRepair,            // Fig. 3.23: parent component triangle split
+  kRootPentagonEdge,  // step 5: root pentagon + a point on its edge, B.1.1
   kNumCases
 };
 const char* kCaseNames[kNumCases] = {
@@ -49,7 +50,8 @@ const char* kCaseNames[kNumCases] = {
     "4cvf_B31_heptagon",     "3_nonempty_triangle",
     "3b_B12_quad_point",     "3c_B22_pentagon_point",  "4civ_hexagon_point",
     "5bd_joe_split",         "5bd_outside_point",      "5c_B12_nested",
-    "degenerate_quad_triangle", "degenerate_quad_nonempty", "fallback_split",        "3_3_repair_split"};
+    "degenerate_quad_triangle", "degenerate_quad_nonempty", "fallback_split",        "3_3_repair_split",
+    "5_B11_root_pentagon_edge_point"};
 
 enum RegType : std::uint8_t { kEmpty = 0, kTri, kQuadR, kNTri, kDent };
 struct Region {
@@ -567,6 +569,27 @@ struct Converter {
           r = {};
           done = true;
         }
+      } else if (nb_ == 5 && ni == 0 && is_root && !(opt.allow_outside && comp_parent[comp[u]] < 0)) {
+        // At the root the outgoing edge may take a point (as the thesis's
+        // type 3 does): the hexagon (a, m, b, ...) by B.1.1 closes the
+        // pentagon with at most 5 quads and 4 points, where a leftover
+        // triangle plus Joe's split would cost at least 6 quads and 5 points.
+        const int m = lp.add_new({0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])});
+        if (t2q::hexagon(lp, {0, m, 1, 2, 3, 4})) {
+          ++cases[kRootPentagonEdge];
+          split_m = m;
+          r = {};
+          done = true;
+        } else {
+          lp.rollback({std::size_t(m), 0});
+          int kind = 0;
+          const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind);
+          if (apex >= 0) {
+            ++cases[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kind == 2 ? kPentagonType2 : kPentagonType3];
+            r = {kTri, 0, apex, -1};
+            done = true;
+          }
+        }
       } else if (nb_ == 5 && ni == 0) {
         int kind = 0;
         const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind);
@@ -874,7 +897,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
            std::max<long>(0, long(r.steiner) - long(r.steiner_bound(opt.allow_outside)));
   };
   std::size_t retries = 0;
-  for (int pick = 1; pick <= 12 && excess(out) > 0; ++pick) {
+  for (int pick = 1; opt.size_retry && pick <= 12 && excess(out) > 0; ++pick) {
     Tri2QuadResult alt;
     Converter c2(in, opt, alt);
     c2.root_pick = pick;

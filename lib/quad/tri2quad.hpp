@@ -46,6 +46,9 @@ struct Tri2QuadOptions {
   // the root's boundary edge. Default: Joe's 5-quad split of the leftover
   // triangle, with its point on that edge (no point outside).
   bool allow_outside = false;
+  // Rerun from other root edges when the result exceeds a size bound (off
+  // only to measure the constructions themselves).
+  bool size_retry = true;
 };
 
 struct Tri2QuadResult {
