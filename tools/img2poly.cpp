@@ -84,15 +84,7 @@ int main(int argc, char** argv) {
       throw Error("a 3D image (" + std::to_string(img.size[2]) + " slices): img2poly needs a 2D image", in);
 
     tool.report_progress("tracing and simplifying the pixel boundary");
-    ImagePslgResult r;
-    try {
-      r = image_to_pslg(img, opt);
-    } catch (const UsageError&) {
-      throw;
-    } catch (const Error& e) {
-      if (!e.path().empty()) throw;
-      throw Error(e.what(), in);
-    }
+    const auto r = naming_input(in, [&] { return image_to_pslg(img, opt); });
     write_poly(out, r.pslg);
     if (!svg.empty()) {
       const SvgBackground bg = label_background(r.labels);

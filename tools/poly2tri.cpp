@@ -52,15 +52,7 @@ int main(int argc, char** argv) {
       opt.progress = [&](std::size_t n) { tool.report_progress(std::to_string(n) + " vertices"); };
     const PlanarMesh pslg = extension_of(in) == ".node" ? read_pslg(replace_extension(in, ".poly"))
                                                         : read_pslg(in);
-    TriangulateResult r;
-    try {
-      r = triangulate_pslg(pslg, opt);
-    } catch (const UsageError&) {
-      throw;
-    } catch (const Error& e) {
-      if (!e.path().empty()) throw;
-      throw Error(e.what(), in);  // name the input file
-    }
+    const auto r = naming_input(in, [&] { return triangulate_pslg(pslg, opt); });
     write_planar_mesh(out, r.mesh);
     if (!svg.empty()) write_planar_mesh(svg, r.mesh);
 

@@ -27,4 +27,18 @@ public:
   using Error::Error;
 };
 
+// Runs f(); an Error from it that names no file is thrown again naming
+// `path` (the input the failing computation worked on). Usage errors pass as
+// they are.
+template <class F> auto naming_input(const std::string& path, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const Error& e) {
+    if (!e.path().empty()) throw;
+    throw Error(e.what(), path);
+  }
+}
+
 } // namespace imgmesh
