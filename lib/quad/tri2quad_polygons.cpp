@@ -301,8 +301,27 @@ bool hexagon(LocalPatch& lp, const Ring& h, int budget) {
     lp.rollback(m);
   }
   if (budget < 2) return false;
-  // PEEL: cut one quad off a convex corner, recurse on the hexagon left.
   const auto hv = pts(lp, h);
+  // S2 (notes 3.2): two adjacent points s (near h_j) and t (near h_{j+3}),
+  // both h_j and h_{j+3} convex; four quads. s first (its own quad and the
+  // half-planes that keep its neighbours usable), then t by the same rule.
+  for (int j = 0; j < 6; ++j) {
+    if (orient(P(j - 1), P(j), P(j + 1)) <= 0 || orient(P(j + 2), P(j + 3), P(j + 4)) <= 0) continue;
+    const int s = lp.add_new(), t = lp.add_new();
+    const Quad q1{H(j - 1), H(j), H(j + 1), s}, q2{s, H(j + 1), H(j + 2), t}, q3{H(j + 2), H(j + 3), H(j + 4), t},
+        q4{H(j + 4), H(j + 5), s, t};
+    const bool ok = place(lp, s, hv, {q1}, {}, {{P(j + 1), P(j + 2)}, {P(j - 2), P(j - 1)}}, [&] {
+      return place(lp, t, hv, {q2, q3, q4}, {}, {}, [&] {
+        return good_local(lp, q1) && good_local(lp, q2) && good_local(lp, q3) && good_local(lp, q4);
+      });
+    });
+    if (ok) {
+      for (const Quad& q : {q1, q2, q3, q4}) lp.quads.push_back(q);
+      return true;
+    }
+    lp.rollback(m);
+  }
+  // PEEL: cut one quad off a convex corner, recurse on the hexagon left.
   for (int j = 0; j < 6; ++j) {
     if (orient(P(j - 1), P(j), P(j + 1)) <= 0) continue;
     for (int variant = 0; variant < 2; ++variant) {

@@ -102,7 +102,8 @@ TEST_CASE("B.1.1: random hexagons get at most 5 strictly convex quads and 3 poin
   CHECK(reflex3 > 0);
   // The thesis's lemma says always; our construction may miss rare ones
   // (the caller then falls back), but not many.
-  CHECK(done >= tried * 97 / 100);
+  WARN("B.1.1: " << done << " of " << tried << " random hexagons");
+  CHECK(done == tried);
 }
 
 TEST_CASE("B.1.2: quadrilateral with an interior point, convex, kernel and arm cases", "[tri2quad][B12]") {
@@ -619,4 +620,22 @@ TEST_CASE("size bound slack on small meshes", "[.slack]") {
   std::printf("runs %zu worst excess q %ld s %ld; over q %zu over s %zu\n", n / 2, wq, ws, over_q, over_s);
   std::printf("without retries: worst excess q %ld s %ld, runs over a bound %zu\n", raw_q, raw_s, raw_over);
   for (const auto& [nm, c] : over_cases) std::printf("  %s %zu\n", nm.c_str(), c);
+}
+
+// Diagnostic (hidden): B.1.1 on spikier random hexagons.
+TEST_CASE("B.1.1 success rate on spiky hexagons", "[.hexrate]") {
+  std::mt19937 g(77);
+  int done = 0, tried = 0, r3 = 0, r3done = 0;
+  for (int it = 0; it < 40000; ++it) {
+    auto v = random_star(g, 6, 0.03, 1.0);
+    if (!t2q::simple_ccw(v)) continue;
+    int reflex = 0;
+    for (int i = 0; i < 6; ++i) reflex += t2q::orient(v[(i + 5) % 6], v[i], v[(i + 1) % 6]) <= 0;
+    ++tried;
+    LocalPatch lp = patch_of(v);
+    const bool ok = t2q::hexagon(lp, ring(6));
+    done += ok;
+    if (reflex == 3) { ++r3; r3done += ok; }
+  }
+  std::printf("spiky hexagons: %d of %d; with 3 reflex corners %d of %d\n", done, tried, r3done, r3);
 }
