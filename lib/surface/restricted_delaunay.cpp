@@ -35,8 +35,8 @@ using GT = CGAL::Robust_circumcenter_traits_3<K0>;
 using Point = GT::Point_3;
 
 // Why a vertex is in W; also the per-subroutine counters of --stats.
-enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kQuality, kSmooth, kDistance, kFallback, kOrigins };
-const char* const kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "quality", "smooth", "max_distance", "topology_fallback"};
+enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kFacetCycle, kQuality, kSmooth, kDistance, kFallback, kOrigins };
+const char* const kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "facet_cycle", "quality", "smooth", "max_distance", "topology_fallback"};
 
 struct VInfo {
   int id = -1;
@@ -261,6 +261,10 @@ private:
   std::vector<std::pair<int, int>> link_;
   std::vector<int> ends_;
   std::vector<char> used_;
+  // FacetCycle: vertices touched by an insertion since the last pass (an
+  // edge's Voronoi facet changes only when both its ends are).
+  std::vector<char> dirty_;
+  long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
   std::vector<std::pair<int, Vec3>> normals_;
 
   double value(const Vec3& q) {
@@ -304,6 +308,8 @@ private:
   // Restricted facets in a deterministic order (by vertex ids).
   std::vector<Facet> restricted_facets() const;
   bool fallback(const std::vector<int>& bad_components);
+  bool facet_cycle(const Tr::Edge& e, Vec3& x);
+  bool facet_cycle_pass();
 };
 
 Vec3 Mesher::bisect(Vec3 a, Vec3 b, double fa) {
@@ -600,6 +606,10 @@ void Mesher::after_insertion(Vh v) {
   tr_.finite_adjacent_vertices(v, std::back_inserter(around));
   enqueue_vertex(v);
   for (Vh w : around) enqueue_vertex(w);
+  dirty_.resize(vertices_.size(), 1);
+  dirty_[v->info().id] = 1;
+  for (Vh w : around)
+    if (!tr_.is_infinite(w)) dirty_[w->info().id] = 1;
 }
 
 // Seeds (8.1): on every component of S, crossings of mixed cube edges in the
@@ -801,6 +811,188 @@ void Mesher::drain() {
   }
 }
 
+
+// FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
+// dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
+// h = bisector plane Pi cut by V(p)'s half-spaces and the box: convex, so
+// it is rasterised row by row on Pi at delta/4. The sign of f at a sample is
+// the corner sign in an inactive cube (F1) and f's sign in an active one. A
+// sign region that does not reach the border of h is enclosed by a cycle of
+// S; its point farthest from p is found on the sample pair (region,
+// neighbour) farthest from p, by root finding along that segment, i.e. on
+// S inside Pi. Cycles narrower than the step are missed (like EdgeSurface).
+bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
+  ++facet_cycle_checks_;
+  const Vh p = e.first->vertex(e.second), q = e.first->vertex(e.third);
+  const Vec3 pp = vec(p->point()), pq = vec(q->point());
+  Vec3 n = sub(pq, pp);
+  const double nl = norm(n);
+  if (!(nl > 0)) return false;
+  n = {n[0] / nl, n[1] / nl, n[2] / nl};
+  const Vec3 m{(pp[0] + pq[0]) / 2, (pp[1] + pq[1]) / 2, (pp[2] + pq[2]) / 2};
+  Vec3 u = std::abs(n[0]) < 0.6 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0});
+  const double ul = norm(u);
+  u = {u[0] / ul, u[1] / ul, u[2] / ul};
+  const Vec3 v = cross(n, u);
+  // Half-planes A a + B b <= C on Pi (x = m + a u + b v): V(p)'s faces and the box.
+  struct HP { double A, B, C; };
+  std::vector<HP> hp;
+  std::vector<Vh> adj;
+  tr_.finite_adjacent_vertices(p, std::back_inserter(adj));
+  for (Vh w : adj) {
+    if (w == q) continue;
+    const Vec3 pw = vec(w->point());
+    const Vec3 d = sub(pw, pp);  // |x-p|^2 <= |x-w|^2  <=>  2 x.d <= |w|^2 - |p|^2
+    const double C = dot(pw, pw) - dot(pp, pp) - 2 * dot(m, d);
+    hp.push_back({2 * dot(u, d), 2 * dot(v, d), C});
+  }
+  for (int i = 0; i < 3; ++i) {  // 0 <= m_i + a u_i + b v_i <= hi_i
+    hp.push_back({u[i], v[i], grid_.hi[i] - m[i]});
+    hp.push_back({-u[i], -v[i], m[i]});
+  }
+  // Extent on Pi: the box's corners projected (h lies in the box).
+  double a0 = INFINITY, a1 = -INFINITY, b0 = INFINITY, b1 = -INFINITY;
+  // Extent on Pi: the finite Voronoi vertices of h (circumcentres of the
+  // cells around pq), or the box's corners when h is unbounded.
+  bool bounded = true;
+  {
+    Tr::Cell_circulator cc = tr_.incident_cells(e), done = cc;
+    do {
+      if (tr_.is_infinite(cc)) { bounded = false; break; }
+      const Vec3 c = vec(tr_.dual(cc));
+      const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
+      a0 = std::min(a0, a); a1 = std::max(a1, a); b0 = std::min(b0, b); b1 = std::max(b1, b);
+    } while (++cc != done);
+  }
+  double ba0 = INFINITY, ba1 = -INFINITY, bb0 = INFINITY, bb1 = -INFINITY;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 c{(k & 1) ? grid_.hi[0] : 0, (k & 2) ? grid_.hi[1] : 0, (k & 4) ? grid_.hi[2] : 0};
+    const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
+    ba0 = std::min(ba0, a); ba1 = std::max(ba1, a); bb0 = std::min(bb0, b); bb1 = std::max(bb1, b);
+  }
+  if (!bounded) { a0 = ba0; a1 = ba1; b0 = bb0; b1 = bb1; }
+  a0 = std::max(a0, ba0); a1 = std::min(a1, ba1); b0 = std::max(b0, bb0); b1 = std::min(b1, bb1);
+  if (!(a0 < a1 && b0 < b1)) return false;
+  // Tighten b by the polygon: rows where the a-interval is empty are skipped anyway.
+  const double step = grid_.delta / 4;
+  const long nb = long(std::ceil((b1 - b0) / step)) + 1;
+  // Rows: the a-interval where every half-plane holds.
+  std::vector<long> lo(nb, 0), hi(nb, -1);
+  long na_max = 0;
+  long rows_used = 0;
+  for (long j = 0; j < nb; ++j) {
+    const double b = b0 + j * step;
+    double alo = a0, ahi = a1;
+    for (const HP& h : hp) {
+      const double r = h.C - h.B * b;
+      if (h.A > 1e-15) ahi = std::min(ahi, r / h.A);
+      else if (h.A < -1e-15) alo = std::max(alo, r / h.A);
+      else if (r < 0) { alo = 1; ahi = 0; break; }
+    }
+    if (!(alo <= ahi)) continue;
+    lo[j] = long(std::ceil((alo - a0) / step));
+    hi[j] = long(std::floor((ahi - a0) / step));
+    if (hi[j] >= lo[j]) { na_max = std::max(na_max, hi[j] + 1); ++rows_used; }
+  }
+  if (rows_used < 3) return false;
+  // Samples inside h, with their signs.
+  std::vector<long> row_off(nb + 1, 0);
+  for (long j = 0; j < nb; ++j) row_off[j + 1] = row_off[j] + std::max(0L, hi[j] - lo[j] + 1);
+  const long total = row_off[nb];
+  if (total < 9 || total > 4000000) return false;
+  std::vector<signed char> sign(total);
+  auto point = [&](long i, long j) {
+    const double a = a0 + i * step, b = b0 + j * step;
+    return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
+  };
+  bool any_neg = false, any_pos = false;
+  for (long j = 0; j < nb; ++j)
+    for (long i = lo[j]; i <= hi[j]; ++i) {
+      const Vec3 x = point(i, j);
+      long c[3];
+      for (int k = 0; k < 3; ++k) c[k] = std::clamp(long(std::floor(x[k] / grid_.s[k])), 0L, grid_.n[k] - 2);
+      bool in;
+      if (grid_.active(c[0], c[1], c[2])) in = inside(value(x));
+      else in = grid_.neg(c[0], c[1], c[2]);
+      sign[row_off[j] + i - lo[j]] = in ? 1 : 0;
+      (in ? any_neg : any_pos) = true;
+    }
+  if (!(any_neg && any_pos)) return false;
+  auto idx = [&](long i, long j) -> long {
+    if (j < 0 || j >= nb || i < lo[j] || i > hi[j]) return -1;
+    return row_off[j] + i - lo[j];
+  };
+  // Sign regions (4-connected); one that never reaches h's border is enclosed.
+  std::vector<int> label(total, -1);
+  std::vector<std::pair<long, long>> stack, members;
+  double best = -1;
+  Vec3 ba{}, bb{};
+  for (long j = 0; j < nb; ++j)
+    for (long i = lo[j]; i <= hi[j]; ++i) {
+      const long s0 = idx(i, j);
+      if (label[s0] >= 0) continue;
+      label[s0] = 1;
+      const signed char sg = sign[s0];
+      bool border = false;
+      members.clear();
+      stack.assign(1, {i, j});
+      while (!stack.empty()) {
+        auto [ci, cj] = stack.back();
+        stack.pop_back();
+        members.emplace_back(ci, cj);
+        const long nbr[4][2] = {{ci + 1, cj}, {ci - 1, cj}, {ci, cj + 1}, {ci, cj - 1}};
+        for (auto& e : nbr) {
+          const long k = idx(e[0], e[1]);
+          if (k < 0) { border = true; continue; }
+          if (sign[k] != sg || label[k] >= 0) continue;
+          label[k] = 1;
+          stack.emplace_back(e[0], e[1]);
+        }
+      }
+      if (border) continue;
+      // Enclosed: the cycle's sample pair farthest from p.
+      for (auto [ci, cj] : members) {
+        const long nbr[4][2] = {{ci + 1, cj}, {ci - 1, cj}, {ci, cj + 1}, {ci, cj - 1}};
+        for (auto& e : nbr) {
+          const long k = idx(e[0], e[1]);
+          if (k < 0 || sign[k] == sg) continue;
+          const Vec3 xa = point(ci, cj), xb = point(e[0], e[1]);
+          const Vec3 mid{(xa[0] + xb[0]) / 2, (xa[1] + xb[1]) / 2, (xa[2] + xb[2]) / 2};
+          const double d = dist2(mid, pp);
+          if (d > best) { best = d; ba = xa; bb = xb; }
+        }
+      }
+    }
+  if (best < 0) return false;
+  out = bisect(ba, bb, value(ba));
+  return true;
+}
+
+// One FacetCycle pass over the edges whose Voronoi facet may have changed
+// since the last pass; inserts the cycle points found. True if any went in.
+bool Mesher::facet_cycle_pass() {
+  ++facet_cycle_passes_;
+  dirty_.resize(vertices_.size(), 1);
+  std::vector<std::pair<std::pair<int, int>, Tr::Edge>> edges;
+  for (auto it = tr_.finite_edges_begin(); it != tr_.finite_edges_end(); ++it) {
+    Vh a = it->first->vertex(it->second), b = it->first->vertex(it->third);
+    if (!dirty_[a->info().id] || !dirty_[b->info().id]) continue;
+    Tr::Edge ed = *it;
+    if (a->info().id > b->info().id) std::swap(ed.second, ed.third);  // p: the smaller id
+    edges.push_back({{std::min(a->info().id, b->info().id), std::max(a->info().id, b->info().id)}, ed});
+  }
+  std::fill(dirty_.begin(), dirty_.end(), 0);
+  std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Vec3> pts;
+  for (auto& ed : edges) {
+    Vec3 x;
+    if (facet_cycle(ed.second, x)) pts.push_back(x);
+  }
+  bool any = false;
+  for (const Vec3& x : pts) any = insert(x, kFacetCycle, Ch()) || any;
+  return any;
+}
+
 std::vector<Facet> Mesher::restricted_facets() const {
   std::vector<std::pair<std::array<int, 3>, Facet>> out;
   for (auto it = tr_.finite_facets_begin(); it != tr_.finite_facets_end(); ++it) {
@@ -901,6 +1093,10 @@ RestrictedDelaunayResult Mesher::run() {
   const double t_seeds = secs(t_start);
   const auto t_refine = Clock::now();
   drain();
+  if (opt_.facet_cycle) {
+    phase_ = "facet cycle";
+    while (!max_hit_ && facet_cycle_pass()) drain();
+  }
 
   // Certificate: components and Euler characteristics per S component; on a
   // mismatch, refine there (fallback) and run DELMESH's queues again.
@@ -1021,6 +1217,8 @@ RestrictedDelaunayResult Mesher::run() {
     phase_ = "topology fallback";
     if (bad.empty() || !fallback(bad)) break;
     drain();
+    if (opt_.facet_cycle)
+      while (!max_hit_ && facet_cycle_pass()) drain();
   }
   const double t_refine_s = secs(t_refine);
   const auto t_final = Clock::now();
@@ -1093,6 +1291,9 @@ RestrictedDelaunayResult Mesher::run() {
   st["points_inserted"] = pts;
   st["points_refused"] = refused_;
   st["topology_fallback_rounds"] = rounds;
+  st["topology_fallback_points"] = inserted_[kFallback];
+  st["facet_cycle_checks"] = facet_cycle_checks_;
+  st["facet_cycle_passes"] = facet_cycle_passes_;
   st["vertices"] = res.mesh.points.size();
   st["triangles"] = res.mesh.triangles.size();
   Json comps = Json::array();

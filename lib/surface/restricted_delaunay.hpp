@@ -27,7 +27,8 @@ struct RestrictedDelaunayOptions {
   double max_distance = 0;      // E > 0: surface Delaunay ball centre within E of the facet's plane
   std::size_t max_points = 2000000;
   std::uint64_t seed = 0;       // order of seed insertion
-  int threads = 1;              // final verification pass
+  int threads = 1;
+  bool facet_cycle = true;      // FacetCycle (8.2) on the Voronoi facets of Delaunay edges              // final verification pass
   // Called now and then with the phase and the number of points so far.
   std::function<void(const std::string&)> progress;
 };

@@ -40,6 +40,8 @@ void check_guarantees(const ImplicitSurface& s, const RestrictedDelaunayResult& 
   for (const Vec3& p : r.mesh.points) max_f = std::max(max_f, std::abs(s.value(s.to_local(p))));
   CHECK(max_f < 1e-6);
   CHECK(test::empty_ball_violations(r.mesh, r.centers) == 0);
+  // The thesis's TOPOLOGY steps suffice: the final fallback never acts.
+  CHECK(r.stats.at("topology_fallback_rounds").number() == 0);
   // Voxel centres: inside the mesh exactly when inside S (away from S by
   // more than the mesh's deviation, i.e. |g| > half a voxel).
   const FloatImage& g = s.samples();
@@ -143,4 +145,24 @@ TEST_CASE("max-distance bounds the surface Delaunay ball centre's distance to th
   check_guarantees(s, r, o.ratio);
   CHECK(r.distance_ok);
   CHECK(r.stats.at("max_distance_to_plane").number() <= 0.05);
+}
+
+TEST_CASE("FacetCycle: a thin torus sampled sparsely needs it, and then no fallback") {
+  // Tube radius 1.1 voxels: the six extremal seeds and TopoDisk leave whole
+  // cycles of S inside Voronoi facets that no Voronoi edge crosses.
+  const Vec3 c{11.6, 11.3, 4.6};
+  FunctionSurface s(grid(24, 24, 10), [&](const Vec3& p) { return torus(p, c, 8.1, 1.1); });
+  RestrictedDelaunayOptions o;
+  o.roughness = 0.9 * M_PI;  // coarse: SMOOTH would otherwise add the samples
+  o.facet_cycle = false;
+  auto without = restricted_delaunay_mesh(s, o);
+  CHECK(without.stats.at("topology_fallback_rounds").number() > 0);  // only the fallback saved it
+  o.facet_cycle = true;
+  for (std::uint64_t seed : {0, 1, 2}) {
+    o.seed = seed;
+    auto r = restricted_delaunay_mesh(s, o);
+    check_guarantees(s, r, o.ratio);
+    CHECK(r.stats.at("points_inserted").at("facet_cycle").number() > 0);
+    CHECK(r.topology.euler == std::vector<int>{0});
+  }
 }
