@@ -21,29 +21,8 @@ namespace {
 std::vector<std::array<int, 2>> constraints_from(const std::string& path, const PlanarMesh& m,
                                                  std::vector<int>& markers) {
   const PlanarMesh p = read_poly(path);
-  std::vector<int> map(p.points.size());
-  if (p.points.empty() || p.points == m.points) {
-    for (std::size_t i = 0; i < map.size(); ++i) map[i] = int(i);
-  } else {
-    std::map<Point2, int> at;
-    for (std::size_t i = 0; i < m.points.size(); ++i) at.emplace(m.points[i], int(i));
-    for (std::size_t i = 0; i < map.size(); ++i) {
-      auto it = at.find(p.points[i]);
-      if (it == at.end()) throw Error("a segment vertex is not a vertex of the triangle mesh", path);
-      map[i] = it->second;
-    }
-  }
-  std::vector<std::array<int, 2>> s;
-  for (std::size_t k = 0; k < p.segments.size(); ++k) {
-    auto e = p.segments[k];
-    for (int& v : e) {
-      if (v < 0 || (!map.empty() && std::size_t(v) >= map.size()) || (map.empty() && std::size_t(v) >= m.points.size()))
-        throw Error("segment " + std::to_string(k + p.first_index) + " has a vertex id out of range", path);
-      if (!map.empty()) v = map[v];
-    }
-    s.push_back(e);
-    markers.push_back(k < p.segment_markers.size() ? p.segment_markers[k] : 1);
-  }
+  auto s = segments_on_mesh(p, m, path, &markers);
+  markers.resize(s.size(), 1);  // unmarked segments: marker 1
   return s;
 }
 } // namespace

@@ -394,6 +394,37 @@ void write_planar_mesh(const std::string& path, const PlanarMesh& m, const Plana
   }
 }
 
+std::vector<std::array<int, 2>> segments_on_mesh(const PlanarMesh& poly, const PlanarMesh& m,
+                                                 const std::string& poly_path, std::vector<int>* markers) {
+  const bool own_ids = poly.points.empty() || poly.points == m.points;
+  const std::size_t n = own_ids ? m.points.size() : poly.points.size();
+  std::vector<int> map;
+  if (!own_ids) {
+    std::map<Point2, int> at;
+    for (std::size_t i = 0; i < m.points.size(); ++i) at.emplace(m.points[i], int(i));
+    map.resize(poly.points.size());
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      auto it = at.find(poly.points[i]);
+      if (it == at.end()) throw Error("a segment vertex is not a vertex of the mesh", poly_path);
+      map[i] = it->second;
+    }
+  }
+  std::vector<std::array<int, 2>> out;
+  out.reserve(poly.segments.size());
+  for (std::size_t k = 0; k < poly.segments.size(); ++k) {
+    auto e = poly.segments[k];
+    for (int& v : e) {
+      if (v < 0 || std::size_t(v) >= n)
+        throw Error("segment " + std::to_string(k + std::size_t(poly.first_index)) + " has a vertex id out of range",
+                    poly_path);
+      if (!own_ids) v = map[std::size_t(v)];
+    }
+    out.push_back(e);
+  }
+  if (markers) *markers = poly.segment_markers;
+  return out;
+}
+
 PlanarMesh read_planar_mesh(const std::string& path) {
   const std::string ext = extension_of(path);
   if (ext == ".ele") {
@@ -401,21 +432,7 @@ PlanarMesh read_planar_mesh(const std::string& path) {
     const std::string poly = replace_extension(path, ".poly");
     if (exists(poly)) {
       PlanarMesh p = read_poly(poly);
-      std::vector<int> map(p.points.size());
-      if (p.points == m.points) {
-        for (std::size_t i = 0; i < map.size(); ++i) map[i] = int(i);
-      } else {
-        // Inline vertices: match them to the mesh's by position.
-        std::map<Point2, int> at;
-        for (std::size_t i = 0; i < m.points.size(); ++i) at.emplace(m.points[i], int(i));
-        for (std::size_t i = 0; i < map.size(); ++i) {
-          auto it = at.find(p.points[i]);
-          if (it == at.end()) throw Error("a segment vertex of " + poly + " is not a mesh vertex", path);
-          map[i] = it->second;
-        }
-      }
-      for (const auto& s : p.segments) m.segments.push_back({map[s[0]], map[s[1]]});
-      m.segment_markers = p.segment_markers;
+      m.segments = segments_on_mesh(p, m, poly, &m.segment_markers);
       m.holes = p.holes;
       m.regions = p.regions;
     }

@@ -37,6 +37,14 @@ void write_planar_mesh(const std::string& path, const PlanarMesh& m, const Plana
 // or .off (z ignored; faces of 3 or 4 vertices). Throws Error.
 PlanarMesh read_planar_mesh(const std::string& path);
 
+// The segments of `poly` (a .poly read from poly_path) as ids of m's
+// vertices: the same ids when the .poly has no vertices of its own or the
+// same ones, else matched by position. Their markers go to *markers (empty
+// when the .poly has none). Throws Error on an id out of range or a vertex
+// that is not one of m's.
+std::vector<std::array<int, 2>> segments_on_mesh(const PlanarMesh& poly, const PlanarMesh& m,
+                                                 const std::string& poly_path, std::vector<int>* markers);
+
 // A planar straight-line graph: .poly, or an OFF of polygons (every polygon
 // edge a segment, marker 1). Throws Error.
 PlanarMesh read_pslg(const std::string& path);
