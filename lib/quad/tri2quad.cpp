@@ -42,6 +42,7 @@ enum Case : int {
   kFallback,          // safe odd-degree split of a region (see header)
   kRepair,            // Fig. 3.23: parent component triangle split
   kRootPentagonEdge,  // step 5: root pentagon + a point on its edge, B.1.1
+  kPentagonPointMid,  // B.2.2 middle case: type-1 split, B.1.2 on the quad with q
   kNumCases
 };
 const char* kCaseNames[kNumCases] = {
@@ -51,7 +52,7 @@ const char* kCaseNames[kNumCases] = {
     "3b_B12_quad_point",     "3c_B22_pentagon_point",  "4civ_hexagon_point",
     "5bd_joe_split",         "5bd_outside_point",      "5c_B12_nested",
     "degenerate_quad_triangle", "degenerate_quad_nonempty", "fallback_split",        "3_3_repair_split",
-    "5_B11_root_pentagon_edge_point"};
+    "5_B11_root_pentagon_edge_point", "B22_middle_type1_B12"};
 
 enum RegType : std::uint8_t { kEmpty = 0, kTri, kQuadR, kNTri, kDent };
 struct Region {
@@ -749,6 +750,38 @@ struct Converter {
         ++cases[kPentagonPoint]; r = {kTri, 0, side == 0 ? 2 : 4, -1}; return true;
       }
       lp.rollback(m);
+    }
+    // (iii) the middle case (notes 3.5): the outgoing edge in the centre
+    // triangle (v0, v1, v3): the type-1 split (v0, v1, p1), (v0, p1, v3, v4),
+    // (v3, p1, v1, v2), then B.1.2 on the quad holding q (6 quads, 4 points).
+    if (t2q::good_triangle(lp.p[0], lp.p[1], lp.p[3]) && t2q::good_triangle(lp.p[1], lp.p[2], lp.p[3]) &&
+        t2q::good_triangle(lp.p[3], lp.p[4], lp.p[0])) {
+      const P2 v0 = lp.p[0], v1 = lp.p[1], v2 = lp.p[2], v3 = lp.p[3], v4 = lp.p[4], q = lp.p[5];
+      const auto region = t2q::clip({v0, v1, v3}, {{v3, v0}, {v4, v0}, {v3, v4}, {v1, v3}, {v2, v3}, {v1, v2}, {v0, v1}});
+      if (region.size() >= 3) {
+        const P2 c = t2q::centroid(region);
+        std::vector<P2> cand{c};
+        for (const P2& x : region)
+          for (double f : {0.3, 0.6}) cand.push_back({c[0] + f * (x[0] - c[0]), c[1] + f * (x[1] - c[1])});
+        for (const P2& x : cand) {
+          if (!t2q::good_quad(v0, x, v3, v4) || !t2q::good_quad(v3, x, v1, v2) || !t2q::good_triangle(v0, v1, x)) continue;
+          auto inside = [&](const P2& a, const P2& b, const P2& cc, const P2& d) {
+            return t2q::orient(a, b, q) > 0 && t2q::orient(b, cc, q) > 0 && t2q::orient(cc, d, q) > 0 &&
+                   t2q::orient(d, a, q) > 0;
+          };
+          const bool inA = inside(v0, x, v3, v4), inB = inside(v3, x, v1, v2);
+          if (inA == inB) continue;
+          const int p1 = lp.add_new(x);
+          const t2q::Ring A = {0, p1, 3, 4}, B = {3, p1, 1, 2};
+          lp.quads.push_back(inA ? t2q::Quad{B[0], B[1], B[2], B[3]} : t2q::Quad{A[0], A[1], A[2], A[3]});
+          if (t2q::quad_with_point(lp, inA ? A : B, 5)) {
+            ++cases[kPentagonPointMid];
+            r = {kTri, 0, p1, -1};
+            return true;
+          }
+          lp.rollback(m);
+        }
+      }
     }
     return false;
   }
