@@ -57,6 +57,8 @@ Run mesh(const BinaryImage& raw, double ratio = 2) {
   for (const Vec3& p : r.result.mesh.points) max_f = std::max(max_f, std::abs(pu.value(p)));
   CHECK(max_f < 1e-6);
   CHECK(test::empty_ball_violations(r.result.mesh, r.result.centers) == 0);
+  // TOPOLOGY (VorEdge, TopoDisk, FacetCycle) sufficed: the fallback never acted.
+  CHECK(r.result.stats.at("topology_fallback_rounds").number() == 0);
   // Foreground voxel centres inside, background outside (winding number),
   // for centres farther from S than the mesh deviates from it.
   const double margin = std::max(0.5, 2 * r.result.stats.at("max_distance_to_plane").number());
