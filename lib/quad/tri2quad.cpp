@@ -787,8 +787,32 @@ struct Converter {
   }
 
   bool hexagon_point(LocalPatch& lp, Region& r) {
-    // A diagonal splits off a convex quad; B.1.2 on the quad with the point.
     const auto m = lp.mark();
+    auto good = [&](const t2q::Quad& q) { return t2q::good_quad(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]); };
+    // The point joined to alternate vertices (T1 of B.1.1 with the point
+    // given): 3 quads, no new point.
+    for (int pi = 0; pi < 2; ++pi) {
+      const t2q::Quad q0{pi, pi + 1, (pi + 2) % 6, 6}, q1{(pi + 2) % 6, (pi + 3) % 6, (pi + 4) % 6, 6},
+          q2{(pi + 4) % 6, (pi + 5) % 6, pi, 6};
+      if (good(q0) && good(q1) && good(q2)) {
+        for (const auto& q : {q0, q1, q2}) lp.quads.push_back(q);
+        ++cases[kHexagonPoint]; r = {}; return true;
+      }
+    }
+    // The point cuts a quad off a corner; B.1.1 on the hexagon left.
+    for (int j = 0; j < 6; ++j) {
+      const t2q::Quad q{(j + 5) % 6, j, (j + 1) % 6, 6};
+      if (!good(q)) continue;
+      t2q::Ring rest = {0, 1, 2, 3, 4, 5};
+      rest[j] = 6;
+      std::vector<P2> rp;
+      for (int k : rest) rp.push_back(lp.p[k]);
+      if (!t2q::simple_ccw(rp)) continue;
+      lp.quads.push_back(q);
+      if (t2q::hexagon(lp, rest, 2)) { ++cases[kHexagonPoint]; r = {}; return true; }
+      lp.rollback(m);
+    }
+    // A diagonal splits off a convex quad; B.1.2 on the quad with the point.
     for (int i = 0; i < 3; ++i) {
       const Ring q1 = {i, i + 1, i + 2, (i + 3) % 6}, q2 = {(i + 3) % 6, (i + 4) % 6, (i + 5) % 6, i};
       for (int s = 0; s < 2; ++s) {

@@ -534,7 +534,7 @@ TEST_CASE("Random constrained Delaunay triangulations: all guarantees", "[tri2qu
                            "4cii_B21_type2", "B21_type3_apex_hexagon", "4ci_4ciii_B11_hexagon", "4cvf_B31_heptagon",
                            "3_nonempty_triangle", "3b_B12_quad_point", "3c_B22_pentagon_point", "5bd_joe_split",
                            "5bd_outside_point", "5c_B12_nested", "3_3_repair_split", "degenerate_quad_nonempty",
-                           "5_B11_root_pentagon_edge_point", "B22_middle_type1_B12"}) {
+                           "5_B11_root_pentagon_edge_point", "B22_middle_type1_B12", "4civ_hexagon_point"}) {
     INFO(name);
     CHECK(cases[name] > 0);
   }
