@@ -22,16 +22,7 @@ double angle_at(const Point2& p, const Point2& q, const Point2& r) {
 }
 } // namespace
 
-int orientation(const Point2& a, const Point2& b, const Point2& c) {
-  // Shewchuk's static filter for orient2d: when the double determinant is
-  // larger than its worst rounding error its sign is exact; only the rare
-  // near-degenerate cases pay for CGAL's exact evaluation.
-  const double l = (a[0] - c[0]) * (b[1] - c[1]);
-  const double r = (a[1] - c[1]) * (b[0] - c[0]);
-  const double det = l - r;
-  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
-  if (det > bound) return 1;
-  if (-det > bound) return -1;
+int orientation_exact(const Point2& a, const Point2& b, const Point2& c) {
   const auto o = CGAL::orientation(K::Point_2(a[0], a[1]), K::Point_2(b[0], b[1]),
                                    K::Point_2(c[0], c[1]));
   return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);

@@ -59,20 +59,9 @@ inline double sin_mu(const Point2& a, const Point2& b, const Point2& c, const Po
                   std::min(sin_min_angle(a, b, c), sin_min_angle(d, a, c)));
 }
 
-// Exact orientation with the static filter inlined (the guard calls it tens
-// of millions of times); near-degenerate cases go to the exact predicate.
-inline int orient(const Point2& a, const Point2& b, const Point2& c) {
-  const double l = (a[0] - c[0]) * (b[1] - c[1]);
-  const double r = (a[1] - c[1]) * (b[0] - c[0]);
-  const double det = l - r;
-  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
-  if (det > bound) return 1;
-  if (-det > bound) return -1;
-  return orientation(a, b, c);
-}
-
 inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-  return orient(a, b, c) > 0 && orient(b, c, d) > 0 && orient(c, d, a) > 0 && orient(d, a, b) > 0;
+  return orientation(a, b, c) > 0 && orientation(b, c, d) > 0 && orientation(c, d, a) > 0 &&
+         orientation(d, a, b) > 0;
 }
 
 // Clean-up is tried only around poor quads: sin(30 deg) for swaps (a quad of
