@@ -9,6 +9,7 @@ cd "$TMP" || exit 1
 fail() { echo "FAIL: $*" >&2; exit 1; }
 Q="$BIN/quadsmooth"
 [ -x "$Q" ] || fail "no $Q"
+for t in tri2quad meshinfo; do [ -x "$BIN/$t" ] || fail "no $BIN/$t"; done  # built with the suite
 stat() { sed -n "s/^ *\"$1\": *\([^,]*\),*$/\1/p" "$2"; }  # every match, in order
 
 N=24

@@ -20,7 +20,8 @@ check_stats() {  # stats file: strictly convex and within the size bounds
   [ "$q" -le "$qb" ] && [ "$s" -le "$sb" ] || fail "$1: bounds"
 }
 
-# 1. A real image, when the upstream tools exist.
+# 1. A real image through the upstream tools (all built with the suite).
+for t in img2poly poly2tri; do [ -x "$BIN/$t" ] || fail "no $BIN/$t"; done
 if [ -x "$BIN/img2poly" ] && [ -x "$BIN/poly2tri" ]; then
   "$BIN/img2poly" -q "$DATA/RatLungSlice1.mha" lung.poly --threshold 100 || fail "img2poly"
   "$BIN/poly2tri" -q lung.poly lung.1.ele --min-angle 20 || fail "poly2tri"
