@@ -549,6 +549,15 @@ struct Converter {
     Region r;
     bool done = false;
     const std::size_t nb_ = B.size(), ni = I.size();
+    // B.2.1: a pentagon becomes quads plus a triangle passed up (its apex).
+    auto pentagon_leaving_triangle = [&] {
+      int kind = 0;
+      const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind);
+      if (apex < 0) return false;
+      ++cases[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kind == 2 ? kPentagonType2 : kPentagonType3];
+      r = {kTri, 0, apex, -1};
+      return true;
+    };
     if (!pinched) {
       if (nb_ == 3 && ni == 0) {
         if (!is_root) { reg[u] = {kTri, 0, c, -1}; return; }
@@ -583,22 +592,10 @@ struct Converter {
           done = true;
         } else {
           lp.rollback({std::size_t(m), 0});
-          int kind = 0;
-          const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind);
-          if (apex >= 0) {
-            ++cases[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kind == 2 ? kPentagonType2 : kPentagonType3];
-            r = {kTri, 0, apex, -1};
-            done = true;
-          }
+          done = pentagon_leaving_triangle();
         }
       } else if (nb_ == 5 && ni == 0) {
-        int kind = 0;
-        const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind);
-        if (apex >= 0) {
-          ++cases[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kind == 2 ? kPentagonType2 : kPentagonType3];
-          r = {kTri, 0, apex, -1};
-          done = true;
-        }
+        done = pentagon_leaving_triangle();
       } else if (nb_ == 6 && ni == 0) {
         if (t2q::hexagon(lp, {0, 1, 2, 3, 4, 5})) { ++cases[kHexagon]; r = {}; done = true; }
       } else if (nb_ == 7 && ni == 0) {
