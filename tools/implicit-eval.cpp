@@ -51,18 +51,22 @@ RandomRun random_run(const PartitionOfUnity& f, std::uint64_t n, std::uint64_t s
   std::vector<double> sum(blocks, 0.0), gsum(blocks, 0.0);
   const std::uint64_t key = splitmix64(seed);
   auto work = [&](unsigned t) {
+    constexpr std::uint64_t kBatch = 256;  // points handed to f.values() at once
+    Vec3 p[kBatch], gr[kBatch];
+    double v[kBatch];
     for (std::uint64_t b = t; b < blocks; b += threads) {
       double s = 0, gs = 0;
       const std::uint64_t end = std::min(n, (b + 1) * kBlock);
-      for (std::uint64_t i = b * kBlock; i < end; ++i) {
-        const std::uint64_t h = splitmix64(key ^ (i * 3));
-        const Vec3 p = g.world(unit(h) * ext[0], unit(splitmix64(h + 1)) * ext[1], unit(splitmix64(h + 2)) * ext[2]);
-        if (gradient) {
-          Vec3 gr;
-          s += f.value_gradient(p, gr);
-          gs += gr[0] + gr[1] + gr[2];
-        } else {
-          s += f.value(p);
+      for (std::uint64_t i0 = b * kBlock; i0 < end; i0 += kBatch) {
+        const std::uint64_t m = std::min(kBatch, end - i0);
+        for (std::uint64_t j = 0; j < m; ++j) {
+          const std::uint64_t h = splitmix64(key ^ ((i0 + j) * 3));
+          p[j] = g.world(unit(h) * ext[0], unit(splitmix64(h + 1)) * ext[1], unit(splitmix64(h + 2)) * ext[2]);
+        }
+        f.values(p, m, v, gradient ? gr : nullptr);
+        for (std::uint64_t j = 0; j < m; ++j) {
+          s += v[j];
+          if (gradient) gs += gr[j][0] + gr[j][1] + gr[j][2];
         }
       }
       sum[b] = s;

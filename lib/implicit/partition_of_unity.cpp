@@ -207,19 +207,17 @@ bool PartitionOfUnity::in_domain(const Vec3& p) const {
   return true;
 }
 
-template <bool Gradient> double PartitionOfUnity::evaluate(const Vec3& p, Vec3* gradient) const {
+template <bool Gradient> void PartitionOfUnity::locate(const Vec3& p, Stencil& s) const {
   const double u0 = p[0] - g_.origin[0], u1 = p[1] - g_.origin[1], u2 = p[2] - g_.origin[2];
   const double q[3] = {to_index_[0] * u0 + to_index_[1] * u1 + to_index_[2] * u2,
                        to_index_[3] * u0 + to_index_[4] * u1 + to_index_[5] * u2,
                        to_index_[6] * u0 + to_index_[7] * u1 + to_index_[8] * u2};
   long first[3];
-  int cnt[3];
-  double w[3][2], dw[3][2], loc[3][2];
   for (int i = 0; i < 3; ++i) {
     double qi = q[i];
     if (std::isnan(qi)) {
-      if (Gradient) *gradient = {qi, qi, qi};
-      return qi;
+      s.base = nullptr;
+      return;
     }
     qi = std::min(std::max(qi, 0.0), double(cells_[i]));  // outside: nearest domain point
     long k0 = long(qi);
@@ -236,32 +234,52 @@ template <bool Gradient> double PartitionOfUnity::evaluate(const Vec3& p, Vec3* 
       x = -xhi;
     }
     if (plane < 0) {
-      cnt[i] = 1;
+      s.cnt[i] = 1;
       first[i] = k0;
-      w[i][0] = 1;
-      dw[i][0] = 0;
-      loc[i][0] = r;
+      s.w[i][0] = 1;
+      s.dw[i][0] = 0;
+      s.loc[i][0] = r;
     } else {
       // Cell `plane` (above) has u = (|t| - alpha_1) / beta = (d - x) / (2 d).
       double de = 0;
       const double eb = pu_eta((d_[i] - x) * inv_2d_[i], Gradient ? &de : nullptr);
-      cnt[i] = 2;
+      s.cnt[i] = 2;
       first[i] = plane - 1;
-      w[i][0] = 1 - eb;
-      w[i][1] = eb;
-      dw[i][0] = de * inv_2d_[i];
-      dw[i][1] = -de * inv_2d_[i];
-      loc[i][0] = qi - double(plane - 1);
-      loc[i][1] = qi - double(plane);
+      s.w[i][0] = 1 - eb;
+      s.w[i][1] = eb;
+      s.dw[i][0] = de * inv_2d_[i];
+      s.dw[i][1] = -de * inv_2d_[i];
+      s.loc[i][0] = qi - double(plane - 1);
+      s.loc[i][1] = qi - double(plane);
     }
   }
-  const float* base = g_.data.data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
+  s.base = g_.data.data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
+}
+
+// Start loading the rows of samples the stencil's cells use.
+void PartitionOfUnity::prefetch(const Stencil& s) const {
+  if (!s.base) return;
+  for (int c = 0; c <= s.cnt[2]; ++c)
+    for (int b = 0; b <= s.cnt[1]; ++b) {
+      const float* row = s.base + b * stride_[1] + c * stride_[2];
+      __builtin_prefetch(row);
+      __builtin_prefetch(row + s.cnt[0]);
+    }
+}
+
+template <bool Gradient> double PartitionOfUnity::combine(const Stencil& s, Vec3* gradient) const {
+  if (!s.base) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (Gradient) *gradient = {nan, nan, nan};
+    return nan;
+  }
+  const float* base = s.base;
   double gs[3];
   double f;
-  if (cnt[0] == 1 && cnt[1] == 1 && cnt[2] == 1) {
+  if (s.cnt[0] == 1 && s.cnt[1] == 1 && s.cnt[2] == 1) {
     // Centre region of a cell (most points): phi_k = 1, f = f_k.
     const long s1 = stride_[1], s2 = stride_[2];
-    const double x = loc[0][0], y = loc[1][0], z = loc[2][0];
+    const double x = s.loc[0][0], y = s.loc[1][0], z = s.loc[2][0];
     const double v000 = base[0], v100 = base[1], v010 = base[s1], v110 = base[s1 + 1];
     const double v001 = base[s2], v101 = base[s2 + 1], v011 = base[s2 + s1], v111 = base[s2 + s1 + 1];
     const double c00 = v000 + (v100 - v000) * x, c10 = v010 + (v110 - v010) * x;
@@ -275,7 +293,7 @@ template <bool Gradient> double PartitionOfUnity::evaluate(const Vec3& p, Vec3* 
     gs[1] = ((c10 - c00) + ((c11 - c01) - (c10 - c00)) * z) * inv_delta_[1];
     gs[2] = (c1 - c0) * inv_delta_[2];
   } else {
-    f = blend<Gradient>(base, cnt, w, dw, loc, gs);
+    f = blend<Gradient>(s, gs);
   }
   if (Gradient) {
     // Grid-axis derivatives to world: p = origin + D s, so df/dp = D df/ds.
@@ -285,11 +303,34 @@ template <bool Gradient> double PartitionOfUnity::evaluate(const Vec3& p, Vec3* 
   return f;
 }
 
+// Software pipeline: point i is located (its weights computed) and its
+// samples prefetched kAhead points before it is combined, so the cache
+// misses of several points overlap instead of stalling one after another.
+template <bool Gradient>
+void PartitionOfUnity::evaluate_many(const Vec3* points, std::size_t n, double* f, Vec3* gradients) const {
+  constexpr std::size_t kAhead = 8;
+  Stencil ring[kAhead];
+  for (std::size_t i = 0; i < n + kAhead; ++i) {
+    Stencil& s = ring[i % kAhead];
+    if (i >= kAhead) {
+      const std::size_t j = i - kAhead;
+      f[j] = combine<Gradient>(s, Gradient ? &gradients[j] : nullptr);
+    }
+    if (i < n) {
+      locate<Gradient>(points[i], s);
+      prefetch(s);
+    }
+  }
+}
+
 // Several cells contribute: f = sum_k phi_k f_k over the (at most 8) cells
 // with a nonzero weight, phi_k the product of the per-axis weights.
-template <bool Gradient>
-double PartitionOfUnity::blend(const float* base, const int* cnt, const double (*w)[2], const double (*dw)[2],
-                               const double (*loc)[2], double* gs) const {
+template <bool Gradient> double PartitionOfUnity::blend(const Stencil& s, double* gs) const {
+  const float* base = s.base;
+  const int* cnt = s.cnt;
+  const auto& w = s.w;
+  const auto& dw = s.dw;
+  const auto& loc = s.loc;
   // The (cnt+1)^3 corner samples the contributing cells use (at most 27).
   double B[3][3][3];
   for (int c = 0; c <= cnt[2]; ++c)
@@ -326,10 +367,21 @@ double PartitionOfUnity::blend(const float* base, const int* cnt, const double (
   return f;
 }
 
-double PartitionOfUnity::value(const Vec3& p) const { return evaluate<false>(p, nullptr); }
+double PartitionOfUnity::value(const Vec3& p) const {
+  Stencil s;
+  locate<false>(p, s);
+  return combine<false>(s, nullptr);
+}
 
 double PartitionOfUnity::value_gradient(const Vec3& p, Vec3& gradient) const {
-  return evaluate<true>(p, &gradient);
+  Stencil s;
+  locate<true>(p, s);
+  return combine<true>(s, &gradient);
+}
+
+void PartitionOfUnity::values(const Vec3* points, std::size_t n, double* f, Vec3* gradients) const {
+  if (gradients) evaluate_many<true>(points, n, f, gradients);
+  else evaluate_many<false>(points, n, f, nullptr);
 }
 
 } // namespace imgmesh

@@ -27,6 +27,10 @@ public:
   double value(const Vec3& p) const;
   // f and its analytic gradient (world coordinates).
   double value_gradient(const Vec3& p, Vec3& gradient) const;
+  // f (and grad f when gradients is not null) at n points, the same values
+  // as value() / value_gradient(). Faster for many scattered points: the
+  // samples of later points are prefetched while earlier ones are combined.
+  void values(const Vec3* points, std::size_t n, double* f, Vec3* gradients = nullptr) const;
   // Inside the domain (the box spanned by the voxel centres), up to a
   // relative rounding tolerance of 1e-9 of a voxel.
   bool in_domain(const Vec3& p) const;
@@ -45,10 +49,20 @@ public:
                               unsigned threads = 1);
 
 private:
-  template <bool Gradient> double evaluate(const Vec3& p, Vec3* gradient) const;
-  template <bool Gradient>
-  double blend(const float* base, const int* cnt, const double (*w)[2], const double (*dw)[2],
-               const double (*loc)[2], double* gs) const;
+  // The cells with a nonzero weight at a point: cnt[i] (1 or 2) per axis from
+  // the cell whose first corner sample is base; per axis the weights w, their
+  // derivatives dw (per unit of t) and the unit coordinates loc in each cell.
+  // base is null for a NaN point.
+  struct Stencil {
+    const float* base;
+    int cnt[3];
+    double w[3][2], dw[3][2], loc[3][2];
+  };
+  template <bool Gradient> void locate(const Vec3& p, Stencil& s) const;
+  void prefetch(const Stencil& s) const;
+  template <bool Gradient> double combine(const Stencil& s, Vec3* gradient) const;
+  template <bool Gradient> void evaluate_many(const Vec3* points, std::size_t n, double* f, Vec3* gradients) const;
+  template <bool Gradient> double blend(const Stencil& s, double* gs) const;
 
   FloatImage g_;
   Vec3 d_;

@@ -365,6 +365,42 @@ TEST_CASE("copies evaluate identically; concurrent evaluation is consistent", "[
   REQUIRE_FALSE(f.in_domain(g.world(3, 15.01, 3)));
 }
 
+TEST_CASE("values() at many points equals value() and value_gradient() point by point", "[pu]") {
+  BinaryImage im = random_wc(14, 12, 13, 7, Vec3{0.7, 1.0, 1.6});
+  rotate(im);
+  const PartitionOfUnity f = implicit_from_well_composed(im);
+  const FloatImage& g = f.samples();
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-0.2, 1.2);  // some points outside the domain
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 5000; ++i) {
+    Vec3 q;
+    for (int k = 0; k < 3; ++k) q[k] = u(rng) * double(g.size[k] - 1);
+    if (i % 3 == 0) q[i % 2] = std::round(q[i % 2]) + (u(rng) - 0.5) * f.d()[i % 2] / g.spacing[i % 2];
+    pts.push_back(g.world(q[0], q[1], q[2]));
+  }
+  pts[17][1] = std::nan("");
+  for (std::size_t n : {std::size_t(0), std::size_t(1), std::size_t(5), pts.size()}) {
+    std::vector<double> v(n), vg(n);
+    std::vector<Vec3> gr(n);
+    f.values(pts.data(), n, v.data());
+    f.values(pts.data(), n, vg.data(), gr.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      Vec3 ref;
+      const double fr = f.value_gradient(pts[i], ref);
+      if (i == 17) {
+        REQUIRE(std::isnan(v[i]));
+        REQUIRE(std::isnan(vg[i]));
+        REQUIRE(std::isnan(gr[i][0]));
+        continue;
+      }
+      REQUIRE(v[i] == f.value(pts[i]));
+      REQUIRE(vg[i] == fr);
+      REQUIRE(gr[i] == ref);
+    }
+  }
+}
+
 TEST_CASE("constructor rejects bad samples and a d beyond the bound", "[pu]") {
   FloatImage g(grid(4, 4, 4), 1.0f);
   g(1, 1, 1) = -0.5f;
