@@ -21,6 +21,8 @@ Json SmoothStats::to_json() const {
   ops["rejected_moves"] = rejected;
   ops["worst_mu_climbs"] = optimized;
   ops["diagonal_swaps"] = swaps;
+  ops["valence_swaps"] = valence_swaps;
+  ops["pair_splits"] = splits;
   ops["doublets_removed"] = doublets;
   ops["quad_collapses"] = collapses;
   ops["fixed_vertices"] = fixed_vertices;
@@ -68,9 +70,10 @@ inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, c
 // the pair below the usual bar), sin(15 deg) for collapses.
 constexpr double kSwapBelow = 0.5;
 constexpr double kCollapseBelow = 0.25881904510252074;
-// Vertices next to a quad with mu below 25 degrees also get a direct climb
-// on the worst mu around them.
-constexpr double kOptimizeBelow = 0.42261826174069944;  // sin(25 deg)
+// Vertices next to a quad with mu below 40 degrees also get a compass search
+// on the soft minimum of mu around them.
+constexpr double kOptimizeBelow = 0.64278760968653925;  // sin(40 deg)
+constexpr int kOptimizeRounds = 10;
 
 class QuadImprover {
 public:
@@ -98,6 +101,9 @@ private:
   struct Slide { int v, A, B, u, w; };
   std::vector<Slide> slides_;
   std::vector<char> active_;             // smoothing work list (see smooth_pass)
+  // Poor quads whose pair splits all failed: a later try rarely succeeds
+  // and costs a relaxation each, so they are tried again only once changed.
+  std::vector<char> tried_;
 
   void setup();
   // Feature edges join two fixed vertices: test that first, hash rarely.
@@ -107,9 +113,41 @@ private:
   // Try moving v to p (with back-off toward the current position); the guard.
   bool try_move(int v, Point2 p, bool slide_line, const Slide* s);
   bool angle_based_target(int v, Point2& out) const;
-  bool optimize_worst(int v, double h2);
+  // The energy sum 1/sin(mu) of the quads around v (a soft minimum); false
+  // if a quad is not strictly convex or below floor, or the energy reaches cap.
+  bool star_energy(int v, double floor, double cap, double& energy) const;
+  // Compass search on the energy around v, the worst mu never dropping.
+  bool optimize_star(int v, double h2);
+  // One guarded angle-based move then the compass search; kMoved, kRejected, kOptimized bits.
+  enum { kMoved = 1, kRejected = 2, kOptimized = 4 };
+  int smooth_vertex(int v);
   void smooth_pass();
   void slide_pass();
+
+  // A patch: the stars of some core vertices and of their neighbours, saved
+  // so that a topological operation plus relaxation can be undone.
+  struct Patch {
+    std::vector<int> quads, verts;  // verts: the core first, then the ring
+    std::size_t ncore = 0;
+    std::vector<Quad> q;
+    std::vector<char> qdead, vdead;
+    std::vector<std::vector<int>> vq;
+    std::vector<Point2> p;
+  };
+  std::vector<int> vstamp_, qstamp_;
+  int stamp_id_ = 0;
+  void save_patch(std::initializer_list<int> core, Patch& pt);
+  void restore(const Patch& pt);
+  double patch_worst(const Patch& pt) const;
+  void relax(const Patch& pt);
+  void set_quad(int q, const Quad& nq);
+  int quad_with_edge(int a, int b) const;  // the quad holding the directed edge a -> b, or -1
+  // Valence (Canann et al.): the quads around v in the fan holding q, bounded
+  // by feature edges, and the number the fan's angle wants, one a 90 degrees
+  // (4 around a closed star).
+  struct Fan { int count, ideal; bool closed; };
+  Fan fan(int v, int q) const;
+  bool split_pair(int q1, int q2, const int (&H)[6]);
   void swap_pass();
   void collapse_pass();
   void doublet_pass();
@@ -137,6 +175,7 @@ void QuadImprover::setup() {
     }
   }
   q_dead_.assign(Q_.size(), 0);
+  tried_.assign(Q_.size(), 0);
   q_smu_.resize(Q_.size());
   for (std::size_t q = 0; q < Q_.size(); ++q) q_smu_[q] = quad_smu(Q_[q]);
 
@@ -318,39 +357,63 @@ bool QuadImprover::try_move(int v, Point2 p, bool slide_line, const Slide* s) {
   return false;
 }
 
-bool QuadImprover::optimize_worst(int v, double h2) {
-  double worst0 = 2;
-  for (int q : vq_[v]) worst0 = std::min(worst0, q_smu_[q]);
-  if (worst0 >= kOptimizeBelow) return false;
+bool QuadImprover::star_energy(int v, double floor, double cap, double& energy) const {
+  energy = 0;
+  for (int q : vq_[v]) {
+    if (!convex(Q_[q])) return false;
+    const double s = quad_smu(Q_[q]);
+    if (s < floor) return false;
+    energy += 1 / s;
+    if (energy >= cap) return false;
+  }
+  return true;
+}
+
+bool QuadImprover::optimize_star(int v, double h2) {
+  double worst0 = 2, energy0 = 0;
+  for (int q : vq_[v]) {
+    worst0 = std::min(worst0, q_smu_[q]);
+    energy0 += 1 / q_smu_[q];
+  }
+  if (worst0 >= kOptimizeBelow || !(worst0 > 0)) return false;
   const Point2 start = P_[v];
   Point2 p = start;
-  double best = worst0, h = 0.25 * std::sqrt(h2);
+  double best = energy0, h = 0.25 * std::sqrt(h2);
   static const double dirs[8][2] = {{1, 0}, {0.7071067811865476, 0.7071067811865476}, {0, 1},
                                     {-0.7071067811865476, 0.7071067811865476}, {-1, 0},
                                     {-0.7071067811865476, -0.7071067811865476}, {0, -1},
                                     {0.7071067811865476, -0.7071067811865476}};
-  for (int round = 0; round < 6; ++round) {
+  for (int round = 0; round < kOptimizeRounds; ++round) {
     Point2 bp = p;
     bool improved = false;
     for (const auto& d : dirs) {
       P_[v] = {p[0] + h * d[0], p[1] + h * d[1]};
-      double w = 2;
-      bool ok = true;
-      for (int q : vq_[v]) {
-        if (!convex(Q_[q])) { ok = false; break; }
-        w = std::min(w, quad_smu(Q_[q]));
-        if (w <= best) { ok = false; break; }
-      }
-      if (ok && w > best * (1 + 1e-12)) { best = w; bp = P_[v]; improved = true; }
+      double e;
+      if (star_energy(v, worst0, best * (1 - 1e-12), e)) { best = e; bp = P_[v]; improved = true; }
     }
     P_[v] = p;
     if (improved) p = bp;
     else h *= 0.5;
   }
-  if (!(best > worst0 * (1 + 1e-9))) { P_[v] = start; return false; }
+  if (!(best < energy0 * (1 - 1e-9))) { P_[v] = start; return false; }
   P_[v] = p;
   for (int q : vq_[v]) q_smu_[q] = quad_smu(Q_[q]);
   return true;
+}
+
+int QuadImprover::smooth_vertex(int v) {
+  Point2 target;
+  if (!angle_based_target(v, target)) return 0;
+  const Point2& p = P_[v];
+  const Point2& x = P_[Q_[vq_[v][0]][0] == v ? Q_[vq_[v][0]][1] : Q_[vq_[v][0]][0]];
+  const double d2 = (target[0] - p[0]) * (target[0] - p[0]) + (target[1] - p[1]) * (target[1] - p[1]);
+  const double h2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]);
+  int r = 0;
+  if (d2 >= 1e-4 * h2) r = try_move(v, target, false, nullptr) ? kMoved : kRejected;  // else converged to 1e-2 of an edge
+  // Where the angle-based position cannot help a poor quad, climb on the
+  // soft minimum of mu itself (compass search, guarded the same way).
+  if (optimize_star(v, h2)) r |= kOptimized;
+  return r;
 }
 
 void QuadImprover::smooth_pass() {
@@ -361,19 +424,11 @@ void QuadImprover::smooth_pass() {
   for (int v = 0; v < n; ++v) {
     if (!active_[v] || fixed_[v] || v_dead_[v] || vq_[v].size() < 3) continue;
     active_[v] = 0;
-    Point2 target;
-    if (!angle_based_target(v, target)) continue;
-    const Point2& p = P_[v];
-    const Point2& x = P_[Q_[vq_[v][0]][0] == v ? Q_[vq_[v][0]][1] : Q_[vq_[v][0]][0]];
-    const double d2 = (target[0] - p[0]) * (target[0] - p[0]) + (target[1] - p[1]) * (target[1] - p[1]);
-    const double h2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]);
-    bool moved = d2 >= 1e-4 * h2 && try_move(v, target, false, nullptr);  // else converged to 1e-2 of an edge
-    if (moved) ++st_.moves;
-    else if (d2 >= 1e-4 * h2) ++st_.rejected;
-    // Where the angle-based position cannot help a poor quad, climb on the
-    // worst mu itself (compass search, guarded the same way).
-    if (optimize_worst(v, h2)) { moved = true; ++st_.optimized; }
-    if (moved)
+    const int r = smooth_vertex(v);
+    st_.moves += (r & kMoved) != 0;
+    st_.rejected += (r & kRejected) != 0;
+    st_.optimized += (r & kOptimized) != 0;
+    if (r & (kMoved | kOptimized))
       for (int q : vq_[v])
         for (int w : Q_[q]) active_[w] = 1;
   }
@@ -394,25 +449,198 @@ void QuadImprover::slide_pass() {
   }
 }
 
+int QuadImprover::quad_with_edge(int a, int b) const {
+  for (int q : vq_[a]) {
+    const Quad& E = Q_[q];
+    for (int k = 0; k < 4; ++k)
+      if (E[k] == a && E[(k + 1) & 3] == b) return q;
+  }
+  return -1;
+}
+
+QuadImprover::Fan QuadImprover::fan(int v, int q0) const {
+  if (!fixed_[v]) return {int(vq_[v].size()), 4, true};  // a free vertex's star is closed
+  auto corner = [&](int q) {
+    int i = 0;
+    while (Q_[q][i] != v) ++i;
+    return i;
+  };
+  Fan f{0, 0, false};
+  double angle = 0;
+  auto add = [&](int q) {
+    const int i = corner(q);
+    const Point2 &o = P_[v], &x = P_[Q_[q][(i + 1) & 3]], &z = P_[Q_[q][(i + 3) & 3]];
+    const double ux = x[0] - o[0], uy = x[1] - o[1], wx = z[0] - o[0], wy = z[1] - o[1];
+    angle += std::atan2(std::fabs(ux * wy - uy * wx), ux * wx + uy * wy);
+    ++f.count;
+  };
+  // Counter-clockwise across the edge v-z of (v, x, y, z), then clockwise
+  // across v-x, each way until a feature edge or the mesh boundary.
+  add(q0);
+  for (int q = q0;;) {
+    const int z = Q_[q][(corner(q) + 3) & 3];
+    const int nx = is_feature(v, z) ? -1 : quad_with_edge(v, z);
+    if (nx < 0) break;
+    if (nx == q0) { f.closed = true; break; }
+    add(nx);
+    q = nx;
+  }
+  if (!f.closed)
+    for (int q = q0;;) {
+      const int x = Q_[q][(corner(q) + 1) & 3];
+      const int nx = is_feature(v, x) ? -1 : quad_with_edge(x, v);
+      if (nx < 0) break;
+      add(nx);
+      q = nx;
+    }
+  f.ideal = f.closed ? 4 : std::max(1, int(std::lround(angle * (2 / 3.14159265358979323846))));
+  return f;
+}
+
+void QuadImprover::save_patch(std::initializer_list<int> core, Patch& pt) {
+  if (++stamp_id_ == 1) {
+    vstamp_.assign(P_.size(), 0);
+    qstamp_.assign(Q_.size(), 0);
+  }
+  pt.quads.clear();
+  pt.verts.clear();
+  auto addv = [&](int v) {
+    if (vstamp_[v] != stamp_id_) { vstamp_[v] = stamp_id_; pt.verts.push_back(v); }
+  };
+  for (int c : core) addv(c);
+  pt.ncore = pt.verts.size();
+  for (std::size_t i = 0; i < pt.ncore; ++i)
+    for (int q : vq_[pt.verts[i]])
+      for (int x : Q_[q]) addv(x);
+  for (int v : pt.verts)
+    for (int q : vq_[v])
+      if (qstamp_[q] != stamp_id_) { qstamp_[q] = stamp_id_; pt.quads.push_back(q); }
+  pt.q.clear(); pt.qdead.clear(); pt.vq.clear(); pt.p.clear(); pt.vdead.clear();
+  for (int q : pt.quads) { pt.q.push_back(Q_[q]); pt.qdead.push_back(q_dead_[q]); }
+  for (int v : pt.verts) { pt.vq.push_back(vq_[v]); pt.p.push_back(P_[v]); pt.vdead.push_back(v_dead_[v]); }
+}
+
+void QuadImprover::restore(const Patch& pt) {
+  for (std::size_t i = 0; i < pt.verts.size(); ++i) {
+    const int v = pt.verts[i];
+    vq_[v] = pt.vq[i];
+    P_[v] = pt.p[i];
+    v_dead_[v] = pt.vdead[i];
+  }
+  for (std::size_t i = 0; i < pt.quads.size(); ++i) {
+    const int q = pt.quads[i];
+    Q_[q] = pt.q[i];
+    q_dead_[q] = pt.qdead[i];
+    q_smu_[q] = quad_smu(Q_[q]);
+  }
+}
+
+double QuadImprover::patch_worst(const Patch& pt) const {
+  double w = 2;
+  for (int q : pt.quads)
+    if (!q_dead_[q]) w = std::min(w, q_smu_[q]);
+  return w;
+}
+
+void QuadImprover::relax(const Patch& pt) {
+  // The core and new points (after the saved ones) twice, the ring once:
+  // every star stays inside the patch.
+  auto smooth = [&](std::size_t i) {
+    const int v = pt.verts[i];
+    if (!fixed_[v] && !v_dead_[v] && vq_[v].size() >= 3) smooth_vertex(v);
+  };
+  for (int round = 0; round < 2; ++round) {
+    for (std::size_t i = 0; i < pt.ncore; ++i) smooth(i);
+    for (std::size_t i = pt.p.size(); i < pt.verts.size(); ++i) smooth(i);
+  }
+  for (std::size_t i = pt.ncore; i < pt.p.size(); ++i) smooth(i);
+}
+
+void QuadImprover::set_quad(int q, const Quad& nq) {
+  tried_[q] = 0;
+  for (int x : Q_[q]) remove_from(x, q);
+  Q_[q] = nq;
+  for (int x : nq) vq_[x].push_back(q);
+  q_smu_[q] = quad_smu(nq);
+}
+
+bool QuadImprover::split_pair(int q1, int q2, const int (&H)[6]) {
+  // Hexagon H (the pair's union) plus one new point e joined to alternate
+  // corners: three quads. Each corner of the chosen three gets a quad more,
+  // which is what a flat corner of a poor quad needs. Taken only if the
+  // worst mu of the patch rises once it is relaxed.
+  Patch pt;
+  for (int s = 0; s < 2; ++s) {
+    save_patch({H[0], H[1], H[2], H[3], H[4], H[5]}, pt);
+    const double before = patch_worst(pt);
+    Point2 e{0, 0};
+    for (int x : H) { e[0] += P_[x][0] / 6; e[1] += P_[x][1] / 6; }
+    const int v = int(P_.size());
+    P_.push_back(e);
+    if (!m_.point_attributes.empty()) m_.point_attributes.emplace_back(m_.point_attributes[0].size(), 0.0);
+    if (!m_.point_markers.empty()) m_.point_markers.push_back(0);
+    vq_.emplace_back();
+    fixed_.push_back(0);
+    v_dead_.push_back(0);
+    active_.push_back(1);
+    vstamp_.push_back(stamp_id_);
+    pt.verts.push_back(v);  // relaxed with the patch
+    const int q3 = int(Q_.size());
+    // The new quad is a new element of q1's region (copies: push_back may reallocate).
+    const std::vector<int> el = m_.elements[q_elem_[q1]];
+    m_.elements.push_back(el);
+    if (!m_.element_attributes.empty()) {
+      const std::vector<double> attr = m_.element_attributes[q_elem_[q1]];
+      m_.element_attributes.push_back(attr);
+    }
+    Q_.push_back(Q_[q1]);
+    q_elem_.push_back(int(m_.elements.size()) - 1);
+    q_dead_.push_back(0);
+    q_smu_.push_back(0);
+    qstamp_.push_back(stamp_id_);
+    tried_.push_back(0);
+    for (int x : Q_[q3]) vq_[x].push_back(q3);
+    pt.quads.push_back(q3);
+    set_quad(q1, {H[s], H[s + 1], H[s + 2], v});
+    set_quad(q2, {H[s + 2], H[s + 3], H[s + 4], v});
+    set_quad(q3, {H[s + 4], H[(s + 5) % 6], H[s], v});
+    bool ok = convex(Q_[q1]) && convex(Q_[q2]) && convex(Q_[q3]);
+    if (ok) {
+      relax(pt);
+      ok = patch_worst(pt) > before * (1 + 1e-9) + 1e-15;
+    }
+    if (ok) return true;
+    // Undo: the patch first (it drops every reference to v and q3), then the new items.
+    pt.verts.pop_back();
+    pt.quads.pop_back();
+    restore(pt);
+    P_.pop_back();
+    if (!m_.point_attributes.empty()) m_.point_attributes.pop_back();
+    if (!m_.point_markers.empty()) m_.point_markers.pop_back();
+    vq_.pop_back(); fixed_.pop_back(); v_dead_.pop_back(); active_.pop_back(); vstamp_.pop_back();
+    m_.elements.pop_back();
+    if (!m_.element_attributes.empty()) m_.element_attributes.pop_back();
+    Q_.pop_back(); q_elem_.pop_back(); q_dead_.pop_back(); q_smu_.pop_back(); qstamp_.pop_back();
+    tried_.pop_back();
+  }
+  return false;
+}
+
 void QuadImprover::swap_pass() {
+  Patch pt;
   for (std::size_t q1 = 0; q1 < Q_.size(); ++q1) {
     if (q_dead_[q1]) continue;
-    for (int i = 0; i < 4; ++i) {
+    bool changed = false;
+    for (int i = 0; i < 4 && !changed; ++i) {
       const Quad A = Q_[q1];
       const int u = A[i], w = A[(i + 1) & 3];
-      if (q_smu_[q1] >= kSwapBelow) break;  // only pairs with a poor quad are worth a swap
       if (is_feature(u, w)) continue;
-      // The other quad, holding w -> u.
-      int q2 = -1, j = 0;
-      for (int q : vq_[u]) {
-        if (q == int(q1)) continue;
-        const Quad& B = Q_[q];
-        for (int k = 0; k < 4; ++k)
-          if (B[k] == w && B[(k + 1) & 3] == u) { q2 = q; j = k; }
-      }
-      // Each pair once: from the lower index when both are poor.
-      if (q2 < 0 || (q_smu_[q2] < kSwapBelow && q2 < int(q1))) continue;
+      // The other quad, holding w -> u; each pair once.
+      const int q2 = quad_with_edge(w, u);
+      if (q2 < int(q1)) continue;
       const Quad B = Q_[q2];
+      int j = 0;
+      while (B[j] != w) ++j;
       // Hexagon u, c, d, w, a, b (counter-clockwise).
       const int a = A[(i + 2) & 3], b = A[(i + 3) & 3];
       const int c = B[(j + 2) & 3], d = B[(j + 3) & 3];
@@ -421,39 +649,54 @@ void QuadImprover::swap_pass() {
       for (int x = 0; x < 6; ++x)
         for (int y = x + 1; y < 6; ++y) distinct = distinct && H[x] != H[y];
       if (!distinct) continue;
+      // Valence excess of u and w (they lose a quad) and of the ends of
+      // either new diagonal (they gain one).
+      const Fan fu = fan(u, int(q1)), fw = fan(w, int(q1));
+      const bool keep_valence = fu.count - 1 >= (fu.closed ? 3 : 1) && fw.count - 1 >= (fw.closed ? 3 : 1);
+      const int e_uw = 1 - 2 * (fu.count - fu.ideal) + 1 - 2 * (fw.count - fw.ideal);
       const double cur = std::min(q_smu_[q1], q_smu_[q2]);
+      const bool poor = cur < kSwapBelow;
       double best = cur * (1 + 1e-9) + 1e-15;
-      int best_k = -1;
+      int best_k = -1, valence_k = -1, best_de = 0;
       for (int k = 1; k <= 2; ++k) {
         const Quad N1{H[k], H[k + 1], H[k + 2], H[(k + 3) % 6]};
         const Quad N2{H[(k + 3) % 6], H[(k + 4) % 6], H[(k + 5) % 6], H[k]};
-        if (!convex(N1) || !convex(N2)) continue;
-        const double s = std::min(quad_smu(N1), quad_smu(N2));
-        if (s <= best) continue;
-        // The new diagonal must not already be an edge of the mesh.
         const int p = H[k], r = H[(k + 3) % 6];
-        bool exists = false;
-        for (int q : vq_[p]) {
-          const Quad& E = Q_[q];
-          for (int t = 0; t < 4; ++t)
-            if (E[t] == p && (E[(t + 1) & 3] == r || E[(t + 3) & 3] == r)) exists = true;
-        }
-        if (exists || is_feature(p, r)) continue;
-        best = s;
-        best_k = k;
+        if (!convex(N1) || !convex(N2) || is_feature(p, r) || quad_with_edge(p, r) >= 0 ||
+            quad_with_edge(r, p) >= 0)
+          continue;  // the new diagonal must not already be an edge
+        const Fan fp = fan(p, q2), fr = fan(r, int(q1));  // c, d are in B; a, b in A
+        const int de = e_uw + 1 + 2 * (fp.count - fp.ideal) + 1 + 2 * (fr.count - fr.ideal);
+        if (keep_valence && de < best_de) { best_de = de; valence_k = k; }
+        const double sm = std::min(quad_smu(N1), quad_smu(N2));
+        if (poor && sm > best) { best = sm; best_k = k; }
       }
-      if (best_k < 0) continue;
-      const int k = best_k;
-      for (int x : H) { remove_from(x, int(q1)); remove_from(x, q2); }
-      Q_[q1] = {H[k], H[k + 1], H[k + 2], H[(k + 3) % 6]};
-      Q_[q2] = {H[(k + 3) % 6], H[(k + 4) % 6], H[(k + 5) % 6], H[k]};
-      for (int x : Q_[q1]) vq_[x].push_back(int(q1));
-      for (int x : Q_[q2]) vq_[x].push_back(q2);
-      q_smu_[q1] = quad_smu(Q_[q1]);
-      q_smu_[q2] = quad_smu(Q_[q2]);
+      auto apply = [&](int k) {
+        set_quad(int(q1), {H[k], H[k + 1], H[k + 2], H[(k + 3) % 6]});
+        set_quad(q2, {H[(k + 3) % 6], H[(k + 4) % 6], H[(k + 5) % 6], H[k]});
+      };
+      if (best_k >= 0) {
+        apply(best_k);  // the pair's worst mu improves: nothing else changes
+      } else if (cur < kCollapseBelow && !tried_[q1] && split_pair(int(q1), q2, H)) {
+        ++st_.splits;
+        changed = true;
+        continue;
+      } else if (valence_k >= 0) {
+        // Fewer irregular vertices: taken if, after relaxing the patch, its
+        // worst mu has not dropped.
+        save_patch({u, w, a, b, c, d}, pt);
+        const double before = patch_worst(pt);
+        apply(valence_k);
+        relax(pt);
+        if (patch_worst(pt) < before) { restore(pt); continue; }
+        ++st_.valence_swaps;
+      } else {
+        continue;
+      }
       ++st_.swaps;
-      break;  // q1 changed: move on
+      changed = true;  // q1 changed: move on
     }
+    if (!changed && q_smu_[q1] < kCollapseBelow) tried_[q1] = 1;
   }
 }
 
@@ -602,7 +845,7 @@ void QuadImprover::run() {
   for (int it = 0; it < passes; ++it) {
     // Clean-up after smoothing has done what it can: only the quads that
     // stay poor get swaps and collapses, then smoothing resumes.
-    if (opt_.cleanup && it == (passes + 1) / 2) {
+    if (opt_.cleanup && it > 0 && it % 3 == 0) {
       swap_pass();
       collapse_pass();
       doublet_pass();

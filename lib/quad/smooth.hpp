@@ -1,6 +1,7 @@
 // Post-processing of strictly convex quad meshes (thesis 3.2.3): angle-based
 // smoothing (Zhou and Shimada, 2000) with a guard, and topological clean-up
-// (Canann, Muthukrishnan and Phillips, 1998): diagonal swaps, doublet removal
+// (Canann, Muthukrishnan and Phillips, 1998): diagonal swaps (for the worst
+// mu, and valence-driven), pair splits around a new point, doublet removal
 // and quad collapse. Nothing ever makes a quad non-convex: every move and
 // every operation is checked with exact orientation predicates first.
 #pragma once
@@ -29,6 +30,8 @@ struct SmoothStats {
   std::size_t rejected = 0;    // moves the guard refused
   std::size_t optimized = 0;   // guarded climbs on the worst mu around a vertex
   std::size_t swaps = 0, doublets = 0, collapses = 0;
+  std::size_t valence_swaps = 0;  // of the swaps, those taken to make valences regular
+  std::size_t splits = 0;      // quad pairs split into three around a new point
   int passes = 0;
   std::size_t fixed_vertices = 0;  // boundary, constrained or region-boundary vertices
   Json to_json() const;
@@ -36,7 +39,9 @@ struct SmoothStats {
 
 // Smooths and cleans the quad mesh in place. Element attributes, point
 // attributes/markers and segments (with markers) are kept; removed vertices
-// and quads are compacted away and segment ids renumbered. Vertices on the
+// and quads are compacted away and segment ids renumbered; points added by
+// pair splits come last, strictly inside a region, with zero attributes and
+// marker, and their quads carry the region's attributes. Vertices on the
 // boundary, on a segment, on an edge between regions of different attribute
 // or on a non-quad element stay fixed (or, with slide_boundary, slide along
 // their own straight segment); so do vertices with a nonzero point marker

@@ -19,7 +19,7 @@ namespace {
 
 // n x n cells on [0,1]^2; region 1 left of x = 0.5, region 2 right; the outer
 // boundary (marker 1) and the region boundary (marker 2) are segments.
-// Each point carries its original index as attribute, to follow it through.
+// Each point carries 1 + its original index as attribute, to follow it through.
 PlanarMesh split_mesh(int n, unsigned seed, double jitter = 0.3) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U(-jitter, jitter);
@@ -79,7 +79,8 @@ PlanarMesh split_mesh(int n, unsigned seed, double jitter = 0.3) {
     if (c == 1) { m.segments.push_back({k.first, k.second}); m.segment_markers.push_back(1); }
     else if (p[0] == 0.5 && q[0] == 0.5) { m.segments.push_back({k.first, k.second}); m.segment_markers.push_back(2); }
   }
-  for (std::size_t v = 0; v < m.points.size(); ++v) m.point_attributes.push_back({double(v)});
+  // Attribute 1 + the original index (points the clean-up adds get 0).
+  for (std::size_t v = 0; v < m.points.size(); ++v) m.point_attributes.push_back({double(v + 1)});
   return m;
 }
 
@@ -133,9 +134,15 @@ TEST_CASE("smoothing keeps quads strictly convex, conforming, on their curves", 
         REQUIRE(m.point_attributes.size() == m.points.size());
 
         // Constrained vertices: fixed, or (slide) on their own straight line.
+        // Points added by pair splits lie strictly inside a region.
         for (std::size_t v = 0; v < m.points.size(); ++v) {
-          const int o = int(m.point_attributes[v][0]);
-          const Point2 p = m.points[v], q = orig.points[o];
+          const int o = int(m.point_attributes[v][0]) - 1;
+          const Point2 p = m.points[v];
+          if (o < 0) {
+            CHECK(p[0] > 0); CHECK(p[0] < 1); CHECK(p[1] > 0); CHECK(p[1] < 1); CHECK(p[0] != 0.5);
+            continue;
+          }
+          const Point2 q = orig.points[o];
           const bool outer = q[0] == 0 || q[0] == 1 || q[1] == 0 || q[1] == 1;
           const bool inner = q[0] == 0.5;
           if (!outer && !inner) continue;
@@ -149,10 +156,14 @@ TEST_CASE("smoothing keeps quads strictly convex, conforming, on their curves", 
           }
         }
         // Corners never move.
+        std::size_t corners = 0;
         for (std::size_t v = 0; v < m.points.size(); ++v) {
-          const Point2 q = orig.points[int(m.point_attributes[v][0])];
-          if ((q[0] == 0 || q[0] == 1) && (q[1] == 0 || q[1] == 1)) CHECK(m.points[v] == q);
+          const int o = int(m.point_attributes[v][0]) - 1;
+          if (o < 0) continue;
+          const Point2 q = orig.points[o];
+          if ((q[0] == 0 || q[0] == 1) && (q[1] == 0 || q[1] == 1)) { CHECK(m.points[v] == q); ++corners; }
         }
+        CHECK(corners == 4);
         // Every segment is still an edge of the mesh, markers kept.
         const auto edges = edge_set(m);
         REQUIRE(m.segments.size() == orig.segments.size());
@@ -167,15 +178,31 @@ TEST_CASE("smoothing improves split meshes", "[smooth]") {
   // Each triangle's three quads: valence-3 centroids and valence-6 corners
   // cap the reachable quality, so only improvement and the floor are asked.
   for (unsigned seed : {11u, 12u}) {
-    PlanarMesh m = split_mesh(20, seed);
-    SmoothOptions opt;
-    opt.iterations = 10;
-    const SmoothStats st = smooth_quad_mesh(m, opt);
-    CAPTURE(seed, st.before.min_mu, st.before.mean_mu, st.after.min_mu, st.after.mean_mu);
-    CHECK(st.after.mean_mu >= st.before.mean_mu + 2);
-    CHECK(st.after.min_mu >= 5);
-    CHECK(st.after.angles_45_135 > st.before.angles_45_135);
-    CHECK(st.after.area_stddev <= st.before.area_stddev);
+    double mean_without = 0, share_without = 0;
+    for (bool cleanup : {false, true}) {
+      PlanarMesh m = split_mesh(20, seed);
+      SmoothOptions opt;
+      opt.iterations = 10;
+      opt.cleanup = cleanup;
+      const SmoothStats st = smooth_quad_mesh(m, opt);
+      CAPTURE(seed, cleanup, st.before.min_mu, st.before.mean_mu, st.after.min_mu, st.after.mean_mu);
+      CHECK(st.after.mean_mu >= st.before.mean_mu + 2);
+      CHECK(st.after.min_mu >= 5);
+      CHECK(st.after.angles_45_135 > st.before.angles_45_135);
+      // Smoothing evens the sizes out; the clean-up changes the quad count.
+      if (!cleanup) {
+        CHECK(st.after.area_stddev <= st.before.area_stddev);
+        mean_without = st.after.mean_mu;
+        share_without = st.after.angles_45_135;
+      } else {
+        // Valence-driven swaps (valence-6 corners, valence-3 centroids) and
+        // pair splits take place and pay off.
+        CHECK(st.valence_swaps > 0);
+        CHECK(st.splits > 0);
+        CHECK(st.after.mean_mu > mean_without);
+        CHECK(st.after.angles_45_135 > share_without);
+      }
+    }
   }
 }
 
