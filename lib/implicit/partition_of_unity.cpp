@@ -15,7 +15,10 @@
 // (6.9) factors into per-axis weights: (1 - eta, eta) where two cells meet,
 // 1 where a single cell covers the point. Per axis at most 2 cells have a
 // nonzero weight (d_i <= delta_i / 5 < delta_i / 2), so at most 8 of the 27
-// neighbouring cells contribute; we visit only those.
+// neighbouring cells contribute. As f_k is a tensor product of linear
+// factors too, f = sum over the 2 or 3 samples per axis that those cells use
+// of g times one coefficient per axis (see Stencil): a 2x2x2 to 3x3x3
+// contraction instead of up to 8 trilinear interpolations.
 //
 // Why the argument of 6.4 holds per axis on anisotropic grids. Replace the
 // thesis's balls and tubes by boxes: a point is in the vertex / edge / face /
@@ -212,20 +215,19 @@ template <bool Gradient> void PartitionOfUnity::locate(const Vec3& p, Stencil& s
   const double q[3] = {to_index_[0] * u0 + to_index_[1] * u1 + to_index_[2] * u2,
                        to_index_[3] * u0 + to_index_[4] * u1 + to_index_[5] * u2,
                        to_index_[6] * u0 + to_index_[7] * u1 + to_index_[8] * u2};
+  if (std::isnan(q[0]) || std::isnan(q[1]) || std::isnan(q[2])) {
+    s.base = nullptr;
+    return;
+  }
   long first[3];
   for (int i = 0; i < 3; ++i) {
-    double qi = q[i];
-    if (std::isnan(qi)) {
-      s.base = nullptr;
-      return;
-    }
-    qi = std::min(std::max(qi, 0.0), double(cells_[i]));  // outside: nearest domain point
-    long k0 = long(qi);
-    if (k0 > cells_[i] - 1) k0 = cells_[i] - 1;
+    const double qi = std::min(std::max(q[i], 0.0), double(cells_[i]));  // outside: nearest domain point
+    const long k0 = std::min(long(qi), cells_[i] - 1);
     const double r = qi - double(k0);
     const double xlo = r * delta_[i], xhi = (1 - r) * delta_[i];
+    // The grid plane within d, if any (two cells blend there): plane k0 or k0 + 1.
     long plane = -1;
-    double x = 0;  // offset above the shared plane, physical units, in (-d, d)
+    double x = 0;  // offset above the plane, physical units, in (-d, d)
     if (xlo < d_[i] && k0 > 0) {
       plane = k0;
       x = xlo;
@@ -233,39 +235,88 @@ template <bool Gradient> void PartitionOfUnity::locate(const Vec3& p, Stencil& s
       plane = k0 + 1;
       x = -xhi;
     }
+    double* c = s.c[i];
+    double* dc = s.dc[i];
+    const double id = inv_delta_[i];
     if (plane < 0) {
-      s.cnt[i] = 1;
+      // Only cell k0: phi = 1 on this axis, f_k linear in r.
+      s.n[i] = 2;
       first[i] = k0;
-      s.w[i][0] = 1;
-      s.dw[i][0] = 0;
-      s.loc[i][0] = r;
+      c[0] = 1 - r;
+      c[1] = r;
+      if (Gradient) {
+        dc[0] = -id;
+        dc[1] = id;
+      }
     } else {
-      // Cell `plane` (above) has u = (|t| - alpha_1) / beta = (d - x) / (2 d).
+      // Cells plane - 1 and plane with weights 1 - eta, eta, where the upper
+      // one has u = (|t| - alpha_1) / beta = (d - x) / (2 d); l = qi - plane
+      // is the point's unit coordinate in the upper cell (1 + l in the lower).
       double de = 0;
-      const double eb = pu_eta((d_[i] - x) * inv_2d_[i], Gradient ? &de : nullptr);
-      s.cnt[i] = 2;
+      const double eta = pu_eta((d_[i] - x) * inv_2d_[i], Gradient ? &de : nullptr);
+      const double l = qi - double(plane);
+      s.n[i] = 3;
       first[i] = plane - 1;
-      s.w[i][0] = 1 - eb;
-      s.w[i][1] = eb;
-      s.dw[i][0] = de * inv_2d_[i];
-      s.dw[i][1] = -de * inv_2d_[i];
-      s.loc[i][0] = qi - double(plane - 1);
-      s.loc[i][1] = qi - double(plane);
+      c[0] = -(1 - eta) * l;
+      c[1] = 1 + (1 - 2 * eta) * l;
+      c[2] = eta * l;
+      if (Gradient) {
+        const double deta = -de * inv_2d_[i];  // d eta / dt
+        dc[0] = deta * l - (1 - eta) * id;
+        dc[1] = (1 - 2 * eta) * id - 2 * deta * l;
+        dc[2] = deta * l + eta * id;
+      }
     }
   }
   s.base = g_.data.data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
 }
 
-// Start loading the rows of samples the stencil's cells use.
+// Start loading the rows of samples the stencil uses.
 void PartitionOfUnity::prefetch(const Stencil& s) const {
   if (!s.base) return;
-  for (int c = 0; c <= s.cnt[2]; ++c)
-    for (int b = 0; b <= s.cnt[1]; ++b) {
-      const float* row = s.base + b * stride_[1] + c * stride_[2];
+  for (int l = 0; l < s.n[2]; ++l)
+    for (int j = 0; j < s.n[1]; ++j) {
+      const float* row = s.base + j * stride_[1] + l * stride_[2];
       __builtin_prefetch(row);
-      __builtin_prefetch(row + s.cnt[0]);
+      __builtin_prefetch(row + s.n[0] - 1);
     }
 }
+
+namespace {
+
+// f = sum_{i,j,l} g c[0][i] c[1][j] c[2][l] over N0 x N1 x N2 samples,
+// contracted axis by axis; each gradient component (grid axes) swaps one
+// axis's c for dc. Fixed sizes: fully unrolled.
+template <bool Gradient, int N0, int N1, int N2>
+double contract(const float* base, long s1, long s2, const double (*c)[3], const double (*dc)[3], double* gs) {
+  double f = 0;
+  if (Gradient) gs[0] = gs[1] = gs[2] = 0;
+  for (int l = 0; l < N2; ++l) {
+    double fy = 0, fyx = 0, fyy = 0;
+    for (int j = 0; j < N1; ++j) {
+      const float* row = base + j * s1 + l * s2;
+      double fx = 0, fxx = 0;
+      for (int i = 0; i < N0; ++i) {
+        fx += c[0][i] * double(row[i]);
+        if (Gradient) fxx += dc[0][i] * double(row[i]);
+      }
+      fy += c[1][j] * fx;
+      if (Gradient) {
+        fyx += c[1][j] * fxx;
+        fyy += dc[1][j] * fx;
+      }
+    }
+    f += c[2][l] * fy;
+    if (Gradient) {
+      gs[0] += c[2][l] * fyx;
+      gs[1] += c[2][l] * fyy;
+      gs[2] += dc[2][l] * fy;
+    }
+  }
+  return f;
+}
+
+} // namespace
 
 template <bool Gradient> double PartitionOfUnity::combine(const Stencil& s, Vec3* gradient) const {
   if (!s.base) {
@@ -273,27 +324,17 @@ template <bool Gradient> double PartitionOfUnity::combine(const Stencil& s, Vec3
     if (Gradient) *gradient = {nan, nan, nan};
     return nan;
   }
-  const float* base = s.base;
-  double gs[3];
-  double f;
-  if (s.cnt[0] == 1 && s.cnt[1] == 1 && s.cnt[2] == 1) {
-    // Centre region of a cell (most points): phi_k = 1, f = f_k.
-    const long s1 = stride_[1], s2 = stride_[2];
-    const double x = s.loc[0][0], y = s.loc[1][0], z = s.loc[2][0];
-    const double v000 = base[0], v100 = base[1], v010 = base[s1], v110 = base[s1 + 1];
-    const double v001 = base[s2], v101 = base[s2 + 1], v011 = base[s2 + s1], v111 = base[s2 + s1 + 1];
-    const double c00 = v000 + (v100 - v000) * x, c10 = v010 + (v110 - v010) * x;
-    const double c01 = v001 + (v101 - v001) * x, c11 = v011 + (v111 - v011) * x;
-    const double c0 = c00 + (c10 - c00) * y, c1 = c01 + (c11 - c01) * y;
-    f = c0 + (c1 - c0) * z;
-    if (!Gradient) return f;
-    const double e0 = (v100 - v000) + ((v110 - v010) - (v100 - v000)) * y;
-    const double e1 = (v101 - v001) + ((v111 - v011) - (v101 - v001)) * y;
-    gs[0] = (e0 + (e1 - e0) * z) * inv_delta_[0];
-    gs[1] = ((c10 - c00) + ((c11 - c01) - (c10 - c00)) * z) * inv_delta_[1];
-    gs[2] = (c1 - c0) * inv_delta_[2];
-  } else {
-    f = blend<Gradient>(s, gs);
+  const long s1 = stride_[1], s2 = stride_[2];
+  double f, gs[3];
+  switch ((s.n[0] - 2) | (s.n[1] - 2) << 1 | (s.n[2] - 2) << 2) {
+    case 0: f = contract<Gradient, 2, 2, 2>(s.base, s1, s2, s.c, s.dc, gs); break;
+    case 1: f = contract<Gradient, 3, 2, 2>(s.base, s1, s2, s.c, s.dc, gs); break;
+    case 2: f = contract<Gradient, 2, 3, 2>(s.base, s1, s2, s.c, s.dc, gs); break;
+    case 3: f = contract<Gradient, 3, 3, 2>(s.base, s1, s2, s.c, s.dc, gs); break;
+    case 4: f = contract<Gradient, 2, 2, 3>(s.base, s1, s2, s.c, s.dc, gs); break;
+    case 5: f = contract<Gradient, 3, 2, 3>(s.base, s1, s2, s.c, s.dc, gs); break;
+    case 6: f = contract<Gradient, 2, 3, 3>(s.base, s1, s2, s.c, s.dc, gs); break;
+    default: f = contract<Gradient, 3, 3, 3>(s.base, s1, s2, s.c, s.dc, gs); break;
   }
   if (Gradient) {
     // Grid-axis derivatives to world: p = origin + D s, so df/dp = D df/ds.
@@ -321,50 +362,6 @@ void PartitionOfUnity::evaluate_many(const Vec3* points, std::size_t n, double* 
       prefetch(s);
     }
   }
-}
-
-// Several cells contribute: f = sum_k phi_k f_k over the (at most 8) cells
-// with a nonzero weight, phi_k the product of the per-axis weights.
-template <bool Gradient> double PartitionOfUnity::blend(const Stencil& s, double* gs) const {
-  const float* base = s.base;
-  const int* cnt = s.cnt;
-  const auto& w = s.w;
-  const auto& dw = s.dw;
-  const auto& loc = s.loc;
-  // The (cnt+1)^3 corner samples the contributing cells use (at most 27).
-  double B[3][3][3];
-  for (int c = 0; c <= cnt[2]; ++c)
-    for (int b = 0; b <= cnt[1]; ++b)
-      for (int a = 0; a <= cnt[0]; ++a) B[c][b][a] = base[a + b * stride_[1] + c * stride_[2]];
-
-  double f = 0;
-  gs[0] = gs[1] = gs[2] = 0;
-  for (int c = 0; c < cnt[2]; ++c)
-    for (int b = 0; b < cnt[1]; ++b)
-      for (int a = 0; a < cnt[0]; ++a) {
-        const double x = loc[0][a], y = loc[1][b], z = loc[2][c];
-        const double v000 = B[c][b][a], v100 = B[c][b][a + 1], v010 = B[c][b + 1][a], v110 = B[c][b + 1][a + 1];
-        const double v001 = B[c + 1][b][a], v101 = B[c + 1][b][a + 1], v011 = B[c + 1][b + 1][a],
-                     v111 = B[c + 1][b + 1][a + 1];
-        const double c00 = v000 + (v100 - v000) * x, c10 = v010 + (v110 - v010) * x;
-        const double c01 = v001 + (v101 - v001) * x, c11 = v011 + (v111 - v011) * x;
-        const double c0 = c00 + (c10 - c00) * y, c1 = c01 + (c11 - c01) * y;
-        const double fk = c0 + (c1 - c0) * z;
-        const double wyz = w[1][b] * w[2][c];
-        const double wk = w[0][a] * wyz;
-        f += wk * fk;
-        if (Gradient) {
-          const double e0 = (v100 - v000) + ((v110 - v010) - (v100 - v000)) * y;
-          const double e1 = (v101 - v001) + ((v111 - v011) - (v101 - v001)) * y;
-          const double dfx = (e0 + (e1 - e0) * z) * inv_delta_[0];
-          const double dfy = ((c10 - c00) + ((c11 - c01) - (c10 - c00)) * z) * inv_delta_[1];
-          const double dfz = (c1 - c0) * inv_delta_[2];
-          gs[0] += dw[0][a] * wyz * fk + wk * dfx;
-          gs[1] += w[0][a] * dw[1][b] * w[2][c] * fk + wk * dfy;
-          gs[2] += w[0][a] * w[1][b] * dw[2][c] * fk + wk * dfz;
-        }
-      }
-  return f;
 }
 
 double PartitionOfUnity::value(const Vec3& p) const {

@@ -49,20 +49,21 @@ public:
                               unsigned threads = 1);
 
 private:
-  // The cells with a nonzero weight at a point: cnt[i] (1 or 2) per axis from
-  // the cell whose first corner sample is base; per axis the weights w, their
-  // derivatives dw (per unit of t) and the unit coordinates loc in each cell.
-  // base is null for a NaN point.
+  // What f needs at a point. Because phi_k factors per axis and f_k is
+  // trilinear, f = sum_{i,j,l} g(first + (i, j, l)) c[0][i] c[1][j] c[2][l]
+  // over the n[0] x n[1] x n[2] samples (n = 2 in a cell's centre region on
+  // that axis, 3 where two cells blend); c[a] are the per-axis coefficients,
+  // dc[a] their derivatives along axis a (physical units). base points to
+  // the first sample; null for a NaN point.
   struct Stencil {
     const float* base;
-    int cnt[3];
-    double w[3][2], dw[3][2], loc[3][2];
+    int n[3];
+    double c[3][3], dc[3][3];
   };
   template <bool Gradient> void locate(const Vec3& p, Stencil& s) const;
   void prefetch(const Stencil& s) const;
   template <bool Gradient> double combine(const Stencil& s, Vec3* gradient) const;
   template <bool Gradient> void evaluate_many(const Vec3* points, std::size_t n, double* f, Vec3* gradients) const;
-  template <bool Gradient> double blend(const Stencil& s, double* gs) const;
 
   FloatImage g_;
   Vec3 d_;

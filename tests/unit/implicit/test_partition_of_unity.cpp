@@ -365,6 +365,65 @@ TEST_CASE("copies evaluate identically; concurrent evaluation is consistent", "[
   REQUIRE_FALSE(f.in_domain(g.world(3, 15.01, 3)));
 }
 
+// f straight from (6.6)-(6.9): sum over the cells k around q (index units)
+// of phi_k f_k, w_k = prod_i eta((|t_i| - alpha_1) / beta) with t_i the
+// offset from the cell's centre, f_k the trilinear interpolant (extrapolated
+// outside C_k).
+double reference_f(const PartitionOfUnity& f, const Vec3& q) {
+  const FloatImage& g = f.samples();
+  long lo[3];
+  for (int i = 0; i < 3; ++i) lo[i] = std::max(0L, std::min(long(q[i]), long(g.size[i]) - 2) - 1);
+  double sum_w = 0, sum_wf = 0;
+  for (long c = lo[2]; c <= std::min(lo[2] + 2, long(g.size[2]) - 2); ++c)
+    for (long b = lo[1]; b <= std::min(lo[1] + 2, long(g.size[1]) - 2); ++b)
+      for (long a = lo[0]; a <= std::min(lo[0] + 2, long(g.size[0]) - 2); ++a) {
+        const long k[3] = {a, b, c};
+        double w = 1, loc[3];
+        for (int i = 0; i < 3; ++i) {
+          const double delta = g.spacing[i], d = f.d()[i];
+          const double t = (q[i] - (double(k[i]) + 0.5)) * delta;
+          w *= pu_eta((std::abs(t) - (delta / 2 - d)) / (2 * d));
+          loc[i] = q[i] - double(k[i]);
+        }
+        if (w == 0) continue;
+        double fk = 0;
+        for (int corner = 0; corner < 8; ++corner) {
+          double basis = 1;
+          for (int i = 0; i < 3; ++i) basis *= (corner >> i & 1) ? loc[i] : 1 - loc[i];
+          fk += basis * g(a + (corner & 1), b + (corner >> 1 & 1), c + (corner >> 2 & 1));
+        }
+        sum_w += w;
+        sum_wf += w * fk;
+      }
+  return sum_wf / sum_w;
+}
+
+TEST_CASE("f equals the thesis's sum of phi_k f_k over the neighbouring cells", "[pu]") {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    BinaryImage im = random_wc(11, 12, 10, seed + 30, seed == 2 ? Vec3{0.6, 1.0, 1.5} : Vec3{1, 1, 1});
+    if (seed == 3) rotate(im);
+    const PartitionOfUnity f = implicit_from_well_composed(im);
+    const FloatImage& g = f.samples();
+    const double scale = max_abs_g(f);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int trial = 0; trial < 20000; ++trial) {
+      Vec3 q;
+      for (int i = 0; i < 3; ++i) q[i] = u(rng) * double(g.size[i] - 1);
+      // Most points within d of 1, 2 or 3 grid planes (where cells blend),
+      // including the domain's end planes and the ends of the weight ramps.
+      for (int i = 0; i < 3; ++i)
+        if ((trial >> i) % 4 != 0) {
+          const double ramp = f.d()[i] / g.spacing[i];
+          const double off = trial % 5 == 0 ? (trial % 2 ? ramp : -ramp) : (2 * u(rng) - 1) * ramp;
+          q[i] = std::min(double(g.size[i] - 1), std::max(0.0, std::round(q[i]) + off));
+        }
+      INFO("seed " << seed << " q " << q[0] << " " << q[1] << " " << q[2]);
+      REQUIRE(std::abs(f.value(g.world(q[0], q[1], q[2])) - reference_f(f, q)) <= 1e-12 * scale);
+    }
+  }
+}
+
 TEST_CASE("values() at many points equals value() and value_gradient() point by point", "[pu]") {
   BinaryImage im = random_wc(14, 12, 13, 7, Vec3{0.7, 1.0, 1.6});
   rotate(im);
