@@ -43,6 +43,11 @@ enum Case : int {
   kRepair,            // Fig. 3.23: parent component triangle split
   kRootPentagonEdge,  // step 5: root pentagon + a point on its edge, B.1.1
   kPentagonPointMid,  // B.2.2 middle case: type-1 split, B.1.2 on the quad with q
+  kPairNonEmpty,      // 4(c)(iv): B.2.1 on own triangle + pair, B.1.2 on the rest
+  kTwoNonEmpty,       // 3(d): a point on the outgoing edge, B.1.2 twice
+  kTriangleTwoPoints, // 3(c) cross-edge, 4(c)(v)(d)-(e): leftover + B.1.2
+  kHeptagonClosed,    // B.3.1 with a point on the outgoing edge, no leftover
+  kDentPair,          // make_dents: a non-convex pair closed alone (nested template)
   kNumCases
 };
 const char* kCaseNames[kNumCases] = {
@@ -52,7 +57,8 @@ const char* kCaseNames[kNumCases] = {
     "3b_B12_quad_point",     "3c_B22_pentagon_point",  "4civ_hexagon_point",
     "5bd_joe_split",         "5bd_outside_point",      "5c_B12_nested",
     "degenerate_quad_triangle", "degenerate_quad_nonempty", "fallback_split",        "3_3_repair_split",
-    "5_B11_root_pentagon_edge_point", "B22_middle_type1_B12"};
+    "5_B11_root_pentagon_edge_point", "B22_middle_type1_B12", "4civ_B21_B12_pair_nonempty",
+    "3d_edge_point_B12_twice",  "3c_4cvde_leftover_B12", "B31_heptagon_edge_point", "fallback_pair_nested"};
 
 enum RegType : std::uint8_t { kEmpty = 0, kTri, kQuadR, kNTri, kDent };
 struct Region {
@@ -333,6 +339,17 @@ struct Converter {
       case kDent: break;
     }
   }
+  // A child's region and its outgoing edge (p, q) (u's edge (q, p)).
+  struct Kid {
+    Region r;
+    int p = -1, q = -1;
+  };
+  static int local_of(const LocalPatch& lp, int g) {
+    for (std::size_t i = 0; i < lp.gid.size(); ++i)
+      if (lp.gid[i] == g) return int(i);
+    return -1;
+  }
+
   static void region_ext(const Region& r, std::vector<int>& b, std::vector<int>& inner) {
     switch (r.type) {
       case kEmpty: break;
@@ -479,12 +496,14 @@ struct Converter {
     I.clear();
     tris.assign({{a, b, c}});
     kids.clear();
+    Kid kid[2];
     for (int k = 1; k <= 2; ++k) {
       const int j = (s0 + k) % 3;
       const int w = nb[u][j];
       if (k == 2) B.push_back(c);
       if (w < 0 || (con[u] >> j & 1) || par[w] != u) continue;
       const int p = T[u][(j + 1) % 3], q = T[u][j];  // child's outgoing edge (p, q)
+      kid[k - 1] = {reg[w], p, q};
       region_ext(reg[w], B, I);
       if (reg[w].type == kDent) split_own(tris, q, p, reg[w].x);
       else region_triangles(reg[w], p, q, kids);
@@ -599,7 +618,7 @@ struct Converter {
       } else if (nb_ == 6 && ni == 0) {
         if (t2q::hexagon(lp, {0, 1, 2, 3, 4, 5})) { ++cases[kHexagon]; r = {}; done = true; }
       } else if (nb_ == 7 && ni == 0) {
-        done = heptagon(lp, r);
+        done = heptagon(lp, r, a, b, c, is_root, split_m);
       } else if (nb_ == 3 && ni == 1) {
         // Non-empty triangle (a, b, w) around I (Fig. 3.6): it goes up to
         // the parent (a quad plus a leftover triangle is impossible here:
@@ -626,9 +645,14 @@ struct Converter {
         if (t2q::quad_with_point(lp, {0, 1, 2, 3}, 4)) { ++cases[kQuadPoint]; r = {}; done = true; }
       } else if (nb_ == 5 && ni == 1) {
         done = pentagon_point(lp, r);
-      } else if (nb_ == 6 && ni == 1) {
-        done = hexagon_point(lp, r);
+      } else if (nb_ == 3 && ni == 2) {
+        done = triangle_two_points(lp, c, r);
       }
+      const auto t0 = kid[0].r.type, t1 = kid[1].r.type;
+      if (!done && ((t0 == kQuadR && t1 == kNTri) || (t0 == kNTri && t1 == kQuadR)))
+        done = (nb_ == 6 && ni == 1 && hexagon_point(lp, r)) || pair_and_nonempty(lp, kid, a, b, c, r);
+      if (!done && t0 == kNTri && t1 == kNTri)
+        done = two_nonempty(lp, kid, a, b, c, is_root, r, split_m);
     }
     if (!done && attempt == 0 && make_dents(u, s0)) continue;
     if (!done) {
@@ -657,10 +681,13 @@ struct Converter {
         }
   }
 
-  // The thesis's degenerate quadrilaterals (Fig. 3.4/3.5): a child whose
-  // leftover (a triangle or a non-empty triangle) does not combine with this
-  // node is closed with a point m on the shared edge, pushed slightly into
-  // this node's triangle; the node keeps m as a (reflex) boundary vertex.
+  // Fallback when no construction for this node's polygon passes its
+  // checks (on random meshes: a few extreme heptagons and regions that
+  // touch themselves at a vertex): each child is closed alone, a leftover
+  // (a triangle or a non-empty triangle) with a point m on the shared edge
+  // pushed slightly into this node's triangle (the node keeps m as a reflex
+  // boundary vertex), a non-convex pair by the nested template. This can
+  // cost more than the per-step budget; each use is counted.
   bool make_dents(int u, int s0) {
     bool any = false;
     for (int k = 1; k <= 2; ++k) {
@@ -676,7 +703,7 @@ struct Converter {
         const int l2 = lp.add_known(pts[reg[w].x], reg[w].x), l3 = lp.add_known(pts[reg[w].y], reg[w].y);
         if (t2q::quad_nested_free(lp, {l0, l1, l2, l3})) {
           commit_region(lp, {}, attr[w]);
-          ++cases[kRootNested];
+          ++cases[kDentPair];
           reg[w] = {};
           any = true;
         }
@@ -712,13 +739,47 @@ struct Converter {
     return any;
   }
 
-  bool heptagon(LocalPatch& lp, Region& r) {
-    int kind = 0;
-    const int apex = t2q::heptagon(lp, {0, 1, 2, 3, 4, 5, 6}, &kind);
-    if (apex < 0) return false;
-    ++cases[kHeptagon];
-    r = {kTri, 0, apex, -1};
-    return true;
+  // Where a node closes with a point m on its outgoing edge (a, b): on the
+  // edge at the root; below it leaning a little into this node, so that
+  // the parent's triangle with m is a convex quadrilateral (the
+  // perturbation of step 1), or on the edge if that is all that works.
+  std::vector<P2> edge_points(int a, int b, int c, bool is_root) const {
+    const P2 mid = {0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])};
+    std::vector<P2> out;
+    if (!is_root)
+      for (double f : {0.03, 0.01}) out.push_back({mid[0] + f * (pts[c][0] - mid[0]), mid[1] + f * (pts[c][1] - mid[1])});
+    out.push_back(mid);
+    return out;
+  }
+
+  // 4(c)(v)(f), B.3.1: the heptagon (ring 0..6, local ids; apex 4 is c)
+  // leaves a triangle on the outgoing edge (6 quads, 4 points for 4
+  // triangles), or closes with a point m on that edge (7 quads, 5 points
+  // for 5 triangles; the parent gets m as a degenerate quadrilateral). At
+  // the root the closed form comes first: it costs less than a leftover
+  // triangle and step 5.
+  bool heptagon(LocalPatch& lp, Region& r, int a, int b, int c, bool is_root, int& split_m) {
+    const t2q::Ring v = {0, 1, 2, 3, 4, 5, 6};
+    auto leftover = [&] {
+      const int apex = t2q::heptagon(lp, v);
+      if (apex < 0) return false;
+      ++cases[kHeptagon];
+      r = {kTri, 0, apex, -1};
+      return true;
+    };
+    if (!is_root && leftover()) return true;
+    const auto m0 = lp.mark();
+    for (const P2& x : edge_points(a, b, c, is_root)) {
+      const int m = lp.add_new(x);
+      if (t2q::heptagon_closed(lp, v, m)) {
+        ++cases[kHeptagonClosed];
+        if (is_root) { split_m = m; r = {}; }
+        else r = {kDent, 0, m, -1};
+        return true;
+      }
+      lp.rollback(m0);
+    }
+    return is_root && leftover();
   }
 
   bool pentagon_point(LocalPatch& lp, Region& r) {
@@ -828,6 +889,103 @@ struct Converter {
     return false;
   }
 
+  // 3(c) with the cross-edge, 4(c)(v)(d)-(e): the region is the triangle
+  // (a, b, X) (local 0, 1, 2) with two vertices inside (3, 4), one of them
+  // c. The own triangle is the leftover; the rest is the quadrilateral
+  // (b, X, a, c), reflex at c, with the other vertex inside (B.1.2): 5
+  // quads and 3 points for the 4 triangles eliminated. If B.1.2 fails
+  // there, the other inside vertex may serve as the apex instead.
+  bool triangle_two_points(LocalPatch& lp, int c, Region& r) {
+    const int lc = local_of(lp, c);
+    if (lc != 3 && lc != 4) return false;
+    for (const int apex : {lc, 7 - lc}) {
+      const int q = 7 - apex;
+      const P2 &A = lp.p[0], &B = lp.p[1], &Z = lp.p[apex], &Q = lp.p[q];
+      const int o1 = t2q::orient(B, Z, Q), o2 = t2q::orient(Z, A, Q);
+      if (!t2q::good_triangle(A, B, Z) || o1 == 0 || o2 == 0 || (o1 > 0 && o2 > 0)) continue;
+      if (t2q::quad_with_point(lp, {1, 2, 0, apex}, q)) {
+        ++cases[kTriangleTwoPoints];
+        r = {kTri, 0, apex, -1};
+        return true;
+      }
+    }
+    return false;
+  }
+
+  // 4(c)(iv): a non-convex pair and a non-empty triangle (p, q, x) around y
+  // on the other edge. The pentagon P of the own triangle and the pair goes
+  // through B.2.1 with the edge (q, p) as its outgoing edge; the leftover
+  // (q, p, z) and the non-empty triangle form the quadrilateral (p, z, q, x)
+  // around y (B.1.2). Where B.2.1 needs type 3, its point m goes on that
+  // edge: the hexagon P + m by B.1.1 with at most two points, and B.1.2 on
+  // (p, m, q, x). At most 9 quads and 6 points for the 6 triangles.
+  bool pair_and_nonempty(LocalPatch& lp, const Kid* kid, int a, int b, int c, Region& r) {
+    const Kid& pair = kid[0].r.type == kQuadR ? kid[0] : kid[1];
+    const Kid& nt = kid[0].r.type == kNTri ? kid[0] : kid[1];
+    std::vector<int> ring = {a, b};
+    if (&pair == &kid[0]) { ring.push_back(pair.r.x); ring.push_back(pair.r.y); }
+    ring.push_back(c);
+    if (&pair == &kid[1]) { ring.push_back(pair.r.x); ring.push_back(pair.r.y); }
+    std::rotate(ring.begin(), std::find(ring.begin(), ring.end(), nt.q), ring.end());
+    Ring P;
+    for (int g : ring) P.push_back(local_of(lp, g));
+    const int lp_ = local_of(lp, nt.p), lq = local_of(lp, nt.q), lx = local_of(lp, nt.r.x),
+              ly = local_of(lp, nt.r.y);
+    if (P[1] != lp_ || std::find(P.begin(), P.end(), -1) != P.end() || lx < 0 || ly < 0) return false;
+    std::vector<P2> pp;
+    for (int i : P) pp.push_back(lp.p[i]);
+    if (!t2q::simple_ccw(pp)) return false;
+    const auto m0 = lp.mark();
+    const int z = t2q::pentagon(lp, P, nullptr, 1);
+    if (z >= 0 && t2q::quad_with_point(lp, {lp_, z, lq, lx}, ly)) {
+      ++cases[kPairNonEmpty];
+      r = {};
+      return true;
+    }
+    lp.rollback(m0);
+    // Type 3: m on the edge, pushed a little to either side or not at all.
+    const P2 Q = lp.p[lq], Pp = lp.p[lp_], X = lp.p[lx], Z = lp.p[P[3]];
+    const P2 mid = {0.5 * (Q[0] + Pp[0]), 0.5 * (Q[1] + Pp[1])};
+    for (const P2& toward : {X, Z, mid})
+      for (double f : {0.05, 0.01}) {
+        const int m = lp.add_new({mid[0] + f * (toward[0] - mid[0]), mid[1] + f * (toward[1] - mid[1])});
+        std::vector<P2> hp = {Q, lp.p[m], Pp, pp[2], pp[3], pp[4]};
+        if (t2q::simple_ccw(hp) && t2q::hexagon(lp, {lq, m, lp_, P[2], P[3], P[4]}, 2) &&
+            t2q::quad_with_point(lp, {lp_, m, lq, lx}, ly)) {
+          ++cases[kPairNonEmpty];
+          r = {};
+          return true;
+        }
+        lp.rollback(m0);
+      }
+    return false;
+  }
+
+  // 3(d): two non-empty triangles (p_k, q_k, x_k) around y_k. A point m on
+  // the outgoing edge (a, b) joined to c gives the quadrilaterals
+  // (p_k, m, q_k, x_k) around y_k (B.1.2 twice): 10 quads and 7 points for
+  // the 7 triangles; the parent gets m (edge_points()).
+  bool two_nonempty(LocalPatch& lp, const Kid* kid, int a, int b, int c, bool is_root, Region& r, int& split_m) {
+    const auto m0 = lp.mark();
+    for (const P2& x : edge_points(a, b, c, is_root)) {
+      const int m = lp.add_new(x);
+      bool ok = true;
+      for (int k = 0; k < 2 && ok; ++k) {
+        const Kid& nt = kid[k];
+        ok = t2q::quad_with_point(lp, {local_of(lp, nt.p), m, local_of(lp, nt.q), local_of(lp, nt.r.x)},
+                                  local_of(lp, nt.r.y));
+      }
+      if (ok) {
+        ++cases[kTwoNonEmpty];
+        if (is_root) { split_m = m; r = {}; }
+        else r = {kDent, 0, m, -1};
+        return true;
+      }
+      lp.rollback(m0);
+    }
+    return false;
+  }
+
   // Step 5: whatever the root leaves on its edge (a, b).
   void finish_root(int u, int a, int b, Region r, double at, int split_m) {
     if (split_m >= 0) {
@@ -839,15 +997,16 @@ struct Converter {
     const int z = r.x;
     const bool outer = comp_parent[comp[u]] < 0;
     if (outer && opt.allow_outside) {
+      // The point s outside, right of a -> b: the quad (a, s, b, z) is
+      // strictly convex for s in L(z, a) and L(b, z) (placement rule);
+      // the centroid of that wedge cut at a height of |ab| / 4 (Fig. 3.16).
       LocalPatch lp;
       const int la = lp.add_known(pts[a], a), lb = lp.add_known(pts[b], b), lz = lp.add_known(pts[z], z);
-      const P2 mm = {0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])};
-      const double dx = pts[b][0] - pts[a][0], dy = pts[b][1] - pts[a][1];
-      // Outward normal (right of a -> b), a small height as in Fig. 3.16.
-      for (double d : {0.1, 0.03, 0.01}) {
-        const P2 s = {mm[0] + d * dy, mm[1] - d * dx};
-        lp.rollback({3, 0});
-        const int ls = lp.add_new(s);
+      const P2 A = pts[a], Bp = pts[b], Z = pts[z];
+      const P2 n = {0.25 * (Bp[1] - A[1]), -0.25 * (Bp[0] - A[0])};
+      const auto wedge = t2q::clip({A, {A[0] + n[0], A[1] + n[1]}, {Bp[0] + n[0], Bp[1] + n[1]}, Bp}, {{Z, A}, {Bp, Z}});
+      if (wedge.size() >= 3) {
+        const int ls = lp.add_new(t2q::centroid(wedge));
         if (t2q::good_quad(lp.p[la], lp.p[ls], lp.p[lb], lp.p[lz])) {
           lp.quads.push_back({la, ls, lb, lz});
           commit_region(lp, {}, at);

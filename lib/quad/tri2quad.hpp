@@ -17,9 +17,11 @@
 // odd-degree edge subset on the region's dual tree: triangles with three
 // split edges get de Berg's 3 quads, with one split edge Joe's 5 quads),
 // counted in the stats, so the output is always strictly convex.
-// A result above the size bounds (only seen on meshes of a few dozen
-// triangles, where 4h cannot absorb a construction that overspends its
-// per-step budget) is redone from other root edges and the smallest kept.
+// Every case of steps 1-5 has a construction within the thesis's per-step
+// budget, so the size bounds hold by construction; only when a fallback
+// ran (make_dents, the safe split) could a result exceed them, and then it
+// is redone from other root edges and the smallest kept (a safety net,
+// counted as size_bound_retry; never used on the random test meshes).
 #pragma once
 #include "planar/triangle_io.hpp"
 

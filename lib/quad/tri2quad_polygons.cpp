@@ -133,6 +133,40 @@ double line_param(const P2& o, const P2& w, const P2& u, const P2& v) {
   return -cross2(ex, ey, o[0] - u[0], o[1] - u[1]) / den;
 }
 
+// Half-planes for the unknown x from the turns of qs in which x is the only
+// point not yet placed (the ids in `later` are not).
+std::vector<HalfPlane> turns_of(const LocalPatch& lp, int x, const std::vector<int>& later,
+                                const std::vector<Quad>& qs) {
+  auto unplaced = [&](int v) { return std::find(later.begin(), later.end(), v) != later.end(); };
+  std::vector<HalfPlane> hp;
+  for (const Quad& q : qs)
+    for (int i = 0; i < 4; ++i) {
+      const int A = q[(i + 3) % 4], B = q[i], C = q[(i + 1) % 4];
+      if (unplaced(A) || unplaced(B) || unplaced(C)) continue;
+      if (A == x) hp.push_back({lp.p[B], lp.p[C]});
+      else if (B == x) hp.push_back({lp.p[C], lp.p[A]});
+      else if (C == x) hp.push_back({lp.p[A], lp.p[B]});
+    }
+  return hp;
+}
+
+// The new points xs[i..] one after another, each in `bound` by the turns
+// of qs that involve it and no point placed after it; done() once all are
+// placed. True at the first success.
+bool place_seq(LocalPatch& lp, const std::vector<int>& xs, std::size_t i, const std::vector<P2>& bound,
+               const std::vector<Quad>& qs, const std::function<bool()>& done) {
+  if (i == xs.size()) return done();
+  const std::vector<int> later(xs.begin() + std::ptrdiff_t(i) + 1, xs.end());
+  return place(lp, xs[i], bound, {}, {}, turns_of(lp, xs[i], later, qs),
+               [&] { return place_seq(lp, xs, i + 1, bound, qs, done); });
+}
+
+bool quads_good(const LocalPatch& lp, const std::vector<Quad>& qs) {
+  for (const Quad& q : qs)
+    if (!good_local(lp, q)) return false;
+  return true;
+}
+
 bool all_good(const LocalPatch& lp, std::size_t from) {
   for (std::size_t i = from; i < lp.quads.size(); ++i)
     if (!good_local(lp, lp.quads[i])) return false;
@@ -389,30 +423,22 @@ bool quad_with_point(LocalPatch& lp, const Ring& c, int q) {
     }
   }
   // Search (the "arm" case, and a safety net): q joined to corner k, the
-  // other three inner points placed one at a time by the placement rule.
+  // other three inner points placed one at a time by the placement rule,
+  // in a few orders (a needle's inner point is the hard one to place).
   const auto Q = pts(lp, c);
   for (int k = 0; k < 4; ++k) {
     const auto m = lp.mark();
     std::array<int, 4> in{};
     for (int i = 0; i < 4; ++i) in[i] = (i == k) ? q : lp.add_new();
-    std::vector<Quad> ring;
-    for (int i = 0; i < 4; ++i) ring.push_back({c[i], c[(i + 1) % 4], in[(i + 1) % 4], in[i]});
-    const Quad inner{in[0], in[1], in[2], in[3]};
-    const int a1 = (k + 1) % 4, a2 = (k + 3) % 4, a3 = (k + 2) % 4;
-    // in[a1]: ring quad k (c_k, c_k+1, in_k+1, q); in[a2]: ring quad k-1.
-    bool ok = place(lp, in[a1], Q, {ring[k]}, {}, {}, [&] {
-      return place(lp, in[a2], Q, {ring[(k + 3) % 4]}, {}, {{lp.p[q], lp.p[in[a1]]}}, [&] {
-        return place(lp, in[a3], Q, {ring[a1], ring[a3], inner}, {}, {}, [&] {
-          for (const Quad& x : ring) if (!good_local(lp, x)) return false;
-          return good_local(lp, inner);
-        });
-      });
-    });
-    if (ok) {
-      for (const Quad& x : ring) lp.quads.push_back(x);
-      lp.quads.push_back(inner);
-      return true;
-    }
+    std::vector<Quad> qs;
+    for (int i = 0; i < 4; ++i) qs.push_back({c[i], c[(i + 1) % 4], in[(i + 1) % 4], in[i]});
+    qs.push_back({in[0], in[1], in[2], in[3]});
+    const int a1 = in[(k + 1) % 4], a2 = in[(k + 3) % 4], a3 = in[(k + 2) % 4];
+    for (const auto& order : {std::vector<int>{a1, a2, a3}, {a3, a1, a2}, {a1, a3, a2}, {a3, a2, a1}})
+      if (place_seq(lp, order, 0, Q, qs, [&] { return quads_good(lp, qs); })) {
+        for (const Quad& x : qs) lp.quads.push_back(x);
+        return true;
+      }
     lp.rollback(m);
   }
   return false;
@@ -435,7 +461,7 @@ bool quad_nested_free(LocalPatch& lp, const Ring& c) {
 }
 
 // ---------------------------------------------------------------- B.2.1
-int pentagon(LocalPatch& lp, const Ring& v, int* kind) {
+int pentagon(LocalPatch& lp, const Ring& v, int* kind, int hexagon_budget) {
   auto P = [&](int i) -> const P2& { return lp.p[v[i]]; };
   auto V = [&](int i) { return v[i]; };
   const auto m = lp.mark();
@@ -509,7 +535,7 @@ int pentagon(LocalPatch& lp, const Ring& v, int* kind) {
   // and the hexagon (v1, v2, v3, v4, v0, p) by B.1.1, fewest points first.
   const P2 e0 = P(0), e1 = P(1), em = mid(e0, e1);
   const std::vector<P2> targets = {P(2), P(3), P(4), centroid(pts(lp, v))};
-  for (int budget = 0; budget <= 3; ++budget)
+  for (int budget = 0; budget <= hexagon_budget; ++budget)
     for (const P2& X : targets)
       for (double f : {0.3, 0.5, 0.15, 0.7}) {
         const int p = lp.add_new(lerp(em, X, f));
@@ -524,6 +550,91 @@ int pentagon(LocalPatch& lp, const Ring& v, int* kind) {
 }
 
 // ---------------------------------------------------------------- B.3.1
+namespace {
+// Interior bisector of the polygon vertex cur (neighbours prev, next).
+P2 bisector(const P2& prev, const P2& cur, const P2& next) {
+  const double ux = next[0] - cur[0], uy = next[1] - cur[1], wx = prev[0] - cur[0], wy = prev[1] - cur[1];
+  double th = std::atan2(cross2(ux, uy, wx, wy), ux * wx + uy * wy);
+  if (th < 0) th += 2 * std::acos(-1.0);
+  const double nu = std::hypot(ux, uy), cs = std::cos(th / 2), sn = std::sin(th / 2);
+  return {(ux * cs - uy * sn) / nu, (ux * sn + uy * cs) / nu};
+}
+
+// T0 of B.1.1 on the hexagon h: the diagonal (h_t, h_t+3).
+void diagonal_split(const Ring& h, int t, std::vector<Quad>& qs) {
+  qs.push_back({h[t], h[t + 1], h[t + 2], h[t + 3]});
+  qs.push_back({h[t + 3], h[(t + 4) % 6], h[(t + 5) % 6], h[t]});
+}
+} // namespace
+
+bool octagon(LocalPatch& lp, const Ring& o, int budget) {
+  const auto m = lp.mark();
+  auto O = [&](int i) { return o[i % 8]; };
+  auto simple = [&](const Ring& r) { return simple_ccw(pts(lp, r)); };
+  // A diagonal cuts off a strictly convex quad; B.1.1 on the hexagon left.
+  for (int i = 0; i < 8; ++i)
+    for (int len : {3, 5}) {
+      Ring quad, hex;
+      for (int k = 0; k <= len; ++k) (len == 3 ? quad : hex).push_back(O(i + k));
+      for (int k = len; k <= 8; ++k) (len == 3 ? hex : quad).push_back(O(i + k));
+      const Quad q{quad[0], quad[1], quad[2], quad[3]};
+      if (!good_local(lp, q) || !simple(hex)) continue;
+      lp.quads.push_back(q);
+      if (hexagon(lp, hex, std::min(budget, 3))) return true;
+      lp.rollback(m);
+    }
+  if (budget < 1) return false;
+  // A path o_i - p - o_i+4 through one new point cuts two hexagons; first
+  // each split by a diagonal with p placed by the placement rule, then
+  // with p on the way or on a reflex end's bisector and B.1.1 on both.
+  const int p = lp.add_new();
+  const auto with_p = lp.mark();
+  const auto box = bbox_poly(pts(lp, o), 0.0);
+  for (int i = 0; i < 4; ++i) {
+    const Ring h1 = {O(i), O(i + 1), O(i + 2), O(i + 3), O(i + 4), p};
+    const Ring h2 = {O(i + 4), O(i + 5), O(i + 6), O(i + 7), O(i), p};
+    for (int t1 = 0; t1 < 3; ++t1)
+      for (int t2 = 0; t2 < 3; ++t2) {
+        std::vector<Quad> qs, fixed;
+        diagonal_split(h1, t1, qs);
+        diagonal_split(h2, t2, qs);
+        bool known_ok = true;
+        for (const Quad& q : qs) {
+          if (std::find(q.begin(), q.end(), p) != q.end()) fixed.push_back(q);
+          else known_ok = known_ok && good_local(lp, q);
+        }
+        if (known_ok && place(lp, p, box, fixed, {}, {}, [&] { return quads_good(lp, qs); })) {
+          for (const Quad& q : qs) lp.quads.push_back(q);
+          return true;
+        }
+      }
+  }
+  for (int i = 0; i < 4; ++i) {
+    std::vector<P2> cand;
+    for (double f : {0.5, 0.3, 0.7}) cand.push_back(lerp(lp.p[O(i)], lp.p[O(i + 4)], f));
+    for (int j : {i, i + 4}) {
+      const P2 &a = lp.p[O(j + 7)], &c = lp.p[O(j)], &b = lp.p[O(j + 1)];
+      if (orient(a, c, b) > 0) continue;
+      const P2 d = bisector(a, c, b);
+      const double L = std::min(std::hypot(a[0] - c[0], a[1] - c[1]), std::hypot(b[0] - c[0], b[1] - c[1]));
+      for (double f : {0.4, 0.2, 0.6}) cand.push_back({c[0] + f * L * d[0], c[1] + f * L * d[1]});
+    }
+    const Ring h1 = {O(i), O(i + 1), O(i + 2), O(i + 3), O(i + 4), p};
+    const Ring h2 = {O(i + 4), O(i + 5), O(i + 6), O(i + 7), O(i), p};
+    for (const P2& x : cand) {
+      lp.p[p] = x;
+      if (!simple(h1) || !simple(h2)) continue;
+      for (int k1 = 0; k1 < budget; ++k1)
+        for (int k2 = 0; k1 + k2 < budget; ++k2) {
+          if (hexagon(lp, h1, k1) && hexagon(lp, h2, k2)) return true;
+          lp.rollback(with_p);
+        }
+    }
+  }
+  lp.rollback(m);
+  return false;
+}
+
 int heptagon(LocalPatch& lp, const Ring& v, int* kind) {
   auto P = [&](int i) -> P2 { return lp.p[v[i]]; };
   const auto m = lp.mark();
@@ -536,25 +647,57 @@ int heptagon(LocalPatch& lp, const Ring& v, int* kind) {
     if (hexagon(lp, rest)) { if (kind) *kind = 0; return apex; }
     lp.rollback(m);
   }
-  // General form (notes 3.6): leftover (v0, v1, p3) and the path p3-p1-v4
-  // cut the rest into two hexagons, quadrangulated with 2 points at most.
+  // General form (notes 3.6): the leftover (v0, v1, p3) leaves the octagon
+  // (p3, v1, ..., v6, v0) to close with at most 3 more points (6 quads and
+  // 4 points in all). First the thesis's shape: a path p3 - p1 - v4 and
+  // two diagonals, p3 by the placement rule from the turns that do not
+  // involve p1, then p1 (5 quads, 2 points); then p3 at fixed places.
+  const int p3 = lp.add_new();
+  const Ring O = {p3, v[1], v[2], v[3], v[4], v[5], v[6], v[0]};
+  {
+    const int p1 = lp.add_new();
+    const Ring hl = {v[1], v[2], v[3], v[4], p1, p3}, hr = {p3, p1, v[4], v[5], v[6], v[0]};
+    const std::vector<P2> own = {P(0), P(1), P(4)};
+    const auto box = bbox_poly(pts(lp, v), 0.0);
+    for (int t1 = 0; t1 < 3; ++t1)
+      for (int t2 = 0; t2 < 3; ++t2) {
+        std::vector<Quad> qs, with_p1;
+        diagonal_split(hl, t1, qs);
+        diagonal_split(hr, t2, qs);
+        bool known_ok = true;
+        for (const Quad& q : qs) {
+          const bool has3 = std::find(q.begin(), q.end(), p3) != q.end();
+          const bool has1 = std::find(q.begin(), q.end(), p1) != q.end();
+          if (!has3 && !has1) known_ok = known_ok && good_local(lp, q);
+          if (has1) with_p1.push_back(q);
+        }
+        if (!known_ok) continue;
+        const bool ok = place(lp, p3, own, {}, {{v[0], v[1], p3}}, turns_of(lp, p3, {p1}, qs), [&] {
+          return place(lp, p1, box, with_p1, {}, {}, [&] { return quads_good(lp, qs); });
+        });
+        if (ok) {
+          for (const Quad& q : qs) lp.quads.push_back(q);
+          if (kind) *kind = 1;
+          return p3;
+        }
+      }
+    lp.rollback({m.np + 1, m.nq});
+  }
   const P2 em = mid(P(0), P(1)), ctr = {(P(0)[0] + P(1)[0] + P(4)[0]) / 3, (P(0)[1] + P(1)[1] + P(4)[1]) / 3};
   for (const P2& X : {ctr, P(4)})
-    for (double f3 : {0.3, 0.5, 0.15})
-      for (double f1 : {0.5, 0.3, 0.7}) {
-        const int p3 = lp.add_new(lerp(em, X, f3));
-        const int p1 = lp.add_new(lerp(lp.p[p3], P(4), f1));
-        const Ring hl = {v[1], v[2], v[3], v[4], p1, p3}, hr = {p3, p1, v[4], v[5], v[6], v[0]};
-        if (good_triangle(P(0), P(1), lp.p[p3]) && simple_ccw(pts(lp, hl)) && simple_ccw(pts(lp, hr))) {
-          for (const auto& bb : {std::pair<int, int>{0, 0}, {0, 1}, {1, 0}, {1, 1}, {0, 2}, {2, 0}}) {
-            const auto m2 = lp.mark();
-            if (hexagon(lp, hl, bb.first) && hexagon(lp, hr, bb.second)) { if (kind) *kind = 1; return p3; }
-            lp.rollback(m2);
-          }
-        }
-        lp.rollback(m);
+    for (double f3 : {0.3, 0.5, 0.15, 0.7}) {
+      lp.p[p3] = lerp(em, X, f3);
+      if (good_triangle(P(0), P(1), lp.p[p3]) && octagon(lp, O, 3)) {
+        if (kind) *kind = 1;
+        return p3;
       }
+    }
+  lp.rollback(m);
   return -1;
+}
+
+bool heptagon_closed(LocalPatch& lp, const Ring& v, int mpt) {
+  return octagon(lp, {mpt, v[1], v[2], v[3], v[4], v[5], v[6], v[0]}, 4);
 }
 
 // ---------------------------------------------------------------- splits

@@ -60,13 +60,22 @@ bool quad_nested_free(LocalPatch& lp, const Ring& c);
 // leftover triangle on the outgoing edge; returns the apex of that triangle
 // (a local index) or -1. kind: 0 ear (no point), 1 type 1, 2 type 2, 3 in
 // place of type 3 (which would put a point on the outgoing edge): a new apex
-// and B.1.1 on the hexagon left.
-int pentagon(LocalPatch& lp, const Ring& v, int* kind = nullptr);
+// and B.1.1 on the hexagon left, with at most `hexagon_budget` points (1
+// keeps the lemma's 3 quads and 2 points).
+int pentagon(LocalPatch& lp, const Ring& v, int* kind = nullptr, int hexagon_budget = 3);
 
 // Lemma B.3.1 for a heptagon v (v[0]v[1] the outgoing edge): a leftover
 // triangle on the outgoing edge (an ear, or with a new apex and the path of
 // notes 3.6), hexagons for the rest. Returns the apex or -1.
 int heptagon(LocalPatch& lp, const Ring& v, int* kind = nullptr);
+// An octagon o closed with at most `budget` interior points (at most
+// budget + 3 quads): a diagonal and B.1.1, or a path through one new point
+// between opposite vertices and two hexagons (notes 3.6).
+bool octagon(LocalPatch& lp, const Ring& o, int budget);
+// The heptagon v with the point mpt on its outgoing edge v0v1, closed as
+// the octagon (mpt, v1, ..., v6, v0) with at most 4 interior points: 7
+// quads and 5 points for its 5 triangles, no leftover.
+bool heptagon_closed(LocalPatch& lp, const Ring& v, int mpt);
 
 // Joe's split of triangle (a, b, c) with the point m on edge bc (section
 // 3.8 of the notes): 5 quads, 4 new interior points.

@@ -533,8 +533,9 @@ TEST_CASE("Random constrained Delaunay triangulations: all guarantees", "[tri2qu
   for (const char* name : {"4c_convex_quad", "4c_quad_to_grandparent", "B21_pentagon_ear", "4b_B21_type1",
                            "4cii_B21_type2", "B21_type3_apex_hexagon", "4ci_4ciii_B11_hexagon", "4cvf_B31_heptagon",
                            "3_nonempty_triangle", "3b_B12_quad_point", "3c_B22_pentagon_point", "5bd_joe_split",
-                           "5bd_outside_point", "5c_B12_nested", "3_3_repair_split", "degenerate_quad_nonempty",
-                           "5_B11_root_pentagon_edge_point", "B22_middle_type1_B12", "4civ_hexagon_point"}) {
+                           "5bd_outside_point", "5c_B12_nested", "3_3_repair_split", "5_B11_root_pentagon_edge_point",
+                           "B22_middle_type1_B12", "4civ_hexagon_point", "4civ_B21_B12_pair_nonempty",
+                           "3d_edge_point_B12_twice", "3c_4cvde_leftover_B12", "B31_heptagon_edge_point"}) {
     INFO(name);
     CHECK(cases[name] > 0);
   }
@@ -542,6 +543,9 @@ TEST_CASE("Random constrained Delaunay triangulations: all guarantees", "[tri2qu
                                                 << "; size-bound retries " << cases["size_bound_retry"]);
   CHECK(small_excess_q <= 0);
   CHECK(small_excess_s <= 0);
+  // The bounds hold by construction: the rerun from other root edges (a
+  // safety net) is never needed.
+  CHECK(cases["size_bound_retry"] == 0);
 }
 
 // Small meshes are where the additive 4h has the least room: the exact
@@ -566,6 +570,7 @@ TEST_CASE("Small random constrained Delaunay triangulations: exact size bounds",
     }
   }
   CHECK(meshes > 5000);
+  CHECK(retries == 0);
   WARN("small random CDTs: " << meshes << " runs, size-bound retries " << retries);
 }
 
