@@ -31,16 +31,12 @@ int main(int argc, char** argv) {
         tool.report_progress("pass " + std::to_string(pass) + "/" + std::to_string(passes));
       };
     imgmesh::PlanarMesh mesh = imgmesh::read_planar_mesh(in);
-    try {
-      imgmesh::check_quad_mesh(mesh, in);
-    } catch (const imgmesh::Error& e) {
-      throw imgmesh::Error(e.what(), in);
-    }
     bool quads_only = true;
     for (const auto& e : mesh.elements) quads_only = quads_only && e.size() == 4;
-    if (!quads_only) tool.info(in + ": triangles found; their vertices stay fixed");
     const auto t0 = std::chrono::steady_clock::now();
-    const imgmesh::SmoothStats st = imgmesh::smooth_quad_mesh(mesh, opt);
+    // smooth_quad_mesh checks the input (conformity, orientation) first.
+    const imgmesh::SmoothStats st = imgmesh::naming_input(in, [&] { return imgmesh::smooth_quad_mesh(mesh, opt); });
+    if (!quads_only) tool.info(in + ": triangles found; their vertices stay fixed");
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     imgmesh::write_planar_mesh(out, mesh);
     if (!svg.empty()) {

@@ -37,28 +37,33 @@ inline std::uint64_t edge_key(int a, int b) {
   return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
 }
 
-// sin of the smallest angle of triangle (a, b, c). The smallest angle is at
-// most 60 degrees, where sin is monotone: comparing sines compares angles
-// without any trigonometry (the guard runs millions of times).
-inline double sin_min_angle(const Point2& a, const Point2& b, const Point2& c) {
-  const double abx = b[0] - a[0], aby = b[1] - a[1];
-  const double bcx = c[0] - b[0], bcy = c[1] - b[1];
-  const double cax = a[0] - c[0], cay = a[1] - c[1];
-  const double lab = abx * abx + aby * aby, lbc = bcx * bcx + bcy * bcy, lca = cax * cax + cay * cay;
-  const double cr = std::fabs(abx * cay - aby * cax);  // twice the area
-  // The smallest angle is opposite the shortest edge: sin = 2A / (product of the other two).
+// sin of the smallest angle of a triangle from its squared edge lengths
+// and twice its area. The smallest angle is at most 60 degrees, where sin
+// is monotone: comparing sines compares angles without any trigonometry
+// (the guard runs millions of times). It is opposite the shortest edge:
+// sin = 2A / (product of the other two).
+inline double sin_min_angle(double l1, double l2, double l3, double area2) {
   double den;
-  if (lab <= lbc && lab <= lca) den = lbc * lca;
-  else if (lbc <= lca) den = lab * lca;
-  else den = lab * lbc;
+  if (l1 <= l2 && l1 <= l3) den = l2 * l3;
+  else if (l2 <= l3) den = l1 * l3;
+  else den = l1 * l2;
   if (!(den > 0)) return 0;
-  return cr / std::sqrt(den);
+  return std::fabs(area2) / std::sqrt(den);
 }
 
 // sin(Joe's mu); mu <= 45 degrees so the sine orders quads like mu does.
+// The four triangles share the four sides and two diagonals.
 inline double sin_mu(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-  return std::min(std::min(sin_min_angle(a, b, d), sin_min_angle(c, d, b)),
-                  std::min(sin_min_angle(a, b, c), sin_min_angle(d, a, c)));
+  auto sq = [](const Point2& p, const Point2& q) {
+    return (q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]);
+  };
+  auto cross = [](const Point2& o, const Point2& p, const Point2& q) {
+    return (p[0] - o[0]) * (q[1] - o[1]) - (p[1] - o[1]) * (q[0] - o[0]);
+  };
+  const double ab = sq(a, b), bc = sq(b, c), cd = sq(c, d), da = sq(d, a), ac = sq(a, c), bd = sq(b, d);
+  // Diagonal bd: [a,b,d], [c,d,b]; diagonal ac: [a,b,c], [d,a,c].
+  return std::min(std::min(sin_min_angle(ab, bd, da, cross(a, b, d)), sin_min_angle(cd, bd, bc, cross(c, d, b))),
+                  std::min(sin_min_angle(ab, bc, ac, cross(a, b, c)), sin_min_angle(da, ac, cd, cross(d, a, c))));
 }
 
 inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
@@ -70,17 +75,90 @@ inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, c
 // the pair below the usual bar), sin(15 deg) for collapses.
 constexpr double kSwapBelow = 0.5;
 constexpr double kCollapseBelow = 0.25881904510252074;
-// Vertices next to a quad with mu below 40 degrees also get a compass search
+// Vertices next to a quad with mu below 25 degrees also get a compass search
 // on the soft minimum of mu around them.
-constexpr double kOptimizeBelow = 0.64278760968653925;  // sin(40 deg)
+constexpr double kOptimizeBelow = 0.42261826174069944;  // sin(25 deg)
 constexpr int kOptimizeRounds = 10;
+constexpr std::size_t kStarCache = 16;  // quads around a vertex whose sines try_move keeps aside
+
+// The directed edges a -> b of all elements grouped by a (a counting sort,
+// in element order): for each vertex, the elements around it and the next
+// vertex in each. The conformity check and the smoother's adjacency both
+// read it; no sort and no hashing, so 10^6 quads take a fraction of a second.
+struct Stars {
+  std::vector<int> start, next, elem;
+  // The element holding the directed edge b -> a, or -1.
+  int twin(int a, int b) const {
+    for (int i = start[b]; i < start[b + 1]; ++i)
+      if (next[i] == a) return elem[i];
+    return -1;
+  }
+};
+
+// Checks the input contract (see check_quad_mesh) and returns the stars.
+Stars conforming_stars(const PlanarMesh& m, const std::string& path) {
+  const long long n = static_cast<long long>(m.points.size());
+  if (m.elements.empty()) throw Error("mesh has no elements", path);
+  for (const auto& p : m.points)
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) throw Error("non-finite point coordinate", path);
+  Stars s;
+  s.start.assign(std::size_t(n) + 1, 0);
+  for (std::size_t e = 0; e < m.elements.size(); ++e) {
+    const auto& el = m.elements[e];
+    const std::string where = "element " + std::to_string(e + m.first_index);
+    if (el.size() != 3 && el.size() != 4) throw Error(where + " has " + std::to_string(el.size()) + " nodes (want 3 or 4)", path);
+    for (std::size_t i = 0; i < el.size(); ++i) {
+      if (el[i] < 0 || el[i] >= n) throw Error(where + ": node id out of range", path);
+      for (std::size_t j = 0; j < i; ++j)
+        if (el[i] == el[j]) throw Error(where + ": repeated node", path);
+    }
+    const auto& P = m.points;
+    double area2 = 0;
+    for (std::size_t i = 0; i < el.size(); ++i) {
+      const Point2 &p = P[el[i]], &q = P[el[(i + 1) % el.size()]];
+      area2 += p[0] * q[1] - p[1] * q[0];
+    }
+    if (!(area2 > 0)) throw Error(where + " is clockwise or degenerate (want counter-clockwise)", path);
+    for (int v : el) ++s.start[v + 1];
+  }
+  for (std::size_t v = 0; v < std::size_t(n); ++v) s.start[v + 1] += s.start[v];
+  s.next.resize(s.start[n]);
+  s.elem.resize(s.start[n]);
+  std::vector<int> fill(s.start.begin(), s.start.end() - 1);
+  for (std::size_t e = 0; e < m.elements.size(); ++e) {
+    const auto& el = m.elements[e];
+    for (std::size_t i = 0; i < el.size(); ++i) {
+      const int a = el[i];
+      s.next[fill[a]] = el[(i + 1) % el.size()];
+      s.elem[fill[a]++] = int(e);
+    }
+  }
+  // An edge in at most two elements with opposite orientations: no directed
+  // edge twice (a third use would repeat one of the two directions).
+  for (int a = 0; a < n; ++a)
+    for (int i = s.start[a]; i < s.start[a + 1]; ++i)
+      for (int j = i + 1; j < s.start[a + 1]; ++j) {
+        if (s.next[i] != s.next[j]) continue;
+        const int b = s.next[i];
+        const std::string where = "edge " + std::to_string(std::min(a, b) + m.first_index) + "-" +
+                                  std::to_string(std::max(a, b) + m.first_index);
+        int uses = 0;
+        for (int k = s.start[a]; k < s.start[a + 1]; ++k) uses += s.next[k] == b;
+        for (int k = s.start[b]; k < s.start[b + 1]; ++k) uses += s.next[k] == a;
+        if (uses > 2) throw Error(where + " is shared by more than two elements", path);
+        throw Error(where + ": neighbouring elements are oriented inconsistently", path);
+      }
+  for (const auto& sg : m.segments)
+    if (sg[0] < 0 || sg[0] >= n || sg[1] < 0 || sg[1] >= n) throw Error("segment id out of range", path);
+  return s;
+}
 
 class QuadImprover {
 public:
   QuadImprover(PlanarMesh& m, const SmoothOptions& opt, SmoothStats& st)
       : m_(m), opt_(opt), st_(st), P_(m.points) {}
 
-  void run();
+  void run(const Stars& stars);
 
 private:
   using Quad = std::array<int, 4>;
@@ -105,7 +183,7 @@ private:
   // and costs a relaxation each, so they are tried again only once changed.
   std::vector<char> tried_;
 
-  void setup();
+  void setup(const Stars& stars);
   // Feature edges join two fixed vertices: test that first, hash rarely.
   bool is_feature(int a, int b) const { return fixed_[a] && fixed_[b] && feature_.count(edge_key(a, b)) != 0; }
   double quad_smu(const Quad& q) const { return sin_mu(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
@@ -158,45 +236,38 @@ private:
   void compact();
 };
 
-void QuadImprover::setup() {
+void QuadImprover::setup(const Stars& stars) {
   const int n = int(P_.size());
   vq_.assign(n, {});
   fixed_.assign(n, 0);
   v_dead_.assign(n, 0);
+  std::vector<int> quad_of_elem(m_.elements.size(), -1);
   for (std::size_t e = 0; e < m_.elements.size(); ++e) {
     const auto& el = m_.elements[e];
-    if (el.size() == 4) {
-      const int qi = int(Q_.size());
-      Q_.push_back({el[0], el[1], el[2], el[3]});
-      q_elem_.push_back(int(e));
-      for (int v : el) vq_[v].push_back(qi);
-    } else {
-      for (int v : el) fixed_[v] = 1;  // triangles stay as they are
+    if (el.size() != 4) continue;
+    quad_of_elem[e] = int(Q_.size());
+    Q_.push_back({el[0], el[1], el[2], el[3]});
+    q_elem_.push_back(int(e));
+  }
+  // Feature edges: used once (boundary), between elements of different
+  // region attribute, or listed as segments.
+  auto region = [&](int e) {
+    return m_.element_attributes.empty() || m_.element_attributes[e].empty() ? 0.0 : m_.element_attributes[e][0];
+  };
+  for (int v = 0; v < n; ++v) {
+    vq_[v].reserve(stars.start[v + 1] - stars.start[v]);
+    for (int i = stars.start[v]; i < stars.start[v + 1]; ++i) {
+      const int e = stars.elem[i];
+      if (quad_of_elem[e] >= 0) vq_[v].push_back(quad_of_elem[e]);
+      else fixed_[v] = 1;  // triangles stay as they are
+      const int t = stars.twin(v, stars.next[i]);
+      if (t < 0 || region(t) != region(e)) feature_.insert(edge_key(v, stars.next[i]));
     }
   }
   q_dead_.assign(Q_.size(), 0);
   tried_.assign(Q_.size(), 0);
   q_smu_.resize(Q_.size());
   for (std::size_t q = 0; q < Q_.size(); ++q) q_smu_[q] = quad_smu(Q_[q]);
-
-  // Feature edges: used once (boundary), between elements of different
-  // region attribute, or listed as segments.
-  struct HalfEdge { std::uint64_t key; int elem; };
-  std::vector<HalfEdge> he;
-  for (std::size_t e = 0; e < m_.elements.size(); ++e) {
-    const auto& el = m_.elements[e];
-    for (std::size_t i = 0; i < el.size(); ++i) he.push_back({edge_key(el[i], el[(i + 1) % el.size()]), int(e)});
-  }
-  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
-  auto region = [&](int e) {
-    return m_.element_attributes.empty() || m_.element_attributes[e].empty() ? 0.0 : m_.element_attributes[e][0];
-  };
-  for (std::size_t i = 0; i < he.size();) {
-    std::size_t j = i;
-    while (j < he.size() && he[j].key == he[i].key) ++j;
-    if (j - i == 1 || region(he[i].elem) != region(he[i + 1].elem)) feature_.insert(he[i].key);
-    i = j;
-  }
   for (const auto& s : m_.segments) feature_.insert(edge_key(s[0], s[1]));
   // Segment markers of feature edges, to tell one input segment from the next.
   std::unordered_map<std::uint64_t, int> seg_marker;
@@ -341,15 +412,19 @@ bool QuadImprover::try_move(int v, Point2 p, bool slide_line, const Slide* s) {
     }
     if (c == old) return false;
     P_[v] = c;
+    // New sines kept aside, written only if every quad passes.
+    double smu[kStarCache];
+    const std::size_t k = vq_[v].size();
     bool ok = true;
-    double worst = 2;
-    for (int q : vq_[v]) {
-      if (!convex(Q_[q])) { ok = false; break; }
-      worst = std::min(worst, quad_smu(Q_[q]));
-      if (worst < worst_old) { ok = false; break; }
+    for (std::size_t i = 0; i < k && ok; ++i) {
+      const Quad& Qd = Q_[vq_[v][i]];
+      if (!convex(Qd)) { ok = false; break; }
+      const double sq = quad_smu(Qd);
+      if (sq < worst_old) ok = false;
+      if (i < kStarCache) smu[i] = sq;
     }
     if (ok) {
-      for (int q : vq_[v]) q_smu_[q] = quad_smu(Q_[q]);
+      for (std::size_t i = 0; i < k; ++i) q_smu_[vq_[v][i]] = i < kStarCache ? smu[i] : quad_smu(Q_[vq_[v][i]]);
       return true;
     }
     P_[v] = old;
@@ -360,12 +435,14 @@ bool QuadImprover::try_move(int v, Point2 p, bool slide_line, const Slide* s) {
 bool QuadImprover::star_energy(int v, double floor, double cap, double& energy) const {
   energy = 0;
   for (int q : vq_[v]) {
-    if (!convex(Q_[q])) return false;
     const double s = quad_smu(Q_[q]);
     if (s < floor) return false;
     energy += 1 / s;
     if (energy >= cap) return false;
   }
+  // Convexity last: most candidate points fail on the energy already.
+  for (int q : vq_[v])
+    if (!convex(Q_[q])) return false;
   return true;
 }
 
@@ -383,17 +460,19 @@ bool QuadImprover::optimize_star(int v, double h2) {
                                     {-0.7071067811865476, 0.7071067811865476}, {-1, 0},
                                     {-0.7071067811865476, -0.7071067811865476}, {0, -1},
                                     {0.7071067811865476, -0.7071067811865476}};
+  // Opportunistic polling: the first direction that lowers the energy is
+  // taken, and polled first again from the new point.
+  int first = 0;
   for (int round = 0; round < kOptimizeRounds; ++round) {
-    Point2 bp = p;
     bool improved = false;
-    for (const auto& d : dirs) {
-      P_[v] = {p[0] + h * d[0], p[1] + h * d[1]};
+    for (int k = 0; k < 8 && !improved; ++k) {
+      const int d = (first + k) & 7;
+      P_[v] = {p[0] + h * dirs[d][0], p[1] + h * dirs[d][1]};
       double e;
-      if (star_energy(v, worst0, best * (1 - 1e-12), e)) { best = e; bp = P_[v]; improved = true; }
+      if (star_energy(v, worst0, best * (1 - 1e-12), e)) { best = e; p = P_[v]; first = d; improved = true; }
     }
     P_[v] = p;
-    if (improved) p = bp;
-    else h *= 0.5;
+    if (!improved) h *= 0.5;
   }
   if (!(best < energy0 * (1 - 1e-9))) { P_[v] = start; return false; }
   P_[v] = p;
@@ -659,15 +738,17 @@ void QuadImprover::swap_pass() {
       double best = cur * (1 + 1e-9) + 1e-15;
       int best_k = -1, valence_k = -1, best_de = 0;
       for (int k = 1; k <= 2; ++k) {
+        const int p = H[k], r = H[(k + 3) % 6];
+        const Fan fp = fan(p, q2), fr = fan(r, int(q1));  // c, d are in B; a, b in A
+        const int de = e_uw + 1 + 2 * (fp.count - fp.ideal) + 1 + 2 * (fr.count - fr.ideal);
+        const bool fewer_irregular = keep_valence && de < best_de;
+        if (!poor && !fewer_irregular) continue;  // most pairs of a fine mesh stop here
         const Quad N1{H[k], H[k + 1], H[k + 2], H[(k + 3) % 6]};
         const Quad N2{H[(k + 3) % 6], H[(k + 4) % 6], H[(k + 5) % 6], H[k]};
-        const int p = H[k], r = H[(k + 3) % 6];
         if (!convex(N1) || !convex(N2) || is_feature(p, r) || quad_with_edge(p, r) >= 0 ||
             quad_with_edge(r, p) >= 0)
           continue;  // the new diagonal must not already be an edge
-        const Fan fp = fan(p, q2), fr = fan(r, int(q1));  // c, d are in B; a, b in A
-        const int de = e_uw + 1 + 2 * (fp.count - fp.ideal) + 1 + 2 * (fr.count - fr.ideal);
-        if (keep_valence && de < best_de) { best_de = de; valence_k = k; }
+        if (fewer_irregular) { best_de = de; valence_k = k; }
         const double sm = std::min(quad_smu(N1), quad_smu(N2));
         if (poor && sm > best) { best = sm; best_k = k; }
       }
@@ -839,8 +920,8 @@ void QuadImprover::compact() {
   m_.point_markers = std::move(pmark);
 }
 
-void QuadImprover::run() {
-  setup();
+void QuadImprover::run(const Stars& stars) {
+  setup(stars);
   const int passes = std::max(0, opt_.iterations);
   for (int it = 0; it < passes; ++it) {
     // Clean-up after smoothing has done what it can: only the quads that
@@ -865,52 +946,13 @@ void QuadImprover::run() {
 
 } // namespace
 
-void check_quad_mesh(const PlanarMesh& m, const std::string& path) {
-  const long long n = static_cast<long long>(m.points.size());
-  if (m.elements.empty()) throw Error("mesh has no elements", path);
-  for (const auto& p : m.points)
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) throw Error("non-finite point coordinate", path);
-  struct HalfEdge { std::uint64_t key; bool forward; std::size_t elem; };
-  std::vector<HalfEdge> he;
-  he.reserve(m.elements.size() * 4);
-  for (std::size_t e = 0; e < m.elements.size(); ++e) {
-    const auto& el = m.elements[e];
-    const std::string where = "element " + std::to_string(e + m.first_index);
-    if (el.size() != 3 && el.size() != 4) throw Error(where + " has " + std::to_string(el.size()) + " nodes (want 3 or 4)", path);
-    for (std::size_t i = 0; i < el.size(); ++i) {
-      if (el[i] < 0 || el[i] >= n) throw Error(where + ": node id out of range", path);
-      for (std::size_t j = 0; j < i; ++j)
-        if (el[i] == el[j]) throw Error(where + ": repeated node", path);
-    }
-    const auto& P = m.points;
-    double area2 = 0;
-    for (std::size_t i = 0; i < el.size(); ++i) {
-      const Point2 &p = P[el[i]], &q = P[el[(i + 1) % el.size()]];
-      area2 += p[0] * q[1] - p[1] * q[0];
-    }
-    if (!(area2 > 0)) throw Error(where + " is clockwise or degenerate (want counter-clockwise)", path);
-    for (std::size_t i = 0; i < el.size(); ++i) {
-      const int a = el[i], b = el[(i + 1) % el.size()];
-      he.push_back({edge_key(a, b), a < b, e});
-    }
-  }
-  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) { return x.key < y.key; });
-  for (std::size_t i = 0; i + 1 < he.size(); ++i) {
-    if (he[i].key != he[i + 1].key) continue;
-    const std::string where = "edge " + std::to_string((he[i].key >> 32) + m.first_index) + "-" +
-                              std::to_string((he[i].key & 0xffffffffu) + m.first_index);
-    if (i + 2 < he.size() && he[i + 2].key == he[i].key) throw Error(where + " is shared by more than two elements", path);
-    if (he[i].forward == he[i + 1].forward) throw Error(where + ": neighbouring elements are oriented inconsistently", path);
-  }
-  for (const auto& s : m.segments)
-    if (s[0] < 0 || s[0] >= n || s[1] < 0 || s[1] >= n) throw Error("segment id out of range", path);
-}
+void check_quad_mesh(const PlanarMesh& m, const std::string& path) { conforming_stars(m, path); }
 
 SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
-  check_quad_mesh(mesh);
+  const Stars stars = conforming_stars(mesh, {});
   SmoothStats st;
   st.before = quality_report(mesh);
-  QuadImprover(mesh, opt, st).run();
+  QuadImprover(mesh, opt, st).run(stars);
   st.after = quality_report(mesh);
   return st;
 }
