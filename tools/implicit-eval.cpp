@@ -6,6 +6,7 @@
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -42,7 +43,9 @@ double cpu_seconds() {
 }
 
 // Point i is a function of (seed, i) only, and blocks are summed in order, so
-// the checksum does not depend on the number of threads.
+// the checksum does not depend on the number of threads. Threads take the
+// next block as they finish one: on a shared machine a thread that gets less
+// CPU does fewer blocks instead of holding up the end.
 RandomRun random_run(const PartitionOfUnity& f, std::uint64_t n, std::uint64_t seed, bool gradient, unsigned threads) {
   const FloatImage& g = f.samples();
   const double ext[3] = {double(g.size[0] - 1), double(g.size[1] - 1), double(g.size[2] - 1)};
@@ -50,11 +53,12 @@ RandomRun random_run(const PartitionOfUnity& f, std::uint64_t n, std::uint64_t s
   const std::uint64_t blocks = (n + kBlock - 1) / kBlock;
   std::vector<double> sum(blocks, 0.0), gsum(blocks, 0.0);
   const std::uint64_t key = splitmix64(seed);
-  auto work = [&](unsigned t) {
+  std::atomic<std::uint64_t> next_block{0};
+  auto work = [&] {
     constexpr std::uint64_t kBatch = 256;  // points handed to f.values() at once
     Vec3 p[kBatch], gr[kBatch];
     double v[kBatch];
-    for (std::uint64_t b = t; b < blocks; b += threads) {
+    for (std::uint64_t b = next_block++; b < blocks; b = next_block++) {
       double s = 0, gs = 0;
       const std::uint64_t end = std::min(n, (b + 1) * kBlock);
       for (std::uint64_t i0 = b * kBlock; i0 < end; i0 += kBatch) {
@@ -76,11 +80,10 @@ RandomRun random_run(const PartitionOfUnity& f, std::uint64_t n, std::uint64_t s
   const auto t0 = std::chrono::steady_clock::now();
   const double c0 = cpu_seconds();
   if (threads <= 1) {
-    threads = 1;
-    work(0);
+    work();
   } else {
     std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work, t);
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work);
     for (auto& th : pool) th.join();
   }
   RandomRun r;
