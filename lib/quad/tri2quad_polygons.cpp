@@ -43,6 +43,10 @@ bool good_local(const LocalPatch& lp, const Quad& q) {
   return good_quad(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]);
 }
 
+double quad_mu(const LocalPatch& lp, const Quad& q) {
+  return joe_mu(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]);
+}
+
 // Candidate points of a region: centroid, then toward each vertex.
 std::vector<P2> candidates(const std::vector<P2>& region) {
   std::vector<P2> out;
@@ -312,14 +316,20 @@ bool hexagon(LocalPatch& lp, const Ring& h, int budget) {
   auto H = [&](int i) { return h[((i % 6) + 6) % 6]; };
   auto P = [&](int i) -> const P2& { return lp.p[H(i)]; };
   const auto m = lp.mark();
-  // T0: a diagonal between opposite vertices, two quads, no point.
+  // T0: a diagonal between opposite vertices, two quads, no point; of the
+  // valid diagonals the one whose worse quad has the larger Joe's mu.
+  int best = -1;
+  double best_mu = -1;
   for (int i = 0; i < 3; ++i) {
     const Quad a{H(i), H(i + 1), H(i + 2), H(i + 3)}, b{H(i + 3), H(i + 4), H(i + 5), H(i)};
-    if (good_local(lp, a) && good_local(lp, b)) {
-      lp.quads.push_back(a);
-      lp.quads.push_back(b);
-      return true;
-    }
+    if (!good_local(lp, a) || !good_local(lp, b)) continue;
+    const double mu = std::min(quad_mu(lp, a), quad_mu(lp, b));
+    if (mu > best_mu) { best_mu = mu; best = i; }
+  }
+  if (best >= 0) {
+    lp.quads.push_back({H(best), H(best + 1), H(best + 2), H(best + 3)});
+    lp.quads.push_back({H(best + 3), H(best + 4), H(best + 5), H(best)});
+    return true;
   }
   if (budget < 1) return false;
   // T1: one point joined to alternate vertices, three quads.
@@ -466,13 +476,16 @@ int pentagon(LocalPatch& lp, const Ring& v, int* kind, int hexagon_budget) {
   auto V = [&](int i) { return v[i]; };
   const auto m = lp.mark();
   auto set = [&](int k) { if (kind) *kind = k; };
-  // Ears on the outgoing edge: no Steiner point.
-  if (good_triangle(P(0), P(1), P(2)) && good_quad(P(0), P(2), P(3), P(4))) {
+  // Ears on the outgoing edge: no Steiner point; the better-shaped quad
+  // when both are valid.
+  const bool ear2 = good_triangle(P(0), P(1), P(2)) && good_quad(P(0), P(2), P(3), P(4));
+  const bool ear4 = good_triangle(P(4), P(0), P(1)) && good_quad(P(1), P(2), P(3), P(4));
+  if (ear2 && (!ear4 || quad_mu(lp, {V(0), V(2), V(3), V(4)}) >= quad_mu(lp, {V(1), V(2), V(3), V(4)}))) {
     lp.quads.push_back({V(0), V(2), V(3), V(4)});
     set(0);
     return V(2);
   }
-  if (good_triangle(P(4), P(0), P(1)) && good_quad(P(1), P(2), P(3), P(4))) {
+  if (ear4) {
     lp.quads.push_back({V(1), V(2), V(3), V(4)});
     set(0);
     return V(4);
