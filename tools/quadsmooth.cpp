@@ -24,8 +24,10 @@ int main(int argc, char** argv) {
   tool.app.add_flag("--slide-boundary", opt.slide_boundary,
                     "let boundary and constrained vertices slide along their own straight segment");
   tool.app.add_option("--svg", svg, "also draw the result as SVG, quads coloured by Joe's mu");
+  tool.add_threads();
   return tool.run(argc, argv, [&] {
     opt.cleanup = !no_cleanup;
+    opt.threads = tool.threads();
     if (tool.progress())
       opt.progress = [&](int pass, int passes) {
         tool.report_progress("pass " + std::to_string(pass) + "/" + std::to_string(passes));
@@ -55,6 +57,7 @@ int main(int argc, char** argv) {
     tool.stats["after"] = j.at("after");
     tool.stats["operations"] = j.at("operations");
     tool.stats["smooth_seconds"] = secs;
+    tool.stats["threads"] = tool.threads();
     // Checked, not assumed: every quad that came in strictly convex stays so.
     const bool convex_kept = st.after.non_convex <= st.before.non_convex;
     const bool all_convex = st.after.non_convex == 0;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -199,6 +201,11 @@ private:
   // One guarded angle-based move then the compass search; kMoved, kRejected, kOptimized bits.
   enum { kMoved = 1, kRejected = 2, kOptimized = 4 };
   int smooth_vertex(int v);
+  // Colour classes of the smoothing vertices (see colour()); recomputed
+  // when the topology changed.
+  std::vector<std::vector<int>> colours_;
+  bool colours_stale_ = true;
+  void colour();
   void smooth_pass();
   void slide_pass();
 
@@ -224,11 +231,20 @@ private:
   // by feature edges, and the number the fan's angle wants, one a 90 degrees
   // (4 around a closed star).
   struct Fan { int count, ideal; bool closed; };
-  Fan fan(int v, int q) const;
+  Fan fan(int v, int q) const {
+    return fixed_[v] ? fixed_fan(v, q) : Fan{int(vq_[v].size()), 4, true};  // a free vertex's star is closed
+  }
+  Fan fixed_fan(int v, int q) const;
   bool split_pair(int q1, int q2, const int (&H)[6]);
   void swap_pass();
   void collapse_pass();
   void doublet_pass();
+  // Puts the vertices of the quads around v back on the smoothing work list
+  // (after a topological operation near v).
+  void wake(int v) {
+    for (int q : vq_[v])
+      for (int w : Q_[q]) active_[w] = 1;
+  }
   void remove_from(int v, int q) {
     auto& l = vq_[v];
     l.erase(std::remove(l.begin(), l.end(), q), l.end());
@@ -495,21 +511,72 @@ int QuadImprover::smooth_vertex(int v) {
   return r;
 }
 
+void QuadImprover::colour() {
+  // Greedy colouring of the vertices that smooth: two that share a quad
+  // get different colours, so the vertices of one colour move
+  // independently (each writes only its own position and its own star's
+  // sines) and a colour's result does not depend on the thread count.
+  const int n = int(P_.size());
+  std::vector<int> col(n, -1), seen;
+  colours_.clear();
+  for (int v = 0; v < n; ++v) {
+    if (fixed_[v] || v_dead_[v] || vq_[v].size() < 3) continue;
+    for (int q : vq_[v])
+      for (int w : Q_[q])
+        if (col[w] >= 0) {
+          if (int(seen.size()) <= col[w]) seen.resize(col[w] + 1, -1);
+          seen[col[w]] = v;
+        }
+    int c = 0;
+    while (c < int(seen.size()) && seen[c] == v) ++c;
+    col[v] = c;
+    if (int(colours_.size()) <= c) colours_.resize(c + 1);
+    colours_[c].push_back(v);
+  }
+}
+
 void QuadImprover::smooth_pass() {
   // Active set: a vertex is revisited only after something around it moved
   // (a rejected or negligible move would be rejected or negligible again).
-  const int n = int(P_.size());
+  // Colour by colour, split over the threads; each thread keeps its own
+  // counts and the vertices it woke up, applied after the colour.
   if (active_.size() != P_.size()) active_.assign(P_.size(), 1);
-  for (int v = 0; v < n; ++v) {
-    if (!active_[v] || fixed_[v] || v_dead_[v] || vq_[v].size() < 3) continue;
-    active_[v] = 0;
-    const int r = smooth_vertex(v);
-    st_.moves += (r & kMoved) != 0;
-    st_.rejected += (r & kRejected) != 0;
-    st_.optimized += (r & kOptimized) != 0;
-    if (r & (kMoved | kOptimized))
-      for (int q : vq_[v])
-        for (int w : Q_[q]) active_[w] = 1;
+  if (colours_stale_) { colour(); colours_stale_ = false; }
+  const int threads = std::max(1, opt_.threads);
+  struct Local { std::size_t moves = 0, rejected = 0, optimized = 0; std::vector<int> woken; };
+  std::vector<Local> local(threads);
+  for (const std::vector<int>& vs : colours_) {
+    auto work = [&](std::size_t begin, std::size_t end, Local& l) {
+      for (std::size_t i = begin; i < end; ++i) {
+        const int v = vs[i];
+        if (!active_[v]) continue;
+        active_[v] = 0;
+        const int r = smooth_vertex(v);
+        l.moves += (r & kMoved) != 0;
+        l.rejected += (r & kRejected) != 0;
+        l.optimized += (r & kOptimized) != 0;
+        if (r & (kMoved | kOptimized))
+          for (int q : vq_[v])
+            for (int w : Q_[q]) l.woken.push_back(w);
+      }
+    };
+    // Small colours are not worth a thread.
+    const int t_used = vs.size() < 4096 ? 1 : threads;
+    const std::size_t chunk = (vs.size() + t_used - 1) / t_used;
+    std::vector<std::thread> pool;
+    for (int t = 1; t < t_used; ++t)
+      pool.emplace_back(work, std::min(vs.size(), t * chunk), std::min(vs.size(), (t + 1) * chunk), std::ref(local[t]));
+    work(0, std::min(vs.size(), chunk), local[0]);
+    for (auto& th : pool) th.join();
+    for (Local& l : local) {
+      for (int w : l.woken) active_[w] = 1;
+      l.woken.clear();
+    }
+  }
+  for (const Local& l : local) {
+    st_.moves += l.moves;
+    st_.rejected += l.rejected;
+    st_.optimized += l.optimized;
   }
 }
 
@@ -537,8 +604,7 @@ int QuadImprover::quad_with_edge(int a, int b) const {
   return -1;
 }
 
-QuadImprover::Fan QuadImprover::fan(int v, int q0) const {
-  if (!fixed_[v]) return {int(vq_[v].size()), 4, true};  // a free vertex's star is closed
+QuadImprover::Fan QuadImprover::fixed_fan(int v, int q0) const {
   auto corner = [&](int q) {
     int i = 0;
     while (Q_[q][i] != v) ++i;
@@ -688,7 +754,10 @@ bool QuadImprover::split_pair(int q1, int q2, const int (&H)[6]) {
       relax(pt);
       ok = patch_worst(pt) > before * (1 + 1e-9) + 1e-15;
     }
-    if (ok) return true;
+    if (ok) {
+      for (int x : pt.verts) wake(x);
+      return true;
+    }
     // Undo: the patch first (it drops every reference to v and q3), then the new items.
     pt.verts.pop_back();
     pt.quads.pop_back();
@@ -770,10 +839,12 @@ void QuadImprover::swap_pass() {
         apply(valence_k);
         relax(pt);
         if (patch_worst(pt) < before) { restore(pt); continue; }
+        for (int x : pt.verts) wake(x);
         ++st_.valence_swaps;
       } else {
         continue;
       }
+      for (int x : H) wake(x);
       ++st_.swaps;
       changed = true;  // q1 changed: move on
     }
@@ -801,6 +872,7 @@ void QuadImprover::doublet_pass() {
     Q_[q1] = M;
     if (std::find(vq_[B[2]].begin(), vq_[B[2]].end(), q1) == vq_[B[2]].end()) vq_[B[2]].push_back(q1);
     q_smu_[q1] = quad_smu(M);
+    for (int x : M) wake(x);
     ++st_.doublets;
   }
 }
@@ -873,6 +945,7 @@ void QuadImprover::collapse_pass() {
       vq_[c].clear();
       v_dead_[c] = 1;
       for (int o : vq_[a]) q_smu_[o] = quad_smu(Q_[o]);
+      wake(a);
       ++st_.collapses;
       break;
     }
@@ -924,13 +997,13 @@ void QuadImprover::run(const Stars& stars) {
   setup(stars);
   const int passes = std::max(0, opt_.iterations);
   for (int it = 0; it < passes; ++it) {
-    // Clean-up after smoothing has done what it can: only the quads that
-    // stay poor get swaps and collapses, then smoothing resumes.
+    // Clean-up every third pass, once smoothing has done what it can, then
+    // smoothing resumes on the new topology.
     if (opt_.cleanup && it > 0 && it % 3 == 0) {
       swap_pass();
       collapse_pass();
       doublet_pass();
-      active_.assign(P_.size(), 1);  // the topology changed: revisit everything
+      colours_stale_ = true;  // the operations woke the vertices around them
     }
     smooth_pass();
     if (opt_.slide_boundary) slide_pass();

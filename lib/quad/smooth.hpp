@@ -19,6 +19,7 @@ struct SmoothOptions {
   int iterations = 10;          // smoothing passes
   bool cleanup = true;          // swaps, doublets, collapses
   bool slide_boundary = false;  // boundary/constrained vertices may slide along their own straight segment
+  int threads = 1;              // smoothing threads; the result does not depend on it
   // Called after each pass with (pass, passes) for progress reports; may be empty.
   std::function<void(int, int)> progress;
 };

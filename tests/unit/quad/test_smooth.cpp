@@ -84,6 +84,25 @@ PlanarMesh split_mesh(int n, unsigned seed, double jitter = 0.3) {
   return m;
 }
 
+// An n x n grid of [0,1]^2 with every interior node thrown up to 0.3 cells
+// away (all quads stay convex).
+PlanarMesh jittered_grid(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-0.3, 0.3);
+  PlanarMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const bool in = i > 0 && i < n && j > 0 && j < n;
+      m.points.push_back({(i + (in ? U(rng) : 0)) / n, (j + (in ? U(rng) : 0)) / n});
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i;
+      m.elements.push_back({a, a + 1, a + n + 2, a + n + 1});
+    }
+  return m;
+}
+
 double region_area(const PlanarMesh& m, double region) {
   double s = 0;
   for (std::size_t e = 0; e < m.elements.size(); ++e) {
@@ -208,21 +227,7 @@ TEST_CASE("smoothing improves split meshes", "[smooth]") {
 
 TEST_CASE("smoothing reaches the quality targets on distorted grids", "[smooth]") {
   for (unsigned seed : {21u, 23u, 25u}) {
-    // A 30 x 30 grid with every interior node thrown up to 0.3 cells away (all quads stay convex).
-    const int n = 30;
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> U(-0.3, 0.3);
-    PlanarMesh m;
-    for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) {
-        const bool in = i > 0 && i < n && j > 0 && j < n;
-        m.points.push_back({(i + (in ? U(rng) : 0)) / n, (j + (in ? U(rng) : 0)) / n});
-      }
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const int a = j * (n + 1) + i;
-        m.elements.push_back({a, a + 1, a + n + 2, a + n + 1});
-      }
+    PlanarMesh m = jittered_grid(30, seed);
     const auto before = quality_report(m);
     SmoothOptions opt;
     opt.iterations = 10;
@@ -243,6 +248,21 @@ TEST_CASE("same input, same output", "[smooth]") {
   smooth_quad_mesh(b, opt);
   CHECK(a.points == b.points);
   CHECK(a.elements == b.elements);
+}
+
+TEST_CASE("the output does not depend on the number of threads", "[smooth]") {
+  // Large enough for colour classes to be split over threads.
+  PlanarMesh a = jittered_grid(150, 3), b = a;
+  SmoothOptions opt;
+  opt.iterations = 4;
+  opt.threads = 1;
+  const SmoothStats sa = smooth_quad_mesh(a, opt);
+  opt.threads = 3;
+  const SmoothStats sb = smooth_quad_mesh(b, opt);
+  CHECK(a.points == b.points);
+  CHECK(a.elements == b.elements);
+  CHECK(sa.moves == sb.moves);
+  CHECK(sa.moves > 0);
 }
 
 TEST_CASE("a doublet is removed when the merged quad is convex", "[smooth]") {
