@@ -27,6 +27,7 @@ Json SmoothStats::to_json() const {
   ops["pair_splits"] = splits;
   ops["doublets_removed"] = doublets;
   ops["quad_collapses"] = collapses;
+  ops["valence_collapses"] = valence_collapses;
   ops["fixed_vertices"] = fixed_vertices;
   j["operations"] = ops;
   return j;
@@ -878,15 +879,25 @@ void QuadImprover::doublet_pass() {
 }
 
 void QuadImprover::collapse_pass() {
+  Patch pt;
   for (std::size_t q = 0; q < Q_.size(); ++q) {
-    // Collapses are for the worst quads only (short diagonal, squashed).
-    if (q_dead_[q] || q_smu_[q] >= kCollapseBelow) continue;
+    if (q_dead_[q]) continue;
     for (int diag = 0; diag < 2; ++diag) {
       const Quad C = Q_[q];
       int a = C[diag], c = C[diag + 2];
       const int b = C[diag + 1], d = C[(diag + 3) & 3];
       if (v_dead_[a] || v_dead_[c]) continue;
       if (fixed_[a] && fixed_[c]) continue;
+      // Collapses are for the worst quads (short diagonal, squashed), and
+      // for diagonals of two free valence-3 vertices (they merge into a
+      // regular one) when b or d has more quads than it wants, which it
+      // then loses (Canann et al.'s valence-driven collapse).
+      bool valence = false;
+      if (!fixed_[a] && !fixed_[c] && vq_[a].size() == 3 && vq_[c].size() == 3) {
+        const Fan fb = fan(b, int(q)), fd = fan(d, int(q));
+        valence = fb.count - fb.ideal + fd.count - fd.ideal > 0;
+      }
+      if (!valence && q_smu_[q] >= kCollapseBelow) continue;
       bool feat = false;
       for (int t = 0; t < 4; ++t) feat = feat || is_feature(C[t], C[(t + 1) & 3]);
       if (feat) continue;
@@ -934,7 +945,12 @@ void QuadImprover::collapse_pass() {
       };
       for (int o : vq_[a]) eval(o);
       for (int o : vq_[c]) eval(o);
-      if (!ok || worst <= worst_old * (1 + 1e-9) + 1e-15) { P_[a] = pa; continue; }
+      if (!ok || (!valence && worst <= worst_old * (1 + 1e-9) + 1e-15)) { P_[a] = pa; continue; }
+      if (valence) {
+        P_[a] = pa;
+        save_patch({a, c, b, d}, pt);
+        P_[a] = pm;
+      }
       // Commit.
       for (int x : C) remove_from(x, int(q));
       q_dead_[q] = 1;
@@ -945,6 +961,13 @@ void QuadImprover::collapse_pass() {
       vq_[c].clear();
       v_dead_[c] = 1;
       for (int o : vq_[a]) q_smu_[o] = quad_smu(Q_[o]);
+      if (valence) {
+        // Taken if, once relaxed, the worst mu around has not dropped.
+        const double before = std::min(patch_worst(pt), worst_old);
+        relax(pt);
+        if (patch_worst(pt) < before) { restore(pt); continue; }
+        ++st_.valence_collapses;
+      }
       wake(a);
       ++st_.collapses;
       break;
