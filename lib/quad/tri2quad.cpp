@@ -37,8 +37,8 @@ enum Case : int {
   kRootJoe,           // step 5(b)/(d) without an outside point (Joe's split)
   kRootOutside,       // step 5(b)/(d) as in the thesis (--allow-outside)
   kRootNested,        // step 5(c): non-convex quad with a free point, B.1.2
-  kDentTri,           // Fig. 3.16 inside: a leftover triangle closed by a point on its edge
-  kDentNonEmpty,      // the same for a non-empty triangle (B.1.2)
+  kDentTri,           // make_dents: a leftover triangle closed by a point on its edge
+  kDentNonEmpty,      // make_dents: the same for a non-empty triangle (B.1.2)
   kFallback,          // safe odd-degree split of a region (see header)
   kRepair,            // Fig. 3.23: parent component triangle split
   kRootPentagonEdge,  // step 5: root pentagon + a point on its edge, B.1.1
@@ -48,6 +48,7 @@ enum Case : int {
   kTriangleTwoPoints, // 3(c) cross-edge, 4(c)(v)(d)-(e): leftover + B.1.2
   kHeptagonClosed,    // B.3.1 with a point on the outgoing edge, no leftover
   kDentPair,          // make_dents: a non-convex pair closed alone (nested template)
+  kPentagonType3Edge, // 4(c)(ii), B.2.1 type 3: a point on the outgoing edge, B.1.1
   kNumCases
 };
 const char* kCaseNames[kNumCases] = {
@@ -56,9 +57,10 @@ const char* kCaseNames[kNumCases] = {
     "4cvf_B31_heptagon",     "3_nonempty_triangle",
     "3b_B12_quad_point",     "3c_B22_pentagon_point",  "4civ_hexagon_point",
     "5bd_joe_split",         "5bd_outside_point",      "5c_B12_nested",
-    "degenerate_quad_triangle", "degenerate_quad_nonempty", "fallback_split",        "3_3_repair_split",
+    "fallback_dent_triangle", "fallback_dent_nonempty", "fallback_split",        "3_3_repair_split",
     "5_B11_root_pentagon_edge_point", "B22_middle_type1_B12", "4civ_B21_B12_pair_nonempty",
-    "3d_edge_point_B12_twice",  "3c_4cvde_leftover_B12", "B31_heptagon_edge_point", "fallback_pair_nested"};
+    "3d_edge_point_B12_twice",  "3c_4cvde_leftover_B12", "B31_heptagon_edge_point", "fallback_pair_nested",
+    "4cii_B21_type3_edge_point"};
 
 enum RegType : std::uint8_t { kEmpty = 0, kTri, kQuadR, kNTri, kDent };
 struct Region {
@@ -569,13 +571,28 @@ struct Converter {
     bool done = false;
     const std::size_t nb_ = B.size(), ni = I.size();
     // B.2.1: a pentagon becomes quads plus a triangle passed up (its apex).
-    auto pentagon_leaving_triangle = [&] {
+    auto pentagon_leaving_triangle = [&](int hexagon_budget) {
       int kind = 0;
-      const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind);
+      const int apex = t2q::pentagon(lp, {0, 1, 2, 3, 4}, &kind, hexagon_budget);
       if (apex < 0) return false;
       ++cases[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kind == 2 ? kPentagonType2 : kPentagonType3];
       r = {kTri, 0, apex, -1};
       return true;
+    };
+    // B.2.1 type 3 (4(c)(ii)): a point m on the outgoing edge, B.1.1 on the
+    // hexagon (a, m, b, ...); below the root m goes to the parent.
+    auto pentagon_edge_point = [&](int hexagon_budget) {
+      const auto m0 = lp.mark();
+      for (const P2& x : edge_points(a, b, c, is_root)) {
+        const int m = lp.add_new(x);
+        if (t2q::hexagon(lp, {0, m, 1, 2, 3, 4}, hexagon_budget)) {
+          if (is_root) { ++cases[kRootPentagonEdge]; split_m = m; r = {}; }
+          else { ++cases[kPentagonType3Edge]; r = {kDent, 0, m, -1}; }
+          return true;
+        }
+        lp.rollback(m0);
+      }
+      return false;
     };
     if (!pinched) {
       if (nb_ == 3 && ni == 0) {
@@ -603,18 +620,12 @@ struct Converter {
         // type 3 does): the hexagon (a, m, b, ...) by B.1.1 closes the
         // pentagon with at most 5 quads and 4 points, where a leftover
         // triangle plus Joe's split would cost at least 6 quads and 5 points.
-        const int m = lp.add_new({0.5 * (pts[a][0] + pts[b][0]), 0.5 * (pts[a][1] + pts[b][1])});
-        if (t2q::hexagon(lp, {0, m, 1, 2, 3, 4})) {
-          ++cases[kRootPentagonEdge];
-          split_m = m;
-          r = {};
-          done = true;
-        } else {
-          lp.rollback({std::size_t(m), 0});
-          done = pentagon_leaving_triangle();
-        }
+        done = pentagon_edge_point(3) || pentagon_leaving_triangle(3);
       } else if (nb_ == 5 && ni == 0) {
-        done = pentagon_leaving_triangle();
+        // B.2.1 within its budget (3 quads, 2 points for the 2 triangles
+        // eliminated), else type 3: the point on the outgoing edge and B.1.1
+        // with at most 2 more (4 quads, 3 points for 3 triangles).
+        done = pentagon_leaving_triangle(1) || pentagon_edge_point(2) || pentagon_leaving_triangle(3);
       } else if (nb_ == 6 && ni == 0) {
         if (t2q::hexagon(lp, {0, 1, 2, 3, 4, 5})) { ++cases[kHexagon]; r = {}; done = true; }
       } else if (nb_ == 7 && ni == 0) {

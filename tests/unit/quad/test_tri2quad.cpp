@@ -695,7 +695,7 @@ TEST_CASE("Random constrained Delaunay triangulations: all guarantees", "[tri2qu
   WARN(s);
   // Every step and case ran somewhere in the sample.
   for (const char* name : {"4c_convex_quad", "4c_quad_to_grandparent", "B21_pentagon_ear", "4b_B21_type1",
-                           "4cii_B21_type2", "B21_type3_apex_hexagon", "4ci_4ciii_B11_hexagon", "4cvf_B31_heptagon",
+                           "4cii_B21_type2", "4cii_B21_type3_edge_point", "4ci_4ciii_B11_hexagon", "4cvf_B31_heptagon",
                            "3_nonempty_triangle", "3b_B12_quad_point", "3c_B22_pentagon_point", "5bd_joe_split",
                            "5bd_outside_point", "5c_B12_nested", "3_3_repair_split", "5_B11_root_pentagon_edge_point",
                            "B22_middle_type1_B12", "4civ_hexagon_point", "4civ_B21_B12_pair_nonempty",
