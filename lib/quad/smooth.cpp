@@ -81,7 +81,7 @@ constexpr double kCollapseBelow = 0.25881904510252074;
 // Vertices next to a quad with mu below 25 degrees also get a compass search
 // on the soft minimum of mu around them.
 constexpr double kOptimizeBelow = 0.42261826174069944;  // sin(25 deg)
-constexpr int kOptimizeRounds = 10;
+constexpr int kOptimizeRounds = 6;
 constexpr std::size_t kStarCache = 16;  // quads around a vertex whose sines try_move keeps aside
 
 // The directed edges a -> b of all elements grouped by a (a counting sort,

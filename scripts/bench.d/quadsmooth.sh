@@ -1,13 +1,15 @@
 #!/usr/bin/env bash
 # quadsmooth: (1) speed: 10^6 quads (jittered 1000 x 1000 grid), 10 passes,
-# library time from --stats (smooth_seconds) and wall time with text I/O;
-# (2) quality: tri2quad + quadsmooth on a jittered-grid Delaunay-like mesh of
-# 2048 triangles and on 20000 triangles, side by side with Gmsh's Blossom
-# recombination of the very same triangles (when gmsh is installed): min,
-# median, mean mu, min scaled Jacobian, share of quads with angles in
-# [45, 135].   $1: tool folder.
+# library time from --stats (smooth_seconds), wall and CPU time with text I/O,
+# on 1 thread and on all cores; (2) quality: tri2quad + quadsmooth on a
+# jittered-grid Delaunay-like mesh of 2048 triangles and on 20000 triangles,
+# and on the real images of share/data through img2poly and poly2tri, side by
+# side with Gmsh's Blossom recombination of the very same triangles (when
+# gmsh is installed): min, median, mean mu, min scaled Jacobian, share of
+# quads with angles in [45, 135].   $1: tool folder.
 set -euo pipefail
 BIN=${1:?usage: quadsmooth.sh TOOL_FOLDER}
+DATA=$(cd "$(dirname "$0")/../../share/data" && pwd)
 work=$(mktemp -d "${TMPDIR:-/tmp}/quadsmooth-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -32,11 +34,13 @@ with open("big.ele", "w") as f:
     f.writelines("%d %d %d %d %d\n" % (j * n + i, j * m + i, j * m + i + 1, j * m + i + m + 1, j * m + i + m)
                  for j in range(n) for i in range(n))
 PY
-/usr/bin/time -f "%e %M" -o time.txt "$BIN/quadsmooth" -q big.ele big.s.ele --iterations 10 --stats big.json
-read -r wall kb < time.txt
-mins=($(stat min_mu big.json)); means=($(stat mean_mu big.json))
-echo "  smooth (library) $(stat smooth_seconds big.json) s, wall with I/O $wall s, peak $((kb / 1024)) MB;" \
-     "min mu ${mins[0]} -> ${mins[1]}, mean mu ${means[0]} -> ${means[1]}"
+for threads in 1 $(nproc); do
+  /usr/bin/time -f "%e %U %S %M" -o time.txt "$BIN/quadsmooth" -q big.ele big.s.ele --iterations 10 --threads "$threads" --stats big.json
+  read -r wall user sys kb < time.txt
+  mins=($(stat min_mu big.json)); means=($(stat mean_mu big.json))
+  echo "  $threads thread(s): smooth (library) $(stat smooth_seconds big.json) s wall; with I/O $wall s wall," \
+       "$(echo "$user + $sys" | bc) s CPU, peak $((kb / 1024)) MB; min mu ${mins[0]} -> ${mins[1]}, mean mu ${means[0]} -> ${means[1]}"
+done
 fi
 
 # grid N SEED: jittered N x N grid cut along random diagonals (2 N^2 triangles)
@@ -105,6 +109,21 @@ print("  %-22s quads=%6d tris left=%4d  mu min %5.2f median %5.2f mean %5.2f  mi
 PY
 }
 
+# Gmsh's Blossom recombination of the triangles in $1 (Gmsh 2.2), one line.
+blossom() {
+  if command -v gmsh > /dev/null; then
+    printf 'Merge "%s";\nMesh.RecombinationAlgorithm = 1;\nRecombineMesh;\nMesh.MshFileVersion = 2.2;\nSave "rec.msh";\n' "$1" > rec.geo
+    if /usr/bin/time -f "%e" -o gt.txt timeout 600 gmsh -v 0 rec.geo -0 > /dev/null 2>&1 && [ -s rec.msh ]; then
+      msh_quality rec.msh "gmsh blossom"
+      echo "  (gmsh $(cat gt.txt) s wall)"
+    else
+      echo "  gmsh blossom: failed"
+    fi
+  else
+    echo "  gmsh: not installed (apt-get install gmsh)"
+  fi
+}
+
 for n in 32 100; do
   rm -f rec.msh
   grid "$n" 5
@@ -119,15 +138,24 @@ for n in 32 100; do
   else
     echo "  tri2quad not built"
   fi
-  if command -v gmsh > /dev/null; then
-    printf 'Merge "g.msh";\nMesh.RecombinationAlgorithm = 1;\nRecombineMesh;\nMesh.MshFileVersion = 2.2;\nSave "rec.msh";\n' > rec.geo
-    if /usr/bin/time -f "%e" -o gt.txt timeout 600 gmsh -v 0 rec.geo -0 > /dev/null 2>&1 && [ -s rec.msh ]; then
-      msh_quality rec.msh "gmsh blossom"
-      echo "  (gmsh $(cat gt.txt) s wall)"
-    else
-      echo "  gmsh blossom: failed"
-    fi
-  else
-    echo "  gmsh: not installed (apt-get install gmsh)"
-  fi
+  blossom g.msh
+done
+
+# The 2D pipeline on real images: name, image, img2poly options.
+for spec in "VentricleModel:VentricleModel.png:--threshold 128" "BinaryImage:BinaryImage.png:" \
+            "BrainT1Slice:BrainT1Slice.png:--threshold 100" "RatLungSlice1:RatLungSlice1.mha:--threshold 100"; do
+  IFS=: read -r name image opts <<< "$spec"
+  rm -f rec.msh
+  # shellcheck disable=SC2086
+  "$BIN/img2poly" -q "$DATA/$image" r.poly $opts
+  "$BIN/poly2tri" -q r.poly r.1.ele
+  "$BIN/poly2tri" -q r.poly r.msh
+  echo "quality: $name ($opts) through img2poly and poly2tri, $(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' r.1.ele) triangles"
+  "$BIN/tri2quad" -q r.1.ele q.ele
+  "$BIN/tri2quad" -q r.1.ele q.msh
+  msh_quality q.msh "tri2quad"
+  /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q q.ele qs.msh --stats qs.json
+  msh_quality qs.msh "tri2quad+quadsmooth"
+  echo "  (quadsmooth $(stat smooth_seconds qs.json) s library, $(cat t.txt) s wall)"
+  blossom r.msh
 done
