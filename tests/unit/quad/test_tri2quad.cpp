@@ -188,6 +188,39 @@ TEST_CASE("B.2.1: pentagon edge types leave a triangle on the outgoing edge", "[
   }
 }
 
+// Lemma B.2.1 within its budget, as tri2quad uses it below the root: a
+// leftover triangle on the outgoing edge with at most 3 quads and 2 points
+// (ear, type 1, type 2), or else type 3: a point m on the outgoing edge and
+// the hexagon (v0, m, v1, ..., v4) with at most 2 more points (4 quads, 3
+// points).
+TEST_CASE("B.2.1 within budget: leftover forms or type 3 with an edge point", "[tri2quad][B21]") {
+  std::mt19937 g(2121);
+  int leftover = 0, type3 = 0, fails = 0;
+  for (int it = 0; it < 6000; ++it) {
+    auto v = random_star(g, 5, 0.1, 1.0);
+    if (!t2q::simple_ccw(v)) continue;
+    LocalPatch lp = patch_of(v);
+    const int apex = t2q::pentagon(lp, ring(5), nullptr, 1);
+    if (apex >= 0) {
+      ++leftover;
+      check_patch(lp, poly_area(v) - poly_area({lp.p[0], lp.p[1], lp.p[apex]}), 3, 2);
+      continue;
+    }
+    LocalPatch le = patch_of(v);
+    const int m = le.add_new({0.5 * (v[0][0] + v[1][0]), 0.5 * (v[0][1] + v[1][1])});
+    if (t2q::hexagon(le, {0, m, 1, 2, 3, 4}, 2)) {
+      ++type3;
+      check_patch(le, poly_area(v), 4, 3);
+    } else {
+      ++fails;
+    }
+  }
+  CHECK(leftover > 0);
+  CHECK(type3 > 0);
+  WARN("B.2.1 within budget: leftover " << leftover << ", type 3 " << type3 << ", neither " << fails);
+  CHECK(fails == 0);
+}
+
 TEST_CASE("B.3.1: heptagons, both forms (ear and the p1-p3 path)", "[tri2quad][B31]") {
   std::mt19937 g(31);
   int seen[2] = {0, 0}, fails = 0, total = 0;
@@ -633,6 +666,38 @@ TEST_CASE("Steps on hand-made meshes", "[tri2quad][steps]") {
       CHECK(r.quads.size() == std::size_t(with_parent ? 11 : 10));
       CHECK(r.steiner == 7);
     }
+  }
+  SECTION("4(c)(v)(f) and 4(c)(iv): two non-convex pairs, or a pair and a non-empty triangle") {
+    // u = (a, b, c); on bc the pair (c, b, w), (w, b, x), reflex at w; on
+    // ca its mirror image (heptagon) or three triangles around y2.
+    const std::vector<P2> p = {{0, 0}, {4, 0}, {2, 2}, {4.5, 2.5}, {6, 4}, {-0.5, 2.5}, {-2, 4},
+                               {0, 3}, {2.0 / 3, 5.0 / 3}, {2, -2}};
+    const std::vector<std::array<int, 3>> pair_bc = {{2, 1, 3}, {3, 1, 4}}, pair_ca = {{2, 0, 5}, {5, 0, 6}},
+                                          ntri_ca = {{2, 7, 8}, {7, 0, 8}, {0, 2, 8}};
+    for (int with_parent = 0; with_parent < 2; ++with_parent)
+      for (int hept = 0; hept < 2; ++hept) {
+        Tri2QuadInput in;
+        in.points = p;
+        if (with_parent) in.triangles.push_back({1, 0, 9});
+        in.triangles.push_back({0, 1, 2});
+        for (const auto& t : pair_bc) in.triangles.push_back(t);
+        for (const auto& t : hept ? pair_ca : ntri_ca) in.triangles.push_back(t);
+        INFO("parent " << with_parent << " heptagon " << hept);
+        const auto r = tri2quad(in);
+        check_result(in, r, false);
+        std::map<std::string, std::size_t> cs(r.cases.begin(), r.cases.end());
+        CHECK(cs["4c_quad_to_grandparent"] == std::size_t(hept ? 2 : 1));
+        if (hept) {
+          // The root closes with a point on its edge (7 quads, 5 points);
+          // below a parent the leftover form (6 quads, 4 points at most).
+          CHECK(cs["4cvf_B31_heptagon"] + cs["B31_heptagon_edge_point"] == 1);
+          if (!with_parent) CHECK(cs["B31_heptagon_edge_point"] == 1);
+        } else {
+          CHECK(cs["3_nonempty_triangle"] == 1);
+          CHECK(cs["4civ_hexagon_point"] + cs["4civ_B21_B12_pair_nonempty"] == 1);
+        }
+        CHECK(cs["fallback_pair_nested"] + cs["fallback_dent_triangle"] + cs["fallback_dent_nonempty"] == 0);
+      }
   }
   SECTION("a dangling constraint edge is refused, naming the edge") {
     Tri2QuadInput in;
