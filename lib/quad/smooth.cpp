@@ -206,6 +206,9 @@ private:
   // when the topology changed.
   std::vector<std::vector<int>> colours_;
   bool colours_stale_ = true;
+  // The compass search waits for the first angle-based pass: most poor
+  // quads of a distorted mesh are fixed by it, at a fraction of the cost.
+  bool climb_ = false;
   void colour();
   void smooth_pass();
   void slide_pass();
@@ -508,7 +511,7 @@ int QuadImprover::smooth_vertex(int v) {
   if (d2 >= 1e-4 * h2) r = try_move(v, target, false, nullptr) ? kMoved : kRejected;  // else converged to 1e-2 of an edge
   // Where the angle-based position cannot help a poor quad, climb on the
   // soft minimum of mu itself (compass search, guarded the same way).
-  if (optimize_star(v, h2)) r |= kOptimized;
+  if (climb_ && optimize_star(v, h2)) r |= kOptimized;
   return r;
 }
 
@@ -1029,6 +1032,7 @@ void QuadImprover::run(const Stars& stars) {
       colours_stale_ = true;  // the operations woke the vertices around them
     }
     smooth_pass();
+    climb_ = true;
     if (opt_.slide_boundary) slide_pass();
     st_.passes = it + 1;
     if (opt_.progress) opt_.progress(it + 1, passes);
