@@ -77,7 +77,8 @@ bool place(LocalPatch& lp, int x, const std::vector<P2>& bound, const std::vecto
   for (const auto& t : ts) hp.push_back({lp.p[t[0]], lp.p[t[1]]});
   const auto region = clip(bound, hp);
   // Every valid candidate, best shaped first (Joe's mu of the quads it
-  // makes), so the point is not merely valid but as good as we can cheaply get.
+  // makes, the smallest angle of its triangles), so the point is not merely
+  // valid but as good as we can cheaply get.
   std::vector<std::pair<double, P2>> valid;
   for (const P2& c : candidates(region)) {
     lp.p[x] = c;
@@ -85,8 +86,10 @@ bool place(LocalPatch& lp, int x, const std::vector<P2>& bound, const std::vecto
     for (const Quad& q : qs) ok = ok && good_local(lp, q);
     for (const auto& t : ts) ok = ok && good_triangle(lp.p[t[0]], lp.p[t[1]], lp.p[t[2]]);
     if (!ok) continue;
+    // The triangles count too: a leftover sliver makes a poor quad later.
     double score = 90;
     for (const Quad& q : qs) score = std::min(score, joe_mu(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]));
+    for (const auto& t : ts) score = std::min(score, min_triangle_angle(lp.p[t[0]], lp.p[t[1]], lp.p[t[2]]));
     valid.push_back({score, c});
   }
   std::stable_sort(valid.begin(), valid.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
