@@ -4,6 +4,7 @@
 // any non-degenerate triangle), with two regions and constraint segments.
 #include "quad/smooth.hpp"
 
+#include "quad/tri2quad.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
@@ -191,6 +192,98 @@ TEST_CASE("smoothing keeps quads strictly convex, conforming, on their curves", 
       }
     }
   }
+}
+
+// tri2quad's output for a random triangle mesh: an n x n jittered grid of
+// [0,1]^2 cut along random diagonals, region 1 left of x = 1/2 and region 2
+// right of it (that column straight, and a constraint), boundary marker 1,
+// constraint marker 2. Points carry 1 + their index as attribute.
+PlanarMesh tri2quad_mesh(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U(-0.25, 0.25);  // no triangle folds
+  std::bernoulli_distribution coin(0.5);
+  Tri2QuadInput in;
+  auto id = [&](int i, int j) { return j * (n + 1) + i; };
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const bool inside = i > 0 && i < n && j > 0 && j < n;
+      in.points.push_back({(i + (inside && 2 * i != n ? U(rng) : 0)) / n, (j + (inside ? U(rng) : 0)) / n});
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if (coin(rng)) in.triangles.insert(in.triangles.end(), {{a, b, c}, {a, c, d}});
+      else in.triangles.insert(in.triangles.end(), {{a, b, d}, {b, c, d}});
+      in.region.insert(in.region.end(), 2, 2 * i < n ? 1.0 : 2.0);
+    }
+  for (int j = 0; j < n; ++j) {
+    in.constraints.push_back({id(n / 2, j), id(n / 2, j + 1)});
+    in.constraint_markers.push_back(2);
+  }
+  const Tri2QuadResult r = tri2quad(in);
+  PlanarMesh m;
+  m.points = r.points;
+  for (std::size_t q = 0; q < r.quads.size(); ++q) {
+    m.elements.push_back({r.quads[q][0], r.quads[q][1], r.quads[q][2], r.quads[q][3]});
+    m.element_attributes.push_back({r.region[q]});
+  }
+  m.segments = r.segments;
+  m.segment_markers = r.segment_markers;
+  for (std::size_t v = 0; v < m.points.size(); ++v) m.point_attributes.push_back({double(v + 1)});
+  return m;
+}
+
+TEST_CASE("clean-up and smoothing of tri2quad outputs keep every guarantee", "[smooth]") {
+  // Random meshes through tri2quad: the clean-up's swaps, splits and
+  // collapses all run here; every result must stay strictly convex and
+  // conforming, keep each region's area, every constraint vertex and every
+  // segment, and never lower the worst mu.
+  SmoothStats total;
+  for (unsigned seed = 1; seed <= 200; ++seed) {
+    const int n = 4 + 2 * int(seed % 5);
+    PlanarMesh m = tri2quad_mesh(n, seed);
+    const PlanarMesh orig = m;
+    SmoothOptions opt;
+    opt.iterations = 6;
+    const SmoothStats st = smooth_quad_mesh(m, opt);
+    CAPTURE(seed, n);
+    REQUIRE_NOTHROW(check_quad_mesh(m));
+    for (const auto& e : m.elements)
+      REQUIRE(is_strictly_convex(m.points[e[0]], m.points[e[1]], m.points[e[2]], m.points[e[3]]));
+    CHECK(region_area(m, 1) == Approx(region_area(orig, 1)).epsilon(1e-12));
+    CHECK(region_area(m, 2) == Approx(region_area(orig, 2)).epsilon(1e-12));
+    CHECK(st.after.min_mu >= st.before.min_mu - 1e-9);
+    REQUIRE(m.element_attributes.size() == m.elements.size());
+    REQUIRE(m.point_attributes.size() == m.points.size());
+    // Each quad keeps the attribute of its side of x = 1/2.
+    for (std::size_t e = 0; e < m.elements.size(); ++e) {
+      double cx = 0;
+      for (int v : m.elements[e]) cx += m.points[v][0] / 4;
+      CHECK(m.element_attributes[e][0] == (cx < 0.5 ? 1.0 : 2.0));
+    }
+    // Vertices on a segment keep their place; added points are off them.
+    std::set<int> on_segment;
+    for (const auto& sg : orig.segments) on_segment.insert({sg[0], sg[1]});
+    std::size_t kept = 0;
+    for (std::size_t v = 0; v < m.points.size(); ++v) {
+      const int o = int(m.point_attributes[v][0]) - 1;
+      if (o >= 0 && on_segment.count(o)) { CHECK(m.points[v] == orig.points[o]); ++kept; }
+      if (o < 0) CHECK(m.points[v][0] != 0.5);
+    }
+    CHECK(kept == on_segment.size());
+    const auto edges = edge_set(m);
+    REQUIRE(m.segments.size() == orig.segments.size());
+    CHECK(m.segment_markers == orig.segment_markers);
+    for (const auto& sg : m.segments) CHECK(edges.count(std::minmax(sg[0], sg[1])) == 1);
+    total.swaps += st.swaps;
+    total.valence_swaps += st.valence_swaps;
+    total.splits += st.splits;
+    total.collapses += st.collapses;
+  }
+  // The operations the guarantees are about did run.
+  CHECK(total.valence_swaps > 0);
+  CHECK(total.splits > 0);
+  CHECK(total.collapses > 0);
 }
 
 TEST_CASE("smoothing improves split meshes", "[smooth]") {
