@@ -9,7 +9,7 @@
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Delaunay_triangulation_cell_base_with_circumcenter_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Robust_circumcenter_traits_3.h>
+#include <CGAL/Robust_weighted_circumcenter_filtered_traits_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
@@ -30,8 +30,10 @@ double min_roughness_bound() { return 2 * (std::asin(0.06) + std::asin(2 * 0.06 
 namespace {
 
 using K0 = CGAL::Exact_predicates_inexact_constructions_kernel;
-// Circumcentres computed exactly then rounded (Surface_mesher does the same).
-using GT = CGAL::Robust_circumcenter_traits_3<K0>;
+// Circumcentres in floating point, checked with an exact predicate to lie
+// inside the tetrahedron's circumsphere, else computed exactly and rounded
+// (Mesh_3's traits; Surface_mesher's always go through the lazy exact kernel).
+using GT = CGAL::Robust_circumcenter_filtered_traits_3<K0>;
 using Point = GT::Point_3;
 
 // Why a vertex is in W; also the per-subroutine counters of --stats.
@@ -43,6 +45,7 @@ struct VInfo {
   std::uint8_t origin = kSeed;
   int comp = -1;  // S component (active-cube component) the vertex lies on
   std::uint8_t queued = 0;  // 1: TopoDisk check queued, 2: SMOOTH check queued
+  std::uint32_t stamp = 0;  // last insertion that collected this vertex
 };
 
 enum : std::uint8_t { kComputed = 1, kRestricted = 2, kMulti = 4 };
@@ -102,22 +105,42 @@ struct CubeGrid {
   std::unordered_map<long long, int> comp;  // active cube -> S component
   int components = 0;
 
+  // Activity of every cube (one byte each) and of blocks of kBlock^3 cubes,
+  // so EdgeSurface crosses empty space a block at a time.
+  static constexpr long kBlock = 8;
+  std::vector<std::uint8_t> cube_active, block_active;
+  long nb[3];
+
   explicit CubeGrid(const FloatImage& img) : g(img) {
     for (int i = 0; i < 3; ++i) {
       n[i] = long(img.size[i]);
       s[i] = img.spacing[i];
       hi[i] = double(n[i] - 1) * s[i];
+      nb[i] = std::max(1L, (n[i] - 1 + kBlock - 1) / kBlock);
     }
     delta = std::min({s[0], s[1], s[2]});
+    if (n[0] < 2 || n[1] < 2 || n[2] < 2) return;
+    cube_active.assign(std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)), 0);
+    block_active.assign(std::size_t(nb[0] * nb[1] * nb[2]), 0);
+    for (long z = 0; z + 1 < n[2]; ++z)
+      for (long y = 0; y + 1 < n[1]; ++y)
+        for (long x = 0; x + 1 < n[0]; ++x) {
+          const bool s0 = neg(x, y, z);
+          bool mixed = false;
+          for (int k = 1; k < 8 && !mixed; ++k) mixed = neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) != s0;
+          if (!mixed) continue;
+          cube_active[std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z))] = 1;
+          block_active[std::size_t(x / kBlock + nb[0] * (y / kBlock + nb[1] * (z / kBlock)))] = 1;
+        }
   }
   bool neg(long x, long y, long z) const { return g(std::size_t(x), std::size_t(y), std::size_t(z)) < 0; }
   long long key(long x, long y, long z) const { return x + (long long)n[0] * (y + (long long)n[1] * z); }
   bool active(long x, long y, long z) const {
     if (x < 0 || y < 0 || z < 0 || x > n[0] - 2 || y > n[1] - 2 || z > n[2] - 2) return false;
-    const bool s0 = neg(x, y, z);
-    for (int k = 1; k < 8; ++k)
-      if (neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) != s0) return true;
-    return false;
+    return cube_active[std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z))];
+  }
+  bool block(long x, long y, long z) const {
+    return block_active[std::size_t(x + nb[0] * (y + nb[1] * z))];
   }
   int comp_of(long x, long y, long z) const {
     auto it = comp.find(key(x, y, z));
@@ -266,6 +289,11 @@ private:
   std::vector<char> dirty_;
   long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
   std::vector<std::pair<int, Vec3>> normals_;
+  // Insertion scratch: the conflict zone and the vertices around it.
+  std::vector<Facet> zone_facets_;
+  std::vector<Ch> zone_cells_, cells_buf_;
+  std::vector<Vh> touched_;
+  std::uint32_t stamp_ = 0;
 
   double value(const Vec3& q) {
     ++evaluations_;
@@ -286,11 +314,14 @@ private:
   Vec3 bisect(Vec3 a, Vec3 b, double fa);
   EdgeCrossing edge_surface(const Vec3& a, const Vec3& b, const Vec3& site);
   void compute_facet(Ch c, int i);
+  FacetInfo edge_surface_of(Ch c, int i);
   void enqueue_facet(Ch c, int i);
   void enqueue_vertex(Vh v);
-  bool insert(const Vec3& x, Origin origin, Ch hint);
+  bool insert(const Vec3& x, Origin origin, Facet hint = Facet(Ch(), 0));
   void after_insertion(Vh v);
+  void mark_restricted(Ch c, int i);
   void seeds();
+  void restricted_around(Vh v);
   bool topo_disk(Vh v, Facet* worst);
   bool smooth(Vh v, Facet* worst);
   void drain();
@@ -310,6 +341,7 @@ private:
   bool fallback(const std::vector<int>& bad_components);
   bool facet_cycle(const Tr::Edge& e, Vec3& x);
   bool facet_cycle_pass();
+  bool insert_batch(const std::vector<std::pair<Vec3, double>>& pts, Origin origin);
 };
 
 Vec3 Mesher::bisect(Vec3 a, Vec3 b, double fa) {
@@ -368,30 +400,46 @@ EdgeCrossing Mesher::edge_surface(const Vec3& a, const Vec3& b, const Vec3& site
     if (t == 1) return b;
     return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]};
   };
-  // Breakpoints where the segment crosses grid planes (Amanatides-Woo's
-  // events, sorted); each piece lies in one cube.
-  std::vector<double> ts{t0, t1};
-  for (int i = 0; i < 3; ++i) {
-    if (d[i] == 0) continue;
-    const double lo = std::min(a[i] + t0 * d[i], a[i] + t1 * d[i]);
-    const double hi = std::max(a[i] + t0 * d[i], a[i] + t1 * d[i]);
-    for (long k = long(std::ceil(lo / grid_.s[i])); k <= long(std::floor(hi / grid_.s[i])); ++k) {
-      const double t = (double(k) * grid_.s[i] - a[i]) / d[i];
-      if (t > t0 && t < t1) ts.push_back(t);
+  // Pieces of [t0, t1] inside active cubes, in order: where the segment
+  // crosses planes spaced `step` (Amanatides-Woo's events), first at the
+  // block level, then cube by cube inside active blocks.
+  auto breakpoints = [&](double ta, double tb, const double step[3], std::vector<double>& ts) {
+    ts.assign({ta, tb});
+    for (int i = 0; i < 3; ++i) {
+      if (d[i] == 0) continue;
+      const double lo = std::min(a[i] + ta * d[i], a[i] + tb * d[i]);
+      const double hi = std::max(a[i] + ta * d[i], a[i] + tb * d[i]);
+      for (long k = long(std::ceil(lo / step[i])); k <= long(std::floor(hi / step[i])); ++k) {
+        const double t = (double(k) * step[i] - a[i]) / d[i];
+        if (t > ta && t < tb) ts.push_back(t);
+      }
     }
-  }
-  std::sort(ts.begin(), ts.end());
+    std::sort(ts.begin(), ts.end());
+  };
+  // Scratch reused across calls (no allocation per facet).
+  thread_local std::vector<double> tblock, tcube;
   struct Piece { double ta, tb; };
-  std::vector<Piece> pieces;
-  for (std::size_t k = 0; k + 1 < ts.size(); ++k) {
-    const double ta = ts[k], tb = ts[k + 1];
-    if (!(tb > ta)) continue;
-    const Vec3 m = at((ta + tb) / 2);
-    long c[3];
-    for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(m[i] / grid_.s[i])), 0L, grid_.n[i] - 2);
-    if (!grid_.active(c[0], c[1], c[2])) continue;
-    if (!pieces.empty() && pieces.back().tb == ta) pieces.back().tb = tb;  // merge runs of active cubes
-    else pieces.push_back({ta, tb});
+  thread_local std::vector<Piece> pieces;
+  pieces.clear();
+  const double bstep[3] = {grid_.s[0] * CubeGrid::kBlock, grid_.s[1] * CubeGrid::kBlock, grid_.s[2] * CubeGrid::kBlock};
+  breakpoints(t0, t1, bstep, tblock);
+  for (std::size_t kb = 0; kb + 1 < tblock.size(); ++kb) {
+    if (!(tblock[kb + 1] > tblock[kb])) continue;
+    const Vec3 mb = at((tblock[kb] + tblock[kb + 1]) / 2);
+    long cb[3];
+    for (int i = 0; i < 3; ++i) cb[i] = std::clamp(long(std::floor(mb[i] / bstep[i])), 0L, grid_.nb[i] - 1);
+    if (!grid_.block(cb[0], cb[1], cb[2])) continue;
+    breakpoints(tblock[kb], tblock[kb + 1], grid_.s, tcube);
+    for (std::size_t k = 0; k + 1 < tcube.size(); ++k) {
+      const double ta = tcube[k], tb = tcube[k + 1];
+      if (!(tb > ta)) continue;
+      const Vec3 m = at((ta + tb) / 2);
+      long c[3];
+      for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(m[i] / grid_.s[i])), 0L, grid_.n[i] - 2);
+      if (!grid_.active(c[0], c[1], c[2])) continue;
+      if (!pieces.empty() && pieces.back().tb == ta) pieces.back().tb = tb;  // merge runs of active cubes
+      else pieces.push_back({ta, tb});
+    }
   }
   if (pieces.empty()) return out;
   const double len = norm(d);
@@ -456,15 +504,14 @@ EdgeCrossing Mesher::edge_surface(const Vec3& a, const Vec3& b, const Vec3& site
   };
   // Forward to the first piece with a root, backward to the last one.
   std::size_t first = pieces.size();
-  std::vector<std::pair<double, double>> ch_first;
-  std::vector<double> fv_first;
+  thread_local std::vector<std::pair<double, double>> ch_first, ch_last;
+  thread_local std::vector<double> fv_first, fv_last;
+  ch_first.clear(); ch_last.clear(); fv_first.clear(); fv_last.clear();
   for (std::size_t k = 0; k < pieces.size(); ++k) {
     changes(pieces[k], ch_first, fv_first);
     if (!ch_first.empty()) { first = k; break; }
   }
   if (first == pieces.size()) return out;
-  std::vector<std::pair<double, double>> ch_last;
-  std::vector<double> fv_last;
   for (std::size_t k = pieces.size() - 1; k > first; --k) {
     changes(pieces[k], ch_last, fv_last);
     if (!ch_last.empty()) break;
@@ -486,6 +533,15 @@ EdgeCrossing Mesher::edge_surface(const Vec3& a, const Vec3& b, const Vec3& site
 }
 
 void Mesher::compute_facet(Ch c, int i) {
+  const FacetInfo fi = edge_surface_of(c, i);
+  Ch n = c->neighbor(i);
+  c->facet[i] = fi;
+  n->facet[n->index(c)] = fi;
+  enqueue_facet(c, i);
+}
+
+// EdgeSurface for the Voronoi edge dual to facet (c, i).
+FacetInfo Mesher::edge_surface_of(Ch c, int i) {
   Ch n = c->neighbor(i);
   const int j = n->index(c);
   FacetInfo fi;
@@ -529,9 +585,7 @@ void Mesher::compute_facet(Ch c, int i) {
       }
     }
   }
-  c->facet[i] = fi;
-  n->facet[j] = fi;
-  enqueue_facet(c, i);
+  return fi;
 }
 
 void Mesher::enqueue_facet(Ch c, int i) {
@@ -558,7 +612,7 @@ void Mesher::enqueue_vertex(Vh v) {
   v->info().queued = 3;
 }
 
-bool Mesher::insert(const Vec3& x, Origin origin, Ch hint) {
+bool Mesher::insert(const Vec3& x, Origin origin, Facet hint) {
   if (origin != kSeed && vertices_.size() >= opt_.max_points) {  // seeds always go in
     max_hit_ = true;
     return false;
@@ -577,14 +631,33 @@ bool Mesher::insert(const Vec3& x, Origin origin, Ch hint) {
     }
     return true;
   }
-  Tr::Locate_type lt;
-  int li, lj;
-  Ch c = tr_.locate(p, lt, li, lj, hint);
-  if (lt == Tr::VERTEX) {
-    ++refused_;
-    return false;
+  // A facet's surface centre lies in the circumball of one of the facet's two
+  // cells (balls centred on its Voronoi edge are covered by the two), so the
+  // conflict zone starts there without a walk (notes 2, step 3).
+  Ch c0;
+  if (hint.first != Ch()) {
+    Ch n = hint.first->neighbor(hint.second);
+    if (tr_.side_of_sphere(hint.first, p, true) == CGAL::ON_BOUNDED_SIDE) c0 = hint.first;
+    else if (tr_.side_of_sphere(n, p, true) == CGAL::ON_BOUNDED_SIDE) c0 = n;
   }
-  Vh v = tr_.insert(p, lt, c, li, lj);
+  if (c0 == Ch()) {
+    Tr::Locate_type lt;
+    int li, lj;
+    c0 = tr_.locate(p, lt, li, lj, hint.first);
+    if (lt == Tr::VERTEX) return false;
+  }
+  zone_facets_.clear();
+  zone_cells_.clear();
+  tr_.find_conflicts(p, c0, std::back_inserter(zone_facets_), std::back_inserter(zone_cells_));
+  for (const Facet& f : zone_facets_)  // x on a vertex (rounding): refuse
+    for (int m = 1; m < 4; ++m)
+      if (f.first->vertex((f.second + m) & 3)->point() == p) return false;
+  // Vertices whose restricted facets die: TopoDisk/SMOOTH re-check them.
+  ++stamp_;
+  touched_.clear();
+  for (Ch c : zone_cells_)
+    for (int i = 0; i < 4; ++i) mark_restricted(c, i);
+  Vh v = tr_.insert_in_hole(p, zone_cells_.begin(), zone_cells_.end(), zone_facets_[0].first, zone_facets_[0].second);
   v->info() = {int(vertices_.size()), std::uint8_t(origin), grid_.comp_at(x)};
   vertices_.push_back(v);
   ++inserted_[origin];
@@ -593,23 +666,39 @@ bool Mesher::insert(const Vec3& x, Origin origin, Ch hint) {
   return true;
 }
 
+// Remember the finite vertices of facet (c, i) if it is restricted.
+void Mesher::mark_restricted(Ch c, int i) {
+  if (!(c->facet[i].state & kRestricted)) return;
+  for (int m = 1; m < 4; ++m) {
+    Vh w = c->vertex((i + m) & 3);
+    if (w->info().stamp != stamp_) {
+      w->info().stamp = stamp_;
+      touched_.push_back(w);
+    }
+  }
+}
+
 // The new cells are exactly the cells incident to v: recompute their facets
-// (both sides), and re-check v and the cavity's vertices.
+// (both sides), and re-check the vertices whose restricted facets changed.
+// An edge's Voronoi facet changed only if both its ends are in the cavity.
 void Mesher::after_insertion(Vh v) {
-  std::vector<Ch> cells;
-  tr_.incident_cells(v, std::back_inserter(cells));
-  for (Ch c : cells) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
-  for (Ch c : cells)
+  cells_buf_.clear();
+  tr_.incident_cells(v, std::back_inserter(cells_buf_));
+  for (Ch c : cells_buf_) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
+  for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i)
       if (!(c->facet[i].state & kComputed)) compute_facet(c, i);
-  std::vector<Vh> around;
-  tr_.finite_adjacent_vertices(v, std::back_inserter(around));
+  for (Ch c : cells_buf_)
+    for (int i = 0; i < 4; ++i) mark_restricted(c, i);
   enqueue_vertex(v);
-  for (Vh w : around) enqueue_vertex(w);
+  for (Vh w : touched_) enqueue_vertex(w);
   dirty_.resize(vertices_.size(), 1);
   dirty_[v->info().id] = 1;
-  for (Vh w : around)
-    if (!tr_.is_infinite(w)) dirty_[w->info().id] = 1;
+  for (const Facet& f : zone_facets_)
+    for (int m = 1; m < 4; ++m) {
+      Vh w = f.first->vertex((f.second + m) & 3);
+      if (!tr_.is_infinite(w)) dirty_[w->info().id] = 1;
+    }
 }
 
 // Seeds (8.1): on every component of S, crossings of mixed cube edges in the
@@ -658,7 +747,7 @@ void Mesher::seeds() {
   pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
   std::mt19937_64 rng(opt_.seed);
   std::shuffle(pts.begin(), pts.end(), rng);
-  for (const Vec3& x : pts) insert(x, kSeed, Ch());
+  for (const Vec3& x : pts) insert(x, kSeed);
   // Degenerate seed sets (a single voxel, a one-voxel rod): add crossings of
   // other mixed edges until the triangulation is 3D.
   for (std::size_t k = 0; tr_.dimension() < 3 && k < cubes.size(); k += std::max<std::size_t>(1, cubes.size() / 64)) {
@@ -666,16 +755,30 @@ void Mesher::seeds() {
     Vec3 x;
     for (int which = 0; tr_.dimension() < 3 && which < 12; ++which)
       if (crossing(long(key % grid_.n[0]), long((key / grid_.n[0]) % grid_.n[1]), long(key / grid_.n[0] / grid_.n[1]), x, which))
-        insert(x, kSeed, Ch());
+        insert(x, kSeed);
   }
   if (tr_.dimension() < 3) throw Error("cannot place four non-coplanar seed points on the surface");
 }
 
 // TopoDisk (7.6.1): the restricted facets around v form one closed disk:
 // every link vertex in two link edges, and the link edges one cycle.
-bool Mesher::topo_disk(Vh v, Facet* worst) {
+// The restricted facets incident to v, each once, into facets_buf_.
+void Mesher::restricted_around(Vh v) {
   facets_buf_.clear();
-  tr_.finite_incident_facets(v, std::back_inserter(facets_buf_));
+  cells_buf_.clear();
+  tr_.incident_cells(v, std::back_inserter(cells_buf_));
+  for (Ch c : cells_buf_) {
+    const int iv = c->index(v);
+    for (int i = 0; i < 4; ++i) {
+      if (i == iv || !(c->facet[i].state & kRestricted)) continue;
+      Ch n = c->neighbor(i);  // also around v: take the facet from one side
+      if (&*c < &*n) facets_buf_.emplace_back(c, i);
+    }
+  }
+}
+
+bool Mesher::topo_disk(Vh v, Facet* worst) {
+  restricted_around(v);
   link_.clear();
   double best = -1;
   for (const Facet& f : facets_buf_) {
@@ -722,8 +825,7 @@ bool Mesher::topo_disk(Vh v, Facet* worst) {
 // SMOOTH (7.6.4): the roughness of an edge (v, u), the angle between the
 // oriented normals of its two restricted facets, stays below g.
 bool Mesher::smooth(Vh v, Facet* worst) {
-  facets_buf_.clear();
-  tr_.finite_incident_facets(v, std::back_inserter(facets_buf_));
+  restricted_around(v);
   normals_.clear();  // (other vertex of the edge, oriented unit normal)
   double best = -1;
   for (const Facet& f : facets_buf_) {
@@ -786,11 +888,11 @@ void Mesher::drain() {
       if (it.kind == kQTopoDisk) {
         phase_ = "topology";
         if (topo_disk(it.a, &worst)) continue;
-        if (!insert(facet_center(worst), kTopoDisk, worst.first)) ++refused_;
+        if (!insert(facet_center(worst), kTopoDisk, worst)) ++refused_;
       } else {
         phase_ = "smooth";
         if (smooth(it.a, &worst)) continue;
-        if (worst.first->facet[worst.second].r2 < guard2 || !insert(facet_center(worst), kSmooth, worst.first)) ++refused_;
+        if (worst.first->facet[worst.second].r2 < guard2 || !insert(facet_center(worst), kSmooth, worst)) ++refused_;
       }
       continue;
     }
@@ -803,10 +905,10 @@ void Mesher::drain() {
     if (it.kind == kQVorEdge) {
       phase_ = "topology";
       if (!(fi.state & kMulti)) continue;
-      if (!insert(x, kVorEdge, c)) ++refused_;
+      if (!insert(x, kVorEdge, Facet(c, i))) ++refused_;
     } else {
       phase_ = it.kind == kQQuality ? "quality" : "max-distance";
-      if (fi.r2 < guard2 || !insert(x, it.kind == kQQuality ? kQuality : kDistance, c)) ++refused_;
+      if (fi.r2 < guard2 || !insert(x, it.kind == kQQuality ? kQuality : kDistance, Facet(c, i))) ++refused_;
     }
   }
 }
@@ -968,6 +1070,23 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
   return true;
 }
 
+// Points found on one state of W, inserted one after the other: a point
+// goes in only while it is still at least half its clearance (its distance
+// to W when it was found) away from W, so two points found for neighbouring
+// features do not both go in and make a tiny, unrefinable triangle.
+bool Mesher::insert_batch(const std::vector<std::pair<Vec3, double>>& pts, Origin origin) {
+  bool any = false;
+  for (const auto& [x, clearance2] : pts) {
+    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), vertices_.back()->cell());
+    if (dist2(x, vec(nv->point())) < clearance2 / 4) {
+      ++refused_;
+      continue;
+    }
+    any = insert(x, origin) || any;
+  }
+  return any;
+}
+
 // One FacetCycle pass over the edges whose Voronoi facet may have changed
 // since the last pass; inserts the cycle points found. True if any went in.
 bool Mesher::facet_cycle_pass() {
@@ -983,14 +1102,12 @@ bool Mesher::facet_cycle_pass() {
   }
   std::fill(dirty_.begin(), dirty_.end(), 0);
   std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<Vec3> pts;
+  std::vector<std::pair<Vec3, double>> pts;
   for (auto& ed : edges) {
     Vec3 x;
-    if (facet_cycle(ed.second, x)) pts.push_back(x);
+    if (facet_cycle(ed.second, x)) pts.emplace_back(x, dist2(x, vec(ed.second.first->vertex(ed.second.second)->point())));
   }
-  bool any = false;
-  for (const Vec3& x : pts) any = insert(x, kFacetCycle, Ch()) || any;
-  return any;
+  return insert_batch(pts, kFacetCycle);
 }
 
 std::vector<Facet> Mesher::restricted_facets() const {
@@ -1022,8 +1139,8 @@ bool Mesher::fallback(const std::vector<int>& bad) {
       if (f.first->vertex((f.second + 1) & 3)->info().comp == comp) mine.emplace_back(f.first->facet[f.second].r2, f);
     std::stable_sort(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     const std::size_t take = std::min<std::size_t>(mine.size(), std::max<std::size_t>(1, mine.size() / 10));
-    std::vector<Vec3> pts;
-    for (std::size_t k = 0; k < take; ++k) pts.push_back(facet_center(mine[k].second));
+    std::vector<std::pair<Vec3, double>> pts;
+    for (std::size_t k = 0; k < take; ++k) pts.emplace_back(facet_center(mine[k].second), mine[k].first);
     // Farthest mixed-edge crossing (linear estimate, then refined).
     double far = -1;
     Vec3 fa{}, fb{};
@@ -1057,9 +1174,9 @@ bool Mesher::fallback(const std::vector<int>& bad) {
         }
       }
     }
-    if (far > 0) pts.push_back(bisect(fa, fb, value(fa)));
+    if (far > 0) pts.emplace_back(bisect(fa, fb, value(fa)), far);
     (void)ffa;
-    for (const Vec3& x : pts) any = insert(x, kFallback, Ch()) || any;
+    any = insert_batch(pts, kFallback) || any;
   }
   return any;
 }
@@ -1105,10 +1222,11 @@ RestrictedDelaunayResult Mesher::run() {
   SurfaceMesh mesh;
   std::vector<Vec3> centers;
   std::vector<int> tri_comp;
+  std::vector<Facet> fs;  // fs[k]: the Delaunay facet of triangle k
   for (;;) {
     mesh = SurfaceMesh();
     centers.clear();
-    std::vector<Facet> fs = restricted_facets();
+    fs = restricted_facets();
     std::vector<int> index(vertices_.size(), -1);
     std::vector<int> comp_of_vertex;
     for (const Facet& f : fs) {
@@ -1261,7 +1379,7 @@ RestrictedDelaunayResult Mesher::run() {
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
     const Vec3& x = centers[k];
     const double r2 = dist2(x, mesh.points[mesh.triangles[k][0]]);
-    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]));
+    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), fs[k].first);
     if (dist2(x, vec(nv->point())) < r2 * (1 - 1e-9)) ++rd_violations;
   }
   res.topology_ok = res.topology.manifold && res.topology.oriented && res.topology.same_as(res.expected) && bad.empty();
