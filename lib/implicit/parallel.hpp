@@ -1,4 +1,4 @@
-// Private to lib/implicit: a minimal static split of index ranges over
+// Shared by lib/implicit and lib/surface: a minimal static split of index ranges over
 // std::thread (deterministic: each range is processed in order).
 #pragma once
 #include <algorithm>

@@ -4,6 +4,7 @@
 // See ../shared/notes/implicit2mesh.md for the CGAL calls this follows.
 #include "surface/restricted_delaunay.hpp"
 
+#include "implicit/parallel.hpp"
 #include "util/error.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -13,6 +14,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <map>
@@ -275,7 +277,8 @@ private:
   std::priority_queue<Item> queue_;
   std::uint64_t seq_ = 0;
   long long inserted_[kOrigins] = {};
-  long long refused_ = 0, evaluations_ = 0;
+  long long refused_ = 0;
+  std::atomic<long long> evaluations_{0};  // also counted by FacetCycle's threads
   bool max_hit_ = false;
   std::size_t last_progress_ = 0;
   std::string phase_ = "seeds";
@@ -284,8 +287,9 @@ private:
   std::vector<std::pair<int, int>> link_;
   std::vector<int> ends_;
   std::vector<char> used_;
-  // FacetCycle: vertices touched by an insertion since the last pass (an
-  // edge's Voronoi facet changes only when both its ends are).
+  // FacetCycle: vertices inserted since the last pass. Insertions create
+  // only edges at the new vertex and only shrink the other Voronoi facets,
+  // and a cycle inside a shrunken facet was inside it before (notes 2.7).
   std::vector<char> dirty_;
   long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
   std::vector<std::pair<int, Vec3>> normals_;
@@ -296,7 +300,7 @@ private:
   std::uint32_t stamp_ = 0;
 
   double value(const Vec3& q) {
-    ++evaluations_;
+    evaluations_.fetch_add(1, std::memory_order_relaxed);
     Vec3 c = q;
     for (int i = 0; i < 3; ++i) c[i] = std::clamp(c[i], 0.0, grid_.hi[i]);
     return f_.value(c);
@@ -694,11 +698,6 @@ void Mesher::after_insertion(Vh v) {
   for (Vh w : touched_) enqueue_vertex(w);
   dirty_.resize(vertices_.size(), 1);
   dirty_[v->info().id] = 1;
-  for (const Facet& f : zone_facets_)
-    for (int m = 1; m < 4; ++m) {
-      Vh w = f.first->vertex((f.second + m) & 3);
-      if (!tr_.is_infinite(w)) dirty_[w->info().id] = 1;
-    }
 }
 
 // Seeds (8.1): on every component of S, crossings of mixed cube edges in the
@@ -924,7 +923,6 @@ void Mesher::drain() {
 // neighbour) farthest from p, by root finding along that segment, i.e. on
 // S inside Pi. Cycles narrower than the step are missed (like EdgeSurface).
 bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
-  ++facet_cycle_checks_;
   const Vh p = e.first->vertex(e.second), q = e.first->vertex(e.third);
   const Vec3 pp = vec(p->point()), pq = vec(q->point());
   Vec3 n = sub(pq, pp);
@@ -938,9 +936,12 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
   const Vec3 v = cross(n, u);
   // Half-planes A a + B b <= C on Pi (x = m + a u + b v): V(p)'s faces and the box.
   struct HP { double A, B, C; };
-  std::vector<HP> hp;
-  std::vector<Vh> adj;
-  tr_.finite_adjacent_vertices(p, std::back_inserter(adj));
+  // Scratch reused across checks (no allocation per edge).
+  thread_local std::vector<HP> hp;
+  thread_local std::vector<Vh> adj;
+  hp.clear();
+  adj.clear();
+  tr_.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
   for (Vh w : adj) {
     if (w == q) continue;
     const Vec3 pw = vec(w->point());
@@ -979,7 +980,9 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
   const double step = grid_.delta / 4;
   const long nb = long(std::ceil((b1 - b0) / step)) + 1;
   // Rows: the a-interval where every half-plane holds.
-  std::vector<long> lo(nb, 0), hi(nb, -1);
+  thread_local std::vector<long> lo, hi, row_off;
+  lo.assign(nb, 0);
+  hi.assign(nb, -1);
   long na_max = 0;
   long rows_used = 0;
   for (long j = 0; j < nb; ++j) {
@@ -998,11 +1001,12 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
   }
   if (rows_used < 3) return false;
   // Samples inside h, with their signs.
-  std::vector<long> row_off(nb + 1, 0);
+  row_off.assign(nb + 1, 0);
   for (long j = 0; j < nb; ++j) row_off[j + 1] = row_off[j] + std::max(0L, hi[j] - lo[j] + 1);
   const long total = row_off[nb];
   if (total < 9 || total > 4000000) return false;
-  std::vector<signed char> sign(total);
+  thread_local std::vector<signed char> sign;
+  sign.assign(total, 0);
   auto point = [&](long i, long j) {
     const double a = a0 + i * step, b = b0 + j * step;
     return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
@@ -1025,8 +1029,11 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
     return row_off[j] + i - lo[j];
   };
   // Sign regions (4-connected); one that never reaches h's border is enclosed.
-  std::vector<int> label(total, -1);
-  std::vector<std::pair<long, long>> stack, members;
+  thread_local std::vector<int> label;
+  thread_local std::vector<std::pair<long, long>> stack, members;
+  label.assign(total, -1);
+  stack.clear();
+  members.clear();
   double best = -1;
   Vec3 ba{}, bb{};
   for (long j = 0; j < nb; ++j)
@@ -1092,21 +1099,40 @@ bool Mesher::insert_batch(const std::vector<std::pair<Vec3, double>>& pts, Origi
 bool Mesher::facet_cycle_pass() {
   ++facet_cycle_passes_;
   dirty_.resize(vertices_.size(), 1);
+  // The edges at new vertices, each once (from the smaller id when both
+  // ends are new), found from the new vertices' cells.
   std::vector<std::pair<std::pair<int, int>, Tr::Edge>> edges;
-  for (auto it = tr_.finite_edges_begin(); it != tr_.finite_edges_end(); ++it) {
-    Vh a = it->first->vertex(it->second), b = it->first->vertex(it->third);
-    if (!dirty_[a->info().id] || !dirty_[b->info().id]) continue;
-    Tr::Edge ed = *it;
-    if (a->info().id > b->info().id) std::swap(ed.second, ed.third);  // p: the smaller id
-    edges.push_back({{std::min(a->info().id, b->info().id), std::max(a->info().id, b->info().id)}, ed});
+  for (Vh a : vertices_) {
+    const int ia = a->info().id;
+    if (!dirty_[ia]) continue;
+    ++stamp_;
+    cells_buf_.clear();
+    tr_.incident_cells(a, std::back_inserter(cells_buf_));
+    for (Ch c : cells_buf_)
+      for (int k = 0; k < 4; ++k) {
+        Vh b = c->vertex(k);
+        if (b == a || tr_.is_infinite(b) || b->info().stamp == stamp_) continue;
+        const int ib = b->info().id;
+        if (dirty_[ib] && ib < ia) continue;
+        b->info().stamp = stamp_;
+        // p (the edge's first vertex): the smaller id, as before.
+        edges.push_back({{std::min(ia, ib), std::max(ia, ib)}, ia < ib ? Tr::Edge(c, c->index(a), k) : Tr::Edge(c, k, c->index(a))});
+      }
   }
   std::fill(dirty_.begin(), dirty_.end(), 0);
   std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  // The checks only read the triangulation (every finite cell's
+  // circumcentre is cached by then: EdgeSurface asked for it), so they run
+  // on --threads threads; the points go in afterwards, in edge order.
+  facet_cycle_checks_ += static_cast<long long>(edges.size());
+  std::vector<char> found(edges.size(), 0);
+  std::vector<Vec3> xs(edges.size());
+  implicit_detail::parallel_for(long(edges.size()), unsigned(std::max(1, opt_.threads)), [&](long a, long b, unsigned) {
+    for (long k = a; k < b; ++k) found[std::size_t(k)] = facet_cycle(edges[std::size_t(k)].second, xs[std::size_t(k)]);
+  });
   std::vector<std::pair<Vec3, double>> pts;
-  for (auto& ed : edges) {
-    Vec3 x;
-    if (facet_cycle(ed.second, x)) pts.emplace_back(x, dist2(x, vec(ed.second.first->vertex(ed.second.second)->point())));
-  }
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(edges[k].second.first->vertex(edges[k].second.second)->point())));
   return insert_batch(pts, kFacetCycle);
 }
 
@@ -1432,7 +1458,7 @@ RestrictedDelaunayResult Mesher::run() {
   st["max_abs_f_at_vertices"] = max_f;
   st["max_abs_f_at_centroids"] = max_centroid;
   st["restricted_delaunay_violations"] = rd_violations;
-  st["function_evaluations"] = evaluations_;
+  st["function_evaluations"] = evaluations_.load();
   Json times = Json::object();
   times["seeds"] = t_seeds;
   times["refinement"] = t_refine_s;
