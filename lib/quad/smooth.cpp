@@ -74,8 +74,9 @@ inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, c
          orientation(d, a, b) > 0;
 }
 
-// Clean-up is tried only around poor quads: sin(30 deg) for swaps (a quad of
-// the pair below the usual bar), sin(15 deg) for collapses.
+// Clean-up for the worst mu is tried only around poor quads: sin(30 deg) for
+// swaps (a quad of the pair below the usual bar), sin(15 deg) for collapses
+// and pair splits. Valence-driven swaps and collapses may run anywhere.
 constexpr double kSwapBelow = 0.5;
 constexpr double kCollapseBelow = 0.25881904510252074;
 // Vertices next to a quad with mu below 25 degrees also get a compass search
@@ -108,12 +109,12 @@ Stars conforming_stars(const PlanarMesh& m, const std::string& path) {
   s.start.assign(std::size_t(n) + 1, 0);
   for (std::size_t e = 0; e < m.elements.size(); ++e) {
     const auto& el = m.elements[e];
-    const std::string where = "element " + std::to_string(e + m.first_index);
-    if (el.size() != 3 && el.size() != 4) throw Error(where + " has " + std::to_string(el.size()) + " nodes (want 3 or 4)", path);
+    auto where = [&] { return "element " + std::to_string(e + m.first_index); };  // built only to throw
+    if (el.size() != 3 && el.size() != 4) throw Error(where() + " has " + std::to_string(el.size()) + " nodes (want 3 or 4)", path);
     for (std::size_t i = 0; i < el.size(); ++i) {
-      if (el[i] < 0 || el[i] >= n) throw Error(where + ": node id out of range", path);
+      if (el[i] < 0 || el[i] >= n) throw Error(where() + ": node id out of range", path);
       for (std::size_t j = 0; j < i; ++j)
-        if (el[i] == el[j]) throw Error(where + ": repeated node", path);
+        if (el[i] == el[j]) throw Error(where() + ": repeated node", path);
     }
     const auto& P = m.points;
     double area2 = 0;
@@ -121,7 +122,7 @@ Stars conforming_stars(const PlanarMesh& m, const std::string& path) {
       const Point2 &p = P[el[i]], &q = P[el[(i + 1) % el.size()]];
       area2 += p[0] * q[1] - p[1] * q[0];
     }
-    if (!(area2 > 0)) throw Error(where + " is clockwise or degenerate (want counter-clockwise)", path);
+    if (!(area2 > 0)) throw Error(where() + " is clockwise or degenerate (want counter-clockwise)", path);
     for (int v : el) ++s.start[v + 1];
   }
   for (std::size_t v = 0; v < std::size_t(n); ++v) s.start[v + 1] += s.start[v];
