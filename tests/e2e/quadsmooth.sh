@@ -2,7 +2,8 @@
 # quadsmooth end to end: a jittered triangle grid through tri2quad (when it is
 # built) or a jittered quad grid, smoothed with and without clean-up and
 # boundary sliding; checks strict convexity, fixed boundary, kept topology
-# (meshinfo when built), formats, and bad input.
+# (meshinfo when built), thread-count independence, the quality reached on
+# the ventricle image, formats, and bad input.
 set -u
 mkdir -p "$TMP"
 cd "$TMP" || exit 1
@@ -62,6 +63,25 @@ q=($(stat quads nc.json))
 [ "$(boundary in.node | wc -l)" = "$(boundary sl.node | wc -l)" ] || fail "a boundary vertex left the boundary"
 for c in "0 0" "0 $N" "$N 0" "$N $N"; do boundary sl.node | grep -qx "$c" || fail "corner $c moved"; done
 [ "$(stat non_convex sl.json | tail -1)" = 0 ] || fail "sliding made a non-convex quad"
+
+# The thread count does not change the output.
+"$Q" -q in.ele t1.ele --threads 1 || fail "--threads 1"
+"$Q" -q in.ele t2.ele --threads 2 || fail "--threads 2"
+cmp -s t1.node t2.node && cmp -s t1.ele t2.ele || fail "--threads 1 and 2 differ"
+
+# A real image through the 2D pipeline: the clean-up and smoothing reach
+# min mu >= 5 (the bar), at least half of the quads with every angle
+# in [45, 135] and 5 degrees more mean mu (tri2quad gives about 0.02, 35% and
+# 14; quadsmooth 11-13, 65-74% and 23).
+for t in img2poly poly2tri; do [ -x "$BIN/$t" ] || fail "no $BIN/$t"; done
+"$BIN/img2poly" -q "$DATA/VentricleModel.png" v.poly --threshold 128 || fail "img2poly"
+"$BIN/poly2tri" -q v.poly v.1.ele || fail "poly2tri"
+"$BIN/tri2quad" -q v.1.ele v.q.ele || fail "tri2quad (ventricles)"
+"$Q" -q v.q.ele v.qs.ele --stats v.json || fail "quadsmooth (ventricles)"
+mins=($(stat min_mu v.json)); shares=($(stat angles_45_135 v.json)); means=($(stat mean_mu v.json))
+awk -v m="${mins[1]}" -v s="${shares[1]}" -v b="${means[0]}" -v a="${means[1]}" \
+  'BEGIN { exit !(m >= 5 && s >= 0.5 && a >= b + 5) }' ||
+  fail "ventricles: min mu ${mins[1]}, share in [45,135] ${shares[1]}, mean mu ${means[*]}"
 
 # Formats by extension.
 for ext in off vtk msh; do
