@@ -581,6 +581,42 @@ void diagonal_split(const Ring& h, int t, std::vector<Quad>& qs) {
   qs.push_back({h[t], h[t + 1], h[t + 2], h[t + 3]});
   qs.push_back({h[t + 3], h[(t + 4) % 6], h[(t + 5) % 6], h[t]});
 }
+
+// The octagon o cut by a path o_i - p - o_i+4 through the new point p into
+// two hexagons, each split by a diagonal (5 quads); p by the placement
+// rule. With `first_bound`, o[0] is a new point too, placed first in that
+// region by the turns that do not involve p, with `first_tri` kept proper.
+bool two_diagonals(LocalPatch& lp, const Ring& o, int p, const std::vector<P2>* first_bound,
+                   const std::array<int, 3>& first_tri) {
+  auto O = [&](int i) { return o[i % 8]; };
+  const int first = first_bound ? o[0] : -1;
+  const auto box = bbox_poly(pts(lp, Ring(o.begin() + 1, o.end())), 0.0);
+  for (int i = 0; i < 4; ++i) {
+    const Ring h1 = {O(i), O(i + 1), O(i + 2), O(i + 3), O(i + 4), p};
+    const Ring h2 = {O(i + 4), O(i + 5), O(i + 6), O(i + 7), O(i), p};
+    for (int t1 = 0; t1 < 3; ++t1)
+      for (int t2 = 0; t2 < 3; ++t2) {
+        std::vector<Quad> qs, with_p;
+        diagonal_split(h1, t1, qs);
+        diagonal_split(h2, t2, qs);
+        bool known_ok = true;
+        for (const Quad& q : qs) {
+          const bool has_p = std::find(q.begin(), q.end(), p) != q.end();
+          if (has_p) with_p.push_back(q);
+          else if (std::find(q.begin(), q.end(), first) == q.end()) known_ok = known_ok && good_local(lp, q);
+        }
+        if (!known_ok) continue;
+        auto place_p = [&] { return place(lp, p, box, with_p, {}, {}, [&] { return quads_good(lp, qs); }); };
+        const bool ok = first < 0 ? place_p()
+                                  : place(lp, first, *first_bound, {}, {first_tri}, turns_of(lp, first, {p}, qs), place_p);
+        if (ok) {
+          for (const Quad& q : qs) lp.quads.push_back(q);
+          return true;
+        }
+      }
+  }
+  return false;
+}
 } // namespace
 
 bool octagon(LocalPatch& lp, const Ring& o, int budget) {
@@ -601,30 +637,11 @@ bool octagon(LocalPatch& lp, const Ring& o, int budget) {
     }
   if (budget < 1) return false;
   // A path o_i - p - o_i+4 through one new point cuts two hexagons; first
-  // each split by a diagonal with p placed by the placement rule, then
-  // with p on the way or on a reflex end's bisector and B.1.1 on both.
+  // each split by a diagonal, then with p on the way or on a reflex end's
+  // bisector and B.1.1 on both.
   const int p = lp.add_new();
   const auto with_p = lp.mark();
-  const auto box = bbox_poly(pts(lp, o), 0.0);
-  for (int i = 0; i < 4; ++i) {
-    const Ring h1 = {O(i), O(i + 1), O(i + 2), O(i + 3), O(i + 4), p};
-    const Ring h2 = {O(i + 4), O(i + 5), O(i + 6), O(i + 7), O(i), p};
-    for (int t1 = 0; t1 < 3; ++t1)
-      for (int t2 = 0; t2 < 3; ++t2) {
-        std::vector<Quad> qs, fixed;
-        diagonal_split(h1, t1, qs);
-        diagonal_split(h2, t2, qs);
-        bool known_ok = true;
-        for (const Quad& q : qs) {
-          if (std::find(q.begin(), q.end(), p) != q.end()) fixed.push_back(q);
-          else known_ok = known_ok && good_local(lp, q);
-        }
-        if (known_ok && place(lp, p, box, fixed, {}, {}, [&] { return quads_good(lp, qs); })) {
-          for (const Quad& q : qs) lp.quads.push_back(q);
-          return true;
-        }
-      }
-  }
+  if (two_diagonals(lp, o, p, nullptr, {})) return true;
   for (int i = 0; i < 4; ++i) {
     std::vector<P2> cand;
     for (double f : {0.5, 0.3, 0.7}) cand.push_back(lerp(lp.p[O(i)], lp.p[O(i + 4)], f));
@@ -665,40 +682,17 @@ int heptagon(LocalPatch& lp, const Ring& v, int* kind) {
   }
   // General form (notes 3.6): the leftover (v0, v1, p3) leaves the octagon
   // (p3, v1, ..., v6, v0) to close with at most 3 more points (6 quads and
-  // 4 points in all). First the thesis's shape: a path p3 - p1 - v4 and
-  // two diagonals, p3 by the placement rule from the turns that do not
-  // involve p1, then p1 (5 quads, 2 points); then p3 at fixed places.
+  // 4 points in all). First the thesis's shape, a path through one point
+  // p1 and two diagonals (5 quads, 2 points), with p3 placed in the centre
+  // triangle by the placement rule; then p3 at fixed places.
   const int p3 = lp.add_new();
   const Ring O = {p3, v[1], v[2], v[3], v[4], v[5], v[6], v[0]};
-  {
-    const int p1 = lp.add_new();
-    const Ring hl = {v[1], v[2], v[3], v[4], p1, p3}, hr = {p3, p1, v[4], v[5], v[6], v[0]};
-    const std::vector<P2> own = {P(0), P(1), P(4)};
-    const auto box = bbox_poly(pts(lp, v), 0.0);
-    for (int t1 = 0; t1 < 3; ++t1)
-      for (int t2 = 0; t2 < 3; ++t2) {
-        std::vector<Quad> qs, with_p1;
-        diagonal_split(hl, t1, qs);
-        diagonal_split(hr, t2, qs);
-        bool known_ok = true;
-        for (const Quad& q : qs) {
-          const bool has3 = std::find(q.begin(), q.end(), p3) != q.end();
-          const bool has1 = std::find(q.begin(), q.end(), p1) != q.end();
-          if (!has3 && !has1) known_ok = known_ok && good_local(lp, q);
-          if (has1) with_p1.push_back(q);
-        }
-        if (!known_ok) continue;
-        const bool ok = place(lp, p3, own, {}, {{v[0], v[1], p3}}, turns_of(lp, p3, {p1}, qs), [&] {
-          return place(lp, p1, box, with_p1, {}, {}, [&] { return quads_good(lp, qs); });
-        });
-        if (ok) {
-          for (const Quad& q : qs) lp.quads.push_back(q);
-          if (kind) *kind = 1;
-          return p3;
-        }
-      }
-    lp.rollback({m.np + 1, m.nq});
+  const std::vector<P2> own = {P(0), P(1), P(4)};
+  if (two_diagonals(lp, O, lp.add_new(), &own, {v[0], v[1], p3})) {
+    if (kind) *kind = 1;
+    return p3;
   }
+  lp.rollback({m.np + 1, m.nq});
   const P2 em = mid(P(0), P(1)), ctr = {(P(0)[0] + P(1)[0] + P(4)[0]) / 3, (P(0)[1] + P(1)[1] + P(4)[1]) / 3};
   for (const P2& X : {ctr, P(4)})
     for (double f3 : {0.3, 0.5, 0.15, 0.7}) {
