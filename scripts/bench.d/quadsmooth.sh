@@ -38,7 +38,8 @@ for threads in 1 $(nproc); do
   /usr/bin/time -f "%e %U %S %M" -o time.txt "$BIN/quadsmooth" -q big.ele big.s.ele --iterations 10 --threads "$threads" --stats big.json
   read -r wall user sys kb < time.txt
   mins=($(stat min_mu big.json)); means=($(stat mean_mu big.json))
-  echo "  $threads thread(s): smooth (library) $(stat smooth_seconds big.json) s wall; with I/O $wall s wall," \
+  echo "  $threads thread(s): smooth (library) $(stat smooth_seconds big.json) s wall, $(stat smooth_cpu_seconds big.json) s CPU;" \
+       "with I/O $wall s wall," \
        "$(echo "$user + $sys" | bc) s CPU, peak $((kb / 1024)) MB; min mu ${mins[0]} -> ${mins[1]}, mean mu ${means[0]} -> ${means[1]}"
 done
 fi
