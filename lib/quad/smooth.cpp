@@ -980,6 +980,8 @@ void QuadImprover::collapse_pass() {
 }
 
 void QuadImprover::compact() {
+  // In place, by moves: no element or attribute list is copied (10^6 of
+  // them would be as many allocations).
   std::vector<int> newid(P_.size(), -1);
   int k = 0;
   for (std::size_t v = 0; v < P_.size(); ++v)
@@ -987,37 +989,34 @@ void QuadImprover::compact() {
   // Elements: quads from Q_, others as they were.
   std::vector<int> quad_of_elem(m_.elements.size(), -1);
   for (std::size_t q = 0; q < Q_.size(); ++q) quad_of_elem[q_elem_[q]] = int(q);
-  std::vector<std::vector<int>> elems;
-  std::vector<std::vector<double>> eattr;
+  const bool attrs = !m_.element_attributes.empty();
+  std::size_t kept = 0;
   for (std::size_t e = 0; e < m_.elements.size(); ++e) {
     const int q = quad_of_elem[e];
-    std::vector<int> el;
-    if (q >= 0) {
-      if (q_dead_[q]) continue;
-      el.assign(Q_[q].begin(), Q_[q].end());
-    } else {
-      el = m_.elements[e];
-    }
+    if (q >= 0 && q_dead_[q]) continue;
+    std::vector<int>& el = m_.elements[e];
+    if (q >= 0) el.assign(Q_[q].begin(), Q_[q].end());
     for (int& x : el) x = newid[x];
-    elems.push_back(std::move(el));
-    if (!m_.element_attributes.empty()) eattr.push_back(m_.element_attributes[e]);
+    if (kept != e) {
+      m_.elements[kept] = std::move(el);
+      if (attrs) m_.element_attributes[kept] = std::move(m_.element_attributes[e]);
+    }
+    ++kept;
   }
-  m_.elements = std::move(elems);
-  m_.element_attributes = std::move(eattr);
+  m_.elements.resize(kept);
+  if (attrs) m_.element_attributes.resize(kept);
   if (k == int(P_.size())) return;
-  std::vector<Point2> pts;
-  std::vector<std::vector<double>> pattr;
-  std::vector<int> pmark;
+  const bool pattrs = !m_.point_attributes.empty(), pmarks = !m_.point_markers.empty();
   for (std::size_t v = 0; v < P_.size(); ++v) {
-    if (v_dead_[v]) continue;
-    pts.push_back(P_[v]);
-    if (!m_.point_attributes.empty()) pattr.push_back(m_.point_attributes[v]);
-    if (!m_.point_markers.empty()) pmark.push_back(m_.point_markers[v]);
+    if (v_dead_[v] || newid[v] == int(v)) continue;
+    P_[newid[v]] = P_[v];
+    if (pattrs) m_.point_attributes[newid[v]] = std::move(m_.point_attributes[v]);
+    if (pmarks) m_.point_markers[newid[v]] = m_.point_markers[v];
   }
-  for (auto& s : m_.segments) s = {newid[s[0]], newid[s[1]]};  // segment ends never die
-  m_.points = std::move(pts);
-  m_.point_attributes = std::move(pattr);
-  m_.point_markers = std::move(pmark);
+  P_.resize(k);
+  if (pattrs) m_.point_attributes.resize(k);
+  if (pmarks) m_.point_markers.resize(k);
+  for (auto& sg : m_.segments) sg = {newid[sg[0]], newid[sg[1]]};  // segment ends never die
 }
 
 void QuadImprover::run(const Stars& stars) {
