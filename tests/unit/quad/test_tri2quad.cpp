@@ -742,6 +742,23 @@ TEST_CASE("Steps on hand-made meshes", "[tri2quad][steps]") {
         CHECK(cs["fallback_pair_nested"] + cs["fallback_dent_triangle"] + cs["fallback_dent_nonempty"] == 0);
       }
   }
+  SECTION("3(c) with its cross-edge / 4(c)(v)(d)-(e): a triangle with two vertices inside") {
+    // The triangle (a, b, X) with c and y inside; u = (a, b, c) keeps its
+    // triangle as the leftover and B.1.2 closes (b, X, a, c) around y.
+    for (int with_parent = 0; with_parent < 2; ++with_parent) {
+      Tri2QuadInput in;
+      in.points = {{0, 0}, {4, 0}, {2, 4}, {2, 1}, {1.5, 1.2}, {2, -2}};  // a b X c y z
+      if (with_parent) in.triangles.push_back({1, 0, 5});
+      for (const std::array<int, 3>& t : {std::array<int, 3>{0, 1, 3}, {1, 2, 3}, {3, 2, 4}, {2, 0, 4}, {0, 3, 4}})
+        in.triangles.push_back(t);
+      INFO("parent " << with_parent);
+      const auto r = tri2quad(in);
+      check_result(in, r, false);
+      std::map<std::string, std::size_t> cs(r.cases.begin(), r.cases.end());
+      CHECK(cs["3c_4cvde_leftover_B12"] == 1);
+      CHECK(cs["fallback_pair_nested"] + cs["fallback_dent_triangle"] + cs["fallback_dent_nonempty"] == 0);
+    }
+  }
   SECTION("a dangling constraint edge is refused, naming the edge") {
     Tri2QuadInput in;
     in.points = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 1}};
