@@ -20,6 +20,22 @@ double angle_at(const Point2& p, const Point2& q, const Point2& r) {
   if ((ux == 0 && uy == 0) || (vx == 0 && vy == 0)) return 0;
   return std::atan2(std::fabs(cr), dt) * kDeg;  // atan2 is accurate near 0 and 180
 }
+
+// Interior angle of a counter-clockwise polygon at o, between the next
+// corner n and the previous one r: above 180 at a reflex (right-turn) corner.
+double corner_angle(const Point2& o, const Point2& n, const Point2& r) {
+  const double ang = angle_at(o, n, r);
+  const double cr = (n[0] - o[0]) * (r[1] - o[1]) - (n[1] - o[1]) * (r[0] - o[0]);
+  return cr < 0 ? 360 - ang : ang;
+}
+
+// A number in [0, 4] that orders corners as corner_angle does (0 to 360),
+// from the cross and dot products of the corner's edges, without trigonometry.
+double pseudo_angle(double cr, double dt) {
+  const double s = std::fabs(dt) + std::fabs(cr);
+  if (!(s > 0)) return 0;  // a zero-length edge: angle 0
+  return cr >= 0 ? 1 - dt / s : 3 + dt / s;
+}
 } // namespace
 
 int orientation_exact(const Point2& a, const Point2& b, const Point2& c) {
@@ -89,16 +105,7 @@ double scaled_jacobian(const Point2& a, const Point2& b, const Point2& c, const 
 std::array<double, 4> quad_angles(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
   const Point2* p[4] = {&a, &b, &c, &d};
   std::array<double, 4> out{};
-  for (int i = 0; i < 4; ++i) {
-    const Point2& o = *p[i];
-    const Point2& n = *p[(i + 1) % 4];
-    const Point2& r = *p[(i + 3) % 4];
-    double ang = angle_at(o, n, r);
-    // A reflex corner (right turn in a counter-clockwise quad) measures 360 - angle.
-    const double cr = (n[0] - o[0]) * (r[1] - o[1]) - (n[1] - o[1]) * (r[0] - o[0]);
-    if (cr < 0) ang = 360 - ang;
-    out[i] = ang;
-  }
+  for (int i = 0; i < 4; ++i) out[i] = corner_angle(*p[i], *p[(i + 1) % 4], *p[(i + 3) % 4]);
   return out;
 }
 
@@ -149,8 +156,8 @@ QualityReport quality_report(const std::vector<Point2>& pts,
   double sum_mu = 0, sum_sj = 0, sum_area = 0, sum_area2 = 0;
   std::size_t good_angles = 0;
   r.min_scaled_jacobian = 1;
-  r.min_angle = 360;
-  r.max_angle = 0;
+  double min_pa = 5, max_pa = -1;
+  std::array<const Point2*, 3> min_corner{}, max_corner{};  // corner, next, previous
   for (const auto& q : quads) {
     const Point2 &a = pts[q[0]], &b = pts[q[1]], &c = pts[q[2]], &d = pts[q[3]];
     if (!is_strictly_convex(a, b, c, d)) ++r.non_convex;
@@ -161,18 +168,27 @@ QualityReport quality_report(const std::vector<Point2>& pts,
     const double sj = scaled_jacobian(a, b, c, d);
     sum_sj += sj;
     r.min_scaled_jacobian = std::min(r.min_scaled_jacobian, sj);
-    const auto ang = quad_angles(a, b, c, d);
+    // Corner angles without trigonometry: in [45, 135] iff the turn is left
+    // and |dot| <= cross; the extremes are tracked by pseudo-angle and
+    // measured once at the end.
+    const Point2* p[4] = {&a, &b, &c, &d};
     bool ok = true;
-    for (double x : ang) {
-      ok = ok && x >= 45 && x <= 135;
-      r.min_angle = std::min(r.min_angle, x);
-      r.max_angle = std::max(r.max_angle, x);
+    for (int i = 0; i < 4; ++i) {
+      const Point2 &o = *p[i], &n = *p[(i + 1) % 4], &w = *p[(i + 3) % 4];
+      const double ux = n[0] - o[0], uy = n[1] - o[1], vx = w[0] - o[0], vy = w[1] - o[1];
+      const double cr = ux * vy - uy * vx, dt = ux * vx + uy * vy;
+      ok = ok && cr > 0 && std::fabs(dt) <= cr;
+      const double pa = pseudo_angle(cr, dt);
+      if (pa < min_pa) { min_pa = pa; min_corner = {&o, &n, &w}; }
+      if (pa > max_pa) { max_pa = pa; max_corner = {&o, &n, &w}; }
     }
     good_angles += ok;
     const double area = quad_area(a, b, c, d);
     sum_area += area;
     sum_area2 += area * area;
   }
+  r.min_angle = corner_angle(*min_corner[0], *min_corner[1], *min_corner[2]);
+  r.max_angle = corner_angle(*max_corner[0], *max_corner[1], *max_corner[2]);
   const double n = double(quads.size());
   r.min_mu = *std::min_element(mus.begin(), mus.end());
   const std::size_t mid = mus.size() / 2;
