@@ -759,6 +759,22 @@ TEST_CASE("Steps on hand-made meshes", "[tri2quad][steps]") {
       CHECK(cs["fallback_pair_nested"] + cs["fallback_dent_triangle"] + cs["fallback_dent_nonempty"] == 0);
     }
   }
+  SECTION("4(c)(ii) with B.2.1 type 3: a point on the outgoing edge, the parent a degenerate quad (step 1)") {
+    // u = (a, b, c) and the pair (c, b, w), (w, b, x) form a pentagon with
+    // no leftover form within budget; the parent (b, a, z) takes the point.
+    Tri2QuadInput in;
+    in.points = {{0, 0}, {4, 0}, {1.82, 0.6}, {1.95, 1.39}, {0.17, 4.43}, {2, -2}};
+    in.triangles = {{1, 0, 5}, {0, 1, 2}, {2, 1, 3}, {3, 1, 4}};
+    const auto r = tri2quad(in);
+    check_result(in, r, false);
+    std::map<std::string, std::size_t> cs(r.cases.begin(), r.cases.end());
+    CHECK(cs["4c_quad_to_grandparent"] == 1);
+    CHECK(cs["4cii_B21_type3_edge_point"] == 1);
+    CHECK(cs["4c_convex_quad"] == 1);  // the parent's triangle with the point
+    // Type 3: 4 quads and 3 points (one on the edge); the parent 1 quad.
+    CHECK(r.quads.size() == 5);
+    CHECK(r.steiner == 3);
+  }
   SECTION("a dangling constraint edge is refused, naming the edge") {
     Tri2QuadInput in;
     in.points = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 1}};
