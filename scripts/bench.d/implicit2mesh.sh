@@ -66,3 +66,26 @@ for img in bunny00-96 elephant-96 armadillo-96 cheese; do
     fi
   done
 done
+
+# Real brain tissue: two classes of the bundled k-means segmentation (noisy:
+# hundreds of components, genus in the hundreds), at the default roughness
+# pi/3 and at pi/2, beside CGAL's Surface_mesher on the same f.
+brain="$src/share/data/brain-kmeans-labels.nii.gz"
+for label in 3 4; do
+  "$tools/img2wc" -q "$brain" --label "$label" "$work/brain$label-wc.nrrd"
+  "$tools/wc2implicit" -q "$work/brain$label-wc.nrrd" "$work/brain$label-f.nrrd"
+  echo "brain-kmeans-labels, label $label:"
+  printf "  %-34s %10s %9s %9s %9s %9s   %s\n" "mesher" "time" "triangles" "min angle" "max ratio" "max |f|" "topology ok"
+  for g in 1.0471975511965976 1.5707963267948966; do
+    start=$(date +%s.%N)
+    "$tools/implicit2mesh" -q "$work/brain$label-f.nrrd" "$work/brain$label-$g.off" --roughness "$g" --stats "$work/s.json" || true
+    secs=$(echo "$(date +%s.%N) - $start" | bc)
+    row "implicit2mesh --roughness ${g:0:6}" "$work/brain$label-$g.off" "$work/brain$label-wc.nrrd" "$secs" 2 "$(centroid_error "$work/s.json")"
+  done
+  if out=$(timeout 600 "$peer" "$work/brain$label-f.nrrd" "$work/brain$label-peer.off" 0 0.25); then
+    read -r psecs ptris perr <<< "$out"
+    row "CGAL Surface_mesher dist. 0.25 vx" "$work/brain$label-peer.off" "$work/brain$label-wc.nrrd" "$psecs" 1000 "$perr"
+  else
+    echo "  CGAL Surface_mesher dist. 0.25 vx: failed or timed out (600 s)"
+  fi
+done

@@ -50,6 +50,18 @@ grep -q '"restricted_delaunay_violations": 0' stats.json || fail "stats: restric
 "$tool" -q bunny-f.nrrd bunny-n.ply --normals --max-distance 0.02
 "$check" bunny-n.ply bunny-wc.nrrd 2 || fail "bunny with normals and --max-distance"
 
+# The FacetCycle checks run on --threads threads: same mesh for 1 and 2.
+"$tool" -q bunny-f.nrrd bunny-t1.off --threads 1
+"$tool" -q bunny-f.nrrd bunny-t2.off --threads 2
+cmp -s bunny-t1.off bunny-t2.off || fail "--threads changes the mesh"
+
+# Real brain tissue: a noisy k-means class (248 components, one of genus 802).
+"$BIN/img2wc" -q "$DATA/brain-kmeans-labels.nii.gz" --label 4 brain-wc.nrrd
+"$BIN/wc2implicit" -q brain-wc.nrrd brain-f.nrrd
+"$tool" -q brain-f.nrrd brain.off --roughness 1.5708 --stats brain.json
+"$check" brain.off brain-wc.nrrd 2 || fail "brain label 4: topology or ratio"
+grep -q '"restricted_delaunay_violations": 0' brain.json || fail "brain: restricted Delaunay"
+
 # --max-points: the mesh is written, status 3, the failed guarantee named.
 expect_status 3 "$tool" bunny-f.nrrd small.off --max-points 40
 grep -q "max-points" err.txt || fail "max-points not named"
