@@ -10,6 +10,7 @@
 #include <iostream>
 #include <iterator>
 #include <sstream>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
 
@@ -40,6 +41,10 @@ static std::string make_temp(const std::string& dir_prefix, const std::string& e
   buf.push_back('\0');
   int fd = mkstemps(buf.data(), static_cast<int>(ext.size()));
   if (fd < 0) throw Error(std::string("cannot create a temporary file: ") + std::strerror(errno), templ);
+  // mkstemp makes the file 0600; the output gets what open() would give it.
+  const mode_t mask = umask(0);
+  umask(mask);
+  fchmod(fd, 0666 & ~mask);
   close(fd);
   return std::string(buf.data());
 }

@@ -38,6 +38,23 @@ TEST_CASE("AtomicOutput leaves nothing behind unless committed") {
   rmdir(dir.c_str());
 }
 
+TEST_CASE("AtomicOutput gives the output the permissions of the umask, not mkstemp's 0600") {
+  const std::string dir = make_dir();
+  const std::string target = dir + "/out.txt";
+  const mode_t old = umask(022);
+  {
+    AtomicOutput out(target);
+    out.stream() << "x";
+    out.commit();
+  }
+  umask(old);
+  struct stat st {};
+  REQUIRE(stat(target.c_str(), &st) == 0);
+  CHECK((st.st_mode & 0777) == 0644);
+  std::remove(target.c_str());
+  rmdir(dir.c_str());
+}
+
 TEST_CASE("AtomicOutput fails clearly on a missing folder") {
   CHECK_THROWS_AS(AtomicOutput("/nonexistent-folder/x.txt"), Error);
 }
