@@ -1,7 +1,7 @@
 // The smooth implicit function f of thesis chapter 6: a partition of unity
 // over the cells C_k between voxel centres, shape functions f_k = trilinear
 // interpolants of the signed distance g (negative inside), weights built from
-// the C-infinity step eta (6.7, 6.8; see errata). Evaluation in world
+// the C-infinity step eta (6.7, 6.8; see doc/thesis-errata.md). Evaluation in world
 // coordinates, O(1), thread safe, no allocation per call.
 //
 // Anisotropic grids: the cells are boxes delta_0 x delta_1 x delta_2 and the

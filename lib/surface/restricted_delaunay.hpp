@@ -17,7 +17,7 @@
 namespace imgmesh {
 
 // Termination limits of DELMESH (k = 0.06): rho_0 > (1+k)^2 and
-// g > 2 (arcsin k + arcsin(2k/sqrt 3)) (thesis 7.6.3-7.6.4, errata).
+// g > 2 (arcsin k + arcsin(2k/sqrt 3)) (thesis 7.6.3-7.6.4; doc/thesis-errata.md).
 double min_ratio_bound();
 double min_roughness_bound();
 
