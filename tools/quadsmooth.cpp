@@ -24,6 +24,11 @@ int main(int argc, char** argv) {
   tool.app.add_flag("--no-cleanup", no_cleanup, "no diagonal swaps, doublet removal or quad collapses");
   tool.app.add_flag("--slide-boundary", opt.slide_boundary,
                     "let boundary and constrained vertices slide along their own straight segment");
+  tool.app.add_option("--split-below", opt.split_below,
+                      "split quad pairs around a new point where mu is below this many degrees (more: better "
+                      "angles, more quads)")
+      ->check(CLI::Range(0.0, 45.0))
+      ->capture_default_str();
   tool.app.add_option("--svg", svg, "also draw the result as SVG, quads coloured by Joe's mu");
   tool.add_threads();
   return tool.run(argc, argv, [&] {

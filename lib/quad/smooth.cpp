@@ -76,7 +76,8 @@ inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, c
 
 // Clean-up for the worst mu is tried only around poor quads: sin(30 deg) for
 // swaps (a quad of the pair below the usual bar), sin(15 deg) for collapses
-// and pair splits. Valence-driven swaps and collapses may run anywhere.
+// (pair splits: SmoothOptions::split_below). Valence-driven swaps and
+// collapses may run anywhere.
 constexpr double kSwapBelow = 0.5;
 constexpr double kCollapseBelow = 0.25881904510252074;
 // Vertices next to a quad with mu below 25 degrees also get a compass search
@@ -160,7 +161,8 @@ Stars conforming_stars(const PlanarMesh& m, const std::string& path) {
 class QuadImprover {
 public:
   QuadImprover(PlanarMesh& m, const SmoothOptions& opt, SmoothStats& st)
-      : m_(m), opt_(opt), st_(st), P_(m.points) {}
+      : m_(m), opt_(opt), st_(st), P_(m.points),
+        split_below_(std::sin(std::clamp(opt.split_below, 0.0, 45.0) * (3.14159265358979323846 / 180))) {}
 
   void run(const Stars& stars);
 
@@ -170,6 +172,7 @@ private:
   const SmoothOptions& opt_;
   SmoothStats& st_;
   std::vector<Point2>& P_;
+  const double split_below_;             // sin of SmoothOptions::split_below
   std::vector<Quad> Q_;                  // quads (copies of 4-node elements)
   std::vector<int> q_elem_;              // element index of each quad
   std::vector<char> q_dead_;
@@ -832,7 +835,7 @@ void QuadImprover::swap_pass() {
       };
       if (best_k >= 0) {
         apply(best_k);  // the pair's worst mu improves: nothing else changes
-      } else if (cur < kCollapseBelow && !tried_[q1] && split_pair(int(q1), q2, H)) {
+      } else if (cur < split_below_ && !tried_[q1] && split_pair(int(q1), q2, H)) {
         ++st_.splits;
         changed = true;
         continue;
@@ -853,7 +856,7 @@ void QuadImprover::swap_pass() {
       ++st_.swaps;
       changed = true;  // q1 changed: move on
     }
-    if (!changed && q_smu_[q1] < kCollapseBelow) tried_[q1] = 1;
+    if (!changed && q_smu_[q1] < split_below_) tried_[q1] = 1;
   }
 }
 

@@ -20,6 +20,9 @@ struct SmoothOptions {
   bool cleanup = true;          // swaps, doublets, collapses
   bool slide_boundary = false;  // boundary/constrained vertices may slide along their own straight segment
   int threads = 1;              // smoothing threads; the result does not depend on it
+  // Pair splits are tried on quads with mu below this (degrees): higher
+  // values give better angles and more quads (25: about 1.5 times as many).
+  double split_below = 15;
   // Called after each pass with (pass, passes) for progress reports; may be empty.
   std::function<void(int, int)> progress;
 };

@@ -245,8 +245,9 @@ TEST_CASE("clean-up and smoothing of tri2quad outputs keep every guarantee", "[s
     const PlanarMesh orig = m;
     SmoothOptions opt;
     opt.iterations = 6;
+    opt.split_below = seed % 2 ? 15 : 30;  // the default, and many more splits
     const SmoothStats st = smooth_quad_mesh(m, opt);
-    CAPTURE(seed, n);
+    CAPTURE(seed, n, opt.split_below);
     REQUIRE_NOTHROW(check_quad_mesh(m));
     for (const auto& e : m.elements)
       REQUIRE(is_strictly_convex(m.points[e[0]], m.points[e[1]], m.points[e[2]], m.points[e[3]]));
@@ -284,6 +285,24 @@ TEST_CASE("clean-up and smoothing of tri2quad outputs keep every guarantee", "[s
   CHECK(total.valence_swaps > 0);
   CHECK(total.splits > 0);
   CHECK(total.collapses > 0);
+}
+
+TEST_CASE("more pair splits: more quads, more of them with good angles", "[smooth]") {
+  double share[2] = {0, 0};
+  std::size_t quads[2] = {0, 0};
+  for (unsigned seed = 1; seed <= 10; ++seed) {
+    for (int k = 0; k < 2; ++k) {
+      PlanarMesh m = tri2quad_mesh(12, seed);
+      SmoothOptions opt;
+      opt.split_below = k == 0 ? 15 : 30;
+      const SmoothStats st = smooth_quad_mesh(m, opt);
+      share[k] += st.after.angles_45_135;
+      quads[k] += st.after.quads;
+    }
+  }
+  CAPTURE(share[0], share[1], quads[0], quads[1]);
+  CHECK(quads[1] > quads[0]);
+  CHECK(share[1] > share[0]);
 }
 
 TEST_CASE("smoothing improves split meshes", "[smooth]") {
