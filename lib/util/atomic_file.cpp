@@ -109,10 +109,22 @@ std::string read_all(const std::string& path) {
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
-  std::ostringstream ss;
-  ss << in.rdbuf();
+  // A regular file in one read into a string of its size (a stringstream
+  // copies the text several times as it grows); then whatever a pipe or a
+  // growing file still has.
+  std::string text;
+  struct stat st;
+  if (::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+    text.resize(std::size_t(st.st_size));
+    in.read(text.data(), std::streamsize(text.size()));
+    text.resize(std::size_t(in.gcount()));
+    in.clear(in.rdstate() & std::ios::badbit);
+  }
+  std::ostringstream rest;
+  rest << in.rdbuf();
   if (in.bad()) throw Error("read failed", path);
-  return ss.str();
+  text += rest.str();
+  return text;
 }
 
 } // namespace imgmesh
