@@ -7,35 +7,30 @@
 // only one value uses it as both attribute and area bound.
 #include "planar/triangle_io.hpp"
 
-#include "util/atomic_file.hpp"
+#include "planar/text_io.hpp"
 #include "util/error.hpp"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <sstream>
+#include <string_view>
 
 namespace imgmesh {
 namespace {
 
 // A Triangle file as a list of non-empty lines, each remembering its number
 // in the file for error messages. Lines are kept as spans of the text and
-// split into fields only when read (one line at a time, in a reused buffer):
-// a vector of strings for every line cost ~235 bytes a triangle.
+// split into fields only when read (one line at a time, into views of the
+// text): a vector of strings for every line cost ~235 bytes a triangle.
 class Fields {
 public:
   explicit Fields(const std::string& path) : path_(path), text_(read_all(path)) {
-    std::size_t pos = 0;
     int number = 0;
-    while (pos < text_.size()) {
+    for (std::size_t pos = 0; pos < text_.size();) {
       std::size_t end = text_.find('\n', pos);
       if (end == std::string::npos) end = text_.size();
       ++number;
-      std::size_t stop = pos;
-      bool empty = true;
-      for (; stop < end && text_[stop] != '#'; ++stop) empty = empty && space(text_[stop]);
-      if (!empty) lines_.push_back({pos, stop, number});
+      while (pos < end && space(text_[pos])) ++pos;
+      // A comment after data ends its line only when the line is split.
+      if (pos < end && text_[pos] != '#') lines_.push_back({pos, end, number});
       pos = end + 1;
     }
   }
@@ -44,22 +39,22 @@ public:
   const std::string& path() const { return path_; }
 
   // The next line with at least `min_fields` fields; `what` names it in errors.
-  const std::vector<std::string>& next(std::size_t min_fields, const char* what) {
+  const std::vector<std::string_view>& next(std::size_t min_fields, const char* what) {
     if (at_end())
       throw Error("truncated: expected " + std::string(what) + " after line " +
                       std::to_string(lines_.empty() ? 0 : lines_.back().number),
                   path_);
     current_ = next_++;
     const auto& l = lines_[current_];
-    // Split on the characters operator>> skips (classic locale).
+    // Split on the characters operator>> skips (classic locale), up to a '#'.
     std::size_t nf = 0;
     for (std::size_t i = l.begin; i < l.end;) {
       while (i < l.end && space(text_[i])) ++i;
-      if (i == l.end) break;
+      if (i == l.end || text_[i] == '#') break;
       const std::size_t b = i;
-      while (i < l.end && !space(text_[i])) ++i;
+      while (i < l.end && !space(text_[i]) && text_[i] != '#') ++i;
       if (nf == fields_.size()) fields_.emplace_back();
-      fields_[nf++].assign(text_, b, i - b);
+      fields_[nf++] = std::string_view(text_).substr(b, i - b);
     }
     fields_.resize(nf);
     if (fields_.size() < min_fields)
@@ -72,27 +67,21 @@ public:
     throw Error("line " + std::to_string(lines_[current_].number) + ": " + what, path_);
   }
 
-  double real(const std::string& s) const {
-    const char* b = s.c_str();
-    char* e = nullptr;
-    errno = 0;
-    const double v = std::strtod(b, &e);
-    if (e == b || *e != '\0') fail("'" + s + "' is not a number");
-    if (!std::isfinite(v)) fail("'" + s + "' is not a finite number");
+  double real(std::string_view s) const {
+    double v;
+    if (!parse_real(s, v)) fail("'" + std::string(s) + "' is not a number");
+    if (!std::isfinite(v)) fail("'" + std::string(s) + "' is not a finite number");
     return v;
   }
-  long long integer(const std::string& s) const {
-    const char* b = s.c_str();
-    char* e = nullptr;
-    errno = 0;
-    const long long v = std::strtoll(b, &e, 10);
-    if (e == b || *e != '\0' || errno == ERANGE) fail("'" + s + "' is not an integer");
+  long long integer(std::string_view s) const {
+    long long v;
+    if (!parse_integer(s, v)) fail("'" + std::string(s) + "' is not an integer");
     return v;
   }
   // A count in [0, limit].
-  std::size_t count(const std::string& s, const char* what, long long limit = 1LL << 40) const {
+  std::size_t count(std::string_view s, const char* what, long long limit = 1LL << 40) const {
     const long long v = integer(s);
-    if (v < 0 || v > limit) fail(std::string("bad ") + what + " " + s);
+    if (v < 0 || v > limit) fail(std::string("bad ") + what + " " + std::string(s));
     return std::size_t(v);
   }
   // Counts beyond the number of remaining lines are truncation, found before
@@ -111,7 +100,7 @@ private:
   std::string path_;
   std::string text_;
   std::vector<Line> lines_;
-  std::vector<std::string> fields_;  // the current line's fields
+  std::vector<std::string_view> fields_;  // the current line's fields
   std::size_t next_ = 0, current_ = 0;
 };
 
@@ -128,7 +117,7 @@ void read_vertices(Fields& f, PlanarMesh& m, std::size_t n, std::size_t nattr, b
       if (id != 0 && id != 1) f.fail("the first vertex must be numbered 0 or 1");
       m.first_index = int(id);
     } else if (id != m.first_index + (long long)i) {
-      f.fail("vertex number " + l[0] + ", expected " + std::to_string(m.first_index + i));
+      f.fail("vertex number " + std::string(l[0]) + ", expected " + std::to_string(m.first_index + i));
     }
     m.points.push_back({f.real(l[1]), f.real(l[2])});
     if (nattr) {
@@ -146,7 +135,7 @@ void read_node_header_and_vertices(Fields& f, PlanarMesh& m, bool allow_empty, b
   const std::size_t dim = h.size() > 1 ? f.count(h[1], "dimension") : 2;
   const std::size_t nattr = h.size() > 2 ? f.count(h[2], "attribute count", 1 << 20) : 0;
   const std::size_t nmark = h.size() > 3 ? f.count(h[3], "marker count") : 0;
-  if (dim != 2) f.fail("dimension must be 2, is " + h[1]);
+  if (dim != 2) f.fail("dimension must be 2, is " + std::string(h[1]));
   if (nmark > 1) f.fail("marker count must be 0 or 1");
   if (n == 0) {
     if (!allow_empty) f.fail("no vertices");
@@ -157,21 +146,15 @@ void read_node_header_and_vertices(Fields& f, PlanarMesh& m, bool allow_empty, b
   read_vertices(f, m, n, nattr, nmark == 1);
 }
 
-int vertex_id(const Fields& f, const PlanarMesh& m, const std::string& s) {
+int vertex_id(const Fields& f, const PlanarMesh& m, std::string_view s) {
   const long long id = f.integer(s) - m.first_index;
   if (id < 0 || id >= (long long)m.points.size())
-    f.fail("vertex " + s + " does not exist (vertices are " + std::to_string(m.first_index) + ".." +
+    f.fail("vertex " + std::string(s) + " does not exist (vertices are " + std::to_string(m.first_index) + ".." +
            std::to_string(m.first_index + (long long)m.points.size() - 1) + ")");
   return int(id);
 }
 
 std::string node_beside(const std::string& path) { return replace_extension(path, ".node"); }
-
-void put(std::ostream& o, double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  o << buf;
-}
 
 } // namespace
 
@@ -204,7 +187,7 @@ PlanarMesh read_poly(const std::string& path) {
   for (std::size_t i = 0; i < ns; ++i) {
     const auto& l = f.next(3 + smark, "a segment");
     const int a = vertex_id(f, m, l[1]), b = vertex_id(f, m, l[2]);
-    if (a == b) f.fail("segment " + l[0] + " joins vertex " + l[1] + " to itself");
+    if (a == b) f.fail("segment " + std::string(l[0]) + " joins vertex " + std::string(l[1]) + " to itself");
     m.segments.push_back({a, b});
     if (smark) m.segment_markers.push_back(int(f.integer(l[3])));
   }
@@ -243,7 +226,7 @@ PlanarMesh read_ele(const std::string& ele_path) {
   const std::size_t per = f.count(h[1], "nodes per element");
   const std::size_t nattr = h.size() > 2 ? f.count(h[2], "attribute count", 1 << 20) : 0;
   // 6-node (quadratic) triangles keep their three corners, as Triangle lists them first.
-  if (per != 3 && per != 4 && per != 6) f.fail("nodes per element must be 3, 4 or 6, is " + h[1]);
+  if (per != 3 && per != 4 && per != 6) f.fail("nodes per element must be 3, 4 or 6, is " + std::string(h[1]));
   const std::size_t corners = per == 6 ? 3 : per;
   f.need_lines(n, "elements");
   m.elements.reserve(n);
@@ -254,7 +237,7 @@ PlanarMesh read_ele(const std::string& ele_path) {
     for (std::size_t k = 0; k < corners; ++k) e[k] = vertex_id(f, m, l[1 + k]);
     for (std::size_t k = 0; k < corners; ++k)
       for (std::size_t j = k + 1; j < corners; ++j)
-        if (e[k] == e[j]) f.fail("element " + l[0] + " repeats vertex " + l[1 + k]);
+        if (e[k] == e[j]) f.fail("element " + std::string(l[0]) + " repeats vertex " + std::string(l[1 + k]));
     for (std::size_t k = corners; k < per; ++k) vertex_id(f, m, l[1 + k]);
     m.elements.push_back(std::move(e));
     if (nattr) {
@@ -267,21 +250,16 @@ PlanarMesh read_ele(const std::string& ele_path) {
 }
 
 namespace {
-void write_vertices(std::ostream& o, const PlanarMesh& m) {
+void write_vertices(TextOutput& o, const PlanarMesh& m) {
   const std::size_t nattr = m.point_attributes.empty() ? 0 : m.point_attributes[0].size();
   const bool markers = !m.point_markers.empty();
   if (markers && m.point_markers.size() != m.points.size())
     throw Error("internal: point markers do not match the points");
   o << m.points.size() << " 2 " << nattr << ' ' << (markers ? 1 : 0) << '\n';
   for (std::size_t i = 0; i < m.points.size(); ++i) {
-    o << i + m.first_index << ' ';
-    put(o, m.points[i][0]);
-    o << ' ';
-    put(o, m.points[i][1]);
-    for (std::size_t k = 0; k < nattr; ++k) {
-      o << ' ';
-      put(o, k < m.point_attributes[i].size() ? m.point_attributes[i][k] : 0.0);
-    }
+    o << i + m.first_index << ' ' << m.points[i][0] << ' ' << m.points[i][1];
+    for (std::size_t k = 0; k < nattr; ++k)
+      o << ' ' << (k < m.point_attributes[i].size() ? m.point_attributes[i][k] : 0.0);
     if (markers) o << ' ' << m.point_markers[i];
     o << '\n';
   }
@@ -289,11 +267,10 @@ void write_vertices(std::ostream& o, const PlanarMesh& m) {
 } // namespace
 
 void write_node(const std::string& path, const PlanarMesh& m) {
-  AtomicOutput out(path);
-  auto& o = out.stream();
+  TextOutput o(path);
   o << "# " << m.points.size() << " vertices (imgmesh)\n";
   write_vertices(o, m);
-  out.commit();
+  o.commit();
 }
 
 void write_ele(const std::string& path, const PlanarMesh& m) {
@@ -301,25 +278,21 @@ void write_ele(const std::string& path, const PlanarMesh& m) {
   const std::size_t nattr = m.element_attributes.empty() ? 0 : m.element_attributes[0].size();
   for (const auto& e : m.elements)
     if (e.size() != per) throw Error("internal: mixed element sizes cannot be written as .ele", path);
-  AtomicOutput out(path);
-  auto& o = out.stream();
+  TextOutput o(path);
   o << "# " << m.elements.size() << (per == 4 ? " quadrilaterals" : " triangles") << " (imgmesh)\n";
   o << m.elements.size() << ' ' << per << ' ' << nattr << '\n';
   for (std::size_t i = 0; i < m.elements.size(); ++i) {
     o << i + m.first_index;
     for (int v : m.elements[i]) o << ' ' << v + m.first_index;
-    for (std::size_t k = 0; k < nattr; ++k) {
-      o << ' ';
-      put(o, k < m.element_attributes[i].size() ? m.element_attributes[i][k] : 0.0);
-    }
+    for (std::size_t k = 0; k < nattr; ++k)
+      o << ' ' << (k < m.element_attributes[i].size() ? m.element_attributes[i][k] : 0.0);
     o << '\n';
   }
-  out.commit();
+  o.commit();
 }
 
 void write_poly(const std::string& path, const PlanarMesh& m, bool with_points) {
-  AtomicOutput out(path);
-  auto& o = out.stream();
+  TextOutput o(path);
   if (with_points) {
     o << "# vertices\n";
     write_vertices(o, m);
@@ -340,28 +313,17 @@ void write_poly(const std::string& path, const PlanarMesh& m, bool with_points) 
   }
   o << "# holes\n" << m.holes.size() << '\n';
   for (std::size_t i = 0; i < m.holes.size(); ++i) {
-    o << i + m.first_index << ' ';
-    put(o, m.holes[i][0]);
-    o << ' ';
-    put(o, m.holes[i][1]);
-    o << '\n';
+    o << i + m.first_index << ' ' << m.holes[i][0] << ' ' << m.holes[i][1] << '\n';
   }
   if (!m.regions.empty()) {
     o << "# regions: x y attribute max-area\n" << m.regions.size() << '\n';
     for (std::size_t i = 0; i < m.regions.size(); ++i) {
       const auto& r = m.regions[i];
-      o << i + m.first_index << ' ';
-      put(o, r.point[0]);
-      o << ' ';
-      put(o, r.point[1]);
-      o << ' ';
-      put(o, r.attribute);
-      o << ' ';
-      put(o, r.max_area);
-      o << '\n';
+      o << i + m.first_index << ' ' << r.point[0] << ' ' << r.point[1] << ' ' << r.attribute << ' '
+        << r.max_area << '\n';
     }
   }
-  out.commit();
+  o.commit();
 }
 
 } // namespace imgmesh

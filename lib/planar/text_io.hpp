@@ -1,0 +1,57 @@
+// Fast text numbers for the planar formats: parsing with std::from_chars and
+// writing with std::to_chars into large chunks, with the results strtod /
+// strtoll and printf("%.17g") gave (10^6 quads: ~3 CPU-s of I/O with those).
+#pragma once
+#include "util/atomic_file.hpp"
+
+#include <charconv>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+namespace imgmesh {
+
+// All of s as a number, accepting exactly what strtod / strtoll (base 10,
+// C locale) accept; false if s is not entirely one number or (integers) out
+// of range. Reals may come out infinite or NaN ("inf", "nan", "1e400").
+bool parse_real(std::string_view s, double& v);
+bool parse_integer(std::string_view s, long long& v);
+
+// An AtomicOutput written in chunks of ~1 MiB: reals as printf("%.17g")
+// (every bit kept; to_chars with precision 17 is specified to match it).
+class TextOutput {
+public:
+  explicit TextOutput(const std::string& path) : out_(path), buf_(chunk + room) {}
+  TextOutput& operator<<(double v) {
+    reserve();
+    n_ = std::size_t(std::to_chars(&buf_[n_], &buf_[0] + buf_.size(), v, std::chars_format::general, 17).ptr - &buf_[0]);
+    return *this;
+  }
+  template <class I, std::enable_if_t<std::is_integral_v<I> && !std::is_same_v<I, char>, int> = 0>
+  TextOutput& operator<<(I v) {
+    reserve();
+    n_ = std::size_t(std::to_chars(&buf_[n_], &buf_[0] + buf_.size(), v).ptr - &buf_[0]);
+    return *this;
+  }
+  TextOutput& operator<<(char c) {
+    reserve();
+    buf_[n_++] = c;
+    return *this;
+  }
+  TextOutput& operator<<(std::string_view s);
+  // Writes what is left and moves the file into place. Throws Error.
+  void commit();
+
+private:
+  static constexpr std::size_t chunk = 1 << 20, room = 64;  // room: one number or char
+  void reserve() {
+    if (n_ > chunk) flush();
+  }
+  void flush();
+  AtomicOutput out_;
+  std::vector<char> buf_;
+  std::size_t n_ = 0;
+};
+
+} // namespace imgmesh
