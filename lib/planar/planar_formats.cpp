@@ -1,6 +1,7 @@
 // Planar mesh formats other than Triangle's, and the choice by extension.
 #include "planar/planar_formats.hpp"
 
+#include "planar/text_io.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
@@ -15,12 +16,6 @@
 
 namespace imgmesh {
 namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 
 bool exists(const std::string& p) {
   struct stat st;
@@ -40,24 +35,22 @@ void check_mesh(const PlanarMesh& m, const std::string& path) {
 }
 
 void write_off(const std::string& path, const PlanarMesh& m) {
-  AtomicOutput out(path);
-  auto& o = out.stream();
+  TextOutput o(path);
   o << "OFF\n" << m.points.size() << ' ' << m.elements.size() << " 0\n";
-  for (const auto& p : m.points) o << num(p[0]) << ' ' << num(p[1]) << " 0\n";
+  for (const auto& p : m.points) o << p[0] << ' ' << p[1] << " 0\n";
   for (const auto& e : m.elements) {
     o << e.size();
     for (int v : e) o << ' ' << v;
     o << '\n';
   }
-  out.commit();
+  o.commit();
 }
 
 void write_vtk(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt) {
-  AtomicOutput out(path);
-  auto& o = out.stream();
+  TextOutput o(path);
   o << "# vtk DataFile Version 3.0\nimgmesh planar mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
   o << "POINTS " << m.points.size() << " double\n";
-  for (const auto& p : m.points) o << num(p[0]) << ' ' << num(p[1]) << " 0\n";
+  for (const auto& p : m.points) o << p[0] << ' ' << p[1] << " 0\n";
   std::size_t size = 0;
   for (const auto& e : m.elements) size += e.size() + 1;
   o << "CELLS " << m.elements.size() << ' ' << size << '\n';
@@ -71,29 +64,28 @@ void write_vtk(const std::string& path, const PlanarMesh& m, const PlanarWriteOp
   if (!m.elements.empty()) {
     o << "CELL_DATA " << m.elements.size() << '\n';
     o << "SCALARS region double 1\nLOOKUP_TABLE default\n";
-    for (std::size_t i = 0; i < m.elements.size(); ++i) o << num(region_of(m, i)) << '\n';
+    for (std::size_t i = 0; i < m.elements.size(); ++i) o << region_of(m, i) << '\n';
     if (opt.element_scalar.size() == m.elements.size()) {
       std::string name = opt.scalar_name.empty() ? "scalar" : opt.scalar_name;
       std::replace(name.begin(), name.end(), ' ', '_');
       o << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
-      for (double v : opt.element_scalar) o << num(v) << '\n';
+      for (double v : opt.element_scalar) o << v << '\n';
     }
   }
   if (m.point_markers.size() == m.points.size() && !m.points.empty()) {
     o << "POINT_DATA " << m.points.size() << "\nSCALARS marker int 1\nLOOKUP_TABLE default\n";
     for (int k : m.point_markers) o << k << '\n';
   }
-  out.commit();
+  o.commit();
 }
 
 // Gmsh 2.2: elements carry (physical, elementary) tags = (region attribute,
 // region attribute); segments are line elements tagged with their marker.
 void write_msh(const std::string& path, const PlanarMesh& m) {
-  AtomicOutput out(path);
-  auto& o = out.stream();
+  TextOutput o(path);
   o << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n" << m.points.size() << '\n';
   for (std::size_t i = 0; i < m.points.size(); ++i)
-    o << i + 1 << ' ' << num(m.points[i][0]) << ' ' << num(m.points[i][1]) << " 0\n";
+    o << i + 1 << ' ' << m.points[i][0] << ' ' << m.points[i][1] << " 0\n";
   o << "$EndNodes\n$Elements\n" << m.segments.size() + m.elements.size() << '\n';
   std::size_t id = 1;
   for (std::size_t i = 0; i < m.segments.size(); ++i) {
@@ -109,7 +101,7 @@ void write_msh(const std::string& path, const PlanarMesh& m) {
     o << '\n';
   }
   o << "$EndElements\n";
-  out.commit();
+  o.commit();
 }
 
 // --- a minimal PNG encoder (stored deflate blocks) for SVG backgrounds -----
