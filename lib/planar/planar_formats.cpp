@@ -8,10 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <sys/stat.h>
 
 namespace imgmesh {
@@ -290,19 +288,17 @@ void write_svg(const std::string& path, const PlanarMesh& m, const PlanarWriteOp
 // OFF: "OFF" [nv nf ne] on the first line or the next, '#' comments.
 PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t max_face) {
   const std::string text = read_all(path);
-  std::vector<std::pair<int, std::vector<std::string>>> lines;
+  std::vector<std::pair<int, std::vector<std::string_view>>> lines;  // non-empty lines' numbers and fields
   {
-    std::istringstream in(text);
-    std::string line;
     int n = 0;
-    while (std::getline(in, line)) {
+    std::vector<std::string_view> f;
+    for (std::size_t pos = 0; pos < text.size();) {
+      std::size_t end = text.find('\n', pos);
+      if (end == std::string::npos) end = text.size();
       ++n;
-      const auto hash = line.find('#');
-      if (hash != std::string::npos) line.resize(hash);
-      std::istringstream ls(line);
-      std::vector<std::string> f;
-      for (std::string t; ls >> t;) f.push_back(t);
-      if (!f.empty()) lines.push_back({n, std::move(f)});
+      split_fields(std::string_view(text).substr(pos, end - pos), f);
+      if (!f.empty()) lines.push_back({n, f});
+      pos = end + 1;
     }
   }
   std::size_t li = 0;
@@ -310,23 +306,21 @@ PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t m
     const int n = li < lines.size() ? lines[li].first : (lines.empty() ? 0 : lines.back().first);
     throw Error("line " + std::to_string(n) + ": " + what, path);
   };
-  auto real = [&](const std::string& s) {
-    char* e = nullptr;
-    const double v = std::strtod(s.c_str(), &e);
-    if (e == s.c_str() || *e || !std::isfinite(v)) fail("'" + s + "' is not a finite number");
+  auto real = [&](std::string_view s) {
+    double v;
+    if (!parse_real(s, v) || !std::isfinite(v)) fail("'" + std::string(s) + "' is not a finite number");
     return v;
   };
-  auto integer = [&](const std::string& s) {
-    char* e = nullptr;
-    const long long v = std::strtoll(s.c_str(), &e, 10);
-    if (e == s.c_str() || *e) fail("'" + s + "' is not an integer");
+  auto integer = [&](std::string_view s) {
+    long long v;
+    if (!parse_integer(s, v)) fail("'" + std::string(s) + "' is not an integer");
     return v;
   };
   if (lines.empty() || lines[0].second[0] != "OFF") {
     li = 0;
     fail("not an OFF file (no OFF header)");
   }
-  std::vector<std::string> counts(lines[0].second.begin() + 1, lines[0].second.end());
+  std::vector<std::string_view> counts(lines[0].second.begin() + 1, lines[0].second.end());
   li = 1;
   if (counts.empty()) {
     if (li >= lines.size()) fail("truncated: no counts");
@@ -351,7 +345,7 @@ PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t m
     std::vector<int> e;
     for (long long j = 0; j < k; ++j) {
       const long long v = integer(f[1 + j]);
-      if (v < 0 || v >= nv) fail("vertex " + f[1 + j] + " does not exist");
+      if (v < 0 || v >= nv) fail("vertex " + std::string(f[1 + j]) + " does not exist");
       e.push_back(int(v));
     }
     m.elements.push_back(std::move(e));

@@ -6,6 +6,17 @@
 
 namespace imgmesh {
 
+void split_fields(std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
+  for (std::size_t i = 0; i < line.size();) {
+    while (i < line.size() && blank(line[i])) ++i;
+    if (i == line.size() || line[i] == '#') break;
+    const std::size_t b = i;
+    while (i < line.size() && !blank(line[i]) && line[i] != '#') ++i;
+    fields.push_back(line.substr(b, i - b));
+  }
+}
+
 // from_chars takes the common forms; whatever it refuses or leaves unread
 // ('+1', '0x1p3', out of range) goes to the C function, which has the last word.
 bool parse_real(std::string_view s, double& v) {

@@ -12,6 +12,13 @@
 
 namespace imgmesh {
 
+// The characters operator>> skips in the classic locale.
+inline bool blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
+
+// The fields of a line up to a '#' (a comment) into `fields`, as views of
+// the line, split on blanks.
+void split_fields(std::string_view line, std::vector<std::string_view>& fields);
+
 // All of s as a number, accepting exactly what strtod / strtoll (base 10,
 // C locale) accept; false if s is not entirely one number or (integers) out
 // of range. Reals may come out infinite or NaN ("inf", "nan", "1e400").

@@ -28,7 +28,7 @@ public:
       std::size_t end = text_.find('\n', pos);
       if (end == std::string::npos) end = text_.size();
       ++number;
-      while (pos < end && space(text_[pos])) ++pos;
+      while (pos < end && blank(text_[pos])) ++pos;
       // A comment after data ends its line only when the line is split.
       if (pos < end && text_[pos] != '#') lines_.push_back({pos, end, number});
       pos = end + 1;
@@ -46,17 +46,7 @@ public:
                   path_);
     current_ = next_++;
     const auto& l = lines_[current_];
-    // Split on the characters operator>> skips (classic locale), up to a '#'.
-    std::size_t nf = 0;
-    for (std::size_t i = l.begin; i < l.end;) {
-      while (i < l.end && space(text_[i])) ++i;
-      if (i == l.end || text_[i] == '#') break;
-      const std::size_t b = i;
-      while (i < l.end && !space(text_[i]) && text_[i] != '#') ++i;
-      if (nf == fields_.size()) fields_.emplace_back();
-      fields_[nf++] = std::string_view(text_).substr(b, i - b);
-    }
-    fields_.resize(nf);
+    split_fields(std::string_view(text_).substr(l.begin, l.end - l.begin), fields_);
     if (fields_.size() < min_fields)
       fail(std::string(what) + " needs " + std::to_string(min_fields) + " fields, has " +
            std::to_string(fields_.size()));
@@ -93,9 +83,6 @@ public:
   }
 
 private:
-  static bool space(char c) {
-    return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
-  }
   struct Line { std::size_t begin, end; int number; };
   std::string path_;
   std::string text_;
