@@ -755,6 +755,19 @@ const std::vector<P2> kDentPoints = {{0, 0}, {4, 0}, {1.82, 0.6}, {1.95, 1.39}, 
 const std::vector<std::array<int, 3>> kDentTriangles = {{0, 1, 2}, {2, 1, 3}, {3, 1, 4}};
 constexpr std::size_t kDentQuads = 4, kDentSteiner = 3;
 
+// That subtree placed by a similarity on the edge (x, y) of a triangle
+// (its b on x, its a on y), so that the triangle gets the point.
+void add_dent(std::vector<P2>& pts, std::vector<std::array<int, 3>>& tris, int x, int y) {
+  const P2 X = pts[x], Y = pts[y], v = {X[0] - Y[0], X[1] - Y[1]}, n = {-v[1], v[0]};
+  int id[5] = {y, x, -1, -1, -1};
+  for (int k = 2; k < 5; ++k) {
+    const P2& p = kDentPoints[k];
+    id[k] = int(pts.size());
+    pts.push_back({Y[0] + (p[0] * v[0] + p[1] * n[0]) / 4, Y[1] + (p[0] * v[1] + p[1] * n[1]) / 4});
+  }
+  for (const auto& t : kDentTriangles) tris.push_back({id[t[0]], id[t[1]], id[t[2]]});
+}
+
 } // namespace
 
 TEST_CASE("Steps on hand-made meshes", "[tri2quad][steps]") {
@@ -911,12 +924,12 @@ TEST_CASE("Steps on hand-made meshes", "[tri2quad][steps]") {
   }
 }
 
-// Each remaining case of steps 3-5 and each lemma's configuration on a
+// Each remaining case of steps 2-5 and each lemma's configuration on a
 // hand-made mesh whose BFS tree forces it: the counters show that exactly
 // that case ran (beside the cases of the rest of the mesh), and the quads
 // inside the case's region are what the thesis's case produces. The root
 // is triangle 0 (its first boundary edge is the root edge).
-TEST_CASE("Steps on hand-made meshes: the remaining cases of steps 3-5 and of B.2.1 and B.2.2",
+TEST_CASE("Steps on hand-made meshes: the remaining cases of steps 2-5 and of B.2.1 and B.2.2",
           "[tri2quad][steps]") {
   SECTION("4(b) and B.2.1 type 1: two leaves, the outgoing edge in the centre triangle") {
     // P = (A, B, C) below the root (B, A, z) with leaves (C, B, y) and (A, C,
@@ -989,6 +1002,31 @@ TEST_CASE("Steps on hand-made meshes: the remaining cases of steps 3-5 and of B.
     const int m = edge_point(r, p[1], p[0]);
     CHECK(fourth_corner(r, 0, 1, 5) == m);
     CHECK(l.area == Approx(poly_area(region) - std::fabs(poly_area({p[0], p[1], r.points[m]}))));
+  }
+  SECTION("Step 2: a degenerate pentagon (points on two edges) becomes a quad and a leftover") {
+    // P = (A, B, C) below the root (B, A, z) gets points m1 on BC and m2 on
+    // CA from two 4(c)(ii) subtrees: the pentagon (A, B, m1, C, m2) gives 1
+    // quad, no point, and a leftover on AB (Table 3.1, step 2).
+    std::vector<P2> p = {{0, 0}, {8, 0}, {4, 4}, {4, -3}};
+    std::vector<std::array<int, 3>> tris = {{1, 0, 3}, {0, 1, 2}};
+    add_dent(p, tris, 1, 2);
+    add_dent(p, tris, 2, 0);
+    const auto in = mesh(p, tris);
+    const auto r = tri2quad(in);
+    check_result(in, r, false);
+    CHECK(cases_run(r) == Cases{{"4cii_B21_type3_edge_point", 2}, {"4c_quad_to_grandparent", 2},
+                                {"B21_pentagon_ear", 1}, {"4c_convex_quad", 1}});
+    const int m1 = edge_point(r, p[2], p[1]), m2 = edge_point(r, p[0], p[2]);
+    const int apex = fourth_corner(r, 0, 1, 3);
+    CHECK((apex == m1 || apex == m2));
+    const std::vector<P2> region = {p[0], p[1], r.points[m1], p[2], r.points[m2]};
+    const Local l = local_result(r, region);
+    CHECK(l.convex);
+    CHECK(l.quads == 1);
+    CHECK(l.steiner == 0);
+    CHECK(l.area == Approx(poly_area(region) - poly_area({p[0], p[1], r.points[apex]})));
+    CHECK(r.quads.size() == 2 * kDentQuads + 1 + 1);
+    CHECK(r.steiner == 2 * kDentSteiner);
   }
   SECTION("4(a): a degenerate quadrilateral parent and a leaf") {
     // P = (b, a, z) gets the point m on (b, a) from its child u and
@@ -1183,6 +1221,27 @@ TEST_CASE("Steps on hand-made meshes: the remaining cases of steps 3-5 and of B.
     CHECK(r2.quads.size() == kDentQuads + 3);
     CHECK(r2.steiner == kDentSteiner + 2);
     CHECK(r2.steiner_outside == 1);
+  }
+  SECTION("4(c)(v)(a)-(c): two non-convex pairs with a cross-edge around C (B.2.2)") {
+    // P = (A, B, C) below the root (B, A, z), the pairs (C, B, w1), (C, w1,
+    // x) and (A, C, w2), (w2, C, x) meeting at (C, x): the pentagon (A, B,
+    // w1, x, w2) around C. Here the leftover is (A, B, C) and B.1.1 closes
+    // the hexagon left (2 + k quads, k <= 3 points).
+    const std::vector<P2> p = {{0, 0}, {4, 0}, {1.75, 1.5}, {3.43, 2.12}, {3.68, 3.13}, {2, -2}, {-2.39, 2.92}};
+    const auto in = mesh(p, {{1, 0, 5}, {0, 1, 2}, {2, 1, 3}, {2, 3, 4}, {0, 2, 6}, {6, 2, 4}});
+    const auto r = tri2quad(in);
+    check_result(in, r, false);
+    CHECK(cases_run(r) ==
+          Cases{{"4c_quad_to_grandparent", 2}, {"3c_B22_pentagon_point", 1}, {"4c_convex_quad", 1}});
+    CHECK(fourth_corner(r, 0, 1, 5) == 2);
+    const std::vector<P2> region = {p[0], p[1], p[3], p[4], p[6]};
+    const Local l = local_result(r, region);
+    CHECK(l.convex);
+    CHECK(l.steiner <= 3);
+    CHECK(l.quads == 2 + l.steiner);
+    CHECK(l.area == Approx(poly_area(region) - poly_area({p[0], p[1], p[2]})));
+    CHECK(r.quads.size() == l.quads + 1);
+    CHECK(r.steiner == l.steiner);
   }
   SECTION("B.2.2 (3(c) without cross-edge): a pentagon with a point, its three cases") {
     // P = (A, B, C) below the root (B, A, z), the non-empty triangle
