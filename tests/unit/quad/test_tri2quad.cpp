@@ -1086,6 +1086,24 @@ TEST_CASE("Steps on hand-made meshes: the remaining cases of steps 2-5 and of B.
     CHECK(r.quads.size() == kDentQuads + 5 + 1);
     CHECK(r.steiner == kDentSteiner + 3);
   }
+  SECTION("3(b): a triangle parent of degree 2 and a non-empty triangle (B.1.2)") {
+    // P = (A, B, C) below the root (B, A, z) and three triangles around y
+    // across BC: the quadrilateral (A, B, X, C) around y, 5 quads and 3
+    // points, no leftover; the root is then alone (Joe's split: 5 and 5).
+    const std::vector<P2> p = {{0, 0}, {4, 0}, {2, 2}, {4, 3}, {2, -2}, {3.3, 1.7}};
+    const auto in = mesh(p, {{1, 0, 4}, {0, 1, 2}, {2, 1, 5}, {1, 3, 5}, {3, 2, 5}});
+    const auto r = tri2quad(in);
+    check_result(in, r, false);
+    CHECK(cases_run(r) == Cases{{"3_nonempty_triangle", 1}, {"3b_B12_quad_point", 1}, {"5bd_joe_split", 1}});
+    const std::vector<P2> region = {p[0], p[1], p[3], p[2]};
+    const Local l = local_result(r, region);
+    CHECK(l.convex);
+    CHECK(l.quads == 5);
+    CHECK(l.steiner == 3);
+    CHECK(l.area == Approx(poly_area(region)));
+    CHECK(r.quads.size() == 5 + 5);
+    CHECK(r.steiner == 3 + 5);
+  }
   SECTION("4(c)(i): a degenerate quadrilateral and a non-convex pair below it (B.1.1)") {
     // P = (b, a, z) with m on (b, a) and the pair (z, a, x), (x, a, w),
     // reflex at a: the hexagon (b, m, a, w, x, z) closes with 2 + k quads
