@@ -13,7 +13,7 @@
 namespace imgmesh {
 
 // The characters operator>> skips in the classic locale.
-inline bool blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
+constexpr bool blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r'; }
 
 // The fields of a line up to a '#' (a comment) into `fields`, as views of
 // the line, split on blanks.
