@@ -32,7 +32,8 @@ public:
   explicit TextOutput(const std::string& path) : out_(path), buf_(chunk + room) {}
   TextOutput& operator<<(double v) {
     reserve();
-    n_ = std::size_t(std::to_chars(&buf_[n_], &buf_[0] + buf_.size(), v, std::chars_format::general, 17).ptr - &buf_[0]);
+    const char* end = std::to_chars(&buf_[n_], &buf_[0] + buf_.size(), v, std::chars_format::general, 17).ptr;
+    n_ = std::size_t(end - &buf_[0]);
     return *this;
   }
   template <class I, std::enable_if_t<std::is_integral_v<I> && !std::is_same_v<I, char>, int> = 0>
