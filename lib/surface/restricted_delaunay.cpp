@@ -39,8 +39,8 @@ using GT = CGAL::Robust_circumcenter_filtered_traits_3<K0>;
 using Point = GT::Point_3;
 
 // Why a vertex is in W; also the per-subroutine counters of --stats.
-enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kFacetCycle, kQuality, kSmooth, kDistance, kFallback, kOrigins };
-const char* const kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "facet_cycle", "quality", "smooth", "max_distance", "topology_fallback"};
+enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kFacetCycle, kHandle, kQuality, kSmooth, kDistance, kFallback, kOrigins };
+const char* const kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "facet_cycle", "handle_detection", "quality", "smooth", "max_distance", "topology_fallback"};
 
 struct VInfo {
   int id = -1;
@@ -291,7 +291,7 @@ private:
   // only edges at the new vertex and only shrink the other Voronoi facets,
   // and a cycle inside a shrunken facet was inside it before (notes 2.7).
   std::vector<char> dirty_;
-  long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
+  long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0, handle_checks_ = 0;
   std::vector<std::pair<int, Vec3>> normals_;
   // Insertion scratch: the conflict zone and the vertices around it.
   std::vector<Facet> zone_facets_;
@@ -343,6 +343,8 @@ private:
   // Restricted facets in a deterministic order (by vertex ids).
   std::vector<Facet> restricted_facets() const;
   bool fallback(const std::vector<int>& bad_components);
+  bool handle_detection(Vh p, Vec3& q);
+  bool handle_pass(const std::vector<int>& bad_components);
   bool facet_cycle(const Tr::Edge& e, Vec3& x);
   bool facet_cycle_pass();
   bool insert_batch(const std::vector<std::pair<Vec3, double>>& pts, Origin origin);
@@ -916,7 +918,8 @@ void Mesher::drain() {
 // FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
 // dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
 // h = bisector plane Pi cut by V(p)'s half-spaces and the box: convex, so
-// it is rasterised row by row on Pi at delta/4. The sign of f at a sample is
+// it is rasterised row by row on Pi at delta/16 (at delta/4, curves missed
+// there cost the brain labels' certificate fallback rounds). The sign of f at a sample is
 // the corner sign in an inactive cube (F1) and f's sign in an active one. A
 // sign region that does not reach the border of h is enclosed by a cycle of
 // S; its point farthest from p is found on the sample pair (region,
@@ -977,7 +980,7 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
   a0 = std::max(a0, ba0); a1 = std::min(a1, ba1); b0 = std::max(b0, bb0); b1 = std::min(b1, bb1);
   if (!(a0 < a1 && b0 < b1)) return false;
   // Tighten b by the polygon: rows where the a-interval is empty are skipped anyway.
-  const double step = grid_.delta / 4;
+  const double step = grid_.delta / 16;
   const long nb = long(std::ceil((b1 - b0) / step)) + 1;
   // Rows: the a-interval where every half-plane holds.
   thread_local std::vector<long> lo, hi, row_off;
@@ -1151,8 +1154,206 @@ std::vector<Facet> Mesher::restricted_facets() const {
   return fs;
 }
 
-// Beyond FacetCycle/HandleDetection (not implemented): when the certificate
-// finds a component of S whose mesh has the wrong topology, refine it: the
+// HandleDetection (8.3): is S inside V(p) a disk? S is triangulated by
+// marching tetrahedra on a grid of half the voxel spacing (f sampled only in
+// active cubes; F1 gives the sign elsewhere) in a box around p, twice the
+// reach of p's surface Delaunay balls and doubled while that part of S
+// reaches the box's border; the triangles whose vertices all lie in V(p)
+// approximate S inside V(p), and their Euler characteristic must be 1 (a
+// handle makes it <= -1, a second piece >= 2). If not, q is the vertex there
+// farthest from p, moved onto S (the thesis's choice; a whole component
+// inside V(p) has characteristic 2 and gets a second point). No answer (false)
+// when the box would exceed 300,000 sample points. Run on the vertices of
+// the S components whose certificate fails (not on every vertex, as in the
+// thesis: the test costs about a thousand evaluations of f).
+bool Mesher::handle_detection(Vh p, Vec3& q) {
+  // Runs on several threads: thread-safe adjacency, thread-local scratch.
+  thread_local std::vector<Ch> cells;
+  cells.clear();
+  tr_.incident_cells_threadsafe(p, std::back_inserter(cells));
+  const Vec3 pp = vec(p->point());
+  double reach2 = 0;
+  for (Ch c : cells)
+    for (int i = 0; i < 4; ++i)
+      if (c->vertex(i) != p && (c->facet[i].state & kRestricted)) reach2 = std::max(reach2, dist2(facet_center(Facet(c, i)), pp));
+  // No restricted facet at p: S inside V(p) meets no Voronoi edge (a whole
+  // small component, say); start from a voxel.
+  if (reach2 <= 0) reach2 = grid_.delta * grid_.delta;
+  // The box grows while that part of S reaches its border.
+  const long long NX = 2 * grid_.n[0], NY = 2 * grid_.n[1];
+  thread_local std::vector<double> fv;
+  thread_local std::unordered_map<long long, int> vid;
+  struct PV { Vec3 x; long long a, b; bool in; };
+  thread_local std::vector<PV> pv;
+  thread_local std::vector<std::array<int, 3>> tris;
+  bool border = false;
+  const double h[3] = {grid_.s[0] / 2, grid_.s[1] / 2, grid_.s[2] / 2};
+  auto point = [&](long x, long y, long z) { return Vec3{x * h[0], y * h[1], z * h[2]}; };
+  for (double scale = 2;; scale *= 2) {
+    const double reach = scale * std::sqrt(reach2);
+    // Box in sub-grid indices (spacing s_i / 2).
+    long lo[3], n[3];
+    for (int i = 0; i < 3; ++i) {
+      const long top = 2 * (grid_.n[i] - 1);
+      lo[i] = std::clamp(long(std::floor((pp[i] - reach) / h[i])), 0L, top);
+      const long hi = std::clamp(long(std::ceil((pp[i] + reach) / h[i])), 0L, top);
+      n[i] = hi - lo[i] + 1;
+      if (n[i] < 2) return false;
+    }
+    if (n[0] * n[1] * n[2] > 300000) return false;
+    // V(p): |x - p|^2 <= |x - w|^2 for every Delaunay neighbour w.
+    thread_local std::vector<Vh> adj;
+    adj.clear();
+    tr_.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
+    struct HS { Vec3 d; double c; };  // d.x <= c
+    thread_local std::vector<HS> hs;
+    hs.clear();
+    for (Vh w : adj)
+      if (!tr_.is_infinite(w)) {
+        const Vec3 pw = vec(w->point());
+        hs.push_back({sub(pw, pp), (dot(pw, pw) - dot(pp, pp)) / 2});
+      }
+    auto in_cell = [&](const Vec3& x) {
+      for (const HS& e : hs)
+        if (dot(e.d, x) > e.c) return false;
+      return true;
+    };
+    // Signs and values at the sub-grid points (NaN: not evaluated).
+    fv.assign(std::size_t(n[0] * n[1] * n[2]), NAN);
+    auto idx = [&](long x, long y, long z) { return std::size_t((x - lo[0]) + n[0] * ((y - lo[1]) + n[1] * (z - lo[2]))); };
+    auto f_at = [&](long x, long y, long z) {
+      double& v = fv[idx(x, y, z)];
+      if (std::isnan(v)) {
+        // An active cube containing the point: f; else the cube's corner sign.
+        bool act = false;
+        for (int k = 0; k < 8 && !act; ++k) {
+          const long c[3] = {(x - (k & 1)) / 2, (y - ((k >> 1) & 1)) / 2, (z - ((k >> 2) & 1)) / 2};
+          act = grid_.active(c[0], c[1], c[2]);
+        }
+        if (act) v = value(point(x, y, z));
+        else v = grid_.neg(std::min(x / 2, grid_.n[0] - 1), std::min(y / 2, grid_.n[1] - 1), std::min(z / 2, grid_.n[2] - 1)) ? -1.0 : 1.0;
+      }
+      return v;
+    };
+    // Marching tetrahedra (6 tetrahedra around each sub-cube's main diagonal:
+    // the same split in every sub-cube, so the pieces fit). Vertices are keyed
+    // by their sub-grid edge; triangles kept only when all three are in V(p).
+    static const int tets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+    vid.clear();
+    pv.clear();
+    tris.clear();
+    auto vertex = [&](long long ka, long long kb, const long (&ca)[3], const long (&cb)[3]) {
+      // The edge: its first end and the step to the other (27 directions).
+      const long long key = ka * 27 + (cb[0] - ca[0] + 1) + 3 * (cb[1] - ca[1] + 1) + 9 * (cb[2] - ca[2] + 1);
+      auto it = vid.find(key);
+      if (it != vid.end()) return it->second;
+      const double fa = f_at(ca[0], ca[1], ca[2]), fb = f_at(cb[0], cb[1], cb[2]);
+      const double t = fa / (fa - fb);
+      const Vec3 xa = point(ca[0], ca[1], ca[2]), xb = point(cb[0], cb[1], cb[2]);
+      const Vec3 x{xa[0] + t * (xb[0] - xa[0]), xa[1] + t * (xb[1] - xa[1]), xa[2] + t * (xb[2] - xa[2])};
+      pv.push_back({x, ka, kb, in_cell(x)});
+      vid.emplace(key, int(pv.size()) - 1);
+      return int(pv.size()) - 1;
+    };
+    for (long z = lo[2]; z + 1 < lo[2] + n[2]; ++z)
+      for (long y = lo[1]; y + 1 < lo[1] + n[1]; ++y)
+        for (long x = lo[0]; x + 1 < lo[0] + n[0]; ++x) {
+          // Only sub-cubes of active cubes can meet S.
+          if (!grid_.active(x / 2, y / 2, z / 2)) continue;
+          long c[8][3];
+          double v[8];
+          long long key[8];
+          for (int k = 0; k < 8; ++k) {
+            c[k][0] = x + (k & 1);
+            c[k][1] = y + ((k >> 1) & 1);
+            c[k][2] = z + ((k >> 2) & 1);
+            v[k] = f_at(c[k][0], c[k][1], c[k][2]);
+            key[k] = c[k][0] + NX * (c[k][1] + NY * c[k][2]);
+          }
+          for (const auto& t : tets) {
+            int ins[4], outs[4], ni = 0, no = 0;
+            for (int m = 0; m < 4; ++m) (inside(v[t[m]]) ? ins[ni++] : outs[no++]) = t[m];
+            if (ni == 0 || no == 0) continue;
+            auto vx = [&](int a, int b) {
+              if (key[a] > key[b]) std::swap(a, b);
+              return vertex(key[a], key[b], c[a], c[b]);
+            };
+            std::array<int, 3> tri;
+            const bool edge_box = x == lo[0] || y == lo[1] || z == lo[2] || x + 2 == lo[0] + n[0] || y + 2 == lo[1] + n[1] || z + 2 == lo[2] + n[2];
+            auto keep = [&](const std::array<int, 3>& tr) {
+              if (!(pv[tr[0]].in && pv[tr[1]].in && pv[tr[2]].in)) return;
+              if (edge_box) border = true;
+              tris.push_back(tr);
+            };
+            if (ni == 1 || no == 1) {
+              const int a = ni == 1 ? ins[0] : outs[0];
+              const int* o = ni == 1 ? outs : ins;
+              tri = {vx(a, o[0]), vx(a, o[1]), vx(a, o[2])};
+              keep(tri);
+            } else {
+              const int q0 = vx(ins[0], outs[0]), q1 = vx(ins[0], outs[1]), q2 = vx(ins[1], outs[1]), q3 = vx(ins[1], outs[0]);
+              keep({q0, q1, q2});
+              keep({q0, q2, q3});
+            }
+          }
+        }
+    if (tris.empty()) return false;
+    if (!border) break;
+    border = false;
+  }
+  // Euler characteristic V - E + F of the kept triangles.
+  thread_local std::vector<long long> edges;
+  thread_local std::vector<int> verts;
+  edges.clear();
+  verts.clear();
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const int a = t[k], b = t[(k + 1) % 3];
+      edges.push_back((static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b));
+      verts.push_back(a);
+    }
+  std::sort(edges.begin(), edges.end());
+  std::sort(verts.begin(), verts.end());
+  const long long E = std::unique(edges.begin(), edges.end()) - edges.begin();
+  const long long V = std::unique(verts.begin(), verts.end()) - verts.begin();
+  if (V - E + static_cast<long long>(tris.size()) == 1) return false;
+  // The kept vertex farthest from p, moved onto S along its sub-grid edge.
+  int best = -1;
+  double bd = -1;
+  for (std::size_t k = 0; k < std::size_t(V); ++k) {
+    const double d = dist2(pv[std::size_t(verts[k])].x, pp);
+    if (d > bd) { bd = d; best = verts[k]; }
+  }
+  const PV& b = pv[std::size_t(best)];
+  auto coords = [&](long long key) { return point(long(key % NX), long((key / NX) % NY), long(key / NX / NY)); };
+  const Vec3 xa = coords(b.a), xb = coords(b.b);
+  q = bisect(xa, xb, value(xa));
+  return true;
+}
+
+// HandleDetection on every vertex of the S components whose mesh has the
+// wrong topology (the certificate says which), before the blunter fallback.
+bool Mesher::handle_pass(const std::vector<int>& bad) {
+  std::vector<char> is_bad(std::size_t(grid_.components) + 1, 0);
+  for (int c : bad)
+    if (c >= 0) is_bad[std::size_t(c)] = 1;
+  std::vector<Vh> todo;
+  for (Vh v : vertices_)
+    if (v->info().comp >= 0 && is_bad[std::size_t(v->info().comp)]) todo.push_back(v);
+  std::vector<char> found(todo.size(), 0);
+  std::vector<Vec3> xs(todo.size());
+  implicit_detail::parallel_for(long(todo.size()), unsigned(std::max(1, opt_.threads)), [&](long a, long b, unsigned) {
+    for (long k = a; k < b; ++k) found[std::size_t(k)] = handle_detection(todo[std::size_t(k)], xs[std::size_t(k)]);
+  });
+  std::vector<std::pair<Vec3, double>> pts;
+  for (std::size_t k = 0; k < todo.size(); ++k)
+    if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(todo[k]->point())));
+  handle_checks_ += static_cast<long long>(todo.size());
+  return insert_batch(pts, kHandle);
+}
+
+// Beyond HandleDetection: when the certificate still
+// (or again) finds a component of S whose mesh has the wrong topology, refine it: the
 // largest surface Delaunay balls there, and the point of S (a mixed-edge
 // crossing) farthest from W. Denser samples end as an epsilon-sample, where
 // the restricted Delaunay surface is homeomorphic to S (Amenta-Bern, CDRR).
@@ -1358,8 +1559,12 @@ RestrictedDelaunayResult Mesher::run() {
     }
     bad.erase(std::remove(bad.begin(), bad.end(), -1), bad.end());
     ++rounds;
-    phase_ = "topology fallback";
-    if (bad.empty() || !fallback(bad)) break;
+    if (bad.empty()) break;
+    phase_ = "handle detection";
+    if (!handle_pass(bad)) {
+      phase_ = "topology fallback";
+      if (!fallback(bad)) break;
+    }
     drain();
     if (opt_.facet_cycle)
       while (!max_hit_ && facet_cycle_pass()) drain();
@@ -1438,6 +1643,7 @@ RestrictedDelaunayResult Mesher::run() {
   st["topology_fallback_points"] = inserted_[kFallback];
   st["facet_cycle_checks"] = facet_cycle_checks_;
   st["facet_cycle_passes"] = facet_cycle_passes_;
+  st["handle_detection_checks"] = handle_checks_;
   st["vertices"] = res.mesh.points.size();
   st["triangles"] = res.mesh.triangles.size();
   Json comps = Json::array();
