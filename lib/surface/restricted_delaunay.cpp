@@ -1333,6 +1333,7 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
 
 // HandleDetection on every vertex of the S components whose mesh has the
 // wrong topology (the certificate says which), before the blunter fallback.
+constexpr std::size_t kHandleBudget = 20000;
 bool Mesher::handle_pass(const std::vector<int>& bad) {
   std::vector<char> is_bad(std::size_t(grid_.components) + 1, 0);
   for (int c : bad)
@@ -1340,6 +1341,10 @@ bool Mesher::handle_pass(const std::vector<int>& bad) {
   std::vector<Vh> todo;
   for (Vh v : vertices_)
     if (v->info().comp >= 0 && is_bad[std::size_t(v->info().comp)]) todo.push_back(v);
+  // A check costs about a thousand evaluations of f: on components of more
+  // than kHandleBudget samples (brain tissue of genus ~2600), the fallback's
+  // refinement is much cheaper.
+  if (todo.size() > kHandleBudget) return false;
   std::vector<char> found(todo.size(), 0);
   std::vector<Vec3> xs(todo.size());
   implicit_detail::parallel_for(long(todo.size()), unsigned(std::max(1, opt_.threads)), [&](long a, long b, unsigned) {
