@@ -1,6 +1,7 @@
 // DELMESH (thesis 7.6.5) on CGAL's Delaunay_triangulation_3, kept
 // incremental: every insertion recomputes only the facets of the new cells
-// (all incident to the new vertex) and re-checks only the cavity's vertices.
+// (all incident to the new vertex) and re-checks only the vertices whose
+// restricted facets changed.
 // See ../shared/notes/implicit2mesh.md for the CGAL calls this follows.
 #include "surface/restricted_delaunay.hpp"
 

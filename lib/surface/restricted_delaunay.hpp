@@ -1,9 +1,10 @@
 // implicit2mesh's library: the restricted Delaunay surface of S = f^-1(0)
 // after the thesis's simplification of Cheng-Dey-Ramos-Ray (ch. 7-8):
 // seeds from the components of bdCA(X) (8.1), TOPOLOGY (VorEdge with
-// EdgeSurface on the cube grid, TopoDisk), QUALITY(rho_0) and SMOOTH(g) as
-// in DELMESH, plus --max-distance, then a certificate: the output's
-// components and Euler characteristics are compared with bdCA(X).
+// EdgeSurface on the cube grid, TopoDisk, FacetCycle), QUALITY(rho_0) and
+// SMOOTH(g) as in DELMESH, plus --max-distance, then a certificate: the
+// output's components and Euler characteristics are compared with bdCA(X);
+// where they differ, HandleDetection (8.3) and then a fallback refine.
 #pragma once
 #include "mesh/surface_io.hpp"
 #include "surface/implicit_surface.hpp"
@@ -28,7 +29,7 @@ struct RestrictedDelaunayOptions {
   std::size_t max_points = 2000000;
   std::uint64_t seed = 0;       // order of seed insertion
   int threads = 1;
-  bool facet_cycle = true;      // FacetCycle (8.2) on the Voronoi facets of Delaunay edges              // final verification pass
+  bool facet_cycle = true;      // FacetCycle (8.2) on the Voronoi facets of Delaunay edges
   // Called now and then with the phase and the number of points so far.
   std::function<void(const std::string&)> progress;
 };
