@@ -88,6 +88,9 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline double dist2(const Vec3& a, const Vec3& b) { Vec3 d = sub(a, b); return dot(d, d); }
 
+// An undirected mesh edge as one number.
+inline long long edge_key(int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); }
+
 // Radius-edge ratio R / l_min (Def. 4.3.1).
 double ratio(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double la = std::sqrt(dist2(b, c)), lb = std::sqrt(dist2(c, a)), lc = std::sqrt(dist2(a, b));
@@ -1180,6 +1183,23 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
   // No restricted facet at p: S inside V(p) meets no Voronoi edge (a whole
   // small component, say); start from a voxel.
   if (reach2 <= 0) reach2 = grid_.delta * grid_.delta;
+  // V(p): |x - p|^2 <= |x - w|^2 for every Delaunay neighbour w.
+  thread_local std::vector<Vh> adj;
+  adj.clear();
+  tr_.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
+  struct HS { Vec3 d; double c; };  // d.x <= c
+  thread_local std::vector<HS> hs;
+  hs.clear();
+  for (Vh w : adj)
+    if (!tr_.is_infinite(w)) {
+      const Vec3 pw = vec(w->point());
+      hs.push_back({sub(pw, pp), (dot(pw, pw) - dot(pp, pp)) / 2});
+    }
+  auto in_cell = [&](const Vec3& x) {
+    for (const HS& e : hs)
+      if (dot(e.d, x) > e.c) return false;
+    return true;
+  };
   // The box grows while that part of S reaches its border.
   const long long NX = 2 * grid_.n[0], NY = 2 * grid_.n[1];
   thread_local std::vector<double> fv;
@@ -1202,23 +1222,6 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
       if (n[i] < 2) return false;
     }
     if (n[0] * n[1] * n[2] > 300000) return false;
-    // V(p): |x - p|^2 <= |x - w|^2 for every Delaunay neighbour w.
-    thread_local std::vector<Vh> adj;
-    adj.clear();
-    tr_.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
-    struct HS { Vec3 d; double c; };  // d.x <= c
-    thread_local std::vector<HS> hs;
-    hs.clear();
-    for (Vh w : adj)
-      if (!tr_.is_infinite(w)) {
-        const Vec3 pw = vec(w->point());
-        hs.push_back({sub(pw, pp), (dot(pw, pw) - dot(pp, pp)) / 2});
-      }
-    auto in_cell = [&](const Vec3& x) {
-      for (const HS& e : hs)
-        if (dot(e.d, x) > e.c) return false;
-      return true;
-    };
     // Signs and values at the sub-grid points (NaN: not evaluated).
     fv.assign(std::size_t(n[0] * n[1] * n[2]), NAN);
     auto idx = [&](long x, long y, long z) { return std::size_t((x - lo[0]) + n[0] * ((y - lo[1]) + n[1] * (z - lo[2]))); };
@@ -1279,7 +1282,6 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
               if (key[a] > key[b]) std::swap(a, b);
               return vertex(key[a], key[b], c[a], c[b]);
             };
-            std::array<int, 3> tri;
             const bool edge_box = x == lo[0] || y == lo[1] || z == lo[2] || x + 2 == lo[0] + n[0] || y + 2 == lo[1] + n[1] || z + 2 == lo[2] + n[2];
             auto keep = [&](const std::array<int, 3>& tr) {
               if (!(pv[tr[0]].in && pv[tr[1]].in && pv[tr[2]].in)) return;
@@ -1289,8 +1291,7 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
             if (ni == 1 || no == 1) {
               const int a = ni == 1 ? ins[0] : outs[0];
               const int* o = ni == 1 ? outs : ins;
-              tri = {vx(a, o[0]), vx(a, o[1]), vx(a, o[2])};
-              keep(tri);
+              keep({vx(a, o[0]), vx(a, o[1]), vx(a, o[2])});
             } else {
               const int q0 = vx(ins[0], outs[0]), q1 = vx(ins[0], outs[1]), q2 = vx(ins[1], outs[1]), q3 = vx(ins[1], outs[0]);
               keep({q0, q1, q2});
@@ -1310,7 +1311,7 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
   for (const auto& t : tris)
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
-      edges.push_back((static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b));
+      edges.push_back(edge_key(a, b));
       verts.push_back(a);
     }
   std::sort(edges.begin(), edges.end());
@@ -1487,9 +1488,8 @@ RestrictedDelaunayResult Mesher::run() {
     {
       const std::size_t nt = mesh.triangles.size();
       std::unordered_map<long long, std::vector<int>> by_edge;
-      auto key = [](int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); };
       for (std::size_t t = 0; t < nt; ++t)
-        for (int k = 0; k < 3; ++k) by_edge[key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(int(t));
+        for (int k = 0; k < 3; ++k) by_edge[edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(int(t));
       std::vector<int> flip(nt, -1);
       tri_comp.assign(nt, -1);
       int ncomp = 0;
@@ -1505,7 +1505,7 @@ RestrictedDelaunayResult Mesher::run() {
           if (flip[t]) std::swap(tt[1], tt[2]);
           for (int k = 0; k < 3; ++k) {
             const int a = tt[k], b = tt[(k + 1) % 3];
-            for (int u : by_edge[key(a, b)]) {
+            for (int u : by_edge[edge_key(a, b)]) {
               if (u == t || flip[u] >= 0) continue;
               // u must traverse the edge as (b, a).
               const auto& tu = mesh.triangles[u];
@@ -1554,7 +1554,7 @@ RestrictedDelaunayResult Mesher::run() {
         for (int k = 0; k < 3; ++k) {
           vset[tri_comp[t]].insert(tt[k]);
           const int a = tt[k], b = tt[(k + 1) % 3];
-          eset[tri_comp[t]].insert((static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b));
+          eset[tri_comp[t]].insert(edge_key(a, b));
         }
       }
       for (auto& kv : mesh_comps) {
@@ -1590,7 +1590,7 @@ RestrictedDelaunayResult Mesher::run() {
       if (nl > 0) n = {n[0] / nl, n[1] / nl, n[2] / nl};
       for (int k = 0; k < 3; ++k) {
         const int a = t[k], b = t[(k + 1) % 3];
-        nrm[(static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b)].push_back(n);
+        nrm[edge_key(a, b)].push_back(n);
       }
     }
     for (auto& kv : nrm)
