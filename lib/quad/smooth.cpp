@@ -243,6 +243,18 @@ private:
     return fixed_[v] ? fixed_fan(v, q) : Fan{int(vq_[v].size()), 4, true};  // a free vertex's star is closed
   }
   Fan fixed_fan(int v, int q) const;
+  // The sines of the patch's live quads, ascending: operations compare
+  // these lexicographically, so one bad quad elsewhere in the patch does not
+  // hide an improvement of the next worst.
+  std::vector<double> patch_sines(const Patch& pt) const;
+  static bool lex_better(const std::vector<double>& now, const std::vector<double>& before);
+  // A new free vertex at p (point attributes and marker zero), and a new quad
+  // element of q's region (its corners set by set_quad); the drop_* undo the
+  // latest one.
+  int add_vertex(const Point2& p);
+  void drop_vertex();
+  int add_quad(int like);
+  void drop_quad();
   bool split_pair(int q1, int q2, const int (&H)[6]);
   void swap_pass();
   void collapse_pass();
@@ -717,67 +729,122 @@ void QuadImprover::set_quad(int q, const Quad& nq) {
   q_smu_[q] = quad_smu(nq);
 }
 
+std::vector<double> QuadImprover::patch_sines(const Patch& pt) const {
+  std::vector<double> s;
+  for (int q : pt.quads)
+    if (!q_dead_[q]) s.push_back(q_smu_[q]);
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+bool QuadImprover::lex_better(const std::vector<double>& now, const std::vector<double>& before) {
+  const std::size_t n = std::min(now.size(), before.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (now[i] > before[i] * (1 + 1e-9) + 1e-15) return true;
+    if (now[i] < before[i] * (1 - 1e-9)) return false;
+  }
+  return false;
+}
+
+int QuadImprover::add_vertex(const Point2& p) {
+  const int v = int(P_.size());
+  P_.push_back(p);
+  if (!m_.point_attributes.empty()) m_.point_attributes.emplace_back(m_.point_attributes[0].size(), 0.0);
+  if (!m_.point_markers.empty()) m_.point_markers.push_back(0);
+  vq_.emplace_back();
+  fixed_.push_back(0);
+  v_dead_.push_back(0);
+  active_.push_back(1);
+  vstamp_.push_back(stamp_id_);
+  return v;
+}
+
+void QuadImprover::drop_vertex() {
+  P_.pop_back();
+  if (!m_.point_attributes.empty()) m_.point_attributes.pop_back();
+  if (!m_.point_markers.empty()) m_.point_markers.pop_back();
+  vq_.pop_back(); fixed_.pop_back(); v_dead_.pop_back(); active_.pop_back(); vstamp_.pop_back();
+}
+
+int QuadImprover::add_quad(int like) {
+  const int q = int(Q_.size());
+  // Copies: push_back may reallocate.
+  const std::vector<int> el = m_.elements[q_elem_[like]];
+  m_.elements.push_back(el);
+  if (!m_.element_attributes.empty()) {
+    const std::vector<double> attr = m_.element_attributes[q_elem_[like]];
+    m_.element_attributes.push_back(attr);
+  }
+  Q_.push_back(Q_[like]);
+  q_elem_.push_back(int(m_.elements.size()) - 1);
+  q_dead_.push_back(0);
+  q_smu_.push_back(0);
+  qstamp_.push_back(stamp_id_);
+  tried_.push_back(0);
+  for (int x : Q_[q]) vq_[x].push_back(q);
+  return q;
+}
+
+void QuadImprover::drop_quad() {
+  m_.elements.pop_back();
+  if (!m_.element_attributes.empty()) m_.element_attributes.pop_back();
+  Q_.pop_back(); q_elem_.pop_back(); q_dead_.pop_back(); q_smu_.pop_back(); qstamp_.pop_back();
+  tried_.pop_back();
+}
+
 bool QuadImprover::split_pair(int q1, int q2, const int (&H)[6]) {
-  // Hexagon H (the pair's union) plus one new point e joined to alternate
-  // corners: three quads. Each corner of the chosen three gets a quad more,
-  // which is what a flat corner of a poor quad needs. Taken only if the
-  // worst mu of the patch rises once it is relaxed.
+  // Hexagon H (the pair's union) split around new points. With one point e
+  // joined to alternate corners H[s], H[s+2], H[s+4]: three quads, each of
+  // those corners gets a quad more, which is what a flat corner of a poor
+  // quad needs. Where two opposite corners H[k], H[k+3] are both flat, two
+  // points e1, e2 (e1 joined to H[k], H[k+2], e2 to H[k+3], H[k+5]): four
+  // quads. Taken, the first that works, if once the patch is relaxed the new
+  // quads are better than the pair's worst and the patch's sorted mu rises.
   Patch pt;
-  for (int s = 0; s < 2; ++s) {
+  auto at = [&](int i) { return H[i % 6]; };
+  auto mean = [&](std::initializer_list<int> ids) {
+    Point2 c{0, 0};
+    for (int i : ids) { c[0] += P_[at(i)][0] / double(ids.size()); c[1] += P_[at(i)][1] / double(ids.size()); }
+    return c;
+  };
+  const double worst_pair = std::min(q_smu_[q1], q_smu_[q2]);
+  for (int variant = 0; variant < 5; ++variant) {
     save_patch({H[0], H[1], H[2], H[3], H[4], H[5]}, pt);
-    const double before = patch_worst(pt);
-    Point2 e{0, 0};
-    for (int x : H) { e[0] += P_[x][0] / 6; e[1] += P_[x][1] / 6; }
-    const int v = int(P_.size());
-    P_.push_back(e);
-    if (!m_.point_attributes.empty()) m_.point_attributes.emplace_back(m_.point_attributes[0].size(), 0.0);
-    if (!m_.point_markers.empty()) m_.point_markers.push_back(0);
-    vq_.emplace_back();
-    fixed_.push_back(0);
-    v_dead_.push_back(0);
-    active_.push_back(1);
-    vstamp_.push_back(stamp_id_);
-    pt.verts.push_back(v);  // relaxed with the patch
-    const int q3 = int(Q_.size());
-    // The new quad is a new element of q1's region (copies: push_back may reallocate).
-    const std::vector<int> el = m_.elements[q_elem_[q1]];
-    m_.elements.push_back(el);
-    if (!m_.element_attributes.empty()) {
-      const std::vector<double> attr = m_.element_attributes[q_elem_[q1]];
-      m_.element_attributes.push_back(attr);
-    }
-    Q_.push_back(Q_[q1]);
-    q_elem_.push_back(int(m_.elements.size()) - 1);
-    q_dead_.push_back(0);
-    q_smu_.push_back(0);
-    qstamp_.push_back(stamp_id_);
-    tried_.push_back(0);
-    for (int x : Q_[q3]) vq_[x].push_back(q3);
+    const std::vector<double> before = patch_sines(pt);
+    const bool three = variant < 2;
+    const int k = three ? variant : variant - 2;
+    const int e1 = add_vertex(three ? mean({0, 1, 2, 3, 4, 5}) : mean({0, 1, 2, 3, 4, 5, k, k + 2}));
+    const int e2 = three ? -1 : add_vertex(mean({0, 1, 2, 3, 4, 5, k + 3, k + 5}));
+    pt.verts.push_back(e1);  // relaxed with the patch
+    if (!three) pt.verts.push_back(e2);
+    const int q3 = add_quad(q1), q4 = three ? -1 : add_quad(q1);
     pt.quads.push_back(q3);
-    set_quad(q1, {H[s], H[s + 1], H[s + 2], v});
-    set_quad(q2, {H[s + 2], H[s + 3], H[s + 4], v});
-    set_quad(q3, {H[s + 4], H[(s + 5) % 6], H[s], v});
-    bool ok = convex(Q_[q1]) && convex(Q_[q2]) && convex(Q_[q3]);
+    if (!three) pt.quads.push_back(q4);
+    if (three) {
+      set_quad(q1, {at(k), at(k + 1), at(k + 2), e1});
+      set_quad(q2, {at(k + 2), at(k + 3), at(k + 4), e1});
+      set_quad(q3, {at(k + 4), at(k + 5), at(k), e1});
+    } else {
+      set_quad(q1, {at(k), at(k + 1), at(k + 2), e1});
+      set_quad(q2, {at(k + 2), at(k + 3), e2, e1});
+      set_quad(q3, {at(k + 3), at(k + 4), at(k + 5), e2});
+      set_quad(q4, {at(k + 5), at(k), e1, e2});
+    }
+    bool ok = convex(Q_[q1]) && convex(Q_[q2]) && convex(Q_[q3]) && (three || convex(Q_[q4]));
     if (ok) {
       relax(pt);
-      ok = patch_worst(pt) > before * (1 + 1e-9) + 1e-15;
+      double worst_new = std::min(std::min(q_smu_[q1], q_smu_[q2]), q_smu_[q3]);
+      if (!three) worst_new = std::min(worst_new, q_smu_[q4]);
+      ok = worst_new > worst_pair * (1 + 1e-9) + 1e-15 && lex_better(patch_sines(pt), before);
     }
     if (ok) {
       for (int x : pt.verts) wake(x);
       return true;
     }
-    // Undo: the patch first (it drops every reference to v and q3), then the new items.
-    pt.verts.pop_back();
-    pt.quads.pop_back();
+    // Undo: the patch first (it drops every reference to the new items), then the new items.
+    for (int i = three ? 1 : 2; i > 0; --i) { pt.verts.pop_back(); pt.quads.pop_back(); }
     restore(pt);
-    P_.pop_back();
-    if (!m_.point_attributes.empty()) m_.point_attributes.pop_back();
-    if (!m_.point_markers.empty()) m_.point_markers.pop_back();
-    vq_.pop_back(); fixed_.pop_back(); v_dead_.pop_back(); active_.pop_back(); vstamp_.pop_back();
-    m_.elements.pop_back();
-    if (!m_.element_attributes.empty()) m_.element_attributes.pop_back();
-    Q_.pop_back(); q_elem_.pop_back(); q_dead_.pop_back(); q_smu_.pop_back(); qstamp_.pop_back();
-    tried_.pop_back();
+    for (int i = three ? 1 : 2; i > 0; --i) { drop_vertex(); drop_quad(); }
   }
   return false;
 }
