@@ -851,16 +851,26 @@ bool QuadImprover::split_pair(int q1, int q2, const int (&H)[6]) {
 
 void QuadImprover::swap_pass() {
   Patch pt;
+  // A pair of plain quads (neither poor nor with a fixed or irregular
+  // corner) has nothing to gain: most of a fine mesh is skipped before the
+  // neighbour is even looked up. A pair is tried from its first non-plain quad.
+  const double try_below = std::max(kSwapBelow, split_below_);
+  auto plain = [&](int q) {
+    if (q_smu_[q] < try_below) return false;
+    for (int x : Q_[q])
+      if (fixed_[x] || vq_[x].size() != 4) return false;
+    return true;
+  };
   for (std::size_t q1 = 0; q1 < Q_.size(); ++q1) {
-    if (q_dead_[q1]) continue;
+    if (q_dead_[q1] || plain(int(q1))) continue;
     bool changed = false;
     for (int i = 0; i < 4 && !changed; ++i) {
       const Quad A = Q_[q1];
       const int u = A[i], w = A[(i + 1) & 3];
       if (is_feature(u, w)) continue;
-      // The other quad, holding w -> u; each pair once.
+      // The other quad, holding w -> u.
       const int q2 = quad_with_edge(w, u);
-      if (q2 < int(q1)) continue;
+      if (q2 < 0 || (q2 < int(q1) && !plain(q2))) continue;
       const Quad B = Q_[q2];
       int j = 0;
       while (B[j] != w) ++j;
