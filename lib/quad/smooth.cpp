@@ -25,6 +25,7 @@ Json SmoothStats::to_json() const {
   ops["diagonal_swaps"] = swaps;
   ops["valence_swaps"] = valence_swaps;
   ops["pair_splits"] = splits;
+  ops["pair_splits_four"] = splits_four;
   ops["doublets_removed"] = doublets;
   ops["quad_collapses"] = collapses;
   ops["valence_collapses"] = valence_collapses;
@@ -255,7 +256,8 @@ private:
   void drop_vertex();
   int add_quad(int like);
   void drop_quad();
-  bool split_pair(int q1, int q2, const int (&H)[6]);
+  // 3 or 4: the number of quads the pair became; 0: left as it was.
+  int split_pair(int q1, int q2, const int (&H)[6]);
   void swap_pass();
   void collapse_pass();
   void doublet_pass();
@@ -792,7 +794,7 @@ void QuadImprover::drop_quad() {
   tried_.pop_back();
 }
 
-bool QuadImprover::split_pair(int q1, int q2, const int (&H)[6]) {
+int QuadImprover::split_pair(int q1, int q2, const int (&H)[6]) {
   // Hexagon H (the pair's union) split around new points. With one point e
   // joined to alternate corners H[s], H[s+2], H[s+4]: three quads, each of
   // those corners gets a quad more, which is what a flat corner of a poor
@@ -839,14 +841,14 @@ bool QuadImprover::split_pair(int q1, int q2, const int (&H)[6]) {
     }
     if (ok) {
       for (int x : pt.verts) wake(x);
-      return true;
+      return three ? 3 : 4;
     }
     // Undo: the patch first (it drops every reference to the new items), then the new items.
     for (int i = three ? 1 : 2; i > 0; --i) { pt.verts.pop_back(); pt.quads.pop_back(); }
     restore(pt);
     for (int i = three ? 1 : 2; i > 0; --i) { drop_vertex(); drop_quad(); }
   }
-  return false;
+  return 0;
 }
 
 void QuadImprover::swap_pass() {
@@ -912,8 +914,9 @@ void QuadImprover::swap_pass() {
       };
       if (best_k >= 0) {
         apply(best_k);  // the pair's worst mu improves: nothing else changes
-      } else if (cur < split_below_ && !tried_[q1] && split_pair(int(q1), q2, H)) {
+      } else if (const int parts = cur < split_below_ && !tried_[q1] ? split_pair(int(q1), q2, H) : 0) {
         ++st_.splits;
+        st_.splits_four += parts == 4;
         changed = true;
         continue;
       } else if (valence_k >= 0) {

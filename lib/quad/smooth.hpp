@@ -36,7 +36,8 @@ struct SmoothStats {
   std::size_t swaps = 0, doublets = 0, collapses = 0;
   std::size_t valence_swaps = 0;      // of the swaps, those taken to make valences regular
   std::size_t valence_collapses = 0;  // of the collapses, those of two valence-3 vertices
-  std::size_t splits = 0;      // quad pairs split into three around a new point
+  std::size_t splits = 0;      // quad pairs split into three around a new point, or into four around two
+  std::size_t splits_four = 0; // of the splits, those into four
   int passes = 0;
   std::size_t fixed_vertices = 0;  // boundary, constrained or region-boundary vertices
   Json to_json() const;

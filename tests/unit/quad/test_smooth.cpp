@@ -279,12 +279,51 @@ TEST_CASE("clean-up and smoothing of tri2quad outputs keep every guarantee", "[s
     total.swaps += st.swaps;
     total.valence_swaps += st.valence_swaps;
     total.splits += st.splits;
+    total.splits_four += st.splits_four;
     total.collapses += st.collapses;
   }
   // The operations the guarantees are about did run.
   CHECK(total.valence_swaps > 0);
   CHECK(total.splits > 0);
+  CHECK(total.splits_four > 0);
   CHECK(total.collapses > 0);
+}
+
+TEST_CASE("a strip with every corner fixed and two flat corners is split into four", "[smooth]") {
+  // Two quads (u, w, a, b) and (w, u, c, d) whose six corners all lie on the
+  // boundary, so nothing can move: b, u, w, d nearly on one line, a flat
+  // corner at u in the first quad and at w in the second (mu about 2
+  // degrees). No swap and no split around one point keeps them convex (the
+  // hexagon's angle at u or w would pass 180 degrees); the four-quad split
+  // joins u and w to two new points.
+  PlanarMesh m;
+  m.points = {{0, 0}, {3, 1}, {0.5, 2.5}, {-3, -0.9}, {2.5, -1.5}, {6, 1.9}};  // u, w, a, b, c, d
+  m.elements = {{0, 1, 2, 3}, {1, 0, 4, 5}};
+  m.element_attributes = {{7}, {7}};
+  const PlanarMesh orig = m;
+  SmoothOptions opt;
+  const SmoothStats st = smooth_quad_mesh(m, opt);
+  CAPTURE(st.before.min_mu, st.after.min_mu, st.after.quads);
+  CHECK(st.before.min_mu < 5);
+  CHECK(st.splits_four >= 1);
+  CHECK(st.after.min_mu >= 5);
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  for (const auto& e : m.elements)
+    REQUIRE(is_strictly_convex(m.points[e[0]], m.points[e[1]], m.points[e[2]], m.points[e[3]]));
+  CHECK(region_area(m, 7) == Approx(region_area(orig, 7)).epsilon(1e-12));
+  // The corners stay where they were, the new points come after them, and
+  // the boundary is the same six edges.
+  for (std::size_t v = 0; v < orig.points.size(); ++v) CHECK(m.points[v] == orig.points[v]);
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& e : m.elements)
+    for (int i = 0; i < 4; ++i) ++uses[std::minmax(e[i], e[(i + 1) % 4])];
+  std::set<std::pair<int, int>> boundary, boundary0;
+  for (const auto& [k, c] : uses)
+    if (c == 1) boundary.insert(k);
+  for (const auto& e : orig.elements)
+    for (int i = 0; i < 4; ++i)
+      if (std::minmax(e[i], e[(i + 1) % 4]) != std::minmax(0, 1)) boundary0.insert(std::minmax(e[i], e[(i + 1) % 4]));
+  CHECK(boundary == boundary0);
 }
 
 TEST_CASE("more pair splits: more quads, more of them with good angles", "[smooth]") {
