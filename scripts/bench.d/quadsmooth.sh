@@ -157,6 +157,7 @@ for spec in "VentricleModel:VentricleModel.png:--threshold 128" "BinaryImage:Bin
   msh_quality q.msh "tri2quad"
   /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q q.ele qs.msh --stats qs.json
   msh_quality qs.msh "tri2quad+quadsmooth"
-  echo "  (quadsmooth $(stat smooth_seconds qs.json) s library, $(cat t.txt) s wall)"
+  echo "  (quadsmooth $(stat smooth_seconds qs.json) s library, $(cat t.txt) s wall;" \
+       "$(stat pair_splits qs.json) pair splits, $(stat pair_splits_four qs.json) of them into four)"
   blossom r.msh
 done
