@@ -86,6 +86,10 @@ constexpr double kCollapseBelow = 0.25881904510252074;
 constexpr double kOptimizeBelow = 0.42261826174069944;  // sin(25 deg)
 constexpr int kOptimizeRounds = 6;
 constexpr std::size_t kStarCache = 16;  // quads around a vertex whose sines try_move keeps aside
+// Only moves of over 3% of an edge put the neighbours back on the smoothing
+// work list: the smaller ones barely change their targets, and waking for
+// them cost a third more time on 10^6 quads for 0.4 degrees of mean mu.
+constexpr double kWakeFar = 1e-3;
 
 // The directed edges a -> b of all elements grouped by a (a counting sort,
 // in element order): for each vertex, the elements around it and the next
@@ -204,8 +208,9 @@ private:
   bool star_energy(int v, double floor, double cap, double& energy) const;
   // Compass search on the energy around v, the worst mu never dropping.
   bool optimize_star(int v, double h2);
-  // One guarded angle-based move then the compass search; kMoved, kRejected, kOptimized bits.
-  enum { kMoved = 1, kRejected = 2, kOptimized = 4 };
+  // One guarded angle-based move then the compass search; kMoved, kRejected,
+  // kOptimized bits, and kFar: moved by over sqrt(kWakeFar) of an edge.
+  enum { kMoved = 1, kRejected = 2, kOptimized = 4, kFar = 8 };
   int smooth_vertex(int v);
   // Colour classes of the smoothing vertices (see colour()); recomputed
   // when the topology changed.
@@ -528,6 +533,7 @@ int QuadImprover::smooth_vertex(int v) {
   const double h2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]);
   int r = 0;
   if (d2 >= 1e-4 * h2) r = try_move(v, target, false, nullptr) ? kMoved : kRejected;  // else converged to 1e-2 of an edge
+  if ((r & kMoved) && d2 >= kWakeFar * h2) r |= kFar;
   // Where the angle-based position cannot help a poor quad, climb on the
   // soft minimum of mu itself (compass search, guarded the same way).
   if (climb_ && optimize_star(v, h2)) r |= kOptimized;
@@ -578,7 +584,7 @@ void QuadImprover::smooth_pass() {
         l.moves += (r & kMoved) != 0;
         l.rejected += (r & kRejected) != 0;
         l.optimized += (r & kOptimized) != 0;
-        if (r & (kMoved | kOptimized))
+        if (r & (kFar | kOptimized))
           for (int q : vq_[v])
             for (int w : Q_[q]) l.woken.push_back(w);
       }
