@@ -1116,10 +1116,13 @@ void QuadImprover::run(const Stars& stars) {
     // Clean-up every third pass, once smoothing has done what it can, then
     // smoothing resumes on the new topology.
     if (opt_.cleanup && it > 0 && it % 3 == 0) {
+      const std::size_t ops = st_.swaps + st_.splits + st_.collapses + st_.doublets;
       swap_pass();
       collapse_pass();
       doublet_pass();
-      colours_stale_ = true;  // the operations woke the vertices around them
+      // New colours only where the topology changed (the operations woke
+      // the vertices around them).
+      colours_stale_ = st_.swaps + st_.splits + st_.collapses + st_.doublets != ops;
     }
     smooth_pass();
     climb_ = true;
