@@ -252,7 +252,7 @@ struct EdgeCrossing {
 class Mesher {
 public:
   Mesher(const ImplicitSurface& surface, const RestrictedDelaunayOptions& opt)
-      : f_(surface), opt_(opt), grid_(surface.samples()) {}
+      : f_(surface), opt_(opt), grid_(surface.samples()), topology_only_(opt.seed_deletion) {}
 
   RestrictedDelaunayResult run();
 
@@ -277,7 +277,8 @@ private:
   RestrictedDelaunayOptions opt_;
   CubeGrid grid_;
   Tr tr_;
-  std::vector<Vh> vertices_;
+  std::vector<Vh> vertices_;  // by id; null where a seed was deleted
+  Vh walk_start_;             // a live vertex near the last change
   std::priority_queue<Item> queue_;
   std::uint64_t seq_ = 0;
   long long inserted_[kOrigins] = {};
@@ -295,6 +296,19 @@ private:
   // only edges at the new vertex and only shrink the other Voronoi facets,
   // and a cycle inside a shrunken facet was inside it before (notes 2.7).
   std::vector<char> dirty_;
+  std::vector<int> dirty_ids_;
+  void mark_dirty(int id) {
+    if (std::size_t(id) >= dirty_.size()) dirty_.resize(std::size_t(id) + 1, 0);
+    if (!dirty_[std::size_t(id)]) {
+      dirty_[std::size_t(id)] = 1;
+      dirty_ids_.push_back(id);
+    }
+  }
+  // SAMPLETOPOLOGY (7.6.2): only the topology queues run, so that seeds can
+  // be deleted with no QUALITY/SMOOTH entry pointing at them.
+  bool topology_only_ = false;
+  long long seeds_deleted_ = 0;
+  std::vector<int> comp_vertices_;  // vertices per S component
   long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0, handle_checks_ = 0;
   std::vector<std::pair<int, Vec3>> normals_;
   // Insertion scratch: the conflict zone and the vertices around it.
@@ -327,6 +341,12 @@ private:
   void enqueue_vertex(Vh v);
   bool insert(const Vec3& x, Origin origin, Facet hint = Facet(Ch(), 0));
   void after_insertion(Vh v);
+  void add_vertex(Vh v, Origin origin, const Vec3& x);
+  void remove_seed(Vh v);
+  void delete_seeds();
+  void requeue_grown();
+  std::vector<int> grown_;  // ids of the neighbours of deleted seeds
+  void refine();
   void mark_restricted(Ch c, int i);
   void seeds();
   void restricted_around(Vh v);
@@ -341,7 +361,7 @@ private:
   void progress() {
     if (opt_.progress && vertices_.size() >= last_progress_ + 5000) {
       last_progress_ = vertices_.size();
-      opt_.progress(phase_ + ": " + std::to_string(vertices_.size()) + " points");
+      opt_.progress(phase_ + ": " + std::to_string(tr_.number_of_vertices()) + " points");
     }
   }
   // Restricted facets in a deterministic order (by vertex ids).
@@ -604,6 +624,7 @@ void Mesher::enqueue_facet(Ch c, int i) {
   Vh a = c->vertex((i + 1) & 3), b = c->vertex((i + 2) & 3), d = c->vertex((i + 3) & 3);
   if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i});
   const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
+  if (topology_only_) return;
   if (ratio(pa, pb, pd) > opt_.ratio) queue_.push({kQQuality, fi.r2, seq_++, a, b, d, c, i});
   if (opt_.max_distance > 0) {
     Vec3 nrm = cross(sub(pb, pa), sub(pd, pa));
@@ -618,12 +639,14 @@ void Mesher::enqueue_facet(Ch c, int i) {
 // pop time, which includes every change since it was queued.
 void Mesher::enqueue_vertex(Vh v) {
   if (!(v->info().queued & 1)) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh(), Ch(), 0});
+  v->info().queued |= 1;
+  if (topology_only_) return;
   if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh(), Ch(), 0});
-  v->info().queued = 3;
+  v->info().queued |= 2;
 }
 
 bool Mesher::insert(const Vec3& x, Origin origin, Facet hint) {
-  if (origin != kSeed && vertices_.size() >= opt_.max_points) {  // seeds always go in
+  if (origin != kSeed && tr_.number_of_vertices() >= opt_.max_points) {  // seeds always go in
     max_hit_ = true;
     return false;
   }
@@ -632,12 +655,14 @@ bool Mesher::insert(const Vec3& x, Origin origin, Facet hint) {
     const std::size_t before = tr_.number_of_vertices();
     Vh v = tr_.insert(p);
     if (tr_.number_of_vertices() == before) return false;
-    v->info() = {int(vertices_.size()), std::uint8_t(origin), grid_.comp_at(x)};
-    vertices_.push_back(v);
-    ++inserted_[origin];
+    add_vertex(v, origin, x);
     if (tr_.dimension() == 3) {  // bootstrap: one scan, incremental afterwards
       for (auto it = tr_.finite_facets_begin(); it != tr_.finite_facets_end(); ++it) compute_facet(it->first, it->second);
-      for (Vh w : vertices_) enqueue_vertex(w);
+      for (Vh w : vertices_)
+        if (w != Vh()) {
+          enqueue_vertex(w);
+          mark_dirty(w->info().id);
+        }
     }
     return true;
   }
@@ -668,12 +693,84 @@ bool Mesher::insert(const Vec3& x, Origin origin, Facet hint) {
   for (Ch c : zone_cells_)
     for (int i = 0; i < 4; ++i) mark_restricted(c, i);
   Vh v = tr_.insert_in_hole(p, zone_cells_.begin(), zone_cells_.end(), zone_facets_[0].first, zone_facets_[0].second);
-  v->info() = {int(vertices_.size()), std::uint8_t(origin), grid_.comp_at(x)};
-  vertices_.push_back(v);
-  ++inserted_[origin];
+  add_vertex(v, origin, x);
   after_insertion(v);
   progress();
   return true;
+}
+
+void Mesher::add_vertex(Vh v, Origin origin, const Vec3& x) {
+  v->info() = {int(vertices_.size()), std::uint8_t(origin), grid_.comp_at(x)};
+  vertices_.push_back(v);
+  walk_start_ = v;
+  ++inserted_[origin];
+  if (v->info().comp >= 0) ++comp_vertices_[std::size_t(v->info().comp)];
+}
+
+// Seed deletion (7.6.2): the cells around v are replaced by a Delaunay
+// triangulation of its link (CGAL's remove), and the facets of the new cells
+// are computed anew. v's neighbours gained Voronoi volume: TopoDisk and
+// FacetCycle check them again.
+void Mesher::remove_seed(Vh v) {
+  std::vector<Vh> adj;
+  tr_.adjacent_vertices(v, std::back_inserter(adj));
+  const Vec3 x = vec(v->point());
+  vertices_[std::size_t(v->info().id)] = Vh();
+  if (v->info().comp >= 0) --comp_vertices_[std::size_t(v->info().comp)];
+  cells_buf_.clear();
+  tr_.remove_and_give_new_cells(v, std::back_inserter(cells_buf_));
+  ++seeds_deleted_;
+  if (tr_.dimension() < 3) {  // the rest is coplanar: put it back (bootstrap)
+    --seeds_deleted_;
+    insert(x, kSeed);
+    --inserted_[kSeed];
+    return;
+  }
+  for (Ch c : cells_buf_) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
+  for (Ch c : cells_buf_)
+    for (int i = 0; i < 4; ++i)
+      if (!(c->facet[i].state & kComputed)) compute_facet(c, i);
+  for (Vh w : adj)
+    if (!tr_.is_infinite(w)) {
+      walk_start_ = w;
+      grown_.push_back(w->info().id);
+    }
+}
+
+// SAMPLETOPOLOGY step 2 (7.6.2): delete the seeds one by one, restoring the
+// topology after each (Lemma 7.6.3), so that every point left was placed by
+// a subroutine that keeps it k d_M(p) from the others. A component keeps at
+// least two vertices (notes 4.5): with fewer, it can hide inside one
+// Voronoi cell, where no Voronoi edge sees it.
+void Mesher::delete_seeds() {
+  const std::size_t seeds = vertices_.size();  // seeds() inserts them first
+  for (std::size_t id = 0; id < seeds && !max_hit_; ++id) {
+    const Vh v = vertices_[id];
+    if (v == Vh() || v->info().origin != kSeed || v->info().comp < 0) continue;
+    if (comp_vertices_[std::size_t(v->info().comp)] <= 2 || tr_.number_of_vertices() <= 8) continue;
+    remove_seed(v);
+    requeue_grown();
+    refine();
+  }
+}
+
+// The live neighbours of deleted seeds: TopoDisk and FacetCycle again.
+void Mesher::requeue_grown() {
+  for (int id : grown_) {
+    const Vh w = vertices_[std::size_t(id)];
+    if (w == Vh()) continue;
+    enqueue_vertex(w);
+    mark_dirty(id);
+  }
+  grown_.clear();
+}
+
+// TOPOLOGY and the other queues until they drain, then FacetCycle passes
+// over what changed until none inserts.
+void Mesher::refine() {
+  drain();
+  if (opt_.facet_cycle)
+    while (!max_hit_ && facet_cycle_pass()) drain();
 }
 
 // Remember the finite vertices of facet (c, i) if it is restricted.
@@ -702,8 +799,7 @@ void Mesher::after_insertion(Vh v) {
     for (int i = 0; i < 4; ++i) mark_restricted(c, i);
   enqueue_vertex(v);
   for (Vh w : touched_) enqueue_vertex(w);
-  dirty_.resize(vertices_.size(), 1);
-  dirty_[v->info().id] = 1;
+  mark_dirty(v->info().id);
 }
 
 // Seeds (8.1): on every component of S, crossings of mixed cube edges in the
@@ -1091,7 +1187,7 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
 bool Mesher::insert_batch(const std::vector<std::pair<Vec3, double>>& pts, Origin origin) {
   bool any = false;
   for (const auto& [x, clearance2] : pts) {
-    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), vertices_.back()->cell());
+    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), walk_start_->cell());
     if (dist2(x, vec(nv->point())) < clearance2 / 4) {
       ++refused_;
       continue;
@@ -1105,13 +1201,13 @@ bool Mesher::insert_batch(const std::vector<std::pair<Vec3, double>>& pts, Origi
 // since the last pass; inserts the cycle points found. True if any went in.
 bool Mesher::facet_cycle_pass() {
   ++facet_cycle_passes_;
-  dirty_.resize(vertices_.size(), 1);
+  phase_ = "facet cycle";
   // The edges at new vertices, each once (from the smaller id when both
   // ends are new), found from the new vertices' cells.
   std::vector<std::pair<std::pair<int, int>, Tr::Edge>> edges;
-  for (Vh a : vertices_) {
-    const int ia = a->info().id;
-    if (!dirty_[ia]) continue;
+  for (int ia : dirty_ids_) {
+    const Vh a = vertices_[std::size_t(ia)];
+    if (a == Vh()) continue;  // deleted seed
     ++stamp_;
     cells_buf_.clear();
     tr_.incident_cells(a, std::back_inserter(cells_buf_));
@@ -1126,7 +1222,8 @@ bool Mesher::facet_cycle_pass() {
         edges.push_back({{std::min(ia, ib), std::max(ia, ib)}, ia < ib ? Tr::Edge(c, c->index(a), k) : Tr::Edge(c, k, c->index(a))});
       }
   }
-  std::fill(dirty_.begin(), dirty_.end(), 0);
+  for (int id : dirty_ids_) dirty_[std::size_t(id)] = 0;
+  dirty_ids_.clear();
   std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   // The checks only read the triangulation (every finite cell's
   // circumcentre is cached by then: EdgeSurface asked for it), so they run
@@ -1342,7 +1439,7 @@ bool Mesher::handle_pass(const std::vector<int>& bad) {
     if (c >= 0) is_bad[std::size_t(c)] = 1;
   std::vector<Vh> todo;
   for (Vh v : vertices_)
-    if (v->info().comp >= 0 && is_bad[std::size_t(v->info().comp)]) todo.push_back(v);
+    if (v != Vh() && v->info().comp >= 0 && is_bad[std::size_t(v->info().comp)]) todo.push_back(v);
   // A check costs about a thousand evaluations of f: on components of more
   // than kHandleBudget samples (brain tissue of genus ~2600), the fallback's
   // refinement is much cheaper.
@@ -1378,7 +1475,6 @@ bool Mesher::fallback(const std::vector<int>& bad) {
     // Farthest mixed-edge crossing (linear estimate, then refined).
     double far = -1;
     Vec3 fa{}, fb{};
-    double ffa = 0;
     std::size_t count = 0, stride = 1;
     for (auto& kc : grid_.comp) count += kc.second == comp;
     stride = std::max<std::size_t>(1, count / 4000);
@@ -1404,12 +1500,10 @@ bool Mesher::fallback(const std::vector<int>& bad) {
           far = dd;
           fa = pa;
           fb = pb;
-          ffa = ga;
         }
       }
     }
     if (far > 0) pts.emplace_back(bisect(fa, fb, value(fa)), far);
-    (void)ffa;
     any = insert_batch(pts, kFallback) || any;
   }
   return any;
@@ -1440,14 +1534,23 @@ RestrictedDelaunayResult Mesher::run() {
   std::sort(res.expected.euler.begin(), res.expected.euler.end());
 
   phase_ = "seeds";
+  comp_vertices_.assign(std::size_t(grid_.components), 0);
   seeds();
   const double t_seeds = secs(t_start);
   const auto t_refine = Clock::now();
-  drain();
-  if (opt_.facet_cycle) {
-    phase_ = "facet cycle";
-    while (!max_hit_ && facet_cycle_pass()) drain();
+  // DELMESH: SAMPLETOPOLOGY (TOPOLOGY, seed deletion), then every queue.
+  // DELMESH. With seed_deletion, SAMPLETOPOLOGY first as published: TOPOLOGY
+  // alone, then the seeds deleted one by one (7.6.2); by default every
+  // queue runs from the start (measured: fewer points, half the time).
+  if (opt_.seed_deletion) {
+    refine();
+    delete_seeds();
+    topology_only_ = false;
+    for (auto it = tr_.finite_facets_begin(); it != tr_.finite_facets_end(); ++it) enqueue_facet(it->first, it->second);
+    for (Vh v : vertices_)
+      if (v != Vh()) enqueue_vertex(v);
   }
+  refine();
 
   // Certificate: components and Euler characteristics per S component; on a
   // mismatch, refine there (fallback) and run DELMESH's queues again.
@@ -1571,9 +1674,7 @@ RestrictedDelaunayResult Mesher::run() {
       phase_ = "topology fallback";
       if (!fallback(bad)) break;
     }
-    drain();
-    if (opt_.facet_cycle)
-      while (!max_hit_ && facet_cycle_pass()) drain();
+    refine();
   }
   const double t_refine_s = secs(t_refine);
   const auto t_final = Clock::now();
@@ -1645,6 +1746,7 @@ RestrictedDelaunayResult Mesher::run() {
   for (int o = 0; o < kOrigins; ++o) pts[kOriginName[o]] = inserted_[o];
   st["points_inserted"] = pts;
   st["points_refused"] = refused_;
+  st["seeds_deleted"] = seeds_deleted_;
   st["topology_fallback_rounds"] = rounds;
   st["topology_fallback_points"] = inserted_[kFallback];
   st["facet_cycle_checks"] = facet_cycle_checks_;

@@ -30,6 +30,7 @@ struct RestrictedDelaunayOptions {
   std::uint64_t seed = 0;       // order of seed insertion
   int threads = 1;
   bool facet_cycle = true;      // FacetCycle (8.2) on the Voronoi facets of Delaunay edges
+  bool seed_deletion = false;   // SAMPLETOPOLOGY as published: TOPOLOGY alone, then delete the seeds (7.6.2)
   // Called now and then with the phase and the number of points so far.
   std::function<void(const std::string&)> progress;
 };

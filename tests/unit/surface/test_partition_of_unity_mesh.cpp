@@ -36,13 +36,14 @@ struct Run {
   RestrictedDelaunayResult result;
 };
 
-Run mesh(const BinaryImage& raw, double ratio = 2) {
+Run mesh(const BinaryImage& raw, double ratio = 2, bool seed_deletion = false) {
   const BinaryImage wc = make_well_composed(raw).image;
   REQUIRE(is_well_composed(wc));
   PartitionOfUnity pu = implicit_from_well_composed(wc);
   PartitionOfUnitySurface s(pu);
   RestrictedDelaunayOptions o;
   o.ratio = ratio;
+  o.seed_deletion = seed_deletion;
   Run r;
   r.result = restricted_delaunay_mesh(s, o);
   r.expected = voxel_boundary_topology(pu.samples());
@@ -129,4 +130,14 @@ TEST_CASE("pipeline: degenerate and symmetric inputs (single voxel, 1-voxel rod 
   CHECK(plate.got.euler == std::vector<int>{2});
   auto ball = mesh(make(17, 17, 17, [](double x, double y, double z) { return (x - 8) * (x - 8) + (y - 8) * (y - 8) + (z - 8) * (z - 8) < 30; }));
   CHECK(ball.got.euler == std::vector<int>{2});
+}
+
+TEST_CASE("pipeline: seed deletion (7.6.2) keeps the topology, also of a one-voxel component") {
+  // A ball, a solid torus and a single voxel: the voxel's component keeps
+  // two samples, the seeds of the others go.
+  auto r = mesh(make(34, 16, 12, [](double x, double y, double z) {
+    return std::hypot(x - 6.3, y - 7.6, z - 5.8) < 3.7 || torus(x, y, z, 18.4, 7.7, 5.6, 4.1) < 1.9 || (x == 29 && y == 8 && z == 6);
+  }), 2, true);
+  CHECK(r.got.euler == std::vector<int>{0, 2, 2});
+  CHECK(r.result.stats.at("seeds_deleted").number() > 0);
 }

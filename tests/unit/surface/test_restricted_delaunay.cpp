@@ -172,3 +172,15 @@ TEST_CASE("FacetCycle: a thin torus sampled sparsely needs it (without it, Handl
     CHECK(r.topology.euler == std::vector<int>{0});
   }
 }
+
+TEST_CASE("seed deletion (7.6.2): TOPOLOGY restores the topology without the seeds") {
+  // A ball beside a torus: every seed goes, and the guarantees hold.
+  RestrictedDelaunayOptions o;
+  o.seed_deletion = true;
+  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
+  FunctionSurface s(grid(29, 19, 15), [&](const Vec3& p) { return std::min(sphere(p, a, 3.9), torus(p, c, 5.2, 2.1)); });
+  auto r = restricted_delaunay_mesh(s, o);
+  check_guarantees(s, r, o.ratio);
+  CHECK(r.topology.euler == std::vector<int>{0, 2});
+  CHECK(r.stats.at("seeds_deleted").number() == r.stats.at("points_inserted").at("seed").number());
+}
