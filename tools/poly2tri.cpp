@@ -35,6 +35,12 @@ int main(int argc, char** argv) {
       ->type_name("L")
       ->check(CLI::PositiveNumber)
       ->excludes(area);
+  tool.app.add_option("--lattice", opt.lattice,
+                      "Fill the domain with Steiner points on an equilateral-triangle lattice of side L, "
+                      "half a side away from the segments, before refining (tri2quad then makes "
+                      "60-degree rhombi of them)")
+      ->type_name("L")
+      ->check(CLI::PositiveNumber);
   tool.app.add_option("--max-vertices", max_vertices,
                       "Stop refining beyond this many vertices (exit status 3)")
       ->capture_default_str()
@@ -64,6 +70,7 @@ int main(int argc, char** argv) {
     tool.stats["vertices"] = r.mesh.points.size();
     tool.stats["triangles"] = r.mesh.elements.size();
     tool.stats["steiner_points"] = r.steiner_points;
+    tool.stats["lattice_points"] = r.lattice_points;
     tool.stats["subsegments"] = r.mesh.segments.size();
     tool.stats["min_angle_bound"] = opt.min_angle;
     tool.stats["min_angle"] = r.min_angle;

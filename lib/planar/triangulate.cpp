@@ -15,6 +15,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -79,6 +80,67 @@ double angle_deg(const K::Point_2& a, const K::Point_2& b, const K::Point_2& c) 
   // Angle at a in triangle abc.
   const double ux = b.x() - a.x(), uy = b.y() - a.y(), vx = c.x() - a.x(), vy = c.y() - a.y();
   return std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180.0 / M_PI;
+}
+
+double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const double dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
+  const double t = len2 > 0 ? std::clamp(((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2, 0.0, 1.0) : 0;
+  return std::hypot(a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
+}
+
+// The points of an equilateral-triangle lattice of side h (rows along x,
+// from the corner of the input's bounding box) that lie in a domain face of
+// cdt and at least h/2 from every input segment and vertex.
+std::vector<K::Point_2> lattice_in_domain(const PlanarMesh& in, const CDT& cdt, double h, std::size_t limit) {
+  double x0 = in.points[0][0], y0 = in.points[0][1], x1 = x0, y1 = y0;
+  for (const auto& p : in.points) {
+    x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]);
+    y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
+  }
+  const double row = h * std::sqrt(3.0) / 2;
+  const double columns = std::floor((x1 - x0) / h) + 1, rows = std::floor((y1 - y0) / row) + 1;
+  if (columns * rows > double(limit))
+    throw UsageError("the lattice side is too small: its points alone exceed --max-vertices");
+  // Buckets of side h: a segment (a vertex is one of length 0) goes into the
+  // 3 x 3 cells around samples taken every h/2 along it, which covers every
+  // cell with a point within h/2 of it.
+  std::unordered_map<long long, std::vector<std::array<int, 2>>> buckets;
+  const auto cell = [&](double x, double y) {
+    return (long long)std::floor((y - y0) / h) * (1LL << 31) + (long long)std::floor((x - x0) / h);
+  };
+  auto add = [&](std::array<int, 2> s) {
+    const Point2 &a = in.points[s[0]], &b = in.points[s[1]];
+    const int samples = int(std::ceil(2 * std::hypot(b[0] - a[0], b[1] - a[1]) / h));
+    for (int k = 0; k <= samples; ++k) {
+      const double t = samples ? double(k) / samples : 0;
+      const double x = a[0] + t * (b[0] - a[0]), y = a[1] + t * (b[1] - a[1]);
+      for (int dy : {-1, 0, 1})
+        for (int dx : {-1, 0, 1}) {
+          auto& bucket = buckets[cell(x + dx * h, y + dy * h)];
+          if (bucket.empty() || bucket.back() != s) bucket.push_back(s);
+        }
+    }
+  };
+  for (const auto& s : in.segments) add(s);
+  for (int v = 0; v < int(in.points.size()); ++v) add({v, v});
+
+  std::vector<K::Point_2> out;
+  Face_handle hint;
+  for (int j = 0; j < int(rows); ++j)
+    for (int i = 0; i < int(columns); ++i) {
+      const Point2 p{x0 + h / 2 + (j % 2 ? h / 2 : 0) + i * h, y0 + row / 2 + j * row};
+      if (p[0] >= x1 || p[1] >= y1) continue;
+      const auto b = buckets.find(cell(p[0], p[1]));
+      if (b != buckets.end() &&
+          std::any_of(b->second.begin(), b->second.end(), [&](const std::array<int, 2>& s) {
+            return distance_to_segment(p, in.points[s[0]], in.points[s[1]]) < h / 2;
+          }))
+        continue;
+      const K::Point_2 q(p[0], p[1]);
+      hint = cdt.locate(q, hint);
+      if (!cdt.is_infinite(hint) && hint->is_in_domain()) out.push_back(q);
+    }
+  return out;
 }
 
 } // namespace
@@ -155,9 +217,16 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
 
   std::vector<K::Point_2> seeds;
   for (const auto& h : in.holes) seeds.emplace_back(h[0], h[1]);
+  using Mesher = CGAL::Delaunay_mesher_2<CDT, QualityCriteria>;
+  if (opt.lattice > 0) {
+    Mesher::mark_facets(cdt, seeds.begin(), seeds.end(), false);
+    const auto lattice = lattice_in_domain(in, cdt, opt.lattice, opt.max_vertices);
+    cdt.insert(lattice.begin(), lattice.end());
+    res.lattice_points = cdt.number_of_vertices() - res.input_vertices;
+  }
   const double B = opt.min_angle > 0 ? std::pow(std::sin(opt.min_angle * M_PI / 180), 2) : 0;
   QualityCriteria criteria(B, opt.max_edge > 0 ? opt.max_edge : 0, opt.max_area);
-  CGAL::Delaunay_mesher_2<CDT, QualityCriteria> mesher(cdt, criteria);
+  Mesher mesher(cdt, criteria);
   mesher.set_seeds(seeds.begin(), seeds.end(), false);
   mesher.init();
   if (opt.min_angle > 0 || opt.max_area > 0 || opt.max_edge > 0) {

@@ -18,6 +18,12 @@ struct TriangulateOptions {
   double min_angle = 20.7;
   double max_area = 0;  // > 0: no triangle larger
   double max_edge = 0;  // > 0: no edge longer
+  // > 0: before refinement, Steiner points on an equilateral-triangle
+  // lattice of this side fill the domain, at least half a side from every
+  // segment and input vertex. Two equilateral triangles make a 60-degree
+  // rhombus (Joe's mu 30) whichever edge tri2quad pairs them across, where
+  // Delaunay refinement's own points give quads of mean mu 28 or less.
+  double lattice = 0;
   // Stop refining beyond this many vertices (the result is then reported as
   // not meeting the bounds).
   std::size_t max_vertices = 50'000'000;
@@ -32,6 +38,7 @@ struct TriangulateResult {
   // input segments subdivided into mesh edges with their markers, the holes.
   PlanarMesh mesh;
   std::size_t input_vertices = 0, input_segments = 0, steiner_points = 0;
+  std::size_t lattice_points = 0;      // of the Steiner points, those of opt.lattice
   std::size_t small_input_angles = 0;  // input vertices where segments meet at < 60 degrees
   double smallest_input_angle = 180;   // degrees, between segments at a vertex
   double min_angle = 0;                // smallest triangle angle, degrees

@@ -120,6 +120,53 @@ python3 check.py off.1.ele off.poly 20.7 > c.txt || { cat c.txt; fail "OFF input
 for ext in off vtk msh svg; do expect 0 "$T" sq.poly "sq.$ext"; [[ -s "sq.$ext" ]] || fail "no .$ext"; done
 grep -q '^\$MeshFormat' sq.msh || fail "msh header"
 
+# --lattice: the same guarantees (segments, angle, hole, regions, area) with
+# the lattice points in, on the square above and on random star polygons
+# with a square hole, lattice sides from a twentieth to a half of the size.
+expect 0 "$T" sq.poly sq.l.ele --lattice 0.5 --stats l.json
+python3 check.py sq.l.ele sq.poly 20.7 > c.txt || { cat c.txt; fail "lattice: sq mesh"; }
+[[ $(json l.json lattice_points) -gt 100 ]] || fail "lattice: $(json l.json lattice_points) lattice points"
+python3 - <<'PYEOF' || fail "lattice: area, hole, regions"
+L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
+N, E = L("sq.l.node"), L("sq.l.ele")
+pts = {int(r[0]): (float(r[1]), float(r[2])) for r in N[1:]}
+area = 0
+for r in E[1:]:
+    a, b, c = (pts[int(t)] for t in r[1:4])
+    area += ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2
+    cx, cy = (a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3
+    assert not (4 < cx < 6 and 4 < cy < 6), "a triangle in the hole"
+    assert float(r[4]) == (10 if cy < 2 else 20), (cx, cy, r[4])
+assert not any(4 < x < 6 and 4 < y < 6 for x, y in pts.values()), "a vertex in the hole"
+assert abs(area - 96) < 1e-9, area
+PYEOF
+for seed in 1 2 3 4 5 6; do
+  python3 - "$seed" > star.poly <<'PYEOF'
+import math, random, sys
+r = random.Random(int(sys.argv[1])); n = r.randint(12, 60)
+polar = [(5 + 4 * r.random(), 2 * math.pi * (k + 0.8 * r.random()) / n) for k in range(n)]
+P = [(10 + q * math.cos(a), 10 + q * math.sin(a)) for q, a in polar]
+P += [(9, 9), (11, 9), (11, 11), (9, 11)]
+print(len(P), 2, 0, 0)
+for k, (x, y) in enumerate(P): print(k, repr(x), repr(y))
+print(n + 4, 0)
+for k in range(n): print(k, k, (k + 1) % n)
+for k in range(4): print(n + k, n + k, n + (k + 1) % 4)
+print(1); print(0, 10, 10)
+PYEOF
+  side=$(awk -v s="$seed" 'BEGIN { srand(s); printf "%.3f", 1 + 9 * rand() }')
+  expect 0 "$T" star.poly star.1.ele --lattice "$side" --stats st.json
+  python3 check.py star.1.ele star.poly 20.7 > c.txt || { cat c.txt; fail "lattice $side, star $seed"; }
+  python3 - star.1 <<'PYEOF' || fail "lattice $side, star $seed: hole"
+import sys
+L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
+assert not any(9 < float(r[1]) < 11 and 9 < float(r[2]) < 11 for r in L(sys.argv[1] + ".node")[1:])
+PYEOF
+done
+expect 2 "$T" sq.poly x.1.ele --lattice 0
+expect 2 "$T" sq.poly x.1.ele --lattice 0.001 --max-vertices 1000
+[[ ! -e x.1.ele ]] || fail "output written on a lattice usage error"
+
 # Bad input: one line on stderr, exit 1, nothing written.
 printf '4 2 0 0\n0 0 0\n1 2 2\n2 2 0\n3 0 2\n3 0\n0 0 1\n1 2 3\n2 0 2\n' > cross.poly
 printf '3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 0\n0 0 1\n1 1 2\n2 2 7\n' > dangling.poly

@@ -3,7 +3,8 @@
 # built) or a jittered quad grid, smoothed with and without clean-up and
 # boundary sliding; checks strict convexity, fixed boundary, kept topology
 # (meshinfo when built), thread-count independence, the quality reached on
-# the real images of the 2D pipeline, formats, and bad input.
+# the real images of the 2D pipeline (also with poly2tri --lattice), formats,
+# and bad input.
 set -u
 mkdir -p "$TMP"
 cd "$TMP" || exit 1
@@ -92,6 +93,23 @@ for spec in "VentricleModel.png:--threshold 128" "BinaryImage.png:" "BrainT1Slic
       fail "ventricles: share in [45,135] ${shares[1]}, mean mu ${means[*]}"
   fi
 done
+
+# poly2tri --lattice (equilateral triangles, which tri2quad pairs into
+# 60-degree rhombi) gives the ventricles a higher mean mu after quadsmooth
+# than a Delaunay refinement to the same edge length, with fewer quads and
+# the same bar on the worst quad.
+"$BIN/img2poly" -q "$DATA/VentricleModel.png" v.poly --threshold 128 || fail "img2poly ventricles"
+for how in lattice max-edge; do
+  "$BIN/poly2tri" -q v.poly "v.$how.1.ele" "--$how" 4 || fail "poly2tri --$how"
+  "$BIN/tri2quad" -q "v.$how.1.ele" "v.$how.q.ele" || fail "tri2quad --$how"
+  "$Q" -q "v.$how.q.ele" "v.$how.qs.ele" --stats "v.$how.json" || fail "quadsmooth --$how"
+  [ "$(stat non_convex "v.$how.json" | tail -1)" = 0 ] || fail "--$how: non-convex quads"
+done
+awk -v lm="$(stat mean_mu v.lattice.json | tail -1)" -v em="$(stat mean_mu v.max-edge.json | tail -1)" \
+    -v lq="$(stat quads v.lattice.json | tail -1)" -v eq="$(stat quads v.max-edge.json | tail -1)" \
+    -v lmin="$(stat min_mu v.lattice.json | tail -1)" 'BEGIN { exit !(lm > em && lq < eq && lmin >= 5) }' ||
+  fail "ventricles: --lattice 4 mean mu $(stat mean_mu v.lattice.json | tail -1) in $(stat quads v.lattice.json | tail -1) quads," \
+       "--max-edge 4 $(stat mean_mu v.max-edge.json | tail -1) in $(stat quads v.max-edge.json | tail -1)"
 
 # Formats by extension.
 for ext in off vtk msh; do
