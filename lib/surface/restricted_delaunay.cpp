@@ -1019,10 +1019,10 @@ void Mesher::drain() {
 // dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
 // h = bisector plane Pi cut by V(p)'s half-spaces and the box: convex, so
 // it is rasterised row by row on Pi at delta/16 (at delta/4, curves missed
-// there cost the brain labels' certificate fallback rounds). The sign of f at a sample is
-// the corner sign in an inactive cube (F1) and f's sign in an active one. A
-// sign region that does not reach the border of h is enclosed by a cycle of
-// S; its point farthest from p is found on the sample pair (region,
+// there cost the brain labels' certificate fallback rounds), into runs of
+// one sign. The sign of f at a sample is the corner sign in an inactive
+// cube (F1) and f's sign in an active one. A sign region that does not
+// reach the border of h is enclosed by a cycle of S; its point farthest from p is found on the sample pair (region,
 // neighbour) farthest from p, by root finding along that segment, i.e. on
 // S inside Pi. Cycles narrower than the step are missed (like EdgeSurface).
 bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
@@ -1083,10 +1083,9 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
   const double step = grid_.delta / 16;
   const long nb = long(std::ceil((b1 - b0) / step)) + 1;
   // Rows: the a-interval where every half-plane holds.
-  thread_local std::vector<long> lo, hi, row_off;
+  thread_local std::vector<long> lo, hi;
   lo.assign(nb, 0);
   hi.assign(nb, -1);
-  long na_max = 0;
   long rows_used = 0;
   for (long j = 0; j < nb; ++j) {
     const double b = b0 + j * step;
@@ -1100,80 +1099,117 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
     if (!(alo <= ahi)) continue;
     lo[j] = long(std::ceil((alo - a0) / step));
     hi[j] = long(std::floor((ahi - a0) / step));
-    if (hi[j] >= lo[j]) { na_max = std::max(na_max, hi[j] + 1); ++rows_used; }
+    if (hi[j] >= lo[j]) ++rows_used;
   }
   if (rows_used < 3) return false;
-  // Samples inside h, with their signs.
-  row_off.assign(nb + 1, 0);
-  for (long j = 0; j < nb; ++j) row_off[j + 1] = row_off[j] + std::max(0L, hi[j] - lo[j] + 1);
-  const long total = row_off[nb];
+  // Samples inside h, with their signs, as runs of one sign per row: an
+  // inactive cube's samples all take its corner sign (F1), so the raster
+  // jumps to the cube's exit; f is evaluated only in active cubes.
+  long total = 0;
+  for (long j = 0; j < nb; ++j) total += std::max(0L, hi[j] - lo[j] + 1);
   if (total < 9 || total > 4000000) return false;
-  thread_local std::vector<signed char> sign;
-  sign.assign(total, 0);
   auto point = [&](long i, long j) {
     const double a = a0 + i * step, b = b0 + j * step;
     return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
   };
+  auto cube_of = [&](const Vec3& x, long c[3]) {
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(long(std::floor(x[k] / grid_.s[k])), 0L, grid_.n[k] - 2);
+  };
+  struct Run { long j, s, e; signed char sg; };
+  thread_local std::vector<Run> runs;
+  thread_local std::vector<long> row_run;  // runs of row j: [row_run[j], row_run[j + 1])
+  runs.clear();
+  row_run.assign(nb + 1, 0);
   bool any_neg = false, any_pos = false;
-  for (long j = 0; j < nb; ++j)
-    for (long i = lo[j]; i <= hi[j]; ++i) {
+  for (long j = 0; j < nb; ++j) {
+    row_run[j] = long(runs.size());
+    for (long i = lo[j]; i <= hi[j];) {
       const Vec3 x = point(i, j);
       long c[3];
-      for (int k = 0; k < 3; ++k) c[k] = std::clamp(long(std::floor(x[k] / grid_.s[k])), 0L, grid_.n[k] - 2);
+      cube_of(x, c);
+      long last = i;
       bool in;
-      if (grid_.active(c[0], c[1], c[2])) in = inside(value(x));
-      else in = grid_.neg(c[0], c[1], c[2]);
-      sign[row_off[j] + i - lo[j]] = in ? 1 : 0;
+      if (grid_.active(c[0], c[1], c[2])) {
+        in = inside(value(x));
+      } else {
+        in = grid_.neg(c[0], c[1], c[2]);
+        // The row leaves the cube at a_exit; the samples before it are in it
+        // (a cube is convex; the floor test settles rounding at its faces).
+        double a_exit = INFINITY;
+        const double b = b0 + j * step;
+        for (int k = 0; k < 3; ++k) {
+          if (u[k] > 1e-15) a_exit = std::min(a_exit, ((c[k] + 1) * grid_.s[k] - m[k] - b * v[k]) / u[k]);
+          else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid_.s[k] - m[k] - b * v[k]) / u[k]);
+        }
+        const double t = std::floor((a_exit - a0) / step);
+        last = std::isfinite(t) ? long(std::clamp(t, double(i), double(hi[j]))) : hi[j];
+        for (long c2[3]; last > i; --last) {
+          cube_of(point(last, j), c2);
+          if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
+        }
+      }
       (in ? any_neg : any_pos) = true;
+      if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = last;
+      else runs.push_back({j, i, last, static_cast<signed char>(in)});
+      i = last + 1;
     }
+  }
+  row_run[nb] = long(runs.size());
   if (!(any_neg && any_pos)) return false;
-  auto idx = [&](long i, long j) -> long {
-    if (j < 0 || j >= nb || i < lo[j] || i > hi[j]) return -1;
-    return row_off[j] + i - lo[j];
+  // Sign regions (4-connected): runs of one sign overlapping in adjacent rows,
+  // joined by union-find. A region touching h's border is open; one that
+  // never does is enclosed by a cycle of S.
+  thread_local std::vector<long> parent;
+  thread_local std::vector<char> open;
+  parent.resize(runs.size());
+  open.assign(runs.size(), 0);
+  for (std::size_t r = 0; r < runs.size(); ++r) parent[r] = long(r);
+  auto find = [&](long r) {
+    while (parent[std::size_t(r)] != r) r = parent[std::size_t(r)] = parent[std::size_t(parent[std::size_t(r)])];
+    return r;
   };
-  // Sign regions (4-connected); one that never reaches h's border is enclosed.
-  thread_local std::vector<int> label;
-  thread_local std::vector<std::pair<long, long>> stack, members;
-  label.assign(total, -1);
-  stack.clear();
-  members.clear();
+  auto inside_row = [&](long j, long s0, long e0) { return j >= 0 && j < nb && lo[j] <= s0 && e0 <= hi[j]; };
+  for (long j = 0; j < nb; ++j)
+    for (long r = row_run[j]; r < row_run[j + 1]; ++r) {
+      const Run& x = runs[std::size_t(r)];
+      open[std::size_t(r)] = x.s == lo[j] || x.e == hi[j] || !inside_row(j - 1, x.s, x.e) || !inside_row(j + 1, x.s, x.e);
+      if (j + 1 >= nb) continue;
+      for (long r2 = row_run[j + 1]; r2 < row_run[j + 2]; ++r2) {
+        const Run& y = runs[std::size_t(r2)];
+        if (y.e < x.s) continue;
+        if (y.s > x.e) break;
+        if (y.sg == x.sg) parent[std::size_t(find(r))] = find(r2);
+      }
+    }
+  for (std::size_t r = 0; r < runs.size(); ++r)
+    if (open[r]) open[std::size_t(find(long(r)))] = 1;
+  // Enclosed regions: the sample pair (region, neighbour) farthest from p;
+  // along a row or an overlap of two rows the distance is convex, so only
+  // the ends of runs and overlaps are candidates.
   double best = -1;
   Vec3 ba{}, bb{};
+  auto candidate = [&](long i, long j, long i2, long j2) {
+    const Vec3 xa = point(i, j), xb = point(i2, j2);
+    const Vec3 mid{(xa[0] + xb[0]) / 2, (xa[1] + xb[1]) / 2, (xa[2] + xb[2]) / 2};
+    const double d = dist2(mid, pp);
+    if (d > best) { best = d; ba = xa; bb = xb; }
+  };
   for (long j = 0; j < nb; ++j)
-    for (long i = lo[j]; i <= hi[j]; ++i) {
-      const long s0 = idx(i, j);
-      if (label[s0] >= 0) continue;
-      label[s0] = 1;
-      const signed char sg = sign[s0];
-      bool border = false;
-      members.clear();
-      stack.assign(1, {i, j});
-      while (!stack.empty()) {
-        auto [ci, cj] = stack.back();
-        stack.pop_back();
-        members.emplace_back(ci, cj);
-        const long nbr[4][2] = {{ci + 1, cj}, {ci - 1, cj}, {ci, cj + 1}, {ci, cj - 1}};
-        for (auto& e : nbr) {
-          const long k = idx(e[0], e[1]);
-          if (k < 0) { border = true; continue; }
-          if (sign[k] != sg || label[k] >= 0) continue;
-          label[k] = 1;
-          stack.emplace_back(e[0], e[1]);
+    for (long r = row_run[j]; r < row_run[j + 1]; ++r) {
+      if (open[std::size_t(find(r))]) continue;
+      const Run& x = runs[std::size_t(r)];
+      candidate(x.s, j, x.s - 1, j);  // enclosed: its neighbours are in h
+      candidate(x.e, j, x.e + 1, j);
+      for (long j2 : {j - 1, j + 1})
+        for (long r2 = row_run[j2]; r2 < row_run[j2 + 1]; ++r2) {
+          const Run& y = runs[std::size_t(r2)];
+          if (y.e < x.s) continue;
+          if (y.s > x.e) break;
+          if (y.sg == x.sg) continue;
+          const long s0 = std::max(x.s, y.s), e0 = std::min(x.e, y.e);
+          candidate(s0, j, s0, j2);
+          candidate(e0, j, e0, j2);
         }
-      }
-      if (border) continue;
-      // Enclosed: the cycle's sample pair farthest from p.
-      for (auto [ci, cj] : members) {
-        const long nbr[4][2] = {{ci + 1, cj}, {ci - 1, cj}, {ci, cj + 1}, {ci, cj - 1}};
-        for (auto& e : nbr) {
-          const long k = idx(e[0], e[1]);
-          if (k < 0 || sign[k] == sg) continue;
-          const Vec3 xa = point(ci, cj), xb = point(e[0], e[1]);
-          const Vec3 mid{(xa[0] + xb[0]) / 2, (xa[1] + xb[1]) / 2, (xa[2] + xb[2]) / 2};
-          const double d = dist2(mid, pp);
-          if (d > best) { best = d; ba = xa; bb = xb; }
-        }
-      }
     }
   if (best < 0) return false;
   out = bisect(ba, bb, value(ba));
