@@ -22,6 +22,7 @@ Json SmoothStats::to_json() const {
   ops["slides"] = slides;
   ops["rejected_moves"] = rejected;
   ops["worst_mu_climbs"] = optimized;
+  ops["edge_moves"] = edge_moves;
   ops["diagonal_swaps"] = swaps;
   ops["valence_swaps"] = valence_swaps;
   ops["pair_splits"] = splits;
@@ -208,6 +209,10 @@ private:
   bool star_energy(int v, double floor, double cap, double& energy) const;
   // Compass search on the energy around v, the worst mu never dropping.
   bool optimize_star(int v, double h2);
+  // Compass search moving the two free ends u, v of an edge together, on the
+  // energy of the quads around either, same guard (see edge_pass).
+  bool optimize_edge(int u, int v, double h);
+  void edge_pass();
   // One guarded angle-based move then the compass search; kMoved, kRejected,
   // kOptimized bits, and kFar: moved by over sqrt(kWakeFar) of an edge.
   enum { kMoved = 1, kRejected = 2, kOptimized = 4, kFar = 8 };
@@ -522,6 +527,82 @@ bool QuadImprover::optimize_star(int v, double h2) {
   P_[v] = p;
   for (int q : vq_[v]) q_smu_[q] = quad_smu(Q_[q]);
   return true;
+}
+
+bool QuadImprover::optimize_edge(int u, int v, double h) {
+  std::vector<int> qs = vq_[u];
+  for (int q : vq_[v])
+    if (std::find(qs.begin(), qs.end(), q) == qs.end()) qs.push_back(q);
+  double worst0 = 2, energy0 = 0;
+  for (int q : qs) {
+    worst0 = std::min(worst0, q_smu_[q]);
+    energy0 += 1 / q_smu_[q];
+  }
+  if (worst0 >= kOptimizeBelow || !(worst0 > 0)) return false;
+  auto energy = [&](double cap, double& e) {
+    e = 0;
+    for (int q : qs) {
+      const double sq = quad_smu(Q_[q]);
+      if (sq < worst0) return false;
+      e += 1 / sq;
+      if (e >= cap) return false;
+    }
+    for (int q : qs)
+      if (!convex(Q_[q])) return false;
+    return true;
+  };
+  static const double dirs[8][2] = {{1, 0}, {0.7071067811865476, 0.7071067811865476}, {0, 1},
+                                    {-0.7071067811865476, 0.7071067811865476}, {-1, 0},
+                                    {-0.7071067811865476, -0.7071067811865476}, {0, -1},
+                                    {0.7071067811865476, -0.7071067811865476}};
+  const Point2 su = P_[u], sv = P_[v];
+  Point2 d{0, 0};  // the displacement so far
+  double best = energy0;
+  int first = 0;
+  for (int round = 0; round < 2 * kOptimizeRounds; ++round) {
+    bool improved = false;
+    for (int k = 0; k < 8 && !improved; ++k) {
+      const int dk = (first + k) & 7;
+      const Point2 c{d[0] + h * dirs[dk][0], d[1] + h * dirs[dk][1]};
+      P_[u] = {su[0] + c[0], su[1] + c[1]};
+      P_[v] = {sv[0] + c[0], sv[1] + c[1]};
+      double e;
+      if (energy(best * (1 - 1e-12), e)) { best = e; d = c; first = dk; improved = true; }
+    }
+    P_[u] = {su[0] + d[0], su[1] + d[1]};
+    P_[v] = {sv[0] + d[0], sv[1] + d[1]};
+    if (!improved) h *= 0.5;
+  }
+  if (!(best < energy0 * (1 - 1e-9))) {
+    P_[u] = su;
+    P_[v] = sv;
+    return false;
+  }
+  for (int q : qs) q_smu_[q] = quad_smu(Q_[q]);
+  return true;
+}
+
+void QuadImprover::edge_pass() {
+  // A poor quad whose two free corners lie almost on its opposite, fixed
+  // side (a sliver along a segment) cannot be opened one corner at a time:
+  // moving either away from the segment makes the other reflex. Moved
+  // together, they can.
+  for (int q = 0; q < int(Q_.size()); ++q) {
+    if (q_dead_[q] || q_smu_[q] >= kOptimizeBelow) continue;
+    const Quad& Qd = Q_[q];
+    double side2 = 0;
+    for (int k = 0; k < 4; ++k) {
+      const Point2 &a = P_[Qd[k]], &b = P_[Qd[(k + 1) & 3]];
+      side2 = std::max(side2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]));
+    }
+    for (int k = 0; k < 4 && q_smu_[q] < kOptimizeBelow; ++k) {
+      const int u = Qd[k], v = Qd[(k + 1) & 3];
+      if (fixed_[u] || fixed_[v] || !optimize_edge(u, v, 0.25 * std::sqrt(side2))) continue;
+      ++st_.edge_moves;
+      wake(u);
+      wake(v);
+    }
+  }
 }
 
 int QuadImprover::smooth_vertex(int v) {
@@ -1120,6 +1201,7 @@ void QuadImprover::run(const Stars& stars) {
       swap_pass();
       collapse_pass();
       doublet_pass();
+      edge_pass();
       // New colours only where the topology changed (the operations woke
       // the vertices around them).
       colours_stale_ = st_.swaps + st_.splits + st_.collapses + st_.doublets != ops;

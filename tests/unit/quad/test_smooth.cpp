@@ -326,6 +326,27 @@ TEST_CASE("a strip with every corner fixed and two flat corners is split into fo
   CHECK(boundary == boundary0);
 }
 
+TEST_CASE("a sliver along a segment is opened by moving its two free corners together", "[smooth]") {
+  // The square's bottom side A-B carries a sliver (A, B, v, u) with its free
+  // corners u, v just above it (corners of about 174 degrees at u and v, mu
+  // under 3): moving u or v alone away from A-B makes the other reflex, so
+  // only the edge move opens it (as on the lung through poly2tri --lattice 2).
+  PlanarMesh m;
+  m.points = {{0, 0}, {4, 0}, {4, 3}, {0, 3}, {1, 0.1}, {3, 0.1}, {1, 2}, {3, 2}};  // A B C D u v p q
+  m.elements = {{0, 1, 5, 4}, {0, 4, 6, 3}, {4, 5, 7, 6}, {5, 1, 2, 7}, {6, 7, 2, 3}};
+  const PlanarMesh orig = m;
+  SmoothOptions opt;
+  const SmoothStats st = smooth_quad_mesh(m, opt);
+  CAPTURE(st.before.min_mu, st.after.min_mu, st.edge_moves);
+  CHECK(st.before.min_mu < 3);
+  CHECK(st.edge_moves >= 1);
+  CHECK(st.after.min_mu >= 15);
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  for (const auto& e : m.elements)
+    REQUIRE(is_strictly_convex(m.points[e[0]], m.points[e[1]], m.points[e[2]], m.points[e[3]]));
+  for (int v = 0; v < 4; ++v) CHECK(m.points[v] == orig.points[v]);  // the boundary stays
+}
+
 TEST_CASE("more pair splits: more quads, more of them with good angles", "[smooth]") {
   double share[2] = {0, 0};
   std::size_t quads[2] = {0, 0};
