@@ -64,6 +64,15 @@ grep -q '"restricted_delaunay_violations": 0' brain.json || fail "brain: restric
 # The thesis's TOPOLOGY steps suffice here: the certificate passes at once.
 grep -q '"topology_fallback_rounds": 0' brain.json || fail "brain: certificate needed repairs"
 
+# A real organ: CGAL's liver CT labels, the whole organ (35 components, the
+# liver's surface of Euler characteristic -6 around its vessels), at the
+# default settings, with anisotropic voxels (0.62 x 0.62 x 1.33 mm).
+"$BIN/img2wc" -q "$DATA/liver-labels.nrrd" --threshold 1 liver-wc.nrrd
+"$BIN/wc2implicit" -q liver-wc.nrrd liver-f.nrrd
+"$tool" -q liver-f.nrrd liver.ply --threads 2 --stats liver.json
+"$check" liver.ply liver-wc.nrrd 2 || fail "liver: topology, self-intersection or ratio"
+grep -q '"topology_fallback_rounds": 0' liver.json || fail "liver: certificate needed repairs"
+
 # --max-points: the mesh is written, status 3, the failed guarantee named.
 expect_status 3 "$tool" bunny-f.nrrd small.off --max-points 40
 grep -q "max-points" err.txt || fail "max-points not named"
