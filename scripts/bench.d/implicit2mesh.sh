@@ -67,24 +67,27 @@ for img in bunny00-96 elephant-96 armadillo-96 cheese; do
   done
 done
 
-# Real brain tissue: two classes of the bundled k-means segmentation (noisy:
-# hundreds of components, genus in the hundreds), at the default roughness
-# pi/3 and at pi/2, beside CGAL's Surface_mesher on the same f.
-brain="$src/share/data/brain-kmeans-labels.nii.gz"
-for label in 3 4; do
-  "$tools/img2wc" -q "$brain" --label "$label" "$work/brain$label-wc.nrrd"
-  "$tools/wc2implicit" -q "$work/brain$label-wc.nrrd" "$work/brain$label-f.nrrd"
-  echo "brain-kmeans-labels, label $label:"
+# Real tissue: two classes of the bundled brain k-means segmentation (noisy:
+# hundreds of components, genus in the hundreds) and CGAL's liver CT labels
+# (whole organ: 35 components), at the default roughness pi/3 and at pi/2,
+# beside CGAL's Surface_mesher on the same f.
+for case in "brain3 brain-kmeans-labels.nii.gz --label 3" "brain4 brain-kmeans-labels.nii.gz --label 4" \
+            "liver liver-labels.nrrd --threshold 1"; do
+  read -r name file sel <<< "$case"
+  # shellcheck disable=SC2086  # $sel is an option and its value
+  "$tools/img2wc" -q "$src/share/data/$file" $sel "$work/$name-wc.nrrd"
+  "$tools/wc2implicit" -q "$work/$name-wc.nrrd" "$work/$name-f.nrrd"
+  echo "$file, $sel:"
   printf "  %-34s %10s %9s %9s %9s %9s   %s\n" "mesher" "time" "triangles" "min angle" "max ratio" "max |f|" "topology ok"
   for g in 1.0471975511965976 1.5707963267948966; do
     start=$(date +%s.%N)
-    "$tools/implicit2mesh" -q "$work/brain$label-f.nrrd" "$work/brain$label-$g.off" --roughness "$g" --stats "$work/s.json" || true
+    "$tools/implicit2mesh" -q "$work/$name-f.nrrd" "$work/$name-$g.off" --roughness "$g" --stats "$work/s.json" || true
     secs=$(echo "$(date +%s.%N) - $start" | bc)
-    row "implicit2mesh --roughness ${g:0:6}" "$work/brain$label-$g.off" "$work/brain$label-wc.nrrd" "$secs" 2 "$(centroid_error "$work/s.json")"
+    row "implicit2mesh --roughness ${g:0:6}" "$work/$name-$g.off" "$work/$name-wc.nrrd" "$secs" 2 "$(centroid_error "$work/s.json")"
   done
-  if out=$(timeout 600 "$peer" "$work/brain$label-f.nrrd" "$work/brain$label-peer.off" 0 0.25); then
+  if out=$(timeout 600 "$peer" "$work/$name-f.nrrd" "$work/$name-peer.off" 0 0.25); then
     read -r psecs ptris perr <<< "$out"
-    row "CGAL Surface_mesher dist. 0.25 vx" "$work/brain$label-peer.off" "$work/brain$label-wc.nrrd" "$psecs" 1000 "$perr"
+    row "CGAL Surface_mesher dist. 0.25 vx" "$work/$name-peer.off" "$work/$name-wc.nrrd" "$psecs" 1000 "$perr"
   else
     echo "  CGAL Surface_mesher dist. 0.25 vx: failed or timed out (600 s)"
   fi
