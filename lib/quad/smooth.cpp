@@ -586,7 +586,9 @@ void QuadImprover::edge_pass() {
   // A poor quad whose two free corners lie almost on its opposite, fixed
   // side (a sliver along a segment) cannot be opened one corner at a time:
   // moving either away from the segment makes the other reflex. Moved
-  // together, they can.
+  // together, they can. Only such flat pairs: edge moves anywhere else
+  // gained little and, on the brain with --slide-boundary, steered the
+  // clean-up into a worse end (min mu 2.6 instead of 9).
   for (int q = 0; q < int(Q_.size()); ++q) {
     if (q_dead_[q] || q_smu_[q] >= kOptimizeBelow) continue;
     const Quad& Qd = Q_[q];
@@ -595,9 +597,17 @@ void QuadImprover::edge_pass() {
       const Point2 &a = P_[Qd[k]], &b = P_[Qd[(k + 1) & 3]];
       side2 = std::max(side2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]));
     }
+    // Flat: the corner's cosine below -0.7 (over 134 degrees).
+    auto flat = [&](int k) {
+      const Point2 &o = P_[Qd[k]], &a = P_[Qd[(k + 1) & 3]], &b = P_[Qd[(k + 3) & 3]];
+      const double ux = a[0] - o[0], uy = a[1] - o[1], vx = b[0] - o[0], vy = b[1] - o[1];
+      return ux * vx + uy * vy < -0.7 * std::sqrt((ux * ux + uy * uy) * (vx * vx + vy * vy));
+    };
     for (int k = 0; k < 4 && q_smu_[q] < kOptimizeBelow; ++k) {
       const int u = Qd[k], v = Qd[(k + 1) & 3];
-      if (fixed_[u] || fixed_[v] || !optimize_edge(u, v, 0.25 * std::sqrt(side2))) continue;
+      if (fixed_[u] || fixed_[v] || !flat(k) || !flat((k + 1) & 3) ||
+          !optimize_edge(u, v, 0.25 * std::sqrt(side2)))
+        continue;
       ++st_.edge_moves;
       wake(u);
       wake(v);

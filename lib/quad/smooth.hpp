@@ -33,7 +33,7 @@ struct SmoothStats {
   std::size_t slides = 0;      // accepted boundary slides
   std::size_t rejected = 0;    // moves the guard refused
   std::size_t optimized = 0;   // guarded climbs on the worst mu around a vertex
-  std::size_t edge_moves = 0;  // guarded climbs moving both free ends of an edge of a poor quad
+  std::size_t edge_moves = 0;  // guarded climbs moving both free, flat ends of an edge of a poor quad
   std::size_t swaps = 0, doublets = 0, collapses = 0;
   std::size_t valence_swaps = 0;      // of the swaps, those taken to make valences regular
   std::size_t valence_collapses = 0;  // of the collapses, those of two valence-3 vertices
