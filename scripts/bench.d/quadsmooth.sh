@@ -125,6 +125,70 @@ blossom() {
   fi
 }
 
+# Gmsh's own pipeline on the segments of poly2tri's mesh $1.{node,ele,poly}:
+# one Gmsh line per subsegment, one plane surface per region component (its
+# boundary loops, outer first), frontal-Delaunay triangles (Mesh.Algorithm 6;
+# 8, frontal-Delaunay for quads, crashes Gmsh 4.8.4 on these inputs)
+# recombined with Blossom, Gmsh's own sizes. One line.
+gmsh_own() {
+  command -v gmsh > /dev/null || return 0
+  python3 - "$1" own.geo <<'PY'
+import collections, sys
+base, out = sys.argv[1], sys.argv[2]
+def rows(f): return [l.split() for l in open(f) if l.strip() and not l.lstrip().startswith('#')]
+N = rows(base + ".node"); first = int(N[1][0])
+P = [(float(r[1]), float(r[2])) for r in N[1:1 + int(N[0][0])]]
+E = rows(base + ".ele"); T = [[int(x) - first for x in r[1:4]] for r in E[1:1 + int(E[0][0])]]
+S = rows(base + ".poly"); seg = {tuple(sorted((int(r[1]) - first, int(r[2]) - first))) for r in S[2:2 + int(S[1][0])]}
+tris = collections.defaultdict(list)
+for i, t in enumerate(T):
+    for j in range(3): tris[tuple(sorted((t[j], t[j - 2])))].append(i)
+line = {e: k + 1 for k, e in enumerate(e for e, ts in tris.items() if e in seg or len(ts) == 1)}
+comp, c = [-1] * len(T), 0
+for s in range(len(T)):  # regions: components across non-segment edges
+    if comp[s] >= 0: continue
+    comp[s], stack = c, [s]
+    while stack:
+        i = stack.pop()
+        for j in range(3):
+            e = tuple(sorted((T[i][j], T[i][j - 2])))
+            for o in ([] if e in line else tris[e]):
+                if comp[o] < 0: comp[o] = c; stack.append(o)
+    c += 1
+g = open(out, "w")
+for v in sorted({v for e in line for v in e}): g.write("Point(%d) = {%.12g, %.12g, 0};\n" % (v + 1, *P[v]))
+for (a, b), k in line.items(): g.write("Line(%d) = {%d, %d};\n" % (k, a + 1, b + 1))
+nxt = [collections.defaultdict(list) for _ in range(c)]
+for i, t in enumerate(T):  # boundary edges, counter-clockwise around their region
+    for j in range(3):
+        if tuple(sorted((t[j - 1], t[j]))) in line: nxt[comp[i]][t[j - 1]].append(t[j])
+loops = 0
+for k in range(c):
+    ls = []
+    while nxt[k]:
+        a0 = a = next(iter(nxt[k])); L, area = [], 0
+        while True:
+            b = nxt[k][a].pop()
+            if not nxt[k][a]: del nxt[k][a]
+            L.append(line[(a, b)] if a < b else -line[(b, a)]); area += P[a][0] * P[b][1] - P[b][0] * P[a][1]; a = b
+            if a == a0: break
+        ls.append((-area, L))
+    ids = []
+    for _, L in sorted(ls):
+        loops += 1; ids.append(loops); g.write("Curve Loop(%d) = {%s};\n" % (loops, ", ".join(map(str, L))))
+    g.write("Plane Surface(%d) = {%s};\n" % (k + 1, ", ".join(map(str, ids))))
+g.write('Mesh.Algorithm = 6;\nMesh.RecombineAll = 1;\nMesh.RecombinationAlgorithm = 1;\n'
+        'Mesh.MshFileVersion = 2.2;\nMesh 2;\nSave "own.msh";\n')
+PY
+  rm -f own.msh
+  if /usr/bin/time -f "%e" -o gt.txt timeout 600 gmsh -v 0 own.geo -0 > /dev/null 2>&1 && [ -s own.msh ]; then
+    msh_quality own.msh "gmsh own pipeline"
+    echo "  (gmsh $(cat gt.txt) s wall)"
+  else
+    echo "  gmsh own pipeline: failed"
+  fi
+}
+
 for n in 32 100; do
   rm -f rec.msh
   grid "$n" 5
@@ -158,6 +222,15 @@ for spec in "VentricleModel:VentricleModel.png:--threshold 128" "BinaryImage:Bin
   /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q q.ele qs.msh --stats qs.json
   msh_quality qs.msh "tri2quad+quadsmooth"
   echo "  (quadsmooth $(stat smooth_seconds qs.json) s library, $(cat t.txt) s wall;" \
-       "$(stat pair_splits qs.json) pair splits, $(stat pair_splits_four qs.json) of them into four)"
+       "$(stat pair_splits qs.json) pair splits, $(stat pair_splits_four qs.json) of them into four," \
+       "$(stat edge_moves qs.json) edge moves)"
   blossom r.msh
+  gmsh_own r.1
+  for side in ${QUADSMOOTH_BENCH_LATTICES:-4 2 1}; do
+    "$BIN/poly2tri" -q r.poly l.1.ele --lattice "$side"
+    "$BIN/tri2quad" -q l.1.ele l.q.ele
+    /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q l.q.ele ls.msh --stats ls.json
+    msh_quality ls.msh "--lattice $side: +tri2quad+qs"
+    echo "  ($(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' l.1.ele) triangles; quadsmooth $(stat smooth_seconds ls.json) s library, $(cat t.txt) s wall)"
+  done
 done
