@@ -309,7 +309,7 @@ private:
   bool topology_only_ = false;
   long long seeds_deleted_ = 0;
   std::vector<int> comp_vertices_;  // vertices per S component
-  long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0, handle_checks_ = 0;
+  long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0, handle_checks_ = 0, handle_certified_ = 0;
   std::vector<std::pair<int, Vec3>> normals_;
   // Insertion scratch: the conflict zone and the vertices around it.
   std::vector<Facet> zone_facets_;
@@ -368,6 +368,18 @@ private:
   std::vector<Facet> restricted_facets() const;
   bool fallback(const std::vector<int>& bad_components);
   bool handle_detection(Vh p, Vec3& q);
+  bool handle_free(Vh p);
+  bool handle_vertex_pass();
+  // HandleDetection: vertices whose Voronoi cell changed since their check.
+  std::vector<char> cell_changed_;
+  std::vector<int> cell_changed_ids_;
+  void mark_cell_changed(int id) {
+    if (std::size_t(id) >= cell_changed_.size()) cell_changed_.resize(std::size_t(id) + 1, 0);
+    if (!cell_changed_[std::size_t(id)]) {
+      cell_changed_[std::size_t(id)] = 1;
+      cell_changed_ids_.push_back(id);
+    }
+  }
   bool handle_pass(const std::vector<int>& bad_components);
   bool facet_cycle(const Tr::Edge& e, Vec3& x);
   bool facet_cycle_pass();
@@ -662,6 +674,7 @@ bool Mesher::insert(const Vec3& x, Origin origin, Facet hint) {
         if (w != Vh()) {
           enqueue_vertex(w);
           mark_dirty(w->info().id);
+          mark_cell_changed(w->info().id);
         }
     }
     return true;
@@ -734,6 +747,7 @@ void Mesher::remove_seed(Vh v) {
     if (!tr_.is_infinite(w)) {
       walk_start_ = w;
       grown_.push_back(w->info().id);
+      mark_cell_changed(w->info().id);
     }
 }
 
@@ -765,12 +779,15 @@ void Mesher::requeue_grown() {
   grown_.clear();
 }
 
-// TOPOLOGY and the other queues until they drain, then FacetCycle passes
-// over what changed until none inserts.
+// TOPOLOGY and the other queues until they drain, then FacetCycle and
+// HandleDetection passes over what changed, until none inserts.
 void Mesher::refine() {
-  drain();
-  if (opt_.facet_cycle)
-    while (!max_hit_ && facet_cycle_pass()) drain();
+  for (;;) {
+    drain();
+    if (max_hit_) return;
+    if (opt_.facet_cycle && facet_cycle_pass()) continue;
+    if (!handle_vertex_pass()) return;
+  }
 }
 
 // Remember the finite vertices of facet (c, i) if it is restricted.
@@ -800,6 +817,9 @@ void Mesher::after_insertion(Vh v) {
   enqueue_vertex(v);
   for (Vh w : touched_) enqueue_vertex(w);
   mark_dirty(v->info().id);
+  for (Ch c : cells_buf_)
+    for (int i = 0; i < 4; ++i)
+      if (!tr_.is_infinite(c->vertex(i))) mark_cell_changed(c->vertex(i)->info().id);
 }
 
 // Seeds (8.1): on every component of S, crossings of mixed cube edges in the
@@ -1300,9 +1320,8 @@ std::vector<Facet> Mesher::restricted_facets() const {
 // handle makes it <= -1, a second piece >= 2). If not, q is the vertex there
 // farthest from p, moved onto S (the thesis's choice; a whole component
 // inside V(p) has characteristic 2 and gets a second point). No answer (false)
-// when the box would exceed 300,000 sample points. Run on the vertices of
-// the S components whose certificate fails (not on every vertex, as in the
-// thesis: the test costs about a thousand evaluations of f).
+// when the box would exceed 300,000 sample points. It costs about a
+// thousand evaluations of f: handle_free() settles most vertices first.
 bool Mesher::handle_detection(Vh p, Vec3& q) {
   // Runs on several threads: thread-safe adjacency, thread-local scratch.
   thread_local std::vector<Ch> cells;
@@ -1464,6 +1483,116 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
   const Vec3 xa = coords(b.a), xb = coords(b.b);
   q = bisect(xa, xb, value(xa));
   return true;
+}
+
+// HandleDetection's cheap certificate (notes 4.3(a)): the active cubes
+// reached from p's cube through mixed faces, without those lying wholly
+// outside one half-space of V(p). If every active cube holds a disk of S,
+// every mixed face one arc and every crossed edge one point (F2), S inside
+// their union X has Euler characteristic cubes - mixed faces + crossed
+// edges, and it is connected; when that is 1, S n X is a disk, so S n V(p)
+// (inside it) has no handle. True: no handle.
+bool Mesher::handle_free(Vh p) {
+  const Vec3 pp = vec(p->point());
+  thread_local std::vector<Vh> adj;
+  adj.clear();
+  tr_.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
+  struct HS { Vec3 d; double c; };
+  thread_local std::vector<HS> hs;
+  hs.clear();
+  for (Vh w : adj)
+    if (!tr_.is_infinite(w)) {
+      const Vec3 pw = vec(w->point());
+      hs.push_back({sub(pw, pp), (dot(pw, pw) - dot(pp, pp)) / 2});
+    }
+  auto outside = [&](long x, long y, long z) {  // all 8 corners beyond one face of V(p)
+    for (const HS& e : hs) {
+      bool all = true;
+      for (int k = 0; k < 8 && all; ++k) {
+        const Vec3 c{(x + (k & 1)) * grid_.s[0], (y + ((k >> 1) & 1)) * grid_.s[1], (z + ((k >> 2) & 1)) * grid_.s[2]};
+        all = dot(e.d, c) > e.c;
+      }
+      if (all) return true;
+    }
+    return false;
+  };
+  long c0[3];
+  for (int k = 0; k < 3; ++k) c0[k] = std::clamp(long(std::floor(pp[k] / grid_.s[k])), 0L, grid_.n[k] - 2);
+  if (!grid_.active(c0[0], c0[1], c0[2])) return false;
+  const long nx = grid_.n[0], ny = grid_.n[1];
+  auto key = [&](long x, long y, long z) { return x + nx * (y + ny * z); };
+  thread_local std::vector<long long> cubes, faces, edges;
+  thread_local std::vector<std::array<long, 3>> stack;
+  cubes.assign(1, key(c0[0], c0[1], c0[2]));
+  faces.clear();
+  edges.clear();
+  stack.assign(1, {c0[0], c0[1], c0[2]});
+  auto seen = [&](long long k) { return std::find(cubes.begin(), cubes.end(), k) != cubes.end(); };
+  while (!stack.empty()) {
+    const auto [x, y, z] = stack.back();
+    stack.pop_back();
+    if (cubes.size() > 512) return false;  // V(p) still large: the full test
+    bool sg[8];
+    for (int k = 0; k < 8; ++k) sg[k] = grid_.neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1));
+    // 12 edges: corner pairs differing in one bit; key (corner, axis).
+    for (int k = 0; k < 8; ++k)
+      for (int a = 0; a < 3; ++a)
+        if (!(k >> a & 1) && sg[k] != sg[k | 1 << a])
+          edges.push_back(3 * key(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) + a);
+    // 6 faces: axis a, side 0/1; key (min corner, axis).
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side) {
+        bool any_in = false, any_out = false;
+        for (int k = 0; k < 8; ++k)
+          if ((k >> a & 1) == side) (sg[k] ? any_in : any_out) = true;
+        if (!(any_in && any_out)) continue;
+        long f[3] = {x, y, z};
+        f[a] += side;
+        faces.push_back(3 * key(f[0], f[1], f[2]) + a);
+        long nbr[3] = {x, y, z};
+        nbr[a] += side ? 1 : -1;
+        if (!grid_.active(nbr[0], nbr[1], nbr[2])) continue;
+        const long long kn = key(nbr[0], nbr[1], nbr[2]);
+        if (seen(kn) || outside(nbr[0], nbr[1], nbr[2])) continue;
+        cubes.push_back(kn);
+        stack.push_back({nbr[0], nbr[1], nbr[2]});
+      }
+  }
+  std::sort(faces.begin(), faces.end());
+  std::sort(edges.begin(), edges.end());
+  const long long F = std::unique(faces.begin(), faces.end()) - faces.begin();
+  const long long E = std::unique(edges.begin(), edges.end()) - edges.begin();
+  return static_cast<long long>(cubes.size()) - F + E == 1;
+}
+
+// HandleDetection (8.3) in TOPOLOGY, after TopoDisk and FacetCycle: every
+// vertex whose Voronoi cell changed since its last check; the full test
+// (marching tetrahedra, about a thousand evaluations of f) only where the
+// cheap certificate does not settle it. True if a point went in.
+bool Mesher::handle_vertex_pass() {
+  std::sort(cell_changed_ids_.begin(), cell_changed_ids_.end());
+  std::vector<Vh> todo;
+  for (int id : cell_changed_ids_) {
+    cell_changed_[std::size_t(id)] = 0;
+    if (vertices_[std::size_t(id)] != Vh()) todo.push_back(vertices_[std::size_t(id)]);
+  }
+  cell_changed_ids_.clear();
+  std::vector<char> found(todo.size(), 0);
+  std::vector<Vec3> xs(todo.size());
+  std::atomic<long long> full{0};
+  implicit_detail::parallel_for(long(todo.size()), unsigned(std::max(1, opt_.threads)), [&](long a, long b, unsigned) {
+    for (long k = a; k < b; ++k) {
+      if (handle_free(todo[std::size_t(k)])) continue;
+      full.fetch_add(1, std::memory_order_relaxed);
+      found[std::size_t(k)] = handle_detection(todo[std::size_t(k)], xs[std::size_t(k)]);
+    }
+  });
+  handle_checks_ += full.load();
+  handle_certified_ += static_cast<long long>(todo.size()) - full.load();
+  std::vector<std::pair<Vec3, double>> pts;
+  for (std::size_t k = 0; k < todo.size(); ++k)
+    if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(todo[k]->point())));
+  return insert_batch(pts, kHandle);
 }
 
 // HandleDetection on every vertex of the S components whose mesh has the
@@ -1788,6 +1917,7 @@ RestrictedDelaunayResult Mesher::run() {
   st["facet_cycle_checks"] = facet_cycle_checks_;
   st["facet_cycle_passes"] = facet_cycle_passes_;
   st["handle_detection_checks"] = handle_checks_;
+  st["handle_detection_certified"] = handle_certified_;
   st["vertices"] = res.mesh.points.size();
   st["triangles"] = res.mesh.triangles.size();
   Json comps = Json::array();

@@ -1,10 +1,11 @@
 // implicit2mesh's library: the restricted Delaunay surface of S = f^-1(0)
 // after the thesis's simplification of Cheng-Dey-Ramos-Ray (ch. 7-8):
 // seeds from the components of bdCA(X) (8.1), TOPOLOGY (VorEdge with
-// EdgeSurface on the cube grid, TopoDisk, FacetCycle), QUALITY(rho_0) and
-// SMOOTH(g) as in DELMESH, plus --max-distance, then a certificate: the
-// output's components and Euler characteristics are compared with bdCA(X);
-// where they differ, HandleDetection (8.3) and then a fallback refine.
+// EdgeSurface on the cube grid, TopoDisk, FacetCycle, HandleDetection),
+// QUALITY(rho_0) and SMOOTH(g) as in DELMESH, plus --max-distance, then a
+// certificate: the output's components and Euler characteristics are
+// compared with bdCA(X); where they differ, HandleDetection on all the
+// component's samples and then a fallback refine.
 #pragma once
 #include "mesh/surface_io.hpp"
 #include "surface/implicit_surface.hpp"
