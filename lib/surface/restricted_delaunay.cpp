@@ -249,6 +249,24 @@ struct EdgeCrossing {
   Vec3 x{0, 0, 0};
 };
 
+// Vertex ids, each once, in the order they came, with O(1) membership.
+struct IdSet {
+  std::vector<char> in;
+  std::vector<int> ids;
+  void add(int id) {
+    if (std::size_t(id) >= in.size()) in.resize(std::size_t(id) + 1, 0);
+    if (!in[std::size_t(id)]) {
+      in[std::size_t(id)] = 1;
+      ids.push_back(id);
+    }
+  }
+  bool has(int id) const { return std::size_t(id) < in.size() && in[std::size_t(id)]; }
+  void clear() {
+    for (int id : ids) in[std::size_t(id)] = 0;
+    ids.clear();
+  }
+};
+
 class Mesher {
 public:
   Mesher(const ImplicitSurface& surface, const RestrictedDelaunayOptions& opt)
@@ -295,15 +313,7 @@ private:
   // FacetCycle: vertices inserted since the last pass. Insertions create
   // only edges at the new vertex and only shrink the other Voronoi facets,
   // and a cycle inside a shrunken facet was inside it before (notes 2.7).
-  std::vector<char> dirty_;
-  std::vector<int> dirty_ids_;
-  void mark_dirty(int id) {
-    if (std::size_t(id) >= dirty_.size()) dirty_.resize(std::size_t(id) + 1, 0);
-    if (!dirty_[std::size_t(id)]) {
-      dirty_[std::size_t(id)] = 1;
-      dirty_ids_.push_back(id);
-    }
-  }
+  IdSet dirty_;
   // SAMPLETOPOLOGY (7.6.2): only the topology queues run, so that seeds can
   // be deleted with no QUALITY/SMOOTH entry pointing at them.
   bool topology_only_ = false;
@@ -371,15 +381,7 @@ private:
   bool handle_free(Vh p);
   bool handle_vertex_pass();
   // HandleDetection: vertices whose Voronoi cell changed since their check.
-  std::vector<char> cell_changed_;
-  std::vector<int> cell_changed_ids_;
-  void mark_cell_changed(int id) {
-    if (std::size_t(id) >= cell_changed_.size()) cell_changed_.resize(std::size_t(id) + 1, 0);
-    if (!cell_changed_[std::size_t(id)]) {
-      cell_changed_[std::size_t(id)] = 1;
-      cell_changed_ids_.push_back(id);
-    }
-  }
+  IdSet cell_changed_;
   bool handle_pass(const std::vector<int>& bad_components);
   bool facet_cycle(const Tr::Edge& e, Vec3& x);
   bool facet_cycle_pass();
@@ -673,8 +675,8 @@ bool Mesher::insert(const Vec3& x, Origin origin, Facet hint) {
       for (Vh w : vertices_)
         if (w != Vh()) {
           enqueue_vertex(w);
-          mark_dirty(w->info().id);
-          mark_cell_changed(w->info().id);
+          dirty_.add(w->info().id);
+          cell_changed_.add(w->info().id);
         }
     }
     return true;
@@ -747,7 +749,7 @@ void Mesher::remove_seed(Vh v) {
     if (!tr_.is_infinite(w)) {
       walk_start_ = w;
       grown_.push_back(w->info().id);
-      mark_cell_changed(w->info().id);
+      cell_changed_.add(w->info().id);
     }
 }
 
@@ -774,7 +776,7 @@ void Mesher::requeue_grown() {
     const Vh w = vertices_[std::size_t(id)];
     if (w == Vh()) continue;
     enqueue_vertex(w);
-    mark_dirty(id);
+    dirty_.add(id);
   }
   grown_.clear();
 }
@@ -816,10 +818,10 @@ void Mesher::after_insertion(Vh v) {
     for (int i = 0; i < 4; ++i) mark_restricted(c, i);
   enqueue_vertex(v);
   for (Vh w : touched_) enqueue_vertex(w);
-  mark_dirty(v->info().id);
+  dirty_.add(v->info().id);
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i)
-      if (!tr_.is_infinite(c->vertex(i))) mark_cell_changed(c->vertex(i)->info().id);
+      if (!tr_.is_infinite(c->vertex(i))) cell_changed_.add(c->vertex(i)->info().id);
 }
 
 // Seeds (8.1): on every component of S, crossings of mixed cube edges in the
@@ -1261,7 +1263,7 @@ bool Mesher::facet_cycle_pass() {
   // The edges at new vertices, each once (from the smaller id when both
   // ends are new), found from the new vertices' cells.
   std::vector<std::pair<std::pair<int, int>, Tr::Edge>> edges;
-  for (int ia : dirty_ids_) {
+  for (int ia : dirty_.ids) {
     const Vh a = vertices_[std::size_t(ia)];
     if (a == Vh()) continue;  // deleted seed
     ++stamp_;
@@ -1272,14 +1274,13 @@ bool Mesher::facet_cycle_pass() {
         Vh b = c->vertex(k);
         if (b == a || tr_.is_infinite(b) || b->info().stamp == stamp_) continue;
         const int ib = b->info().id;
-        if (dirty_[ib] && ib < ia) continue;
+        if (dirty_.has(ib) && ib < ia) continue;
         b->info().stamp = stamp_;
         // p (the edge's first vertex): the smaller id, as before.
         edges.push_back({{std::min(ia, ib), std::max(ia, ib)}, ia < ib ? Tr::Edge(c, c->index(a), k) : Tr::Edge(c, k, c->index(a))});
       }
   }
-  for (int id : dirty_ids_) dirty_[std::size_t(id)] = 0;
-  dirty_ids_.clear();
+  dirty_.clear();
   std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   // The checks only read the triangulation (every finite cell's
   // circumcentre is cached by then: EdgeSurface asked for it), so they run
@@ -1570,13 +1571,11 @@ bool Mesher::handle_free(Vh p) {
 // (marching tetrahedra, about a thousand evaluations of f) only where the
 // cheap certificate does not settle it. True if a point went in.
 bool Mesher::handle_vertex_pass() {
-  std::sort(cell_changed_ids_.begin(), cell_changed_ids_.end());
+  std::sort(cell_changed_.ids.begin(), cell_changed_.ids.end());
   std::vector<Vh> todo;
-  for (int id : cell_changed_ids_) {
-    cell_changed_[std::size_t(id)] = 0;
+  for (int id : cell_changed_.ids)
     if (vertices_[std::size_t(id)] != Vh()) todo.push_back(vertices_[std::size_t(id)]);
-  }
-  cell_changed_ids_.clear();
+  cell_changed_.clear();
   std::vector<char> found(todo.size(), 0);
   std::vector<Vec3> xs(todo.size());
   std::atomic<long long> full{0};
