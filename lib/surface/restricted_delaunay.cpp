@@ -1705,7 +1705,7 @@ RestrictedDelaunayResult Mesher::run() {
   // DELMESH: SAMPLETOPOLOGY (TOPOLOGY, seed deletion), then every queue.
   // DELMESH. With seed_deletion, SAMPLETOPOLOGY first as published: TOPOLOGY
   // alone, then the seeds deleted one by one (7.6.2); by default every
-  // queue runs from the start (measured: fewer points, half the time).
+  // queue runs from the start (measured: as many points, half the time).
   if (opt_.seed_deletion) {
     refine();
     delete_seeds();
