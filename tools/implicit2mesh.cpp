@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   tool.add_threads();
   tool.app.add_flag("--normals", normals, "Write per-vertex normals from grad f (PLY and OBJ)");
   tool.app.add_flag("--seed-deletion", opt.seed_deletion,
-                    "SAMPLETOPOLOGY as published (7.6.2): TOPOLOGY alone first, then delete the seeds one by one; "
+                    "SAMPLETOPOLOGY as published (7.6.2): TOPOLOGY alone first, then delete the seeds and HandleDetection's points one by one; "
                     "slower and not smaller in practice");
 
   return tool.run(argc, argv, [&] {

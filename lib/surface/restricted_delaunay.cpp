@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <queue>
 #include <random>
 #include <set>
@@ -352,7 +353,12 @@ private:
   bool insert(const Vec3& x, Origin origin, Facet hint = Facet(Ch(), 0));
   void after_insertion(Vh v);
   void add_vertex(Vh v, Origin origin, const Vec3& x);
-  void remove_seed(Vh v);
+  bool remove_vertex(Vh v);
+  bool delete_and_restore(Vh v);
+  // The HandleDetection point being deleted (8.3): it goes back if
+  // HandleDetection finds a handle again.
+  std::optional<Vec3> handle_trial_;
+  long long handle_points_deleted_ = 0, handle_points_restored_ = 0;
   void delete_seeds();
   void requeue_grown();
   std::vector<int> grown_;  // ids of the neighbours of deleted seeds
@@ -722,24 +728,23 @@ void Mesher::add_vertex(Vh v, Origin origin, const Vec3& x) {
   if (v->info().comp >= 0) ++comp_vertices_[std::size_t(v->info().comp)];
 }
 
-// Seed deletion (7.6.2): the cells around v are replaced by a Delaunay
+// Deletion (7.6.2, 8.3): the cells around v are replaced by a Delaunay
 // triangulation of its link (CGAL's remove), and the facets of the new cells
-// are computed anew. v's neighbours gained Voronoi volume: TopoDisk and
-// FacetCycle check them again.
-void Mesher::remove_seed(Vh v) {
+// are computed anew. v's neighbours gained Voronoi volume: TopoDisk,
+// FacetCycle and HandleDetection check them again. False if v had to stay.
+bool Mesher::remove_vertex(Vh v) {
   std::vector<Vh> adj;
   tr_.adjacent_vertices(v, std::back_inserter(adj));
   const Vec3 x = vec(v->point());
+  const Origin origin = Origin(v->info().origin);
   vertices_[std::size_t(v->info().id)] = Vh();
   if (v->info().comp >= 0) --comp_vertices_[std::size_t(v->info().comp)];
   cells_buf_.clear();
   tr_.remove_and_give_new_cells(v, std::back_inserter(cells_buf_));
-  ++seeds_deleted_;
   if (tr_.dimension() < 3) {  // the rest is coplanar: put it back (bootstrap)
-    --seeds_deleted_;
-    insert(x, kSeed);
-    --inserted_[kSeed];
-    return;
+    insert(x, origin);
+    --inserted_[origin];
+    return false;
   }
   for (Ch c : cells_buf_) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
   for (Ch c : cells_buf_)
@@ -751,22 +756,42 @@ void Mesher::remove_seed(Vh v) {
       grown_.push_back(w->info().id);
       cell_changed_.add(w->info().id);
     }
+  return true;
+}
+
+// Deletes v, then TOPOLOGY restores the closed ball property (Lemma 7.6.3).
+// A component keeps at least two vertices (notes 4.5): with fewer, it can
+// hide inside one Voronoi cell, where no Voronoi edge sees it.
+bool Mesher::delete_and_restore(Vh v) {
+  if (v->info().comp < 0 || comp_vertices_[std::size_t(v->info().comp)] <= 2 || tr_.number_of_vertices() <= 8)
+    return false;
+  if (!remove_vertex(v)) return false;
+  requeue_grown();
+  refine();
+  return true;
 }
 
 // SAMPLETOPOLOGY step 2 (7.6.2): delete the seeds one by one, restoring the
-// topology after each (Lemma 7.6.3), so that every point left was placed by
-// a subroutine that keeps it k d_M(p) from the others. A component keeps at
-// least two vertices (notes 4.5): with fewer, it can hide inside one
-// Voronoi cell, where no Voronoi edge sees it.
+// topology after each, so that every point left was placed by a subroutine
+// that keeps it k d_M(p) from the others. Then HandleDetection's points,
+// which need not be (8.3): each is deleted in turn, and should
+// HandleDetection then find a handle again, that point goes back instead of
+// a new one.
 void Mesher::delete_seeds() {
   const std::size_t seeds = vertices_.size();  // seeds() inserts them first
   for (std::size_t id = 0; id < seeds && !max_hit_; ++id) {
     const Vh v = vertices_[id];
-    if (v == Vh() || v->info().origin != kSeed || v->info().comp < 0) continue;
-    if (comp_vertices_[std::size_t(v->info().comp)] <= 2 || tr_.number_of_vertices() <= 8) continue;
-    remove_seed(v);
-    requeue_grown();
-    refine();
+    if (v != Vh() && v->info().origin == kSeed && delete_and_restore(v)) ++seeds_deleted_;
+  }
+  std::vector<int> handle_points;
+  for (Vh v : vertices_)
+    if (v != Vh() && v->info().origin == kHandle) handle_points.push_back(v->info().id);
+  for (int id : handle_points) {
+    const Vh v = vertices_[std::size_t(id)];
+    if (v == Vh() || max_hit_) continue;
+    handle_trial_ = vec(v->point());
+    if (delete_and_restore(v)) ++handle_points_deleted_;
+    handle_trial_.reset();
   }
 }
 
@@ -1591,6 +1616,12 @@ bool Mesher::handle_vertex_pass() {
   std::vector<std::pair<Vec3, double>> pts;
   for (std::size_t k = 0; k < todo.size(); ++k)
     if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(todo[k]->point())));
+  if (handle_trial_ && !pts.empty()) {  // the deleted handle point goes back
+    const Vec3 x = *handle_trial_;
+    handle_trial_.reset();
+    ++handle_points_restored_;
+    return insert(x, kHandle);
+  }
   return insert_batch(pts, kHandle);
 }
 
@@ -1911,6 +1942,8 @@ RestrictedDelaunayResult Mesher::run() {
   st["points_inserted"] = pts;
   st["points_refused"] = refused_;
   st["seeds_deleted"] = seeds_deleted_;
+  st["handle_points_deleted"] = handle_points_deleted_;
+  st["handle_points_restored"] = handle_points_restored_;
   st["topology_fallback_rounds"] = rounds;
   st["topology_fallback_points"] = inserted_[kFallback];
   st["facet_cycle_checks"] = facet_cycle_checks_;

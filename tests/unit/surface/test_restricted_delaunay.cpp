@@ -183,3 +183,19 @@ TEST_CASE("seed deletion (7.6.2): TOPOLOGY restores the topology without the see
   CHECK(r.topology.euler == std::vector<int>{0, 2});
   CHECK(r.stats.at("seeds_deleted").number() == r.stats.at("points_inserted").at("seed").number());
 }
+
+TEST_CASE("seed deletion also deletes HandleDetection's points, and puts back those whose handle returns (8.3)") {
+  // The thin torus without FacetCycle: HandleDetection finds the cycles.
+  const Vec3 c{11.6, 11.3, 4.6};
+  FunctionSurface s(grid(24, 24, 10), [&](const Vec3& p) { return torus(p, c, 8.1, 1.1); });
+  RestrictedDelaunayOptions o;
+  o.roughness = 0.9 * M_PI;
+  o.facet_cycle = false;
+  o.seed_deletion = true;
+  auto r = restricted_delaunay_mesh(s, o);
+  check_guarantees(s, r, o.ratio);
+  CHECK(r.topology.euler == std::vector<int>{0});
+  CHECK(r.stats.at("handle_points_deleted").number() > 0);
+  // Here some handles return without their point (2 of 18 with this seed).
+  CHECK(r.stats.at("handle_points_restored").number() > 0);
+}
