@@ -85,4 +85,11 @@ for l in 85 127 255; do
   "$check" "ex/label-$l.ply" "ex/label-$l.wc.nrrd" 2 || fail "example label $l"
   [ -s "ex/label-$l.json" ] || fail "example label $l: no --stats report"
 done
+# The same workflow as share/examples/Snakefile, where Snakemake is installed
+# (Debian package snakemake; not needed by the build or CI).
+if command -v snakemake >/dev/null; then
+  snakemake -q -s "$SRC/share/examples/Snakefile" --cores 2 -d sk \
+    --config scan="$DATA/liver-labels.nrrd" labels="85" bin="$BIN/" out=ex >/dev/null 2>&1 || fail "Snakefile"
+  grep -q '"topology_matches": true' sk/ex/label-85.json || fail "Snakefile: topology"
+fi
 echo "implicit2mesh e2e: ok"
