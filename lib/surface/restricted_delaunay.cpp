@@ -250,6 +250,11 @@ struct EdgeCrossing {
   Vec3 x{0, 0, 0};
 };
 
+struct HalfSpace {  // d.x <= c
+  Vec3 d;
+  double c;
+};
+
 // Vertex ids, each once, in the order they came, with O(1) membership.
 struct IdSet {
   std::vector<char> in;
@@ -385,6 +390,19 @@ private:
   bool fallback(const std::vector<int>& bad_components);
   bool handle_detection(Vh p, Vec3& q);
   bool handle_free(Vh p);
+  // V(p): |x - p|^2 <= |x - w|^2 for every Delaunay neighbour w (thread-safe).
+  void voronoi_cell(Vh p, std::vector<HalfSpace>& hs) const {
+    thread_local std::vector<Vh> adj;
+    adj.clear();
+    tr_.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
+    const Vec3 pp = vec(p->point());
+    hs.clear();
+    for (Vh w : adj)
+      if (!tr_.is_infinite(w)) {
+        const Vec3 pw = vec(w->point());
+        hs.push_back({sub(pw, pp), (dot(pw, pw) - dot(pp, pp)) / 2});
+      }
+  }
   bool handle_vertex_pass();
   // HandleDetection: vertices whose Voronoi cell changed since their check.
   IdSet cell_changed_;
@@ -1361,20 +1379,10 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
   // No restricted facet at p: S inside V(p) meets no Voronoi edge (a whole
   // small component, say); start from a voxel.
   if (reach2 <= 0) reach2 = grid_.delta * grid_.delta;
-  // V(p): |x - p|^2 <= |x - w|^2 for every Delaunay neighbour w.
-  thread_local std::vector<Vh> adj;
-  adj.clear();
-  tr_.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
-  struct HS { Vec3 d; double c; };  // d.x <= c
-  thread_local std::vector<HS> hs;
-  hs.clear();
-  for (Vh w : adj)
-    if (!tr_.is_infinite(w)) {
-      const Vec3 pw = vec(w->point());
-      hs.push_back({sub(pw, pp), (dot(pw, pw) - dot(pp, pp)) / 2});
-    }
+  thread_local std::vector<HalfSpace> hs;
+  voronoi_cell(p, hs);
   auto in_cell = [&](const Vec3& x) {
-    for (const HS& e : hs)
+    for (const HalfSpace& e : hs)
       if (dot(e.d, x) > e.c) return false;
     return true;
   };
@@ -1520,19 +1528,10 @@ bool Mesher::handle_detection(Vh p, Vec3& q) {
 // (inside it) has no handle. True: no handle.
 bool Mesher::handle_free(Vh p) {
   const Vec3 pp = vec(p->point());
-  thread_local std::vector<Vh> adj;
-  adj.clear();
-  tr_.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
-  struct HS { Vec3 d; double c; };
-  thread_local std::vector<HS> hs;
-  hs.clear();
-  for (Vh w : adj)
-    if (!tr_.is_infinite(w)) {
-      const Vec3 pw = vec(w->point());
-      hs.push_back({sub(pw, pp), (dot(pw, pw) - dot(pp, pp)) / 2});
-    }
+  thread_local std::vector<HalfSpace> hs;
+  voronoi_cell(p, hs);
   auto outside = [&](long x, long y, long z) {  // all 8 corners beyond one face of V(p)
-    for (const HS& e : hs) {
+    for (const HalfSpace& e : hs) {
       bool all = true;
       for (int k = 0; k < 8 && all; ++k) {
         const Vec3 c{(x + (k & 1)) * grid_.s[0], (y + ((k >> 1) & 1)) * grid_.s[1], (z + ((k >> 2) & 1)) * grid_.s[2]};
