@@ -301,7 +301,7 @@ private:
   RestrictedDelaunayOptions opt_;
   CubeGrid grid_;
   Tr tr_;
-  std::vector<Vh> vertices_;  // by id; null where a seed was deleted
+  std::vector<Vh> vertices_;  // by id; null where a vertex was deleted
   Vh walk_start_;             // a live vertex near the last change
   std::priority_queue<Item> queue_;
   std::uint64_t seq_ = 0;
@@ -366,7 +366,7 @@ private:
   long long handle_points_deleted_ = 0, handle_points_restored_ = 0;
   void delete_seeds();
   void requeue_grown();
-  std::vector<int> grown_;  // ids of the neighbours of deleted seeds
+  std::vector<int> grown_;  // ids of the neighbours of deleted vertices
   void refine();
   void mark_restricted(Ch c, int i);
   void seeds();
@@ -796,7 +796,7 @@ bool Mesher::delete_and_restore(Vh v) {
 // HandleDetection then find a handle again, that point goes back instead of
 // a new one.
 void Mesher::delete_seeds() {
-  const std::size_t seeds = vertices_.size();  // seeds() inserts them first
+  const std::size_t seeds = vertices_.size();  // refine() adds no seeds
   for (std::size_t id = 0; id < seeds && !max_hit_; ++id) {
     const Vh v = vertices_[id];
     if (v != Vh() && v->info().origin == kSeed && delete_and_restore(v)) ++seeds_deleted_;
@@ -813,7 +813,7 @@ void Mesher::delete_seeds() {
   }
 }
 
-// The live neighbours of deleted seeds: TopoDisk and FacetCycle again.
+// The live neighbours of deleted vertices: TopoDisk and FacetCycle again.
 void Mesher::requeue_grown() {
   for (int id : grown_) {
     const Vh w = vertices_[std::size_t(id)];
