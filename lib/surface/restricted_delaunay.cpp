@@ -57,6 +57,7 @@ enum : std::uint8_t { kComputed = 1, kRestricted = 2, kMulti = 4 };
 // EdgeSurface's answer for one Delaunay facet, stored on both of its sides.
 struct FacetInfo {
   std::uint8_t state = 0;
+  std::uint32_t computed = 0;  // which computation: queue entries of older ones are stale
   double x[3] = {0, 0, 0};  // surface centre x_t: crossing farthest from the facet's vertices
   double r2 = 0;            // squared radius of the surface Delaunay ball
   float grad[3] = {0, 0, 0};  // grad f at x_t (orients the facet for SMOOTH and output)
@@ -290,6 +291,7 @@ private:
     Vh a, b, c;  // a facet (a, b, c) or a vertex a
     Ch cell;     // the facet as (cell, index) when it was queued
     int index;
+    std::uint32_t computed;  // FacetInfo::computed when it was queued
     bool operator<(const Item& o) const {  // std::priority_queue pops the largest
       if (kind != o.kind) return kind > o.kind;
       if (prio != o.prio) return prio < o.prio;
@@ -305,6 +307,7 @@ private:
   Vh walk_start_;             // a live vertex near the last change
   std::priority_queue<Item> queue_;
   std::uint64_t seq_ = 0;
+  std::uint32_t computed_ = 0;  // facet computations so far
   long long inserted_[kOrigins] = {};
   long long refused_ = 0;
   std::atomic<long long> evaluations_{0};  // also counted by FacetCycle's threads
@@ -357,6 +360,7 @@ private:
   void enqueue_vertex(Vh v);
   bool insert(const Vec3& x, Origin origin, Facet hint = Facet(Ch(), 0));
   void after_insertion(Vh v);
+  void compute_new_cells();
   void add_vertex(Vh v, Origin origin, const Vec3& x);
   bool remove_vertex(Vh v);
   bool delete_and_restore(Vh v);
@@ -601,7 +605,8 @@ EdgeCrossing Mesher::edge_surface(const Vec3& a, const Vec3& b, const Vec3& site
 }
 
 void Mesher::compute_facet(Ch c, int i) {
-  const FacetInfo fi = edge_surface_of(c, i);
+  FacetInfo fi = edge_surface_of(c, i);
+  fi.computed = ++computed_;
   Ch n = c->neighbor(i);
   c->facet[i] = fi;
   n->facet[n->index(c)] = fi;
@@ -660,26 +665,26 @@ void Mesher::enqueue_facet(Ch c, int i) {
   const FacetInfo& fi = c->facet[i];
   if (!(fi.state & kRestricted)) return;
   Vh a = c->vertex((i + 1) & 3), b = c->vertex((i + 2) & 3), d = c->vertex((i + 3) & 3);
-  if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i});
+  if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i, fi.computed});
   const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
   if (topology_only_) return;
-  if (ratio(pa, pb, pd) > opt_.ratio) queue_.push({kQQuality, fi.r2, seq_++, a, b, d, c, i});
+  if (ratio(pa, pb, pd) > opt_.ratio) queue_.push({kQQuality, fi.r2, seq_++, a, b, d, c, i, fi.computed});
   if (opt_.max_distance > 0) {
     Vec3 nrm = cross(sub(pb, pa), sub(pd, pa));
     const double nl = norm(nrm);
     const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
     if (nl > 0 && std::abs(dot(nrm, sub(x, pa))) / nl > opt_.max_distance)
-      queue_.push({kQDistance, fi.r2, seq_++, a, b, d, c, i});
+      queue_.push({kQDistance, fi.r2, seq_++, a, b, d, c, i, fi.computed});
   }
 }
 
 // A vertex is queued at most once per check: the check runs on the state at
 // pop time, which includes every change since it was queued.
 void Mesher::enqueue_vertex(Vh v) {
-  if (!(v->info().queued & 1)) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh(), Ch(), 0});
+  if (!(v->info().queued & 1)) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
   v->info().queued |= 1;
   if (topology_only_) return;
-  if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh(), Ch(), 0});
+  if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
   v->info().queued |= 2;
 }
 
@@ -764,10 +769,7 @@ bool Mesher::remove_vertex(Vh v) {
     --inserted_[origin];
     return false;
   }
-  for (Ch c : cells_buf_) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
-  for (Ch c : cells_buf_)
-    for (int i = 0; i < 4; ++i)
-      if (!(c->facet[i].state & kComputed)) compute_facet(c, i);
+  compute_new_cells();
   for (Vh w : adj)
     if (!tr_.is_infinite(w)) {
       walk_start_ = w;
@@ -815,6 +817,8 @@ void Mesher::delete_seeds() {
 
 // The live neighbours of deleted vertices: TopoDisk and FacetCycle again.
 void Mesher::requeue_grown() {
+  std::sort(grown_.begin(), grown_.end());
+  grown_.erase(std::unique(grown_.begin(), grown_.end()), grown_.end());
   for (int id : grown_) {
     const Vh w = vertices_[std::size_t(id)];
     if (w == Vh()) continue;
@@ -835,6 +839,29 @@ void Mesher::refine() {
   }
 }
 
+// The facets of the new cells cells_buf_, computed (and so queued) in the
+// order of their vertex ids, not CGAL's storage order: vertex removal makes
+// that depend on addresses, and the queue's ties would then differ from run
+// to run.
+void Mesher::compute_new_cells() {
+  for (Ch c : cells_buf_) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
+  thread_local std::vector<std::pair<std::array<int, 3>, Facet>> order;
+  order.clear();
+  for (Ch c : cells_buf_)
+    for (int i = 0; i < 4; ++i) {
+      std::array<int, 3> ids;
+      for (int m = 1; m < 4; ++m) {
+        const Vh w = c->vertex((i + m) & 3);
+        ids[m - 1] = tr_.is_infinite(w) ? -1 : w->info().id;
+      }
+      std::sort(ids.begin(), ids.end());
+      order.emplace_back(ids, Facet(c, i));
+    }
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [ids, f] : order)
+    if (!(f.first->facet[f.second].state & kComputed)) compute_facet(f.first, f.second);
+}
+
 // Remember the finite vertices of facet (c, i) if it is restricted.
 void Mesher::mark_restricted(Ch c, int i) {
   if (!(c->facet[i].state & kRestricted)) return;
@@ -853,13 +880,11 @@ void Mesher::mark_restricted(Ch c, int i) {
 void Mesher::after_insertion(Vh v) {
   cells_buf_.clear();
   tr_.incident_cells(v, std::back_inserter(cells_buf_));
-  for (Ch c : cells_buf_) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
-  for (Ch c : cells_buf_)
-    for (int i = 0; i < 4; ++i)
-      if (!(c->facet[i].state & kComputed)) compute_facet(c, i);
+  compute_new_cells();
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i) mark_restricted(c, i);
   enqueue_vertex(v);
+  std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info().id < b->info().id; });
   for (Vh w : touched_) enqueue_vertex(w);
   dirty_.add(v->info().id);
   for (Ch c : cells_buf_)
@@ -1066,7 +1091,7 @@ void Mesher::drain() {
     int i;
     if (!facet_of(it, c, i)) continue;  // facet destroyed since
     const FacetInfo& fi = c->facet[i];
-    if (!(fi.state & kRestricted) || fi.r2 != it.prio) continue;  // stale entry
+    if (!(fi.state & kRestricted) || fi.computed != it.computed) continue;  // stale entry
     const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
     if (it.kind == kQVorEdge) {
       phase_ = "topology";
@@ -1308,7 +1333,7 @@ bool Mesher::facet_cycle_pass() {
   std::vector<std::pair<std::pair<int, int>, Tr::Edge>> edges;
   for (int ia : dirty_.ids) {
     const Vh a = vertices_[std::size_t(ia)];
-    if (a == Vh()) continue;  // deleted seed
+    if (a == Vh()) continue;  // deleted
     ++stamp_;
     cells_buf_.clear();
     tr_.incident_cells(a, std::back_inserter(cells_buf_));
@@ -1764,6 +1789,8 @@ RestrictedDelaunayResult Mesher::run() {
       std::array<int, 3> t;
       Vh vs[3];
       for (int m = 1; m < 4; ++m) vs[m - 1] = f.first->vertex((f.second + m) & 3);
+      // By id, not by the side CGAL stores the facet on: the same file every run.
+      std::sort(vs, vs + 3, [](Vh a, Vh b) { return a->info().id < b->info().id; });
       for (int m = 0; m < 3; ++m) {
         int& id = index[vs[m]->info().id];
         if (id < 0) {
