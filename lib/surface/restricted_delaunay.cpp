@@ -1174,8 +1174,11 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
   const long nb = long(std::ceil((b1 - b0) / step)) + 1;
   // Rows: the a-interval where every half-plane holds.
   thread_local std::vector<long> lo, hi;
+  thread_local std::vector<double> alo_row, ahi_row;  // h's exact border on each row
   lo.assign(nb, 0);
   hi.assign(nb, -1);
+  alo_row.assign(nb, 0);
+  ahi_row.assign(nb, 0);
   long rows_used = 0;
   for (long j = 0; j < nb; ++j) {
     const double b = b0 + j * step;
@@ -1187,6 +1190,8 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
       else if (r < 0) { alo = 1; ahi = 0; break; }
     }
     if (!(alo <= ahi)) continue;
+    alo_row[j] = alo;
+    ahi_row[j] = ahi;
     lo[j] = long(std::ceil((alo - a0) / step));
     hi[j] = long(std::floor((ahi - a0) / step));
     if (hi[j] >= lo[j]) ++rows_used;
@@ -1262,7 +1267,6 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
   for (long j = 0; j < nb; ++j)
     for (long r = row_run[j]; r < row_run[j + 1]; ++r) {
       const Run& x = runs[std::size_t(r)];
-      open[std::size_t(r)] = x.s == lo[j] || x.e == hi[j] || !inside_row(j - 1, x.s, x.e) || !inside_row(j + 1, x.s, x.e);
       if (j + 1 >= nb) continue;
       for (long r2 = row_run[j + 1]; r2 < row_run[j + 2]; ++r2) {
         const Run& y = runs[std::size_t(r2)];
@@ -1271,8 +1275,46 @@ bool Mesher::facet_cycle(const Tr::Edge& e, Vec3& out) {
         if (y.sg == x.sg) parent[std::size_t(find(r))] = find(r2);
       }
     }
-  for (std::size_t r = 0; r < runs.size(); ++r)
-    if (open[r]) open[std::size_t(find(long(r)))] = 1;
+  // A region is open where it reaches h's border itself: the sign at the
+  // exact border point beyond a sample next to the border must be the
+  // region's (else S passes in between and the region may be enclosed, as
+  // when a thin feature's cross-section nearly fills a narrow facet).
+  auto sign_at = [&](double a, double b) {
+    const Vec3 x{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
+    long c[3];
+    cube_of(x, c);
+    return grid_.active(c[0], c[1], c[2]) ? inside(value(x)) : grid_.neg(c[0], c[1], c[2]);
+  };
+  auto column_end = [&](double a, int dir) {  // h's border above (dir 1) or below (-1) a
+    double bmin = -INFINITY, bmax = INFINITY;
+    for (const HP& h : hp) {
+      const double r = h.C - h.A * a;
+      if (h.B > 1e-15) bmax = std::min(bmax, r / h.B);
+      else if (h.B < -1e-15) bmin = std::max(bmin, r / h.B);
+    }
+    return dir > 0 ? std::min(bmax, b1) : std::max(bmin, b0);
+  };
+  auto exits = [&](const Run& x) {
+    const long j = x.j;
+    const double b = b0 + j * step;
+    const bool sg = x.sg;
+    if (x.s == lo[j] && sign_at(alo_row[j], b) == sg) return true;
+    if (x.e == hi[j] && sign_at(ahi_row[j], b) == sg) return true;
+    for (int dir : {-1, 1}) {
+      const long j2 = j + dir;
+      if (inside_row(j2, x.s, x.e)) continue;
+      for (long i = x.s; i <= x.e; ++i) {
+        if (j2 >= 0 && j2 < nb && lo[j2] <= i && i <= hi[j2]) continue;  // that neighbour is in h
+        const double a = a0 + i * step;
+        if (sign_at(a, column_end(a, dir)) == sg) return true;
+      }
+    }
+    return false;
+  };
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const long root = find(long(r));
+    if (!open[std::size_t(root)] && exits(runs[r])) open[std::size_t(root)] = 1;
+  }
   // Enclosed regions: the sample pair (region, neighbour) farthest from p;
   // along a row or an overlap of two rows the distance is convex, so only
   // the ends of runs and overlaps are candidates.
