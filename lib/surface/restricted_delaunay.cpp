@@ -63,7 +63,26 @@ struct FacetInfo {
   float grad[3] = {0, 0, 0};  // grad f at x_t (orients the facet for SMOOTH and output)
 };
 
-template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_with_circumcenter_3<Gt>>
+// The circumcentre from the vertices in lexicographic order. From CGAL's
+// vertex order, which vertex removal makes depend on addresses, it would
+// differ in its last bits from run to run (the cell base above caches it).
+template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_3<Gt>>
+class CanonicalCircumcenter : public Cb {
+public:
+  template <class TDS2> struct Rebind_TDS {
+    using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
+    using Other = CanonicalCircumcenter<Gt, Cb2>;
+  };
+  using Cb::Cb;
+  typename Gt::Point_3 circumcenter(const Gt& gt = Gt()) const {
+    const typename Gt::Point_3* p[4];
+    for (int i = 0; i < 4; ++i) p[i] = &this->vertex(i)->point();
+    std::sort(p, p + 4, [](const auto* a, const auto* b) { return *a < *b; });
+    return gt.construct_circumcenter_3_object()(*p[0], *p[1], *p[2], *p[3]);
+  }
+};
+
+template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_with_circumcenter_3<Gt, CanonicalCircumcenter<Gt>>>
 class CellBase : public Cb {
 public:
   template <class TDS2> struct Rebind_TDS {
