@@ -408,6 +408,15 @@ private:
       opt_.progress(phase_ + ": " + std::to_string(tr_.number_of_vertices()) + " points");
     }
   }
+  // A finite facet's vertices by id. CGAL stores a facet on either side and
+  // vertex removal makes the side depend on addresses: every construction
+  // from a facet's vertices (site, normals, ratios) uses this order, so the
+  // last bits, and so the output, are the same on every run.
+  static std::array<Vh, 3> facet_vertices(Ch c, int i) {
+    std::array<Vh, 3> v{c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+    std::sort(v.begin(), v.end(), [](Vh a, Vh b) { return a->info().id < b->info().id; });
+    return v;
+  }
   // Restricted facets in a deterministic order (by vertex ids).
   std::vector<Facet> restricted_facets() const;
   bool fallback(const std::vector<int>& bad_components);
@@ -639,7 +648,8 @@ FacetInfo Mesher::edge_surface_of(Ch c, int i) {
   FacetInfo fi;
   fi.state = kComputed;
   if (!tr_.is_infinite(c, i)) {
-    const Vec3 p0 = vec(c->vertex((i + 1) & 3)->point());
+    const std::array<Vh, 3> fv = facet_vertices(c, i);
+    const Vec3 p0 = vec(fv[0]->point());
     const bool ci = tr_.is_infinite(c), ni = tr_.is_infinite(n);
     Vec3 a, b;
     bool ok = true;
@@ -652,8 +662,7 @@ FacetInfo Mesher::edge_surface_of(Ch c, int i) {
       // A ray from the finite cell's circumcentre, away from its fourth vertex.
       Ch fc = ci ? n : c;
       const int fi_ = ci ? j : i;
-      const Vec3 q0 = vec(fc->vertex((fi_ + 1) & 3)->point()), q1 = vec(fc->vertex((fi_ + 2) & 3)->point()),
-                 q2 = vec(fc->vertex((fi_ + 3) & 3)->point()), opp = vec(fc->vertex(fi_)->point());
+      const Vec3 q0 = p0, q1 = vec(fv[1]->point()), q2 = vec(fv[2]->point()), opp = vec(fc->vertex(fi_)->point());
       Vec3 nrm = cross(sub(q1, q0), sub(q2, q0));
       if (dot(nrm, sub(opp, q0)) > 0) nrm = {-nrm[0], -nrm[1], -nrm[2]};
       const double nl = norm(nrm);
@@ -683,7 +692,7 @@ FacetInfo Mesher::edge_surface_of(Ch c, int i) {
 void Mesher::enqueue_facet(Ch c, int i) {
   const FacetInfo& fi = c->facet[i];
   if (!(fi.state & kRestricted)) return;
-  Vh a = c->vertex((i + 1) & 3), b = c->vertex((i + 2) & 3), d = c->vertex((i + 3) & 3);
+  const auto [a, b, d] = facet_vertices(c, i);
   if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i, fi.computed});
   const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
   if (topology_only_) return;
@@ -1041,8 +1050,8 @@ bool Mesher::smooth(Vh v, Facet* worst) {
   for (const Facet& f : facets_buf_) {
     const FacetInfo& fi = f.first->facet[f.second];
     if (!(fi.state & kRestricted)) continue;
-    const Vec3 a = vec(f.first->vertex((f.second + 1) & 3)->point()), b = vec(f.first->vertex((f.second + 2) & 3)->point()),
-               c = vec(f.first->vertex((f.second + 3) & 3)->point());
+    const std::array<Vh, 3> fv = facet_vertices(f.first, f.second);
+    const Vec3 a = vec(fv[0]->point()), b = vec(fv[1]->point()), c = vec(fv[2]->point());
     Vec3 n = cross(sub(b, a), sub(c, a));
     const double nl = norm(n);
     if (nl <= 0) continue;
@@ -1848,10 +1857,7 @@ RestrictedDelaunayResult Mesher::run() {
     std::vector<int> comp_of_vertex;
     for (const Facet& f : fs) {
       std::array<int, 3> t;
-      Vh vs[3];
-      for (int m = 1; m < 4; ++m) vs[m - 1] = f.first->vertex((f.second + m) & 3);
-      // By id, not by the side CGAL stores the facet on: the same file every run.
-      std::sort(vs, vs + 3, [](Vh a, Vh b) { return a->info().id < b->info().id; });
+      const std::array<Vh, 3> vs = facet_vertices(f.first, f.second);
       for (int m = 0; m < 3; ++m) {
         int& id = index[vs[m]->info().id];
         if (id < 0) {
