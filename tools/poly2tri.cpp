@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
       ->type_name("L")
       ->check(CLI::PositiveNumber);
   tool.app.add_option("--max-vertices", max_vertices,
-                      "Stop refining beyond this many vertices (exit status 3)")
+                      "Stop refining beyond this many vertices (exit status 3); a size bound that alone asks for more is refused at once")
       ->capture_default_str()
       ->type_name("N")
       ->check(CLI::PositiveNumber);

@@ -17,7 +17,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iomanip>
 #include <map>
+#include <sstream>
 #include <unordered_map>
 #include <vector>
 
@@ -218,8 +220,25 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
   std::vector<K::Point_2> seeds;
   for (const auto& h : in.holes) seeds.emplace_back(h[0], h[1]);
   using Mesher = CGAL::Delaunay_mesher_2<CDT, QualityCriteria>;
+  Mesher::mark_facets(cdt, seeds.begin(), seeds.end(), false);
+  // A size bound that asks for more vertices than --max-vertices is refused
+  // at once, not after minutes of refinement (a triangle of the bound is at
+  // most max_area, or an equilateral one of side max_edge; vertices are
+  // about half the triangles).
+  if (opt.max_area > 0 || opt.max_edge > 0) {
+    double area = 0;
+    for (auto f = cdt.finite_faces_begin(); f != cdt.finite_faces_end(); ++f)
+      if (f->is_in_domain()) area += std::abs(CGAL::area(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
+    const double tri = opt.max_area > 0 ? opt.max_area : std::sqrt(3.0) / 4 * opt.max_edge * opt.max_edge;
+    const double need = area / tri / 2;
+    if (need > double(opt.max_vertices)) {
+      std::ostringstream msg;
+      msg << "the size bound asks for about " << std::setprecision(2) << need << " vertices, over --max-vertices ("
+          << opt.max_vertices << ")";
+      throw UsageError(msg.str());
+    }
+  }
   if (opt.lattice > 0) {
-    Mesher::mark_facets(cdt, seeds.begin(), seeds.end(), false);
     const auto lattice = lattice_in_domain(in, cdt, opt.lattice, opt.max_vertices);
     cdt.insert(lattice.begin(), lattice.end());
     res.lattice_points = cdt.number_of_vertices() - res.input_vertices;

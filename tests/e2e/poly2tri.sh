@@ -166,6 +166,13 @@ done
 expect 2 "$T" sq.poly x.1.ele --lattice 0
 expect 2 "$T" sq.poly x.1.ele --lattice 0.001 --max-vertices 1000
 [[ ! -e x.1.ele ]] || fail "output written on a lattice usage error"
+# A size bound beyond --max-vertices is refused at once, not after the refinement.
+for bound in "--max-area 1e-9" "--max-edge 1e-5" "--max-area 0.001 --max-vertices 1000"; do
+  # shellcheck disable=SC2086  # an option and its value
+  expect 2 timeout 10 "$T" sq.poly x.1.ele $bound
+  grep -q "max-vertices" err.txt || fail "$bound: $(cat err.txt)"
+  [[ ! -e x.1.ele ]] || fail "output written on a refused size bound"
+done
 
 # Bad input: one line on stderr, exit 1, nothing written.
 printf '4 2 0 0\n0 0 0\n1 2 2\n2 2 0\n3 0 2\n3 0\n0 0 1\n1 2 3\n2 0 2\n' > cross.poly
