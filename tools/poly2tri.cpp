@@ -35,12 +35,19 @@ int main(int argc, char** argv) {
       ->type_name("L")
       ->check(CLI::PositiveNumber)
       ->excludes(area);
-  tool.app.add_option("--lattice", opt.lattice,
-                      "Fill the domain with Steiner points on an equilateral-triangle lattice of side L, "
-                      "half a side away from the segments, before refining (tri2quad then makes "
-                      "60-degree rhombi of them)")
+  auto* lattice = tool.app.add_option("--lattice", opt.lattice,
+                                      "Fill the domain with Steiner points on an equilateral-triangle lattice of "
+                                      "side L, half a side away from the segments, before refining (tri2quad "
+                                      "then makes 60-degree rhombi of them)")
+                      ->type_name("L")
+                      ->check(CLI::PositiveNumber);
+  double square_lattice = 0;
+  tool.app.add_option("--square-lattice", square_lattice,
+                      "The same with a square lattice of side L: its right triangles make squares "
+                      "(tri2quad --pair-above 40)")
       ->type_name("L")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->excludes(lattice);
   tool.app.add_option("--max-vertices", max_vertices,
                       "Stop refining beyond this many vertices (exit status 3); a size bound that alone asks for more is refused at once")
       ->capture_default_str()
@@ -54,6 +61,10 @@ int main(int argc, char** argv) {
     if (ext != ".ele" && ext != ".off" && ext != ".vtk" && ext != ".msh" && ext != ".svg")
       throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg", out);
     opt.max_vertices = std::size_t(max_vertices);
+    if (square_lattice > 0) {
+      opt.lattice = square_lattice;
+      opt.square_lattice = true;
+    }
     if (tool.progress())
       opt.progress = [&](std::size_t n) { tool.report_progress(std::to_string(n) + " vertices"); };
     const PlanarMesh pslg = extension_of(in) == ".node" ? read_pslg(replace_extension(in, ".poly"))

@@ -90,16 +90,16 @@ double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
   return std::hypot(a[0] + t * dx - p[0], a[1] + t * dy - p[1]);
 }
 
-// The points of an equilateral-triangle lattice of side h (rows along x,
-// from the corner of the input's bounding box) that lie in a domain face of
-// cdt and at least h/2 from every input segment and vertex.
-std::vector<K::Point_2> lattice_in_domain(const PlanarMesh& in, const CDT& cdt, double h, std::size_t limit) {
+// The points of an equilateral-triangle (or square) lattice of side h (rows
+// along x, from the corner of the input's bounding box) that lie in a domain
+// face of cdt and at least h/2 from every input segment and vertex.
+std::vector<K::Point_2> lattice_in_domain(const PlanarMesh& in, const CDT& cdt, double h, bool square, std::size_t limit) {
   double x0 = in.points[0][0], y0 = in.points[0][1], x1 = x0, y1 = y0;
   for (const auto& p : in.points) {
     x0 = std::min(x0, p[0]), x1 = std::max(x1, p[0]);
     y0 = std::min(y0, p[1]), y1 = std::max(y1, p[1]);
   }
-  const double row = h * std::sqrt(3.0) / 2;
+  const double row = square ? h : h * std::sqrt(3.0) / 2;
   const double columns = std::floor((x1 - x0) / h) + 1, rows = std::floor((y1 - y0) / row) + 1;
   if (columns * rows > double(limit))
     throw UsageError("the lattice side is too small: its points alone exceed --max-vertices");
@@ -130,7 +130,7 @@ std::vector<K::Point_2> lattice_in_domain(const PlanarMesh& in, const CDT& cdt, 
   Face_handle hint;
   for (int j = 0; j < int(rows); ++j)
     for (int i = 0; i < int(columns); ++i) {
-      const Point2 p{x0 + h / 2 + (j % 2 ? h / 2 : 0) + i * h, y0 + row / 2 + j * row};
+      const Point2 p{x0 + h / 2 + (j % 2 && !square ? h / 2 : 0) + i * h, y0 + row / 2 + j * row};
       if (p[0] >= x1 || p[1] >= y1) continue;
       const auto b = buckets.find(cell(p[0], p[1]));
       if (b != buckets.end() &&
@@ -239,7 +239,7 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
     }
   }
   if (opt.lattice > 0) {
-    const auto lattice = lattice_in_domain(in, cdt, opt.lattice, opt.max_vertices);
+    const auto lattice = lattice_in_domain(in, cdt, opt.lattice, opt.square_lattice, opt.max_vertices);
     cdt.insert(lattice.begin(), lattice.end());
     res.lattice_points = cdt.number_of_vertices() - res.input_vertices;
   }

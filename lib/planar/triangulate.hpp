@@ -24,6 +24,10 @@ struct TriangulateOptions {
   // rhombus (Joe's mu 30) whichever edge tri2quad pairs them across, where
   // Delaunay refinement's own points give quads of mean mu 28 or less.
   double lattice = 0;
+  // With lattice > 0: a square lattice of that side instead. Its right
+  // triangles pair into squares (Joe's mu 45) across their hypotenuses,
+  // which tri2quad's --pair-above merges first.
+  bool square_lattice = false;
   // Stop refining beyond this many vertices (the result is then reported as
   // not meeting the bounds).
   std::size_t max_vertices = 50'000'000;

@@ -155,7 +155,8 @@ for k in range(4): print(n + k, n + k, n + (k + 1) % 4)
 print(1); print(0, 10, 10)
 PYEOF
   side=$(awk -v s="$seed" 'BEGIN { srand(s); printf "%.3f", 1 + 9 * rand() }')
-  expect 0 "$T" star.poly star.1.ele --lattice "$side" --stats st.json
+  kind=lattice; [[ $((seed % 2)) = 1 ]] && kind=square-lattice  # both lattices keep the angle bound
+  expect 0 "$T" star.poly star.1.ele "--$kind" "$side" --stats st.json
   python3 check.py star.1.ele star.poly 20.7 > c.txt || { cat c.txt; fail "lattice $side, star $seed"; }
   python3 - star.1 <<'PYEOF' || fail "lattice $side, star $seed: hole"
 import sys
@@ -164,6 +165,7 @@ assert not any(9 < float(r[1]) < 11 and 9 < float(r[2]) < 11 for r in L(sys.argv
 PYEOF
 done
 expect 2 "$T" sq.poly x.1.ele --lattice 0
+expect 2 "$T" sq.poly x.1.ele --lattice 1 --square-lattice 1
 expect 2 "$T" sq.poly x.1.ele --lattice 0.001 --max-vertices 1000
 [[ ! -e x.1.ele ]] || fail "output written on a lattice usage error"
 # A size bound beyond --max-vertices is refused at once, not after the refinement.
