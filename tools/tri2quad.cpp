@@ -44,6 +44,12 @@ int main(int argc, char** argv) {
   tool.app.add_flag("--allow-outside", opt.allow_outside,
                     "Thesis step 5 as published: one Steiner point may lie outside the domain "
                     "(default: Joe's 5-quad split keeps every point inside)");
+  tool.app.add_option("--pair-above", opt.pair_above,
+                      "First merge adjacent triangles whose quad has Joe's mu of at least MU degrees (best "
+                      "first), then convert the rest around them; same guarantees (the plain conversion "
+                      "is used where they would not hold)")
+      ->type_name("MU")
+      ->check(CLI::Range(0.0, 45.0));
   tool.app.add_option("--svg", svg, "Also draw the quad mesh, coloured by Joe's mu, to this SVG file")
       ->type_name("FILE");
 

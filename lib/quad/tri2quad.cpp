@@ -4,6 +4,7 @@
 #include "quad/tri2quad.hpp"
 
 #include "quad/tri2quad_polygons.hpp"
+#include "quad/quality.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <cstdint>
 #include <map>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace imgmesh {
 namespace {
@@ -94,6 +96,9 @@ struct Converter {
   LocalPatch sLp;
   bool has_attr = false;
   int root_pick = 0;
+  // Boundary edges that should not take a Steiner point (pair-first: the
+  // edges of merged quads): a root edge is taken elsewhere when possible.
+  const std::unordered_set<std::uint64_t>* avoid = nullptr;
 
   Converter(const Tri2QuadInput& i, const Tri2QuadOptions& o, Tri2QuadResult& r)
       : in(i), opt(o), out(r), pts(r.points) {}
@@ -244,8 +249,16 @@ struct Converter {
       for (std::size_t t = 0; t < T.size(); ++t) list[pos[comp[t]]++] = int(t);
     }
     comp_parent.assign(h, -2);
-    for (std::size_t t = 0; t < T.size(); ++t) {
-      const bool boundary = nb[t][0] < 0 || nb[t][1] < 0 || nb[t][2] < 0;
+    // With edges to avoid, roots of T^c go first to a boundary edge that
+    // may take a point.
+    auto free_boundary = [&](std::size_t t) {
+      for (int j = 0; j < 3; ++j)
+        if (nb[t][j] < 0 && !(avoid && avoid->count(ekey(T[t][j], T[t][(j + 1) % 3])))) return true;
+      return false;
+    };
+    for (std::size_t i = 0; i < 2 * T.size(); ++i) {
+      const std::size_t t = i % T.size();
+      const bool boundary = i < T.size() ? free_boundary(t) : (nb[t][0] < 0 || nb[t][1] < 0 || nb[t][2] < 0);
       if (!boundary || comp_parent[comp[t]] != -2) continue;
       const std::size_t first = comp_order.size();
       comp_parent[comp[t]] = -1;
@@ -1065,16 +1078,18 @@ struct Converter {
       // The root edge: the first candidate, or the root_pick-th one (the
       // size-bound retry in tri2quad() tries other spanning trees).
       int root = -1, rslot = -1, seen_roots = 0;
-      for (int t : order) {
-        for (int j = 0; j < 3; ++j) {
-          const int w = nb[t][j];
-          if ((PC < 0 && w < 0) || (PC >= 0 && w >= 0 && (con[t] >> j & 1) && comp[w] == PC)) {
-            if (root < 0 || seen_roots <= root_pick) { root = t; rslot = j; }
-            ++seen_roots;
+      for (int strict = avoid ? 1 : 0; strict >= 0 && root < 0; --strict)
+        for (int t : order) {
+          for (int j = 0; j < 3; ++j) {
+            const int w = nb[t][j];
+            if (strict && w < 0 && avoid->count(ekey(T[t][j], T[t][(j + 1) % 3]))) continue;
+            if ((PC < 0 && w < 0) || (PC >= 0 && w >= 0 && (con[t] >> j & 1) && comp[w] == PC)) {
+              if (root < 0 || seen_roots <= root_pick) { root = t; rslot = j; }
+              ++seen_roots;
+            }
           }
+          if (root >= 0 && seen_roots > root_pick) break;
         }
-        if (root >= 0 && seen_roots > root_pick) break;
-      }
       if (root < 0) throw Error("internal error: component without a root edge", in.path);
       for (int t : order) par[t] = -1;
       // BFS tree from the root over non-constraint dual edges.
@@ -1102,11 +1117,14 @@ struct Converter {
 
 } // namespace
 
-Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
+// The thesis's conversion alone.
+static Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
+                              const std::unordered_set<std::uint64_t>* avoid = nullptr) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();
   Tri2QuadResult out;
   Converter cv(in, opt, out);
+  cv.avoid = avoid;
   cv.setup();
   out.points.reserve(in.points.size() + in.triangles.size() / 4);
   out.quads.reserve(in.triangles.size() * 2 / 3 + 16);
@@ -1125,6 +1143,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     Tri2QuadResult alt;
     Converter c2(in, opt, alt);
     c2.root_pick = pick;
+    c2.avoid = avoid;
     c2.setup();
     c2.run();
     ++retries;
@@ -1143,6 +1162,295 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   }
   for (int i = 0; i < kNumCases; ++i) out.cases.push_back({kCaseNames[i], cv.cases[i]});
   out.cases.push_back({"size_bound_retry", retries});
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
+  return out;
+}
+
+// Pairs first (--pair-above): adjacent triangles that make a quad of Joe's
+// mu >= the threshold are merged greedily, best first; the thesis's
+// conversion then runs on the other triangles, with the merged quads as
+// holes. A merged quad on whose edge it puts a Steiner point goes back to
+// the triangles and the conversion runs again. If that does not settle, or
+// the result exceeds the thesis's size bounds (of the whole mesh), the plain
+// conversion's result is returned.
+Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
+  if (!(opt.pair_above > 0)) return convert(in, opt);
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 = std::clock();
+  const std::size_t nt = in.triangles.size();
+  const std::size_t np = in.points.size();
+  // The plain conversion, when pairs first cannot keep a guarantee.
+  auto plain = [&] {
+    Tri2QuadResult r = convert(in, opt);
+    r.cases.push_back({"pairs_first", 0});
+    r.cases.push_back({"pairs_returned", 0});
+    r.cases.push_back({"pairs_first_abandoned", 1});
+    return r;
+  };
+  if (nt == 0) return plain();
+  for (const auto& tr : in.triangles)
+    for (int v : tr)
+      if (v < 0 || std::size_t(v) >= np) return plain();  // convert() names the error
+  for (const Point2& p : in.points)
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) return plain();
+  // Counter-clockwise triangles and their edges.
+  std::vector<std::array<int, 3>> T(in.triangles);
+  for (auto& tr : T) {
+    const int o = t2q::orient(in.points[tr[0]], in.points[tr[1]], in.points[tr[2]]);
+    if (o == 0) return plain();
+    if (o < 0) std::swap(tr[1], tr[2]);
+  }
+  auto key = [](int a, int b) { return a < b ? (std::uint64_t(a) << 32) | std::uint32_t(b) : (std::uint64_t(b) << 32) | std::uint32_t(a); };
+  std::unordered_map<std::uint64_t, std::array<int, 2>> edge_tris;  // up to two triangles
+  edge_tris.reserve(3 * nt);
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int j = 0; j < 3; ++j) {
+      auto [it, fresh] = edge_tris.try_emplace(key(T[t][j], T[t][(j + 1) % 3]), std::array<int, 2>{int(t), -1});
+      if (!fresh) {
+        if (it->second[1] >= 0) return plain();  // not a 2-manifold: convert() says so
+        it->second[1] = int(t);
+      }
+    }
+  std::unordered_map<std::uint64_t, int> constraint;  // edge -> marker
+  for (std::size_t k = 0; k < in.constraints.size(); ++k) {
+    const auto c = in.constraints[k];
+    if (c[0] < 0 || c[1] < 0 || std::size_t(c[0]) >= np || std::size_t(c[1]) >= np) return plain();
+    constraint[key(c[0], c[1])] = k < in.constraint_markers.size() ? in.constraint_markers[k] : 1;
+  }
+  const bool has_attr = in.region.size() == nt;
+  // t and h of the whole mesh (the bounds are the thesis's for it).
+  std::size_t h = 0;
+  {
+    std::vector<int> comp(nt, -1), stack;
+    for (std::size_t s = 0; s < nt; ++s) {
+      if (comp[s] >= 0) continue;
+      comp[s] = int(h);
+      stack.assign(1, int(s));
+      while (!stack.empty()) {
+        const int t = stack.back();
+        stack.pop_back();
+        for (int j = 0; j < 3; ++j) {
+          const std::uint64_t k = key(T[t][j], T[t][(j + 1) % 3]);
+          if (constraint.count(k)) continue;
+          const auto& e = edge_tris[k];
+          const int u = e[0] == t ? e[1] : e[0];
+          if (u >= 0 && comp[u] < 0) { comp[u] = int(h); stack.push_back(u); }
+        }
+      }
+      ++h;
+    }
+  }
+  // Candidate pairs, best first (ties by triangle ids: deterministic).
+  struct Pair { double mu; int t, u; std::array<int, 4> q; };
+  std::vector<Pair> cand;
+  for (std::size_t t = 0; t < nt; ++t)
+    for (int j = 0; j < 3; ++j) {
+      const int a = T[t][j], b = T[t][(j + 1) % 3], c = T[t][(j + 2) % 3];
+      const std::uint64_t k = key(a, b);
+      if (constraint.count(k)) continue;
+      const auto& e = edge_tris[k];
+      const int u = e[0] == int(t) ? e[1] : e[0];
+      if (u < int(t)) continue;  // once per edge; also skips the boundary (-1)
+      if (has_attr && in.region[t] != in.region[std::size_t(u)]) continue;
+      int x = -1;
+      for (int m = 0; m < 3; ++m)
+        if (T[u][m] != a && T[u][m] != b) x = T[u][m];
+      const std::array<int, 4> q{a, x, b, c};
+      const Point2 &pa = in.points[a], &px = in.points[x], &pb = in.points[b], &pc = in.points[c];
+      if (!is_strictly_convex(pa, px, pb, pc)) continue;
+      const double mu = joe_mu(pa, px, pb, pc);
+      if (mu >= opt.pair_above) cand.push_back({mu, int(t), u, q});
+    }
+  std::stable_sort(cand.begin(), cand.end(), [](const Pair& x, const Pair& y) { return x.mu > y.mu; });
+  std::vector<int> mate(nt, -1);  // index into merged, or -1
+  std::vector<Pair> merged;
+  for (const Pair& p : cand)
+    if (mate[p.t] < 0 && mate[p.u] < 0) {
+      mate[p.t] = mate[p.u] = int(merged.size());
+      merged.push_back(p);
+    }
+  std::vector<char> alive(merged.size(), 1);
+  std::size_t returned = 0;
+  auto unmerge = [&](int m) {
+    ++returned;
+    alive[std::size_t(m)] = 0;
+    mate[std::size_t(merged[std::size_t(m)].t)] = mate[std::size_t(merged[std::size_t(m)].u)] = -1;
+  };
+  // The triangle across edge j of t (-1: an input boundary edge).
+  auto across = [&](int t, int j) {
+    const auto& e = edge_tris[key(T[t][j], T[t][(j + 1) % 3])];
+    return e[0] == t ? e[1] : e[0];
+  };
+  // A group of the other triangles (connected through any edge, as the
+  // conversion's T^c joins its components) with an odd count and no input
+  // boundary edge would put its leftover's point on a merged quad's edge
+  // (a group's boundary has as many edges as it has triangles, mod 2): the
+  // merged quads on a shortest path from it to an input boundary edge or to
+  // another group go back to the triangles.
+  {
+    std::vector<int> group(nt), prev(nt, -2), members, start, queue, touched;
+    for (int pass = 0;; ++pass) {
+      if (pass == 64) return plain();
+      std::fill(group.begin(), group.end(), -1);
+      members.clear();
+      start.clear();
+      std::vector<char> needs;
+      for (std::size_t s0 = 0; s0 < nt; ++s0) {
+        if (mate[s0] >= 0 || group[s0] >= 0) continue;
+        const int c = int(start.size());
+        start.push_back(int(members.size()));
+        group[s0] = c;
+        members.push_back(int(s0));
+        bool anchored = false;
+        for (std::size_t i = std::size_t(start.back()); i < members.size(); ++i) {
+          const int t = members[i];
+          for (int j = 0; j < 3; ++j) {
+            const int u = across(t, j);
+            if (u < 0) anchored = true;
+            else if (mate[std::size_t(u)] < 0 && group[std::size_t(u)] < 0) { group[std::size_t(u)] = c; members.push_back(u); }
+          }
+        }
+        needs.push_back(!anchored && (members.size() - std::size_t(start.back())) % 2 == 1);
+      }
+      start.push_back(int(members.size()));
+      bool changed = false;
+      for (std::size_t c = 0; c < needs.size(); ++c) {
+        if (!needs[c]) continue;
+        queue.assign(members.begin() + start[c], members.begin() + start[c + 1]);
+        for (int t : queue) prev[std::size_t(t)] = -1;
+        touched = queue;
+        int target = -1;
+        for (std::size_t i = 0; i < queue.size() && target < 0; ++i) {
+          const int t = queue[i];
+          for (int j = 0; j < 3 && target < 0; ++j) {
+            const int u = across(t, j);
+            if (u < 0 || prev[std::size_t(u)] != -2) continue;
+            prev[std::size_t(u)] = t;
+            touched.push_back(u);
+            if (mate[std::size_t(u)] < 0) { target = u; break; }  // another group
+            for (int k = 0; k < 3; ++k)
+              if (across(u, k) < 0) target = u;  // an input boundary edge
+            queue.push_back(u);
+          }
+        }
+        if (target < 0) return plain();
+        for (int t = target; prev[std::size_t(t)] != -1; t = prev[std::size_t(t)])
+          if (mate[std::size_t(t)] >= 0) unmerge(mate[std::size_t(t)]);
+        for (int t : touched) prev[std::size_t(t)] = -2;
+        changed = true;
+      }
+      if (!changed) break;
+    }
+  }
+
+  Tri2QuadResult rest;
+  for (int round = 0;; ++round) {
+    if (round == 8) return plain();
+    // The other triangles, with the constraints that are still their edges.
+    Tri2QuadInput r;
+    r.points = in.points;
+    r.index_base = in.index_base;
+    r.path = in.path;
+    for (std::size_t t = 0; t < nt; ++t)
+      if (mate[t] < 0) {
+        r.triangles.push_back(T[t]);
+        if (has_attr) r.region.push_back(in.region[t]);
+      }
+    for (std::size_t k = 0; k < in.constraints.size(); ++k) {
+      const auto& e = edge_tris[key(in.constraints[k][0], in.constraints[k][1])];
+      if ((e[0] >= 0 && mate[std::size_t(e[0])] < 0) || (e[1] >= 0 && mate[std::size_t(e[1])] < 0)) {
+        r.constraints.push_back(in.constraints[k]);
+        if (k < in.constraint_markers.size()) r.constraint_markers.push_back(in.constraint_markers[k]);
+      }
+    }
+    if (r.triangles.empty()) {
+      rest = Tri2QuadResult{};
+      rest.points = in.points;
+      for (int i = 0; i < kNumCases; ++i) rest.cases.push_back({kCaseNames[i], 0});
+      rest.cases.push_back({"size_bound_retry", 0});
+    } else {
+      try {
+        std::unordered_set<std::uint64_t> avoid;
+        for (std::size_t m = 0; m < merged.size(); ++m)
+          if (alive[m])
+            for (int i = 0; i < 4; ++i) avoid.insert(key(merged[m].q[i], merged[m].q[(i + 1) % 4]));
+        rest = convert(r, opt, &avoid);
+      } catch (const Error&) {
+        return plain();
+      }
+    }
+    // A hole edge (a merged quad's edge shared with a remaining triangle)
+    // must come out whole: a Steiner point on it would leave the quad a
+    // pentagon. Such quads go back to the triangles.
+    std::unordered_map<std::uint64_t, int> seg_of_rest;
+    for (std::size_t k = 0; k < rest.segments.size(); ++k) seg_of_rest[key(rest.segments[k][0], rest.segments[k][1])] = int(k);
+    bool conflict = false;
+    for (std::size_t m = 0; m < merged.size(); ++m) {
+      if (!alive[m]) continue;
+      const auto& q = merged[m].q;
+      for (int i = 0; i < 4; ++i) {
+        const auto& e = edge_tris[key(q[i], q[(i + 1) % 4])];
+        const bool shared = (e[0] >= 0 && mate[std::size_t(e[0])] < 0) || (e[1] >= 0 && mate[std::size_t(e[1])] < 0);
+        if (shared && !seg_of_rest.count(key(q[i], q[(i + 1) % 4]))) {
+          unmerge(int(m));
+          conflict = true;
+          break;
+        }
+      }
+    }
+    if (!conflict) break;
+  }
+  // Assemble: the conversion's quads and points, then the merged quads.
+  Tri2QuadResult out = std::move(rest);
+  out.input_points = np;
+  out.triangles = nt;
+  out.components = h;
+  std::size_t pairs = 0;
+  for (std::size_t m = 0; m < merged.size(); ++m) {
+    if (!alive[m]) continue;
+    ++pairs;
+    out.quads.push_back(merged[m].q);
+    if (has_attr) out.region.push_back(in.region[std::size_t(merged[m].t)]);
+  }
+  // Segments: the conversion's, without the hole edges, and the merged
+  // quads' edges on a constraint or on the boundary.
+  std::vector<std::pair<std::uint64_t, int>> segs;
+  auto boundary_marker = [&](std::uint64_t k) -> int {
+    const auto c = constraint.find(k);
+    if (c != constraint.end()) return c->second;
+    const auto& e = edge_tris[k];
+    return e[1] < 0 ? 1 : 0;  // 0: an interior edge, not a segment
+  };
+  for (std::size_t k = 0; k < out.segments.size(); ++k) {
+    const std::uint64_t kk = key(out.segments[k][0], out.segments[k][1]);
+    const auto e = edge_tris.find(kk);
+    // Edges of the input: segments only where they were constraints or
+    // boundary of the input; new edges (split by Steiner points) are kept.
+    if (e != edge_tris.end() && boundary_marker(kk) == 0) continue;
+    segs.push_back({kk, out.segment_markers[k]});
+  }
+  for (std::size_t m = 0; m < merged.size(); ++m) {
+    if (!alive[m]) continue;
+    const auto& q = merged[m].q;
+    for (int i = 0; i < 4; ++i) {
+      const std::uint64_t kk = key(q[i], q[(i + 1) % 4]);
+      const int marker = boundary_marker(kk);
+      if (marker != 0 || constraint.count(kk)) segs.push_back({kk, marker});
+    }
+  }
+  std::sort(segs.begin(), segs.end());
+  segs.erase(std::unique(segs.begin(), segs.end(), [](const auto& x, const auto& y) { return x.first == y.first; }), segs.end());
+  out.segments.clear();
+  out.segment_markers.clear();
+  for (const auto& [k, m] : segs) {
+    out.segments.push_back({int(k >> 32), int(k & 0xffffffffu)});
+    out.segment_markers.push_back(m);
+  }
+  out.cases.push_back({"pairs_first", pairs});
+  out.cases.push_back({"pairs_returned", returned});
+  out.cases.push_back({"pairs_first_abandoned", 0});
+  if (out.quads.size() > out.quad_bound() || out.steiner > out.steiner_bound(opt.allow_outside)) return plain();
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
   return out;

@@ -51,6 +51,10 @@ struct Tri2QuadOptions {
   // Rerun from other root edges when the result exceeds a size bound (off
   // only to measure the constructions themselves).
   bool size_retry = true;
+  // Beyond the thesis: first merge adjacent triangles whose quad has Joe's
+  // mu of at least this (degrees; 0: off), best first, and convert the rest
+  // around them (see tri2quad()).
+  double pair_above = 0;
 };
 
 struct Tri2QuadResult {

@@ -111,6 +111,29 @@ awk -v lm="$(stat mean_mu v.lattice.json | tail -1)" -v em="$(stat mean_mu v.max
   fail "ventricles: --lattice 4 mean mu $(stat mean_mu v.lattice.json | tail -1) in $(stat quads v.lattice.json | tail -1) quads," \
        "--max-edge 4 $(stat mean_mu v.max-edge.json | tail -1) in $(stat quads v.max-edge.json | tail -1)"
 
+# The issue's bar on mean mu (30) through the quad-friendly chain: a square
+# lattice (poly2tri --square-lattice 2) whose right triangles tri2quad
+# merges into squares first (--pair-above 40). The thesis's BFS pairing
+# alone turns much of such a lattice into 45-degree parallelograms.
+for spec in "VentricleModel.png:--threshold 128" "BinaryImage.png:" "BrainT1Slice.png:--threshold 100" \
+            "RatLungSlice1.mha:--threshold 100"; do
+  IFS=: read -r image opts <<< "$spec"
+  # shellcheck disable=SC2086
+  "$BIN/img2poly" -q "$DATA/$image" s.poly $opts || fail "img2poly $image"
+  "$BIN/poly2tri" -q s.poly s.1.ele --square-lattice 2 || fail "poly2tri --square-lattice $image"
+  for pa in 0 40; do
+    if [ $pa = 0 ]; then "$BIN/tri2quad" -q s.1.ele "s$pa.q.ele" || fail "tri2quad $image"
+    else "$BIN/tri2quad" -q s.1.ele "s$pa.q.ele" --pair-above $pa --stats "t$pa.json" || fail "tri2quad --pair-above $image"; fi
+    "$Q" -q "s$pa.q.ele" "s$pa.qs.ele" --stats "s$pa.json" || fail "quadsmooth $image"
+    [ "$(stat non_convex "s$pa.json" | tail -1)" = 0 ] || fail "$image --pair-above $pa: non-convex quads"
+  done
+  [ "$(stat pairs_first_abandoned t40.json)" = 0 ] || fail "$image: pairs first abandoned"
+  awk -v m="$(stat min_mu s40.json | tail -1)" -v a="$(stat mean_mu s40.json | tail -1)" \
+      -v p="$(stat mean_mu s0.json | tail -1)" 'BEGIN { exit !(m >= 5 && a >= 30 && a > p + 2) }' ||
+    fail "$image, square lattice: min mu $(stat min_mu s40.json | tail -1), mean $(stat mean_mu s40.json | tail -1)" \
+         "(without pairs first $(stat mean_mu s0.json | tail -1))"
+done
+
 # Formats by extension.
 for ext in off vtk msh; do
   "$Q" -q in.ele "out.$ext" --iterations 2 || fail "output .$ext"
