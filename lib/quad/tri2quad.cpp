@@ -1202,22 +1202,42 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     if (o < 0) std::swap(tr[1], tr[2]);
   }
   auto key = [](int a, int b) { return a < b ? (std::uint64_t(a) << 32) | std::uint32_t(b) : (std::uint64_t(b) << 32) | std::uint32_t(a); };
-  std::unordered_map<std::uint64_t, std::array<int, 2>> edge_tris;  // up to two triangles
-  edge_tris.reserve(3 * nt);
+  // The triangle across each edge (-1: an input boundary edge), from the
+  // sorted edge list (a hash map of 3t edges costs twice as much).
+  std::vector<std::pair<std::uint64_t, int>> edges(3 * nt);
   for (std::size_t t = 0; t < nt; ++t)
-    for (int j = 0; j < 3; ++j) {
-      auto [it, fresh] = edge_tris.try_emplace(key(T[t][j], T[t][(j + 1) % 3]), std::array<int, 2>{int(t), -1});
-      if (!fresh) {
-        if (it->second[1] >= 0) return plain();  // not a 2-manifold: convert() says so
-        it->second[1] = int(t);
-      }
+    for (int j = 0; j < 3; ++j) edges[3 * t + std::size_t(j)] = {key(T[t][j], T[t][(j + 1) % 3]), int(3 * t) + j};
+  std::sort(edges.begin(), edges.end());
+  std::vector<std::array<int, 3>> nbr(nt, {-1, -1, -1});
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t k = i;
+    while (k < edges.size() && edges[k].first == edges[i].first) ++k;
+    if (k - i > 2) return plain();  // not a 2-manifold: convert() says so
+    if (k - i == 2) {
+      const int a = edges[i].second, b = edges[i + 1].second;
+      nbr[std::size_t(a / 3)][a % 3] = b / 3;
+      nbr[std::size_t(b / 3)][b % 3] = a / 3;
     }
+    i = k;
+  }
+  // The triangles on each side of an input edge.
+  auto sides = [&](int a, int b) {
+    std::array<int, 2> r{-1, -1};
+    auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(key(a, b), -1));
+    for (int n = 0; it != edges.end() && it->first == key(a, b) && n < 2; ++it, ++n) r[std::size_t(n)] = it->second / 3;
+    return r;
+  };
   std::unordered_map<std::uint64_t, int> constraint;  // edge -> marker
   for (std::size_t k = 0; k < in.constraints.size(); ++k) {
     const auto c = in.constraints[k];
     if (c[0] < 0 || c[1] < 0 || std::size_t(c[0]) >= np || std::size_t(c[1]) >= np) return plain();
     constraint[key(c[0], c[1])] = k < in.constraint_markers.size() ? in.constraint_markers[k] : 1;
   }
+  std::vector<std::uint8_t> conb(nt, 0);  // constraint edges of each triangle
+  if (!constraint.empty())
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int j = 0; j < 3; ++j)
+        if (constraint.count(key(T[t][j], T[t][(j + 1) % 3]))) conb[t] |= std::uint8_t(1u << j);
   const bool has_attr = in.region.size() == nt;
   // t and h of the whole mesh (the bounds are the thesis's for it).
   std::size_t h = 0;
@@ -1231,11 +1251,8 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
         const int t = stack.back();
         stack.pop_back();
         for (int j = 0; j < 3; ++j) {
-          const std::uint64_t k = key(T[t][j], T[t][(j + 1) % 3]);
-          if (constraint.count(k)) continue;
-          const auto& e = edge_tris[k];
-          const int u = e[0] == t ? e[1] : e[0];
-          if (u >= 0 && comp[u] < 0) { comp[u] = int(h); stack.push_back(u); }
+          const int u = nbr[std::size_t(t)][j];
+          if (u >= 0 && !(conb[std::size_t(t)] >> j & 1) && comp[u] < 0) { comp[u] = int(h); stack.push_back(u); }
         }
       }
       ++h;
@@ -1247,11 +1264,8 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   for (std::size_t t = 0; t < nt; ++t)
     for (int j = 0; j < 3; ++j) {
       const int a = T[t][j], b = T[t][(j + 1) % 3], c = T[t][(j + 2) % 3];
-      const std::uint64_t k = key(a, b);
-      if (constraint.count(k)) continue;
-      const auto& e = edge_tris[k];
-      const int u = e[0] == int(t) ? e[1] : e[0];
-      if (u < int(t)) continue;  // once per edge; also skips the boundary (-1)
+      const int u = nbr[t][j];
+      if (u < int(t) || (conb[t] >> j & 1)) continue;  // once per edge; also skips the boundary (-1)
       if (has_attr && in.region[t] != in.region[std::size_t(u)]) continue;
       int x = -1;
       for (int m = 0; m < 3; ++m)
@@ -1277,11 +1291,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     alive[std::size_t(m)] = 0;
     mate[std::size_t(merged[std::size_t(m)].t)] = mate[std::size_t(merged[std::size_t(m)].u)] = -1;
   };
-  // The triangle across edge j of t (-1: an input boundary edge).
-  auto across = [&](int t, int j) {
-    const auto& e = edge_tris[key(T[t][j], T[t][(j + 1) % 3])];
-    return e[0] == t ? e[1] : e[0];
-  };
+  auto across = [&](int t, int j) { return nbr[std::size_t(t)][j]; };
   // A group of the other triangles (connected through any edge, as the
   // conversion's T^c joins its components) with an odd count and no input
   // boundary edge would put its leftover's point on a merged quad's edge
@@ -1344,6 +1354,10 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     }
   }
 
+  std::vector<std::array<int, 2>> con_sides(in.constraints.size());
+  for (std::size_t k = 0; k < in.constraints.size(); ++k) con_sides[k] = sides(in.constraints[k][0], in.constraints[k][1]);
+  // Hole edges: edges of a remaining triangle with a merged one across.
+  std::unordered_set<std::uint64_t> holes;
   Tri2QuadResult rest;
   for (int round = 0;; ++round) {
     if (round == 8) return plain();
@@ -1358,7 +1372,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
         if (has_attr) r.region.push_back(in.region[t]);
       }
     for (std::size_t k = 0; k < in.constraints.size(); ++k) {
-      const auto& e = edge_tris[key(in.constraints[k][0], in.constraints[k][1])];
+      const auto& e = con_sides[k];
       if ((e[0] >= 0 && mate[std::size_t(e[0])] < 0) || (e[1] >= 0 && mate[std::size_t(e[1])] < 0)) {
         r.constraints.push_back(in.constraints[k]);
         if (k < in.constraint_markers.size()) r.constraint_markers.push_back(in.constraint_markers[k]);
@@ -1369,36 +1383,33 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
       rest.points = in.points;
       for (int i = 0; i < kNumCases; ++i) rest.cases.push_back({kCaseNames[i], 0});
       rest.cases.push_back({"size_bound_retry", 0});
-    } else {
+    }
+    holes.clear();
+    for (std::size_t t = 0; t < nt; ++t)
+      if (mate[t] < 0)
+        for (int j = 0; j < 3; ++j)
+          if (nbr[t][j] >= 0 && mate[std::size_t(nbr[t][j])] >= 0) holes.insert(key(T[t][j], T[t][(j + 1) % 3]));
+    if (!r.triangles.empty()) {
       try {
-        std::unordered_set<std::uint64_t> avoid;
-        for (std::size_t m = 0; m < merged.size(); ++m)
-          if (alive[m])
-            for (int i = 0; i < 4; ++i) avoid.insert(key(merged[m].q[i], merged[m].q[(i + 1) % 4]));
-        rest = convert(r, opt, &avoid);
+        rest = convert(r, opt, &holes);
       } catch (const Error&) {
         return plain();
       }
     }
-    // A hole edge (a merged quad's edge shared with a remaining triangle)
-    // must come out whole: a Steiner point on it would leave the quad a
-    // pentagon. Such quads go back to the triangles.
-    std::unordered_map<std::uint64_t, int> seg_of_rest;
-    for (std::size_t k = 0; k < rest.segments.size(); ++k) seg_of_rest[key(rest.segments[k][0], rest.segments[k][1])] = int(k);
+    // A hole edge must come out whole: a Steiner point on it would leave
+    // the merged quad a pentagon. Such quads go back to the triangles.
+    std::unordered_set<std::uint64_t> whole;
+    for (const auto& sg : rest.segments) whole.insert(key(sg[0], sg[1]));
     bool conflict = false;
-    for (std::size_t m = 0; m < merged.size(); ++m) {
-      if (!alive[m]) continue;
-      const auto& q = merged[m].q;
-      for (int i = 0; i < 4; ++i) {
-        const auto& e = edge_tris[key(q[i], q[(i + 1) % 4])];
-        const bool shared = (e[0] >= 0 && mate[std::size_t(e[0])] < 0) || (e[1] >= 0 && mate[std::size_t(e[1])] < 0);
-        if (shared && !seg_of_rest.count(key(q[i], q[(i + 1) % 4]))) {
-          unmerge(int(m));
-          conflict = true;
-          break;
+    for (std::size_t t = 0; t < nt; ++t)
+      if (mate[t] < 0)
+        for (int j = 0; j < 3; ++j) {
+          const int u = nbr[t][j];
+          if (u >= 0 && mate[std::size_t(u)] >= 0 && !whole.count(key(T[t][j], T[t][(j + 1) % 3]))) {
+            unmerge(mate[std::size_t(u)]);
+            conflict = true;
+          }
         }
-      }
-    }
     if (!conflict) break;
   }
   // Assemble: the conversion's quads and points, then the merged quads.
@@ -1413,31 +1424,26 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     out.quads.push_back(merged[m].q);
     if (has_attr) out.region.push_back(in.region[std::size_t(merged[m].t)]);
   }
-  // Segments: the conversion's, without the hole edges, and the merged
-  // quads' edges on a constraint or on the boundary.
+  // Segments: the conversion's, without the hole edges (unless they are
+  // constraints), and the merged quads' edges on a constraint or on the
+  // input boundary.
   std::vector<std::pair<std::uint64_t, int>> segs;
-  auto boundary_marker = [&](std::uint64_t k) -> int {
-    const auto c = constraint.find(k);
-    if (c != constraint.end()) return c->second;
-    const auto& e = edge_tris[k];
-    return e[1] < 0 ? 1 : 0;  // 0: an interior edge, not a segment
-  };
   for (std::size_t k = 0; k < out.segments.size(); ++k) {
     const std::uint64_t kk = key(out.segments[k][0], out.segments[k][1]);
-    const auto e = edge_tris.find(kk);
-    // Edges of the input: segments only where they were constraints or
-    // boundary of the input; new edges (split by Steiner points) are kept.
-    if (e != edge_tris.end() && boundary_marker(kk) == 0) continue;
+    if (holes.count(kk) && !constraint.count(kk)) continue;
     segs.push_back({kk, out.segment_markers[k]});
   }
   for (std::size_t m = 0; m < merged.size(); ++m) {
     if (!alive[m]) continue;
-    const auto& q = merged[m].q;
-    for (int i = 0; i < 4; ++i) {
-      const std::uint64_t kk = key(q[i], q[(i + 1) % 4]);
-      const int marker = boundary_marker(kk);
-      if (marker != 0 || constraint.count(kk)) segs.push_back({kk, marker});
-    }
+    for (const int t : {merged[m].t, merged[m].u})
+      for (int j = 0; j < 3; ++j) {
+        const int u = nbr[std::size_t(t)][j];
+        if (u == merged[m].t || u == merged[m].u) continue;  // the merged diagonal
+        const std::uint64_t kk = key(T[std::size_t(t)][j], T[std::size_t(t)][(j + 1) % 3]);
+        const auto c = constraint.find(kk);
+        if (c != constraint.end()) segs.push_back({kk, c->second});
+        else if (u < 0) segs.push_back({kk, 1});
+      }
   }
   std::sort(segs.begin(), segs.end());
   segs.erase(std::unique(segs.begin(), segs.end(), [](const auto& x, const auto& y) { return x.first == y.first; }), segs.end());
