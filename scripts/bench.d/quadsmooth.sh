@@ -232,5 +232,12 @@ for spec in "VentricleModel:VentricleModel.png:--threshold 128" "BinaryImage:Bin
     /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q l.q.ele ls.msh --stats ls.json
     msh_quality ls.msh "--lattice $side: +tri2quad+qs"
     echo "  ($(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' l.1.ele) triangles; quadsmooth $(stat smooth_seconds ls.json) s library, $(cat t.txt) s wall)"
+    # The quad chain: a square lattice, its squares merged first.
+    "$BIN/poly2tri" -q r.poly l.1.ele --square-lattice "$side"
+    "$BIN/tri2quad" -q l.1.ele l.q.ele --pair-above 40 --stats lq.json
+    /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q l.q.ele ls.msh --stats ls.json
+    msh_quality ls.msh "--square-lattice $side, --pair-above 40: +qs"
+    echo "  ($(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' l.1.ele) triangles, $(stat pairs_first lq.json) squares merged first;" \
+         "quadsmooth $(stat smooth_seconds ls.json) s library, $(cat t.txt) s wall)"
   done
 done
