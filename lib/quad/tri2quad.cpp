@@ -1188,18 +1188,18 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     r.cases.push_back({"pairs_first_abandoned", 1});
     return r;
   };
-  if (nt == 0) return plain();
-  for (const auto& tr : in.triangles)
-    for (int v : tr)
-      if (v < 0 || std::size_t(v) >= np) return plain();  // convert() names the error
-  for (const Point2& p : in.points)
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) return plain();
+  {
+    // The input checks of the plain conversion, with the same errors (the
+    // remaining triangles alone might not show them).
+    Tri2QuadResult scratch;
+    Converter check(in, opt, scratch);
+    check.setup();
+    check.components();
+  }
   // Counter-clockwise triangles and their edges.
   std::vector<std::array<int, 3>> T(in.triangles);
   for (auto& tr : T) {
-    const int o = t2q::orient(in.points[tr[0]], in.points[tr[1]], in.points[tr[2]]);
-    if (o == 0) return plain();
-    if (o < 0) std::swap(tr[1], tr[2]);
+    if (t2q::orient(in.points[tr[0]], in.points[tr[1]], in.points[tr[2]]) < 0) std::swap(tr[1], tr[2]);
   }
   auto key = [](int a, int b) { return a < b ? (std::uint64_t(a) << 32) | std::uint32_t(b) : (std::uint64_t(b) << 32) | std::uint32_t(a); };
   // The triangle across each edge (-1: an input boundary edge), from the
@@ -1212,8 +1212,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t k = i;
     while (k < edges.size() && edges[k].first == edges[i].first) ++k;
-    if (k - i > 2) return plain();  // not a 2-manifold: convert() says so
-    if (k - i == 2) {
+    if (k - i == 2) {  // (more than two: refused by the checks above)
       const int a = edges[i].second, b = edges[i + 1].second;
       nbr[std::size_t(a / 3)][a % 3] = b / 3;
       nbr[std::size_t(b / 3)][b % 3] = a / 3;
@@ -1230,7 +1229,6 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   std::unordered_map<std::uint64_t, int> constraint;  // edge -> marker
   for (std::size_t k = 0; k < in.constraints.size(); ++k) {
     const auto c = in.constraints[k];
-    if (c[0] < 0 || c[1] < 0 || std::size_t(c[0]) >= np || std::size_t(c[1]) >= np) return plain();
     constraint[key(c[0], c[1])] = k < in.constraint_markers.size() ? in.constraint_markers[k] : 1;
   }
   std::vector<std::uint8_t> conb(nt, 0);  // constraint edges of each triangle

@@ -115,11 +115,22 @@ cat > bad.ele <<'N'
 4 4 1 5
 N
 printf '0 2 0 1\n1 1\n1 1 5 1\n0\n' > bad.poly
-"$T" bad.ele bad.q.ele 2> bad.err; rc=$?
-[ $rc = 1 ] || fail "dangling edge: exit $rc, expected 1"
-grep -Eq '\((1, 5|5, 1)\)' bad.err || fail "dangling edge not named: $(cat bad.err)"
-[ "$(wc -l < bad.err)" = 1 ] || fail "error is not one line"
-[ ! -e bad.q.ele ] || fail "output written on error"
+for pa in 0 40; do  # pairs first refuses it the same way (its pairs would hide it)
+  "$T" bad.ele bad.q.ele --pair-above $pa 2> bad.err; rc=$?
+  [ $rc = 1 ] || fail "dangling edge, --pair-above $pa: exit $rc, expected 1"
+  grep -Eq '\((1, 5|5, 1)\)' bad.err || fail "dangling edge not named: $(cat bad.err)"
+  [ "$(wc -l < bad.err)" = 1 ] || fail "error is not one line"
+  [ ! -e bad.q.ele ] || fail "output written on error"
+done
+# A dangling constraint between triangles that pairs first would merge
+# (every lattice square across its diagonal): still refused.
+printf '9 2 0 0\n1 0 0\n2 1 0\n3 2 0\n4 0 1\n5 1 1\n6 2 1\n7 0 2\n8 1 2\n9 2 2\n' > bad2.node
+printf '8 3 0\n1 1 2 5\n2 1 5 4\n3 2 3 6\n4 2 6 5\n5 4 5 8\n6 4 8 7\n7 5 6 9\n8 5 9 8\n' > bad2.ele
+printf '0 2 0 1\n1 1\n1 2 5 1\n0\n' > bad2.poly
+"$T" bad2.ele bad2.q.ele --pair-above 40 2> bad.err; rc=$?
+[ $rc = 1 ] || fail "dangling edge under merged pairs: exit $rc, expected 1"
+grep -Eq '\((2, 5|5, 2)\)' bad.err || fail "dangling edge not named: $(cat bad.err)"
+[ ! -e bad2.q.ele ] || fail "output written on error"
 
 # Truncated input.
 head -3 sq.ele > trunc.ele; cp sq.node trunc.node
