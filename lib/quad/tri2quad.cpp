@@ -1188,74 +1188,23 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     r.cases.push_back({"pairs_first_abandoned", 1});
     return r;
   };
-  {
-    // The input checks of the plain conversion, with the same errors (the
-    // remaining triangles alone might not show them).
-    Tri2QuadResult scratch;
-    Converter check(in, opt, scratch);
-    check.setup();
-    check.components();
-  }
-  // Counter-clockwise triangles and their edges.
-  std::vector<std::array<int, 3>> T(in.triangles);
-  for (auto& tr : T) {
-    if (t2q::orient(in.points[tr[0]], in.points[tr[1]], in.points[tr[2]]) < 0) std::swap(tr[1], tr[2]);
-  }
-  auto key = [](int a, int b) { return a < b ? (std::uint64_t(a) << 32) | std::uint32_t(b) : (std::uint64_t(b) << 32) | std::uint32_t(a); };
-  // The triangle across each edge (-1: an input boundary edge), from the
-  // sorted edge list (a hash map of 3t edges costs twice as much).
-  std::vector<std::pair<std::uint64_t, int>> edges(3 * nt);
+  // The plain conversion's set-up: its input checks (the same errors; the
+  // remaining triangles alone might not show them), counter-clockwise
+  // triangles T, neighbours nb, constraint and boundary bits con, segment
+  // markers segs, and h.
+  Tri2QuadResult whole;
+  Converter cv(in, opt, whole);
+  cv.setup();
+  cv.components();
+  const auto& T = cv.T;
+  const auto& nbr = cv.nb;
+  const std::size_t h = whole.components;
+  // Constraint bits of interior edges only (con also marks the boundary).
+  std::vector<std::uint8_t> conb(nt, 0);
   for (std::size_t t = 0; t < nt; ++t)
-    for (int j = 0; j < 3; ++j) edges[3 * t + std::size_t(j)] = {key(T[t][j], T[t][(j + 1) % 3]), int(3 * t) + j};
-  std::sort(edges.begin(), edges.end());
-  std::vector<std::array<int, 3>> nbr(nt, {-1, -1, -1});
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t k = i;
-    while (k < edges.size() && edges[k].first == edges[i].first) ++k;
-    if (k - i == 2) {  // (more than two: refused by the checks above)
-      const int a = edges[i].second, b = edges[i + 1].second;
-      nbr[std::size_t(a / 3)][a % 3] = b / 3;
-      nbr[std::size_t(b / 3)][b % 3] = a / 3;
-    }
-    i = k;
-  }
-  // The triangles on each side of an input edge.
-  auto sides = [&](int a, int b) {
-    std::array<int, 2> r{-1, -1};
-    auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(key(a, b), -1));
-    for (int n = 0; it != edges.end() && it->first == key(a, b) && n < 2; ++it, ++n) r[std::size_t(n)] = it->second / 3;
-    return r;
-  };
-  std::unordered_map<std::uint64_t, int> constraint;  // edge -> marker
-  for (std::size_t k = 0; k < in.constraints.size(); ++k) {
-    const auto c = in.constraints[k];
-    constraint[key(c[0], c[1])] = k < in.constraint_markers.size() ? in.constraint_markers[k] : 1;
-  }
-  std::vector<std::uint8_t> conb(nt, 0);  // constraint edges of each triangle
-  if (!constraint.empty())
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int j = 0; j < 3; ++j)
-        if (constraint.count(key(T[t][j], T[t][(j + 1) % 3]))) conb[t] |= std::uint8_t(1u << j);
+    for (int j = 0; j < 3; ++j)
+      if ((cv.con[t] >> j & 1) && nbr[t][j] >= 0) conb[t] |= std::uint8_t(1u << j);
   const bool has_attr = in.region.size() == nt;
-  // t and h of the whole mesh (the bounds are the thesis's for it).
-  std::size_t h = 0;
-  {
-    std::vector<int> comp(nt, -1), stack;
-    for (std::size_t s = 0; s < nt; ++s) {
-      if (comp[s] >= 0) continue;
-      comp[s] = int(h);
-      stack.assign(1, int(s));
-      while (!stack.empty()) {
-        const int t = stack.back();
-        stack.pop_back();
-        for (int j = 0; j < 3; ++j) {
-          const int u = nbr[std::size_t(t)][j];
-          if (u >= 0 && !(conb[std::size_t(t)] >> j & 1) && comp[u] < 0) { comp[u] = int(h); stack.push_back(u); }
-        }
-      }
-      ++h;
-    }
-  }
   // Candidate pairs, best first (ties by triangle ids: deterministic).
   struct Pair { double mu; int t, u; std::array<int, 4> q; };
   std::vector<Pair> cand;
@@ -1352,28 +1301,27 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     }
   }
 
-  std::vector<std::array<int, 2>> con_sides(in.constraints.size());
-  for (std::size_t k = 0; k < in.constraints.size(); ++k) con_sides[k] = sides(in.constraints[k][0], in.constraints[k][1]);
   // Hole edges: edges of a remaining triangle with a merged one across.
   std::unordered_set<std::uint64_t> holes;
   Tri2QuadResult rest;
   for (int round = 0;; ++round) {
     if (round == 8) return plain();
-    // The other triangles, with the constraints that are still their edges.
+    // The other triangles, with their constraint and boundary edges (each
+    // once, with its marker).
     Tri2QuadInput r;
     r.points = in.points;
     r.index_base = in.index_base;
     r.path = in.path;
-    for (std::size_t t = 0; t < nt; ++t)
-      if (mate[t] < 0) {
-        r.triangles.push_back(T[t]);
-        if (has_attr) r.region.push_back(in.region[t]);
-      }
-    for (std::size_t k = 0; k < in.constraints.size(); ++k) {
-      const auto& e = con_sides[k];
-      if ((e[0] >= 0 && mate[std::size_t(e[0])] < 0) || (e[1] >= 0 && mate[std::size_t(e[1])] < 0)) {
-        r.constraints.push_back(in.constraints[k]);
-        if (k < in.constraint_markers.size()) r.constraint_markers.push_back(in.constraint_markers[k]);
+    for (std::size_t t = 0; t < nt; ++t) {
+      if (mate[t] >= 0) continue;
+      r.triangles.push_back(T[t]);
+      if (has_attr) r.region.push_back(in.region[t]);
+      for (int j = 0; j < 3; ++j) {
+        const int u = nbr[t][j];
+        if (!(cv.con[t] >> j & 1) || (u > int(t) && mate[std::size_t(u)] < 0)) continue;
+        const int a = T[t][j], b = T[t][(j + 1) % 3];
+        r.constraints.push_back({a, b});
+        r.constraint_markers.push_back(cv.segs.at(ekey(a, b)));
       }
     }
     if (r.triangles.empty()) {
@@ -1386,7 +1334,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     for (std::size_t t = 0; t < nt; ++t)
       if (mate[t] < 0)
         for (int j = 0; j < 3; ++j)
-          if (nbr[t][j] >= 0 && mate[std::size_t(nbr[t][j])] >= 0) holes.insert(key(T[t][j], T[t][(j + 1) % 3]));
+          if (nbr[t][j] >= 0 && mate[std::size_t(nbr[t][j])] >= 0) holes.insert(ekey(T[t][j], T[t][(j + 1) % 3]));
     if (!r.triangles.empty()) {
       try {
         rest = convert(r, opt, &holes);
@@ -1396,14 +1344,14 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     }
     // A hole edge must come out whole: a Steiner point on it would leave
     // the merged quad a pentagon. Such quads go back to the triangles.
-    std::unordered_set<std::uint64_t> whole;
-    for (const auto& sg : rest.segments) whole.insert(key(sg[0], sg[1]));
+    std::unordered_set<std::uint64_t> kept;
+    for (const auto& sg : rest.segments) kept.insert(ekey(sg[0], sg[1]));
     bool conflict = false;
     for (std::size_t t = 0; t < nt; ++t)
       if (mate[t] < 0)
         for (int j = 0; j < 3; ++j) {
           const int u = nbr[t][j];
-          if (u >= 0 && mate[std::size_t(u)] >= 0 && !whole.count(key(T[t][j], T[t][(j + 1) % 3]))) {
+          if (u >= 0 && mate[std::size_t(u)] >= 0 && !kept.count(ekey(T[t][j], T[t][(j + 1) % 3]))) {
             unmerge(mate[std::size_t(u)]);
             conflict = true;
           }
@@ -1424,11 +1372,11 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   }
   // Segments: the conversion's, without the hole edges (unless they are
   // constraints), and the merged quads' edges on a constraint or on the
-  // input boundary.
+  // input boundary (cv.segs, with their markers).
   std::vector<std::pair<std::uint64_t, int>> segs;
   for (std::size_t k = 0; k < out.segments.size(); ++k) {
-    const std::uint64_t kk = key(out.segments[k][0], out.segments[k][1]);
-    if (holes.count(kk) && !constraint.count(kk)) continue;
+    const std::uint64_t kk = ekey(out.segments[k][0], out.segments[k][1]);
+    if (holes.count(kk) && !cv.segs.count(kk)) continue;
     segs.push_back({kk, out.segment_markers[k]});
   }
   for (std::size_t m = 0; m < merged.size(); ++m) {
@@ -1437,10 +1385,9 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
       for (int j = 0; j < 3; ++j) {
         const int u = nbr[std::size_t(t)][j];
         if (u == merged[m].t || u == merged[m].u) continue;  // the merged diagonal
-        const std::uint64_t kk = key(T[std::size_t(t)][j], T[std::size_t(t)][(j + 1) % 3]);
-        const auto c = constraint.find(kk);
-        if (c != constraint.end()) segs.push_back({kk, c->second});
-        else if (u < 0) segs.push_back({kk, 1});
+        const std::uint64_t kk = ekey(T[std::size_t(t)][j], T[std::size_t(t)][(j + 1) % 3]);
+        const auto c = cv.segs.find(kk);  // constraints and boundary
+        if (c != cv.segs.end()) segs.push_back({kk, c->second});
       }
   }
   std::sort(segs.begin(), segs.end());
