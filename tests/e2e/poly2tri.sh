@@ -140,6 +140,24 @@ for r in E[1:]:
 assert not any(4 < x < 6 and 4 < y < 6 for x, y in pts.values()), "a vertex in the hole"
 assert abs(area - 96) < 1e-9, area
 PYEOF
+# --square-lattice: the same guarantees, and the interior is right isosceles
+# triangles (halves of the lattice squares; the equilateral lattice's are 60).
+expect 0 "$T" sq.poly sq.s.ele --square-lattice 0.5 --stats s.json
+python3 check.py sq.s.ele sq.poly 20.7 > c.txt || { cat c.txt; fail "square lattice: sq mesh"; }
+python3 - <<'PYEOF' || fail "square lattice: not mostly right isosceles triangles"
+import math
+L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
+N, E = L("sq.s.node"), L("sq.s.ele")
+pts = {int(r[0]): (float(r[1]), float(r[2])) for r in N[1:]}
+def angles(a, b, c):
+    out = []
+    for p, q, r in ((a, b, c), (b, c, a), (c, a, b)):
+        u, v = (q[0] - p[0], q[1] - p[1]), (r[0] - p[0], r[1] - p[1])
+        out.append(math.degrees(math.atan2(abs(u[0] * v[1] - u[1] * v[0]), u[0] * v[0] + u[1] * v[1])))
+    return sorted(out)
+right = sum(1 for r in E[1:] if all(abs(x - y) < 1e-6 for x, y in zip(angles(*(pts[int(t)] for t in r[1:4])), (45, 45, 90))))
+assert right > 0.6 * (len(E) - 1), (right, len(E) - 1)
+PYEOF
 for seed in 1 2 3 4 5 6; do
   python3 - "$seed" > star.poly <<'PYEOF'
 import math, random, sys
