@@ -1231,11 +1231,11 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
       mate[p.t] = mate[p.u] = int(merged.size());
       merged.push_back(p);
     }
-  std::vector<char> alive(merged.size(), 1);
+  // A merged quad is still merged while its triangles name it as their mate.
+  auto alive = [&](std::size_t m) { return mate[std::size_t(merged[m].t)] == int(m); };
   std::size_t returned = 0;
   auto unmerge = [&](int m) {
     ++returned;
-    alive[std::size_t(m)] = 0;
     mate[std::size_t(merged[std::size_t(m)].t)] = mate[std::size_t(merged[std::size_t(m)].u)] = -1;
   };
   auto across = [&](int t, int j) { return nbr[std::size_t(t)][j]; };
@@ -1365,7 +1365,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   out.components = h;
   std::size_t pairs = 0;
   for (std::size_t m = 0; m < merged.size(); ++m) {
-    if (!alive[m]) continue;
+    if (!alive(m)) continue;
     ++pairs;
     out.quads.push_back(merged[m].q);
     if (has_attr) out.region.push_back(in.region[std::size_t(merged[m].t)]);
@@ -1380,7 +1380,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     segs.push_back({kk, out.segment_markers[k]});
   }
   for (std::size_t m = 0; m < merged.size(); ++m) {
-    if (!alive[m]) continue;
+    if (!alive(m)) continue;
     for (const int t : {merged[m].t, merged[m].u})
       for (int j = 0; j < 3; ++j) {
         const int u = nbr[std::size_t(t)][j];
