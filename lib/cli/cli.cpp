@@ -58,6 +58,14 @@ double Tool::elapsed() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
+int Tool::finish(const Json& result, const std::string& failed_guarantee) {
+  if (result.kind() == Json::Kind::Object)
+    for (std::size_t i = 0; i < result.keys().size(); ++i) stats[result.keys()[i]] = result.items()[i];
+  if (failed_guarantee.empty()) return kOk;
+  info("guarantee not met: " + failed_guarantee);
+  return kGuarantee;
+}
+
 int Tool::run(int argc, char** argv, const std::function<int()>& body) {
   try {
     app.parse(argc, argv);

@@ -8,9 +8,15 @@
 //     tool.app.add_option("IN", in, "input image")->required();
 //     tool.add_seed();
 //     return tool.run(argc, argv, [&] {
-//       ... library calls; tool.stats["voxels"] = n; tool.info("...");
-//       return imgmesh::cli::kOk;
+//       const auto result = imgmesh::library_call(...);   // write the output
+//       return tool.finish(result);
 //     });
+//
+// A library result type has `Json to_json() const` (what --stats shows of
+// it) and `std::string failed_guarantee() const` (which guarantee it could
+// not meet, in words; empty when all hold): finish() is the one path from a
+// result to the stats and the exit status. Whole-run time is measured here
+// ("seconds"), not in the libraries.
 //   }
 #pragma once
 #include "util/json.hpp"
@@ -42,6 +48,13 @@ public:
   // -q, -v, --stats, --progress).
   void add_seed(std::uint64_t default_seed = 0);
   void add_threads();
+
+  // The result's to_json() entries join the stats; a failed guarantee is said
+  // on stderr ("guarantee not met: ...") and gives kGuarantee, else kOk.
+  template <class Result> int finish(const Result& result) {
+    return finish(result.to_json(), result.failed_guarantee());
+  }
+  int finish(const Json& result, const std::string& failed_guarantee);
 
   // Parse, run body, catch: prints "name: path: what" on stderr and returns
   // the exit code. Writes --stats (with "tool", "version", "exit_status",

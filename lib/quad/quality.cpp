@@ -38,20 +38,6 @@ double pseudo_angle(double cr, double dt) {
 }
 } // namespace
 
-int orientation_exact(const Point2& a, const Point2& b, const Point2& c) {
-  const auto o = CGAL::orientation(K::Point_2(a[0], a[1]), K::Point_2(b[0], b[1]),
-                                   K::Point_2(c[0], c[1]));
-  return o == CGAL::LEFT_TURN ? 1 : (o == CGAL::RIGHT_TURN ? -1 : 0);
-}
-
-bool is_strictly_convex(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-  // Four left turns make a convex polygon only if it winds once; a
-  // self-intersecting "bow-tie" has turns of both signs, and a doubly wound
-  // quad cannot have 4 vertices, so four left turns suffice.
-  return orientation(a, b, c) > 0 && orientation(b, c, d) > 0 && orientation(c, d, a) > 0 &&
-         orientation(d, a, b) > 0;
-}
-
 double min_triangle_angle(const Point2& a, const Point2& b, const Point2& c) {
   const double A = angle_at(a, b, c), B = angle_at(b, c, a);
   const double C = std::max(0.0, 180.0 - A - B);

@@ -3,6 +3,7 @@
 // Angles are in degrees. CGAL stays inside quality.cpp.
 #pragma once
 #include "planar/triangle_io.hpp"
+#include "quad/predicates.hpp"
 #include "util/json.hpp"
 
 #include <array>
@@ -11,27 +12,6 @@
 #include <vector>
 
 namespace imgmesh {
-
-// Strict convexity with exact predicates: every corner turns left (CGAL
-// orientation with Exact_predicates_inexact_constructions_kernel). A quad
-// with a zero-length edge, a straight angle or clockwise order is not.
-bool is_strictly_convex(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
-// Exact orientation of the triangle (a, b, c) by CGAL's exact predicate:
-// +1 left turn, -1 right, 0 collinear.
-int orientation_exact(const Point2& a, const Point2& b, const Point2& c);
-// The same, exact, with Shewchuk's static filter inlined: when the double
-// determinant exceeds its worst rounding error its sign is exact, and only
-// near-degenerate cases pay for the exact predicate (hot in the smoothing
-// guard, which calls it tens of millions of times).
-inline int orientation(const Point2& a, const Point2& b, const Point2& c) {
-  const double l = (a[0] - c[0]) * (b[1] - c[1]);
-  const double r = (a[1] - c[1]) * (b[0] - c[0]);
-  const double det = l - r;
-  const double bound = 3.3306690738754716e-16 * (std::fabs(l) + std::fabs(r));
-  if (det > bound) return 1;
-  if (-det > bound) return -1;
-  return orientation_exact(a, b, c);
-}
 
 // Joe's mu: the smallest angle of the four triangles [a,b,d], [c,d,b],
 // [a,b,c], [d,a,c] obtained from either diagonal. 45 for a square, the

@@ -37,11 +37,6 @@ Json SmoothStats::to_json() const {
 
 namespace {
 
-inline std::uint64_t edge_key(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
-
 // sin of the smallest angle of a triangle from its squared edge lengths
 // and twice its area. The smallest angle is at most 60 degrees, where sin
 // is monotone: comparing sines compares angles without any trigonometry
@@ -69,11 +64,6 @@ inline double sin_mu(const Point2& a, const Point2& b, const Point2& c, const Po
   // Diagonal bd: [a,b,d], [c,d,b]; diagonal ac: [a,b,c], [d,a,c].
   return std::min(std::min(sin_min_angle(ab, bd, da, cross(a, b, d)), sin_min_angle(cd, bd, bc, cross(c, d, b))),
                   std::min(sin_min_angle(ab, bc, ac, cross(a, b, c)), sin_min_angle(da, ac, cd, cross(d, a, c))));
-}
-
-inline bool strictly_convex(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
-  return orientation(a, b, c) > 0 && orientation(b, c, d) > 0 && orientation(c, d, a) > 0 &&
-         orientation(d, a, b) > 0;
 }
 
 // Clean-up for the worst mu is tried only around poor quads: sin(30 deg) for
@@ -200,7 +190,7 @@ private:
   // Feature edges join two fixed vertices: test that first, hash rarely.
   bool is_feature(int a, int b) const { return fixed_[a] && fixed_[b] && feature_.count(edge_key(a, b)) != 0; }
   double quad_smu(const Quad& q) const { return sin_mu(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
-  bool convex(const Quad& q) const { return strictly_convex(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
+  bool convex(const Quad& q) const { return is_strictly_convex(P_[q[0]], P_[q[1]], P_[q[2]], P_[q[3]]); }
   // Try moving v to p (with back-off toward the current position); the guard.
   bool try_move(int v, Point2 p, bool slide_line, const Slide* s);
   bool angle_based_target(int v, Point2& out) const;
@@ -1125,7 +1115,7 @@ void QuadImprover::collapse_pass() {
         if (o == int(q) || !ok) return;
         Quad E = Q_[o];
         for (int& x : E) if (x == c) x = a;
-        if (!strictly_convex(P_[E[0]], P_[E[1]], P_[E[2]], P_[E[3]])) { ok = false; return; }
+        if (!is_strictly_convex(P_[E[0]], P_[E[1]], P_[E[2]], P_[E[3]])) { ok = false; return; }
         worst = std::min(worst, quad_smu(E));
       };
       for (int o : vq_[a]) eval(o);

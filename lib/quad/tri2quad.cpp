@@ -71,11 +71,6 @@ struct Region {
   int x = -1, y = -1;
 };
 
-std::uint64_t ekey(int a, int b) {
-  if (a > b) std::swap(a, b);
-  return (std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b);
-}
-
 struct Converter {
   const Tri2QuadInput& in;
   const Tri2QuadOptions& opt;
@@ -180,14 +175,14 @@ struct Converter {
       }
       if (!edge)
         throw Error("constraint segment " + edge_name(s[0], s[1]) + " is not an edge of the triangle mesh", in.path);
-      segs[ekey(s[0], s[1])] = marker;
+      segs[edge_key(s[0], s[1])] = marker;
     }
     // Every boundary edge is a constraint too.
     for (std::size_t t = 0; t < T.size(); ++t)
       for (int j = 0; j < 3; ++j)
         if (nb[t][j] < 0) {
           con[t] |= std::uint8_t(1u << j);
-          segs.emplace(ekey(T[t][j], T[t][(j + 1) % 3]), 1);
+          segs.emplace(edge_key(T[t][j], T[t][(j + 1) % 3]), 1);
         }
     // Input restriction (3.3): the constraint complex has no dangling end.
     std::vector<std::uint8_t> deg(n, 0);
@@ -253,7 +248,7 @@ struct Converter {
     // may take a point.
     auto free_boundary = [&](std::size_t t) {
       for (int j = 0; j < 3; ++j)
-        if (nb[t][j] < 0 && !(avoid && avoid->count(ekey(T[t][j], T[t][(j + 1) % 3])))) return true;
+        if (nb[t][j] < 0 && !(avoid && avoid->count(edge_key(T[t][j], T[t][(j + 1) % 3])))) return true;
       return false;
     };
     for (std::size_t i = 0; i < 2 * T.size(); ++i) {
@@ -297,12 +292,12 @@ struct Converter {
   }
 
   void split_segment(int a, int b, int m) {
-    auto it = segs.find(ekey(a, b));
+    auto it = segs.find(edge_key(a, b));
     if (it == segs.end()) return;
     const int marker = it->second;
     segs.erase(it);
-    segs[ekey(a, m)] = marker;
-    segs[ekey(m, b)] = marker;
+    segs[edge_key(a, m)] = marker;
+    segs[edge_key(m, b)] = marker;
   }
 
   // Fig. 3.23: the triangle across (a, b) from `from` gets the point m.
@@ -1082,7 +1077,7 @@ struct Converter {
         for (int t : order) {
           for (int j = 0; j < 3; ++j) {
             const int w = nb[t][j];
-            if (strict && w < 0 && avoid->count(ekey(T[t][j], T[t][(j + 1) % 3]))) continue;
+            if (strict && w < 0 && avoid->count(edge_key(T[t][j], T[t][(j + 1) % 3]))) continue;
             if ((PC < 0 && w < 0) || (PC >= 0 && w >= 0 && (con[t] >> j & 1) && comp[w] == PC)) {
               if (root < 0 || seen_roots <= root_pick) { root = t; rslot = j; }
               ++seen_roots;
@@ -1321,7 +1316,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
         if (!(cv.con[t] >> j & 1) || (u > int(t) && mate[std::size_t(u)] < 0)) continue;
         const int a = T[t][j], b = T[t][(j + 1) % 3];
         r.constraints.push_back({a, b});
-        r.constraint_markers.push_back(cv.segs.at(ekey(a, b)));
+        r.constraint_markers.push_back(cv.segs.at(edge_key(a, b)));
       }
     }
     if (r.triangles.empty()) {
@@ -1334,7 +1329,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     for (std::size_t t = 0; t < nt; ++t)
       if (mate[t] < 0)
         for (int j = 0; j < 3; ++j)
-          if (nbr[t][j] >= 0 && mate[std::size_t(nbr[t][j])] >= 0) holes.insert(ekey(T[t][j], T[t][(j + 1) % 3]));
+          if (nbr[t][j] >= 0 && mate[std::size_t(nbr[t][j])] >= 0) holes.insert(edge_key(T[t][j], T[t][(j + 1) % 3]));
     if (!r.triangles.empty()) {
       try {
         rest = convert(r, opt, &holes);
@@ -1345,13 +1340,13 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
     // A hole edge must come out whole: a Steiner point on it would leave
     // the merged quad a pentagon. Such quads go back to the triangles.
     std::unordered_set<std::uint64_t> kept;
-    for (const auto& sg : rest.segments) kept.insert(ekey(sg[0], sg[1]));
+    for (const auto& sg : rest.segments) kept.insert(edge_key(sg[0], sg[1]));
     bool conflict = false;
     for (std::size_t t = 0; t < nt; ++t)
       if (mate[t] < 0)
         for (int j = 0; j < 3; ++j) {
           const int u = nbr[t][j];
-          if (u >= 0 && mate[std::size_t(u)] >= 0 && !kept.count(ekey(T[t][j], T[t][(j + 1) % 3]))) {
+          if (u >= 0 && mate[std::size_t(u)] >= 0 && !kept.count(edge_key(T[t][j], T[t][(j + 1) % 3]))) {
             unmerge(mate[std::size_t(u)]);
             conflict = true;
           }
@@ -1375,7 +1370,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   // input boundary (cv.segs, with their markers).
   std::vector<std::pair<std::uint64_t, int>> segs;
   for (std::size_t k = 0; k < out.segments.size(); ++k) {
-    const std::uint64_t kk = ekey(out.segments[k][0], out.segments[k][1]);
+    const std::uint64_t kk = edge_key(out.segments[k][0], out.segments[k][1]);
     if (holes.count(kk) && !cv.segs.count(kk)) continue;
     segs.push_back({kk, out.segment_markers[k]});
   }
@@ -1385,7 +1380,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
       for (int j = 0; j < 3; ++j) {
         const int u = nbr[std::size_t(t)][j];
         if (u == merged[m].t || u == merged[m].u) continue;  // the merged diagonal
-        const std::uint64_t kk = ekey(T[std::size_t(t)][j], T[std::size_t(t)][(j + 1) % 3]);
+        const std::uint64_t kk = edge_key(T[std::size_t(t)][j], T[std::size_t(t)][(j + 1) % 3]);
         const auto c = cv.segs.find(kk);  // constraints and boundary
         if (c != cv.segs.end()) segs.push_back({kk, c->second});
       }
