@@ -5,8 +5,10 @@
 
 #include <iostream>
 #include <new>
+#include <set>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 namespace imgmesh::cli {
 
@@ -19,6 +21,7 @@ Tool::Tool(std::string name, std::string description)
   app.add_option("--stats", stats_path_, "Write a JSON report (counts, timings, guarantees) to FILE, or - for stdout")
       ->type_name("FILE|-");
   app.add_flag("--progress", progress_flag_, "Show progress on stderr even when it is not a terminal");
+  add_help_man();
 }
 
 void Tool::add_seed(std::uint64_t default_seed) {
@@ -56,6 +59,102 @@ void Tool::report_progress(const std::string& msg) const {
 
 double Tool::elapsed() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void Tool::add_help_man() {
+  // Like --version: the callback runs before required options are checked.
+  // The empty group hides it from --help.
+  app.add_flag_callback("--help-man", [this] {
+       std::cout << man_sections();
+       throw CLI::Success();
+     })->group("");
+}
+
+namespace {
+
+// Text for roff: a backslash is \e, a minus sign \-, and a line must not
+// start with a control character.
+std::string roff(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\\') out += "\\e";
+    else if (c == '-') out += "\\-";
+    else if (c == '\n') out += ' ';
+    else out += c;
+  }
+  if (!out.empty() && (out[0] == '.' || out[0] == '\'')) out.insert(0, "\\&");
+  return out;
+}
+
+bool repeatable(const CLI::Option* o) { return o->get_expected_max() >= CLI::detail::expected_max_vector_size; }
+// Flags have no type name.
+bool takes_value(const CLI::Option* o) { return o->get_type_size() != 0 && !o->get_type_name().empty(); }
+
+// The option as the SYNOPSIS shows it: one name (the first long one) and its value.
+std::string synopsis_item(const CLI::Option* o) {
+  std::string item;
+  if (!o->nonpositional()) {
+    item = "\\fI" + roff(o->get_name(true)) + "\\fR";
+  } else {
+    const std::string name = o->get_lnames().empty() ? "-" + o->get_snames().front() : "--" + o->get_lnames().front();
+    item = "\\fB" + roff(name) + "\\fR";
+    if (takes_value(o)) item += " \\fI" + roff(o->get_type_name()) + "\\fR";
+  }
+  if (!o->get_required()) item = "[" + item + "]";
+  if (repeatable(o)) item += "...";
+  return item;
+}
+
+// The option's tag line in OPTIONS: every name, then its value.
+std::string options_tag(const CLI::Option* o) {
+  if (!o->nonpositional()) return "\\fI" + roff(o->get_name(true)) + "\\fR";
+  std::string tag;
+  for (const auto& s : o->get_snames()) tag += (tag.empty() ? "" : ", ") + std::string("\\fB") + roff("-" + s) + "\\fR";
+  for (const auto& l : o->get_lnames()) tag += (tag.empty() ? "" : ", ") + std::string("\\fB") + roff("--" + l) + "\\fR";
+  if (takes_value(o)) tag += " \\fI" + roff(o->get_type_name()) + "\\fR";
+  if (repeatable(o)) tag += " ...";
+  return tag;
+}
+
+std::string option_names(const std::set<CLI::Option*>& options) {
+  std::string names;
+  for (const CLI::Option* o : options) names += (names.empty() ? "" : ", ") + std::string("\\fB") + roff(o->get_name()) + "\\fR";
+  return names;
+}
+
+} // namespace
+
+std::string Tool::man_sections() const {
+  // Positionals first, as --help lists them; hidden options (empty group) left out.
+  std::vector<const CLI::Option*> options;
+  for (const CLI::Option* o : app.get_options())
+    if (!o->get_group().empty() && !o->nonpositional()) options.push_back(o);
+  for (const CLI::Option* o : app.get_options())
+    if (!o->get_group().empty() && o->nonpositional()) options.push_back(o);
+
+  std::string out = ".\\\" @SYNOPSIS@\n.B " + roff(name_) + "\n";
+  for (const CLI::Option* o : options) out += synopsis_item(o) + "\n";
+  out += ".\\\" @OPTIONS@\n";
+  for (const CLI::Option* o : options) {
+    out += ".TP\n" + options_tag(o) + "\n";
+    std::string body = o->get_description();
+    if (!body.empty() && body.back() != '.') body += '.';
+    out += roff(body) + "\n";
+    // A description that speaks of its default (e.g. "all cores") has the
+    // one that holds on every machine.
+    if (takes_value(o) && !o->get_default_str().empty() && body.find("default") == std::string::npos &&
+        body.find("Default") == std::string::npos)
+      out += "Default: " + roff(o->get_default_str()) + ".\n";
+    if (o->get_required() && o->nonpositional()) out += "Required.\n";
+    if (repeatable(o) && o->nonpositional()) out += "May be given more than once.\n";
+    if (!o->get_needs().empty()) out += "Needs " + option_names(o->get_needs()) + ".\n";
+    if (!o->get_excludes().empty()) out += "Excludes " + option_names(o->get_excludes()) + ".\n";
+    const std::string key = !o->nonpositional()          ? o->get_name(true)
+                            : !o->get_lnames().empty() ? "--" + o->get_lnames().front()
+                                                       : "-" + o->get_snames().front();
+    out += ".\\\" @NOTE " + key + "@\n";
+  }
+  return out;
 }
 
 int Tool::finish(const Json& result, const std::string& failed_guarantee) {

@@ -77,7 +77,16 @@ public:
   void report_progress(const std::string& msg) const;
   double elapsed() const;
 
+  // The SYNOPSIS and OPTIONS sections of the man page in roff, made from
+  // app's options (names, type names, descriptions, defaults): what the
+  // hidden flag --help-man prints. man/manpage.cmake puts them at the
+  // markers of the hand-written man/NAME.1.in, and that file's note on an
+  // option in place of the option's ".\" @NOTE --name@" line.
+  std::string man_sections() const;
+
 private:
+  void add_help_man();
+
   std::string name_;
   std::string stats_path_;
   bool quiet_ = false, verbose_ = false, progress_flag_ = false, progress_ = false;

@@ -1,21 +1,28 @@
 #!/usr/bin/env bash
 # Every built tool has a man page with the standard sections, and every long
-# option its --help prints appears in that page.
+# option its --help prints appears in that page. The pages are the build's
+# (build/man/NAME.1: man/NAME.1.in with SYNOPSIS and OPTIONS from the tool's
+# --help-man), so this checks the generator and the join too.
 set -u
+pages=${PAGES:-$BIN/../man}
 fail=0
 count=0
 for tool in img2wc wc2implicit implicit-eval implicit2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
   [[ -x "$BIN/$tool" ]] || continue
   count=$((count + 1))
-  page="$MAN/$tool.1"
+  [[ -f "$MAN/$tool.1.in" ]] || { echo "FAIL: $tool has no hand-written page $MAN/$tool.1.in"; fail=1; }
+  page="$pages/$tool.1"
   if [[ ! -f "$page" ]]; then echo "FAIL: $tool has no man page $page"; fail=1; continue; fi
+  ! grep -q '@SYNOPSIS@\|@OPTIONS@\|@NOTE\|@END@' "$page" || { echo "FAIL: $tool.1 keeps a marker of its .in"; fail=1; }
   text=$(sed 's/\\-/-/g; s/\\f[BIRP]//g' "$page")
   for section in NAME SYNOPSIS DESCRIPTION OPTIONS "EXIT STATUS" EXAMPLES "SEE ALSO"; do
     grep -q "^\.SH \"\?$section\"\?" <<<"$text" || { echo "FAIL: $tool.1 lacks section $section"; fail=1; }
   done
   help=$("$BIN/$tool" --help) || { echo "FAIL: $tool --help exited non-zero"; fail=1; continue; }
+  # Each option of --help is an entry of OPTIONS, not only a word elsewhere.
+  options=$(sed -n '/^\.SH "\?OPTIONS/,/^\.SH /p' <<<"$text")
   for opt in $(grep -oE -- '--[a-z][a-z0-9-]*' <<<"$help" | sort -u); do
-    grep -qE -- "${opt}([^a-z0-9-]|$)" <<<"$text" || { echo "FAIL: $tool.1 does not document $opt"; fail=1; }
+    grep -qE -- "${opt}([^a-z0-9-]|$)" <<<"$options" || { echo "FAIL: $tool.1 does not document $opt in OPTIONS"; fail=1; }
   done
   "$BIN/$tool" --version | grep -q "$tool" || { echo "FAIL: $tool --version does not name the tool"; fail=1; }
 done
