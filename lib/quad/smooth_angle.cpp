@@ -132,18 +132,24 @@ bool try_move(QuadMesh& qm, int v, Point2 p, bool slide_line, const Slide* s) {
 
 namespace {
 
-// The energy sum 1/sin(mu) of the quads around v (a soft minimum); false
-// if a quad is not strictly convex or below floor, or the energy reaches cap.
-bool star_energy(const QuadMesh& qm, int v, double floor, double cap, double& energy) {
+// The compass search's eight directions, polled in this order.
+constexpr double kCompass[8][2] = {{1, 0}, {0.7071067811865476, 0.7071067811865476}, {0, 1},
+                                   {-0.7071067811865476, 0.7071067811865476}, {-1, 0},
+                                   {-0.7071067811865476, -0.7071067811865476}, {0, -1},
+                                   {0.7071067811865476, -0.7071067811865476}};
+
+// The energy sum 1/sin(mu) of the quads qs (a soft minimum); false if a
+// quad is not strictly convex or below floor, or the energy reaches cap.
+bool guarded_energy(const QuadMesh& qm, const std::vector<int>& qs, double floor, double cap, double& energy) {
   energy = 0;
-  for (int q : qm.vertex_quads[v]) {
+  for (int q : qs) {
     const double s = qm.sin_mu_of(qm.quads[q]);
     if (s < floor) return false;
     energy += 1 / s;
     if (energy >= cap) return false;
   }
   // Convexity last: most candidate points fail on the energy already.
-  for (int q : qm.vertex_quads[v])
+  for (int q : qs)
     if (!qm.convex(qm.quads[q])) return false;
   return true;
 }
@@ -161,10 +167,6 @@ bool optimize_star(QuadMesh& qm, int v, double h2) {
   const Point2 start = P[v];
   Point2 p = start;
   double best = energy0, h = 0.25 * std::sqrt(h2);
-  static const double dirs[8][2] = {{1, 0}, {0.7071067811865476, 0.7071067811865476}, {0, 1},
-                                    {-0.7071067811865476, 0.7071067811865476}, {-1, 0},
-                                    {-0.7071067811865476, -0.7071067811865476}, {0, -1},
-                                    {0.7071067811865476, -0.7071067811865476}};
   // Opportunistic polling: the first direction that lowers the energy is
   // taken, and polled first again from the new point.
   int first = 0;
@@ -172,9 +174,14 @@ bool optimize_star(QuadMesh& qm, int v, double h2) {
     bool improved = false;
     for (int k = 0; k < 8 && !improved; ++k) {
       const int d = (first + k) & 7;
-      P[v] = {p[0] + h * dirs[d][0], p[1] + h * dirs[d][1]};
+      P[v] = {p[0] + h * kCompass[d][0], p[1] + h * kCompass[d][1]};
       double e;
-      if (star_energy(qm, v, worst0, best * (1 - 1e-12), e)) { best = e; p = P[v]; first = d; improved = true; }
+      if (guarded_energy(qm, qm.vertex_quads[v], worst0, best * (1 - 1e-12), e)) {
+        best = e;
+        p = P[v];
+        first = d;
+        improved = true;
+      }
     }
     P[v] = p;
     if (!improved) h *= 0.5;
@@ -196,22 +203,6 @@ bool optimize_edge(QuadMesh& qm, int u, int v, double h) {
     energy0 += 1 / qm.quad_sin_mu[q];
   }
   if (worst0 >= kOptimizeBelow || !(worst0 > 0)) return false;
-  auto energy = [&](double cap, double& e) {
-    e = 0;
-    for (int q : qs) {
-      const double sq = qm.sin_mu_of(qm.quads[q]);
-      if (sq < worst0) return false;
-      e += 1 / sq;
-      if (e >= cap) return false;
-    }
-    for (int q : qs)
-      if (!qm.convex(qm.quads[q])) return false;
-    return true;
-  };
-  static const double dirs[8][2] = {{1, 0}, {0.7071067811865476, 0.7071067811865476}, {0, 1},
-                                    {-0.7071067811865476, 0.7071067811865476}, {-1, 0},
-                                    {-0.7071067811865476, -0.7071067811865476}, {0, -1},
-                                    {0.7071067811865476, -0.7071067811865476}};
   const Point2 su = P[u], sv = P[v];
   Point2 d{0, 0};  // the displacement so far
   double best = energy0;
@@ -220,11 +211,11 @@ bool optimize_edge(QuadMesh& qm, int u, int v, double h) {
     bool improved = false;
     for (int k = 0; k < 8 && !improved; ++k) {
       const int dk = (first + k) & 7;
-      const Point2 c{d[0] + h * dirs[dk][0], d[1] + h * dirs[dk][1]};
+      const Point2 c{d[0] + h * kCompass[dk][0], d[1] + h * kCompass[dk][1]};
       P[u] = {su[0] + c[0], su[1] + c[1]};
       P[v] = {sv[0] + c[0], sv[1] + c[1]};
       double e;
-      if (energy(best * (1 - 1e-12), e)) { best = e; d = c; first = dk; improved = true; }
+      if (guarded_energy(qm, qs, worst0, best * (1 - 1e-12), e)) { best = e; d = c; first = dk; improved = true; }
     }
     P[u] = {su[0] + d[0], su[1] + d[1]};
     P[v] = {sv[0] + d[0], sv[1] + d[1]};
@@ -283,7 +274,8 @@ int smooth_vertex(QuadMesh& qm, int v) {
   const double d2 = (target[0] - p[0]) * (target[0] - p[0]) + (target[1] - p[1]) * (target[1] - p[1]);
   const double h2 = (x[0] - p[0]) * (x[0] - p[0]) + (x[1] - p[1]) * (x[1] - p[1]);
   int r = 0;
-  if (d2 >= 1e-4 * h2) r = try_move(qm, v, target, false, nullptr) ? kMoved : kRejected;  // else converged to 1e-2 of an edge
+  // Closer than 1e-2 of an edge: converged.
+  if (d2 >= 1e-4 * h2) r = try_move(qm, v, target, false, nullptr) ? kMoved : kRejected;
   if ((r & kMoved) && d2 >= kWakeFar * h2) r |= kFar;
   // Where the angle-based position cannot help a poor quad, climb on the
   // soft minimum of mu itself (compass search, guarded the same way).

@@ -125,7 +125,9 @@ struct QuadMesh {
   // Feature edges join two fixed vertices: test that first, hash rarely.
   bool is_feature(int a, int b) const { return fixed[a] && fixed[b] && features.count(edge_key(a, b)) != 0; }
   double sin_mu_of(const Quad& q) const { return sin_mu(points[q[0]], points[q[1]], points[q[2]], points[q[3]]); }
-  bool convex(const Quad& q) const { return is_strictly_convex(points[q[0]], points[q[1]], points[q[2]], points[q[3]]); }
+  bool convex(const Quad& q) const {
+    return is_strictly_convex(points[q[0]], points[q[1]], points[q[2]], points[q[3]]);
+  }
   int quad_with_edge(int a, int b) const;  // the quad holding the directed edge a -> b, or -1
   Fan fan(int v, int q) const {
     return fixed[v] ? fixed_fan(v, q) : Fan{int(vertex_quads[v].size()), 4, true};  // a free vertex's star is closed
@@ -171,7 +173,8 @@ private:
   int stamp_id = 0;
 };
 
-// now lexicographically above before (by a relative margin).
+// now above before in lexicographic order (each entry compared with a
+// relative margin).
 bool lex_better(const std::vector<double>& now, const std::vector<double>& before);
 
 // ---- smooth_angle.cpp: angle-based smoothing, compass search, colouring ---
