@@ -173,8 +173,8 @@ private:
   int stamp_id = 0;
 };
 
-// now above before in lexicographic order (each entry compared with a
-// relative margin).
+// True if `now` comes after `before` in lexicographic order, each entry
+// compared with a relative margin (patch_sines of after and before).
 bool lex_better(const std::vector<double>& now, const std::vector<double>& before);
 
 // ---- smooth_angle.cpp: angle-based smoothing, compass search, colouring ---
@@ -223,7 +223,8 @@ void swap_pass(QuadMesh& qm, SmoothStats& st);
 
 // Splits the pair q1, q2 (their union the hexagon H, counter-clockwise) into
 // three quads around a new point or four around two; returns 3 or 4, or 0
-// with the mesh left exactly as it was.
+// with the quads, stars and points exactly as they were (tried marks of q1
+// and q2 cleared).
 int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]);
 
 // ---- smooth_doublet.cpp ----------------------------------------------------
