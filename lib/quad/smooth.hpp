@@ -4,6 +4,39 @@
 // mu, and valence-driven), pair splits around a new point, doublet removal
 // and quad collapse. Nothing ever makes a quad non-convex: every move and
 // every operation is checked with exact orientation predicates first.
+//
+// smooth_quad_mesh(mesh, opt), in the files of lib/quad that do each step
+// (the state and the operations are declared in smooth_mesh.hpp):
+//
+//   check the input, build the stars                    smooth_mesh.cpp
+//   QuadMesh: quads, stars, fixed and sliding vertices,
+//     feature edges, sin(mu) of every quad              smooth_mesh.cpp
+//   for pass = 0 .. iterations-1:
+//     if cleanup and pass > 0 and pass % 3 == 0:
+//       for each quad q1 not plain, each edge (u, w) of q1:
+//         swap the diagonal of the pair across (u, w)
+//         for a better worst mu, else split a poor
+//         pair into 3 or 4 quads, else swap for more
+//         regular valences (relaxed, undone if worse)  smooth_swap.cpp,
+//                                                       smooth_split.cpp
+//       for each quad, each diagonal: collapse a
+//         squashed quad or two facing valence-3
+//         vertices (undone if worse)                    smooth_collapse.cpp
+//       for each free vertex of valence 2: remove the
+//         doublet (merge its two quads)                 smooth_doublet.cpp
+//       for each poor quad with two flat free corners:
+//         move them together (compass search)          smooth_angle.cpp
+//       colour again if the topology changed
+//     for each colour class (on the threads), each
+//       active vertex: move it to its angle-based
+//       position if no quad around gets non-convex or
+//       below the worst mu around; from the second
+//       pass, also climb on the worst mu (compass)      smooth_angle.cpp
+//     with slide_boundary: slide vertices along their
+//       straight segment, same guard                    smooth_angle.cpp
+//   if cleanup: swaps, then doublets, once more          smooth_swap.cpp,
+//                                                       smooth_doublet.cpp
+//   compact removed vertices and quads into mesh        smooth_mesh.cpp
 #pragma once
 #include "planar/triangle_io.hpp"
 #include "quad/quality.hpp"
@@ -42,6 +75,9 @@ struct SmoothStats {
   int passes = 0;
   std::size_t fixed_vertices = 0;  // boundary, constrained or region-boundary vertices
   Json to_json() const;
+  // Empty when every quad is strictly convex after; else how many are not,
+  // and whether they came in that way or were made so.
+  std::string failed_guarantee() const;
 };
 
 // Smooths and cleans the quad mesh in place. Element attributes, point

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # quadsmooth: (1) speed: 10^6 quads (jittered 1000 x 1000 grid), 10 passes,
-# library time from --stats (smooth_seconds), wall and CPU time with text I/O,
+# the tool's time from --stats (seconds: read, smooth, write), wall and CPU,
 # on 1 thread and on all cores; (2) quality: tri2quad + quadsmooth on a
 # jittered-grid Delaunay-like mesh of 2048 triangles and on 20000 triangles,
 # and on the real images of share/data through img2poly and poly2tri, side by
@@ -38,8 +38,8 @@ for threads in 1 $(nproc); do
   /usr/bin/time -f "%e %U %S %M" -o time.txt "$BIN/quadsmooth" -q big.ele big.s.ele --iterations 10 --threads "$threads" --stats big.json
   read -r wall user sys kb < time.txt
   mins=($(stat min_mu big.json)); means=($(stat mean_mu big.json))
-  echo "  $threads thread(s): smooth (library) $(stat smooth_seconds big.json) s wall, $(stat smooth_cpu_seconds big.json) s CPU;" \
-       "with I/O $wall s wall," \
+  echo "  $threads thread(s): $(stat seconds big.json) s in the tool (read, smooth, write);" \
+       "whole run $wall s wall," \
        "$(echo "$user + $sys" | bc) s CPU, peak $((kb / 1024)) MB; min mu ${mins[0]} -> ${mins[1]}, mean mu ${means[0]} -> ${means[1]}"
 done
 fi
@@ -199,7 +199,7 @@ for n in 32 100; do
     msh_quality q.msh "tri2quad"
     /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q q.ele qs.msh --stats qs.json
     msh_quality qs.msh "tri2quad+quadsmooth"
-    echo "  (quadsmooth $(stat smooth_seconds qs.json) s library, $(cat t.txt) s wall)"
+    echo "  (quadsmooth $(stat seconds qs.json) s in the tool, $(cat t.txt) s wall)"
   else
     echo "  tri2quad not built"
   fi
@@ -221,7 +221,7 @@ for spec in "VentricleModel:VentricleModel.png:--threshold 128" "BinaryImage:Bin
   msh_quality q.msh "tri2quad"
   /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q q.ele qs.msh --stats qs.json
   msh_quality qs.msh "tri2quad+quadsmooth"
-  echo "  (quadsmooth $(stat smooth_seconds qs.json) s library, $(cat t.txt) s wall;" \
+  echo "  (quadsmooth $(stat seconds qs.json) s in the tool, $(cat t.txt) s wall;" \
        "$(stat pair_splits qs.json) pair splits, $(stat pair_splits_four qs.json) of them into four," \
        "$(stat edge_moves qs.json) edge moves)"
   blossom r.msh
@@ -231,13 +231,13 @@ for spec in "VentricleModel:VentricleModel.png:--threshold 128" "BinaryImage:Bin
     "$BIN/tri2quad" -q l.1.ele l.q.ele
     /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q l.q.ele ls.msh --stats ls.json
     msh_quality ls.msh "--lattice $side: +tri2quad+qs"
-    echo "  ($(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' l.1.ele) triangles; quadsmooth $(stat smooth_seconds ls.json) s library, $(cat t.txt) s wall)"
+    echo "  ($(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' l.1.ele) triangles; quadsmooth $(stat seconds ls.json) s in the tool, $(cat t.txt) s wall)"
     # The quad chain: a square lattice, its squares merged first.
     "$BIN/poly2tri" -q r.poly l.1.ele --square-lattice "$side"
     "$BIN/tri2quad" -q l.1.ele l.q.ele --pair-above 40 --stats lq.json
     /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q l.q.ele ls.msh --stats ls.json
     msh_quality ls.msh "--square-lattice $side, --pair-above 40: +qs"
     echo "  ($(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' l.1.ele) triangles, $(stat pairs_first lq.json) squares merged first;" \
-         "quadsmooth $(stat smooth_seconds ls.json) s library, $(cat t.txt) s wall)"
+         "quadsmooth $(stat seconds ls.json) s in the tool, $(cat t.txt) s wall)"
   done
 done

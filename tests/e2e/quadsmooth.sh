@@ -4,7 +4,7 @@
 # boundary sliding; checks strict convexity, fixed boundary, kept topology
 # (meshinfo when built), thread-count independence, the quality reached on
 # the real images of the 2D pipeline (also with poly2tri --lattice), formats,
-# and bad input.
+# a non-convex input (exit 3) and bad input.
 set -u
 mkdir -p "$TMP"
 cd "$TMP" || exit 1
@@ -140,6 +140,19 @@ for ext in off vtk msh; do
   [ -s "out.$ext" ] || fail "empty .$ext"
 done
 "$Q" -q out.off again.ele --iterations 1 || fail "OFF input"
+
+# A quad that comes in non-convex (all corners fixed): the output is written,
+# exit 3 with one line saying which guarantee failed, and --stats says so
+# too, with the run's time once ("seconds").
+printf '4 2 0 0\n0 0 0\n1 2 0\n2 0.5 0.5\n3 0 2\n' > dart.node
+printf '1 4 0\n0 0 1 2 3\n' > dart.ele
+"$Q" dart.ele dart.q.ele --stats dart.json 2> dart.err; [ $? = 3 ] || fail "non-convex output: exit status not 3"
+[ -s dart.q.ele ] || fail "non-convex output not written"
+[ "$(grep -c 'guarantee not met: 1 quad(s) are not strictly convex (they came in that way)' dart.err)" = 1 ] ||
+  fail "non-convex output not named: $(cat dart.err)"
+[ "$(stat exit_status dart.json)" = 3 ] && [ "$(stat strictly_convex dart.json)" = false ] ||
+  fail "--stats of a non-convex output"
+[ "$(grep -c 'seconds' dart.json)" = 1 ] || fail "more than one time in --stats"
 
 # Bad input: truncated, clockwise, missing, usage.
 head -4 in.ele > trunc.ele; cp in.node trunc.node

@@ -1,9 +1,13 @@
-// quadsmooth's library: property tests on random quad meshes. The meshes are
-// made here: a jittered grid cut into triangles, each triangle split into
-// three quads through its centroid and edge midpoints (strictly convex for
-// any non-degenerate triangle), with two regions and constraint segments.
+// quadsmooth's library: property tests on random quad meshes, and each
+// clean-up operation called alone on a small hand-made mesh. The random
+// meshes are made here: a jittered grid cut into triangles, each triangle
+// split into three quads through its centroid and edge midpoints (strictly
+// convex for any non-degenerate triangle), with two regions and constraint
+// segments.
 #include "quad/smooth.hpp"
 
+#include "quad/quality.hpp"
+#include "quad/smooth_mesh.hpp"
 #include "quad/tri2quad.hpp"
 #include "util/error.hpp"
 
@@ -487,4 +491,274 @@ TEST_CASE("bad input is refused with a clear error", "[smooth]") {
   CHECK_THROWS_AS(check_quad_mesh(m), Error);
   m.points[2][0] = 1;
   CHECK_NOTHROW(check_quad_mesh(m));
+}
+
+// ---- The clean-up operations one at a time, on small hand-made meshes ----
+
+namespace {
+
+// Everything an operation may change, to check that a refused one changed
+// nothing.
+struct State {
+  std::vector<qs::Quad> quads;
+  std::vector<std::vector<int>> stars;
+  std::vector<Point2> points;
+  std::vector<double> sines;
+  std::vector<char> quad_dead, vertex_dead;
+  std::size_t elements;
+};
+
+State snapshot(const qs::QuadMesh& qm) {
+  return {qm.quads,       qm.vertex_quads, qm.points, qm.quad_sin_mu,
+          qm.quad_dead,   qm.vertex_dead,  qm.mesh.elements.size()};
+}
+
+void check_same(const State& a, const State& b) {
+  CHECK(a.quads == b.quads);
+  CHECK(a.stars == b.stars);
+  CHECK(a.points == b.points);
+  CHECK(a.sines == b.sines);
+  CHECK(a.quad_dead == b.quad_dead);
+  CHECK(a.vertex_dead == b.vertex_dead);
+  CHECK(a.elements == b.elements);
+}
+
+bool live_quads_strictly_convex(const qs::QuadMesh& qm) {
+  for (std::size_t q = 0; q < qm.quads.size(); ++q) {
+    const auto& c = qm.quads[q];
+    if (!qm.quad_dead[q] && !is_strictly_convex(qm.points[c[0]], qm.points[c[1]], qm.points[c[2]], qm.points[c[3]]))
+      return false;
+  }
+  return true;
+}
+
+double quad_mu(const PlanarMesh& m, const std::vector<int>& e) {
+  return joe_mu(m.points[e[0]], m.points[e[1]], m.points[e[2]], m.points[e[3]]);
+}
+
+double total_area(const PlanarMesh& m) {
+  double s = 0;
+  for (const auto& e : m.elements) s += quad_area(m.points[e[0]], m.points[e[1]], m.points[e[2]], m.points[e[3]]);
+  return s;
+}
+
+// Undirected edges used by exactly one element.
+std::set<std::pair<int, int>> boundary_edges(const PlanarMesh& m) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const auto& e : m.elements)
+    for (std::size_t i = 0; i < e.size(); ++i) ++uses[std::minmax(e[i], e[(i + 1) % e.size()])];
+  std::set<std::pair<int, int>> s;
+  for (const auto& [k, c] : uses)
+    if (c == 1) s.insert(k);
+  return s;
+}
+
+bool shares_edge(const qs::QuadMesh& qm, int a, int b) {
+  return qm.quad_with_edge(a, b) >= 0 && qm.quad_with_edge(b, a) >= 0;
+}
+
+} // namespace
+
+TEST_CASE("doublet removal merges the two quads of a valence-2 vertex into a strictly convex one", "[smooth]") {
+  // v = (1,1) on the diagonal of the square: its two quads have straight
+  // angles at v; the merged quad is the square.
+  PlanarMesh m;
+  m.points = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 1}};
+  m.elements = {{4, 0, 1, 2}, {4, 2, 3, 0}};
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE_FALSE(qm.fixed[4]);
+  CHECK_FALSE(qs::remove_doublet(qm, 0));  // a corner of the square is fixed
+  REQUIRE(qs::remove_doublet(qm, 4));
+  CHECK(qm.vertex_dead[4]);
+  CHECK(qm.vertex_quads[4].empty());
+  CHECK(live_quads_strictly_convex(qm));
+  for (int x : {0, 1, 2, 3}) CHECK(qm.vertex_quads[x].size() == 1);
+  qm.compact();
+  REQUIRE(m.elements.size() == 1);
+  REQUIRE(m.points.size() == 4);
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(quad_mu(m, m.elements[0]) == Approx(45));
+  CHECK(total_area(m) == Approx(4));
+}
+
+TEST_CASE("doublet removal is refused when the merged quad would not be strictly convex", "[smooth]") {
+  // v on the segment a-c; the merged quad (a, b, c, d) would be reflex at c.
+  PlanarMesh m;
+  m.points = {{0, 0}, {2, 0}, {0.8, 0.8}, {0, 2}, {0.4, 0.4}};  // a b c d v
+  m.elements = {{4, 0, 1, 2}, {4, 2, 3, 0}};
+  REQUIRE_FALSE(is_strictly_convex(m.points[0], m.points[1], m.points[2], m.points[3]));
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  const State before = snapshot(qm);
+  CHECK_FALSE(qs::remove_doublet(qm, 4));
+  check_same(snapshot(qm), before);
+}
+
+TEST_CASE("a diagonal swap for the worst mu takes the better diagonal of the hexagon", "[smooth]") {
+  // Two quads of a flat hexagon sharing its long diagonal p0-p3 (mu about
+  // 22 degrees); across p1-p4 they are nearly rectangles.
+  PlanarMesh m;
+  m.points = {{0, 0}, {2, -0.3}, {4, 0}, {4, 1}, {2, 1.3}, {0, 1}};
+  m.elements = {{0, 1, 2, 3}, {3, 4, 5, 0}};
+  const double mu0 = std::min(quad_mu(m, m.elements[0]), quad_mu(m, m.elements[1]));
+  REQUIRE(mu0 < 30);
+  const std::vector<Point2> points0 = m.points;
+  SmoothOptions opt;
+  opt.split_below = 0;  // swaps only
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  SmoothStats st;
+  REQUIRE(qs::swap_diagonal(qm, 0, 3, st));  // edge 3 of quad 0 is p3 -> p0
+  CHECK(st.swaps == 1);
+  CHECK(shares_edge(qm, 1, 4));
+  CHECK_FALSE(shares_edge(qm, 0, 3));
+  CHECK(live_quads_strictly_convex(qm));
+  CHECK(qm.points == points0);  // a swap moves no vertex
+  qm.compact();
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(std::min(quad_mu(m, m.elements[0]), quad_mu(m, m.elements[1])) > mu0 + 5);
+  CHECK(total_area(m) == Approx(4 + 2 * 0.3 * 2));
+}
+
+TEST_CASE("a diagonal swap that would make a quad non-convex is refused and nothing changes", "[smooth]") {
+  // The strip below (every corner on the boundary): either other diagonal
+  // of the hexagon (u, c, d, w, a, b) leaves a quad with a corner over 180
+  // degrees at u or w.
+  PlanarMesh m;
+  m.points = {{0, 0}, {3, 1}, {0.5, 2.5}, {-3, -0.9}, {2.5, -1.5}, {6, 1.9}};  // u, w, a, b, c, d
+  m.elements = {{0, 1, 2, 3}, {1, 0, 4, 5}};
+  const int H[6] = {0, 4, 5, 1, 2, 3};
+  for (int k = 1; k <= 2; ++k) {
+    const auto& P = m.points;
+    const bool n1 = is_strictly_convex(P[H[k]], P[H[k + 1]], P[H[k + 2]], P[H[(k + 3) % 6]]);
+    const bool n2 = is_strictly_convex(P[H[(k + 3) % 6]], P[H[(k + 4) % 6]], P[H[(k + 5) % 6]], P[H[k]]);
+    REQUIRE_FALSE((n1 && n2));
+  }
+  SmoothOptions opt;
+  opt.split_below = 0;  // no pair split in its place
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE(qm.quad_sin_mu[0] < 0.5);  // poor: a swap is looked for
+  const State before = snapshot(qm);
+  SmoothStats st;
+  for (int i = 0; i < 4; ++i) CHECK_FALSE(qs::swap_diagonal(qm, 0, i, st));
+  CHECK(st.swaps + st.valence_swaps + st.splits == 0);
+  check_same(snapshot(qm), before);
+}
+
+TEST_CASE("a pair split turns the fixed strip into four strictly convex quads around two new points", "[smooth]") {
+  PlanarMesh m;
+  m.points = {{0, 0}, {3, 1}, {0.5, 2.5}, {-3, -0.9}, {2.5, -1.5}, {6, 1.9}};  // u, w, a, b, c, d
+  m.elements = {{0, 1, 2, 3}, {1, 0, 4, 5}};
+  m.element_attributes = {{7}, {7}};
+  const PlanarMesh orig = m;
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  const int H[6] = {0, 4, 5, 1, 2, 3};  // the pair's hexagon, counter-clockwise
+  REQUIRE(qs::split_pair(qm, 0, 1, H) == 4);
+  CHECK(live_quads_strictly_convex(qm));
+  qm.compact();
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(m.elements.size() == 4);
+  REQUIRE(m.points.size() == 8);
+  for (std::size_t v = 0; v < orig.points.size(); ++v) CHECK(m.points[v] == orig.points[v]);
+  for (const auto& a : m.element_attributes) CHECK(a == std::vector<double>{7});
+  CHECK(total_area(m) == Approx(total_area(orig)).epsilon(1e-12));
+  CHECK(boundary_edges(m) == boundary_edges(orig));
+  double mu = 90;
+  for (const auto& e : m.elements) mu = std::min(mu, quad_mu(m, e));
+  CHECK(mu > std::min(quad_mu(orig, orig.elements[0]), quad_mu(orig, orig.elements[1])));
+}
+
+TEST_CASE("a pair split that would not improve is undone exactly", "[smooth]") {
+  // Two unit squares: any split is worse than mu = 45.
+  PlanarMesh m;
+  m.points = {{0, 0}, {1, 0}, {2, 0}, {2, 1}, {1, 1}, {0, 1}};
+  m.elements = {{0, 1, 4, 5}, {1, 2, 3, 4}};
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  const State before = snapshot(qm);
+  const int H[6] = {1, 2, 3, 4, 5, 0};  // around the shared edge 1-4
+  CHECK(qs::split_pair(qm, 0, 1, H) == 0);
+  check_same(snapshot(qm), before);
+  CHECK(m.points.size() == 6);
+}
+
+TEST_CASE("a patch rolls back the stars, points and quads it saved and drops what was added", "[smooth]") {
+  PlanarMesh m = jittered_grid(4, 3);
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  const State before = snapshot(qm);
+  const int v = 6;  // an interior grid node
+  REQUIRE_FALSE(qm.fixed[v]);
+  qs::Patch pt;
+  qm.save_patch({v}, pt);
+  qm.points[v][0] += 0.01;
+  const int q0 = qm.vertex_quads[v][0];
+  const qs::Quad old = qm.quads[q0];
+  const int e = qm.add_vertex({0.5, 0.5});
+  pt.verts.push_back(e);
+  const int q = qm.add_quad(q0);
+  pt.quads.push_back(q);
+  qm.set_quad(q0, {old[0], old[1], old[2], e});
+  qm.set_quad(q, {old[2], old[3], old[0], e});
+  qs::relax(qm, pt);
+  qm.rollback(pt);
+  check_same(snapshot(qm), before);
+  CHECK(m.points.size() == before.points.size());
+}
+
+TEST_CASE("a quad collapse at a boundary vertex keeps it where it was, on the boundary", "[smooth]") {
+  // a on the bottom side y = 0 with three quads; the middle one (a, b, c, d)
+  // is squashed (mu under 6 degrees): c, free, merges into a, which stays.
+  // b and d are boundary vertices (the domain has notches beside them).
+  PlanarMesh m;
+  m.points = {{-2, 0}, {0, 0}, {2, 0}, {1, 1}, {0, 1.1}, {-1, 1},  // i a e b c d
+              {-2, 1}, {2, 1}, {0, 2}, {1, 2}, {-1, 2}};          // h f y x g
+  enum { i, a, e, b, c, d, h, f, y, x, g };
+  m.elements = {{i, a, d, h}, {a, e, f, b}, {a, b, c, d}, {d, c, y, g}, {c, b, x, y}};
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  const PlanarMesh orig = m;
+  REQUIRE(quad_mu(m, m.elements[2]) < 15);
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE(qm.fixed[a]);
+  REQUIRE_FALSE(qm.fixed[c]);
+  SmoothStats st;
+  CHECK_FALSE(qs::collapse_quad(qm, 2, 1, st));  // b and d: both fixed
+  REQUIRE(qs::collapse_quad(qm, 2, 0, st));
+  CHECK(st.collapses == 1);
+  CHECK(qm.quad_dead[2]);
+  CHECK(qm.vertex_dead[c]);
+  CHECK(qm.points[a] == orig.points[a]);  // on the side y = 0, where it was
+  CHECK(live_quads_strictly_convex(qm));
+  qm.compact();
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(m.elements.size() == 4);
+  REQUIRE(m.points.size() == orig.points.size() - 1);
+  // Vertices after c move down by one; every boundary edge stays.
+  auto renum = [&](int v) { return v > c ? v - 1 : v; };
+  std::set<std::pair<int, int>> expected;
+  for (const auto& [p, q] : boundary_edges(orig)) expected.insert(std::minmax(renum(p), renum(q)));
+  CHECK(boundary_edges(m) == expected);
+  for (int v = 0; v < int(orig.points.size()); ++v)
+    if (v != c) CHECK(m.points[renum(v)] == orig.points[v]);
+  CHECK(total_area(m) == Approx(total_area(orig)).epsilon(1e-12));
+  double mu = 90;
+  for (const auto& el : m.elements) mu = std::min(mu, quad_mu(m, el));
+  CHECK(mu > quad_mu(orig, orig.elements[2]));
+}
+
+TEST_CASE("the failed guarantee is a quad not strictly convex after", "[smooth]") {
+  PlanarMesh m = split_mesh(6, 1);
+  const SmoothStats ok = smooth_quad_mesh(m, SmoothOptions{});
+  CHECK(ok.failed_guarantee().empty());
+  PlanarMesh dart;
+  dart.points = {{0, 0}, {2, 0}, {0.5, 0.5}, {0, 2}};  // reflex at (0.5, 0.5), all fixed
+  dart.elements = {{0, 1, 2, 3}};
+  const SmoothStats st = smooth_quad_mesh(dart, SmoothOptions{});
+  CHECK(st.after.non_convex == 1);
+  CHECK(st.failed_guarantee() == "1 quad(s) are not strictly convex (they came in that way)");
+  SmoothStats made = st;
+  made.before.non_convex = 0;
+  CHECK(made.failed_guarantee() == "1 quad(s) made non-convex");
 }
