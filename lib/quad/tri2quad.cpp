@@ -118,7 +118,7 @@ struct Converter {
       for (int v : tr)
         if (v < 0 || std::size_t(v) >= n)
           throw Error("triangle " + std::to_string(t + in.index_base) + " has a vertex id out of range", in.path);
-      const int o = t2q::orient(pts[tr[0]], pts[tr[1]], pts[tr[2]]);
+      const int o = orientation(pts[tr[0]], pts[tr[1]], pts[tr[2]]);
       if (o == 0)
         throw Error("triangle " + std::to_string(t + in.index_base) + " (" + vid(tr[0]) + ", " + vid(tr[1]) +
                         ", " + vid(tr[2]) + ") is degenerate (zero area)",
@@ -442,8 +442,8 @@ struct Converter {
           for (int k = 0; k < 3; ++k) if (split[pushed_tri][k] == m2) opp = tris[pushed_tri][(k + 2) % 3];
           lp.p[m2] = {lp.p[m2][0] + push * (pts[opp][0] - lp.p[m2][0]), lp.p[m2][1] + push * (pts[opp][1] - lp.p[m2][1])};
           lp.quads.push_back({a, m1, c, m2});
-          if (!t2q::good_quad(lp.p[a], lp.p[m1], lp.p[c], lp.p[m2]) ||
-              !t2q::good_triangle(lp.p[a], lp.p[b], lp.p[m1]))
+          if (!good_quad(lp.p[a], lp.p[m1], lp.p[c], lp.p[m2]) ||
+              !good_triangle(lp.p[a], lp.p[b], lp.p[m1]))
             ok = false;
           res.type = kTri;
           res.x = m1;  // local id; mapped below
@@ -543,7 +543,7 @@ struct Converter {
       return;
     }
     if (!is_root && I.empty() && B.size() == 4 && tris.size() == 2) {
-      if (t2q::good_quad(pts[B[0]], pts[B[1]], pts[B[2]], pts[B[3]])) {
+      if (good_quad(pts[B[0]], pts[B[1]], pts[B[2]], pts[B[3]])) {
         out.quads.push_back({B[0], B[1], B[2], B[3]});
         if (has_attr) out.region.push_back(attr[u]);
         ++cases[kQuadConvex];
@@ -608,7 +608,7 @@ struct Converter {
         r = {kTri, 0, 2, -1};  // local id of c
         done = true;
       } else if (nb_ == 4 && ni == 0) {
-        if (t2q::good_quad(lp.p[0], lp.p[1], lp.p[2], lp.p[3])) {
+        if (good_quad(lp.p[0], lp.p[1], lp.p[2], lp.p[3])) {
           lp.quads.push_back({0, 1, 2, 3});
           ++cases[kQuadConvex];
           r = {};
@@ -736,11 +736,11 @@ struct Converter {
         const int lx = lp.add_known(pts[reg[w].x], reg[w].x);
         const int lm = lp.add_new({mm[0] + d * (pts[opp][0] - mm[0]), mm[1] + d * (pts[opp][1] - mm[1])});
         // This node keeps the dent: both halves of its triangle stay proper.
-        if (!t2q::good_triangle(lp.p[lq], lp.p[lm], lp.p[lo]) || !t2q::good_triangle(lp.p[lm], lp.p[lp_], lp.p[lo]))
+        if (!good_triangle(lp.p[lq], lp.p[lm], lp.p[lo]) || !good_triangle(lp.p[lm], lp.p[lp_], lp.p[lo]))
           continue;
         bool ok;
         if (reg[w].type == kTri) {
-          ok = t2q::good_quad(lp.p[lp_], lp.p[lm], lp.p[lq], lp.p[lx]);
+          ok = good_quad(lp.p[lp_], lp.p[lm], lp.p[lq], lp.p[lx]);
           if (ok) lp.quads.push_back({lp_, lm, lq, lx});
         } else {
           const int li = lp.add_known(pts[reg[w].y], reg[w].y);
@@ -805,9 +805,9 @@ struct Converter {
     // B.2.2: pentagon 0..4 with the point 5.
     const auto m = lp.mark();
     // (i) leftover (v0, v1, q), hexagon (v1, v2, v3, v4, v0, q).
-    if (t2q::good_triangle(lp.p[0], lp.p[1], lp.p[5])) {
+    if (good_triangle(lp.p[0], lp.p[1], lp.p[5])) {
       std::vector<P2> hp = {lp.p[1], lp.p[2], lp.p[3], lp.p[4], lp.p[0], lp.p[5]};
-      if (t2q::simple_ccw(hp) && t2q::hexagon(lp, {1, 2, 3, 4, 0, 5})) {
+      if (simple_ccw(hp) && t2q::hexagon(lp, {1, 2, 3, 4, 0, 5})) {
         ++cases[kPentagonPoint]; r = {kTri, 0, 5, -1}; return true;
       }
       lp.rollback(m);
@@ -816,13 +816,13 @@ struct Converter {
     for (int side = 0; side < 2; ++side) {
       const Ring tri = side == 0 ? Ring{0, 1, 2} : Ring{4, 0, 1};
       const Ring quad = side == 0 ? Ring{0, 2, 3, 4} : Ring{1, 2, 3, 4};
-      if (!t2q::good_triangle(lp.p[tri[0]], lp.p[tri[1]], lp.p[tri[2]])) continue;
+      if (!good_triangle(lp.p[tri[0]], lp.p[tri[1]], lp.p[tri[2]])) continue;
       // q strictly inside the quad's side of the ear's diagonal.
-      if (side == 0 && t2q::orient(lp.p[0], lp.p[2], lp.p[5]) <= 0) continue;
-      if (side == 1 && t2q::orient(lp.p[4], lp.p[1], lp.p[5]) <= 0) continue;
+      if (side == 0 && orientation(lp.p[0], lp.p[2], lp.p[5]) <= 0) continue;
+      if (side == 1 && orientation(lp.p[4], lp.p[1], lp.p[5]) <= 0) continue;
       std::vector<P2> qp;
       for (int i : quad) qp.push_back(lp.p[i]);
-      if (!t2q::simple_ccw(qp)) continue;
+      if (!simple_ccw(qp)) continue;
       if (t2q::quad_with_point(lp, quad, 5)) {
         ++cases[kPentagonPoint]; r = {kTri, 0, side == 0 ? 2 : 4, -1}; return true;
       }
@@ -831,8 +831,8 @@ struct Converter {
     // (iii) the middle case (notes 3.5): the outgoing edge in the centre
     // triangle (v0, v1, v3): the type-1 split (v0, v1, p1), (v0, p1, v3, v4),
     // (v3, p1, v1, v2), then B.1.2 on the quad holding q (6 quads, 4 points).
-    if (t2q::good_triangle(lp.p[0], lp.p[1], lp.p[3]) && t2q::good_triangle(lp.p[1], lp.p[2], lp.p[3]) &&
-        t2q::good_triangle(lp.p[3], lp.p[4], lp.p[0])) {
+    if (good_triangle(lp.p[0], lp.p[1], lp.p[3]) && good_triangle(lp.p[1], lp.p[2], lp.p[3]) &&
+        good_triangle(lp.p[3], lp.p[4], lp.p[0])) {
       const P2 v0 = lp.p[0], v1 = lp.p[1], v2 = lp.p[2], v3 = lp.p[3], v4 = lp.p[4], q = lp.p[5];
       const auto region = t2q::clip({v0, v1, v3}, {{v3, v0}, {v4, v0}, {v3, v4}, {v1, v3}, {v2, v3}, {v1, v2}, {v0, v1}});
       if (region.size() >= 3) {
@@ -841,10 +841,10 @@ struct Converter {
         for (const P2& x : region)
           for (double f : {0.3, 0.6}) cand.push_back({c[0] + f * (x[0] - c[0]), c[1] + f * (x[1] - c[1])});
         for (const P2& x : cand) {
-          if (!t2q::good_quad(v0, x, v3, v4) || !t2q::good_quad(v3, x, v1, v2) || !t2q::good_triangle(v0, v1, x)) continue;
+          if (!good_quad(v0, x, v3, v4) || !good_quad(v3, x, v1, v2) || !good_triangle(v0, v1, x)) continue;
           auto inside = [&](const P2& a, const P2& b, const P2& cc, const P2& d) {
-            return t2q::orient(a, b, q) > 0 && t2q::orient(b, cc, q) > 0 && t2q::orient(cc, d, q) > 0 &&
-                   t2q::orient(d, a, q) > 0;
+            return orientation(a, b, q) > 0 && orientation(b, cc, q) > 0 && orientation(cc, d, q) > 0 &&
+                   orientation(d, a, q) > 0;
           };
           const bool inA = inside(v0, x, v3, v4), inB = inside(v3, x, v1, v2);
           if (inA == inB) continue;
@@ -865,7 +865,7 @@ struct Converter {
 
   bool hexagon_point(LocalPatch& lp, Region& r) {
     const auto m = lp.mark();
-    auto good = [&](const t2q::Quad& q) { return t2q::good_quad(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]); };
+    auto good = [&](const t2q::Quad& q) { return good_quad(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]); };
     // The point joined to alternate vertices (T1 of B.1.1 with the point
     // given): 3 quads, no new point.
     for (int pi = 0; pi < 2; ++pi) {
@@ -884,7 +884,7 @@ struct Converter {
       rest[j] = 6;
       std::vector<P2> rp;
       for (int k : rest) rp.push_back(lp.p[k]);
-      if (!t2q::simple_ccw(rp)) continue;
+      if (!simple_ccw(rp)) continue;
       lp.quads.push_back(q);
       if (t2q::hexagon(lp, rest, 2)) { ++cases[kHexagonPoint]; r = {}; return true; }
       lp.rollback(m);
@@ -895,11 +895,11 @@ struct Converter {
       for (int s = 0; s < 2; ++s) {
         const Ring& cv = s ? q2 : q1;
         const Ring& pt = s ? q1 : q2;
-        if (!t2q::good_quad(lp.p[cv[0]], lp.p[cv[1]], lp.p[cv[2]], lp.p[cv[3]])) continue;
+        if (!good_quad(lp.p[cv[0]], lp.p[cv[1]], lp.p[cv[2]], lp.p[cv[3]])) continue;
         std::vector<P2> pp;
         for (int k : pt) pp.push_back(lp.p[k]);
-        if (!t2q::simple_ccw(pp)) continue;
-        if (t2q::orient(pp[3], pp[0], lp.p[6]) <= 0) continue;  // the point is on pt's side
+        if (!simple_ccw(pp)) continue;
+        if (orientation(pp[3], pp[0], lp.p[6]) <= 0) continue;  // the point is on pt's side
         lp.quads.push_back({cv[0], cv[1], cv[2], cv[3]});
         if (t2q::quad_with_point(lp, pt, 6)) { ++cases[kHexagonPoint]; r = {}; return true; }
         lp.rollback(m);
@@ -920,8 +920,8 @@ struct Converter {
     for (const int apex : {lc, 7 - lc}) {
       const int q = 7 - apex;
       const P2 &A = lp.p[0], &B = lp.p[1], &Z = lp.p[apex], &Q = lp.p[q];
-      const int o1 = t2q::orient(B, Z, Q), o2 = t2q::orient(Z, A, Q);
-      if (!t2q::good_triangle(A, B, Z) || o1 == 0 || o2 == 0 || (o1 > 0 && o2 > 0)) continue;
+      const int o1 = orientation(B, Z, Q), o2 = orientation(Z, A, Q);
+      if (!good_triangle(A, B, Z) || o1 == 0 || o2 == 0 || (o1 > 0 && o2 > 0)) continue;
       if (t2q::quad_with_point(lp, {1, 2, 0, apex}, q)) {
         ++cases[kTriangleTwoPoints];
         r = {kTri, 0, apex, -1};
@@ -953,7 +953,7 @@ struct Converter {
     if (P[1] != lp_ || std::find(P.begin(), P.end(), -1) != P.end() || lx < 0 || ly < 0) return false;
     std::vector<P2> pp;
     for (int i : P) pp.push_back(lp.p[i]);
-    if (!t2q::simple_ccw(pp)) return false;
+    if (!simple_ccw(pp)) return false;
     const auto m0 = lp.mark();
     const int z = t2q::pentagon(lp, P, nullptr, 1);
     if (z >= 0 && t2q::quad_with_point(lp, {lp_, z, lq, lx}, ly)) {
@@ -969,7 +969,7 @@ struct Converter {
       for (double f : {0.05, 0.01}) {
         const int m = lp.add_new({mid[0] + f * (toward[0] - mid[0]), mid[1] + f * (toward[1] - mid[1])});
         std::vector<P2> hp = {Q, lp.p[m], Pp, pp[2], pp[3], pp[4]};
-        if (t2q::simple_ccw(hp) && t2q::hexagon(lp, {lq, m, lp_, P[2], P[3], P[4]}, 2) &&
+        if (simple_ccw(hp) && t2q::hexagon(lp, {lq, m, lp_, P[2], P[3], P[4]}, 2) &&
             t2q::quad_with_point(lp, {lp_, m, lq, lx}, ly)) {
           ++cases[kPairNonEmpty];
           r = {};
@@ -1026,7 +1026,7 @@ struct Converter {
       const auto wedge = t2q::clip({A, {A[0] + n[0], A[1] + n[1]}, {Bp[0] + n[0], Bp[1] + n[1]}, Bp}, {{Z, A}, {Bp, Z}});
       if (wedge.size() >= 3) {
         const int ls = lp.add_new(t2q::centroid(wedge));
-        if (t2q::good_quad(lp.p[la], lp.p[ls], lp.p[lb], lp.p[lz])) {
+        if (good_quad(lp.p[la], lp.p[ls], lp.p[lb], lp.p[lz])) {
           lp.quads.push_back({la, ls, lb, lz});
           commit_region(lp, {}, at);
           split_segment(a, b, int(pts.size()) - 1);

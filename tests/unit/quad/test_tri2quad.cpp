@@ -87,9 +87,9 @@ TEST_CASE("B.1.1: random hexagons get at most 5 strictly convex quads and 3 poin
   int done = 0, tried = 0, reflex3 = 0;
   for (int it = 0; it < 3000; ++it) {
     auto v = random_star(g, 6, 0.2, 1.0);
-    if (!t2q::simple_ccw(v)) continue;
+    if (!simple_ccw(v)) continue;
     int reflex = 0;
-    for (int i = 0; i < 6; ++i) reflex += t2q::orient(v[(i + 5) % 6], v[i], v[(i + 1) % 6]) <= 0;
+    for (int i = 0; i < 6; ++i) reflex += orientation(v[(i + 5) % 6], v[i], v[(i + 1) % 6]) <= 0;
     reflex3 += reflex == 3;
     ++tried;
     LocalPatch lp = patch_of(v);
@@ -113,7 +113,7 @@ TEST_CASE("B.1.2: quadrilateral with an interior point, convex, kernel and arm c
   int convex = 0, reflex = 0, ok_convex = 0, ok_reflex = 0;
   for (int it = 0; it < 3000; ++it) {
     auto v = random_star(g, 4, 0.1, 1.0);
-    if (!t2q::simple_ccw(v)) continue;
+    if (!simple_ccw(v)) continue;
     // A random interior point (rejection sampling in the bounding box).
     P2 q{};
     bool found = false;
@@ -127,11 +127,11 @@ TEST_CASE("B.1.2: quadrilateral with an interior point, convex, kernel and arm c
         if ((a[1] > q[1]) != (b[1] > q[1]) && q[0] < a[0] + (q[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1])) ++crossings;
       }
       found = crossings % 2 == 1;
-      for (int i = 0; i < 4 && found; ++i) found = t2q::orient(v[i], v[(i + 1) % 4], q) != 0;
+      for (int i = 0; i < 4 && found; ++i) found = orientation(v[i], v[(i + 1) % 4], q) != 0;
     }
     if (!found) continue;
     bool is_convex = true;
-    for (int i = 0; i < 4; ++i) is_convex = is_convex && t2q::orient(v[(i + 3) % 4], v[i], v[(i + 1) % 4]) > 0;
+    for (int i = 0; i < 4; ++i) is_convex = is_convex && orientation(v[(i + 3) % 4], v[i], v[(i + 1) % 4]) > 0;
     (is_convex ? convex : reflex)++;
     LocalPatch lp = patch_of(v);
     const int qi = lp.add_known(q, 4);
@@ -210,7 +210,7 @@ TEST_CASE("B.2.1: pentagon edge types leave a triangle on the outgoing edge", "[
     int seen[4] = {0, 0, 0, 0}, fails = 0, total = 0;
     for (int it = 0; it < 4000; ++it) {
       auto v = random_star(g, 5, 0.15, 1.0);
-      if (!t2q::simple_ccw(v)) continue;
+      if (!simple_ccw(v)) continue;
       ++total;
       LocalPatch lp = patch_of(v);
       int kind = -1;
@@ -218,7 +218,7 @@ TEST_CASE("B.2.1: pentagon edge types leave a triangle on the outgoing edge", "[
       if (apex < 0) { ++fails; continue; }
       ++seen[kind];
       const double tri = poly_area({lp.p[0], lp.p[1], lp.p[apex]});
-      CHECK(t2q::orient(lp.p[0], lp.p[1], lp.p[apex]) > 0);
+      CHECK(orientation(lp.p[0], lp.p[1], lp.p[apex]) > 0);
       // Types 1 and 2 as in the lemma; the type-3 stand-in may need the
       // hexagon's 3 points.
       if (kind < 3) check_patch(lp, poly_area(v) - tri, 3, 2);
@@ -242,7 +242,7 @@ TEST_CASE("B.2.1 within budget: leftover forms or type 3 with an edge point", "[
   int leftover = 0, type3 = 0, fails = 0;
   for (int it = 0; it < 6000; ++it) {
     auto v = random_star(g, 5, 0.1, 1.0);
-    if (!t2q::simple_ccw(v)) continue;
+    if (!simple_ccw(v)) continue;
     LocalPatch lp = patch_of(v);
     const int apex = t2q::pentagon(lp, ring(5), nullptr, 1);
     if (apex >= 0) {
@@ -270,14 +270,14 @@ TEST_CASE("B.3.1: heptagons, both forms (ear and the p1-p3 path)", "[tri2quad][B
   int seen[2] = {0, 0}, fails = 0, total = 0;
   for (int it = 0; it < 3000; ++it) {
     auto v = random_star(g, 7, 0.3, 1.0);
-    if (!t2q::simple_ccw(v)) continue;
+    if (!simple_ccw(v)) continue;
     ++total;
     LocalPatch lp = patch_of(v);
     int kind = -1;
     const int apex = t2q::heptagon(lp, ring(7), &kind);
     if (apex < 0) { ++fails; continue; }
     ++seen[kind];
-    CHECK(t2q::orient(lp.p[0], lp.p[1], lp.p[apex]) > 0);
+    CHECK(orientation(lp.p[0], lp.p[1], lp.p[apex]) > 0);
     const double tri = poly_area({lp.p[0], lp.p[1], lp.p[apex]});
     // Lemma B.3.1: six quads and four points at most (ear form: 5 and 3).
     check_patch(lp, poly_area(v) - tri, 6, 4);
@@ -301,7 +301,7 @@ P2 beyond(std::mt19937& g, const P2& p, const P2& q) {
 
 bool convex_ring(const std::vector<P2>& v) {
   for (std::size_t i = 0; i < v.size(); ++i)
-    if (t2q::orient(v[(i + v.size() - 1) % v.size()], v[i], v[(i + 1) % v.size()]) <= 0) return false;
+    if (orientation(v[(i + v.size() - 1) % v.size()], v[i], v[(i + 1) % v.size()]) <= 0) return false;
   return true;
 }
 } // namespace
@@ -332,18 +332,18 @@ TEST_CASE("B.3.1 on heptagons from the algorithm: the four triangulations", "[tr
     // Heptagon a, b, then the pair on bc, c, the pair on ca.
     const std::vector<P2> q1 = d1 ? std::vector<P2>{b, w1, x1, c} : std::vector<P2>{b, x1, w1, c};
     const std::vector<P2> q2 = d2 ? std::vector<P2>{c, w2, x2, a} : std::vector<P2>{c, x2, w2, a};
-    if (convex_ring(q1) || convex_ring(q2) || !t2q::simple_ccw(q1) || !t2q::simple_ccw(q2)) continue;
+    if (convex_ring(q1) || convex_ring(q2) || !simple_ccw(q1) || !simple_ccw(q2)) continue;
     const std::vector<P2> v = {a, b, q1[1], q1[2], c, q2[1], q2[2]};
-    if (!t2q::simple_ccw(v)) continue;
+    if (!simple_ccw(v)) continue;
     ++seen[pattern];
     int reflex = 0;
-    for (int i = 0; i < 7; ++i) reflex += t2q::orient(v[(i + 6) % 7], v[i], v[(i + 1) % 7]) <= 0;
+    for (int i = 0; i < 7; ++i) reflex += orientation(v[(i + 6) % 7], v[i], v[(i + 1) % 7]) <= 0;
     ++reflex_count[reflex];
     LocalPatch lp = patch_of(v);
     const int apex = t2q::heptagon(lp, ring(7));
     if (apex >= 0) {
       ++leftover;
-      CHECK(t2q::orient(lp.p[0], lp.p[1], lp.p[apex]) > 0);
+      CHECK(orientation(lp.p[0], lp.p[1], lp.p[apex]) > 0);
       check_patch(lp, poly_area(v) - poly_area({lp.p[0], lp.p[1], lp.p[apex]}), 6, 4);
       continue;
     }
@@ -438,8 +438,8 @@ TEST_CASE("Joe's and de Berg's triangle splits", "[tri2quad][splits]") {
   std::uniform_real_distribution<double> U(-1, 1);
   for (int it = 0; it < 2000; ++it) {
     P2 a{U(g), U(g)}, b{U(g), U(g)}, c{U(g), U(g)};
-    if (t2q::orient(a, b, c) < 0) std::swap(b, c);
-    if (!t2q::good_triangle(a, b, c)) continue;
+    if (orientation(a, b, c) < 0) std::swap(b, c);
+    if (!good_triangle(a, b, c)) continue;
     {
       LocalPatch lp;
       const int ia = lp.add_known(a, 0), ib = lp.add_known(b, 1), ic = lp.add_known(c, 2);
@@ -673,7 +673,7 @@ bool in_closed_polygon(const std::vector<P2>& v, const P2& p) {
 }
 
 bool strictly_inside(const P2& a, const P2& b, const P2& c, const P2& p) {
-  return t2q::orient(a, b, p) > 0 && t2q::orient(b, c, p) > 0 && t2q::orient(c, a, p) > 0;
+  return orientation(a, b, p) > 0 && orientation(b, c, p) > 0 && orientation(c, a, p) > 0;
 }
 
 // The local result of one case: the quads with every corner in the closed
@@ -724,7 +724,7 @@ int edge_point(const Tri2QuadResult& r, const P2& a, const P2& b) {
   double bd = 0;
   const P2 mid = {0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])};
   for (std::size_t i = r.input_points; i < r.points.size(); ++i) {
-    if (t2q::orient(a, b, r.points[i]) <= 0) continue;
+    if (orientation(a, b, r.points[i]) <= 0) continue;
     const double d = std::hypot(r.points[i][0] - mid[0], r.points[i][1] - mid[1]);
     if (best < 0 || d < bd) { best = int(i); bd = d; }
   }
@@ -1450,9 +1450,9 @@ TEST_CASE("B.1.1 success rate on spiky hexagons", "[.hexrate]") {
   int done = 0, tried = 0, r3 = 0, r3done = 0;
   for (int it = 0; it < 40000; ++it) {
     auto v = random_star(g, 6, 0.03, 1.0);
-    if (!t2q::simple_ccw(v)) continue;
+    if (!simple_ccw(v)) continue;
     int reflex = 0;
-    for (int i = 0; i < 6; ++i) reflex += t2q::orient(v[(i + 5) % 6], v[i], v[(i + 1) % 6]) <= 0;
+    for (int i = 0; i < 6; ++i) reflex += orientation(v[(i + 5) % 6], v[i], v[(i + 1) % 6]) <= 0;
     ++tried;
     LocalPatch lp = patch_of(v);
     const bool ok = t2q::hexagon(lp, ring(6));
