@@ -8,8 +8,6 @@
 #include "util/error.hpp"
 
 #include <algorithm>
-#include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -1115,9 +1113,8 @@ struct Converter {
 // The thesis's conversion alone.
 static Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
                               const std::unordered_set<std::uint64_t>* avoid = nullptr) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::clock_t c0 = std::clock();
   Tri2QuadResult out;
+  out.allow_outside = opt.allow_outside;
   Converter cv(in, opt, out);
   cv.avoid = avoid;
   cv.setup();
@@ -1136,6 +1133,7 @@ static Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& op
   std::size_t retries = 0;
   for (int pick = 1; opt.size_retry && pick <= 12 && excess(out) > 0; ++pick) {
     Tri2QuadResult alt;
+    alt.allow_outside = opt.allow_outside;
     Converter c2(in, opt, alt);
     c2.root_pick = pick;
     c2.avoid = avoid;
@@ -1157,8 +1155,6 @@ static Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& op
   }
   for (int i = 0; i < kNumCases; ++i) out.cases.push_back({kCaseNames[i], cv.cases[i]});
   out.cases.push_back({"size_bound_retry", retries});
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
   return out;
 }
 
@@ -1171,8 +1167,6 @@ static Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& op
 // conversion's result is returned.
 Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   if (!(opt.pair_above > 0)) return convert(in, opt);
-  const auto t0 = std::chrono::steady_clock::now();
-  const std::clock_t c0 = std::clock();
   const std::size_t nt = in.triangles.size();
   const std::size_t np = in.points.size();
   // The plain conversion, when pairs first cannot keep a guarantee.
@@ -1355,6 +1349,7 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   }
   // Assemble: the conversion's quads and points, then the merged quads.
   Tri2QuadResult out = std::move(rest);
+  out.allow_outside = opt.allow_outside;
   out.input_points = np;
   out.triangles = nt;
   out.components = h;
@@ -1397,9 +1392,78 @@ Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
   out.cases.push_back({"pairs_returned", returned});
   out.cases.push_back({"pairs_first_abandoned", 0});
   if (out.quads.size() > out.quad_bound() || out.steiner > out.steiner_bound(opt.allow_outside)) return plain();
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  out.cpu_seconds = double(std::clock() - c0) / CLOCKS_PER_SEC;
   return out;
+}
+
+Json Tri2QuadResult::to_json() const {
+  Json j = Json::object();
+  j["triangles"] = triangles;
+  j["components"] = components;
+  j["quads"] = quads.size();
+  j["steiner_points"] = steiner;
+  j["steiner_outside"] = steiner_outside;
+  j["repair_splits"] = repairs;
+  j["quad_bound"] = quad_bound();
+  j["steiner_bound"] = steiner_bound(allow_outside);
+  j["within_bounds"] = within_bounds();
+  j["quads_per_triangle"] = double(quads.size()) / double(triangles);
+  j["steiner_per_triangle"] = double(steiner) / double(triangles);
+  const QualityReport quality = quality_report(points, quads);
+  j["non_convex"] = quality.non_convex;
+  Json counts = Json::object();
+  for (const auto& [name, n] : cases) counts[name] = n;
+  j["cases"] = counts;
+  j["quality"] = quality.to_json();
+  return j;
+}
+
+std::string Tri2QuadResult::failed_guarantee() const {
+  std::size_t non_convex = 0;
+  for (const auto& q : quads)
+    if (!is_strictly_convex(points[q[0]], points[q[1]], points[q[2]], points[q[3]])) ++non_convex;
+  if (non_convex) return std::to_string(non_convex) + " quads not strictly convex";
+  if (!within_bounds())
+    return "size bound exceeded (quads " + std::to_string(quads.size()) + " / " + std::to_string(quad_bound()) +
+           ", Steiner points " + std::to_string(steiner) + " / " + std::to_string(steiner_bound(allow_outside)) + ")";
+  return "";
+}
+
+Tri2QuadInput tri2quad_input(PlanarMesh&& mesh, const std::string& path) {
+  Tri2QuadInput in;
+  in.path = path;
+  in.index_base = mesh.first_index;
+  in.points = std::move(mesh.points);
+  in.triangles.reserve(mesh.elements.size());
+  for (std::size_t i = 0; i < mesh.elements.size(); ++i) {
+    const auto& e = mesh.elements[i];
+    if (e.size() != 3) throw Error("element " + std::to_string(i + mesh.first_index) + " is not a triangle", path);
+    in.triangles.push_back({e[0], e[1], e[2]});
+  }
+  // The per-element vectors cost ~56 bytes a triangle: free them now.
+  std::vector<std::vector<int>>().swap(mesh.elements);
+  const auto& attributes = mesh.element_attributes;
+  if (!attributes.empty() && attributes.size() == in.triangles.size()) {
+    bool any = false;
+    for (const auto& a : attributes) any = any || !a.empty();
+    if (any)
+      for (const auto& a : attributes) in.region.push_back(a.empty() ? 0.0 : a[0]);
+  }
+  std::vector<std::vector<double>>().swap(mesh.element_attributes);
+  in.constraints = std::move(mesh.segments);
+  in.constraint_markers = std::move(mesh.segment_markers);
+  return in;
+}
+
+PlanarMesh planar_mesh(const Tri2QuadResult& r, int first_index) {
+  PlanarMesh q;
+  q.first_index = first_index;
+  q.points = r.points;
+  q.elements.reserve(r.quads.size());
+  for (const auto& f : r.quads) q.elements.push_back({f[0], f[1], f[2], f[3]});
+  for (double a : r.region) q.element_attributes.push_back({a});
+  q.segments = r.segments;
+  q.segment_markers = r.segment_markers;
+  return q;
 }
 
 } // namespace imgmesh
