@@ -133,7 +133,15 @@ struct Conversion {
   void convert_components();
 
   // tri2quad_steps.cpp
+  enum class Closing { kClosed, kOpen, kPassedUp };
   void process_node(int u, bool is_root);
+  void node_polygon(int u, int s0, Child* child);
+  bool small_node(int u, int c);
+  bool is_pinched();
+  Closing close_polygon(int u, bool is_root, const Child* child, LocalPatch& lp, Leftover& r, int& split_m);
+  bool pentagon_leaving_triangle(LocalPatch& lp, Leftover& r, int hexagon_budget);
+  bool pentagon_edge_point(LocalPatch& lp, Leftover& r, int a, int b, int c, bool is_root, int& split_m,
+                           int hexagon_budget);
   static void leftover_triangles(const Leftover& r, int p, int q, std::vector<std::array<int, 3>>& tris);
   static void leftover_boundary(const Leftover& r, std::vector<int>& b, std::vector<int>& inner);
   static int local_of(const LocalPatch& lp, int g);

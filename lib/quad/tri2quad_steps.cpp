@@ -12,200 +12,224 @@
 
 namespace imgmesh::t2q {
 
-// Node u with outgoing edge (a, b): combine with the children's regions.
+// Node u with outgoing edge (a, b): its triangle and its children's
+// leftovers form a polygon, closed by steps 1-4 (step 5 at the root), on a
+// second attempt after dents, or by the safe split.
 void Conversion::process_node(int u, bool is_root) {
   const int s0 = parent_slot[u];
   const int a = triangles[u][s0], b = triangles[u][(s0 + 1) % 3], c = triangles[u][(s0 + 2) % 3];
   for (int attempt = 0;; ++attempt) {
-  // Scratch buffers kept across nodes: no allocation on the common paths.
-  std::vector<int>& B = scratch_boundary;
-  std::vector<int>& I = scratch_inner;
+    Child child[2];
+    node_polygon(u, s0, child);
+    if (!is_root && small_node(u, c)) return;
+    const bool pinched = is_pinched();
+    LocalPatch& lp = scratch_patch;
+    lp.p.clear();
+    lp.gid.clear();
+    lp.quads.clear();
+    for (int v : scratch_boundary) lp.add_known(points[v], v);
+    for (int v : scratch_inner) lp.add_known(points[v], v);
+    const double at = attribute[u];
+    Leftover r;
+    int split_m = -1;  // local id of a point put on the root edge
+    const Closing closing = pinched ? Closing::kOpen : close_polygon(u, is_root, child, lp, r, split_m);
+    if (closing == Closing::kPassedUp) return;
+    if (closing == Closing::kOpen && attempt == 0 && make_dents(u, s0)) continue;
+    if (closing == Closing::kOpen) {
+      lp.p.clear();
+      lp.gid.clear();
+      lp.quads.clear();
+      r = safe_split(lp, scratch_triangles, is_root, &split_m);
+    }
+    r = commit_region(lp, r, at, &split_m);  // split_m: a point put on the root edge
+    if (is_root) finish_root(u, a, b, r, at, split_m);
+    else leftover[u] = r;
+    return;
+  }
+}
+
+// The polygon of node u (outgoing edge in slot s0): the boundary from its
+// outgoing edge (a, b, ..., c, ...) with the vertices inside it, and its
+// triangles (its own first, split at a child's dent, then the children's).
+void Conversion::node_polygon(int u, int s0, Child* child) {
+  const int a = triangles[u][s0], b = triangles[u][(s0 + 1) % 3], c = triangles[u][(s0 + 2) % 3];
+  std::vector<int>& boundary = scratch_boundary;
+  std::vector<int>& inner = scratch_inner;
   std::vector<std::array<int, 3>>& tris = scratch_triangles;
   std::vector<std::array<int, 3>>& kids = scratch_child_triangles;
-  B.assign({a, b});
-  I.clear();
+  boundary.assign({a, b});
+  inner.clear();
   tris.assign({{a, b, c}});
   kids.clear();
-  Child child[2];
   for (int k = 1; k <= 2; ++k) {
     const int j = (s0 + k) % 3;
     const int w = neighbours[u][j];
-    if (k == 2) B.push_back(c);
+    if (k == 2) boundary.push_back(c);
     if (w < 0 || (constrained[u] >> j & 1) || parent[w] != u) continue;
     const int p = triangles[u][(j + 1) % 3], q = triangles[u][j];  // child's outgoing edge (p, q)
     child[k - 1] = {leftover[w], p, q};
-    leftover_boundary(leftover[w], B, I);
+    leftover_boundary(leftover[w], boundary, inner);
     if (leftover[w].type == kLeftoverDent) split_own(tris, q, p, leftover[w].x);
     else leftover_triangles(leftover[w], p, q, kids);
   }
   tris.insert(tris.end(), kids.begin(), kids.end());
   // Close "x, c, x" (a vertex surrounded by the region: Fig. 3.6).
   bool changed = true;
-  while (changed && B.size() >= 4) {
+  while (changed && boundary.size() >= 4) {
     changed = false;
-    const std::size_t n = B.size();
+    const std::size_t n = boundary.size();
     for (std::size_t i = 0; i < n; ++i) {
-      if (B[(i + n - 1) % n] == B[(i + 1) % n] && i != 0 && i != 1 && (i + 1) % n != 0 && (i + 1) % n != 1) {
-        I.push_back(B[i]);
+      if (boundary[(i + n - 1) % n] == boundary[(i + 1) % n] && i != 0 && i != 1 && (i + 1) % n != 0 &&
+          (i + 1) % n != 1) {
+        inner.push_back(boundary[i]);
         const std::size_t j = (i + 1) % n;
-        if (j > i) { B.erase(B.begin() + j); B.erase(B.begin() + i); }
-        else { B.erase(B.begin() + i); B.erase(B.begin() + j); }
+        if (j > i) { boundary.erase(boundary.begin() + j); boundary.erase(boundary.begin() + i); }
+        else { boundary.erase(boundary.begin() + i); boundary.erase(boundary.begin() + j); }
         changed = true;
         break;
       }
     }
   }
-  // Fast paths for the two commonest nodes (no pinch is possible with
-  // fewer than five boundary vertices): a lone triangle, and a pair that
-  // is a convex quad (the 4(c) shortcut) or goes to the grandparent.
-  if (!is_root && I.empty() && B.size() == 3) {
+}
+
+// Fast paths for the two commonest nodes below the root (no pinch is
+// possible with fewer than five boundary vertices): a lone triangle waits
+// for its parent, a pair is a convex quad (the 4(c) shortcut) or goes to
+// the grandparent. False when the node is neither.
+bool Conversion::small_node(int u, int c) {
+  const std::vector<int>& boundary = scratch_boundary;
+  if (!scratch_inner.empty()) return false;
+  if (boundary.size() == 3) {
     leftover[u] = {kLeftoverTriangle, 0, c, -1};
-    return;
-  }
-  if (!is_root && I.empty() && B.size() == 4 && tris.size() == 2) {
-    if (good_quad(points[B[0]], points[B[1]], points[B[2]], points[B[3]])) {
-      result.quads.push_back({B[0], B[1], B[2], B[3]});
-      if (has_regions) result.region.push_back(attribute[u]);
-      ++case_counts[kQuadConvex];
-      leftover[u] = {};
-    } else {
-      ++case_counts[kQuadPassedUp];
-      leftover[u] = {kLeftoverQuad, std::uint8_t(B[3] == c ? 0 : 1), B[2], B[3]};
-    }
-    return;
-  }
-  bool pinched = false;
-  {
-    std::vector<int>& s = scratch_sorted;
-    s.assign(B.begin(), B.end());
-    s.insert(s.end(), I.begin(), I.end());
-    std::sort(s.begin(), s.end());
-    pinched = std::adjacent_find(s.begin(), s.end()) != s.end();
-  }
-  if (!pinched && B.size() == 3 && I.empty() && !is_root) {
-    leftover[u] = {kLeftoverTriangle, 0, c, -1};  // a lone triangle waits for its parent
-    return;
-  }
-  LocalPatch& lp = scratch_patch;
-  lp.p.clear();
-  lp.gid.clear();
-  lp.quads.clear();
-  int split_m = -1;  // local id of a point put on the root edge
-  std::vector<int> LB, LI;
-  for (int v : B) LB.push_back(lp.add_known(points[v], v));
-  for (int v : I) LI.push_back(lp.add_known(points[v], v));
-  const double at = attribute[u];
-  Leftover r;
-  bool done = false;
-  const std::size_t nb_ = B.size(), ni = I.size();
-  // B.2.1: a pentagon becomes quads plus a triangle passed up (its apex).
-  auto pentagon_leaving_triangle = [&](int hexagon_budget) {
-    int kind = 0;
-    const int apex = pentagon(lp, {0, 1, 2, 3, 4}, &kind, hexagon_budget);
-    if (apex < 0) return false;
-    ++case_counts[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kind == 2 ? kPentagonType2 : kPentagonType3];
-    r = {kLeftoverTriangle, 0, apex, -1};
     return true;
-  };
-  // B.2.1 type 3 (4(c)(ii)): a point m on the outgoing edge, B.1.1 on the
-  // hexagon (a, m, b, ...); below the root m goes to the parent.
-  auto pentagon_edge_point = [&](int hexagon_budget) {
-    const auto m0 = lp.mark();
-    for (const P2& x : edge_points(a, b, c, is_root)) {
-      const int m = lp.add_new(x);
-      if (hexagon(lp, {0, m, 1, 2, 3, 4}, hexagon_budget)) {
-        if (is_root) { ++case_counts[kRootPentagonEdge]; split_m = m; r = {}; }
-        else { ++case_counts[kPentagonType3Edge]; r = {kLeftoverDent, 0, m, -1}; }
-        return true;
-      }
-      lp.rollback(m0);
-    }
-    return false;
-  };
-  if (!pinched) {
-    if (nb_ == 3 && ni == 0) {
-      if (!is_root) { leftover[u] = {kLeftoverTriangle, 0, c, -1}; return; }
-      r = {kLeftoverTriangle, 0, 2, -1};  // local id of c
-      done = true;
-    } else if (nb_ == 4 && ni == 0) {
-      if (good_quad(lp.p[0], lp.p[1], lp.p[2], lp.p[3])) {
-        lp.quads.push_back({0, 1, 2, 3});
-        ++case_counts[kQuadConvex];
-        r = {};
-        done = true;
-      } else if (!is_root && tris.size() == 2) {
-        Leftover q{kLeftoverQuad, std::uint8_t(B[3] == c ? 0 : 1), B[2], B[3]};
-        ++case_counts[kQuadPassedUp];
-        leftover[u] = q;
-        return;
-      } else if (quad_nested_free(lp, {0, 1, 2, 3})) {
-        ++case_counts[kRootNested];
-        r = {};
-        done = true;
-      }
-    } else if (nb_ == 5 && ni == 0 && is_root && !(options.allow_outside && component_parent[component[u]] < 0)) {
-      // At the root the outgoing edge may take a point (as the thesis's
-      // type 3 does): the hexagon (a, m, b, ...) by B.1.1 closes the
-      // pentagon with at most 5 quads and 4 points, where a leftover
-      // triangle plus Joe's split would cost at least 6 quads and 5 points.
-      done = pentagon_edge_point(3) || pentagon_leaving_triangle(3);
-    } else if (nb_ == 5 && ni == 0) {
-      // B.2.1 within its budget (3 quads, 2 points for the 2 triangles
-      // eliminated), else type 3: the point on the outgoing edge and B.1.1
-      // with at most 2 more (4 quads, 3 points for 3 triangles).
-      done = pentagon_leaving_triangle(1) || pentagon_edge_point(2) || pentagon_leaving_triangle(3);
-    } else if (nb_ == 6 && ni == 0) {
-      if (hexagon(lp, {0, 1, 2, 3, 4, 5})) { ++case_counts[kHexagon]; r = {}; done = true; }
-    } else if (nb_ == 7 && ni == 0) {
-      done = close_heptagon(lp, r, a, b, c, is_root, split_m);
-    } else if (nb_ == 3 && ni == 1) {
-      // Non-empty triangle (a, b, w) around I (Fig. 3.6): it goes up to
-      // the parent (a quad plus a leftover triangle is impossible here:
-      // the remainder would be reflex at I).
-      if (!is_root && tris.size() == 3) {
-        ++case_counts[kNonEmptyTriangle];
-        leftover[u] = {kLeftoverNonEmpty, 0, B[2], I[0]};
-        return;
-      } else if (is_root) {
-        // Step 5(a) without an outside point: a point on the root edge
-        // makes the quad (a, m, b, w) around I (B.1.2, flat corner at m).
-        const auto mk = lp.mark();
-        const int m = lp.add_new({0.5 * (points[a][0] + points[b][0]), 0.5 * (points[a][1] + points[b][1])});
-        if (quad_with_point(lp, {0, m, 1, 2}, 3)) {
-          ++case_counts[kQuadPoint];
-          split_m = m;
-          r = {};
-          done = true;
-        } else {
-          lp.rollback(mk);
-        }
-      }
-    } else if (nb_ == 4 && ni == 1) {
-      if (quad_with_point(lp, {0, 1, 2, 3}, 4)) { ++case_counts[kQuadPoint]; r = {}; done = true; }
-    } else if (nb_ == 5 && ni == 1) {
-      done = pentagon_point(lp, r);
-    } else if (nb_ == 3 && ni == 2) {
-      done = triangle_two_points(lp, c, r);
-    }
-    const auto t0 = child[0].leftover.type, t1 = child[1].leftover.type;
-    if (!done && ((t0 == kLeftoverQuad && t1 == kLeftoverNonEmpty) || (t0 == kLeftoverNonEmpty && t1 == kLeftoverQuad)))
-      done = (nb_ == 6 && ni == 1 && hexagon_point(lp, r)) || pair_and_nonempty(lp, child, a, b, c, r);
-    if (!done && t0 == kLeftoverNonEmpty && t1 == kLeftoverNonEmpty)
-      done = two_nonempty(lp, child, a, b, c, is_root, r, split_m);
   }
-  if (!done && attempt == 0 && make_dents(u, s0)) continue;
-  if (!done) {
-    lp.p.clear();
-    lp.gid.clear();
-    lp.quads.clear();
-    r = safe_split(lp, tris, is_root, &split_m);
+  if (boundary.size() != 4 || scratch_triangles.size() != 2) return false;
+  const int* q = boundary.data();
+  if (good_quad(points[q[0]], points[q[1]], points[q[2]], points[q[3]])) {
+    result.quads.push_back({q[0], q[1], q[2], q[3]});
+    if (has_regions) result.region.push_back(attribute[u]);
+    ++case_counts[kQuadConvex];
+    leftover[u] = {};
+  } else {
+    ++case_counts[kQuadPassedUp];
+    leftover[u] = {kLeftoverQuad, std::uint8_t(q[3] == c ? 0 : 1), q[2], q[3]};
+  }
+  return true;
+}
+
+// A vertex twice on the polygon's boundary or inside it: the polygon
+// touches itself, and only the fallbacks handle it.
+bool Conversion::is_pinched() {
+  std::vector<int>& s = scratch_sorted;
+  s.assign(scratch_boundary.begin(), scratch_boundary.end());
+  s.insert(s.end(), scratch_inner.begin(), scratch_inner.end());
+  std::sort(s.begin(), s.end());
+  return std::adjacent_find(s.begin(), s.end()) != s.end();
+}
+
+// Steps 1-5 on the node's polygon (local ids: the boundary from 0, then the
+// inner vertices), by its number of boundary and inner vertices and by what
+// its children left: kClosed with lp's quads and the leftover r, kPassedUp
+// when the whole region goes to the parent (leftover[u] set), else kOpen.
+Conversion::Closing Conversion::close_polygon(int u, bool is_root, const Child* child, LocalPatch& lp,
+                                              Leftover& r, int& split_m) {
+  const int s0 = parent_slot[u];
+  const int a = triangles[u][s0], b = triangles[u][(s0 + 1) % 3], c = triangles[u][(s0 + 2) % 3];
+  const std::vector<int>& boundary = scratch_boundary;
+  const std::size_t nb_ = boundary.size(), ni = scratch_inner.size();
+  bool done = false;
+  if (nb_ == 3 && ni == 0) {  // the root alone (small_node() took the others)
+    r = {kLeftoverTriangle, 0, 2, -1};  // local id of c
     done = true;
+  } else if (nb_ == 4 && ni == 0) {  // the root or a pair with a dent
+    if (good_quad(lp.p[0], lp.p[1], lp.p[2], lp.p[3])) {
+      lp.quads.push_back({0, 1, 2, 3});
+      ++case_counts[kQuadConvex];
+      r = {};
+      done = true;
+    } else if (quad_nested_free(lp, {0, 1, 2, 3})) {
+      ++case_counts[kRootNested];
+      r = {};
+      done = true;
+    }
+  } else if (nb_ == 5 && ni == 0 && is_root && !(options.allow_outside && component_parent[component[u]] < 0)) {
+    // At the root the outgoing edge may take a point (as the thesis's
+    // type 3 does): the hexagon (a, m, b, ...) by B.1.1 closes the
+    // pentagon with at most 5 quads and 4 points, where a leftover
+    // triangle plus Joe's split would cost at least 6 quads and 5 points.
+    done = pentagon_edge_point(lp, r, a, b, c, is_root, split_m, 3) || pentagon_leaving_triangle(lp, r, 3);
+  } else if (nb_ == 5 && ni == 0) {
+    // B.2.1 within its budget (3 quads, 2 points for the 2 triangles
+    // eliminated), else type 3: the point on the outgoing edge and B.1.1
+    // with at most 2 more (4 quads, 3 points for 3 triangles).
+    done = pentagon_leaving_triangle(lp, r, 1) || pentagon_edge_point(lp, r, a, b, c, is_root, split_m, 2) ||
+           pentagon_leaving_triangle(lp, r, 3);
+  } else if (nb_ == 6 && ni == 0) {
+    if (hexagon(lp, {0, 1, 2, 3, 4, 5})) { ++case_counts[kHexagon]; r = {}; done = true; }
+  } else if (nb_ == 7 && ni == 0) {
+    done = close_heptagon(lp, r, a, b, c, is_root, split_m);
+  } else if (nb_ == 3 && ni == 1) {
+    // Non-empty triangle (a, b, w) around I (Fig. 3.6): it goes up to
+    // the parent (a quad plus a leftover triangle is impossible here:
+    // the remainder would be reflex at I).
+    if (!is_root && scratch_triangles.size() == 3) {
+      ++case_counts[kNonEmptyTriangle];
+      leftover[u] = {kLeftoverNonEmpty, 0, boundary[2], scratch_inner[0]};
+      return Closing::kPassedUp;
+    } else if (is_root) {
+      // Step 5(a) without an outside point: a point on the root edge
+      // makes the quad (a, m, b, w) around I (B.1.2, flat corner at m).
+      const auto mk = lp.mark();
+      const int m = lp.add_new({0.5 * (points[a][0] + points[b][0]), 0.5 * (points[a][1] + points[b][1])});
+      if (quad_with_point(lp, {0, m, 1, 2}, 3)) {
+        ++case_counts[kQuadPoint];
+        split_m = m;
+        r = {};
+        done = true;
+      } else {
+        lp.rollback(mk);
+      }
+    }
+  } else if (nb_ == 4 && ni == 1) {
+    if (quad_with_point(lp, {0, 1, 2, 3}, 4)) { ++case_counts[kQuadPoint]; r = {}; done = true; }
+  } else if (nb_ == 5 && ni == 1) {
+    done = pentagon_point(lp, r);
+  } else if (nb_ == 3 && ni == 2) {
+    done = triangle_two_points(lp, c, r);
   }
-  r = commit_region(lp, r, at, &split_m);  // split_m: a point put on the root edge
-  if (is_root) finish_root(u, a, b, r, at, split_m);
-  else leftover[u] = r;
-  return;
+  const auto t0 = child[0].leftover.type, t1 = child[1].leftover.type;
+  if (!done && ((t0 == kLeftoverQuad && t1 == kLeftoverNonEmpty) || (t0 == kLeftoverNonEmpty && t1 == kLeftoverQuad)))
+    done = (nb_ == 6 && ni == 1 && hexagon_point(lp, r)) || pair_and_nonempty(lp, child, a, b, c, r);
+  if (!done && t0 == kLeftoverNonEmpty && t1 == kLeftoverNonEmpty)
+    done = two_nonempty(lp, child, a, b, c, is_root, r, split_m);
+  return done ? Closing::kClosed : Closing::kOpen;
+}
+
+// B.2.1: a pentagon becomes quads plus a triangle passed up (its apex).
+bool Conversion::pentagon_leaving_triangle(LocalPatch& lp, Leftover& r, int hexagon_budget) {
+  int kind = 0;
+  const int apex = pentagon(lp, {0, 1, 2, 3, 4}, &kind, hexagon_budget);
+  if (apex < 0) return false;
+  ++case_counts[kind == 0 ? kPentagonEar : kind == 1 ? kPentagonType1 : kind == 2 ? kPentagonType2 : kPentagonType3];
+  r = {kLeftoverTriangle, 0, apex, -1};
+  return true;
+}
+
+// B.2.1 type 3 (4(c)(ii)): a point m on the outgoing edge, B.1.1 on the
+// hexagon (a, m, b, ...); below the root m goes to the parent.
+bool Conversion::pentagon_edge_point(LocalPatch& lp, Leftover& r, int a, int b, int c, bool is_root, int& split_m,
+                                     int hexagon_budget) {
+  const auto m0 = lp.mark();
+  for (const P2& x : edge_points(a, b, c, is_root)) {
+    const int m = lp.add_new(x);
+    if (hexagon(lp, {0, m, 1, 2, 3, 4}, hexagon_budget)) {
+      if (is_root) { ++case_counts[kRootPentagonEdge]; split_m = m; r = {}; }
+      else { ++case_counts[kPentagonType3Edge]; r = {kLeftoverDent, 0, m, -1}; }
+      return true;
+    }
+    lp.rollback(m0);
   }
+  return false;
 }
 
 // Triangles of a child's region attached to its outgoing edge (p, q).
