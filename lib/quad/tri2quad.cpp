@@ -24,7 +24,7 @@ Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
   out.quads.reserve(in.triangles.size() * 2 / 3 + 16);
   cv.convert_components();
   // The local constructions do not all stay inside the per-node budget of
-  // Table 3.1 (notes: B.1.1 and B.2.2 may need one quad more, a dent or a
+  // Table 3.1 (doc/tri2quad.md: B.1.1 and B.2.2 may need one quad more, a dent or a
   // nested closing costs extra), which only shows on small meshes where the
   // additive 4h does not absorb it. Then other root edges (other BFS trees)
   // are tried, and the smallest result kept.

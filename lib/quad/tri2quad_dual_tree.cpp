@@ -66,7 +66,8 @@ void Conversion::build_mesh() {
         if (std::size_t(w) == t) continue;
         const int k = slot_of(w, a, b);
         if (k < 0) continue;
-        if (++found > 1) throw Error("edge " + edge_name(a, b) + " is shared by more than two triangles (not a 2-manifold)", input.path);
+        if (++found > 1)
+          throw Error("edge " + edge_name(a, b) + " is shared by more than two triangles (not a 2-manifold)", input.path);
         if (triangles[w][k] == a)
           throw Error("triangles on both sides of edge " + edge_name(a, b) + " overlap (folded mesh)", input.path);
         neighbours[t][j] = w;
@@ -153,16 +154,19 @@ void Conversion::build_component_tree() {
     for (std::size_t t = 0; t < triangles.size(); ++t) list[pos[component[t]]++] = int(t);
   }
   component_parent.assign(h, -2);
-  // With edges to avoid_edges, roots of T^c go first to a boundary edge that
+  // With edges to avoid, roots of T^c go first to a boundary edge that
   // may take a point.
   auto free_boundary = [&](std::size_t t) {
     for (int j = 0; j < 3; ++j)
-      if (neighbours[t][j] < 0 && !(avoid_edges && avoid_edges->count(edge_key(triangles[t][j], triangles[t][(j + 1) % 3])))) return true;
+      if (neighbours[t][j] < 0 &&
+          !(avoid_edges && avoid_edges->count(edge_key(triangles[t][j], triangles[t][(j + 1) % 3]))))
+        return true;
     return false;
   };
   for (std::size_t i = 0; i < 2 * triangles.size(); ++i) {
     const std::size_t t = i % triangles.size();
-    const bool boundary = i < triangles.size() ? free_boundary(t) : (neighbours[t][0] < 0 || neighbours[t][1] < 0 || neighbours[t][2] < 0);
+    const bool boundary = i < triangles.size() ? free_boundary(t)
+                                               : (neighbours[t][0] < 0 || neighbours[t][1] < 0 || neighbours[t][2] < 0);
     if (!boundary || component_parent[component[t]] != -2) continue;
     const std::size_t first = component_order.size();
     component_parent[component[t]] = -1;
@@ -230,7 +234,8 @@ void Conversion::convert_components() {
         const int w = neighbours[t][j];
         if (w >= 0 && !(constrained[t] >> j & 1) && parent[w] == -1) {
           parent[w] = t;
-          for (int k = 0; k < 3; ++k) if (neighbours[w][k] == t && triangles[w][k] == triangles[t][(j + 1) % 3]) parent_slot[w] = std::int8_t(k);
+          for (int k = 0; k < 3; ++k)
+            if (neighbours[w][k] == t && triangles[w][k] == triangles[t][(j + 1) % 3]) parent_slot[w] = std::int8_t(k);
           order.push_back(w);
         }
       }

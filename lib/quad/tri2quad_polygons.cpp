@@ -181,7 +181,7 @@ std::vector<P2> kernel(const LocalPatch& lp, const Ring& c) {
 }
 
 // Pushed homothety about h for a quad whose corner r is reflex or flat
-// (notes 3.3), with in_r = h + sigma (c_r - h).
+// (doc/tri2quad.md 3.3), with in_r = h + sigma (c_r - h).
 bool pushed_homothety(LocalPatch& lp, const Ring& c, int r, int q, const P2& h, double sigma) {
   const P2 cr = lp.p[c[r]];
   const P2 w = {cr[0] - h[0], cr[1] - h[1]};
@@ -245,7 +245,7 @@ bool hexagon(LocalPatch& lp, const Ring& h, int budget) {
   }
   if (budget < 2) return false;
   const auto hv = pts(lp, h);
-  // S2 (notes 3.2): two adjacent points s (near h_j) and t (near h_{j+3}),
+  // S2 (doc/tri2quad.md 3.2): two adjacent points s (near h_j) and t (near h_{j+3}),
   // both h_j and h_{j+3} convex; four quads. s first (its own quad and the
   // half-planes that keep its neighbours usable), then t by the same rule.
   for (int j = 0; j < 6; ++j) {
@@ -402,7 +402,7 @@ int pentagon(LocalPatch& lp, const Ring& v, int* kind, int hexagon_budget) {
     lp.rollback(m);
   }
   // Type 2 and its mirror image: the outgoing edge in an ear not at the
-  // common vertex. Labels w1..w5 of notes 3.4 (w[1..5]).
+  // common vertex. Labels w1..w5 of doc/tri2quad.md 3.4 (w[1..5]).
   for (int mirror = 0; mirror < 2; ++mirror) {
     int w[6];
     if (!mirror) { w[2] = V(0); w[3] = V(1); w[4] = V(2); w[5] = V(3); w[1] = V(4); }
@@ -576,7 +576,7 @@ int heptagon(LocalPatch& lp, const Ring& v, int* kind) {
     if (hexagon(lp, rest)) { if (kind) *kind = 0; return apex; }
     lp.rollback(m);
   }
-  // General form (notes 3.6): the leftover (v0, v1, p3) leaves the octagon
+  // General form (doc/tri2quad.md 3.6): the leftover (v0, v1, p3) leaves the octagon
   // (p3, v1, ..., v6, v0) to close with at most 3 more points (6 quads and
   // 4 points in all). First the thesis's shape, a path through one point
   // p1 and two diagonals (5 quads, 2 points), with p3 placed in the centre

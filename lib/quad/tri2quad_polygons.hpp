@@ -38,7 +38,7 @@ struct LocalPatch {
 using Ring = std::vector<int>;
 
 // Lemma B.1.1: hexagon H fully quadrangulated with at most `budget` interior
-// Steiner points (templates T0, T1, then peeling, notes 3.2).
+// Steiner points (templates T0, T1, then peeling, doc/tri2quad.md 3.2).
 bool hexagon(LocalPatch& lp, const Ring& h, int budget = 3);
 
 // Lemma B.1.2: quadrilateral c with the interior point q: 5 quads, 3 new
@@ -58,11 +58,11 @@ int pentagon(LocalPatch& lp, const Ring& v, int* kind = nullptr, int hexagon_bud
 
 // Lemma B.3.1 for a heptagon v (v[0]v[1] the outgoing edge): a leftover
 // triangle on the outgoing edge (an ear, or with a new apex and the path of
-// notes 3.6), hexagons for the rest. Returns the apex or -1.
+// doc/tri2quad.md 3.6), hexagons for the rest. Returns the apex or -1.
 int heptagon(LocalPatch& lp, const Ring& v, int* kind = nullptr);
 // An octagon o closed with at most `budget` interior points (at most
 // budget + 3 quads): a diagonal and B.1.1, or a path through one new point
-// between opposite vertices and two hexagons (notes 3.6).
+// between opposite vertices and two hexagons (doc/tri2quad.md 3.6).
 bool octagon(LocalPatch& lp, const Ring& o, int budget);
 // The heptagon v with the point mpt on its outgoing edge v0v1, closed as
 // the octagon (mpt, v1, ..., v6, v0) with at most 4 interior points: 7
@@ -70,7 +70,7 @@ bool octagon(LocalPatch& lp, const Ring& o, int budget);
 bool heptagon_closed(LocalPatch& lp, const Ring& v, int mpt);
 
 // Joe's split of triangle (a, b, c) with the point m on edge bc (section
-// 3.8 of the notes): 5 quads, 4 new interior points.
+// 3.8 of doc/tri2quad.md): 5 quads, 4 new interior points.
 bool joe_split(LocalPatch& lp, int a, int b, int m, int c);
 // de Berg's split: m_ab, m_bc, m_ca on the edges, one new centre point.
 bool deberg_split(LocalPatch& lp, int a, int b, int c, int mab, int mbc, int mca);

@@ -366,7 +366,7 @@ bool Conversion::pentagon_point(LocalPatch& lp, Leftover& r) {
     }
     lp.rollback(m);
   }
-  // (iii) the middle case (notes 3.5): the outgoing edge in the centre
+  // (iii) the middle case (doc/tri2quad.md 3.5): the outgoing edge in the centre
   // triangle (v0, v1, v3): the type-1 split (v0, v1, p1), (v0, p1, v3, v4),
   // (v3, p1, v1, v2), then B.1.2 on the quad holding q (6 quads, 4 points).
   if (good_triangle(lp.p[0], lp.p[1], lp.p[3]) && good_triangle(lp.p[1], lp.p[2], lp.p[3]) &&
