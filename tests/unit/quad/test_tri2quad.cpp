@@ -1596,3 +1596,117 @@ TEST_CASE("pairs first on a square grid: every square comes back, where the BFS 
   CHECK(c["pairs_first_abandoned"] == 0);
   CHECK(c["pairs_first"] >= 70);
 }
+
+TEST_CASE("tri2quad_input: a planar mesh's triangles, segments and regions; planar_mesh back", "[tri2quad][input]") {
+  // The unit square cut along (0, 2) into two regions, the cut a segment
+  // with marker 5; ids printed from 1.
+  PlanarMesh m;
+  m.first_index = 1;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  m.elements = {{0, 1, 2}, {0, 2, 3}};
+  m.element_attributes = {{1}, {2}};
+  m.segments = {{0, 2}};
+  m.segment_markers = {5};
+  const Tri2QuadInput in = tri2quad_input(PlanarMesh(m), "square.ele");
+  CHECK(in.points == m.points);
+  CHECK(in.triangles == std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 2, 3}});
+  CHECK(in.region == std::vector<double>{1, 2});
+  CHECK(in.constraints == m.segments);
+  CHECK(in.constraint_markers == m.segment_markers);
+  CHECK(in.index_base == 1);
+  CHECK(in.path == "square.ele");
+
+  const Tri2QuadResult r = tri2quad(in);
+  check_result(in, r, false);
+  // Each quad keeps the region of the triangle it lies in, and the cut
+  // comes out as a chain of segments with its marker.
+  REQUIRE(r.region.size() == r.quads.size());
+  for (std::size_t k = 0; k < r.quads.size(); ++k) {
+    P2 c{0, 0};
+    for (int v : r.quads[k]) c = {c[0] + r.points[v][0] / 4, c[1] + r.points[v][1] / 4};
+    CHECK(r.region[k] == (c[0] > c[1] ? 1 : 2));
+  }
+  std::size_t on_cut = 0;
+  for (std::size_t k = 0; k < r.segments.size(); ++k) {
+    const P2 &a = r.points[r.segments[k][0]], &b = r.points[r.segments[k][1]];
+    if (a[0] == a[1] && b[0] == b[1]) {
+      ++on_cut;
+      CHECK(r.segment_markers[k] == 5);
+    }
+  }
+  CHECK(on_cut >= 1);
+
+  const PlanarMesh q = planar_mesh(r, in.index_base);
+  CHECK(q.first_index == 1);
+  CHECK(q.points == r.points);
+  REQUIRE(q.elements.size() == r.quads.size());
+  for (std::size_t k = 0; k < q.elements.size(); ++k) {
+    CHECK(q.elements[k] == std::vector<int>(r.quads[k].begin(), r.quads[k].end()));
+    CHECK(q.element_attributes[k] == std::vector<double>{r.region[k]});
+  }
+  CHECK(q.segments == r.segments);
+  CHECK(q.segment_markers == r.segment_markers);
+
+  // No element with an attribute: no regions.
+  PlanarMesh plain = m;
+  plain.element_attributes = {{}, {}};
+  CHECK(tri2quad_input(std::move(plain), "p.ele").region.empty());
+
+  // A quad element is refused, naming it with the mesh's first index.
+  PlanarMesh with_quad = m;
+  with_quad.elements = {{0, 1, 2, 3}};
+  with_quad.element_attributes.clear();
+  try {
+    tri2quad_input(std::move(with_quad), "q.off");
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.message() == "q.off: element 1 is not a triangle");
+  }
+
+  // A constraint that is not an edge of the mesh is refused by tri2quad,
+  // naming the segment and the file.
+  PlanarMesh off_edge = m;
+  off_edge.segments = {{1, 3}};
+  const Tri2QuadInput bad = tri2quad_input(std::move(off_edge), "bad.ele");
+  try {
+    tri2quad(bad);
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.path() == "bad.ele");
+    CHECK(std::string(e.what()).find("constraint segment (2, 4) is not an edge of the triangle mesh") !=
+          std::string::npos);
+  }
+}
+
+TEST_CASE("Tri2QuadResult: to_json and failed_guarantee say what holds", "[tri2quad][stats]") {
+  Tri2QuadInput in;
+  in.points = {{0, 0}, {1, 0}, {0, 1}};
+  in.triangles = {{0, 1, 2}};
+  Tri2QuadResult r = tri2quad(in);
+  check_result(in, r, false);
+  CHECK(r.failed_guarantee().empty());
+  const Json j = r.to_json();
+  CHECK(j.at("triangles").integer() == 1);
+  CHECK(j.at("quads").integer() == long(r.quads.size()));
+  CHECK(j.at("steiner_points").integer() == long(r.steiner));
+  CHECK(j.at("quad_bound").integer() == long(r.quad_bound()));
+  CHECK(j.at("steiner_bound").integer() == long(r.steiner_bound(false)));
+  CHECK(j.at("within_bounds").boolean());
+  CHECK(j.at("non_convex").integer() == 0);
+  CHECK(j.at("cases").at("5bd_joe_split").integer() == 1);
+  CHECK(j.at("quality").at("quads").integer() == long(r.quads.size()));
+
+  // Over a size bound: the counts in the message, as the tool said them.
+  Tri2QuadResult big = r;
+  while (big.quads.size() <= big.quad_bound()) big.quads.push_back(big.quads[0]);
+  CHECK(!big.to_json().at("within_bounds").boolean());
+  CHECK(big.failed_guarantee() == "size bound exceeded (quads " + std::to_string(big.quads.size()) + " / " +
+                                      std::to_string(big.quad_bound()) + ", Steiner points " +
+                                      std::to_string(big.steiner) + " / " + std::to_string(big.steiner_bound(false)) +
+                                      ")");
+  // A quad turned clockwise comes first.
+  Tri2QuadResult flipped = big;
+  std::reverse(flipped.quads[0].begin(), flipped.quads[0].end());
+  CHECK(flipped.failed_guarantee() == "1 quads not strictly convex");
+  CHECK(flipped.to_json().at("non_convex").integer() == 1);
+}
