@@ -128,7 +128,16 @@ struct Conversion {
   std::string edge_name(int a, int b) const { return "(" + vid(a) + ", " + vid(b) + ")"; }
 
   // tri2quad_dual_tree.cpp
+  struct VertexTriangles {
+    std::vector<std::uint32_t> start, around;  // the triangles at v: around[start[v] .. start[v + 1])
+  };
   void build_mesh();
+  void orient_triangles();
+  VertexTriangles triangles_around_vertices() const;
+  int slot_of(int w, int x, int y) const;
+  void find_neighbours(const VertexTriangles& around);
+  void mark_constraints(const VertexTriangles& around);
+  void check_input_restriction() const;
   void build_component_tree();
   void convert_components();
 

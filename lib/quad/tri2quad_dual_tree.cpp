@@ -13,7 +13,22 @@
 
 namespace imgmesh::t2q {
 
+// The input's checks and its mesh: counter-clockwise triangles, their
+// neighbours, the constraint and boundary edges with their markers, and the
+// input restriction of 3.3.
 void Conversion::build_mesh() {
+  orient_triangles();
+  const VertexTriangles around = triangles_around_vertices();
+  find_neighbours(around);
+  mark_constraints(around);
+  check_input_restriction();
+  result.input_points = input.points.size();
+  result.triangles = triangles.size();
+}
+
+// The input's triangles, counter-clockwise, with their regions; ids in
+// range, coordinates finite, no triangle degenerate.
+void Conversion::orient_triangles() {
   const std::size_t n = input.points.size();
   if (input.triangles.empty()) throw Error("the triangle mesh has no triangles", input.path);
   if (n > std::size_t(1) << 30 || input.triangles.size() > std::size_t(1) << 29)
@@ -38,31 +53,42 @@ void Conversion::build_mesh() {
     triangles[t] = tr;
     if (has_regions) attribute[t] = input.region[t];
   }
-  // Edge adjacency through the triangles around each vertex (CSR, 4 bytes
-  // a corner): less memory and time than sorting the 3t edges.
-  std::vector<std::uint32_t> start(n + 1, 0), around(3 * triangles.size());
+}
+
+// Edge adjacency through the triangles around each vertex (CSR, 4 bytes
+// a corner): less memory and time than sorting the 3t edges.
+Conversion::VertexTriangles Conversion::triangles_around_vertices() const {
+  const std::size_t n = input.points.size();
+  VertexTriangles vt;
+  std::vector<std::uint32_t>& start = vt.start;
+  start.assign(n + 1, 0);
+  vt.around.resize(3 * triangles.size());
   for (const auto& tr : triangles) for (int v : tr) ++start[v + 1];
   for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
-  {
-    std::vector<std::uint32_t> pos(start.begin(), start.end() - 1);
-    for (std::size_t t = 0; t < triangles.size(); ++t) for (int v : triangles[t]) around[pos[v]++] = std::uint32_t(t);
+  std::vector<std::uint32_t> pos(start.begin(), start.end() - 1);
+  for (std::size_t t = 0; t < triangles.size(); ++t) for (int v : triangles[t]) vt.around[pos[v]++] = std::uint32_t(t);
+  return vt;
+}
+
+// Slot of the edge (x, y) or (y, x) in triangle w, or -1.
+int Conversion::slot_of(int w, int x, int y) const {
+  for (int k = 0; k < 3; ++k) {
+    const int p = triangles[w][k], q = triangles[w][(k + 1) % 3];
+    if ((p == x && q == y) || (p == y && q == x)) return k;
   }
-  // Slot of the edge (a, b) or (b, a) in triangle w, or -1.
-  auto slot_of = [&](int w, int x, int y) {
-    for (int k = 0; k < 3; ++k) {
-      const int p = triangles[w][k], q = triangles[w][(k + 1) % 3];
-      if ((p == x && q == y) || (p == y && q == x)) return k;
-    }
-    return -1;
-  };
+  return -1;
+}
+
+// The triangle across each edge; an edge in three triangles or with both
+// triangles on one side is refused.
+void Conversion::find_neighbours(const VertexTriangles& around) {
   neighbours.assign(triangles.size(), {-1, -1, -1});
-  constrained.assign(triangles.size(), 0);
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int j = 0; j < 3; ++j) {
       const int a = triangles[t][j], b = triangles[t][(j + 1) % 3];
       int found = 0;
-      for (std::uint32_t i = start[a]; i < start[a + 1]; ++i) {
-        const int w = int(around[i]);
+      for (std::uint32_t i = around.start[a]; i < around.start[a + 1]; ++i) {
+        const int w = int(around.around[i]);
         if (std::size_t(w) == t) continue;
         const int k = slot_of(w, a, b);
         if (k < 0) continue;
@@ -73,15 +99,21 @@ void Conversion::build_mesh() {
         neighbours[t][j] = w;
       }
     }
-  // Constraint segments.
+}
+
+// The constraint segments (each an edge of the mesh) and every boundary
+// edge: the constrained bits and the segments with their markers.
+void Conversion::mark_constraints(const VertexTriangles& around) {
+  const std::size_t n = input.points.size();
+  constrained.assign(triangles.size(), 0);
   for (std::size_t k = 0; k < input.constraints.size(); ++k) {
     const auto s = input.constraints[k];
     const int marker = k < input.constraint_markers.size() ? input.constraint_markers[k] : 1;
     if (s[0] < 0 || s[1] < 0 || std::size_t(s[0]) >= n || std::size_t(s[1]) >= n)
       throw Error("constraint segment " + std::to_string(k + input.index_base) + " has a vertex id out of range", input.path);
     bool edge = false;
-    for (std::uint32_t i = start[s[0]]; i < start[s[0] + 1]; ++i) {
-      const int w = int(around[i]);
+    for (std::uint32_t i = around.start[s[0]]; i < around.start[s[0] + 1]; ++i) {
+      const int w = int(around.around[i]);
       const int j = slot_of(w, s[0], s[1]);
       if (j >= 0) { constrained[w] |= std::uint8_t(1u << j); edge = true; }
     }
@@ -89,15 +121,17 @@ void Conversion::build_mesh() {
       throw Error("constraint segment " + edge_name(s[0], s[1]) + " is not an edge of the triangle mesh", input.path);
     segments[edge_key(s[0], s[1])] = marker;
   }
-  // Every boundary edge is a constraint too.
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int j = 0; j < 3; ++j)
       if (neighbours[t][j] < 0) {
         constrained[t] |= std::uint8_t(1u << j);
         segments.emplace(edge_key(triangles[t][j], triangles[t][(j + 1) % 3]), 1);
       }
-  // Input restriction (3.3): the constraint complex has no dangling end.
-  std::vector<std::uint8_t> deg(n, 0);
+}
+
+// Input restriction (3.3): the constraint complex has no dangling end.
+void Conversion::check_input_restriction() const {
+  std::vector<std::uint8_t> deg(input.points.size(), 0);
   for (std::size_t t = 0; t < triangles.size(); ++t)
     for (int j = 0; j < 3; ++j)
       if ((constrained[t] >> j & 1) && (neighbours[t][j] < 0 || std::size_t(neighbours[t][j]) > t)) {
@@ -108,12 +142,11 @@ void Conversion::build_mesh() {
       if (constrained[t] >> j & 1)
         for (int v : {triangles[t][(j + 1) % 3], triangles[t][j]})
           if (deg[v] == 1)
-            throw Error("constraint edge " + edge_name(triangles[t][j], triangles[t][(j + 1) % 3]) + " dangles at vertex " + vid(v) +
+            throw Error("constraint edge " + edge_name(triangles[t][j], triangles[t][(j + 1) % 3]) +
+                            " dangles at vertex " + vid(v) +
                             " (no other constraint or boundary edge ends there): the input restriction of "
                             "thesis 3.3 (Fig. 3.26) is not met",
                         input.path);
-  result.input_points = n;
-  result.triangles = triangles.size();
 }
 
 void Conversion::build_component_tree() {
