@@ -66,43 +66,70 @@ bool Conversion::make_dents(int u, int s0) {
   return any;
 }
 
-// The safe split. tris[0] is the node's triangle with its outgoing edge
-// first. Returns the leftover region (kNoLeftover or kLeftoverTriangle) and fills lp.
-Leftover Conversion::safe_split(LocalPatch& lp, const std::vector<std::array<int, 3>>& tris, bool root, int* split_m) {
+namespace {
+
+// A spanning tree of the dual graph of a region's triangles (through shared
+// edges), by BFS from tris[0]: each triangle's parent and the slot of its
+// edge to it, in BFS order (shorter than the region when it is not connected).
+struct RegionTree {
+  std::vector<int> parent, order, slot;
+};
+RegionTree region_tree(const std::vector<std::array<int, 3>>& tris) {
   const int n = int(tris.size());
-  // Spanning tree of the region's dual graph (shared edges).
-  std::vector<int> tree_parent(n, -1), order{0}, pe(n, -1);  // pe: slot in child of edge to tree_parent
+  RegionTree tree{std::vector<int>(n, -1), {0}, std::vector<int>(n, -1)};
   std::vector<char> seen(n, 0);
   seen[0] = 1;
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    const int u = order[i];
+  for (std::size_t i = 0; i < tree.order.size(); ++i) {
+    const int u = tree.order[i];
     for (int j = 0; j < 3; ++j) {
       const int a = tris[u][j], b = tris[u][(j + 1) % 3];
       for (int w = 0; w < n; ++w) {
         if (seen[w]) continue;
         for (int k = 0; k < 3; ++k)
           if (tris[w][k] == b && tris[w][(k + 1) % 3] == a) {
-            seen[w] = 1; tree_parent[w] = u; pe[w] = k; order.push_back(w);
+            seen[w] = 1; tree.parent[w] = u; tree.slot[w] = k; tree.order.push_back(w);
           }
       }
     }
   }
-  if (int(order.size()) != n) throw Error("internal error: disconnected region in tri2quad fallback", input.path);
-  // Odd-degree edge subset (a T-join): every triangle but a non-root
-  // node's own triangle ends with 1 or 3 split edges.
-  std::vector<std::array<int, 3>> split(n, {-1, -1, -1});  // local point id per slot
-  std::vector<int> deg(n, 0);
-  std::vector<std::pair<int, int>> chosen;  // (child, slot)
+  return tree;
+}
+
+// Odd-degree edge subset (a T-join) of the tree, bottom-up: every triangle
+// but the first ends with 1 or 3 split edges. The chosen (child, slot)
+// edges; deg gets each triangle's count.
+std::vector<std::pair<int, int>> odd_degree_edges(const RegionTree& tree, std::vector<int>& deg) {
+  const int n = int(tree.order.size());
+  deg.assign(n, 0);
+  std::vector<std::pair<int, int>> chosen;
   for (int i = n - 1; i > 0; --i) {
-    const int w = order[i];
-    if (deg[w] % 2 == 0) { ++deg[w]; ++deg[tree_parent[w]]; chosen.push_back({w, pe[w]}); }
+    const int w = tree.order[i];
+    if (deg[w] % 2 == 0) { ++deg[w]; ++deg[tree.parent[w]]; chosen.push_back({w, tree.slot[w]}); }
   }
+  return chosen;
+}
+
+// The local id of the output vertex g in lp, added as known if missing.
+int local_id(LocalPatch& lp, const std::vector<P2>& points, int g) {
+  for (std::size_t i = 0; i < lp.p.size(); ++i) if (lp.gid[i] == g) return int(i);
+  return lp.add_known(points[g], g);
+}
+
+} // namespace
+
+// The safe split. tris[0] is the node's triangle with its outgoing edge
+// first. Returns the leftover region (kNoLeftover or kLeftoverTriangle) and fills lp.
+Leftover Conversion::safe_split(LocalPatch& lp, const std::vector<std::array<int, 3>>& tris, bool root, int* split_m) {
+  const int n = int(tris.size());
+  const RegionTree tree = region_tree(tris);
+  if (int(tree.order.size()) != n) throw Error("internal error: disconnected region in tri2quad fallback", input.path);
+  const std::vector<int>& tree_parent = tree.parent;
+  std::vector<int> deg;
+  const std::vector<std::pair<int, int>> chosen = odd_degree_edges(tree, deg);  // (child, slot)
+  std::vector<std::array<int, 3>> split(n, {-1, -1, -1});  // local point id per slot
   const bool split_root_edge = root && deg[0] % 2 == 0;
   if (split_root_edge) ++deg[0];
-  auto local = [&](int g) {
-    for (std::size_t i = 0; i < lp.p.size(); ++i) if (lp.gid[i] == g) return int(i);
-    return lp.add_known(points[g], g);
-  };
+  auto local = [&](int g) { return local_id(lp, points, g); };
   for (const auto& t : tris) for (int v : t) local(v);
   const auto base = lp.mark();
   for (double push : {0.0, 0.05, 0.01, 0.002}) {
