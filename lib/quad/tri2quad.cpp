@@ -12,6 +12,14 @@
 namespace imgmesh {
 
 namespace t2q {
+namespace {
+// How far a result is over the thesis's size bounds (quads and Steiner
+// points together; 0 within both).
+long size_excess(const Tri2QuadResult& r) {
+  return std::max<long>(0, long(r.quads.size()) - long(r.quad_bound())) +
+         std::max<long>(0, long(r.steiner) - long(r.steiner_bound(r.allow_outside)));
+}
+} // namespace
 
 Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
                        const std::unordered_set<std::uint64_t>* avoid_edges) {
@@ -28,12 +36,8 @@ Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
   // nested closing costs extra), which only shows on small meshes where the
   // additive 4h does not absorb it. Then other root edges (other BFS trees)
   // are tried, and the smallest result kept.
-  auto excess = [&](const Tri2QuadResult& r) {
-    return std::max<long>(0, long(r.quads.size()) - long(r.quad_bound())) +
-           std::max<long>(0, long(r.steiner) - long(r.steiner_bound(opt.allow_outside)));
-  };
   std::size_t retries = 0;
-  for (int pick = 1; opt.size_retry && pick <= 12 && excess(out) > 0; ++pick) {
+  for (int pick = 1; opt.size_retry && pick <= 12 && size_excess(out) > 0; ++pick) {
     Tri2QuadResult alt;
     alt.allow_outside = opt.allow_outside;
     Conversion c2(in, opt, alt);
@@ -42,7 +46,7 @@ Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
     c2.build_mesh();
     c2.convert_components();
     ++retries;
-    if (excess(alt) < excess(out)) {
+    if (size_excess(alt) < size_excess(out)) {
       out = std::move(alt);
       std::copy(std::begin(c2.case_counts), std::end(c2.case_counts), std::begin(cv.case_counts));
       cv.segments.swap(c2.segments);
