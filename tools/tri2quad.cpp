@@ -44,12 +44,11 @@ int main(int argc, char** argv) {
     PlanarMesh m = read_planar_mesh(in);
     if (!constraints.empty())
       m.segments = segments_on_mesh(read_poly(constraints), m, constraints, &m.segment_markers);
-    const int first_index = m.first_index;
     const Tri2QuadInput input = tri2quad_input(std::move(m), in);
     if (tool.progress()) tool.report_progress("converting " + std::to_string(input.triangles.size()) + " triangles");
     const Tri2QuadResult r = tri2quad(input, opt);
 
-    const PlanarMesh q = planar_mesh(r, first_index);
+    const PlanarMesh q = planar_mesh(r, input.index_base);
     PlanarWriteOptions wo;
     std::vector<double> mu;
     mu.reserve(r.quads.size());
