@@ -412,7 +412,9 @@ std::vector<std::array<int, 2>> segments_on_mesh(const PlanarMesh& poly, const P
 }
 
 PlanarMesh read_planar_mesh(const std::string& path) {
-  const std::string ext = extension_of(path);
+  // "-": OFF on standard input, parsed from memory as a file would be (the
+  // one single-file planar mesh format; errors name "-").
+  const std::string ext = path == "-" ? std::string(".off") : extension_of(path);
   if (ext == ".ele") {
     PlanarMesh m = read_ele(path);
     const std::string poly = replace_extension(path, ".poly");

@@ -34,7 +34,8 @@ struct PlanarWriteOptions {
 void write_planar_mesh(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt = {});
 
 // .ele (with its .node, and the .poly beside it for segments if it exists)
-// or .off (z ignored; faces of 3 or 4 vertices). Throws Error.
+// or .off (z ignored; faces of 3 or 4 vertices); "-" reads OFF from standard
+// input. Throws Error.
 PlanarMesh read_planar_mesh(const std::string& path);
 
 // The segments of `poly` (a .poly read from poly_path) as ids of m's

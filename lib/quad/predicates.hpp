@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <utility>
+#include <vector>
 
 namespace imgmesh {
 
@@ -35,6 +36,16 @@ inline bool is_strictly_convex(const Point2& a, const Point2& b, const Point2& c
   return orientation(a, b, c) > 0 && orientation(b, c, d) > 0 && orientation(c, d, a) > 0 &&
          orientation(d, a, b) > 0;
 }
+
+// Strictly convex (exact) and every turn above a tiny margin relative to the
+// element's size (1e-10 of its squared bounding-box diagonal), so that
+// independent floating-point checkers agree: the quad-goodness test of every
+// quad tri2quad emits.
+bool good_quad(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
+// The same for the triangle (a, b, c): counter-clockwise, above the margin.
+bool good_triangle(const Point2& a, const Point2& b, const Point2& c);
+// A simple polygon in counter-clockwise order (exact segment tests).
+bool simple_ccw(const std::vector<Point2>& poly);
 
 // The undirected edge {a, b} as one integer (hash and sort key).
 inline std::uint64_t edge_key(int a, int b) {

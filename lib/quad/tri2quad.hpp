@@ -22,8 +22,10 @@
 // ran (make_dents, the safe split) could a result exceed them, and then it
 // is redone from other root edges and the smallest kept (a safety net,
 // counted as size_bound_retry; never used on the random test meshes).
+// tri2quad_conversion.hpp names the file of each part.
 #pragma once
 #include "planar/triangle_io.hpp"
+#include "util/json.hpp"
 
 #include <array>
 #include <cstddef>
@@ -67,12 +69,19 @@ struct Tri2QuadResult {
   std::size_t steiner = 0, steiner_outside = 0, repairs = 0;
   // How often each step / case ran, in a fixed order (name, count).
   std::vector<std::pair<std::string, std::size_t>> cases;
-  double seconds = 0;      // library time without I/O (wall clock)
-  double cpu_seconds = 0;  // the same in processor time (meaningful on a loaded machine)
+  bool allow_outside = false;  // the option the Steiner bound is for
   std::size_t quad_bound() const { return 3 * triangles / 2 + 4 * components; }
   std::size_t steiner_bound(bool allow_outside) const {
     return triangles + (allow_outside ? 3 : 7) * components;
   }
+  bool within_bounds() const {
+    return quads.size() <= quad_bound() && steiner <= steiner_bound(allow_outside);
+  }
+  // The counts, the bounds, the cases and the quality of the quads (--stats).
+  Json to_json() const;
+  // Quads that are not strictly convex, else a size bound exceeded; empty
+  // when both guarantees hold.
+  std::string failed_guarantee() const;
 };
 
 // Throws Error (naming the edge, ids printed with index_base) when the input
@@ -81,5 +90,15 @@ struct Tri2QuadResult {
 // constraint is not an edge of the mesh, the mesh is not a 2-manifold, or a
 // triangle is degenerate.
 Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt = {});
+
+// The input of tri2quad() from a planar mesh read from `path` (named in
+// errors): its triangles, its segments as constraints with their markers
+// (1 where it has none), its first element attribute as the region of each
+// triangle (none when no element has one). The mesh's vectors are released
+// as they are copied. Throws Error naming an element that is not a triangle.
+Tri2QuadInput tri2quad_input(PlanarMesh&& mesh, const std::string& path);
+// The quad mesh of a result as a planar mesh (regions as element attributes,
+// segments with their markers), its ids printed from first_index.
+PlanarMesh planar_mesh(const Tri2QuadResult& result, int first_index);
 
 } // namespace imgmesh

@@ -1,6 +1,6 @@
 // Appendix B of the thesis and the triangle splits, as constructions that
 // place Steiner points in floating point and verify every quad exactly.
-// The reconstructions follow notes/tri2quad.md (sections 1, 3.2-3.4, 3.8).
+// The reconstructions follow doc/tri2quad.md (sections 1, 3.2-3.4, 3.8).
 #include "quad/tri2quad_polygons.hpp"
 
 #include "quad/quality.hpp"
@@ -12,32 +12,10 @@
 
 namespace imgmesh::t2q {
 
-int orient(const P2& a, const P2& b, const P2& c) { return orientation(a, b, c); }
-
 namespace {
-double cross(const P2& o, const P2& a, const P2& b) {
-  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-}
 double cross2(double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; }
 P2 lerp(const P2& a, const P2& b, double t) { return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])}; }
 P2 mid(const P2& a, const P2& b) { return lerp(a, b, 0.5); }
-
-// Margin relative to the element size: the independent checker accepts a
-// turn only above 1e-12 * diag^2; we ask for 1e-10 so both agree.
-constexpr double kMargin = 1e-10;
-
-bool margin_ok(const P2* q, int n) {
-  double x0 = q[0][0], x1 = x0, y0 = q[0][1], y1 = y0;
-  for (int i = 1; i < n; ++i) {
-    x0 = std::min(x0, q[i][0]); x1 = std::max(x1, q[i][0]);
-    y0 = std::min(y0, q[i][1]); y1 = std::max(y1, q[i][1]);
-  }
-  const double d2 = (x1 - x0) * (x1 - x0) + (y1 - y0) * (y1 - y0);
-  if (!(d2 > 0) || !std::isfinite(d2)) return false;
-  for (int i = 0; i < n; ++i)
-    if (!(cross(q[i], q[(i + 1) % n], q[(i + 2) % n]) > kMargin * d2)) return false;
-  return true;
-}
 
 bool good_local(const LocalPatch& lp, const Quad& q) {
   return good_quad(lp.p[q[0]], lp.p[q[1]], lp.p[q[2]], lp.p[q[3]]);
@@ -203,7 +181,7 @@ std::vector<P2> kernel(const LocalPatch& lp, const Ring& c) {
 }
 
 // Pushed homothety about h for a quad whose corner r is reflex or flat
-// (notes 3.3), with in_r = h + sigma (c_r - h).
+// (doc/tri2quad.md 3.3), with in_r = h + sigma (c_r - h).
 bool pushed_homothety(LocalPatch& lp, const Ring& c, int r, int q, const P2& h, double sigma) {
   const P2 cr = lp.p[c[r]];
   const P2 w = {cr[0] - h[0], cr[1] - h[1]};
@@ -227,92 +205,10 @@ bool pushed_homothety(LocalPatch& lp, const Ring& c, int r, int q, const P2& h, 
 
 int reflex_corner(const LocalPatch& lp, const Ring& c) {
   for (int i = 0; i < 4; ++i)
-    if (orient(lp.p[c[(i + 3) % 4]], lp.p[c[i]], lp.p[c[(i + 1) % 4]]) <= 0) return i;
+    if (orientation(lp.p[c[(i + 3) % 4]], lp.p[c[i]], lp.p[c[(i + 1) % 4]]) <= 0) return i;
   return -1;
 }
 } // namespace
-
-bool good_quad(const P2& a, const P2& b, const P2& c, const P2& d) {
-  const P2 q[4] = {a, b, c, d};
-  return margin_ok(q, 4) && is_strictly_convex(a, b, c, d);
-}
-
-bool good_triangle(const P2& a, const P2& b, const P2& c) {
-  const P2 q[3] = {a, b, c};
-  return margin_ok(q, 3) && orient(a, b, c) > 0;
-}
-
-bool simple_ccw(const std::vector<P2>& v) {
-  const std::size_t n = v.size();
-  double area = 0;
-  for (std::size_t i = 0; i < n; ++i) area += cross({0, 0}, v[i], v[(i + 1) % n]);
-  if (!(area > 0)) return false;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = i + 1; j < n; ++j) {
-      const P2 &a = v[i], &b = v[(i + 1) % n], &c = v[j], &d = v[(j + 1) % n];
-      if (j == i + 1 || (i == 0 && j == n - 1)) {
-        // Neighbouring edges meet only at their shared vertex: no fold-back.
-        const P2& s = (j == i + 1) ? b : a;
-        const P2& x = (j == i + 1) ? a : b;
-        const P2& y = (j == i + 1) ? d : c;
-        if (orient(x, s, y) == 0 &&
-            ((x[0] - s[0]) * (y[0] - s[0]) + (x[1] - s[1]) * (y[1] - s[1])) > 0)
-          return false;
-        continue;
-      }
-      const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
-      if (o1 * o2 <= 0 && o3 * o4 <= 0) {
-        if (o1 == 0 && o2 == 0) {  // collinear: overlap test on the bounding boxes
-          if (std::max(std::min(a[0], b[0]), std::min(c[0], d[0])) <=
-                  std::min(std::max(a[0], b[0]), std::max(c[0], d[0])) &&
-              std::max(std::min(a[1], b[1]), std::min(c[1], d[1])) <=
-                  std::min(std::max(a[1], b[1]), std::max(c[1], d[1])))
-            return false;
-          continue;
-        }
-        return false;
-      }
-    }
-  return true;
-}
-
-std::vector<P2> clip(const std::vector<P2>& poly, const std::vector<HalfPlane>& hps) {
-  std::vector<P2> cur = poly, next;
-  for (const auto& h : hps) {
-    next.clear();
-    const std::size_t n = cur.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const P2& s = cur[i];
-      const P2& e = cur[(i + 1) % n];
-      const double ds = cross(h.a, h.b, s), de = cross(h.a, h.b, e);
-      // Closed half-planes (points on a line kept), so regions touching a
-      // clip line survive; the candidates are interior points anyway.
-      if (ds >= 0) next.push_back(s);
-      if ((ds > 0 && de < 0) || (ds < 0 && de > 0)) next.push_back(lerp(s, e, ds / (ds - de)));
-    }
-    cur.swap(next);
-    if (cur.size() < 3) return {};
-  }
-  return cur;
-}
-
-P2 centroid(const std::vector<P2>& v) {
-  double a = 0, cx = 0, cy = 0;
-  const std::size_t n = v.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const double w = cross2(v[i][0] - v[0][0], v[i][1] - v[0][1], v[(i + 1) % n][0] - v[0][0],
-                            v[(i + 1) % n][1] - v[0][1]);
-    a += w;
-    cx += w * (v[i][0] + v[(i + 1) % n][0] - 2 * v[0][0]);
-    cy += w * (v[i][1] + v[(i + 1) % n][1] - 2 * v[0][1]);
-  }
-  if (!(std::fabs(a) > 0)) {
-    double sx = 0, sy = 0;
-    for (const P2& p : v) { sx += p[0]; sy += p[1]; }
-    return {sx / double(n), sy / double(n)};
-  }
-  return {v[0][0] + cx / (3 * a), v[0][1] + cy / (3 * a)};
-}
 
 // ---------------------------------------------------------------- B.1.1
 bool hexagon(LocalPatch& lp, const Ring& h, int budget) {
@@ -349,11 +245,11 @@ bool hexagon(LocalPatch& lp, const Ring& h, int budget) {
   }
   if (budget < 2) return false;
   const auto hv = pts(lp, h);
-  // S2 (notes 3.2): two adjacent points s (near h_j) and t (near h_{j+3}),
+  // S2 (doc/tri2quad.md 3.2): two adjacent points s (near h_j) and t (near h_{j+3}),
   // both h_j and h_{j+3} convex; four quads. s first (its own quad and the
   // half-planes that keep its neighbours usable), then t by the same rule.
   for (int j = 0; j < 6; ++j) {
-    if (orient(P(j - 1), P(j), P(j + 1)) <= 0 || orient(P(j + 2), P(j + 3), P(j + 4)) <= 0) continue;
+    if (orientation(P(j - 1), P(j), P(j + 1)) <= 0 || orientation(P(j + 2), P(j + 3), P(j + 4)) <= 0) continue;
     const int s = lp.add_new(), t = lp.add_new();
     const Quad q1{H(j - 1), H(j), H(j + 1), s}, q2{s, H(j + 1), H(j + 2), t}, q3{H(j + 2), H(j + 3), H(j + 4), t},
         q4{H(j + 4), H(j + 5), s, t};
@@ -370,7 +266,7 @@ bool hexagon(LocalPatch& lp, const Ring& h, int budget) {
   }
   // PEEL: cut one quad off a convex corner, recurse on the hexagon left.
   for (int j = 0; j < 6; ++j) {
-    if (orient(P(j - 1), P(j), P(j + 1)) <= 0) continue;
+    if (orientation(P(j - 1), P(j), P(j + 1)) <= 0) continue;
     for (int variant = 0; variant < 2; ++variant) {
       const int s = lp.add_new();
       std::vector<HalfPlane> hp = {{P(j - 1), P(j)}, {P(j), P(j + 1)}, {P(j - 1), P(j + 1)}};
@@ -422,7 +318,7 @@ bool quad_with_point(LocalPatch& lp, const Ring& c, int q) {
     const auto K = kernel(lp, c);
     bool inK = K.size() >= 3;
     for (int i = 0; i < 4 && inK; ++i)
-      inK = orient(lp.p[c[i]], lp.p[c[(i + 1) % 4]], qp) > 0;
+      inK = orientation(lp.p[c[i]], lp.p[c[(i + 1) % 4]], qp) > 0;
     if (inK) {
       const P2& cr = lp.p[c[r]];
       const P2 d = {qp[0] - cr[0], qp[1] - cr[1]};
@@ -506,7 +402,7 @@ int pentagon(LocalPatch& lp, const Ring& v, int* kind, int hexagon_budget) {
     lp.rollback(m);
   }
   // Type 2 and its mirror image: the outgoing edge in an ear not at the
-  // common vertex. Labels w1..w5 of notes 3.4 (w[1..5]).
+  // common vertex. Labels w1..w5 of doc/tri2quad.md 3.4 (w[1..5]).
   for (int mirror = 0; mirror < 2; ++mirror) {
     int w[6];
     if (!mirror) { w[2] = V(0); w[3] = V(1); w[4] = V(2); w[5] = V(3); w[1] = V(4); }
@@ -647,7 +543,7 @@ bool octagon(LocalPatch& lp, const Ring& o, int budget) {
     for (double f : {0.5, 0.3, 0.7}) cand.push_back(lerp(lp.p[O(i)], lp.p[O(i + 4)], f));
     for (int j : {i, i + 4}) {
       const P2 &a = lp.p[O(j + 7)], &c = lp.p[O(j)], &b = lp.p[O(j + 1)];
-      if (orient(a, c, b) > 0) continue;
+      if (orientation(a, c, b) > 0) continue;
       const P2 d = bisector(a, c, b);
       const double L = std::min(std::hypot(a[0] - c[0], a[1] - c[1]), std::hypot(b[0] - c[0], b[1] - c[1]));
       for (double f : {0.4, 0.2, 0.6}) cand.push_back({c[0] + f * L * d[0], c[1] + f * L * d[1]});
@@ -680,7 +576,7 @@ int heptagon(LocalPatch& lp, const Ring& v, int* kind) {
     if (hexagon(lp, rest)) { if (kind) *kind = 0; return apex; }
     lp.rollback(m);
   }
-  // General form (notes 3.6): the leftover (v0, v1, p3) leaves the octagon
+  // General form (doc/tri2quad.md 3.6): the leftover (v0, v1, p3) leaves the octagon
   // (p3, v1, ..., v6, v0) to close with at most 3 more points (6 quads and
   // 4 points in all). First the thesis's shape, a path through one point
   // p1 and two diagonals (5 quads, 2 points), with p3 placed in the centre

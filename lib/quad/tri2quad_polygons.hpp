@@ -4,7 +4,7 @@
 //
 // Every construction works on a LocalPatch: known vertices (with their ids in
 // the output mesh) and new Steiner points (id -1). Steiner points are placed
-// in floating point by the placement rule of notes/tri2quad.md (each output
+// in floating point by the placement rule of doc/tri2quad.md (each output
 // quad turn in which the point is the only unknown is an open half-plane;
 // clip a bounding polygon by them and take the centroid, then other points
 // of the region), and every output quad is then checked with exact
@@ -13,13 +13,14 @@
 // caller can fall back to another one.
 #pragma once
 #include "planar/triangle_io.hpp"
+#include "quad/half_plane_clip.hpp"
+#include "quad/predicates.hpp"
 
 #include <array>
 #include <vector>
 
 namespace imgmesh::t2q {
 
-using P2 = Point2;
 using Quad = std::array<int, 4>;  // local indices, counter-clockwise
 
 struct LocalPatch {
@@ -33,20 +34,11 @@ struct LocalPatch {
   void rollback(Mark m) { p.resize(m.np); gid.resize(m.np); quads.resize(m.nq); }
 };
 
-// Exact orientation: +1 left turn.
-int orient(const P2& a, const P2& b, const P2& c);
-// Strictly convex (exact) and every turn above a tiny relative margin, so
-// that independent floating-point checkers agree.
-bool good_quad(const P2& a, const P2& b, const P2& c, const P2& d);
-bool good_triangle(const P2& a, const P2& b, const P2& c);
-// Simple polygon, counter-clockwise (exact segment tests).
-bool simple_ccw(const std::vector<P2>& poly);
-
 // A polygon as local indices, counter-clockwise.
 using Ring = std::vector<int>;
 
 // Lemma B.1.1: hexagon H fully quadrangulated with at most `budget` interior
-// Steiner points (templates T0, T1, then peeling, notes 3.2).
+// Steiner points (templates T0, T1, then peeling, doc/tri2quad.md 3.2).
 bool hexagon(LocalPatch& lp, const Ring& h, int budget = 3);
 
 // Lemma B.1.2: quadrilateral c with the interior point q: 5 quads, 3 new
@@ -66,11 +58,11 @@ int pentagon(LocalPatch& lp, const Ring& v, int* kind = nullptr, int hexagon_bud
 
 // Lemma B.3.1 for a heptagon v (v[0]v[1] the outgoing edge): a leftover
 // triangle on the outgoing edge (an ear, or with a new apex and the path of
-// notes 3.6), hexagons for the rest. Returns the apex or -1.
+// doc/tri2quad.md 3.6), hexagons for the rest. Returns the apex or -1.
 int heptagon(LocalPatch& lp, const Ring& v, int* kind = nullptr);
 // An octagon o closed with at most `budget` interior points (at most
 // budget + 3 quads): a diagonal and B.1.1, or a path through one new point
-// between opposite vertices and two hexagons (notes 3.6).
+// between opposite vertices and two hexagons (doc/tri2quad.md 3.6).
 bool octagon(LocalPatch& lp, const Ring& o, int budget);
 // The heptagon v with the point mpt on its outgoing edge v0v1, closed as
 // the octagon (mpt, v1, ..., v6, v0) with at most 4 interior points: 7
@@ -78,16 +70,9 @@ bool octagon(LocalPatch& lp, const Ring& o, int budget);
 bool heptagon_closed(LocalPatch& lp, const Ring& v, int mpt);
 
 // Joe's split of triangle (a, b, c) with the point m on edge bc (section
-// 3.8 of the notes): 5 quads, 4 new interior points.
+// 3.8 of doc/tri2quad.md): 5 quads, 4 new interior points.
 bool joe_split(LocalPatch& lp, int a, int b, int m, int c);
 // de Berg's split: m_ab, m_bc, m_ca on the edges, one new centre point.
 bool deberg_split(LocalPatch& lp, int a, int b, int c, int mab, int mbc, int mca);
-
-// A point in the open region left of every (a_i -> b_i), inside `bound`
-// (a polygon), satisfying `ok`; candidates are the centroid of the clipped
-// region, then points toward its vertices. Returns false if none passes.
-struct HalfPlane { P2 a, b; };
-std::vector<P2> clip(const std::vector<P2>& poly, const std::vector<HalfPlane>& hp);
-P2 centroid(const std::vector<P2>& poly);
 
 } // namespace imgmesh::t2q

@@ -218,3 +218,30 @@ TEST_CASE("OFF in and out, other formats by extension") {
   const auto bad_off = s.file("u.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 5\n");
   CHECK_THROWS_AS(read_planar_mesh(bad_off), Error);
 }
+
+TEST_CASE("read_planar_mesh(\"-\") reads OFF from standard input; errors name \"-\"") {
+  Scratch s;
+  const auto off = s.file("in.off", "OFF\n# a square cut in two\n4 2 0\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n"
+                                    "3 0 1 2\n4 0 2 3 1\n");
+  REQUIRE(std::freopen(off.c_str(), "r", stdin));
+  const PlanarMesh m = read_planar_mesh("-");
+  CHECK(m.points == std::vector<Point2>{{0, 0}, {2, 0}, {2, 1}, {0, 1}});
+  CHECK(m.elements == std::vector<std::vector<int>>{{0, 1, 2}, {0, 2, 3, 1}});
+  CHECK(m.first_index == 0);
+
+  // A face with a missing vertex: the one-line error names "-" and the line.
+  const auto bad = s.file("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n");
+  REQUIRE(std::freopen(bad.c_str(), "r", stdin));
+  try {
+    read_planar_mesh("-");
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.path() == "-");
+    CHECK(e.message().find("line 6") != std::string::npos);
+    CHECK(std::string(e.what()).find('\n') == std::string::npos);
+  }
+  // An empty standard input is not an OFF file.
+  const auto empty = s.file("empty.off", "");
+  REQUIRE(std::freopen(empty.c_str(), "r", stdin));
+  CHECK(error_of([] { read_planar_mesh("-"); }).find("not an OFF file") != std::string::npos);
+}

@@ -1,0 +1,20 @@
+// The region in which the placement rule (doc/tri2quad.md section 1) puts a
+// Steiner point: a bounding polygon clipped by the open half-planes left of
+// each (a -> b), in floating point, and a point well inside it.
+#pragma once
+#include "planar/triangle_io.hpp"
+
+#include <vector>
+
+namespace imgmesh::t2q {
+
+using P2 = Point2;
+
+struct HalfPlane { P2 a, b; };
+// poly (counter-clockwise) clipped by every half-plane; empty when fewer
+// than 3 vertices are left.
+std::vector<P2> clip(const std::vector<P2>& poly, const std::vector<HalfPlane>& hp);
+// The area centroid of a polygon (the vertex mean when its area is zero).
+P2 centroid(const std::vector<P2>& poly);
+
+} // namespace imgmesh::t2q
