@@ -94,38 +94,10 @@ int main(int argc, char** argv) {
     }
 
     tool.stats["input"] = in;
-    tool.stats["width"] = img.size[0];
-    tool.stats["height"] = img.size[1];
-    tool.stats["critical_configurations"] = r.critical_configurations;
-    tool.stats["changed_pixels"] = r.changed_pixels;
-    tool.stats["curves"] = r.curves;
-    tool.stats["closed_curves"] = r.closed_curves;
-    tool.stats["junctions"] = r.junctions;
-    tool.stats["boundary_vertices"] = r.boundary_vertices;
-    tool.stats["vertices"] = r.pslg.points.size();
-    tool.stats["segments"] = r.pslg.segments.size();
-    tool.stats["regions"] = r.regions;
-    tool.stats["tolerance"] = opt.tolerance;
-    tool.stats["hausdorff"] = r.hausdorff;
-    tool.stats["min_angle"] = opt.min_angle;
-    tool.stats["smallest_angle"] = r.smallest_angle;
-    Json interfaces = Json::array();
-    for (const auto& f : r.interfaces) {
-      Json j = Json::object();
-      j["marker"] = f.marker;
-      j["labels"] = std::vector<long long>{f.a, f.b};
-      interfaces.push_back(j);
-    }
-    tool.stats["interfaces"] = interfaces;
-
     std::ostringstream msg;
     msg << r.curves << " curves, " << r.pslg.points.size() << " vertices (from " << r.boundary_vertices
         << "), " << r.regions << " regions, Hausdorff " << r.hausdorff << " px";
     tool.info(msg.str());
-    if (r.hausdorff > opt.tolerance + 1e-9) {
-      tool.info("the Hausdorff bound " + std::to_string(opt.tolerance) + " is not met");
-      return cli::kGuarantee;
-    }
-    return cli::kOk;
+    return tool.finish(r);
   });
 }
