@@ -221,4 +221,33 @@ std::string format_report(const Json& r) {
   return o.str();
 }
 
+MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
+                   const std::string& image_name) {
+  if (mesh.faces.empty()) throw Error("mesh has no faces", mesh_name);
+  MeshInfo r;
+  r.report = naming_input(mesh_name, [&] { return mesh_report(mesh); });
+  if (!image) return r;
+  const MeshTopology it = naming_input(image_name, [&] { return voxel_boundary_topology(*image); });
+  if (!it.manifold)
+    throw Error("bdCA(X) is not a manifold: the image is not well-composed (run img2wc first)", image_name);
+  const MeshTopology mt = mesh_topology(mesh.points.size(), mesh.faces);
+  r.report["image"] = image_comparison(mt, it);
+  r.compared = true;
+  r.matches = r.report.at("image").at("matches").boolean();
+  r.image_name = image_name;
+  return r;
+}
+
+Json MeshInfo::to_json() const {
+  Json j = Json::object();
+  for (const char* k : {"vertices", "faces", "components", "euler"}) j[k] = report.at(k);
+  if (compared) j["matches_image"] = matches;
+  return j;
+}
+
+std::string MeshInfo::failed_guarantee() const {
+  if (matches) return "";
+  return "the mesh does not match bdCA(X) of " + image_name + " component by component";
+}
+
 } // namespace imgmesh
