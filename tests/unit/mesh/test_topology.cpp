@@ -364,6 +364,35 @@ TEST_CASE("the voxel-boundary mesh of a ball matches bdCA(X)", "[topology][bdca]
   CHECK_FALSE(same_topology(mesh_topology(two.nv, two.f), it));
 }
 
+TEST_CASE("mesh_info: the --image guarantee and its report", "[meshinfo]") {
+  auto poly = [](const Faces& s) {
+    PolyMesh m;
+    for (std::size_t i = 0; i < s.nv; ++i) m.points.push_back({double(i % 3), double(i % 5), double(i % 7)});
+    m.faces = s.f;
+    return m;
+  };
+  BinaryImage img = image3(5);
+  img(2, 2, 2) = 1;
+  const MeshInfo same = mesh_info(poly(cube_sphere(2)), "m.off", &img, "x.nrrd");
+  CHECK(same.failed_guarantee().empty());
+  CHECK(same.to_json().at("matches_image").boolean());
+  CHECK(same.report.at("image").at("matches").boolean());
+  Faces two = cube_sphere(2);
+  two.add(cube_sphere(1));
+  const MeshInfo differ = mesh_info(poly(two), "m.off", &img, "x.nrrd");
+  CHECK(differ.failed_guarantee().find("x.nrrd") != std::string::npos);
+  CHECK_FALSE(differ.to_json().at("matches_image").boolean());
+  CHECK(differ.to_json().at("components").integer() == 2);
+  // Without an image there is nothing to fail and no matches_image.
+  const MeshInfo alone = mesh_info(poly(two), "m.off");
+  CHECK(alone.failed_guarantee().empty());
+  CHECK_FALSE(alone.to_json().contains("matches_image"));
+  // A non-well-composed image and a mesh without faces are refused.
+  img(3, 3, 2) = 1;
+  CHECK_THROWS_AS(mesh_info(poly(cube_sphere(2)), "m.off", &img, "x.nrrd"), Error);
+  CHECK_THROWS_AS(mesh_info(PolyMesh{}, "m.off"), Error);
+}
+
 TEST_CASE("mesh_report puts components and euler first", "[meshinfo]") {
   PolyMesh m;
   const Faces s = grid(3, 3, true, true);
