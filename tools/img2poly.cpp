@@ -7,8 +7,6 @@
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
-#include <algorithm>
-#include <set>
 #include <sstream>
 
 using namespace imgmesh;
@@ -19,17 +17,16 @@ int main(int argc, char** argv) {
                  "well-composed version, simplified within a Hausdorff tolerance with its topology kept, "
                  "plus the image rectangle, with one regional point per region giving its label");
   std::string in, out, svg;
-  std::vector<long long> labels;
-  double threshold = 0;
+  Selection sel;
   ImagePslgOptions opt;
   tool.app.add_option("IN", in, "Input 2D image (PNG, NRRD, MetaImage, NIfTI; - for stdin)")->required();
   tool.app.add_option("OUT", out, "Output PSLG, Triangle .poly (- for stdout)")->required();
-  auto* label = tool.app.add_option("--label", labels,
+  auto* label = tool.app.add_option("--label", sel.labels,
                                     "Keep this label (repeatable); other pixels become background 0. "
                                     "Default: every value is a label")
                     ->type_name("L")
                     ->allow_extra_args(false);
-  auto* thr = tool.app.add_option("--threshold", threshold, "Binary image: foreground is value >= T")
+  auto* thr = tool.app.add_option("--threshold", sel.threshold, "Binary image: foreground is value >= T")
                   ->type_name("T")
                   ->excludes(label);
   tool.app.add_option("--tolerance", opt.tolerance,
@@ -60,28 +57,8 @@ int main(int argc, char** argv) {
       if (g.size[0] > 65536 || g.size[1] > 65536 || g.size[0] * g.size[1] > (std::size_t(1) << 28))
         throw Error("image too large for img2poly (at most 65536 pixels a side and 2^28 pixels)", in);
     }
-    LabelImage img;
-    if (thr->count()) {
-      Selection sel;
-      sel.has_threshold = true;
-      sel.threshold = threshold;
-      const BinaryImage b = read_foreground(in, sel);
-      img = LabelImage(b.geometry());
-      std::copy(b.data.begin(), b.data.end(), img.data.begin());
-    } else {
-      img = read_labels(in);
-      if (!labels.empty()) {
-        std::set<long long> keep(labels.begin(), labels.end()), found;
-        for (auto& v : img.data) {
-          if (keep.count(v)) found.insert(v);
-          else v = 0;
-        }
-        for (long long l : keep)
-          if (!found.count(l)) throw Error("label " + std::to_string(l) + " does not occur in the image", in);
-      }
-    }
-    if (img.dimension == 3 && img.size[2] != 1)
-      throw Error("a 3D image (" + std::to_string(img.size[2]) + " slices): img2poly needs a 2D image", in);
+    sel.has_threshold = thr->count() > 0;
+    const LabelImage img = read_labels(in, sel);
 
     tool.report_progress("tracing and simplifying the pixel boundary");
     const auto r = naming_input(in, [&] { return image_to_pslg(img, opt); });
@@ -94,38 +71,10 @@ int main(int argc, char** argv) {
     }
 
     tool.stats["input"] = in;
-    tool.stats["width"] = img.size[0];
-    tool.stats["height"] = img.size[1];
-    tool.stats["critical_configurations"] = r.critical_configurations;
-    tool.stats["changed_pixels"] = r.changed_pixels;
-    tool.stats["curves"] = r.curves;
-    tool.stats["closed_curves"] = r.closed_curves;
-    tool.stats["junctions"] = r.junctions;
-    tool.stats["boundary_vertices"] = r.boundary_vertices;
-    tool.stats["vertices"] = r.pslg.points.size();
-    tool.stats["segments"] = r.pslg.segments.size();
-    tool.stats["regions"] = r.regions;
-    tool.stats["tolerance"] = opt.tolerance;
-    tool.stats["hausdorff"] = r.hausdorff;
-    tool.stats["min_angle"] = opt.min_angle;
-    tool.stats["smallest_angle"] = r.smallest_angle;
-    Json interfaces = Json::array();
-    for (const auto& f : r.interfaces) {
-      Json j = Json::object();
-      j["marker"] = f.marker;
-      j["labels"] = std::vector<long long>{f.a, f.b};
-      interfaces.push_back(j);
-    }
-    tool.stats["interfaces"] = interfaces;
-
     std::ostringstream msg;
     msg << r.curves << " curves, " << r.pslg.points.size() << " vertices (from " << r.boundary_vertices
         << "), " << r.regions << " regions, Hausdorff " << r.hausdorff << " px";
     tool.info(msg.str());
-    if (r.hausdorff > opt.tolerance + 1e-9) {
-      tool.info("the Hausdorff bound " + std::to_string(opt.tolerance) + " is not met");
-      return cli::kGuarantee;
-    }
-    return cli::kOk;
+    return tool.finish(r);
   });
 }

@@ -5,16 +5,9 @@
 #include "wellcomposed/well_composed.hpp"
 
 #include <iostream>
-#include <map>
 #include <sstream>
 
 using namespace imgmesh;
-
-namespace {
-const char* mode_name(RepairMode m) {
-  return m == RepairMode::Add ? "add" : m == RepairMode::Remove ? "remove" : "min";
-}
-} // namespace
 
 int main(int argc, char** argv) {
   cli::Tool tool("img2wc", "Make a binary image well-composed: no critical configuration (C1)/(C2) "
@@ -50,17 +43,13 @@ int main(int argc, char** argv) {
 
     BinaryImage img = read_foreground(in, sel);
     tool.stats["input"] = in;
-    tool.stats["dimension"] = img.dimension;
-    tool.stats["voxels"] = img.count();
 
     if (check) {
-      const CriticalCounts c = count_critical_configurations(img);
-      tool.stats["c1"] = c.c1;
-      tool.stats["c2"] = c.c2;
-      tool.stats["well_composed"] = c.total() == 0;
-      std::cout << in << ": " << (c.total() ? "not well-composed" : "well-composed") << " (C1 " << c.c1
-                << ", C2 " << c.c2 << ")\n";
-      return c.total() ? cli::kFailure : cli::kOk;
+      const WellComposedCheck c = check_well_composed(img);
+      std::cout << in << ": " << (c.counts.total() ? "not well-composed" : "well-composed") << " (C1 " << c.counts.c1
+                << ", C2 " << c.counts.c2 << ")\n";
+      const int code = tool.finish(c);
+      return c.counts.total() ? cli::kFailure : code;
     }
 
     WellComposedOptions opt;
@@ -71,8 +60,6 @@ int main(int argc, char** argv) {
     const WellComposedResult res = make_well_composed(img, opt);
     std::vector<std::uint8_t>().swap(img.data);  // the input is no longer needed: less memory while writing
 
-    // The guarantee, checked on the result rather than assumed.
-    const CriticalCounts left = count_critical_configurations(res.image);
     if (res.padded_before != std::array<std::size_t, 3>{0, 0, 0} ||
         res.padded_after != std::array<std::size_t, 3>{0, 0, 0}) {
       std::ostringstream msg;
@@ -83,29 +70,8 @@ int main(int argc, char** argv) {
       tool.info(msg.str());
     }
     write_image(out, res.image);
-
-    const std::size_t m = res.input.total();
-    tool.stats["mode"] = mode_name(opt.mode);
-    tool.stats["mode_used"] = mode_name(res.mode_used);
-    tool.stats["seed"] = static_cast<unsigned long long>(opt.seed);
-    tool.stats["rules"] = thesis_rules ? "thesis" : "greedy";
-    tool.stats["c1"] = res.input.c1;
-    tool.stats["c2"] = res.input.c2;
-    tool.stats["changed"] = res.changed;
-    tool.stats["ratio"] = m ? double(res.changed) / double(m) : 0.0;
-    tool.stats["created"] = res.created;
-    tool.stats["output_size"] = std::vector<unsigned long long>{res.image.size[0], res.image.size[1], res.image.size[2]};
-    tool.stats["padded_before"] = std::vector<unsigned long long>{res.padded_before[0], res.padded_before[1], res.padded_before[2]};
-    tool.stats["padded_after"] = std::vector<unsigned long long>{res.padded_after[0], res.padded_after[1], res.padded_after[2]};
-    tool.stats["output_c1"] = left.c1;
-    tool.stats["output_c2"] = left.c2;
-    tool.stats["well_composed"] = left.total() == 0;
     tool.debug("C1 " + std::to_string(res.input.c1) + ", C2 " + std::to_string(res.input.c2) + ", changed " +
                std::to_string(res.changed) + ", created " + std::to_string(res.created));
-    if (left.total()) {
-      tool.info("output is NOT well-composed (" + std::to_string(left.total()) + " critical configurations left)");
-      return cli::kGuarantee;
-    }
-    return cli::kOk;
+    return tool.finish(res);
   });
 }

@@ -2,9 +2,9 @@
 #include "cli/cli.hpp"
 #include "image/io.hpp"
 #include "mesh/meshinfo.hpp"
-#include "util/error.hpp"
 
 #include <iostream>
+#include <optional>
 
 int main(int argc, char** argv) {
   imgmesh::cli::Tool tool("meshinfo", "Report the topology and quality of a mesh (surface or planar)");
@@ -17,39 +17,11 @@ int main(int argc, char** argv) {
                       "well-composed image: compare the mesh with bdCA(X) component by component (exit 3 if different)");
   return tool.run(argc, argv, [&] {
     const imgmesh::PolyMesh mesh = imgmesh::read_poly_mesh(in);
-    if (mesh.faces.empty()) throw imgmesh::Error("mesh has no faces", in);
-    imgmesh::Json report;
-    try {
-      report = imgmesh::mesh_report(mesh);
-    } catch (const imgmesh::Error& e) {
-      throw imgmesh::Error(e.what(), in);  // name the file
-    }
-    bool matches = true;
-    if (!image.empty()) {
-      const imgmesh::BinaryImage img = imgmesh::read_foreground(image, {});
-      imgmesh::MeshTopology it;
-      try {
-        it = imgmesh::voxel_boundary_topology(img);
-      } catch (const imgmesh::Error& e) {
-        throw imgmesh::Error(e.what(), image);
-      }
-      if (!it.manifold)
-        throw imgmesh::Error("bdCA(X) is not a manifold: the image is not well-composed (run img2wc first)", image);
-      const imgmesh::MeshTopology mt = imgmesh::mesh_topology(mesh.points.size(), mesh.faces);
-      report["image"] = imgmesh::image_comparison(mt, it);
-      matches = report.at("image").at("matches").boolean();
-    }
-    if (json) std::cout << report.dump(2) << "\n";
-    else std::cout << imgmesh::format_report(report);
-    tool.stats["vertices"] = report.at("vertices");
-    tool.stats["faces"] = report.at("faces");
-    tool.stats["components"] = report.at("components");
-    tool.stats["euler"] = report.at("euler");
-    if (!image.empty()) tool.stats["matches_image"] = matches;
-    if (!matches) {
-      tool.info("the mesh does not match bdCA(X) of " + image + " component by component");
-      return imgmesh::cli::kGuarantee;
-    }
-    return imgmesh::cli::kOk;
+    std::optional<imgmesh::BinaryImage> img;
+    if (!image.empty()) img = imgmesh::read_foreground(image, {});
+    const imgmesh::MeshInfo info = imgmesh::mesh_info(mesh, in, img ? &*img : nullptr, image);
+    if (json) std::cout << info.report.dump(2) << "\n";
+    else std::cout << imgmesh::format_report(info.report);
+    return tool.finish(info);
   });
 }

@@ -6,7 +6,6 @@
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
-#include <cmath>
 #include <sstream>
 
 using namespace imgmesh;
@@ -74,39 +73,12 @@ int main(int argc, char** argv) {
     if (!svg.empty()) write_planar_mesh(svg, r.mesh);
 
     tool.stats["input"] = in;
-    tool.stats["input_vertices"] = r.input_vertices;
-    tool.stats["input_segments"] = r.input_segments;
-    tool.stats["holes"] = pslg.holes.size();
-    tool.stats["regions"] = pslg.regions.size();
-    tool.stats["vertices"] = r.mesh.points.size();
-    tool.stats["triangles"] = r.mesh.elements.size();
-    tool.stats["steiner_points"] = r.steiner_points;
-    tool.stats["lattice_points"] = r.lattice_points;
-    tool.stats["subsegments"] = r.mesh.segments.size();
-    tool.stats["min_angle_bound"] = opt.min_angle;
-    tool.stats["min_angle"] = r.min_angle;
-    tool.stats["min_angle_away_from_small_input_angles"] = r.min_angle_away_from_small_input_angles;
-    tool.stats["smallest_input_angle"] = r.smallest_input_angle;
-    tool.stats["small_input_angles"] = r.small_input_angles;
-    tool.stats["below_bound_near_small_input_angles"] = r.below_bound_near_small_angles;
-    tool.stats["regions_outside_domain"] = r.regions_outside_domain;
-    tool.stats["limit_reached"] = r.limit_reached;
-
     std::ostringstream msg;
     msg << r.mesh.elements.size() << " triangles, " << r.mesh.points.size() << " vertices ("
         << r.steiner_points << " Steiner), smallest angle " << r.min_angle << " degrees";
     tool.info(msg.str());
     if (r.regions_outside_domain)
       tool.info(std::to_string(r.regions_outside_domain) + " regional point(s) lie outside the domain (ignored)");
-    if (r.limit_reached) {
-      tool.info("refinement stopped at --max-vertices: the angle/size bounds are not met everywhere");
-      return cli::kGuarantee;
-    }
-    if (opt.min_angle > 0 && r.min_angle_away_from_small_input_angles < opt.min_angle - 1e-6) {
-      tool.info("smallest angle away from small input angles is " +
-                std::to_string(r.min_angle_away_from_small_input_angles) + " degrees, below the bound");
-      return cli::kGuarantee;
-    }
-    return cli::kOk;
+    return tool.finish(r);
   });
 }

@@ -16,6 +16,7 @@
 #include <itkNrrdImageIOFactory.h>
 #include <itkPNGImageIOFactory.h>
 
+#include <algorithm>
 #include <cmath>
 #include <zlib.h>
 #include <cstdio>
@@ -331,6 +332,26 @@ LabelImage read_labels(const std::string& path) {
     out.data[i] = std::int32_t(v);
   });
   return out;
+}
+
+LabelImage read_labels(const std::string& path, const Selection& sel) {
+  if (sel.has_threshold) {
+    const BinaryImage b = read_foreground(path, sel);
+    LabelImage img(b.geometry());
+    std::copy(b.data.begin(), b.data.end(), img.data.begin());
+    return img;
+  }
+  LabelImage img = read_labels(path);
+  if (!sel.labels.empty()) {
+    std::set<long long> keep(sel.labels.begin(), sel.labels.end()), found;
+    for (auto& v : img.data) {
+      if (keep.count(v)) found.insert(v);
+      else v = 0;
+    }
+    for (long long l : keep)
+      if (!found.count(l)) throw Error("label " + std::to_string(l) + " does not occur in the image", path);
+  }
+  return img;
 }
 
 FloatImage read_float(const std::string& path, std::map<std::string, std::string>* fields) {

@@ -37,6 +37,10 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel);
 
 // Read an integer label image (2D or 3D). Throws Error on non-integer values.
 LabelImage read_labels(const std::string& path);
+// The same with a selection: a threshold gives the 0/1 foreground (as
+// read_foreground); labels keep those labels and make every other value 0
+// (Error when one does not occur); neither keeps every value.
+LabelImage read_labels(const std::string& path, const Selection& sel);
 
 // Read a float image and its NRRD key/value fields ("key:=value").
 FloatImage read_float(const std::string& path, std::map<std::string, std::string>* fields = nullptr);

@@ -1,7 +1,9 @@
 // Construction (thesis 6.3.3) and the pu-implicit file format (DESIGN.md).
 #include "implicit/implicit_file.hpp"
 #include "image/io.hpp"
+#include "util/cpu_time.hpp"
 #include "util/error.hpp"
+#include "wellcomposed/well_composed.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -24,6 +26,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitReport* report, unsigned threads) {
   if (wc.dimension != 3) throw Error("wc2implicit needs a 3D image (thesis chapter 6 is 3D)");
   if (wc.data.size() != wc.count() || wc.count() == 0) throw Error("empty image");
+  const CriticalCounts cc = count_critical_configurations(wc);
+  if (cc.total() != 0)
+    throw Error("not well-composed (" + std::to_string(cc.c1) + " C1 and " + std::to_string(cc.c2) +
+                " C2 critical configurations); make it well-composed first: img2wc IN OUT.nrrd");
+  const auto t_start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
   ImplicitReport rep;
   // Restriction (2) of thesis 6.3: no foreground on the border of D.
   for (int a = 0; a < 3; ++a) {
@@ -50,8 +58,44 @@ PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitRepo
   t0 = std::chrono::steady_clock::now();
   PartitionOfUnity f(std::move(g), {0, 0, 0}, threads);
   rep.weights_seconds = seconds_since(t0);
+  rep.input_size = wc.size;
+  rep.size = f.samples().size;
+  rep.spacing = f.samples().spacing;
+  rep.d = f.d();
+  rep.g_min = f.g_min();
+  rep.l_max = f.l_max();
+  rep.threads = threads;
+  rep.construction_seconds = seconds_since(t_start);
+  rep.construction_cpu_seconds = process_cpu_seconds() - cpu_start;
   if (report) *report = rep;
   return f;
+}
+
+Json ImplicitReport::to_json() const {
+  auto triple = [](const std::array<std::size_t, 3>& a) { return std::vector<std::size_t>{a[0], a[1], a[2]}; };
+  Json j = Json::object();
+  j["input_size"] = triple(input_size);
+  j["size"] = triple(size);
+  j["spacing"] = std::vector<double>{spacing[0], spacing[1], spacing[2]};
+  j["padded_before"] = triple(padded_before);
+  j["padded_after"] = triple(padded_after);
+  j["voxels"] = size[0] * size[1] * size[2];
+  j["foreground_voxels"] = foreground;
+  j["cells"] = (size[0] - 1) * (size[1] - 1) * (size[2] - 1);
+  j["g_min"] = g_min;
+  j["L_max"] = l_max;
+  j["d"] = std::vector<double>{d[0], d[1], d[2]};
+  j["threads"] = threads;
+  j["distance_seconds"] = distance_seconds;
+  j["weights_seconds"] = weights_seconds;
+  j["construction_seconds"] = construction_seconds;
+  j["construction_cpu_seconds"] = construction_cpu_seconds;
+  Json checked = Json::object();
+  checked["well_composed"] = true;  // checked before the construction
+  checked["sign_at_voxel_centres"] = true;
+  checked["d_within_thesis_bound"] = true;
+  j["guarantees"] = checked;
+  return j;
 }
 
 void write_implicit(const std::string& path, const PartitionOfUnity& f) {

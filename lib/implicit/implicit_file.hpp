@@ -6,6 +6,7 @@
 #pragma once
 #include "image/grid.hpp"
 #include "implicit/partition_of_unity.hpp"
+#include "util/json.hpp"
 
 #include <array>
 #include <cstddef>
@@ -20,15 +21,25 @@ namespace imgmesh {
 // foreground or a grid that is not 3D.
 FloatImage signed_distance_to_boundary(const BinaryImage& wc, unsigned threads = 1);
 
-// What implicit_from_well_composed did.
+// What implicit_from_well_composed did, and what f it made.
 struct ImplicitReport {
+  std::array<std::size_t, 3> input_size{0, 0, 0}, size{0, 0, 0};  // of wc, of g (padded)
   std::array<std::size_t, 3> padded_before{0, 0, 0}, padded_after{0, 0, 0};
+  Vec3 spacing{0, 0, 0}, d{0, 0, 0};
   std::size_t foreground = 0;
+  double g_min = 0, l_max = 0;
+  unsigned threads = 1;
   double distance_seconds = 0, weights_seconds = 0;
+  double construction_seconds = 0, construction_cpu_seconds = 0;  // the whole call
+  // wc2implicit's --stats; the guarantees hold by construction (the input
+  // was checked; f = g at every centre, |g| >= g_min > 0; PartitionOfUnity
+  // refuses a larger d).
+  Json to_json() const;
+  std::string failed_guarantee() const { return ""; }
 };
 
-// The whole construction of chapter 6 on a well-composed image (the caller
-// checks well-composedness). Where the foreground touches the border of the
+// The whole construction of chapter 6 on a well-composed image (Error when
+// it is not, or not 3D). Where the foreground touches the border of the
 // grid, the grid grows by one background voxel on that side (thesis 6.3,
 // restriction (2): bdCA(X) must lie inside conv(D) for f^-1(0) to be closed);
 // world coordinates of the voxels stay exact.

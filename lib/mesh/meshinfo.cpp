@@ -1,6 +1,7 @@
 #include "mesh/meshinfo.hpp"
 
 #include "mesh/surface_io.hpp"
+#include "mesh/triangle_quality.hpp"
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
 #include "util/atomic_file.hpp"
@@ -14,8 +15,6 @@
 namespace imgmesh {
 
 namespace {
-
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
 
 // OFF with any polygons and real z (the planar reader drops z, OpenMesh's
 // wants triangles). '#' comments; "OFF" header; counts; vertices; faces.
@@ -75,67 +74,6 @@ PolyMesh read_off_polygons(const std::string& path) {
   }
   if (k != tok.size()) throw Error("unexpected data after the faces (face colours are not supported)", path);
   return m;
-}
-
-double tri_area3(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c) {
-  const double ux = b[0] - a[0], uy = b[1] - a[1], uz = b[2] - a[2];
-  const double vx = c[0] - a[0], vy = c[1] - a[1], vz = c[2] - a[2];
-  const double x = uy * vz - uz * vy, y = uz * vx - ux * vz, z = ux * vy - uy * vx;
-  return 0.5 * std::sqrt(x * x + y * y + z * z);
-}
-
-double dist(const std::array<double, 3>& a, const std::array<double, 3>& b) {
-  return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
-}
-
-Json triangle_quality(const PolyMesh& m) {
-  Json j = Json::object();
-  std::size_t n = 0, degenerate = 0;
-  double min_ang = 180, max_ang = 0, sum_min = 0, max_re = 0, sum_re = 0;
-  double amin = 0, amax = 0, asum = 0;
-  // Smallest-angle histogram, 10 degree bins up to 60.
-  std::vector<std::size_t> hist(6, 0);
-  for (const auto& f : m.faces) {
-    if (f.size() != 3) continue;
-    const auto &a = m.points[f[0]], &b = m.points[f[1]], &c = m.points[f[2]];
-    const double la = dist(b, c), lb = dist(c, a), lc = dist(a, b);
-    const double area = tri_area3(a, b, c);
-    if (!(area > 0)) { ++degenerate; continue; }
-    // Angles by the law of cosines, clamped.
-    auto ang = [](double opp, double s1, double s2) {
-      return std::acos(std::max(-1.0, std::min(1.0, (s1 * s1 + s2 * s2 - opp * opp) / (2 * s1 * s2)))) * kDeg;
-    };
-    const double A = ang(la, lb, lc), B = ang(lb, lc, la), C = 180 - A - B;
-    const double mn = std::min({A, B, C}), mx = std::max({A, B, C});
-    const double R = la * lb * lc / (4 * area);
-    const double re = R / std::min({la, lb, lc});
-    if (n == 0) amin = amax = area;
-    ++n;
-    min_ang = std::min(min_ang, mn);
-    max_ang = std::max(max_ang, mx);
-    sum_min += mn;
-    max_re = std::max(max_re, re);
-    sum_re += re;
-    amin = std::min(amin, area);
-    amax = std::max(amax, area);
-    asum += area;
-    ++hist[std::min<std::size_t>(5, std::size_t(mn / 10))];
-  }
-  j["triangles"] = n;
-  j["degenerate"] = degenerate;
-  if (n == 0) return j;
-  j["min_angle"] = min_ang;
-  j["max_angle"] = max_ang;
-  j["mean_min_angle"] = sum_min / double(n);
-  j["max_radius_edge_ratio"] = max_re;
-  j["mean_radius_edge_ratio"] = sum_re / double(n);
-  j["min_area"] = amin;
-  j["max_area"] = amax;
-  j["total_area"] = asum;
-  Json h = Json::array();
-  for (std::size_t i = 0; i < hist.size(); ++i) h.push_back(hist[i]);
-  j["min_angle_histogram_10deg"] = h;
-  return j;
 }
 
 } // namespace
@@ -199,7 +137,7 @@ Json mesh_report(const PolyMesh& m) {
     bb["max"] = std::vector<double>(hi.begin(), hi.end());
     j["bounding_box"] = bb;
   }
-  if (tris) j["triangle_quality"] = triangle_quality(m);
+  if (tris) j["triangle_quality"] = triangle_quality_report(m.points, m.faces).to_json();
   if (quads && m.planar) {
     std::vector<Point2> pts;
     for (const auto& p : m.points) pts.push_back({p[0], p[1]});
@@ -281,6 +219,35 @@ std::string format_report(const Json& r) {
     o << "; mesh " << (im.at("matches").boolean() ? "MATCHES" : "DOES NOT MATCH") << " component by component\n";
   }
   return o.str();
+}
+
+MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
+                   const std::string& image_name) {
+  if (mesh.faces.empty()) throw Error("mesh has no faces", mesh_name);
+  MeshInfo r;
+  r.report = naming_input(mesh_name, [&] { return mesh_report(mesh); });
+  if (!image) return r;
+  const MeshTopology it = naming_input(image_name, [&] { return voxel_boundary_topology(*image); });
+  if (!it.manifold)
+    throw Error("bdCA(X) is not a manifold: the image is not well-composed (run img2wc first)", image_name);
+  const MeshTopology mt = mesh_topology(mesh.points.size(), mesh.faces);
+  r.report["image"] = image_comparison(mt, it);
+  r.compared = true;
+  r.matches = r.report.at("image").at("matches").boolean();
+  r.image_name = image_name;
+  return r;
+}
+
+Json MeshInfo::to_json() const {
+  Json j = Json::object();
+  for (const char* k : {"vertices", "faces", "components", "euler"}) j[k] = report.at(k);
+  if (compared) j["matches_image"] = matches;
+  return j;
+}
+
+std::string MeshInfo::failed_guarantee() const {
+  if (matches) return "";
+  return "the mesh does not match bdCA(X) of " + image_name + " component by component";
 }
 
 } // namespace imgmesh

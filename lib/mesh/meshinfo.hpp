@@ -34,4 +34,20 @@ Json image_comparison(const MeshTopology& mesh, const MeshTopology& image);
 // Human-readable lines for a report made by mesh_report.
 std::string format_report(const Json& report);
 
+// meshinfo's result: the report, and with an image whether the mesh matches
+// bdCA(X) component by component (the guarantee it checks).
+struct MeshInfo {
+  Json report;  // mesh_report(), with "image" (image_comparison) when compared
+  bool compared = false, matches = true;
+  std::string image_name;
+  Json to_json() const;  // vertices, faces, components, euler; matches_image when compared
+  std::string failed_guarantee() const;
+};
+
+// mesh_report of `mesh` and, when `image` is given, its comparison with
+// bdCA(X) of the image's foreground. Throws Error naming mesh_name (no face,
+// bad ids) or image_name (no foreground, not well-composed).
+MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image = nullptr,
+                   const std::string& image_name = "");
+
 } // namespace imgmesh

@@ -180,7 +180,12 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
   for (std::size_t v = 0; v < nv; ++v) {
     if (!used[v]) { ++t.isolated_vertices; continue; }
     const std::size_t r = vuf.find(v);
-    if (comp_id[r] < 0) { comp_id[r] = (long long)comps.size(); comps.emplace_back(); comps.back().manifold = true; }
+    if (comp_id[r] < 0) {
+      comp_id[r] = (long long)comps.size();
+      comps.emplace_back();
+      comps.back().manifold = true;
+      comps.back().first_vertex = v;
+    }
     auto& c = comps[comp_id[r]];
     ++c.vertices;
     if (bad_vertex[v]) { c.manifold = false; ++t.nonmanifold_vertices; }
@@ -232,6 +237,18 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<std::vector<int>>& 
   return mesh_topology(nv, corners, offsets);
 }
 
+MeshTopology mesh_topology(std::size_t nv, const std::vector<std::array<int, 3>>& triangles) {
+  std::vector<int> corners;
+  corners.reserve(3 * triangles.size());
+  std::vector<std::size_t> offsets{0};
+  offsets.reserve(triangles.size() + 1);
+  for (const auto& t : triangles) {
+    corners.insert(corners.end(), t.begin(), t.end());
+    offsets.push_back(corners.size());
+  }
+  return mesh_topology(nv, corners, offsets);
+}
+
 namespace {
 
 MeshTopology pixel_boundary_topology(const BinaryImage& img) {
@@ -275,6 +292,7 @@ MeshTopology pixel_boundary_topology(const BinaryImage& img) {
       t.components.emplace_back();
       t.components.back().manifold = t.components.back().closed = true;
       t.components.back().oriented = t.components.back().orientable = true;
+      t.components.back().first_vertex = v;
     }
     auto& c = t.components[cid[r]];
     ++c.vertices;
@@ -295,44 +313,77 @@ MeshTopology pixel_boundary_topology(const BinaryImage& img) {
 
 } // namespace
 
-MeshTopology voxel_boundary_topology(const BinaryImage& img) {
-  bool any = false;
-  for (auto v : img.data) if (v) { any = true; break; }
-  if (!any) throw Error("the image has no foreground");
-  if (img.dimension == 2 || img.size[2] == 1) return pixel_boundary_topology(img);
-  const std::size_t nx = img.size[0], ny = img.size[1], nz = img.size[2];
+namespace {
+
+// bdCA(X) for X = {in(x, y, z)} on a grid of the given size (in is false
+// outside it).
+template <class In> VoxelBoundary voxel_boundary_of(const std::array<std::size_t, 3>& size, In in) {
+  const std::size_t nx = size[0], ny = size[1], nz = size[2];
+  VoxelBoundary vb;
+  vb.lattice = {nx + 1, ny + 1, nz + 1};
   const std::uint64_t W = nx + 1, H = ny + 1;
   auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return (std::uint64_t(k) * H + j) * W + i; };
-  auto fg = [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) { return img.at(x, y, z, 0) != 0; };
   // Outward-oriented unit squares; corners as lattice ids, compacted below.
   std::vector<std::uint64_t> lat;
   for (std::size_t z = 0; z < nz; ++z)
     for (std::size_t y = 0; y < ny; ++y)
       for (std::size_t x = 0; x < nx; ++x) {
-        if (!img(x, y, z)) continue;
         const std::ptrdiff_t X = std::ptrdiff_t(x), Y = std::ptrdiff_t(y), Z = std::ptrdiff_t(z);
+        if (!in(X, Y, Z)) continue;
         auto quad = [&](std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {
           lat.push_back(a); lat.push_back(b); lat.push_back(c); lat.push_back(d);
         };
         // Counter-clockwise seen from outside: (e_u x e_v) points outward.
-        if (!fg(X + 1, Y, Z)) quad(id(x + 1, y, z), id(x + 1, y + 1, z), id(x + 1, y + 1, z + 1), id(x + 1, y, z + 1));
-        if (!fg(X - 1, Y, Z)) quad(id(x, y, z), id(x, y, z + 1), id(x, y + 1, z + 1), id(x, y + 1, z));
-        if (!fg(X, Y + 1, Z)) quad(id(x, y + 1, z), id(x, y + 1, z + 1), id(x + 1, y + 1, z + 1), id(x + 1, y + 1, z));
-        if (!fg(X, Y - 1, Z)) quad(id(x, y, z), id(x + 1, y, z), id(x + 1, y, z + 1), id(x, y, z + 1));
-        if (!fg(X, Y, Z + 1)) quad(id(x, y, z + 1), id(x + 1, y, z + 1), id(x + 1, y + 1, z + 1), id(x, y + 1, z + 1));
-        if (!fg(X, Y, Z - 1)) quad(id(x, y, z), id(x, y + 1, z), id(x + 1, y + 1, z), id(x + 1, y, z));
+        if (!in(X + 1, Y, Z)) quad(id(x + 1, y, z), id(x + 1, y + 1, z), id(x + 1, y + 1, z + 1), id(x + 1, y, z + 1));
+        if (!in(X - 1, Y, Z)) quad(id(x, y, z), id(x, y, z + 1), id(x, y + 1, z + 1), id(x, y + 1, z));
+        if (!in(X, Y + 1, Z)) quad(id(x, y + 1, z), id(x, y + 1, z + 1), id(x + 1, y + 1, z + 1), id(x + 1, y + 1, z));
+        if (!in(X, Y - 1, Z)) quad(id(x, y, z), id(x + 1, y, z), id(x + 1, y, z + 1), id(x, y, z + 1));
+        if (!in(X, Y, Z + 1)) quad(id(x, y, z + 1), id(x + 1, y, z + 1), id(x + 1, y + 1, z + 1), id(x, y + 1, z + 1));
+        if (!in(X, Y, Z - 1)) quad(id(x, y, z), id(x, y + 1, z), id(x + 1, y + 1, z), id(x + 1, y, z));
       }
-  std::vector<std::uint64_t> uniq(lat);
-  std::sort(uniq.begin(), uniq.end());
-  uniq.erase(std::unique(uniq.begin(), uniq.end()), uniq.end());
-  std::vector<int> corners(lat.size());
+  vb.lattice_ids = lat;
+  std::sort(vb.lattice_ids.begin(), vb.lattice_ids.end());
+  vb.lattice_ids.erase(std::unique(vb.lattice_ids.begin(), vb.lattice_ids.end()), vb.lattice_ids.end());
+  vb.corners.resize(lat.size());
   for (std::size_t i = 0; i < lat.size(); ++i)
-    corners[i] = int(std::lower_bound(uniq.begin(), uniq.end(), lat[i]) - uniq.begin());
+    vb.corners[i] = int(std::lower_bound(vb.lattice_ids.begin(), vb.lattice_ids.end(), lat[i]) - vb.lattice_ids.begin());
   lat.clear();
   lat.shrink_to_fit();
-  std::vector<std::size_t> offsets(corners.size() / 4 + 1);
-  for (std::size_t f = 0; f < offsets.size(); ++f) offsets[f] = 4 * f;
-  return mesh_topology(uniq.size(), corners, offsets);
+  vb.offsets.resize(vb.corners.size() / 4 + 1);
+  for (std::size_t f = 0; f < vb.offsets.size(); ++f) vb.offsets[f] = 4 * f;
+  return vb;
+}
+
+} // namespace
+
+std::array<std::size_t, 3> VoxelBoundary::corner(std::size_t v) const {
+  const std::uint64_t id = lattice_ids[v];
+  return {std::size_t(id % lattice[0]), std::size_t(id / lattice[0] % lattice[1]),
+          std::size_t(id / lattice[0] / lattice[1])};
+}
+
+VoxelBoundary voxel_boundary(const BinaryImage& img) {
+  return voxel_boundary_of(img.size, [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
+    return img.at(x, y, z, 0) != 0;
+  });
+}
+
+VoxelBoundary voxel_boundary(const FloatImage& g) {
+  return voxel_boundary_of(g.size, [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
+    return g.inside(x, y, z) && g(std::size_t(x), std::size_t(y), std::size_t(z)) < 0;
+  });
+}
+
+MeshTopology mesh_topology(const VoxelBoundary& b) {
+  return mesh_topology(b.lattice_ids.size(), b.corners, b.offsets);
+}
+
+MeshTopology voxel_boundary_topology(const BinaryImage& img) {
+  bool any = false;
+  for (auto v : img.data) if (v) { any = true; break; }
+  if (!any) throw Error("the image has no foreground");
+  if (img.dimension == 2 || img.size[2] == 1) return pixel_boundary_topology(img);
+  return mesh_topology(voxel_boundary(img));
 }
 
 bool same_topology(const MeshTopology& a, const MeshTopology& b) {

@@ -1,11 +1,15 @@
 // Combinatorial topology of polygon meshes and of the voxel boundary bdCA(X)
 // of a binary image: components, Euler characteristic V - E + F, genus,
-// boundary loops, manifoldness and orientation. Plain data, no OpenMesh.
+// boundary loops, manifoldness and orientation. The one topology module:
+// meshinfo and the mesher's certificate (thesis Thm 7.3.1: the mesh has the
+// topology of bdCA(X)) both count here. Plain data, no OpenMesh.
 #pragma once
 #include "image/grid.hpp"
 #include "util/json.hpp"
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace imgmesh {
@@ -21,6 +25,7 @@ struct ComponentTopology {
   // Orientable manifold: (2 - euler - boundary_loops) / 2; non-orientable
   // manifold: 2 - euler - boundary_loops (cross-caps); -1 otherwise.
   long long genus = -1;
+  std::size_t first_vertex = 0;   // its smallest vertex id: a place to find it by
 };
 
 struct MeshTopology {
@@ -40,13 +45,35 @@ struct MeshTopology {
 MeshTopology mesh_topology(std::size_t num_vertices, const std::vector<int>& corners,
                            const std::vector<std::size_t>& offsets);
 MeshTopology mesh_topology(std::size_t num_vertices, const std::vector<std::vector<int>>& faces);
+MeshTopology mesh_topology(std::size_t num_vertices, const std::vector<std::array<int, 3>>& triangles);
 
-// The voxel boundary of the foreground of a 3D image (unit squares between a
-// foreground voxel and a background or outside one, outward oriented), as a
-// quad mesh on the lattice of voxel corners; its topology is that of bdCA(X).
-// For a 2D image, the pixel boundary curves: each loop is a component of
-// Euler characteristic 0 (edges act as faces-free 1-cells; manifold when no
-// lattice point has four boundary edges). Throws Error on an empty foreground.
+// The voxel boundary bdCA(X) of a set of voxels X (unit squares between a
+// voxel of X and one not in X or outside the grid, outward oriented) as a
+// quad mesh on the lattice of voxel corners. Corner (i, j, k) is where
+// voxels i-1..i, j-1..j, k-1..k meet (voxel v spans [v, v+1]); in a grid of
+// samples it is the cube whose lowest sample is (i-1, j-1, k-1). Vertex ids
+// follow the corners' order, z slowest. Per component c of
+// t = mesh_topology(b): t.components[c].euler, and b.corner(first_vertex) a
+// corner of it, to map it to other components by place.
+struct VoxelBoundary {
+  std::array<std::size_t, 3> lattice{0, 0, 0};  // corners per axis: image size + 1
+  std::vector<std::uint64_t> lattice_ids;       // of each vertex, ascending
+  std::vector<int> corners;                     // 4 per quad, counter-clockwise seen from outside
+  std::vector<std::size_t> offsets;             // quads + 1 entries
+  std::array<std::size_t, 3> corner(std::size_t vertex) const;
+};
+// X = the foreground; a single slice gives the two faces of a slab.
+VoxelBoundary voxel_boundary(const BinaryImage& img);
+// X = {g < 0} (the mesher's samples); X may be empty (no quad).
+VoxelBoundary voxel_boundary(const FloatImage& g);
+// Components, Euler characteristics, manifoldness (false exactly when X is
+// not well-composed), orientation of bdCA(X).
+MeshTopology mesh_topology(const VoxelBoundary& boundary);
+
+// The topology of bdCA(X), X the foreground, for a 3D image. For a 2D image,
+// the pixel boundary curves: each loop is a component of Euler characteristic
+// 0 (edges act as faces-free 1-cells; manifold when no lattice point has four
+// boundary edges). Throws Error on an empty foreground.
 MeshTopology voxel_boundary_topology(const BinaryImage& img);
 
 // Same components, matched by count and sorted Euler characteristics.

@@ -103,6 +103,8 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
   }
 
   ImagePslgResult res;
+  res.tolerance = opt.tolerance;
+  res.min_angle_bound = opt.min_angle;
   std::vector<std::int32_t> values(img.data);
   std::sort(values.begin(), values.end());
   values.erase(std::unique(values.begin(), values.end()), values.end());
@@ -367,6 +369,39 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
   res.regions = m.regions.size();
   res.labels = std::move(L);
   return res;
+}
+
+Json ImagePslgResult::to_json() const {
+  Json j = Json::object();
+  j["width"] = labels.size[0];
+  j["height"] = labels.size[1];
+  j["critical_configurations"] = critical_configurations;
+  j["changed_pixels"] = changed_pixels;
+  j["curves"] = curves;
+  j["closed_curves"] = closed_curves;
+  j["junctions"] = junctions;
+  j["boundary_vertices"] = boundary_vertices;
+  j["vertices"] = pslg.points.size();
+  j["segments"] = pslg.segments.size();
+  j["regions"] = regions;
+  j["tolerance"] = tolerance;
+  j["hausdorff"] = hausdorff;
+  j["min_angle"] = min_angle_bound;
+  j["smallest_angle"] = smallest_angle;
+  Json list = Json::array();
+  for (const auto& f : interfaces) {
+    Json i = Json::object();
+    i["marker"] = f.marker;
+    i["labels"] = std::vector<long long>{f.a, f.b};
+    list.push_back(i);
+  }
+  j["interfaces"] = list;
+  return j;
+}
+
+std::string ImagePslgResult::failed_guarantee() const {
+  if (hausdorff > tolerance + 1e-9) return "the Hausdorff bound " + std::to_string(tolerance) + " is not met";
+  return "";
 }
 
 SvgBackground label_background(const LabelImage& L) {

@@ -6,10 +6,12 @@
 #include "image/grid.hpp"
 #include "planar/planar_formats.hpp"
 #include "planar/triangle_io.hpp"
+#include "util/json.hpp"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace imgmesh {
@@ -47,6 +49,10 @@ struct ImagePslgResult {
   std::size_t regions = 0;
   double smallest_angle = 180;  // measured: smallest angle between two segments at a vertex, degrees
   double hausdorff = 0;  // measured, pixels: max over curves of the distance between each and its original
+  double tolerance = 0, min_angle_bound = 0;  // the options' bounds
+
+  Json to_json() const;
+  std::string failed_guarantee() const;  // the Hausdorff bound, when hausdorff exceeds tolerance
 };
 
 // `img` must be 2D (or one slice). Labels are the pixel values; two distinct

@@ -167,6 +167,9 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
   }
   res.input_vertices = cdt.number_of_vertices();
   res.input_segments = in.segments.size();
+  res.holes = in.holes.size();
+  res.regions = in.regions.size();
+  res.min_angle_bound = opt.min_angle;
   for (std::size_t s = 0; s < in.segments.size(); ++s) {
     const auto [a, b] = in.segments[s];
     if (vh[a] == vh[b])
@@ -398,6 +401,36 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
       ++res.below_bound_near_small_angles;
   }
   return res;
+}
+
+Json TriangulateResult::to_json() const {
+  Json j = Json::object();
+  j["input_vertices"] = input_vertices;
+  j["input_segments"] = input_segments;
+  j["holes"] = holes;
+  j["regions"] = regions;
+  j["vertices"] = mesh.points.size();
+  j["triangles"] = mesh.elements.size();
+  j["steiner_points"] = steiner_points;
+  j["lattice_points"] = lattice_points;
+  j["subsegments"] = mesh.segments.size();
+  j["min_angle_bound"] = min_angle_bound;
+  j["min_angle"] = min_angle;
+  j["min_angle_away_from_small_input_angles"] = min_angle_away_from_small_input_angles;
+  j["smallest_input_angle"] = smallest_input_angle;
+  j["small_input_angles"] = small_input_angles;
+  j["below_bound_near_small_input_angles"] = below_bound_near_small_angles;
+  j["regions_outside_domain"] = regions_outside_domain;
+  j["limit_reached"] = limit_reached;
+  return j;
+}
+
+std::string TriangulateResult::failed_guarantee() const {
+  if (limit_reached) return "refinement stopped at the vertex limit (--max-vertices): the angle/size bounds are not met everywhere";
+  if (min_angle_bound > 0 && min_angle_away_from_small_input_angles < min_angle_bound - 1e-6)
+    return "smallest angle away from small input angles is " + std::to_string(min_angle_away_from_small_input_angles) +
+           " degrees, below the bound";
+  return "";
 }
 
 } // namespace imgmesh

@@ -4,6 +4,7 @@
 // Shewchuk refinement with clusters at small input angles).
 #pragma once
 #include "planar/triangle_io.hpp"
+#include "util/json.hpp"
 
 #include <cstddef>
 #include <functional>
@@ -42,6 +43,8 @@ struct TriangulateResult {
   // input segments subdivided into mesh edges with their markers, the holes.
   PlanarMesh mesh;
   std::size_t input_vertices = 0, input_segments = 0, steiner_points = 0;
+  std::size_t holes = 0, regions = 0;  // hole and regional points of the input
+  double min_angle_bound = 0;          // opt.min_angle
   std::size_t lattice_points = 0;      // of the Steiner points, those of opt.lattice
   std::size_t small_input_angles = 0;  // input vertices where segments meet at < 60 degrees
   double smallest_input_angle = 180;   // degrees, between segments at a vertex
@@ -53,6 +56,11 @@ struct TriangulateResult {
   std::size_t below_bound_near_small_angles = 0;  // triangles below the bound, all near small input angles
   std::size_t regions_outside_domain = 0;        // regional points in a hole or outside
   bool limit_reached = false;                     // max_vertices stopped the refinement
+
+  Json to_json() const;
+  // The vertex limit stopped refinement, or an angle away from small input
+  // angles is below the bound.
+  std::string failed_guarantee() const;
 };
 
 // Throws Error on a bad PSLG: intersecting or overlapping segments, a

@@ -1,6 +1,8 @@
 // Topology of the two sides that must agree (thesis Thm 7.3.1 + ch. 6):
 // the voxel boundary bdCA(X) of the well-composed image X = {g < 0}, and the
-// output triangle mesh. Plain code, no CGAL.
+// output triangle mesh, as the mesher reads them. Computed by lib/mesh
+// (mesh/topology.hpp, mesh/triangle_quality.hpp); this header goes when the
+// mesher uses those directly.
 #pragma once
 #include "image/grid.hpp"
 #include "mesh/surface_io.hpp"
@@ -21,14 +23,16 @@ struct SurfaceTopology {
 
 // bdCA(X) for X = {voxels with samples < 0} (voxels outside the grid are
 // background): quads between a voxel of X and one not in X. manifold is false
-// when X is not well-composed (an edge in four quads).
+// when X is not well-composed (an edge in four quads, or a vertex where two
+// fans of quads meet).
 SurfaceTopology voxel_boundary_topology(const FloatImage& samples);
 
-// Components (edge-connected faces), Euler characteristic, manifoldness and
-// orientation of a triangle mesh.
+// Components, Euler characteristic, manifoldness and orientation of a
+// triangle mesh.
 SurfaceTopology mesh_topology(const SurfaceMesh& mesh);
 
-// Smallest angle (radians) and largest radius-edge ratio R / l_min of a mesh.
+// Smallest angle (radians) and largest radius-edge ratio R / l_min of a mesh
+// (0 and infinity when a triangle is degenerate).
 struct TriangleQuality {
   double min_angle = 0, max_ratio = 0;
 };

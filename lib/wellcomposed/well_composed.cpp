@@ -10,6 +10,8 @@
 #include "wellcomposed/critical_configuration.hpp"
 
 #include <algorithm>
+#include <array>
+#include <string>
 #include <cstring>
 #include <iterator>
 #include <random>
@@ -439,7 +441,63 @@ WellComposedResult make_well_composed(const BinaryImage& in, const WellComposedO
     res = repair(in, pad, opt.mode, opt.seed, opt.greedy);
   }
   res.input = counts;
+  res.options = opt;
+  res.input_voxels = in.count();
+  res.output = count_critical_configurations(res.image);
   return res;
+}
+
+namespace {
+const char* mode_name(RepairMode m) {
+  return m == RepairMode::Add ? "add" : m == RepairMode::Remove ? "remove" : "min";
+}
+std::vector<unsigned long long> triple(const std::array<std::size_t, 3>& a) { return {a[0], a[1], a[2]}; }
+} // namespace
+
+Json WellComposedResult::to_json() const {
+  Json j = Json::object();
+  j["dimension"] = image.dimension;
+  j["voxels"] = input_voxels;
+  j["mode"] = mode_name(options.mode);
+  j["mode_used"] = mode_name(mode_used);
+  j["seed"] = static_cast<unsigned long long>(options.seed);
+  j["rules"] = options.greedy ? "greedy" : "thesis";
+  j["c1"] = input.c1;
+  j["c2"] = input.c2;
+  j["changed"] = changed;
+  const std::size_t m = input.total();
+  j["ratio"] = m ? double(changed) / double(m) : 0.0;
+  j["created"] = created;
+  j["output_size"] = triple(image.size);
+  j["padded_before"] = triple(padded_before);
+  j["padded_after"] = triple(padded_after);
+  j["output_c1"] = output.c1;
+  j["output_c2"] = output.c2;
+  j["well_composed"] = output.total() == 0;
+  return j;
+}
+
+std::string WellComposedResult::failed_guarantee() const {
+  if (output.total() == 0) return "";
+  return "output is NOT well-composed (" + std::to_string(output.total()) + " critical configurations left)";
+}
+
+WellComposedCheck check_well_composed(const BinaryImage& img) {
+  WellComposedCheck c;
+  c.dimension = img.dimension;
+  c.voxels = img.count();
+  c.counts = count_critical_configurations(img);
+  return c;
+}
+
+Json WellComposedCheck::to_json() const {
+  Json j = Json::object();
+  j["dimension"] = dimension;
+  j["voxels"] = voxels;
+  j["c1"] = counts.c1;
+  j["c2"] = counts.c2;
+  j["well_composed"] = counts.total() == 0;
+  return j;
 }
 
 } // namespace imgmesh

@@ -9,10 +9,12 @@
 // rules (1)-(3), and re-examination of the 4x4x4 grid G(r) only.
 #pragma once
 #include "image/grid.hpp"
+#include "util/json.hpp"
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 namespace imgmesh {
 
@@ -48,9 +50,26 @@ struct WellComposedResult {
   std::size_t changed = 0;   // |P|
   std::size_t created = 0;   // new critical configurations created during the repair (Table 5.1)
   RepairMode mode_used = RepairMode::Add;  // for Min: which one won
+  WellComposedOptions options;             // as asked
+  std::size_t input_voxels = 0;            // of the input grid
+  CriticalCounts output;                   // counted on image: the guarantee, checked rather than assumed
+
+  Json to_json() const;
+  std::string failed_guarantee() const;  // when output has critical configurations left
 };
 
 // Throws Error on an image that is not 2D/3D or too large to index.
 WellComposedResult make_well_composed(const BinaryImage& in, const WellComposedOptions& opt = {});
+
+// img2wc --check: the counts of an image. Being not well-composed is its
+// answer, not a failed guarantee.
+struct WellComposedCheck {
+  int dimension = 3;
+  std::size_t voxels = 0;
+  CriticalCounts counts;
+  Json to_json() const;
+  std::string failed_guarantee() const { return ""; }
+};
+WellComposedCheck check_well_composed(const BinaryImage& img);
 
 } // namespace imgmesh

@@ -1,12 +1,15 @@
 // meshinfo's topology against an independent count made here (sets of
 // edges, breadth-first components) and against known surfaces; bdCA(X) of
-// small images against known values.
+// small images against known values, from binary images and from the
+// mesher's samples; triangle quality against closed forms.
 #include "mesh/meshinfo.hpp"
 #include "mesh/topology.hpp"
+#include "mesh/triangle_quality.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <queue>
@@ -124,6 +127,19 @@ BinaryImage image3(int n) {
   return BinaryImage(g, 0);
 }
 
+// Samples of the mesher: positive outside X, negative in X.
+FloatImage samples3(int n) {
+  Geometry g;
+  g.size = {std::size_t(n), std::size_t(n), std::size_t(n)};
+  return FloatImage(g, 1.0f);
+}
+void block(FloatImage& img, int x0, int x1, int y0, int y1, int z0, int z1, float v = -1) {
+  for (int z = z0; z < z1; ++z)
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) img(x, y, z) = v;
+}
+MeshTopology samples_topology(const FloatImage& g) { return mesh_topology(voxel_boundary(g)); }
+
 } // namespace
 
 TEST_CASE("closed and open surfaces: Euler characteristic, genus, loops", "[topology]") {
@@ -229,8 +245,8 @@ TEST_CASE("orientation and manifold defects are found", "[topology]") {
   CHECK(t.nonmanifold_vertices == 1);
   CHECK_FALSE(t.manifold);
   // Bad ids.
-  CHECK_THROWS_AS(mesh_topology(3, {{0, 1, 5}}), Error);
-  CHECK_THROWS_AS(mesh_topology(3, {{0, 1, 1}}), Error);
+  CHECK_THROWS_AS(mesh_topology(3, std::vector<std::vector<int>>{{0, 1, 5}}), Error);
+  CHECK_THROWS_AS(mesh_topology(3, std::vector<std::vector<int>>{{0, 1, 1}}), Error);
 }
 
 TEST_CASE("random surfaces agree with the independent count", "[topology]") {
@@ -348,6 +364,35 @@ TEST_CASE("the voxel-boundary mesh of a ball matches bdCA(X)", "[topology][bdca]
   CHECK_FALSE(same_topology(mesh_topology(two.nv, two.f), it));
 }
 
+TEST_CASE("mesh_info: the --image guarantee and its report", "[meshinfo]") {
+  auto poly = [](const Faces& s) {
+    PolyMesh m;
+    for (std::size_t i = 0; i < s.nv; ++i) m.points.push_back({double(i % 3), double(i % 5), double(i % 7)});
+    m.faces = s.f;
+    return m;
+  };
+  BinaryImage img = image3(5);
+  img(2, 2, 2) = 1;
+  const MeshInfo same = mesh_info(poly(cube_sphere(2)), "m.off", &img, "x.nrrd");
+  CHECK(same.failed_guarantee().empty());
+  CHECK(same.to_json().at("matches_image").boolean());
+  CHECK(same.report.at("image").at("matches").boolean());
+  Faces two = cube_sphere(2);
+  two.add(cube_sphere(1));
+  const MeshInfo differ = mesh_info(poly(two), "m.off", &img, "x.nrrd");
+  CHECK(differ.failed_guarantee().find("x.nrrd") != std::string::npos);
+  CHECK_FALSE(differ.to_json().at("matches_image").boolean());
+  CHECK(differ.to_json().at("components").integer() == 2);
+  // Without an image there is nothing to fail and no matches_image.
+  const MeshInfo alone = mesh_info(poly(two), "m.off");
+  CHECK(alone.failed_guarantee().empty());
+  CHECK_FALSE(alone.to_json().contains("matches_image"));
+  // A non-well-composed image and a mesh without faces are refused.
+  img(3, 3, 2) = 1;
+  CHECK_THROWS_AS(mesh_info(poly(cube_sphere(2)), "m.off", &img, "x.nrrd"), Error);
+  CHECK_THROWS_AS(mesh_info(PolyMesh{}, "m.off"), Error);
+}
+
 TEST_CASE("mesh_report puts components and euler first", "[meshinfo]") {
   PolyMesh m;
   const Faces s = grid(3, 3, true, true);
@@ -363,4 +408,177 @@ TEST_CASE("mesh_report puts components and euler first", "[meshinfo]") {
   // Round trip through the JSON parser.
   const Json back = Json::parse(j.dump(-1));
   CHECK(back.at("faces").integer() == long(s.f.size()));
+}
+
+TEST_CASE("bdCA(X) of the mesher's samples X = {g < 0}: blocks, rings, shells", "[topology][bdca]") {
+  auto img = samples3(12);
+  block(img, 2, 5, 2, 5, 2, 5);
+  CHECK(sorted(samples_topology(img).euler_list()) == std::vector<long long>{2});
+  block(img, 7, 10, 7, 10, 7, 10);
+  CHECK(sorted(samples_topology(img).euler_list()) == std::vector<long long>{2, 2});
+
+  auto ring = samples3(12);
+  block(ring, 2, 9, 2, 9, 4, 6);
+  block(ring, 4, 7, 4, 7, 4, 6, 1);  // a hole through it: genus 1
+  auto t = samples_topology(ring);
+  CHECK(t.euler_list() == std::vector<long long>{0});
+  CHECK(t.manifold);
+
+  auto shell = samples3(12);
+  block(shell, 1, 11, 1, 11, 1, 11);
+  block(shell, 4, 8, 4, 8, 4, 8, 1);  // cavity: two boundary components
+  CHECK(samples_topology(shell).euler_list() == std::vector<long long>{2, 2});
+
+  auto pinch = samples3(8);  // two voxels sharing only an edge: not well-composed
+  block(pinch, 2, 3, 2, 3, 2, 3);
+  block(pinch, 3, 4, 3, 4, 2, 3);
+  CHECK_FALSE(samples_topology(pinch).manifold);
+  CHECK(samples_topology(pinch).nonmanifold_edges == 1);
+
+  // Zero is not inside (X = {g < 0}), and no sample below zero is no quad.
+  auto zero = samples3(5);
+  block(zero, 1, 4, 1, 4, 1, 4, 0);
+  CHECK(voxel_boundary(zero).offsets.size() == 1);
+  CHECK(samples_topology(zero).components.empty());
+}
+
+TEST_CASE("bdCA(X) of a solid torus has Euler characteristic 0", "[topology][bdca]") {
+  // Voxels within 2.5 of a circle of radius 6: a solid torus, genus 1 (and
+  // well-composed at this size).
+  auto g = samples3(20);
+  for (int z = 0; z < 20; ++z)
+    for (int y = 0; y < 20; ++y)
+      for (int x = 0; x < 20; ++x) {
+        const double dx = x - 9.5, dy = y - 9.5, dz = z - 9.5;
+        const double r = std::sqrt(dx * dx + dy * dy) - 6;
+        g(x, y, z) = float(r * r + dz * dz - 2.5 * 2.5);
+      }
+  const auto t = samples_topology(g);
+  REQUIRE(t.components.size() == 1);
+  CHECK(t.manifold);
+  CHECK(t.components[0].euler == 0);
+  CHECK(t.components[0].genus == 1);
+}
+
+TEST_CASE("two balls: two components of Euler characteristic 2, each found by place", "[topology][bdca]") {
+  // A larger ball around (5, 5, 5) and a smaller one around (14, 13, 12).
+  auto g = samples3(20);
+  for (int z = 0; z < 20; ++z)
+    for (int y = 0; y < 20; ++y)
+      for (int x = 0; x < 20; ++x) {
+        const double a = (x - 5) * (x - 5) + (y - 5) * (y - 5) + (z - 5) * (z - 5);
+        const double b = (x - 14) * (x - 14) + (y - 13) * (y - 13) + (z - 12) * (z - 12);
+        g(x, y, z) = float(std::min(a - 16, b - 6.25));
+      }
+  const VoxelBoundary b = voxel_boundary(g);
+  const auto t = mesh_topology(b);
+  REQUIRE(t.components.size() == 2);
+  CHECK(t.euler_list() == std::vector<long long>{2, 2});
+  CHECK(t.manifold);
+  CHECK(t.components[0].faces > t.components[1].faces);
+  // Each component's corner lies on its own ball's boundary: among the eight
+  // voxels meeting there, some are in X and some are not, and all are
+  // within reach of that ball's centre only.
+  const std::array<std::array<double, 3>, 2> centre{{{5, 5, 5}, {14, 13, 12}}};
+  for (std::size_t c = 0; c < 2; ++c) {
+    const auto k = b.corner(t.components[c].first_vertex);
+    int in = 0;
+    for (int d = 0; d < 8; ++d) {
+      const std::size_t x = k[0] - 1 + (d & 1), y = k[1] - 1 + ((d >> 1) & 1), z = k[2] - 1 + ((d >> 2) & 1);
+      in += g(x, y, z) < 0;
+    }
+    CHECK(in > 0);
+    CHECK(in < 8);
+    // The corner is the point (k - 1/2) in voxel indices.
+    auto dist = [&](std::size_t i) {
+      double s = 0;
+      for (int a = 0; a < 3; ++a) s += (double(k[a]) - 0.5 - centre[i][a]) * (double(k[a]) - 0.5 - centre[i][a]);
+      return std::sqrt(s);
+    };
+    CHECK(dist(c) < dist(1 - c));
+    CHECK(dist(c) < (c == 0 ? 4 : 2.5) + 1);
+  }
+}
+
+TEST_CASE("bdCA(X) from samples agrees with bdCA(X) from the binary image", "[topology][bdca]") {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 3 + trial % 5;
+    Geometry geo;
+    geo.size = {std::size_t(n), std::size_t(n + trial % 2), std::size_t(n + 1)};
+    FloatImage g(geo, 1.0f);
+    BinaryImage x(geo, 0);
+    std::uniform_real_distribution<float> u(-1, 2);
+    for (std::size_t i = 0; i < g.data.size(); ++i) {
+      g.data[i] = u(rng);
+      x.data[i] = g.data[i] < 0;
+    }
+    if (std::find(x.data.begin(), x.data.end(), 1) == x.data.end()) continue;
+    const auto from_samples = mesh_topology(voxel_boundary(g));
+    const auto from_image = voxel_boundary_topology(x);
+    CHECK(from_samples.to_json().dump(-1) == from_image.to_json().dump(-1));
+    CHECK(voxel_boundary(g).corners == voxel_boundary(x).corners);
+  }
+}
+
+TEST_CASE("triangle meshes: tetrahedron, a flipped face, a duplicated face, a hole", "[topology]") {
+  const std::vector<std::array<int, 3>> tet = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  auto t = mesh_topology(4, tet);
+  CHECK(t.euler_list() == std::vector<long long>{2});
+  CHECK(t.closed);
+  CHECK(t.manifold);
+  CHECK(t.oriented);
+
+  auto flipped = tet;
+  flipped[3] = {1, 3, 2};
+  t = mesh_topology(4, flipped);
+  CHECK_FALSE(t.oriented);
+  CHECK(t.inconsistent_edges == 3);
+  CHECK(t.manifold);
+
+  auto twice = tet;
+  twice.push_back(tet[1]);
+  t = mesh_topology(4, twice);
+  CHECK_FALSE(t.manifold);
+  CHECK(t.nonmanifold_edges == 3);
+
+  auto open = tet;
+  open.pop_back();
+  t = mesh_topology(4, open);
+  CHECK_FALSE(t.closed);
+  CHECK(t.boundary_edges == 3);
+  CHECK(t.euler_list() == std::vector<long long>{1});
+}
+
+TEST_CASE("triangle quality: closed forms, degenerate triangles", "[quality]") {
+  SurfaceMesh m{{{0, 0, 0}, {1, 0, 0}, {0.5, std::sqrt(3.0) / 2, 0}, {0, 1, 1}}, {{0, 1, 2}}, {}};
+  auto q = triangle_quality_report(m);
+  CHECK(q.triangles == 1);
+  CHECK(q.max_radius_edge_ratio == Approx(1 / std::sqrt(3.0)));
+  CHECK(q.min_angle == Approx(60));
+  CHECK(q.smallest_angle() == Approx(60));
+  CHECK(q.total_area == Approx(std::sqrt(3.0) / 4));
+  CHECK(q.min_angle_histogram[5] == 1);
+  // A right triangle in a tilted plane, legs 1 and sqrt(2): R is half the
+  // hypotenuse sqrt(3), the smallest angle atan(1 / sqrt(2)).
+  m.triangles = {{0, 1, 3}};
+  q = triangle_quality_report(m);
+  CHECK(q.min_angle == Approx(std::atan(1 / std::sqrt(2.0)) * 180 / M_PI));
+  CHECK(q.max_angle == Approx(90));
+  CHECK(q.max_radius_edge_ratio == Approx(std::sqrt(3.0) / 2));
+  // A degenerate triangle does not enter the figures but fails every bound.
+  m.points.push_back({2, 0, 0});
+  m.triangles = {{0, 1, 2}, {0, 1, 4}};
+  q = triangle_quality_report(m);
+  CHECK(q.triangles == 1);
+  CHECK(q.degenerate == 1);
+  CHECK(q.min_angle == Approx(60));
+  CHECK(q.smallest_angle() == 0);
+  CHECK(std::isinf(q.largest_radius_edge_ratio()));
+  CHECK(q.to_json().at("degenerate").integer() == 1);
+  // No triangle: only the counts.
+  m.triangles.clear();
+  q = triangle_quality_report(m);
+  CHECK(q.to_json().keys().size() == 2);
+  CHECK(q.largest_radius_edge_ratio() == 0);
 }

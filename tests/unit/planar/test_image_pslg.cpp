@@ -400,3 +400,43 @@ TEST_CASE("triangulate: bad PSLGs are errors") {
   CHECK_THROWS_AS(triangulate_pslg(tri, bad), Error);
   CHECK(triangulate_pslg(tri).mesh.elements.size() >= 1);
 }
+
+TEST_CASE("results report their bounds and say which guarantee failed", "[stats]") {
+  // A square with a hole and a region: the report counts the input's.
+  PlanarMesh p;
+  p.points = {{0, 0}, {10, 0}, {10, 10}, {0, 10}, {4, 4}, {6, 4}, {6, 6}, {4, 6}};
+  p.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}};
+  p.holes = {{5, 5}};
+  p.regions = {{{1, 1}, 3, -1}};
+  TriangulateOptions opt;
+  opt.min_angle = 25;
+  TriangulateResult t = triangulate_pslg(p, opt);
+  INFO(t.failed_guarantee());
+  CHECK(t.failed_guarantee().empty());
+  Json j = t.to_json();
+  CHECK(j.at("holes").integer() == 1);
+  CHECK(j.at("regions").integer() == 1);
+  CHECK(j.at("min_angle_bound").number() == 25);
+  CHECK(j.at("triangles").integer() == long(t.mesh.elements.size()));
+  // What the checks read: the vertex limit, an angle below the bound away
+  // from small input angles (none below it near them counts).
+  TriangulateResult u = t;
+  u.limit_reached = true;
+  CHECK(u.failed_guarantee().find("vertex limit") != std::string::npos);
+  u = t;
+  u.min_angle_away_from_small_input_angles = 24.9;
+  CHECK(u.failed_guarantee().find("below the bound") != std::string::npos);
+  u.min_angle_bound = 0;  // no quality asked: nothing to fail
+  CHECK(u.failed_guarantee().empty());
+
+  const LabelImage img = make_image(12, 10, [](int x, int y) { return (x - 5) * (x - 5) + (y - 5) * (y - 5) < 12; });
+  ImagePslgOptions po;
+  po.tolerance = 0.5;
+  ImagePslgResult r = image_to_pslg(img, po);
+  CHECK(r.hausdorff <= 0.5 + 1e-9);
+  CHECK(r.failed_guarantee().empty());
+  CHECK(r.to_json().at("tolerance").number() == 0.5);
+  CHECK(r.to_json().at("width").integer() == 12);
+  r.hausdorff = 0.75;  // what the check reads
+  CHECK_FALSE(r.failed_guarantee().empty());
+}

@@ -7,7 +7,8 @@
 // and every radius-edge ratio is <= MAX_RATIO.
 #include "image/io.hpp"
 #include "mesh/surface_io.hpp"
-#include "surface/topology.hpp"
+#include "mesh/topology.hpp"
+#include "mesh/triangle_quality.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
@@ -42,21 +43,21 @@ int main(int argc, char** argv) {
   try {
     const SurfaceMesh mesh = read_surface(argv[1]);
     const BinaryImage img = read_foreground(argv[2], Selection{});
-    FloatImage signs(img.geometry(), 1.0f);
-    for (std::size_t k = 0; k < img.data.size(); ++k) signs.data[k] = img.data[k] ? -1.0f : 1.0f;
-    const SurfaceTopology expected = voxel_boundary_topology(signs), got = mesh_topology(mesh);
-    const TriangleQuality q = triangle_quality(mesh);
+    const MeshTopology expected = mesh_topology(voxel_boundary(img));
+    const MeshTopology got = mesh_topology(mesh.points.size(), mesh.triangles);
+    const TriangleQualityReport q = triangle_quality_report(mesh);
     const double bound = std::atof(argv[3]);
-    std::cout << "triangles " << mesh.triangles.size() << " manifold " << got.manifold << " oriented " << got.oriented
-              << " euler";
-    for (int e : got.euler) std::cout << ' ' << e;
+    const bool closed_manifold = got.closed && got.manifold;
+    std::cout << "triangles " << mesh.triangles.size() << " manifold " << closed_manifold << " oriented "
+              << (got.inconsistent_edges == 0) << " euler";
+    for (long long e : got.euler_list()) std::cout << ' ' << e;
     std::cout << " expected";
-    for (int e : expected.euler) std::cout << ' ' << e;
-    const bool crossing = got.manifold && self_intersects(mesh);
-    std::cout << " max_ratio " << q.max_ratio << " min_angle_deg " << q.min_angle * 180 / M_PI << " self_intersecting "
-              << crossing << '\n';
-    const bool ok = got.manifold && got.oriented && !crossing && expected.manifold && got.euler == expected.euler &&
-                    q.max_ratio <= bound * (1 + 1e-9) && !mesh.triangles.empty();
+    for (long long e : expected.euler_list()) std::cout << ' ' << e;
+    const bool crossing = closed_manifold && self_intersects(mesh);
+    std::cout << " max_ratio " << q.largest_radius_edge_ratio() << " min_angle_deg " << q.smallest_angle()
+              << " self_intersecting " << crossing << '\n';
+    const bool ok = closed_manifold && got.oriented && !crossing && expected.manifold && same_topology(got, expected) &&
+                    q.largest_radius_edge_ratio() <= bound * (1 + 1e-9) && !mesh.triangles.empty();
     return ok ? 0 : 1;
   } catch (const std::exception& e) {
     std::cerr << "surface_check: " << e.what() << '\n';

@@ -274,3 +274,32 @@ TEST_CASE("bad images are refused", "[wellcomposed]") {
   wrong.data.resize(5);
   CHECK_THROWS_AS(make_well_composed(wrong), Error);
 }
+
+TEST_CASE("the result's report: counts of the input and of the output, the guarantee", "[wellcomposed][stats]") {
+  std::mt19937_64 rng(99);
+  BinaryImage in;
+  do in = random_image(rng, 3, 0.4);
+  while (brute_force(in).total() == 0);
+  const CriticalCounts before = brute_force(in);
+  WellComposedOptions opt;
+  opt.seed = 5;
+  opt.mode = RepairMode::Min;
+  const WellComposedResult r = make_well_composed(in, opt);
+  CHECK(r.output.total() == 0);
+  CHECK(brute_force(r.image).total() == 0);
+  CHECK(r.failed_guarantee().empty());
+  const Json j = r.to_json();
+  CHECK(j.at("c1").integer() == long(before.c1));
+  CHECK(j.at("c2").integer() == long(before.c2));
+  CHECK(j.at("voxels").integer() == long(in.count()));
+  CHECK(j.at("mode").string() == "min");
+  CHECK(j.at("seed").integer() == 5);
+  CHECK(j.at("ratio").number() == Approx(double(r.changed) / double(before.total())));
+  CHECK(j.at("well_composed").boolean());
+
+  const WellComposedCheck c = check_well_composed(in);
+  CHECK(c.counts.c1 == before.c1);
+  CHECK(c.counts.c2 == before.c2);
+  CHECK_FALSE(c.to_json().at("well_composed").boolean());
+  CHECK(check_well_composed(r.image).to_json().at("well_composed").boolean());
+}
