@@ -21,10 +21,10 @@ inline double torus_f(const Vec3& p, const Vec3& c, double R, double r) {
   const double q = std::hypot(p[0] - c[0], p[1] - c[1]) - R;
   return std::hypot(q, p[2] - c[2]) - r;
 }
-// Two close sheets x = x0 - t and x = x0 + t, joined at z = zlo and z = zhi
-// and open across the grid in y.
-inline double sheets_f(const Vec3& p, double x0, double t, double zlo, double zhi) {
-  return std::max({std::abs(p[0] - x0) - t, zlo - p[2], p[2] - zhi});
+// Two close sheets x = x0 - t and x = x0 + t, joined where y or z leaves
+// [lo, hi] (a flat box).
+inline double sheets_f(const Vec3& p, double x0, double t, double lo, double hi) {
+  return std::max({std::abs(p[0] - x0) - t, lo - p[1], p[1] - hi, lo - p[2], p[2] - hi});
 }
 
 } // namespace imgmesh::test
