@@ -71,7 +71,6 @@ int main(int argc, char** argv) {
 
     tool.stats["input"] = in;
     tool.stats["output"] = out;
-    for (std::size_t k = 0; k < res.stats.keys().size(); ++k) tool.stats[res.stats.keys()[k]] = res.stats.items()[k];
     std::ostringstream msg;
     msg << res.mesh.triangles.size() << " triangles, " << res.mesh.points.size() << " vertices, "
         << res.topology.components() << " component(s), Euler characteristic(s)";
@@ -81,10 +80,6 @@ int main(int argc, char** argv) {
       for (int e : res.expected.euler) msg << ' ' << e;
     if (!res.topology_ok) msg << ")";
     tool.debug(msg.str());
-    if (!res.failure.empty()) {
-      tool.info(out + ": written, but " + res.failure);
-      return int(cli::kGuarantee);
-    }
-    return int(cli::kOk);
+    return tool.finish(res);
   });
 }

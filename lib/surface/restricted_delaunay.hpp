@@ -15,6 +15,8 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace imgmesh {
 
@@ -44,8 +46,31 @@ struct RestrictedDelaunayResult {
   bool topology_ok = false;         // closed oriented manifold with expected topology
   bool ratio_ok = false, roughness_ok = false, distance_ok = false;
   bool max_points_hit = false;
-  std::string failure;              // which guarantee failed, empty if none
-  Json stats = Json::object();      // points per subroutine, times, quality
+
+  // What DELMESH did: points inserted per subroutine (seed, vor_edge,
+  // topo_disk, facet_cycle, handle_detection, quality, smooth, max_distance,
+  // topology_fallback), points refused (too close to W), deletions.
+  std::vector<std::pair<std::string, long long>> points_inserted;
+  long long points_refused = 0, seeds_deleted = 0, handle_points_deleted = 0, handle_points_restored = 0;
+  int topology_fallback_rounds = 0;  // certificate rounds that repaired a component
+  long long facet_cycle_checks = 0, facet_cycle_passes = 0;
+  long long handle_detection_checks = 0, handle_detection_certified = 0;  // full tests; settled by the cube grid
+  long long function_evaluations = 0;
+  // Measured on the output.
+  TriangleQuality quality;
+  double max_roughness = 0;             // radians
+  double max_distance_to_plane = 0;     // surface centre to its triangle's plane
+  double max_abs_f_at_vertices = 0, max_abs_f_at_centroids = 0;
+  long long restricted_delaunay_violations = 0;  // surface centres whose ball holds a vertex
+  // The bounds asked.
+  double ratio_bound = 0, roughness_bound = 0;
+  std::size_t max_points = 0;
+  double seconds_seeds = 0, seconds_refinement = 0, seconds_verification = 0;
+
+  long long inserted(const std::string& subroutine) const;  // 0 for an unknown name
+  Json to_json() const;
+  // Which guarantees failed, "; "-separated; empty if none.
+  std::string failed_guarantee() const;
 };
 
 // Throws Error when S is empty or the options are out of range.

@@ -10,7 +10,7 @@ tools=${1:?tool folder}
 build=$(cd "$tools/.." && pwd)
 src=$(cd "$(dirname "$0")/../.." && pwd)
 check="$build/tests/unit/surface/surface_check"
-peer="$build/tests/unit/surface/surface_mesher_peer"
+peer="$build/scripts/bench.d/surface_mesher_peer"
 cmake --build "$build" --target surface_check surface_mesher_peer >/dev/null
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -48,8 +48,8 @@ Run mesh(const BinaryImage& raw, double ratio = 2, bool seed_deletion = false) {
   r.result = restricted_delaunay_mesh(s, o);
   r.expected = voxel_boundary_topology(pu.samples());
   r.got = mesh_topology(r.result.mesh);
-  INFO("failure: " << r.result.failure);
-  CHECK(r.result.failure.empty());
+  INFO("failure: " << r.result.failed_guarantee());
+  CHECK(r.result.failed_guarantee().empty());
   CHECK(r.got.manifold);
   CHECK(r.got.oriented);
   CHECK(r.got.euler == r.expected.euler);
@@ -59,10 +59,10 @@ Run mesh(const BinaryImage& raw, double ratio = 2, bool seed_deletion = false) {
   CHECK(max_f < 1e-6);
   CHECK(test::empty_ball_violations(r.result.mesh, r.result.centers) == 0);
   // TOPOLOGY (VorEdge, TopoDisk, FacetCycle) sufficed: the fallback never acted.
-  CHECK(r.result.stats.at("topology_fallback_rounds").number() == 0);
+  CHECK(r.result.to_json().at("topology_fallback_rounds").number() == 0);
   // Foreground voxel centres inside, background outside (winding number),
   // for centres farther from S than the mesh deviates from it.
-  const double margin = std::max(0.5, 2 * r.result.stats.at("max_distance_to_plane").number());
+  const double margin = std::max(0.5, 2 * r.result.to_json().at("max_distance_to_plane").number());
   const FloatImage& g = pu.samples();
   int wrong = 0, tested = 0;
   for (std::size_t z = 0; z < g.size[2]; ++z)
@@ -139,5 +139,5 @@ TEST_CASE("pipeline: seed deletion (7.6.2) keeps the topology, also of a one-vox
     return std::hypot(x - 6.3, y - 7.6, z - 5.8) < 3.7 || torus(x, y, z, 18.4, 7.7, 5.6, 4.1) < 1.9 || (x == 29 && y == 8 && z == 6);
   }), 2, true);
   CHECK(r.got.euler == std::vector<int>{0, 2, 2});
-  CHECK(r.result.stats.at("seeds_deleted").number() > 0);
+  CHECK(r.result.to_json().at("seeds_deleted").number() > 0);
 }

@@ -28,8 +28,8 @@ double torus(const Vec3& p, const Vec3& c, double R, double r) {
 
 // Every guarantee of the issue's "Done when", checked from the output alone.
 void check_guarantees(const ImplicitSurface& s, const RestrictedDelaunayResult& r, double rho0) {
-  INFO("failure: " << r.failure);
-  CHECK(r.failure.empty());
+  INFO("failure: " << r.failed_guarantee());
+  CHECK(r.failed_guarantee().empty());
   REQUIRE(!r.mesh.triangles.empty());
   const SurfaceTopology t = mesh_topology(r.mesh);
   CHECK(t.manifold);
@@ -42,13 +42,13 @@ void check_guarantees(const ImplicitSurface& s, const RestrictedDelaunayResult& 
   CHECK(max_f < 1e-6);
   CHECK(test::empty_ball_violations(r.mesh, r.centers) == 0);
   // The thesis's TOPOLOGY steps suffice: the final fallback never acts.
-  CHECK(r.stats.at("topology_fallback_rounds").number() == 0);
+  CHECK(r.to_json().at("topology_fallback_rounds").number() == 0);
   // Voxel centres: inside the mesh exactly when inside S (away from S by
   // more than the mesh's deviation, i.e. |g| > half a voxel).
   const FloatImage& g = s.samples();
   // The mesh deviates from S by about its facets' distance to their surface
   // Delaunay ball centres: test the voxel centres farther than that.
-  const double margin = std::max(0.5, 2 * r.stats.at("max_distance_to_plane").number());
+  const double margin = std::max(0.5, 2 * r.to_json().at("max_distance_to_plane").number());
   INFO("margin " << margin);
   int wrong = 0, tested = 0;
   for (std::size_t z = 0; z < g.size[2]; ++z)
@@ -125,7 +125,7 @@ TEST_CASE("limits: refused parameters, max points, deterministic output") {
   o.max_points = 12;
   auto r = restricted_delaunay_mesh(s, o);
   CHECK(r.max_points_hit);
-  CHECK_FALSE(r.failure.empty());
+  CHECK_FALSE(r.failed_guarantee().empty());
   o.max_points = 1000000;
   auto a = restricted_delaunay_mesh(s, o), b = restricted_delaunay_mesh(s, o);
   CHECK(a.mesh.points == b.mesh.points);
@@ -145,7 +145,7 @@ TEST_CASE("max-distance bounds the surface Delaunay ball centre's distance to th
   auto r = restricted_delaunay_mesh(s, o);
   check_guarantees(s, r, o.ratio);
   CHECK(r.distance_ok);
-  CHECK(r.stats.at("max_distance_to_plane").number() <= 0.05);
+  CHECK(r.to_json().at("max_distance_to_plane").number() <= 0.05);
 }
 
 TEST_CASE("FacetCycle: a thin torus sampled sparsely needs it (without it, HandleDetection must act), and then no fallback") {
@@ -160,15 +160,15 @@ TEST_CASE("FacetCycle: a thin torus sampled sparsely needs it (without it, Handl
   // The cycles left in Voronoi facets make S inside those Voronoi cells an
   // annulus or two pieces: HandleDetection, the last step of TOPOLOGY, sees
   // them and repairs the topology before the certificate.
-  CHECK(without.stats.at("points_inserted").at("handle_detection").number() > 0);
+  CHECK(without.to_json().at("points_inserted").at("handle_detection").number() > 0);
   CHECK(without.topology_ok);
-  CHECK(without.stats.at("topology_fallback_rounds").number() == 0);
+  CHECK(without.to_json().at("topology_fallback_rounds").number() == 0);
   o.facet_cycle = true;
   for (std::uint64_t seed : {0, 1, 2}) {
     o.seed = seed;
     auto r = restricted_delaunay_mesh(s, o);
     check_guarantees(s, r, o.ratio);
-    CHECK(r.stats.at("points_inserted").at("facet_cycle").number() > 0);
+    CHECK(r.to_json().at("points_inserted").at("facet_cycle").number() > 0);
     CHECK(r.topology.euler == std::vector<int>{0});
   }
 }
@@ -182,7 +182,7 @@ TEST_CASE("seed deletion (7.6.2): TOPOLOGY restores the topology without the see
   auto r = restricted_delaunay_mesh(s, o);
   check_guarantees(s, r, o.ratio);
   CHECK(r.topology.euler == std::vector<int>{0, 2});
-  CHECK(r.stats.at("seeds_deleted").number() == r.stats.at("points_inserted").at("seed").number());
+  CHECK(r.to_json().at("seeds_deleted").number() == r.to_json().at("points_inserted").at("seed").number());
   // CGAL's vertex removal orders its new cells by address: the mesh must not
   // depend on that, nor on the thread count. Blocks of random sizes kept
   // between the runs move CGAL's cells to other addresses (without them,
@@ -211,7 +211,7 @@ TEST_CASE("seed deletion also deletes HandleDetection's points, and puts back th
   auto r = restricted_delaunay_mesh(s, o);
   check_guarantees(s, r, o.ratio);
   CHECK(r.topology.euler == std::vector<int>{0});
-  CHECK(r.stats.at("handle_points_deleted").number() > 0);
+  CHECK(r.to_json().at("handle_points_deleted").number() > 0);
   // Here some handles return without their point (2 of 18 with this seed).
-  CHECK(r.stats.at("handle_points_restored").number() > 0);
+  CHECK(r.to_json().at("handle_points_restored").number() > 0);
 }

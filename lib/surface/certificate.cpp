@@ -1,0 +1,246 @@
+#include "surface/certificate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <unordered_map>
+
+namespace imgmesh::surface_detail {
+
+std::vector<Facet> restricted_facets(const Tr& tr) {
+  std::vector<std::pair<std::array<int, 3>, Facet>> out;
+  for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it) {
+    if (!(it->first->facet[it->second].state & kRestricted)) continue;
+    std::array<int, 3> ids;
+    for (int m = 1; m < 4; ++m) ids[m - 1] = it->first->vertex((it->second + m) & 3)->info().id;
+    std::sort(ids.begin(), ids.end());
+    out.emplace_back(ids, *it);
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Facet> fs;
+  for (auto& p : out) fs.push_back(p.second);
+  return fs;
+}
+
+ExpectedTopology expected_topology(const CubeGrid& grid) {
+  ExpectedTopology e;
+  e.by_component = grid.euler_by_component();
+  e.sorted.euler = e.by_component;
+  std::sort(e.sorted.euler.begin(), e.sorted.euler.end());
+  return e;
+}
+
+Certificate certify(const Tr& tr, std::size_t vertex_count, const ExpectedTopology& expected) {
+  Certificate cert;
+  SurfaceMesh& mesh = cert.mesh;
+  std::vector<Vec3>& centers = cert.centers;
+  std::vector<int>& tri_comp = cert.tri_comp;
+  std::map<int, std::vector<int>>& mesh_comps = cert.mesh_comps;
+  std::vector<int>& bad = cert.bad;
+  cert.facets = restricted_facets(tr);
+  const std::vector<Facet>& fs = cert.facets;
+  std::vector<int> index(vertex_count, -1);
+  std::vector<int> comp_of_vertex;
+  for (const Facet& f : fs) {
+    std::array<int, 3> t;
+    const std::array<Vh, 3> vs = facet_vertices(f.first, f.second);
+    for (int m = 0; m < 3; ++m) {
+      int& id = index[vs[m]->info().id];
+      if (id < 0) {
+        id = int(mesh.points.size());
+        mesh.points.push_back(vec(vs[m]->point()));
+        comp_of_vertex.push_back(vs[m]->info().comp);
+      }
+      t[m] = id;
+    }
+    // Outward: along grad f at the surface centre.
+    const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
+    const Vec3 x = facet_center(f);
+    const FacetInfo& fi = f.first->facet[f.second];
+    if (dot(n, Vec3{fi.grad[0], fi.grad[1], fi.grad[2]}) < 0) std::swap(t[1], t[2]);
+    mesh.triangles.push_back(t);
+    centers.push_back(x);
+  }
+  // Make orientation consistent per mesh component (BFS), by majority.
+  {
+    const std::size_t nt = mesh.triangles.size();
+    std::unordered_map<long long, std::vector<int>> by_edge;
+    for (std::size_t t = 0; t < nt; ++t)
+      for (int k = 0; k < 3; ++k) by_edge[edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(int(t));
+    std::vector<int> flip(nt, -1);
+    tri_comp.assign(nt, -1);
+    int ncomp = 0;
+    for (std::size_t s0 = 0; s0 < nt; ++s0) {
+      if (flip[s0] >= 0) continue;
+      std::vector<int> members{int(s0)}, stack{int(s0)};
+      flip[s0] = 0;
+      tri_comp[s0] = ncomp;
+      while (!stack.empty()) {
+        const int t = stack.back();
+        stack.pop_back();
+        auto tt = mesh.triangles[t];
+        if (flip[t]) std::swap(tt[1], tt[2]);
+        for (int k = 0; k < 3; ++k) {
+          const int a = tt[k], b = tt[(k + 1) % 3];
+          for (int u : by_edge[edge_key(a, b)]) {
+            if (u == t || flip[u] >= 0) continue;
+            // u must traverse the edge as (b, a).
+            const auto& tu = mesh.triangles[u];
+            bool forward = false;
+            for (int m = 0; m < 3; ++m) forward = forward || (tu[m] == a && tu[(m + 1) % 3] == b);
+            flip[u] = forward ? 1 : 0;
+            tri_comp[u] = ncomp;
+            members.push_back(u);
+            stack.push_back(u);
+          }
+        }
+      }
+      long long agree = 0;
+      for (int t : members) agree += flip[t] ? -1 : 1;
+      if (agree < 0)
+        for (int t : members) flip[t] = 1 - flip[t];
+      ++ncomp;
+    }
+    for (std::size_t t = 0; t < nt; ++t)
+      if (flip[t] == 1) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+  }
+  cert.topology = mesh_topology(mesh);
+  // Per S component: exactly one mesh component with bdCA's Euler characteristic.
+  {
+    std::map<int, int> seen;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const int sc = comp_of_vertex[mesh.triangles[t][0]];
+      if (seen.emplace(tri_comp[t], sc).second) mesh_comps[sc].push_back(tri_comp[t]);
+    }
+  }
+  bad.clear();
+  for (int c = 0; c < int(expected.by_component.size()); ++c)
+    if (mesh_comps[c].size() != 1) bad.push_back(c);
+  if (mesh_comps.count(-1)) bad.push_back(-1);
+  cert.ok = bad.empty() && cert.topology.manifold && cert.topology.oriented && cert.topology.same_as(expected.sorted);
+  return cert;
+}
+
+std::vector<int> euler_mismatches(const Certificate& cert, const ExpectedTopology& expected) {
+  const SurfaceMesh& mesh = cert.mesh;
+  const std::vector<int>& tri_comp = cert.tri_comp;
+  std::vector<int> out;
+  // χ of each mesh component vs. its S component.
+  std::map<int, long long> chi;  // mesh comp -> V - E + F
+  std::map<int, std::set<int>> vset;
+  std::map<int, std::set<long long>> eset;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const auto& tt = mesh.triangles[t];
+    chi[tri_comp[t]] += 1;
+    for (int k = 0; k < 3; ++k) {
+      vset[tri_comp[t]].insert(tt[k]);
+      const int a = tt[k], b = tt[(k + 1) % 3];
+      eset[tri_comp[t]].insert(edge_key(a, b));
+    }
+  }
+  for (auto& kv : cert.mesh_comps) {
+    const int mc = kv.second.front();
+    if (kv.first >= 0 && chi[mc] + long(vset[mc].size()) - long(eset[mc].size()) != expected.by_component[kv.first])
+      out.push_back(kv.first);
+  }
+  return out;
+}
+
+MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sampler, const Certificate& cert) {
+  const SurfaceMesh& mesh = cert.mesh;
+  const std::vector<Vec3>& centers = cert.centers;
+  const std::vector<Facet>& fs = cert.facets;
+  const TriangleQuality q = triangle_quality(mesh);
+  double max_f = 0, max_rough = 0, max_dist = 0;
+  for (const Vec3& p : mesh.points) max_f = std::max(max_f, std::abs(sampler.value(p)));
+  {
+    std::unordered_map<long long, std::vector<Vec3>> nrm;
+    for (const auto& t : mesh.triangles) {
+      Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
+      const double nl = norm(n);
+      if (nl > 0) n = {n[0] / nl, n[1] / nl, n[2] / nl};
+      for (int k = 0; k < 3; ++k) {
+        const int a = t[k], b = t[(k + 1) % 3];
+        nrm[edge_key(a, b)].push_back(n);
+      }
+    }
+    for (auto& kv : nrm)
+      if (kv.second.size() == 2) max_rough = std::max(max_rough, std::acos(std::clamp(dot(kv.second[0], kv.second[1]), -1.0, 1.0)));
+    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+      const auto& t = mesh.triangles[k];
+      const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
+      const double nl = norm(n);
+      if (nl > 0) max_dist = std::max(max_dist, std::abs(dot(n, sub(centers[k], mesh.points[t[0]]))) / nl);
+    }
+  }
+  // Geometric error estimate: |f| at the triangles' centroids (f
+  // interpolates g, the signed distance to the voxel boundary, world units).
+  double max_centroid = 0;
+  for (const auto& t : mesh.triangles) {
+    Vec3 c;
+    for (int i = 0; i < 3; ++i) c[i] = (mesh.points[t[0]][i] + mesh.points[t[1]][i] + mesh.points[t[2]][i]) / 3;
+    max_centroid = std::max(max_centroid, std::abs(sampler.value(c)));
+  }
+  // Restricted Delaunay property: each surface centre's nearest site is a
+  // vertex of its facet (its ball is empty).
+  long long rd_violations = 0;
+  for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+    const Vec3& x = centers[k];
+    const double r2 = dist2(x, mesh.points[mesh.triangles[k][0]]);
+    Vh nv = tr.nearest_vertex(Point(x[0], x[1], x[2]), fs[k].first);
+    if (dist2(x, vec(nv->point())) < r2 * (1 - 1e-9)) ++rd_violations;
+  }
+  MeasuredGuarantees m;
+  m.quality = q;
+  m.max_abs_f_at_vertices = max_f;
+  m.max_roughness = max_rough;
+  m.max_distance_to_plane = max_dist;
+  m.max_abs_f_at_centroids = max_centroid;
+  m.restricted_delaunay_violations = rd_violations;
+  return m;
+}
+
+Candidates fallback_points(const Tr& tr, const SurfaceSampler& sampler, const std::vector<Facet>& fs, int comp) {
+  const CubeGrid& grid = sampler.grid();
+  std::vector<std::pair<double, Facet>> mine;
+  for (const Facet& f : fs)
+    if (f.first->vertex((f.second + 1) & 3)->info().comp == comp) mine.emplace_back(f.first->facet[f.second].r2, f);
+  std::stable_sort(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  const std::size_t take = std::min<std::size_t>(mine.size(), std::max<std::size_t>(1, mine.size() / 10));
+  Candidates pts;
+  for (std::size_t k = 0; k < take; ++k) pts.emplace_back(facet_center(mine[k].second), mine[k].first);
+  // Farthest mixed-edge crossing (linear estimate, then refined).
+  double far = -1;
+  Vec3 fa{}, fb{};
+  std::size_t count = 0, stride = 1;
+  for (auto& kc : grid.comp) count += kc.second == comp;
+  stride = std::max<std::size_t>(1, count / 4000);
+  std::size_t k = 0;
+  const std::vector<std::pair<long long, int>> cubes = grid.sorted_cubes();
+  for (auto& kc : cubes) {
+    if (kc.second != comp || (k++ % stride)) continue;
+    const long x = long(kc.first % grid.n[0]), y = long((kc.first / grid.n[0]) % grid.n[1]),
+               z = long(kc.first / grid.n[0] / grid.n[1]);
+    for (int a = 0; a < 3; ++a) {
+      long p[3] = {x, y, z}, q[3] = {x, y, z};
+      q[a] += 1;
+      if (grid.neg(p[0], p[1], p[2]) == grid.neg(q[0], q[1], q[2])) continue;
+      const Vec3 pa{p[0] * grid.s[0], p[1] * grid.s[1], p[2] * grid.s[2]};
+      const Vec3 pb{q[0] * grid.s[0], q[1] * grid.s[1], q[2] * grid.s[2]};
+      const double ga = grid.g(p[0], p[1], p[2]), gb = grid.g(q[0], q[1], q[2]);
+      const double t = ga / (ga - gb);
+      const Vec3 m{pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1]), pa[2] + t * (pb[2] - pa[2])};
+      Vh nv = tr.nearest_vertex(Point(m[0], m[1], m[2]));
+      const double dd = dist2(m, vec(nv->point()));
+      if (dd > far) {
+        far = dd;
+        fa = pa;
+        fb = pb;
+      }
+    }
+  }
+  if (far > 0) pts.emplace_back(sampler.bisect(fa, fb, sampler.value(fa)), far);
+  return pts;
+}
+
+} // namespace imgmesh::surface_detail

@@ -1,0 +1,150 @@
+#include "surface/cube_grid.hpp"
+
+#include <cmath>
+
+namespace imgmesh::surface_detail {
+
+CubeGrid::CubeGrid(const FloatImage& img) : g(img) {
+  for (int i = 0; i < 3; ++i) {
+    n[i] = long(img.size[i]);
+    s[i] = img.spacing[i];
+    hi[i] = double(n[i] - 1) * s[i];
+    nb[i] = std::max(1L, (n[i] - 1 + kBlock - 1) / kBlock);
+  }
+  delta = std::min({s[0], s[1], s[2]});
+  if (n[0] < 2 || n[1] < 2 || n[2] < 2) return;
+  cube_active.assign(std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)), 0);
+  block_active.assign(std::size_t(nb[0] * nb[1] * nb[2]), 0);
+  for (long z = 0; z + 1 < n[2]; ++z)
+    for (long y = 0; y + 1 < n[1]; ++y)
+      for (long x = 0; x + 1 < n[0]; ++x) {
+        const bool s0 = neg(x, y, z);
+        bool mixed = false;
+        for (int k = 1; k < 8 && !mixed; ++k) mixed = neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) != s0;
+        if (!mixed) continue;
+        cube_active[std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z))] = 1;
+        block_active[std::size_t(x / kBlock + nb[0] * (y / kBlock + nb[1] * (z / kBlock)))] = 1;
+      }
+}
+
+void CubeGrid::label() {
+  std::vector<std::array<long, 3>> stack;
+  for (long z = 0; z + 1 < n[2]; ++z)
+    for (long y = 0; y + 1 < n[1]; ++y)
+      for (long x = 0; x + 1 < n[0]; ++x) {
+        if (!active(x, y, z) || comp.count(key(x, y, z))) continue;
+        const int c = components++;
+        comp[key(x, y, z)] = c;
+        stack.push_back({x, y, z});
+        while (!stack.empty()) {
+          auto q = stack.back();
+          stack.pop_back();
+          for (int a = 0; a < 3; ++a)
+            for (int dir = -1; dir <= 1; dir += 2) {
+              std::array<long, 3> r = q;
+              r[a] += dir;
+              if (!active(r[0], r[1], r[2]) || comp.count(key(r[0], r[1], r[2]))) continue;
+              // The shared face: plane coordinate max(q[a], r[a]) on axis a.
+              const long pa = std::max(q[a], r[a]);
+              const int b = (a + 1) % 3, c2 = (a + 2) % 3;
+              bool any_neg = false, any_pos = false;
+              for (int k = 0; k < 4; ++k) {
+                std::array<long, 3> v = q;
+                v[a] = pa;
+                v[b] += k & 1;
+                v[c2] += (k >> 1) & 1;
+                (neg(v[0], v[1], v[2]) ? any_neg : any_pos) = true;
+              }
+              if (!(any_neg && any_pos)) continue;
+              comp[key(r[0], r[1], r[2])] = c;
+              stack.push_back(r);
+            }
+        }
+      }
+}
+
+int CubeGrid::comp_at(const Vec3& q) const {
+  long c[3];
+  for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(q[i] / s[i])), 0L, n[i] - 2);
+  int r = comp_of(c[0], c[1], c[2]);
+  if (r >= 0) return r;
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        if ((r = comp_of(c[0] + dx, c[1] + dy, c[2] + dz)) >= 0) return r;
+  return -1;
+}
+
+std::vector<int> CubeGrid::euler_by_component() const {
+  std::vector<std::pair<int, long long>> verts, edges;
+  std::vector<long long> faces(components, 0);
+  const long long cx = n[0] + 2, cy = n[1] + 2;
+  auto corner = [&](long x, long y, long z) { return x + cx * (y + cy * (long long)z); };
+  for (long z = 0; z < n[2]; ++z)
+    for (long y = 0; y < n[1]; ++y)
+      for (long x = 0; x < n[0]; ++x)
+        for (int a = 0; a < 3; ++a) {
+          long p[3] = {x, y, z};
+          p[a] += 1;
+          if (p[a] >= n[a] || neg(x, y, z) == neg(p[0], p[1], p[2])) continue;
+          const int b = (a + 1) % 3, c = (a + 2) % 3;
+          long cube[3] = {x, y, z};
+          if (cube[b] > n[b] - 2) cube[b] -= 1;
+          if (cube[c] > n[c] - 2) cube[c] -= 1;
+          const int k = comp_of(cube[0], cube[1], cube[2]);
+          if (k < 0) continue;
+          faces[k] += 1;
+          // Quad corners in corner coordinates (voxel v spans [v, v+1]).
+          long o[3] = {x, y, z};
+          o[a] += 1;
+          long q[4][3];
+          for (int i = 0; i < 4; ++i) std::copy(o, o + 3, q[i]);
+          q[1][b] += 1; q[2][b] += 1; q[2][c] += 1; q[3][c] += 1;
+          for (int i = 0; i < 4; ++i) verts.emplace_back(k, corner(q[i][0], q[i][1], q[i][2]));
+          edges.emplace_back(k, corner(q[0][0], q[0][1], q[0][2]) * 3 + b);
+          edges.emplace_back(k, corner(q[0][0], q[0][1], q[0][2]) * 3 + c);
+          edges.emplace_back(k, corner(q[1][0], q[1][1], q[1][2]) * 3 + c);
+          edges.emplace_back(k, corner(q[3][0], q[3][1], q[3][2]) * 3 + b);
+        }
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<int> chi(faces.begin(), faces.end());
+  for (auto& v : verts) chi[v.first] += 1;
+  for (auto& e : edges) chi[e.first] -= 1;
+  return chi;
+}
+
+// Illinois regula falsi with a bisection safeguard (when the bracket
+// shrinks slowly).
+Vec3 SurfaceSampler::bisect(Vec3 a, Vec3 b, double fa) const {
+  double fb = value(b);
+  const bool ia = inside(fa);
+  const double tol2 = std::pow(1e-11 * grid_.delta, 2);
+  int side = 0;
+  double width2 = dist2(a, b);
+  for (int it = 0; it < 200 && dist2(a, b) > tol2; ++it) {
+    double t = (fa - fb) != 0 ? fa / (fa - fb) : 0.5;
+    if (!(t > 0 && t < 1)) t = 0.5;
+    if (it % 3 == 2) {  // less than halved in three steps: bisect
+      const double w2 = dist2(a, b);
+      if (w2 > width2 / 4) t = 0.5;
+      width2 = w2;
+    }
+    Vec3 m{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+    const double fm = value(m);
+    if (inside(fm) == ia) {
+      a = m; fa = fm;
+      if (side == -1) fb /= 2;
+      side = -1;
+    } else {
+      b = m; fb = fm;
+      if (side == 1) fa /= 2;
+      side = 1;
+    }
+  }
+  return std::abs(fa) <= std::abs(fb) ? a : b;
+}
+
+} // namespace imgmesh::surface_detail

@@ -1,0 +1,99 @@
+// The cube grid between voxel centres (thesis ch. 6): signs, active cubes and
+// their components (F1, F4), and f sampled inside the grid's box with the
+// root finder every subroutine uses to put a point on S. No CGAL.
+#pragma once
+#include "surface/implicit_surface.hpp"
+#include "surface/vec3.hpp"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace imgmesh::surface_detail {
+
+struct CubeGrid {
+  const FloatImage& g;
+  long n[3];
+  double s[3];
+  double hi[3];
+  double delta;
+  std::unordered_map<long long, int> comp;  // active cube -> S component
+  int components = 0;
+
+  // Activity of every cube (one byte each) and of blocks of kBlock^3 cubes,
+  // so EdgeSurface crosses empty space a block at a time.
+  static constexpr long kBlock = 8;
+  std::vector<std::uint8_t> cube_active, block_active;
+  long nb[3];
+
+  explicit CubeGrid(const FloatImage& img);
+  bool neg(long x, long y, long z) const { return g(std::size_t(x), std::size_t(y), std::size_t(z)) < 0; }
+  long long key(long x, long y, long z) const { return x + (long long)n[0] * (y + (long long)n[1] * z); }
+  bool active(long x, long y, long z) const {
+    if (x < 0 || y < 0 || z < 0 || x > n[0] - 2 || y > n[1] - 2 || z > n[2] - 2) return false;
+    return cube_active[std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z))];
+  }
+  bool block(long x, long y, long z) const {
+    return block_active[std::size_t(x + nb[0] * (y + nb[1] * z))];
+  }
+  int comp_of(long x, long y, long z) const {
+    auto it = comp.find(key(x, y, z));
+    return it == comp.end() ? -1 : it->second;
+  }
+  // Label active cubes by components joined through mixed faces (F4).
+  void label();
+  // Component of the active cube containing a local point (or a neighbour).
+  int comp_at(const Vec3& q) const;
+  // Euler characteristic of bdCA(X) per S component: the boundary quad dual
+  // to a mixed grid edge belongs to the component of the cubes around it.
+  std::vector<int> euler_by_component() const;
+  // The active cubes (key, component) in key order (deterministic).
+  std::vector<std::pair<long long, int>> sorted_cubes() const {
+    std::vector<std::pair<long long, int>> cubes(comp.begin(), comp.end());
+    std::sort(cubes.begin(), cubes.end());
+    return cubes;
+  }
+  // Cube (x, y, z) of a key.
+  std::array<long, 3> cube_of_key(long long k) const {
+    return {long(k % n[0]), long((k / n[0]) % n[1]), long(k / n[0] / n[1])};
+  }
+};
+
+// f on the box of voxel centres (points beyond it are clamped onto it),
+// every evaluation counted for --stats; safe to call from several threads.
+class SurfaceSampler {
+public:
+  SurfaceSampler(const ImplicitSurface& f, const CubeGrid& grid) : f_(f), grid_(grid) {}
+  const CubeGrid& grid() const { return grid_; }
+  const ImplicitSurface& surface() const { return f_; }
+  long long evaluations() const { return evaluations_.load(); }
+
+  double value(const Vec3& q) const {
+    evaluations_.fetch_add(1, std::memory_order_relaxed);
+    Vec3 c = q;
+    for (int i = 0; i < 3; ++i) c[i] = std::clamp(c[i], 0.0, grid_.hi[i]);
+    return f_.value(c);
+  }
+  Vec3 gradient(const Vec3& q) const {
+    Vec3 c = q, gr;
+    for (int i = 0; i < 3; ++i) c[i] = std::clamp(c[i], 0.0, grid_.hi[i]);
+    f_.value_gradient(c, gr);
+    return gr;
+  }
+  // Sign convention for zeros (8.4(1)): f == 0 counts as outside, i.e. we
+  // mesh f^-1(-eps) symbolically, consistently on every edge.
+  static bool inside(double v) { return v < 0; }
+  // The point of S on segment [a, b] whose ends have opposite signs (fa =
+  // f(a)), to ~1e-11 delta.
+  Vec3 bisect(Vec3 a, Vec3 b, double fa) const;
+
+private:
+  const ImplicitSurface& f_;
+  const CubeGrid& grid_;
+  mutable std::atomic<long long> evaluations_{0};
+};
+
+} // namespace imgmesh::surface_detail

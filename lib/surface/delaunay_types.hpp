@@ -1,0 +1,129 @@
+// The triangulation the mesher works on (private to lib/surface): CGAL's
+// Delaunay_triangulation_3 whose vertices know their id, origin and S
+// component, and whose cells keep EdgeSurface's answer for each facet.
+// Included only by the .cpp files of the rooms that need CGAL.
+#pragma once
+#include "surface/vec3.hpp"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_with_circumcenter_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Robust_weighted_circumcenter_filtered_traits_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace imgmesh::surface_detail {
+
+using K0 = CGAL::Exact_predicates_inexact_constructions_kernel;
+// Circumcentres in floating point, checked with an exact predicate to lie
+// inside the tetrahedron's circumsphere, else computed exactly and rounded
+// (Mesh_3's traits; Surface_mesher's always go through the lazy exact kernel).
+using GT = CGAL::Robust_circumcenter_filtered_traits_3<K0>;
+using Point = GT::Point_3;
+
+// Why a vertex is in W; also the per-subroutine counters of --stats.
+enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kFacetCycle, kHandle, kQuality, kSmooth, kDistance, kFallback, kOrigins };
+inline constexpr const char* kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "facet_cycle", "handle_detection", "quality", "smooth", "max_distance", "topology_fallback"};
+
+struct VInfo {
+  int id = -1;
+  std::uint8_t origin = kSeed;
+  int comp = -1;  // S component (active-cube component) the vertex lies on
+  std::uint8_t queued = 0;  // 1: TopoDisk check queued, 2: SMOOTH check queued
+  std::uint32_t stamp = 0;  // last insertion that collected this vertex
+};
+
+enum : std::uint8_t { kComputed = 1, kRestricted = 2, kMulti = 4 };
+
+// EdgeSurface's answer for one Delaunay facet, stored on both of its sides.
+struct FacetInfo {
+  std::uint8_t state = 0;
+  std::uint32_t computed = 0;  // which computation: queue entries of older ones are stale
+  double x[3] = {0, 0, 0};  // surface centre x_t: crossing farthest from the facet's vertices
+  double r2 = 0;            // squared radius of the surface Delaunay ball
+  float grad[3] = {0, 0, 0};  // grad f at x_t (orients the facet for SMOOTH and output)
+};
+
+// The circumcentre from the vertices in lexicographic order. From CGAL's
+// vertex order, which vertex removal makes depend on addresses, it would
+// differ in its last bits from run to run (the cell base above caches it).
+template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_3<Gt>>
+class CanonicalCircumcenter : public Cb {
+public:
+  template <class TDS2> struct Rebind_TDS {
+    using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
+    using Other = CanonicalCircumcenter<Gt, Cb2>;
+  };
+  using Cb::Cb;
+  typename Gt::Point_3 circumcenter(const Gt& gt = Gt()) const {
+    const typename Gt::Point_3* p[4];
+    for (int i = 0; i < 4; ++i) p[i] = &this->vertex(i)->point();
+    std::sort(p, p + 4, [](const auto* a, const auto* b) { return *a < *b; });
+    return gt.construct_circumcenter_3_object()(*p[0], *p[1], *p[2], *p[3]);
+  }
+};
+
+template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_with_circumcenter_3<Gt, CanonicalCircumcenter<Gt>>>
+class CellBase : public Cb {
+public:
+  template <class TDS2> struct Rebind_TDS {
+    using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
+    using Other = CellBase<Gt, Cb2>;
+  };
+  using Cb::Cb;
+  FacetInfo facet[4];
+};
+
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<VInfo, GT>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, CellBase<GT>>;
+using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;  // Compact_location: see doc/implicit2mesh.md
+using Vh = Tr::Vertex_handle;
+using Ch = Tr::Cell_handle;
+using Facet = Tr::Facet;
+
+inline Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
+
+// A finite facet's vertices by id. CGAL stores a facet on either side and
+// vertex removal makes the side depend on addresses: every construction
+// from a facet's vertices (site, normals, ratios) uses this order, so the
+// last bits, and so the output, are the same on every run.
+inline std::array<Vh, 3> facet_vertices(Ch c, int i) {
+  std::array<Vh, 3> v{c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+  std::sort(v.begin(), v.end(), [](Vh a, Vh b) { return a->info().id < b->info().id; });
+  return v;
+}
+
+// The surface centre x_t of a restricted facet (EdgeSurface's crossing).
+inline Vec3 facet_center(const Facet& f) {
+  const FacetInfo& fi = f.first->facet[f.second];
+  return {fi.x[0], fi.x[1], fi.x[2]};
+}
+
+
+// Points a pass found on one state of W, each with its clearance (squared
+// distance to W when found), for DELMESH's insert_batch.
+using Candidates = std::vector<std::pair<Vec3, double>>;
+
+// Vertex ids, each once, in the order they came, with O(1) membership.
+struct IdSet {
+  std::vector<char> in;
+  std::vector<int> ids;
+  void add(int id) {
+    if (std::size_t(id) >= in.size()) in.resize(std::size_t(id) + 1, 0);
+    if (!in[std::size_t(id)]) {
+      in[std::size_t(id)] = 1;
+      ids.push_back(id);
+    }
+  }
+  bool has(int id) const { return std::size_t(id) < in.size() && in[std::size_t(id)]; }
+  void clear() {
+    for (int id : ids) in[std::size_t(id)] = 0;
+    ids.clear();
+  }
+};
+
+} // namespace imgmesh::surface_detail

@@ -1,0 +1,502 @@
+#include "surface/delmesh.hpp"
+
+#include "surface/certificate.hpp"
+#include "surface/edge_surface.hpp"
+#include "surface/facet_cycle.hpp"
+#include "surface/seeds.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace imgmesh::surface_detail {
+
+DelMesh::DelMesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions& opt)
+    : f_(surface), opt_(opt), grid_(surface.samples()), sampler_(surface, grid_), topology_only_(opt.seed_deletion) {}
+
+void DelMesh::compute_facet(Ch c, int i) {
+  FacetInfo fi = edge_surface_of(tr_, sampler_, c, i);
+  fi.computed = ++computed_;
+  Ch n = c->neighbor(i);
+  c->facet[i] = fi;
+  n->facet[n->index(c)] = fi;
+  enqueue_facet(c, i);
+}
+
+// EdgeSurface's answer queues the facet for VorEdge (two crossings),
+// QUALITY and --max-distance when it fails them.
+void DelMesh::enqueue_facet(Ch c, int i) {
+  const FacetInfo& fi = c->facet[i];
+  if (!(fi.state & kRestricted)) return;
+  const auto [a, b, d] = facet_vertices(c, i);
+  if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i, fi.computed});
+  const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
+  if (topology_only_) return;
+  if (quality_refines(pa, pb, pd, opt_.ratio)) queue_.push({kQQuality, fi.r2, seq_++, a, b, d, c, i, fi.computed});
+  if (opt_.max_distance > 0 && distance_refines(pa, pb, pd, Vec3{fi.x[0], fi.x[1], fi.x[2]}, opt_.max_distance))
+    queue_.push({kQDistance, fi.r2, seq_++, a, b, d, c, i, fi.computed});
+}
+
+// A vertex is queued at most once per check: the check runs on the state at
+// pop time, which includes every change since it was queued.
+void DelMesh::enqueue_vertex(Vh v) {
+  if (!(v->info().queued & 1)) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
+  v->info().queued |= 1;
+  if (topology_only_) return;
+  if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
+  v->info().queued |= 2;
+}
+
+bool DelMesh::insert(const Vec3& x, Origin origin, Facet hint) {
+  if (origin != kSeed && tr_.number_of_vertices() >= opt_.max_points) {  // seeds always go in
+    max_hit_ = true;
+    return false;
+  }
+  const Point p(x[0], x[1], x[2]);
+  if (tr_.dimension() < 3) {
+    const std::size_t before = tr_.number_of_vertices();
+    Vh v = tr_.insert(p);
+    if (tr_.number_of_vertices() == before) return false;
+    add_vertex(v, origin, x);
+    if (tr_.dimension() == 3) {  // bootstrap: one scan, incremental afterwards
+      for (auto it = tr_.finite_facets_begin(); it != tr_.finite_facets_end(); ++it) compute_facet(it->first, it->second);
+      for (Vh w : vertices_)
+        if (w != Vh()) {
+          enqueue_vertex(w);
+          dirty_.add(w->info().id);
+          cell_changed_.add(w->info().id);
+        }
+    }
+    return true;
+  }
+  // A facet's surface centre lies in the circumball of one of the facet's two
+  // cells (balls centred on its Voronoi edge are covered by the two), so the
+  // conflict zone starts there without a walk (doc/implicit2mesh.md 2, step 3).
+  Ch c0;
+  if (hint.first != Ch()) {
+    Ch n = hint.first->neighbor(hint.second);
+    if (tr_.side_of_sphere(hint.first, p, true) == CGAL::ON_BOUNDED_SIDE) c0 = hint.first;
+    else if (tr_.side_of_sphere(n, p, true) == CGAL::ON_BOUNDED_SIDE) c0 = n;
+  }
+  if (c0 == Ch()) {
+    Tr::Locate_type lt;
+    int li, lj;
+    c0 = tr_.locate(p, lt, li, lj, hint.first);
+    if (lt == Tr::VERTEX) return false;
+  }
+  zone_facets_.clear();
+  zone_cells_.clear();
+  tr_.find_conflicts(p, c0, std::back_inserter(zone_facets_), std::back_inserter(zone_cells_));
+  for (const Facet& f : zone_facets_)  // x on a vertex (rounding): refuse
+    for (int m = 1; m < 4; ++m)
+      if (f.first->vertex((f.second + m) & 3)->point() == p) return false;
+  // Vertices whose restricted facets die: TopoDisk/SMOOTH re-check them.
+  ++stamp_;
+  touched_.clear();
+  for (Ch c : zone_cells_)
+    for (int i = 0; i < 4; ++i) mark_restricted(c, i);
+  Vh v = tr_.insert_in_hole(p, zone_cells_.begin(), zone_cells_.end(), zone_facets_[0].first, zone_facets_[0].second);
+  add_vertex(v, origin, x);
+  after_insertion(v);
+  progress();
+  return true;
+}
+
+void DelMesh::add_vertex(Vh v, Origin origin, const Vec3& x) {
+  v->info() = {int(vertices_.size()), std::uint8_t(origin), grid_.comp_at(x)};
+  vertices_.push_back(v);
+  walk_start_ = v;
+  ++inserted_[origin];
+  if (v->info().comp >= 0) ++comp_vertices_[std::size_t(v->info().comp)];
+}
+
+// Deletion (7.6.2, 8.3): the cells around v are replaced by a Delaunay
+// triangulation of its link (CGAL's remove), and the facets of the new cells
+// are computed anew. v's neighbours gained Voronoi volume: TopoDisk,
+// FacetCycle and HandleDetection check them again. False if v had to stay.
+bool DelMesh::remove_vertex(Vh v) {
+  std::vector<Vh> adj;
+  tr_.adjacent_vertices(v, std::back_inserter(adj));
+  const Vec3 x = vec(v->point());
+  const Origin origin = Origin(v->info().origin);
+  vertices_[std::size_t(v->info().id)] = Vh();
+  if (v->info().comp >= 0) --comp_vertices_[std::size_t(v->info().comp)];
+  cells_buf_.clear();
+  tr_.remove_and_give_new_cells(v, std::back_inserter(cells_buf_));
+  if (tr_.dimension() < 3) {  // the rest is coplanar: put it back (bootstrap)
+    insert(x, origin);
+    --inserted_[origin];
+    return false;
+  }
+  compute_new_cells();
+  for (Vh w : adj)
+    if (!tr_.is_infinite(w)) {
+      walk_start_ = w;
+      grown_.push_back(w->info().id);
+      cell_changed_.add(w->info().id);
+    }
+  return true;
+}
+
+// Deletes v, then TOPOLOGY restores the closed ball property (Lemma 7.6.3).
+// A component keeps at least two vertices (doc/implicit2mesh.md 4.5): with fewer, it can
+// hide inside one Voronoi cell, where no Voronoi edge sees it.
+bool DelMesh::delete_and_restore(Vh v) {
+  if (v->info().comp < 0 || comp_vertices_[std::size_t(v->info().comp)] <= 2 || tr_.number_of_vertices() <= 8)
+    return false;
+  if (!remove_vertex(v)) return false;
+  requeue_grown();
+  refine();
+  return true;
+}
+
+// SAMPLETOPOLOGY step 2 (7.6.2): delete the seeds one by one, restoring the
+// topology after each, so that every point left was placed by a subroutine
+// that keeps it k d_M(p) from the others. Then HandleDetection's points,
+// which need not be (8.3): each is deleted in turn, and should
+// HandleDetection then find a handle again, that point goes back instead of
+// a new one.
+void DelMesh::delete_seeds() {
+  const std::size_t seeds = vertices_.size();  // refine() adds no seeds
+  for (std::size_t id = 0; id < seeds && !max_hit_; ++id) {
+    const Vh v = vertices_[id];
+    if (v != Vh() && v->info().origin == kSeed && delete_and_restore(v)) ++seeds_deleted_;
+  }
+  std::vector<int> handle_points;
+  for (Vh v : vertices_)
+    if (v != Vh() && v->info().origin == kHandle) handle_points.push_back(v->info().id);
+  for (int id : handle_points) {
+    const Vh v = vertices_[std::size_t(id)];
+    if (v == Vh() || max_hit_) continue;
+    handle_trial_ = vec(v->point());
+    if (delete_and_restore(v)) ++handle_points_deleted_;
+    handle_trial_.reset();
+  }
+}
+
+// The live neighbours of deleted vertices: TopoDisk and FacetCycle again.
+void DelMesh::requeue_grown() {
+  std::sort(grown_.begin(), grown_.end());
+  grown_.erase(std::unique(grown_.begin(), grown_.end()), grown_.end());
+  for (int id : grown_) {
+    const Vh w = vertices_[std::size_t(id)];
+    if (w == Vh()) continue;
+    enqueue_vertex(w);
+    dirty_.add(id);
+  }
+  grown_.clear();
+}
+
+// TOPOLOGY and the other queues until they drain, then FacetCycle and
+// HandleDetection passes over what changed, until none inserts.
+void DelMesh::refine() {
+  for (;;) {
+    drain();
+    if (max_hit_) return;
+    if (opt_.facet_cycle && facet_cycle_pass()) continue;
+    if (!handle_vertex_pass()) return;
+  }
+}
+
+// The facets of the new cells cells_buf_, computed (and so queued) in the
+// order of their vertex ids, not CGAL's storage order: vertex removal makes
+// that depend on addresses, and the queue's ties would then differ from run
+// to run.
+void DelMesh::compute_new_cells() {
+  for (Ch c : cells_buf_) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
+  thread_local std::vector<std::pair<std::array<int, 3>, Facet>> order;
+  order.clear();
+  for (Ch c : cells_buf_)
+    for (int i = 0; i < 4; ++i) {
+      std::array<int, 3> ids;
+      for (int m = 1; m < 4; ++m) {
+        const Vh w = c->vertex((i + m) & 3);
+        ids[m - 1] = tr_.is_infinite(w) ? -1 : w->info().id;
+      }
+      std::sort(ids.begin(), ids.end());
+      order.emplace_back(ids, Facet(c, i));
+    }
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (const auto& [ids, f] : order)
+    if (!(f.first->facet[f.second].state & kComputed)) compute_facet(f.first, f.second);
+}
+
+// Remember the finite vertices of facet (c, i) if it is restricted.
+void DelMesh::mark_restricted(Ch c, int i) {
+  if (!(c->facet[i].state & kRestricted)) return;
+  for (int m = 1; m < 4; ++m) {
+    Vh w = c->vertex((i + m) & 3);
+    if (w->info().stamp != stamp_) {
+      w->info().stamp = stamp_;
+      touched_.push_back(w);
+    }
+  }
+}
+
+// The new cells are exactly the cells incident to v: recompute their facets
+// (both sides), and re-check the vertices whose restricted facets changed.
+// An edge's Voronoi facet changed only if both its ends are in the cavity.
+void DelMesh::after_insertion(Vh v) {
+  cells_buf_.clear();
+  tr_.incident_cells(v, std::back_inserter(cells_buf_));
+  compute_new_cells();
+  for (Ch c : cells_buf_)
+    for (int i = 0; i < 4; ++i) mark_restricted(c, i);
+  enqueue_vertex(v);
+  std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info().id < b->info().id; });
+  for (Vh w : touched_) enqueue_vertex(w);
+  dirty_.add(v->info().id);
+  for (Ch c : cells_buf_)
+    for (int i = 0; i < 4; ++i)
+      if (!tr_.is_infinite(c->vertex(i))) cell_changed_.add(c->vertex(i)->info().id);
+}
+
+// Seeds (8.1); for degenerate seed sets, more crossings until the
+// triangulation is 3D.
+void DelMesh::seeds() {
+  phase_ = "seeds";
+  Seeds seeds(sampler_);
+  for (const Vec3& x : seeds.points(opt_.seed)) insert(x, kSeed);
+  Vec3 x;
+  while (tr_.dimension() < 3 && seeds.next_extra(x)) insert(x, kSeed);
+  if (tr_.dimension() < 3) throw Error("cannot place four non-coplanar seed points on the surface");
+}
+
+// The queued facet, if its cell is still alive and still holds its three
+// vertices at the queued index (O(1); a dead facet's cell died with it, and a
+// re-created facet was queued again from its new cell).
+bool DelMesh::facet_of(const Item& it, Ch& c, int& i) const {
+  if (!tr_.tds().cells().is_used(it.cell)) return false;
+  c = it.cell;
+  i = it.index;
+  for (int m = 1; m < 4; ++m) {
+    Vh w = c->vertex((i + m) & 3);
+    if (w != it.a && w != it.b && w != it.c) return false;
+  }
+  return true;
+}
+
+// DELMESH as one loop over prioritised queues (doc/implicit2mesh.md 4.8): VorEdge, TopoDisk,
+// QUALITY, SMOOTH, max-distance; every insertion re-queues only what changed.
+void DelMesh::drain() {
+  const double guard2 = std::pow(1e-3 * grid_.delta, 2);  // quality/smooth minimum distance
+  while (!queue_.empty() && !max_hit_) {
+    const Item it = queue_.top();
+    queue_.pop();
+    if (it.kind == kQTopoDisk || it.kind == kQSmooth) {
+      it.a->info().queued &= std::uint8_t(it.kind == kQTopoDisk ? ~1 : ~2);
+      Facet worst;
+      if (it.kind == kQTopoDisk) {
+        phase_ = "topology";
+        if (topo_disk_(tr_, it.a, &worst)) continue;
+        if (!insert(facet_center(worst), kTopoDisk, worst)) ++refused_;
+      } else {
+        phase_ = "smooth";
+        if (smooth_(tr_, it.a, opt_.roughness, &worst)) continue;
+        if (worst.first->facet[worst.second].r2 < guard2 || !insert(facet_center(worst), kSmooth, worst)) ++refused_;
+      }
+      continue;
+    }
+    Ch c;
+    int i;
+    if (!facet_of(it, c, i)) continue;  // facet destroyed since
+    const FacetInfo& fi = c->facet[i];
+    if (!(fi.state & kRestricted) || fi.computed != it.computed) continue;  // stale entry
+    const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
+    if (it.kind == kQVorEdge) {
+      phase_ = "topology";
+      if (!(fi.state & kMulti)) continue;
+      if (!insert(x, kVorEdge, Facet(c, i))) ++refused_;
+    } else {
+      phase_ = it.kind == kQQuality ? "quality" : "max-distance";
+      if (fi.r2 < guard2 || !insert(x, it.kind == kQQuality ? kQuality : kDistance, Facet(c, i))) ++refused_;
+    }
+  }
+}
+
+// One FacetCycle pass over the edges whose Voronoi facet may have changed
+// since the last pass; inserts the cycle points found. True if any went in.
+bool DelMesh::facet_cycle_pass() {
+  ++facet_cycle_passes_;
+  phase_ = "facet cycle";
+  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_);
+  dirty_.clear();
+  return insert_batch(pts, kFacetCycle);
+}
+
+// HandleDetection (8.3) in TOPOLOGY, after TopoDisk and FacetCycle: every
+// vertex whose Voronoi cell changed since its last check. True if a point
+// went in.
+bool DelMesh::handle_vertex_pass() {
+  std::sort(cell_changed_.ids.begin(), cell_changed_.ids.end());
+  std::vector<Vh> todo;
+  for (int id : cell_changed_.ids)
+    if (vertices_[std::size_t(id)] != Vh()) todo.push_back(vertices_[std::size_t(id)]);
+  cell_changed_.clear();
+  const Candidates pts = handle_points(tr_, sampler_, todo, opt_.threads, handle_checks_);
+  if (handle_trial_ && !pts.empty()) {  // the deleted handle point goes back
+    const Vec3 x = *handle_trial_;
+    handle_trial_.reset();
+    ++handle_points_restored_;
+    return insert(x, kHandle);
+  }
+  return insert_batch(pts, kHandle);
+}
+
+// HandleDetection on every vertex of the S components whose mesh has the
+// wrong topology (the certificate says which), before the blunter fallback.
+bool DelMesh::handle_pass(const std::vector<int>& bad) {
+  Candidates pts;
+  if (!handle_component_points(tr_, sampler_, vertices_, bad, opt_.threads, handle_checks_, pts)) return false;
+  return insert_batch(pts, kHandle);
+}
+
+// Beyond HandleDetection: when the certificate still (or again) finds a
+// component of S whose mesh has the wrong topology, refine it there.
+bool DelMesh::fallback(const std::vector<int>& bad) {
+  bool any = false;
+  const std::vector<Facet> fs = restricted_facets(tr_);
+  for (int comp : bad) any = insert_batch(fallback_points(tr_, sampler_, fs, comp), kFallback) || any;
+  return any;
+}
+
+void DelMesh::progress() {
+  if (opt_.progress && vertices_.size() >= last_progress_ + 5000) {
+    last_progress_ = vertices_.size();
+    opt_.progress(phase_ + ": " + std::to_string(tr_.number_of_vertices()) + " points");
+  }
+}
+
+// Points found on one state of W, inserted one after the other: a point
+// goes in only while it is still at least half its clearance (its distance
+// to W when it was found) away from W, so two points found for neighbouring
+// features do not both go in and make a tiny, unrefinable triangle.
+bool DelMesh::insert_batch(const Candidates& pts, Origin origin) {
+  bool any = false;
+  for (const auto& [x, clearance2] : pts) {
+    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), walk_start_->cell());
+    if (dist2(x, vec(nv->point())) < clearance2 / 4) {
+      ++refused_;
+      continue;
+    }
+    any = insert(x, origin) || any;
+  }
+  return any;
+}
+
+void DelMesh::prepare() {
+  const FloatImage& g = f_.samples();
+  if (g.dimension != 3 || g.size[0] < 2 || g.size[1] < 2 || g.size[2] < 2)
+    throw Error("the implicit function must be sampled on a 3D grid of at least 2x2x2 voxels");
+  for (float v : g.data)
+    if (!std::isfinite(v)) throw Error("the implicit function has non-finite samples");
+  // S must be closed inside the grid: no inside sample on the border.
+  for (long z = 0; z < grid_.n[2]; ++z)
+    for (long y = 0; y < grid_.n[1]; ++y)
+      for (long x = 0; x < grid_.n[0]; ++x) {
+        const bool border = x == 0 || y == 0 || z == 0 || x == grid_.n[0] - 1 || y == grid_.n[1] - 1 || z == grid_.n[2] - 1;
+        if (border && grid_.neg(x, y, z))
+          throw Error("the surface touches the border of the grid (the foreground must be padded by background)");
+        if (!border) x = grid_.n[0] - 2;  // only the border faces
+      }
+  grid_.label();
+  if (grid_.components == 0) throw Error("the surface is empty (no sign change in the implicit function)");
+  comp_vertices_.assign(std::size_t(grid_.components), 0);
+}
+
+RestrictedDelaunayResult DelMesh::run() {
+  RestrictedDelaunayResult res;
+  const auto t_start = Clock::now();
+  auto secs = [](Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); };
+  prepare();
+  const ExpectedTopology expected = expected_topology(grid_);
+  res.expected = expected.sorted;
+
+  seeds();
+  const double t_seeds = secs(t_start);
+  const auto t_refine = Clock::now();
+  // DELMESH. With seed_deletion, SAMPLETOPOLOGY first as published: TOPOLOGY
+  // alone, then the seeds deleted one by one (7.6.2); by default every
+  // queue runs from the start (measured: as many points, half the time).
+  if (opt_.seed_deletion) {
+    refine();
+    delete_seeds();
+    topology_only_ = false;
+    for (auto it = tr_.finite_facets_begin(); it != tr_.finite_facets_end(); ++it) enqueue_facet(it->first, it->second);
+    for (Vh v : vertices_)
+      if (v != Vh()) enqueue_vertex(v);
+  }
+  refine();
+
+  // Certificate: components and Euler characteristics per S component; on a
+  // mismatch, HandleDetection there, else the fallback, and DELMESH's queues
+  // again.
+  int rounds = 0;
+  Certificate cert;
+  for (;;) {
+    cert = certify(tr_, vertices_.size(), expected);
+    if (cert.ok || max_hit_ || rounds >= 40) break;
+    if (cert.bad.empty()) cert.bad = euler_mismatches(cert, expected);
+    cert.bad.erase(std::remove(cert.bad.begin(), cert.bad.end(), -1), cert.bad.end());
+    ++rounds;
+    if (cert.bad.empty()) break;
+    phase_ = "handle detection";
+    if (!handle_pass(cert.bad)) {
+      phase_ = "topology fallback";
+      if (!fallback(cert.bad)) break;
+    }
+    refine();
+  }
+  const double t_refine_s = secs(t_refine);
+  const auto t_final = Clock::now();
+
+  // Guarantees, measured on the output.
+  const MeasuredGuarantees m = measure_guarantees(tr_, sampler_, cert);
+  res.topology = cert.topology;
+  res.topology_ok = res.topology.manifold && res.topology.oriented && res.topology.same_as(res.expected) && cert.bad.empty();
+  res.ratio_ok = m.quality.max_ratio <= opt_.ratio * (1 + 1e-9);
+  res.roughness_ok = m.max_roughness <= opt_.roughness + 1e-9;
+  res.distance_ok = opt_.max_distance <= 0 || m.max_distance_to_plane <= opt_.max_distance * (1 + 1e-9);
+  res.max_points_hit = max_hit_;
+  res.quality = m.quality;
+  res.max_roughness = m.max_roughness;
+  res.max_distance_to_plane = m.max_distance_to_plane;
+  res.max_abs_f_at_vertices = m.max_abs_f_at_vertices;
+  res.max_abs_f_at_centroids = m.max_abs_f_at_centroids;
+  res.restricted_delaunay_violations = m.restricted_delaunay_violations;
+  res.ratio_bound = opt_.ratio;
+  res.roughness_bound = opt_.roughness;
+  res.max_points = opt_.max_points;
+
+  // World coordinates; a reflecting direction matrix flips orientation.
+  SurfaceMesh mesh = std::move(cert.mesh);
+  std::vector<Vec3> centers = std::move(cert.centers);
+  for (Vec3& p : mesh.points) p = f_.to_world(p);
+  for (Vec3& x : centers) x = f_.to_world(x);
+  if (f_.reflects())
+    for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
+  res.mesh = std::move(mesh);
+  res.centers = std::move(centers);
+
+  for (int o = 0; o < kOrigins; ++o) res.points_inserted.emplace_back(kOriginName[o], inserted_[o]);
+  res.points_refused = refused_;
+  res.seeds_deleted = seeds_deleted_;
+  res.handle_points_deleted = handle_points_deleted_;
+  res.handle_points_restored = handle_points_restored_;
+  res.topology_fallback_rounds = rounds;
+  res.facet_cycle_checks = facet_cycle_checks_;
+  res.facet_cycle_passes = facet_cycle_passes_;
+  res.handle_detection_checks = handle_checks_.full;
+  res.handle_detection_certified = handle_checks_.certified;
+  res.function_evaluations = sampler_.evaluations();
+  res.seconds_seeds = t_seeds;
+  res.seconds_refinement = t_refine_s;
+  res.seconds_verification = secs(t_final);
+  return res;
+}
+
+RestrictedDelaunayResult delmesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions& options) {
+  return DelMesh(surface, options).run();
+}
+
+} // namespace imgmesh::surface_detail

@@ -1,0 +1,158 @@
+// DELMESH (thesis 7.6.5) on CGAL's Delaunay_triangulation_3, kept
+// incremental: every insertion recomputes only the facets of the new cells
+// (all incident to the new vertex) and re-checks only the vertices whose
+// restricted facets changed. The only code that changes the triangulation;
+// every subroutine is a query in a file of its own:
+//
+//   DELMESH(S, rho_0, g):
+//     check f; the cube grid, its components, bdCA(X)'s topology   cube_grid.cpp, certificate.cpp
+//     W <- the seeds of every component of S                       seeds.cpp (8.1)
+//     [--seed-deletion] SAMPLETOPOLOGY first: REFINE with the TOPOLOGY
+//       queues alone, then delete the seeds and HandleDetection's
+//       points one by one, each followed by REFINE                 delmesh.cpp (7.6.2)
+//     REFINE: until no step inserts a point
+//       drain the queues, by priority, each entry re-checked at pop:
+//         VorEdge: a Voronoi edge meets S twice                    edge_surface.cpp (8.2)
+//         TopoDisk: a vertex's restricted facets are not one disk  topo_disk.cpp (7.6.1)
+//         QUALITY: a restricted facet's ratio > rho_0              criteria.cpp (7.6.3)
+//         SMOOTH: an edge's roughness > g                          criteria.cpp (7.6.4)
+//         --max-distance: a surface centre far from its facet      criteria.cpp
+//       then, over what changed since the last pass:
+//         FacetCycle: S closed inside a Voronoi facet              facet_cycle.cpp (8.2)
+//         HandleDetection: S inside a Voronoi cell not a disk      handle_detection.cpp (8.3)
+//     certificate: components and Euler characteristics against
+//       bdCA(X), per component and by place                        certificate.cpp
+//     while a component differs (at most 40 rounds):
+//       HandleDetection on all its vertices, else the fallback;
+//       REFINE; certificate again                                  handle_detection.cpp, certificate.cpp
+//     the guarantees measured on the output                        certificate.cpp
+//
+// A point goes in at the surface centre x_t of the facet that asked for it
+// (EdgeSurface's crossing of its Voronoi edge), with the conflict zone
+// started from that facet's cells (doc/implicit2mesh.md 2, step 3).
+#pragma once
+#include "surface/criteria.hpp"
+#include "surface/cube_grid.hpp"
+#include "surface/delaunay_types.hpp"
+#include "surface/handle_detection.hpp"
+#include "surface/restricted_delaunay.hpp"
+#include "surface/topo_disk.hpp"
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <queue>
+#include <string>
+#include <vector>
+
+namespace imgmesh::surface_detail {
+
+class DelMesh {
+public:
+  DelMesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions& opt);
+
+  // All of it; the result in world coordinates. Throws Error when f is not
+  // sampled on a 3D grid, is not finite, touches the grid's border or has
+  // no zero.
+  RestrictedDelaunayResult run();
+
+  // The steps run() takes, for tests: the checks of f and the cube grid's
+  // components (throws as run()), then the seeds, then REFINE.
+  void prepare();
+  void seeds();
+  void refine();
+  // Inserts x (a point of S) into W unless --max-points is reached or x is a
+  // vertex already; `hint`: the facet that asked for it.
+  bool insert(const Vec3& x, Origin origin, Facet hint = Facet(Ch(), 0));
+
+  const Tr& triangulation() const { return tr_; }
+  const CubeGrid& grid() const { return grid_; }
+  const SurfaceSampler& sampler() const { return sampler_; }
+  const std::vector<Vh>& vertices() const { return vertices_; }  // by id; null where deleted
+  long long inserted(Origin origin) const { return inserted_[origin]; }
+
+private:
+  using Clock = std::chrono::steady_clock;
+  enum Kind { kQVorEdge, kQTopoDisk, kQQuality, kQSmooth, kQDistance };
+  struct Item {
+    int kind;
+    double prio;
+    std::uint64_t seq;
+    Vh a, b, c;  // a facet (a, b, c) or a vertex a
+    Ch cell;     // the facet as (cell, index) when it was queued
+    int index;
+    std::uint32_t computed;  // FacetInfo::computed when it was queued
+    bool operator<(const Item& o) const {  // std::priority_queue pops the largest
+      if (kind != o.kind) return kind > o.kind;
+      if (prio != o.prio) return prio < o.prio;
+      return seq > o.seq;
+    }
+  };
+
+  void compute_facet(Ch c, int i);
+  void enqueue_facet(Ch c, int i);
+  void enqueue_vertex(Vh v);
+  void after_insertion(Vh v);
+  void compute_new_cells();
+  void add_vertex(Vh v, Origin origin, const Vec3& x);
+  bool remove_vertex(Vh v);
+  bool delete_and_restore(Vh v);
+  void delete_seeds();
+  void requeue_grown();
+  void mark_restricted(Ch c, int i);
+  void drain();
+  bool facet_of(const Item& it, Ch& c, int& i) const;
+  bool insert_batch(const Candidates& pts, Origin origin);
+  bool facet_cycle_pass();
+  bool handle_vertex_pass();
+  bool handle_pass(const std::vector<int>& bad_components);
+  bool fallback(const std::vector<int>& bad_components);
+  void progress();
+
+  const ImplicitSurface& f_;
+  RestrictedDelaunayOptions opt_;
+  CubeGrid grid_;
+  SurfaceSampler sampler_;
+  Tr tr_;
+  std::vector<Vh> vertices_;  // by id; null where a vertex was deleted
+  Vh walk_start_;             // a live vertex near the last change
+  std::priority_queue<Item> queue_;
+  std::uint64_t seq_ = 0;
+  std::uint32_t computed_ = 0;  // facet computations so far
+  long long inserted_[kOrigins] = {};
+  long long refused_ = 0;
+  bool max_hit_ = false;
+  std::size_t last_progress_ = 0;
+  std::string phase_ = "seeds";
+  TopoDisk topo_disk_;
+  Smooth smooth_;
+  // FacetCycle: vertices inserted since the last pass. Insertions create
+  // only edges at the new vertex and only shrink the other Voronoi facets,
+  // and a cycle inside a shrunken facet was inside it before
+  // (doc/implicit2mesh.md 2.7).
+  IdSet dirty_;
+  // HandleDetection: vertices whose Voronoi cell changed since their check.
+  IdSet cell_changed_;
+  // SAMPLETOPOLOGY (7.6.2): only the topology queues run, so that seeds can
+  // be deleted with no QUALITY/SMOOTH entry pointing at them.
+  bool topology_only_ = false;
+  long long seeds_deleted_ = 0;
+  std::vector<int> comp_vertices_;  // vertices per S component
+  long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
+  HandleChecks handle_checks_;
+  // The HandleDetection point being deleted (8.3): it goes back if
+  // HandleDetection finds a handle again.
+  std::optional<Vec3> handle_trial_;
+  long long handle_points_deleted_ = 0, handle_points_restored_ = 0;
+  std::vector<int> grown_;  // ids of the neighbours of deleted vertices
+  // Insertion scratch: the conflict zone and the vertices around it.
+  std::vector<Facet> zone_facets_;
+  std::vector<Ch> zone_cells_, cells_buf_;
+  std::vector<Vh> touched_;
+  std::uint32_t stamp_ = 0;
+};
+
+// DelMesh(surface, options).run(), for restricted_delaunay_mesh().
+RestrictedDelaunayResult delmesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions& options);
+
+} // namespace imgmesh::surface_detail

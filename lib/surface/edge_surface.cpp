@@ -1,0 +1,215 @@
+// EdgeSurface (8.2) and VorEdge's Voronoi edges: where the Voronoi edge dual to
+// a Delaunay facet meets S, found on the cube grid.
+#include "surface/edge_surface.hpp"
+
+#include <cmath>
+
+namespace imgmesh::surface_detail {
+
+// EdgeSurface (8.2): clip the Voronoi edge to the box of voxel centres, walk
+// the cubes it crosses, look for roots only in active cubes (F1), and find the
+// first and the last crossing. Roots are isolated by sampling at delta/8
+// inside active cubes, then refined; two roots closer than that are missed
+// (documented limitation, see the man page).
+EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b, const Vec3& site) {
+  const CubeGrid& grid = f.grid();
+  EdgeCrossing out;
+  const Vec3 d = sub(b, a);
+  double t0 = 0, t1 = 1;
+  for (int i = 0; i < 3; ++i) {
+    if (d[i] == 0) {
+      if (a[i] < 0 || a[i] > grid.hi[i]) return out;
+      continue;
+    }
+    double ta = (0 - a[i]) / d[i], tb = (grid.hi[i] - a[i]) / d[i];
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  if (!(t0 < t1)) return out;
+  auto at = [&](double t) -> Vec3 {
+    if (t == 0) return a;  // Voronoi vertices bit-exact: consistent signs (8.4(1))
+    if (t == 1) return b;
+    return {a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]};
+  };
+  // Pieces of [t0, t1] inside active cubes, in order: where the segment
+  // crosses planes spaced `step` (Amanatides-Woo's events), first at the
+  // block level, then cube by cube inside active blocks.
+  auto breakpoints = [&](double ta, double tb, const double step[3], std::vector<double>& ts) {
+    ts.assign({ta, tb});
+    for (int i = 0; i < 3; ++i) {
+      if (d[i] == 0) continue;
+      const double lo = std::min(a[i] + ta * d[i], a[i] + tb * d[i]);
+      const double hi = std::max(a[i] + ta * d[i], a[i] + tb * d[i]);
+      for (long k = long(std::ceil(lo / step[i])); k <= long(std::floor(hi / step[i])); ++k) {
+        const double t = (double(k) * step[i] - a[i]) / d[i];
+        if (t > ta && t < tb) ts.push_back(t);
+      }
+    }
+    std::sort(ts.begin(), ts.end());
+  };
+  // Scratch reused across calls (no allocation per facet).
+  thread_local std::vector<double> tblock, tcube;
+  struct Piece { double ta, tb; };
+  thread_local std::vector<Piece> pieces;
+  pieces.clear();
+  const double bstep[3] = {grid.s[0] * CubeGrid::kBlock, grid.s[1] * CubeGrid::kBlock, grid.s[2] * CubeGrid::kBlock};
+  breakpoints(t0, t1, bstep, tblock);
+  for (std::size_t kb = 0; kb + 1 < tblock.size(); ++kb) {
+    if (!(tblock[kb + 1] > tblock[kb])) continue;
+    const Vec3 mb = at((tblock[kb] + tblock[kb + 1]) / 2);
+    long cb[3];
+    for (int i = 0; i < 3; ++i) cb[i] = std::clamp(long(std::floor(mb[i] / bstep[i])), 0L, grid.nb[i] - 1);
+    if (!grid.block(cb[0], cb[1], cb[2])) continue;
+    breakpoints(tblock[kb], tblock[kb + 1], grid.s, tcube);
+    for (std::size_t k = 0; k + 1 < tcube.size(); ++k) {
+      const double ta = tcube[k], tb = tcube[k + 1];
+      if (!(tb > ta)) continue;
+      const Vec3 m = at((ta + tb) / 2);
+      long c[3];
+      for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(m[i] / grid.s[i])), 0L, grid.n[i] - 2);
+      if (!grid.active(c[0], c[1], c[2])) continue;
+      if (!pieces.empty() && pieces.back().tb == ta) pieces.back().tb = tb;  // merge runs of active cubes
+      else pieces.push_back({ta, tb});
+    }
+  }
+  if (pieces.empty()) return out;
+  const double len = norm(d);
+  const double step = grid.delta / 8;
+  // All sign changes of one piece, as sample pairs.
+  // Near-tangential crossings (8.4(2)): where |f| has a local minimum between
+  // three samples of one sign that may dip through zero, search the minimum
+  // (golden section). A sign change there gives two crossings; a minimum at
+  // |f| ~ 0 is a tangency, reported as a double root at that point (VorEdge
+  // inserts it, Lemma 8.4.1).
+  auto dip = [&](double ta, double tb, bool in, std::vector<std::pair<double, double>>& ch, std::vector<double>& fv) {
+    const double g = 0.6180339887498949;
+    const double s = in ? -1 : 1;  // minimise s * f
+    double a = ta, b = tb, c = b - g * (b - a), d = a + g * (b - a);
+    double fc = f.value(at(c)), fd = f.value(at(d));
+    for (int it = 0; it < 40; ++it) {
+      for (double tt : {c, d}) {
+        const double ft = tt == c ? fc : fd;
+        if (SurfaceSampler::inside(ft) != in) {  // crossed: two sign changes around tt
+          ch.emplace_back(ta, tt);
+          fv.push_back(f.value(at(ta)));
+          ch.emplace_back(tt, tb);
+          fv.push_back(ft);
+          return;
+        }
+      }
+      if ((b - a) * len < 1e-9 * grid.delta) break;
+      if (s * fc < s * fd) {
+        b = d; d = c; fd = fc; c = b - g * (b - a); fc = f.value(at(c));
+      } else {
+        a = c; c = d; fc = fd; d = a + g * (b - a); fd = f.value(at(d));
+      }
+    }
+    const double tm = s * fc < s * fd ? c : d, fm = std::min(std::abs(fc), std::abs(fd));
+    if (fm < 1e-9 * grid.delta) {  // tangency: a double root
+      ch.emplace_back(tm, tm);
+      fv.push_back(fm);
+      ch.emplace_back(tm, tm);
+      fv.push_back(fm);
+    }
+  };
+  // All sign changes of one piece, as sample pairs, in order.
+  auto changes = [&](const Piece& p, std::vector<std::pair<double, double>>& ch, std::vector<double>& fv) {
+    const int m = std::max(2, int(std::ceil((p.tb - p.ta) * len / step)));
+    double tq = p.ta, fq = 0;  // the sample before the previous one
+    double tp = p.ta, fp = f.value(at(tp));
+    for (int k = 1; k <= m; ++k) {
+      const double t = k == m ? p.tb : p.ta + (p.tb - p.ta) * k / m;
+      const double fc = f.value(at(t));
+      if (SurfaceSampler::inside(fc) != SurfaceSampler::inside(fp)) {
+        ch.emplace_back(tp, t);
+        fv.push_back(fp);
+      } else if (k >= 2 && SurfaceSampler::inside(fq) == SurfaceSampler::inside(fp) && std::abs(fp) < std::abs(fq) && std::abs(fp) < std::abs(fc) &&
+                 std::abs(fp) < std::abs(fq - fp) + std::abs(fc - fp)) {
+        dip(tq, t, SurfaceSampler::inside(fp), ch, fv);
+      }
+      tq = tp;
+      fq = fp;
+      tp = t;
+      fp = fc;
+    }
+  };
+  // Forward to the first piece with a root, backward to the last one.
+  std::size_t first = pieces.size();
+  thread_local std::vector<std::pair<double, double>> ch_first, ch_last;
+  thread_local std::vector<double> fv_first, fv_last;
+  ch_first.clear(); ch_last.clear(); fv_first.clear(); fv_last.clear();
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    changes(pieces[k], ch_first, fv_first);
+    if (!ch_first.empty()) { first = k; break; }
+  }
+  if (first == pieces.size()) return out;
+  for (std::size_t k = pieces.size() - 1; k > first; --k) {
+    changes(pieces[k], ch_last, fv_last);
+    if (!ch_last.empty()) break;
+  }
+  const Vec3 x0 = f.bisect(at(ch_first.front().first), at(ch_first.front().second), fv_first.front());
+  out.count = 1;
+  out.x = x0;
+  Vec3 x1 = x0;
+  if (!ch_last.empty()) {
+    x1 = f.bisect(at(ch_last.back().first), at(ch_last.back().second), fv_last.back());
+    out.count = 2;
+  } else if (ch_first.size() > 1) {
+    x1 = f.bisect(at(ch_first.back().first), at(ch_first.back().second), fv_first.back());
+    out.count = 2;
+  }
+  // x_t: the crossing farthest from the facet's vertices (7.6: largest ball).
+  if (out.count == 2 && dist2(x1, site) > dist2(x0, site)) out.x = x1;
+  return out;
+}
+
+FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i) {
+  const CubeGrid& grid = f.grid();
+  Ch n = c->neighbor(i);
+  const int j = n->index(c);
+  FacetInfo fi;
+  fi.state = kComputed;
+  if (!tr.is_infinite(c, i)) {
+    const std::array<Vh, 3> fv = facet_vertices(c, i);
+    const Vec3 p0 = vec(fv[0]->point());
+    const bool ci = tr.is_infinite(c), ni = tr.is_infinite(n);
+    Vec3 a, b;
+    bool ok = true;
+    if (!ci && !ni) {
+      a = vec(tr.dual(c));
+      b = vec(tr.dual(n));
+      if (b < a) std::swap(a, b);  // lexicographic: both sides agree bit for bit
+      ok = a != b;                 // zero-length Voronoi edge: not restricted
+    } else {
+      // A ray from the finite cell's circumcentre, away from its fourth vertex.
+      Ch fc = ci ? n : c;
+      const int fi_ = ci ? j : i;
+      const Vec3 q0 = p0, q1 = vec(fv[1]->point()), q2 = vec(fv[2]->point()), opp = vec(fc->vertex(fi_)->point());
+      Vec3 nrm = cross(sub(q1, q0), sub(q2, q0));
+      if (dot(nrm, sub(opp, q0)) > 0) nrm = {-nrm[0], -nrm[1], -nrm[2]};
+      const double nl = norm(nrm);
+      ok = nl > 0;
+      if (ok) {
+        a = vec(tr.dual(fc));
+        double reach = 0;  // far enough to leave the box
+        for (int k = 0; k < 3; ++k) reach += std::abs(a[k]) + grid.hi[k];
+        b = {a[0] + nrm[0] / nl * reach, a[1] + nrm[1] / nl * reach, a[2] + nrm[2] / nl * reach};
+      }
+    }
+    if (ok) {
+      const EdgeCrossing e = edge_surface(f, a, b, p0);
+      if (e.count > 0) {
+        fi.state |= kRestricted;
+        if (e.count > 1) fi.state |= kMulti;
+        std::copy(e.x.begin(), e.x.end(), fi.x);
+        fi.r2 = dist2(e.x, p0);
+        const Vec3 gr = f.gradient(e.x);
+        for (int k = 0; k < 3; ++k) fi.grad[k] = float(gr[k]);
+      }
+    }
+  }
+  return fi;
+}
+
+} // namespace imgmesh::surface_detail

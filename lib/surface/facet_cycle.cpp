@@ -1,0 +1,293 @@
+#include "surface/facet_cycle.hpp"
+
+#include "implicit/parallel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace imgmesh::surface_detail {
+
+// FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
+// dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
+// h = bisector plane Pi cut by V(p)'s half-spaces and the box: convex, so
+// it is rasterised row by row on Pi at delta/16 (at delta/4, curves missed
+// there cost the brain labels' certificate fallback rounds), into runs of
+// one sign. The sign of f at a sample is the corner sign in an inactive
+// cube (F1) and f's sign in an active one. A sign region that does not
+// reach the border of h is enclosed by a cycle of S; its point farthest from p is found on the sample pair (region,
+// neighbour) farthest from p, by root finding along that segment, i.e. on
+// S inside Pi. Cycles narrower than the step are missed (like EdgeSurface).
+bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out) {
+  const CubeGrid& grid = f.grid();
+  const Vh p = e.first->vertex(e.second), q = e.first->vertex(e.third);
+  const Vec3 pp = vec(p->point()), pq = vec(q->point());
+  Vec3 n = sub(pq, pp);
+  const double nl = norm(n);
+  if (!(nl > 0)) return false;
+  n = {n[0] / nl, n[1] / nl, n[2] / nl};
+  const Vec3 m{(pp[0] + pq[0]) / 2, (pp[1] + pq[1]) / 2, (pp[2] + pq[2]) / 2};
+  Vec3 u = std::abs(n[0]) < 0.6 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0});
+  const double ul = norm(u);
+  u = {u[0] / ul, u[1] / ul, u[2] / ul};
+  const Vec3 v = cross(n, u);
+  // Half-planes A a + B b <= C on Pi (x = m + a u + b v): V(p)'s faces and the box.
+  struct HP { double A, B, C; };
+  // Scratch reused across checks (no allocation per edge).
+  thread_local std::vector<HP> hp;
+  thread_local std::vector<Vh> adj;
+  hp.clear();
+  adj.clear();
+  tr.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
+  for (Vh w : adj) {
+    if (w == q) continue;
+    const Vec3 pw = vec(w->point());
+    const Vec3 d = sub(pw, pp);  // |x-p|^2 <= |x-w|^2  <=>  2 x.d <= |w|^2 - |p|^2
+    const double C = dot(pw, pw) - dot(pp, pp) - 2 * dot(m, d);
+    hp.push_back({2 * dot(u, d), 2 * dot(v, d), C});
+  }
+  for (int i = 0; i < 3; ++i) {  // 0 <= m_i + a u_i + b v_i <= hi_i
+    hp.push_back({u[i], v[i], grid.hi[i] - m[i]});
+    hp.push_back({-u[i], -v[i], m[i]});
+  }
+  // Extent on Pi: the box's corners projected (h lies in the box).
+  double a0 = INFINITY, a1 = -INFINITY, b0 = INFINITY, b1 = -INFINITY;
+  // Extent on Pi: the finite Voronoi vertices of h (circumcentres of the
+  // cells around pq), or the box's corners when h is unbounded.
+  bool bounded = true;
+  {
+    Tr::Cell_circulator cc = tr.incident_cells(e), done = cc;
+    do {
+      if (tr.is_infinite(cc)) { bounded = false; break; }
+      const Vec3 c = vec(tr.dual(cc));
+      const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
+      a0 = std::min(a0, a); a1 = std::max(a1, a); b0 = std::min(b0, b); b1 = std::max(b1, b);
+    } while (++cc != done);
+  }
+  double ba0 = INFINITY, ba1 = -INFINITY, bb0 = INFINITY, bb1 = -INFINITY;
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 c{(k & 1) ? grid.hi[0] : 0, (k & 2) ? grid.hi[1] : 0, (k & 4) ? grid.hi[2] : 0};
+    const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
+    ba0 = std::min(ba0, a); ba1 = std::max(ba1, a); bb0 = std::min(bb0, b); bb1 = std::max(bb1, b);
+  }
+  if (!bounded) { a0 = ba0; a1 = ba1; b0 = bb0; b1 = bb1; }
+  a0 = std::max(a0, ba0); a1 = std::min(a1, ba1); b0 = std::max(b0, bb0); b1 = std::min(b1, bb1);
+  if (!(a0 < a1 && b0 < b1)) return false;
+  // Tighten b by the polygon: rows where the a-interval is empty are skipped anyway.
+  const double step = grid.delta / 16;
+  const long nb = long(std::ceil((b1 - b0) / step)) + 1;
+  // Rows: the a-interval where every half-plane holds.
+  thread_local std::vector<long> lo, hi;
+  thread_local std::vector<double> alo_row, ahi_row;  // h's exact border on each row
+  lo.assign(nb, 0);
+  hi.assign(nb, -1);
+  alo_row.assign(nb, 0);
+  ahi_row.assign(nb, 0);
+  long rows_used = 0;
+  for (long j = 0; j < nb; ++j) {
+    const double b = b0 + j * step;
+    double alo = a0, ahi = a1;
+    for (const HP& h : hp) {
+      const double r = h.C - h.B * b;
+      if (h.A > 1e-15) ahi = std::min(ahi, r / h.A);
+      else if (h.A < -1e-15) alo = std::max(alo, r / h.A);
+      else if (r < 0) { alo = 1; ahi = 0; break; }
+    }
+    if (!(alo <= ahi)) continue;
+    alo_row[j] = alo;
+    ahi_row[j] = ahi;
+    lo[j] = long(std::ceil((alo - a0) / step));
+    hi[j] = long(std::floor((ahi - a0) / step));
+    if (hi[j] >= lo[j]) ++rows_used;
+  }
+  if (rows_used < 3) return false;
+  // Samples inside h, with their signs, as runs of one sign per row: an
+  // inactive cube's samples all take its corner sign (F1), so the raster
+  // jumps to the cube's exit; f is evaluated only in active cubes.
+  long total = 0;
+  for (long j = 0; j < nb; ++j) total += std::max(0L, hi[j] - lo[j] + 1);
+  if (total < 9 || total > 4000000) return false;
+  auto point = [&](long i, long j) {
+    const double a = a0 + i * step, b = b0 + j * step;
+    return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
+  };
+  auto cube_of = [&](const Vec3& x, long c[3]) {
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(long(std::floor(x[k] / grid.s[k])), 0L, grid.n[k] - 2);
+  };
+  struct Run { long j, s, e; signed char sg; };
+  thread_local std::vector<Run> runs;
+  thread_local std::vector<long> row_run;  // runs of row j: [row_run[j], row_run[j + 1])
+  runs.clear();
+  row_run.assign(nb + 1, 0);
+  bool any_neg = false, any_pos = false;
+  for (long j = 0; j < nb; ++j) {
+    row_run[j] = long(runs.size());
+    for (long i = lo[j]; i <= hi[j];) {
+      const Vec3 x = point(i, j);
+      long c[3];
+      cube_of(x, c);
+      long last = i;
+      bool in;
+      if (grid.active(c[0], c[1], c[2])) {
+        in = SurfaceSampler::inside(f.value(x));
+      } else {
+        in = grid.neg(c[0], c[1], c[2]);
+        // The row leaves the cube at a_exit; the samples before it are in it
+        // (a cube is convex; the floor test settles rounding at its faces).
+        double a_exit = INFINITY;
+        const double b = b0 + j * step;
+        for (int k = 0; k < 3; ++k) {
+          if (u[k] > 1e-15) a_exit = std::min(a_exit, ((c[k] + 1) * grid.s[k] - m[k] - b * v[k]) / u[k]);
+          else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid.s[k] - m[k] - b * v[k]) / u[k]);
+        }
+        const double t = std::floor((a_exit - a0) / step);
+        last = std::isfinite(t) ? long(std::clamp(t, double(i), double(hi[j]))) : hi[j];
+        for (long c2[3]; last > i; --last) {
+          cube_of(point(last, j), c2);
+          if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
+        }
+      }
+      (in ? any_neg : any_pos) = true;
+      if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = last;
+      else runs.push_back({j, i, last, static_cast<signed char>(in)});
+      i = last + 1;
+    }
+  }
+  row_run[nb] = long(runs.size());
+  if (!(any_neg && any_pos)) return false;
+  // Sign regions (4-connected): runs of one sign overlapping in adjacent rows,
+  // joined by union-find. A region touching h's border is open; one that
+  // never does is enclosed by a cycle of S.
+  thread_local std::vector<long> parent;
+  thread_local std::vector<char> open;
+  parent.resize(runs.size());
+  open.assign(runs.size(), 0);
+  for (std::size_t r = 0; r < runs.size(); ++r) parent[r] = long(r);
+  auto find = [&](long r) {
+    while (parent[std::size_t(r)] != r) r = parent[std::size_t(r)] = parent[std::size_t(parent[std::size_t(r)])];
+    return r;
+  };
+  auto inside_row = [&](long j, long s0, long e0) { return j >= 0 && j < nb && lo[j] <= s0 && e0 <= hi[j]; };
+  for (long j = 0; j < nb; ++j)
+    for (long r = row_run[j]; r < row_run[j + 1]; ++r) {
+      const Run& x = runs[std::size_t(r)];
+      if (j + 1 >= nb) continue;
+      for (long r2 = row_run[j + 1]; r2 < row_run[j + 2]; ++r2) {
+        const Run& y = runs[std::size_t(r2)];
+        if (y.e < x.s) continue;
+        if (y.s > x.e) break;
+        if (y.sg == x.sg) parent[std::size_t(find(r))] = find(r2);
+      }
+    }
+  // A region is open where it reaches h's border itself: the sign at the
+  // exact border point beyond a sample next to the border must be the
+  // region's (else S passes in between and the region may be enclosed, as
+  // when a thin feature's cross-section nearly fills a narrow facet).
+  auto sign_at = [&](double a, double b) {
+    const Vec3 x{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
+    long c[3];
+    cube_of(x, c);
+    return grid.active(c[0], c[1], c[2]) ? SurfaceSampler::inside(f.value(x)) : grid.neg(c[0], c[1], c[2]);
+  };
+  auto column_end = [&](double a, int dir) {  // h's border above (dir 1) or below (-1) a
+    double bmin = -INFINITY, bmax = INFINITY;
+    for (const HP& h : hp) {
+      const double r = h.C - h.A * a;
+      if (h.B > 1e-15) bmax = std::min(bmax, r / h.B);
+      else if (h.B < -1e-15) bmin = std::max(bmin, r / h.B);
+    }
+    return dir > 0 ? std::min(bmax, b1) : std::max(bmin, b0);
+  };
+  auto exits = [&](const Run& x) {
+    const long j = x.j;
+    const double b = b0 + j * step;
+    const bool sg = x.sg;
+    if (x.s == lo[j] && sign_at(alo_row[j], b) == sg) return true;
+    if (x.e == hi[j] && sign_at(ahi_row[j], b) == sg) return true;
+    for (int dir : {-1, 1}) {
+      const long j2 = j + dir;
+      if (inside_row(j2, x.s, x.e)) continue;
+      for (long i = x.s; i <= x.e; ++i) {
+        if (j2 >= 0 && j2 < nb && lo[j2] <= i && i <= hi[j2]) continue;  // that neighbour is in h
+        const double a = a0 + i * step;
+        if (sign_at(a, column_end(a, dir)) == sg) return true;
+      }
+    }
+    return false;
+  };
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const long root = find(long(r));
+    if (!open[std::size_t(root)] && exits(runs[r])) open[std::size_t(root)] = 1;
+  }
+  // Enclosed regions: the sample pair (region, neighbour) farthest from p;
+  // along a row or an overlap of two rows the distance is convex, so only
+  // the ends of runs and overlaps are candidates.
+  double best = -1;
+  Vec3 ba{}, bb{};
+  auto candidate = [&](long i, long j, long i2, long j2) {
+    const Vec3 xa = point(i, j), xb = point(i2, j2);
+    const Vec3 mid{(xa[0] + xb[0]) / 2, (xa[1] + xb[1]) / 2, (xa[2] + xb[2]) / 2};
+    const double d = dist2(mid, pp);
+    if (d > best) { best = d; ba = xa; bb = xb; }
+  };
+  for (long j = 0; j < nb; ++j)
+    for (long r = row_run[j]; r < row_run[j + 1]; ++r) {
+      if (open[std::size_t(find(r))]) continue;
+      const Run& x = runs[std::size_t(r)];
+      candidate(x.s, j, x.s - 1, j);  // enclosed: its neighbours are in h
+      candidate(x.e, j, x.e + 1, j);
+      for (long j2 : {j - 1, j + 1})
+        for (long r2 = row_run[j2]; r2 < row_run[j2 + 1]; ++r2) {
+          const Run& y = runs[std::size_t(r2)];
+          if (y.e < x.s) continue;
+          if (y.s > x.e) break;
+          if (y.sg == x.sg) continue;
+          const long s0 = std::max(x.s, y.s), e0 = std::min(x.e, y.e);
+          candidate(s0, j, s0, j2);
+          candidate(e0, j, e0, j2);
+        }
+    }
+  if (best < 0) return false;
+  out = f.bisect(ba, bb, f.value(ba));
+  return true;
+}
+
+Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
+                              std::uint32_t& stamp, int threads, long long& checks) {
+  std::vector<Ch> cells;
+  // The edges at new vertices, each once (from the smaller id when both
+  // ends are new), found from the new vertices' cells.
+  std::vector<std::pair<std::pair<int, int>, Tr::Edge>> edges;
+  for (int ia : changed.ids) {
+    const Vh a = vertices[std::size_t(ia)];
+    if (a == Vh()) continue;  // deleted
+    ++stamp;
+    cells.clear();
+    tr.incident_cells(a, std::back_inserter(cells));
+    for (Ch c : cells)
+      for (int k = 0; k < 4; ++k) {
+        Vh b = c->vertex(k);
+        if (b == a || tr.is_infinite(b) || b->info().stamp == stamp) continue;
+        const int ib = b->info().id;
+        if (changed.has(ib) && ib < ia) continue;
+        b->info().stamp = stamp;
+        // p (the edge's first vertex): the smaller id, as before.
+        edges.push_back({{std::min(ia, ib), std::max(ia, ib)}, ia < ib ? Tr::Edge(c, c->index(a), k) : Tr::Edge(c, k, c->index(a))});
+      }
+  }
+  std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  // The checks only read the triangulation (every finite cell's
+  // circumcentre is cached by then: EdgeSurface asked for it), so they run
+  // on --threads threads; the points go in afterwards, in edge order.
+  checks += static_cast<long long>(edges.size());
+  std::vector<char> found(edges.size(), 0);
+  std::vector<Vec3> xs(edges.size());
+  implicit_detail::parallel_for(long(edges.size()), unsigned(std::max(1, threads)), [&](long a, long b, unsigned) {
+    for (long k = a; k < b; ++k) found[std::size_t(k)] = facet_cycle(tr, f, edges[std::size_t(k)].second, xs[std::size_t(k)]);
+  });
+  Candidates pts;
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(edges[k].second.first->vertex(edges[k].second.second)->point())));
+  return pts;
+}
+
+} // namespace imgmesh::surface_detail

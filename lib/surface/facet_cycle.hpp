@@ -1,0 +1,25 @@
+// FacetCycle (thesis 8.2): a closed curve of S inside the Voronoi facet of
+// a Delaunay edge, a piece of S that no Voronoi edge sees. Queries on the
+// triangulation and f; DELMESH inserts the points they return.
+#pragma once
+#include "surface/cube_grid.hpp"
+#include "surface/delaunay_types.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace imgmesh::surface_detail {
+
+// Does S have a closed curve inside the Voronoi facet dual to edge e = pq?
+// If so, x is a point of it (on S) far from p, e's first vertex.
+// Thread-safe once every finite cell's circumcentre is cached.
+bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& x);
+
+// One pass: FacetCycle on every edge at a vertex of `changed` (ids into
+// `vertices`, null where deleted), each edge once, on `threads` threads.
+// Returns the cycle points found, in edge order; `checks` counts the edges.
+// Uses the vertices' stamps with `stamp` (DELMESH's counter).
+Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
+                              std::uint32_t& stamp, int threads, long long& checks);
+
+} // namespace imgmesh::surface_detail

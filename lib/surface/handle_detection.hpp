@@ -1,0 +1,46 @@
+// HandleDetection (thesis 8.3): is S inside a Voronoi cell V(p) a disk? If
+// not (a handle, or a second piece), a point of S there far from p.
+// Queries on the triangulation and f; DELMESH inserts what they return.
+#pragma once
+#include "surface/cube_grid.hpp"
+#include "surface/delaunay_types.hpp"
+
+#include <cstddef>
+#include <vector>
+
+namespace imgmesh::surface_detail {
+
+struct HalfSpace {  // d.x <= c
+  Vec3 d;
+  double c;
+};
+
+// V(p): |x - p|^2 <= |x - w|^2 for every Delaunay neighbour w (thread-safe).
+void voronoi_cell(const Tr& tr, Vh p, std::vector<HalfSpace>& hs);
+
+// The full test by marching tetrahedra: true if S inside V(p) is not a
+// disk, with q the point of S there farthest from p. Thread-safe.
+bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q);
+
+// The cheap certificate from the cube grid alone: true if S inside V(p) is
+// certainly a disk (false: not settled). Thread-safe.
+bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p);
+
+struct HandleChecks {
+  long long full = 0;       // full tests run
+  long long certified = 0;  // settled by handle_free
+};
+
+// TOPOLOGY's pass over `todo` (vertices whose Voronoi cell changed): the
+// cheap certificate first, the full test where it does not settle; on
+// `threads` threads. The points found, in `todo` order.
+Candidates handle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& todo, int threads, HandleChecks& checks);
+
+// The certificate's pass: the full test on every vertex of the S components
+// in `bad`. A check costs about a thousand evaluations of f: false (nothing
+// run) when that is more than kHandleBudget vertices.
+constexpr std::size_t kHandleBudget = 20000;
+bool handle_component_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const std::vector<int>& bad,
+                             int threads, HandleChecks& checks, Candidates& pts);
+
+} // namespace imgmesh::surface_detail

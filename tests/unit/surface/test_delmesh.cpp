@@ -1,0 +1,83 @@
+// DELMESH's own work: insertion keeps EdgeSurface's answer for every facet
+// current (incrementally), the steps' guarantees, and the input checks.
+#include "shapes.hpp"
+#include "surface/delmesh.hpp"
+#include "surface/edge_surface.hpp"
+#include "util/error.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace imgmesh;
+using namespace imgmesh::surface_detail;
+
+namespace {
+// Every finite facet holds what EdgeSurface says of it now (the incremental
+// updates missed none).
+int stale_facets(const DelMesh& m) {
+  const Tr& tr = m.triangulation();
+  int stale = 0;
+  for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it) {
+    const FacetInfo now = edge_surface_of(tr, m.sampler(), it->first, it->second);
+    const FacetInfo& kept = it->first->facet[it->second];
+    const Ch n = it->first->neighbor(it->second);
+    const FacetInfo& other = n->facet[n->index(it->first)];
+    if (now.state != kept.state || other.state != kept.state) ++stale;
+    else if ((now.state & kRestricted) && (now.x[0] != kept.x[0] || now.x[1] != kept.x[1] || now.x[2] != kept.x[2]))
+      ++stale;
+  }
+  return stale;
+}
+} // namespace
+
+TEST_CASE("DELMESH: seeds on S, refinement keeps every facet's EdgeSurface answer current, points on S") {
+  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
+  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
+    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
+  });
+  RestrictedDelaunayOptions o;
+  DelMesh m(s, o);
+  m.prepare();
+  REQUIRE(m.grid().components == 2);
+  m.seeds();
+  CHECK(m.inserted(kSeed) == long(m.vertices().size()));
+  CHECK(stale_facets(m) == 0);
+  m.refine();
+  CHECK(m.vertices().size() > 100);
+  CHECK(stale_facets(m) == 0);
+  long long total = 0;
+  for (int origin = 0; origin < kOrigins; ++origin) total += m.inserted(Origin(origin));
+  CHECK(total == long(m.vertices().size()));
+  for (Vh v : m.vertices()) {
+    REQUIRE(v != Vh());
+    CHECK(std::abs(s.value(vec(v->point()))) < 1e-9);
+    CHECK(v->info().comp >= 0);
+  }
+}
+
+TEST_CASE("DELMESH's insert: refuses a vertex twice and non-seed points beyond --max-points") {
+  const Vec3 c{8.3, 8.1, 7.7};
+  FunctionSurface s(test::box(17, 17, 17), [&](const Vec3& p) { return test::sphere_f(p, c, 5.1); });
+  RestrictedDelaunayOptions o;
+  o.max_points = 12;
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  const std::size_t n = m.triangulation().number_of_vertices();
+  const Vec3 x = vec(m.vertices()[0]->point());
+  CHECK_FALSE(m.insert(x, kQuality));
+  CHECK(m.triangulation().number_of_vertices() == n);
+  while (m.triangulation().number_of_vertices() < o.max_points) REQUIRE(m.insert(Vec3{c[0] + 0.01 * double(m.vertices().size()), c[1], c[2] - 5.1}, kQuality));
+  CHECK_FALSE(m.insert(Vec3{c[0], c[1] + 5.1, c[2]}, kQuality));
+  CHECK(m.insert(Vec3{c[0], c[1] + 5.1, c[2]}, kSeed));  // seeds always go in
+  CHECK(stale_facets(m) == 0);
+}
+
+TEST_CASE("DELMESH's input checks: empty S, S touching the grid's border, non-finite samples") {
+  RestrictedDelaunayOptions o;
+  FunctionSurface empty(test::box(8, 8, 8), [](const Vec3&) { return 1.0; });
+  CHECK_THROWS_AS(DelMesh(empty, o).prepare(), Error);
+  FunctionSurface touching(test::box(8, 8, 8), [](const Vec3& p) { return p[0] - 3.5; });
+  CHECK_THROWS_AS(DelMesh(touching, o).prepare(), Error);
+  FunctionSurface nan(test::box(8, 8, 8), [](const Vec3& p) { return p[0] > 6 ? NAN : 1.0; });
+  CHECK_THROWS_AS(DelMesh(nan, o).prepare(), Error);
+}

@@ -1,0 +1,88 @@
+// EdgeSurface (8.2) alone: the crossings of S with a segment, and on the
+// Voronoi edges of a triangulation DELMESH built.
+#include "shapes.hpp"
+#include "surface/delmesh.hpp"
+#include "surface/edge_surface.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace imgmesh;
+using namespace imgmesh::surface_detail;
+
+namespace {
+// Distance from x to segment [a, b].
+double to_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
+  const Vec3 d = sub(b, a);
+  const double t = std::clamp(dot(sub(x, a), d) / dot(d, d), 0.0, 1.0);
+  return std::sqrt(dist2(x, Vec3{a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}));
+}
+} // namespace
+
+TEST_CASE("edge_surface: none, one or two crossings of a segment with a sphere; the far one when two") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  FunctionSurface s(test::box(21, 21, 21), [&](const Vec3& p) { return test::sphere_f(p, c, 6.3); });
+  CubeGrid grid(s.samples());
+  grid.label();
+  SurfaceSampler f(s, grid);
+  const Vec3 a{1.0, 9.7, 10.1}, b{19.6, 9.7, 10.1};  // through the centre: x = 4.0 and 16.6
+  for (const Vec3& site : {a, b}) {
+    const EdgeCrossing e = edge_surface(f, a, b, site);
+    REQUIRE(e.count == 2);
+    CHECK(std::abs(s.value(e.x)) < 1e-9);
+    CHECK(to_segment(e.x, a, b) < 1e-12);
+    CHECK(e.x[0] == Approx(site == a ? 16.6 : 4.0).margin(1e-8));  // farther from the site
+  }
+  const EdgeCrossing one = edge_surface(f, c, b, c);
+  CHECK(one.count == 1);
+  CHECK(one.x[0] == Approx(16.6).margin(1e-8));
+  CHECK(edge_surface(f, Vec3{8, 9.7, 10.1}, Vec3{12, 9.7, 10.1}, c).count == 0);   // inside S
+  CHECK(edge_surface(f, Vec3{-9, -5, -5}, Vec3{-1, -1, -1}, c).count == 0);        // outside the box
+  CHECK(edge_surface(f, Vec3{1, 1, 1}, Vec3{3, 1, 19}, c).count == 0);             // beside S
+}
+
+TEST_CASE("edge_surface: two close sheets 0.7 voxel apart give two crossings") {
+  FunctionSurface s(test::box(21, 21, 21), [](const Vec3& p) {
+    return test::sheets_f(p, 10.2, 0.35, 3, 17);
+  });
+  CubeGrid grid(s.samples());
+  grid.label();
+  SurfaceSampler f(s, grid);
+  const Vec3 a{3, 10.1, 9.9}, b{17, 10.1, 9.9};
+  const EdgeCrossing e = edge_surface(f, a, b, a);
+  REQUIRE(e.count == 2);
+  CHECK(e.x[0] == Approx(10.55).margin(1e-8));
+  CHECK(std::abs(s.value(e.x)) < 1e-9);
+}
+
+TEST_CASE("edge_surface_of: a restricted facet's surface centre is on S, on its Voronoi edge, its ball empty") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  FunctionSurface s(test::box(21, 21, 21), [&](const Vec3& p) { return test::sphere_f(p, c, 6.3); });
+  RestrictedDelaunayOptions o;
+  o.roughness = M_PI / 8;  // dense enough for many facets
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  m.refine();
+  const Tr& tr = m.triangulation();
+  int restricted = 0, plain = 0;
+  for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it) {
+    const FacetInfo fresh = edge_surface_of(tr, m.sampler(), it->first, it->second);
+    const FacetInfo& kept = it->first->facet[it->second];
+    CHECK(fresh.state == kept.state);  // what DELMESH stored is what EdgeSurface says now
+    if (!(fresh.state & kRestricted)) {
+      ++plain;
+      continue;
+    }
+    ++restricted;
+    const Vec3 x{fresh.x[0], fresh.x[1], fresh.x[2]};
+    CHECK(std::abs(s.value(x)) < 1e-9);
+    const auto v = facet_vertices(it->first, it->second);
+    const double r0 = dist2(x, vec(v[0]->point()));
+    CHECK(fresh.r2 == Approx(r0).epsilon(1e-12));
+    for (int k = 1; k < 3; ++k) CHECK(dist2(x, vec(v[k]->point())) == Approx(r0).epsilon(1e-6));
+    const Vh nearest = tr.nearest_vertex(Point(x[0], x[1], x[2]));
+    CHECK(dist2(x, vec(nearest->point())) >= r0 * (1 - 1e-9));
+  }
+  CHECK(restricted > 50);
+  CHECK(plain > restricted);
+}

@@ -1,0 +1,95 @@
+// FacetCycle (8.2) alone: a closed curve of S inside the Voronoi facet of
+// one Delaunay edge, which no Voronoi edge sees.
+#include "shapes.hpp"
+#include "surface/delmesh.hpp"
+#include "surface/facet_cycle.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace imgmesh;
+using namespace imgmesh::surface_detail;
+
+namespace {
+// W = p, q and `others` (DELMESH inserts them); the Delaunay edge pq.
+Tr::Edge edge_pq(DelMesh& m, const Vec3& p, const Vec3& q, const std::vector<Vec3>& others) {
+  m.prepare();
+  for (const Vec3& x : others) REQUIRE(m.insert(x, kSeed));
+  REQUIRE(m.insert(p, kSeed));
+  REQUIRE(m.insert(q, kSeed));
+  const Vh vp = m.vertices()[m.vertices().size() - 2], vq = m.vertices().back();
+  Ch c;
+  int i, j;
+  REQUIRE(m.triangulation().is_edge(vp, vq, c, i, j));
+  return Tr::Edge(c, i, j);
+}
+// Four points far outside the grid: pq's Voronoi facet is then the whole
+// bisector plane inside the grid's box.
+const std::vector<Vec3> kFar{{-900, -900, -900}, {900, -800, -700}, {100, 900, -600}, {50, 80, 950}};
+const Vec3 kMid{10.2, 9.8, 10.1};
+const Vec3 kP{kMid[0], kMid[1], kMid[2] - 6}, kQ{kMid[0], kMid[1], kMid[2] + 6};
+} // namespace
+
+TEST_CASE("FacetCycle: a small sphere or a thin torus around the middle of pq is a cycle in pq's Voronoi facet") {
+  RestrictedDelaunayOptions o;
+  FunctionSurface s(test::box(21, 21, 21), [&](const Vec3& x) { return test::sphere_f(x, kMid, 2.2); });
+  DelMesh m(s, o);
+  const Tr::Edge pq = edge_pq(m, kP, kQ, kFar);
+  Vec3 x;
+  REQUIRE(facet_cycle(m.triangulation(), m.sampler(), pq, x));
+  CHECK(std::abs(s.value(x)) < 1e-9);                                  // on S
+  CHECK(std::abs(dist2(x, kP) - dist2(x, kQ)) < 1e-6 * dist2(x, kP));  // on the bisector
+  // The torus lies in the bisector plane: S meets it in two circles.
+  FunctionSurface t(test::box(21, 21, 21), [&](const Vec3& y) { return test::torus_f(y, kMid, 4.5, 1.0); });
+  DelMesh mt(t, o);
+  const Tr::Edge pq2 = edge_pq(mt, kP, kQ, kFar);
+  REQUIRE(facet_cycle(mt.triangulation(), mt.sampler(), pq2, x));
+  CHECK(std::abs(t.value(x)) < 1e-9);
+  CHECK(std::abs(x[2] - kMid[2]) < 1e-6);
+}
+
+TEST_CASE("FacetCycle: no cycle where S crosses the facet to its border, or misses it") {
+  RestrictedDelaunayOptions o;
+  // Two close sheets x = 9.85 and 10.55 (a flat box): six points of W 7
+  // voxels around pq's middle make pq's Voronoi facet a disk of radius ~0.9,
+  // which the sheets cross from border to border.
+  FunctionSurface sheets(test::box(21, 21, 21), [](const Vec3& y) { return test::sheets_f(y, 10.2, 0.35, 2, 18); });
+  std::vector<Vec3> ring = kFar;
+  for (int k = 0; k < 6; ++k)
+    ring.push_back({kMid[0] + 7 * std::cos(k * M_PI / 3 + 0.2), kMid[1] + 7 * std::sin(k * M_PI / 3 + 0.2), kMid[2] + 0.3});
+  DelMesh m(sheets, o);
+  const Tr::Edge pq = edge_pq(m, kP, kQ, ring);
+  Vec3 x;
+  CHECK_FALSE(facet_cycle(m.triangulation(), m.sampler(), pq, x));
+  // The same sheets with the whole plane as pq's facet: their cross-section
+  // is a closed rectangle, a cycle.
+  DelMesh all(sheets, o);
+  const Tr::Edge pq_all = edge_pq(all, kP, kQ, kFar);
+  CHECK(facet_cycle(all.triangulation(), all.sampler(), pq_all, x));
+  // A ball beside the plane: S does not meet the facet.
+  FunctionSurface ball(test::box(21, 21, 21), [&](const Vec3& y) { return test::sphere_f(y, Vec3{10, 10, 15}, 2.5); });
+  DelMesh mb(ball, o);
+  const Tr::Edge pq_ball = edge_pq(mb, kP, kQ, kFar);
+  CHECK_FALSE(facet_cycle(mb.triangulation(), mb.sampler(), pq_ball, x));
+}
+
+TEST_CASE("FacetCycle's pass: on a thin torus after the seeds it finds cycle points on S, each in its facet") {
+  const Vec3 c{11.6, 11.3, 4.6};
+  FunctionSurface s(test::box(24, 24, 10), [&](const Vec3& p) { return test::torus_f(p, c, 8.1, 1.1); });
+  RestrictedDelaunayOptions o;
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  IdSet all;
+  for (Vh v : m.vertices()) all.add(v->info().id);
+  std::uint32_t stamp = 1000;
+  long long checks = 0;
+  const Candidates pts = facet_cycle_points(m.triangulation(), m.sampler(), m.vertices(), all, stamp, 2, checks);
+  CHECK(checks == long(m.triangulation().number_of_finite_edges()));  // every edge once
+  REQUIRE(!pts.empty());
+  for (const auto& [x, clearance2] : pts) {
+    CHECK(std::abs(s.value(x)) < 1e-9);
+    // x's nearest sites: at least two of W at the same distance (a Voronoi facet).
+    const Vh n = m.triangulation().nearest_vertex(Point(x[0], x[1], x[2]));
+    CHECK(dist2(x, vec(n->point())) == Approx(clearance2).epsilon(1e-6));
+  }
+}

@@ -1,0 +1,73 @@
+// Seeds (8.1) alone, on the cube grid of analytic surfaces: points of S on
+// mixed grid edges, at least two on every component.
+#include "shapes.hpp"
+#include "surface/seeds.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <map>
+
+using namespace imgmesh;
+using namespace imgmesh::surface_detail;
+
+TEST_CASE("seeds: on S, on mixed grid edges, at least two per component, shuffled by the seed") {
+  const Vec3 a{6.3, 7.1, 7.4}, b{17.2, 7.6, 7.9};
+  // A ball and a thin torus beside it: two components of S.
+  FunctionSurface s(test::box(26, 16, 16), [&](const Vec3& p) {
+    return std::min(test::sphere_f(p, a, 3.6), test::torus_f(p, b, 4.1, 1.1));
+  });
+  CubeGrid grid(s.samples());
+  grid.label();
+  REQUIRE(grid.components == 2);
+  SurfaceSampler f(s, grid);
+  Seeds seeds(f);
+  const std::vector<Vec3> pts = seeds.points(0);
+  std::map<int, int> per_component;
+  for (const Vec3& x : pts) {
+    CHECK(std::abs(s.value(x)) < 1e-9);
+    // On a grid edge: two coordinates are voxel-centre coordinates.
+    int on_grid = 0;
+    for (int i = 0; i < 3; ++i) on_grid += std::abs(x[i] - std::round(x[i])) < 1e-12;
+    CHECK(on_grid >= 2);
+    ++per_component[grid.comp_at(x)];
+  }
+  CHECK(per_component.size() == 2);
+  CHECK(per_component.count(-1) == 0);
+  for (const auto& [comp, count] : per_component) CHECK(count >= 2);
+  // Each point once; another seed gives the same points in another order.
+  std::vector<Vec3> sorted = pts;
+  std::sort(sorted.begin(), sorted.end());
+  CHECK(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
+  std::vector<Vec3> other = seeds.points(1);
+  CHECK(other != pts);
+  std::sort(other.begin(), other.end());
+  CHECK(other == sorted);
+}
+
+TEST_CASE("seeds: crossing() finds the which-th mixed edge of a cube, and next_extra() walks the others") {
+  // A small ball around voxel centre (6,6,6): the only inside sample.
+  const Vec3 v{6, 6, 6};
+  FunctionSurface t(test::box(13, 13, 13), [&](const Vec3& p) { return test::sphere_f(p, v, 0.5); });
+  CubeGrid tg(t.samples());
+  tg.label();
+  REQUIRE(tg.components == 1);
+  SurfaceSampler tf(t, tg);
+  Seeds ts(tf);
+  // Cube (6,6,6) has one inside corner (6,6,6): three mixed edges, on the
+  // axes from it, each crossing at distance 0.5.
+  Vec3 x;
+  for (int which = 0; which < 3; ++which) {
+    REQUIRE(ts.crossing(6, 6, 6, x, which));
+    CHECK(std::sqrt(test::dist2(x, v)) == Approx(0.5).margin(1e-9));
+  }
+  CHECK_FALSE(ts.crossing(6, 6, 6, x, 3));
+  // The eight cubes around (6,6,6) hold 24 mixed edges, 6 distinct
+  // crossings; next_extra() walks them all and then stops.
+  std::vector<Vec3> extra;
+  while (ts.next_extra(x)) extra.push_back(x);
+  CHECK(extra.size() == 24);
+  std::sort(extra.begin(), extra.end());
+  extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+  CHECK(extra.size() == 6);
+}
