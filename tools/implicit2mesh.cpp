@@ -73,11 +73,11 @@ int main(int argc, char** argv) {
     tool.stats["output"] = out;
     std::ostringstream msg;
     msg << res.mesh.triangles.size() << " triangles, " << res.mesh.points.size() << " vertices, "
-        << res.topology.components() << " component(s), Euler characteristic(s)";
-    for (int e : res.topology.euler) msg << ' ' << e;
+        << res.topology.components.size() << " component(s), Euler characteristic(s)";
+    for (long long e : res.topology.sorted_euler()) msg << ' ' << e;
     msg << (res.topology_ok ? " (as the voxel boundary)" : " (voxel boundary:");
     if (!res.topology_ok)
-      for (int e : res.expected.euler) msg << ' ' << e;
+      for (long long e : res.expected.sorted_euler()) msg << ' ' << e;
     if (!res.topology_ok) msg << ")";
     tool.debug(msg.str());
     return tool.finish(res);

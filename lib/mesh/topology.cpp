@@ -65,6 +65,12 @@ std::vector<long long> MeshTopology::euler_list() const {
   return e;
 }
 
+std::vector<long long> MeshTopology::sorted_euler() const {
+  std::vector<long long> e = euler_list();
+  std::sort(e.begin(), e.end());
+  return e;
+}
+
 Json MeshTopology::to_json() const {
   Json j = Json::object();
   j["components"] = components.size();
@@ -386,11 +392,10 @@ MeshTopology voxel_boundary_topology(const BinaryImage& img) {
   return mesh_topology(voxel_boundary(img));
 }
 
-bool same_topology(const MeshTopology& a, const MeshTopology& b) {
-  auto ea = a.euler_list(), eb = b.euler_list();
-  std::sort(ea.begin(), ea.end());
-  std::sort(eb.begin(), eb.end());
-  return ea == eb;
-}
+bool same_topology(const MeshTopology& a, const MeshTopology& b) { return a.sorted_euler() == b.sorted_euler(); }
+
+MeshTopology mesh_topology(const SurfaceMesh& mesh) { return mesh_topology(mesh.points.size(), mesh.triangles); }
+
+MeshTopology voxel_boundary_topology(const FloatImage& g) { return mesh_topology(voxel_boundary(g)); }
 
 } // namespace imgmesh

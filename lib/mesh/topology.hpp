@@ -5,6 +5,7 @@
 // topology of bdCA(X)) both count here. Plain data, no OpenMesh.
 #pragma once
 #include "image/grid.hpp"
+#include "mesh/surface_io.hpp"
 #include "util/json.hpp"
 
 #include <array>
@@ -37,6 +38,7 @@ struct MeshTopology {
   std::size_t boundary_loops = 0;
   bool closed = false, manifold = false, oriented = false;
   std::vector<long long> euler_list() const;  // one per component, in order
+  std::vector<long long> sorted_euler() const;  // the same, ascending
   Json to_json() const;
 };
 
@@ -46,6 +48,7 @@ MeshTopology mesh_topology(std::size_t num_vertices, const std::vector<int>& cor
                            const std::vector<std::size_t>& offsets);
 MeshTopology mesh_topology(std::size_t num_vertices, const std::vector<std::vector<int>>& faces);
 MeshTopology mesh_topology(std::size_t num_vertices, const std::vector<std::array<int, 3>>& triangles);
+MeshTopology mesh_topology(const SurfaceMesh& mesh);
 
 // The voxel boundary bdCA(X) of a set of voxels X (unit squares between a
 // voxel of X and one not in X or outside the grid, outward oriented) as a
@@ -69,6 +72,8 @@ VoxelBoundary voxel_boundary(const FloatImage& g);
 // Components, Euler characteristics, manifoldness (false exactly when X is
 // not well-composed), orientation of bdCA(X).
 MeshTopology mesh_topology(const VoxelBoundary& boundary);
+// The same for X = {g < 0}.
+MeshTopology voxel_boundary_topology(const FloatImage& g);
 
 // The topology of bdCA(X), X the foreground, for a 3D image. For a 2D image,
 // the pixel boundary curves: each loop is a component of Euler characteristic

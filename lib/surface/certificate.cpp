@@ -23,10 +23,19 @@ std::vector<Facet> restricted_facets(const Tr& tr) {
 }
 
 ExpectedTopology expected_topology(const CubeGrid& grid) {
+  const VoxelBoundary boundary = voxel_boundary(grid.g);
   ExpectedTopology e;
-  e.by_component = grid.euler_by_component();
-  e.sorted.euler = e.by_component;
-  std::sort(e.sorted.euler.begin(), e.sorted.euler.end());
+  e.topology = mesh_topology(boundary);
+  e.by_component.assign(std::size_t(grid.components), 0);
+  for (const ComponentTopology& c : e.topology.components) {
+    // Corner (i, j, k) is the centre of the cube whose lowest sample is
+    // (i-1, j-1, k-1); it is active, being on the voxel boundary.
+    const std::array<std::size_t, 3> k = boundary.corner(c.first_vertex);
+    long cube[3];
+    for (int a = 0; a < 3; ++a) cube[a] = std::clamp(long(k[a]) - 1, 0L, grid.n[a] - 2);
+    const int s = grid.comp_of(cube[0], cube[1], cube[2]);
+    if (s >= 0) e.by_component[std::size_t(s)] += c.euler;
+  }
   return e;
 }
 
@@ -117,31 +126,23 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const ExpectedTopolo
   for (int c = 0; c < int(expected.by_component.size()); ++c)
     if (mesh_comps[c].size() != 1) bad.push_back(c);
   if (mesh_comps.count(-1)) bad.push_back(-1);
-  cert.ok = bad.empty() && cert.topology.manifold && cert.topology.oriented && cert.topology.same_as(expected.sorted);
+  cert.ok = bad.empty() && cert.topology.closed && cert.topology.manifold && cert.topology.oriented &&
+            same_topology(cert.topology, expected.topology);
   return cert;
 }
 
 std::vector<int> euler_mismatches(const Certificate& cert, const ExpectedTopology& expected) {
-  const SurfaceMesh& mesh = cert.mesh;
-  const std::vector<int>& tri_comp = cert.tri_comp;
+  // chi of each mesh component (its triangles alone) against its S component's.
+  std::map<int, std::vector<std::array<int, 3>>> triangles_of;
+  for (std::size_t t = 0; t < cert.mesh.triangles.size(); ++t)
+    triangles_of[cert.tri_comp[t]].push_back(cert.mesh.triangles[t]);
   std::vector<int> out;
-  // χ of each mesh component vs. its S component.
-  std::map<int, long long> chi;  // mesh comp -> V - E + F
-  std::map<int, std::set<int>> vset;
-  std::map<int, std::set<long long>> eset;
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    const auto& tt = mesh.triangles[t];
-    chi[tri_comp[t]] += 1;
-    for (int k = 0; k < 3; ++k) {
-      vset[tri_comp[t]].insert(tt[k]);
-      const int a = tt[k], b = tt[(k + 1) % 3];
-      eset[tri_comp[t]].insert(edge_key(a, b));
-    }
-  }
-  for (auto& kv : cert.mesh_comps) {
-    const int mc = kv.second.front();
-    if (kv.first >= 0 && chi[mc] + long(vset[mc].size()) - long(eset[mc].size()) != expected.by_component[kv.first])
-      out.push_back(kv.first);
+  for (const auto& kv : cert.mesh_comps) {
+    if (kv.first < 0) continue;
+    const MeshTopology t = mesh_topology(cert.mesh.points.size(), triangles_of[kv.second.front()]);
+    long long chi = 0;
+    for (const ComponentTopology& c : t.components) chi += c.euler;
+    if (chi != expected.by_component[std::size_t(kv.first)]) out.push_back(kv.first);
   }
   return out;
 }
@@ -150,7 +151,7 @@ MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sample
   const SurfaceMesh& mesh = cert.mesh;
   const std::vector<Vec3>& centers = cert.centers;
   const std::vector<Facet>& fs = cert.facets;
-  const TriangleQuality q = triangle_quality(mesh);
+  const TriangleQualityReport q = triangle_quality_report(mesh);
   double max_f = 0, max_rough = 0, max_dist = 0;
   for (const Vec3& p : mesh.points) max_f = std::max(max_f, std::abs(sampler.value(p)));
   {

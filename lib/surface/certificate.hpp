@@ -3,12 +3,12 @@
 // the voxel boundary bdCA(X), each with the same Euler characteristic; the
 // guarantees measured on the output; and the fallback's points where a
 // component does not match. Queries: DELMESH inserts what the fallback
-// returns. The only place that calls mesh_topology and the cube grid's Euler
-// count.
+// returns. Counts with lib/mesh's topology module, as meshinfo does.
 #pragma once
 #include "surface/cube_grid.hpp"
 #include "surface/delaunay_types.hpp"
-#include "surface/topology.hpp"
+#include "mesh/topology.hpp"
+#include "mesh/triangle_quality.hpp"
 
 #include <map>
 #include <vector>
@@ -18,10 +18,12 @@ namespace imgmesh::surface_detail {
 // The restricted facets in a deterministic order (by vertex ids).
 std::vector<Facet> restricted_facets(const Tr& tr);
 
-// bdCA(X)'s Euler characteristic per S component and sorted.
+// bdCA(X) for X = {g < 0}, and its Euler characteristic per S component
+// (the cube grid's numbering: each voxel-boundary component goes to the S
+// component of the active cube around one of its corners).
 struct ExpectedTopology {
-  std::vector<int> by_component;
-  SurfaceTopology sorted;
+  MeshTopology topology;
+  std::vector<long long> by_component;
 };
 ExpectedTopology expected_topology(const CubeGrid& grid);
 
@@ -31,7 +33,7 @@ struct Certificate {
   std::vector<Facet> facets;        // per triangle: its Delaunay facet
   std::vector<int> tri_comp;        // per triangle: its mesh component
   std::map<int, std::vector<int>> mesh_comps;  // S component -> its mesh components (-1: on none)
-  SurfaceTopology topology;         // of mesh
+  MeshTopology topology;            // of mesh
   // S components with other than one mesh component, and -1 when a mesh
   // component lies on no S component.
   std::vector<int> bad;
@@ -51,7 +53,7 @@ std::vector<int> euler_mismatches(const Certificate& cert, const ExpectedTopolog
 
 // The guarantees measured on the output (local coordinates).
 struct MeasuredGuarantees {
-  TriangleQuality quality;
+  TriangleQualityReport quality;
   double max_abs_f_at_vertices = 0, max_roughness = 0, max_distance_to_plane = 0, max_abs_f_at_centroids = 0;
   long long restricted_delaunay_violations = 0;  // surface centres whose nearest site is not their facet's
 };

@@ -75,47 +75,6 @@ int CubeGrid::comp_at(const Vec3& q) const {
   return -1;
 }
 
-std::vector<int> CubeGrid::euler_by_component() const {
-  std::vector<std::pair<int, long long>> verts, edges;
-  std::vector<long long> faces(components, 0);
-  const long long cx = n[0] + 2, cy = n[1] + 2;
-  auto corner = [&](long x, long y, long z) { return x + cx * (y + cy * (long long)z); };
-  for (long z = 0; z < n[2]; ++z)
-    for (long y = 0; y < n[1]; ++y)
-      for (long x = 0; x < n[0]; ++x)
-        for (int a = 0; a < 3; ++a) {
-          long p[3] = {x, y, z};
-          p[a] += 1;
-          if (p[a] >= n[a] || neg(x, y, z) == neg(p[0], p[1], p[2])) continue;
-          const int b = (a + 1) % 3, c = (a + 2) % 3;
-          long cube[3] = {x, y, z};
-          if (cube[b] > n[b] - 2) cube[b] -= 1;
-          if (cube[c] > n[c] - 2) cube[c] -= 1;
-          const int k = comp_of(cube[0], cube[1], cube[2]);
-          if (k < 0) continue;
-          faces[k] += 1;
-          // Quad corners in corner coordinates (voxel v spans [v, v+1]).
-          long o[3] = {x, y, z};
-          o[a] += 1;
-          long q[4][3];
-          for (int i = 0; i < 4; ++i) std::copy(o, o + 3, q[i]);
-          q[1][b] += 1; q[2][b] += 1; q[2][c] += 1; q[3][c] += 1;
-          for (int i = 0; i < 4; ++i) verts.emplace_back(k, corner(q[i][0], q[i][1], q[i][2]));
-          edges.emplace_back(k, corner(q[0][0], q[0][1], q[0][2]) * 3 + b);
-          edges.emplace_back(k, corner(q[0][0], q[0][1], q[0][2]) * 3 + c);
-          edges.emplace_back(k, corner(q[1][0], q[1][1], q[1][2]) * 3 + c);
-          edges.emplace_back(k, corner(q[3][0], q[3][1], q[3][2]) * 3 + b);
-        }
-  std::sort(verts.begin(), verts.end());
-  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-  std::vector<int> chi(faces.begin(), faces.end());
-  for (auto& v : verts) chi[v.first] += 1;
-  for (auto& e : edges) chi[e.first] -= 1;
-  return chi;
-}
-
 // Illinois regula falsi with a bisection safeguard (when the bracket
 // shrinks slowly).
 Vec3 SurfaceSampler::bisect(Vec3 a, Vec3 b, double fa) const {

@@ -47,9 +47,6 @@ struct CubeGrid {
   void label();
   // Component of the active cube containing a local point (or a neighbour).
   int comp_at(const Vec3& q) const;
-  // Euler characteristic of bdCA(X) per S component: the boundary quad dual
-  // to a mixed grid edge belongs to the component of the cubes around it.
-  std::vector<int> euler_by_component() const;
   // The active cubes (key, component) in key order (deterministic).
   std::vector<std::pair<long long, int>> sorted_cubes() const {
     std::vector<std::pair<long long, int>> cubes(comp.begin(), comp.end());

@@ -410,7 +410,7 @@ RestrictedDelaunayResult DelMesh::run() {
   auto secs = [](Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); };
   prepare();
   const ExpectedTopology expected = expected_topology(grid_);
-  res.expected = expected.sorted;
+  res.expected = expected.topology;
 
   seeds();
   const double t_seeds = secs(t_start);
@@ -453,8 +453,8 @@ RestrictedDelaunayResult DelMesh::run() {
   // Guarantees, measured on the output.
   const MeasuredGuarantees m = measure_guarantees(tr_, sampler_, cert);
   res.topology = cert.topology;
-  res.topology_ok = res.topology.manifold && res.topology.oriented && res.topology.same_as(res.expected) && cert.bad.empty();
-  res.ratio_ok = m.quality.max_ratio <= opt_.ratio * (1 + 1e-9);
+  res.topology_ok = cert.ok;
+  res.ratio_ok = m.quality.largest_radius_edge_ratio() <= opt_.ratio * (1 + 1e-9);
   res.roughness_ok = m.max_roughness <= opt_.roughness + 1e-9;
   res.distance_ok = opt_.max_distance <= 0 || m.max_distance_to_plane <= opt_.max_distance * (1 + 1e-9);
   res.max_points_hit = max_hit_;

@@ -9,7 +9,8 @@
 #pragma once
 #include "mesh/surface_io.hpp"
 #include "surface/implicit_surface.hpp"
-#include "surface/topology.hpp"
+#include "mesh/topology.hpp"
+#include "mesh/triangle_quality.hpp"
 #include "util/json.hpp"
 
 #include <cstdint>
@@ -41,8 +42,8 @@ struct RestrictedDelaunayOptions {
 struct RestrictedDelaunayResult {
   SurfaceMesh mesh;                 // world coordinates, outward, normals empty
   std::vector<Vec3> centers;        // per triangle: its surface Delaunay ball centre (world)
-  SurfaceTopology topology;         // of mesh
-  SurfaceTopology expected;         // of bdCA(X)
+  MeshTopology topology;            // of mesh
+  MeshTopology expected;            // of bdCA(X)
   bool topology_ok = false;         // closed oriented manifold with expected topology
   bool ratio_ok = false, roughness_ok = false, distance_ok = false;
   bool max_points_hit = false;
@@ -57,7 +58,7 @@ struct RestrictedDelaunayResult {
   long long handle_detection_checks = 0, handle_detection_certified = 0;  // full tests; settled by the cube grid
   long long function_evaluations = 0;
   // Measured on the output.
-  TriangleQuality quality;
+  TriangleQualityReport quality;
   double max_roughness = 0;             // radians
   double max_distance_to_plane = 0;     // surface centre to its triangle's plane
   double max_abs_f_at_vertices = 0, max_abs_f_at_centroids = 0;
