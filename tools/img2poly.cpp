@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   ImagePslgOptions opt;
   tool.app.add_option("IN", in, "Input 2D image (PNG, NRRD, MetaImage, NIfTI; - for stdin)")->required();
   tool.app.add_option("OUT", out, "Output PSLG, Triangle .poly (- for stdout)")->required();
+  tool.data_output(out);
   auto* label = tool.app.add_option("--label", sel.labels,
                                     "Keep this label (repeatable); other pixels become background 0. "
                                     "Default: every value is a label")

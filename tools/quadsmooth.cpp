@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   tool.app.add_option("IN", in, "quad mesh: .ele (with its .node, and .poly for segments) or .off")->required();
   tool.app.add_option("OUT", out, "output mesh by extension: .ele (+ .node, .poly), .off, .vtk, .msh, .svg")
       ->required();
+  tool.data_output(out);
   tool.app.add_option("--iterations", opt.iterations, "smoothing passes (default 10)")
       ->check(CLI::Range(0, 1000000));
   tool.app.add_flag("--no-cleanup", no_cleanup, "no diagonal swaps, doublet removal or quad collapses");

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   tool.app.add_option("OUT", out, "Output quad mesh by extension: .ele (+ .node, + .poly of the segments), "
                                   ".off, .vtk, .msh (Gmsh 2.2) or .svg; - for OFF on stdout")
       ->required();
+  tool.data_output(out);
   tool.app.add_option("--constraints", constraints, "Constraint segments from this .poly instead")
       ->type_name("FILE");
   tool.app.add_flag("--allow-outside", opt.allow_outside,

@@ -18,7 +18,7 @@ Tool::Tool(std::string name, std::string description)
   app.set_version_flag("--version", std::string(name_) + " (imgmesh) " IMGMESH_VERSION);
   app.add_flag("-q,--quiet", quiet_, "Print nothing on stderr but errors");
   app.add_flag("-v,--verbose", verbose_, "Print more about what is done");
-  app.add_option("--stats", stats_path_, "Write a JSON report (counts, timings, guarantees) to FILE, or - for stdout")
+  app.add_option("--stats", stats_path_, "Write a JSON report (counts, timings, guarantees) to FILE, or - for stdout when the data does not go there")
       ->type_name("FILE|-");
   app.add_flag("--progress", progress_flag_, "Show progress on stderr even when it is not a terminal");
   add_help_man();
@@ -35,6 +35,36 @@ void Tool::add_threads() {
   app.add_option("--threads", threads_, "Number of threads (default: all cores)")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
+}
+
+const std::string Tool::kStdout = "-";
+
+void Tool::data_output(const std::string& path, Stream kind, std::function<bool()> used) {
+  outputs_.push_back({&path, kind, std::move(used)});
+}
+
+void Tool::check_outputs() const {
+  for (const DataOutput& o : outputs_) {
+    const std::string& path = *o.path;
+    if (path.empty() || (o.used && !o.used())) continue;  // not written by this run
+    if (path != "-") {
+      check_output_folder(path);
+    } else if (stats_path_ == "-") {
+      throw UsageError("the data goes to standard output: give --stats a file name");
+    } else if (o.kind == Stream::Binary && isatty(STDOUT_FILENO)) {
+      throw UsageError(kBinaryOnTerminal, "-");
+    }
+  }
+  if (!stats_path_.empty() && stats_path_ != "-") check_output_folder(stats_path_);
+}
+
+void Tool::print_json(const Json& report) {
+  if (stats_path_ == "-") {
+    stdout_json_ = report;
+    has_stdout_json_ = true;
+  } else {
+    std::cout << report.dump(2) << "\n";
+  }
 }
 
 void Tool::info(const std::string& msg) const {
@@ -182,6 +212,7 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
   int code = kFailure;
   std::string error;
   try {
+    check_outputs();
     code = body();
   } catch (const UsageError& e) {
     error = e.message();
@@ -202,7 +233,7 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
   }
   if (!stats_path_.empty() && code != kUsage) {
     try {
-      Json report = Json::object();
+      Json report = has_stdout_json_ ? stdout_json_ : Json::object();
       report["tool"] = name_;
       report["version"] = IMGMESH_VERSION;
       report["exit_status"] = code;

@@ -35,6 +35,13 @@ private:
   bool committed_ = false;
 };
 
+// What AtomicOutput says when binary data would go to a terminal.
+extern const char* const kBinaryOnTerminal;
+
+// Throws Error naming `target` when the folder it would be written in does
+// not exist ("no such folder") or is not a folder.
+void check_output_folder(const std::string& target);
+
 // The extension of a path in lower case, with a leading dot, counting ".gz"
 // compound extensions (".nii.gz"); "" if none.
 std::string extension_of(const std::string& path);
