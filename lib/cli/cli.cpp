@@ -212,8 +212,11 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
   int code = kFailure;
   std::string error;
   try {
+    OutputGroup outputs;  // exit 1 or 2 leaves no output
     check_outputs();
-    code = body();
+    const int done = body();
+    if (done == kOk || done == kGuarantee) outputs.commit();
+    code = done;
   } catch (const UsageError& e) {
     error = e.message();
     code = kUsage;

@@ -66,6 +66,44 @@ static std::string make_temp(const std::string& dir_prefix, const std::string& e
   return std::string(buf.data());
 }
 
+namespace {
+
+OutputGroup* current_group = nullptr;
+
+// The last step of a commit: the finished temporary file becomes the target.
+void move_into_place(const std::string& tmp, const std::string& target) {
+  if (target == "-") {
+    std::ifstream in(tmp, std::ios::binary);
+    if (!in) throw Error("output was not written", target);
+    std::cout << in.rdbuf();
+    std::cout.flush();
+    if (!std::cout) throw Error("write to standard output failed", target);
+    std::remove(tmp.c_str());
+  } else if (std::rename(tmp.c_str(), target.c_str()) != 0) {
+    throw Error(std::string("cannot move output into place: ") + std::strerror(errno), target);
+  }
+}
+
+} // namespace
+
+OutputGroup::OutputGroup() : outer_(current_group) { current_group = this; }
+
+OutputGroup::~OutputGroup() {
+  for (const Finished& f : finished_) std::remove(f.tmp.c_str());
+  current_group = outer_;
+}
+
+void OutputGroup::commit() {
+  std::size_t done = 0;
+  try {
+    for (; done < finished_.size(); ++done) move_into_place(finished_[done].tmp, finished_[done].target);
+  } catch (...) {
+    finished_.erase(finished_.begin(), finished_.begin() + std::ptrdiff_t(done));
+    throw;
+  }
+  finished_.clear();
+}
+
 AtomicOutput::AtomicOutput(std::string target, bool binary, const std::string& stdout_extension)
     : target_(std::move(target)) {
   if (target_.empty()) throw Error("empty output path");
@@ -105,17 +143,8 @@ void AtomicOutput::commit() {
     if (!out_) throw Error("write failed (disk full?)", target_);
     out_.close();
   }
-  if (target_ == "-") {
-    std::ifstream in(tmp_, std::ios::binary);
-    if (!in) throw Error("output was not written", target_);
-    std::cout << in.rdbuf();
-    std::cout.flush();
-    if (!std::cout) throw Error("write to standard output failed", target_);
-    std::remove(tmp_.c_str());
-  } else {
-    if (std::rename(tmp_.c_str(), target_.c_str()) != 0)
-      throw Error(std::string("cannot move output into place: ") + std::strerror(errno), target_);
-  }
+  if (current_group) current_group->finished_.push_back({tmp_, target_});
+  else move_into_place(tmp_, target_);
   committed_ = true;
 }
 

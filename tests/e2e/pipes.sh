@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Pipes and outputs across every tool: --stats - never shares stdout with
 # data (exit 2 before any work, stdout empty); meshinfo --json --stats - is
-# one JSON object.
+# one JSON object; on exit 1 or 2 no output is left, temporary ones in $TMPDIR
+# and beside the target included; on exit 3 the output is there.
 set -u
 rm -rf "$TMP"; mkdir -p "$TMP"
 cd "$TMP" || exit 1
@@ -15,6 +16,9 @@ n = 8
 body = bytes(1 if 2 <= x <= 5 and 2 <= y <= 5 and 2 <= z <= 4 else 0
              for z in range(n) for y in range(n) for x in range(n))
 open("box.nrrd", "wb").write(b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 8 8 8\nencoding: raw\n\n" + body)
+body = bytearray(6 * 6 * 6)  # two voxels sharing an edge: not well-composed
+body[2 + 6 * (2 + 6 * 2)] = body[3 + 6 * (3 + 6 * 2)] = 1
+open("critical.nrrd", "wb").write(b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 6 6 6\nencoding: raw\n\n" + body)
 EOF
 "$BIN/wc2implicit" -q box.nrrd box-f.nrrd || t "setup: wc2implicit"
 "$BIN/img2poly" -q "$DATA2D" s.poly --threshold 128 || t "setup: img2poly"
@@ -69,6 +73,47 @@ one_object tool=meshinfo exit_status=0 components=1 euler=[2] faces=4 < m.json |
 # Its error with --stats -: still one object, naming the error.
 "$BIN/meshinfo" --json missing.off --stats - > m.json 2> /dev/null
 one_object exit_status=1 < m.json || t "meshinfo error --stats -: $(cat m.json)"
+
+# 2. Exit 1 or 2 leaves nothing: outputs go to the empty folder o/, TMPDIR is
+# the empty folder tmp/ (stdin spools, the file behind "-"); both stay empty.
+# leaves_nothing WANT STDIN TOOL ARGS...
+leaves_nothing() {
+  local want=$1 input=$2 tool=$3; shift 3
+  rm -rf o tmp; mkdir o tmp
+  TMPDIR=$PWD/tmp "$BIN/$tool" "$@" < "$input" > out.bin 2> err.txt; local rc=$?
+  [[ $rc -eq $want ]] || t "$tool $*: exit $rc, want $want ($(cat err.txt))"
+  [[ -z $(ls -A o) ]] || t "$tool $*: left in the output folder: $(ls -A o)"
+  [[ -z $(ls -A tmp) ]] || t "$tool $*: left in TMPDIR: $(ls -A tmp)"
+  [[ ! -s out.bin ]] || t "$tool $*: stdout has $(wc -c < out.bin) bytes"
+}
+printf '0 0 0\n0.5 0.5 0.5\n100 100 100\n' > p3.txt   # the last point outside the domain
+leaves_nothing 1 box.nrrd img2wc - o/w.nrrd --label 9
+leaves_nothing 1 box.nrrd img2wc - - --label 9
+leaves_nothing 2 box.nrrd img2wc - o/w.xyz
+leaves_nothing 1 critical.nrrd wc2implicit - o/f.nrrd
+leaves_nothing 1 critical.nrrd wc2implicit - -
+leaves_nothing 1 p3.txt implicit-eval box-f.nrrd - -o o/v.txt     # written up to line 3
+leaves_nothing 1 p3.txt implicit-eval box-f.nrrd -                 # the same behind "-"
+leaves_nothing 1 box.nrrd implicit2mesh - o/m.off                   # not an implicit function file
+leaves_nothing 2 /dev/null implicit2mesh box-f.nrrd o/m.off --ratio 1
+leaves_nothing 1 "$DATA2D" img2poly - o/s.poly --threshold 128 --svg o/nodir/s.svg  # OUT done, --svg fails
+leaves_nothing 1 /dev/null poly2tri s.poly o/m.1.ele --svg o/nodir/m.svg    # .ele, .node, .poly done
+leaves_nothing 1 /dev/null tri2quad s.1.ele o/q.ele --svg o/nodir/q.svg
+leaves_nothing 1 /dev/null tri2quad s.1.ele - --svg o/nodir/q.svg
+leaves_nothing 1 /dev/null quadsmooth s.q.ele o/qs.ele --svg o/nodir/qs.svg
+leaves_nothing 1 critical.nrrd meshinfo tet.off --image -
+
+# Exit 3: the output is written, whole, and nothing else is left.
+rm -rf o tmp; mkdir o tmp
+TMPDIR=$PWD/tmp "$BIN/poly2tri" -q s.poly o/m.1.ele --max-edge 1 --max-vertices 34000; rc=$?
+[[ $rc -eq 3 ]] || t "poly2tri --max-vertices: exit $rc, want 3"
+[[ $(ls -A o | tr '\n' ' ') == "m.1.ele m.1.node m.1.poly " && -z $(ls -A tmp) ]] || t "poly2tri exit 3 left: $(ls -A o tmp)"
+"$BIN/meshinfo" --json o/m.1.ele | one_object components=1 || t "poly2tri exit 3: the mesh does not read back"
+rm -rf o; mkdir o
+TMPDIR=$PWD/tmp "$BIN/implicit2mesh" -q box-f.nrrd o/m.off --max-points 10; rc=$?
+[[ $rc -eq 3 ]] || t "implicit2mesh --max-points: exit $rc, want 3"
+[[ $(ls -A o) == m.off && -z $(ls -A tmp) ]] || t "implicit2mesh exit 3 left: $(ls -A o tmp)"
+"$BIN/meshinfo" --json o/m.off > m.json || t "implicit2mesh exit 3: the mesh does not read back"
 
 echo "pipes e2e: $([[ $fail -eq 0 ]] && echo ok || echo FAILED)"
 exit $fail
