@@ -16,7 +16,7 @@ int main(int argc, char** argv) {
   imgmesh::SmoothOptions opt;
   bool no_cleanup = false;
   tool.app.add_option("IN", in, "quad mesh: .ele (with its .node, and .poly for segments) or .off")->required();
-  tool.app.add_option("OUT", out, "output mesh by extension: .ele (+ .node, .poly), .off, .vtk, .msh, .svg")
+  tool.app.add_option("OUT", out, "output mesh by extension: .ele (+ .node, .poly), .off, .vtk, .msh, .svg; - for OFF on stdout")
       ->required();
   tool.data_output(out);
   tool.app.add_option("--iterations", opt.iterations, "smoothing passes (default 10)")

@@ -158,7 +158,11 @@ void write_surface(const std::string& path, const SurfaceMesh& m) {
     vh.push_back(tm.add_vertex(TriMesh::Point(p[0], p[1], p[2])));
     if (normals) tm.set_normal(vh.back(), TriMesh::Normal(m.normals[i][0], m.normals[i][1], m.normals[i][2]));
   }
+  // OpenMesh logs on the terminal ("[STLWriter] : write binary file"); the
+  // library never prints.
   omerr().disable();
+  omlog().disable();
+  omout().disable();
   for (const auto& f : m.triangles) {
     auto fh = tm.add_face(vh[std::size_t(f[0])], vh[std::size_t(f[1])], vh[std::size_t(f[2])]);
     if (!fh.is_valid()) throw Error("the mesh is not a manifold that " + ext + " output can hold", path);

@@ -2,7 +2,8 @@
 # Pipes and outputs across every tool: --stats - never shares stdout with
 # data (exit 2 before any work, stdout empty); meshinfo --json --stats - is
 # one JSON object; on exit 1 or 2 no output is left, temporary ones in $TMPDIR
-# and beside the target included; on exit 3 the output is there.
+# and beside the target included; on exit 3 the output is there. Messages:
+# a missing folder named, no library print, every stderr line "tool: ...".
 set -u
 rm -rf "$TMP"; mkdir -p "$TMP"
 cd "$TMP" || exit 1
@@ -114,6 +115,107 @@ TMPDIR=$PWD/tmp "$BIN/implicit2mesh" -q box-f.nrrd o/m.off --max-points 10; rc=$
 [[ $rc -eq 3 ]] || t "implicit2mesh --max-points: exit $rc, want 3"
 [[ $(ls -A o) == m.off && -z $(ls -A tmp) ]] || t "implicit2mesh exit 3 left: $(ls -A o tmp)"
 "$BIN/meshinfo" --json o/m.off > m.json || t "implicit2mesh exit 3: the mesh does not read back"
+
+# 3. Messages. A missing output folder is named as such, before any work
+# (the input does not exist either: the folder is what is reported).
+nofolder() {  # TOOL ARGS... (the output in nodir/)
+  local tool=$1; shift
+  "$BIN/$tool" "$@" > /dev/null 2> err.txt; local rc=$?
+  [[ $rc -eq 1 && $(cat err.txt) == "$tool: nodir/"*": no such folder" ]] || t "$tool $*: exit $rc, $(cat err.txt)"
+}
+nofolder img2wc missing.nrrd nodir/x.nrrd
+nofolder wc2implicit missing.nrrd nodir/x.nrrd
+nofolder img2poly missing.png nodir/x.poly
+nofolder poly2tri missing.poly nodir/x.1.ele
+nofolder tri2quad missing.1.ele nodir/x.q.ele
+nofolder quadsmooth missing.q.ele nodir/x.qs.ele
+nofolder implicit-eval missing.nrrd p.txt -o nodir/v.txt
+nofolder meshinfo missing.off --stats nodir/s.json
+nofolder implicit2mesh box-f.nrrd nodir/x.off          # found when writing, same words
+ls -A | grep -q imgmesh- && t "a temporary file left: $(ls -A | grep imgmesh-)"
+
+# Library prints do not reach the terminal: OpenMesh's STL log, MetaIO's lines.
+"$BIN/implicit2mesh" -q box-f.nrrd x.stl 2> err.txt || t "implicit2mesh .stl: exit $?"
+[[ ! -s err.txt && -s x.stl ]] || t "implicit2mesh -q .stl: $(cat err.txt)"
+cp "$DATA/RatLungSlice1.mha" nodata.mha                       # its .raw is not beside it
+printf 'NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n' > short.mha
+head -c 10 /dev/zero >> short.mha                             # 10 of its 64 voxels
+for f in nodata short; do
+  "$BIN/img2wc" $f.mha o.nrrd 2> err.txt; rc=$?
+  [[ $rc -eq 1 && $(wc -l < err.txt) -eq 1 && $(cat err.txt) == "img2wc: $f.mha: cannot read the image"* ]] ||
+    t "img2wc $f.mha: exit $rc, $(cat err.txt)"
+done
+grep -q "truncated" err.txt || t "short.mha read as zeros: $(cat err.txt)"
+
+# An absent label: the labels that do occur, as ranges.
+"$BIN/img2wc" box.nrrd o.nrrd --label 9 2> err.txt
+[[ $(cat err.txt) == "img2wc: box.nrrd: label 9 does not occur in the image (labels present: 0-1)" ]] ||
+  t "img2wc --label 9: $(cat err.txt)"
+python3 -c '
+v = [0, 2, 3, 5, 2, 0]
+open("labels.nrrd", "wb").write(b"NRRD0004\ntype: uint8\ndimension: 2\nsizes: 3 2\nencoding: raw\n\n" + bytes(v))'
+"$BIN/img2poly" labels.nrrd o.poly --label 4 2> err.txt
+[[ $(cat err.txt) == *"label 4 does not occur in the image (labels present: 0 2-3 5)" ]] || t "img2poly --label 4: $(cat err.txt)"
+
+# quadsmooth - writes OFF on stdout: the .off it writes to a file.
+"$BIN/quadsmooth" -q s.q.ele - > qs-stdout.off || t "quadsmooth -: exit $?"
+"$BIN/quadsmooth" -q s.q.ele qs.off || t "quadsmooth .off: exit $?"
+[[ -s qs.off ]] && cmp -s qs.off qs-stdout.off || t "quadsmooth -: not the OFF of quadsmooth .off"
+
+# Binary data is refused on a terminal before the work (the input is not read).
+if command -v script > /dev/null; then
+  for tool in img2wc wc2implicit; do
+    said=$(script -qec "$BIN/$tool missing.nrrd -" /dev/null); rc=$?
+    [[ $rc -eq 2 && $said == *"$tool: -: refusing to write binary data to a terminal"* ]] || t "$tool - on a terminal: exit $rc, $said"
+  done
+else
+  echo "note: no script(1), terminal refusal not tested"
+fi
+
+# Every stderr line starts with the tool's name, with and without -q, on
+# succeeding and failing runs (a library print or a bare message would not).
+while IFS= read -r line; do
+  [[ -z $line || $line == \#* ]] && continue
+  read -r -a cmd <<< "$line"
+  for q in "" -q; do
+    "$BIN/${cmd[0]}" "${cmd[@]:1}" $q < /dev/null > /dev/null 2> err.txt
+    bad=$(grep -v "^${cmd[0]}: " err.txt)
+    [[ -z $bad ]] || t "${cmd[*]} $q: stderr line without the tool's name: $bad"
+  done
+done <<'CMDS'
+img2wc box.nrrd w.nrrd -v --progress
+img2wc critical.nrrd w.nrrd --check
+img2wc nodata.mha w.nrrd
+img2wc short.mha w.nrrd
+img2wc box.nrrd w.nrrd --label 9
+img2wc box.nrrd w.nrrd --mode sideways
+img2wc box.nrrd - --stats -
+wc2implicit box.nrrd f.nrrd -v --progress
+wc2implicit critical.nrrd f.nrrd
+wc2implicit box.nrrd f.txt
+implicit-eval box-f.nrrd p.txt -o v.txt --gradient
+implicit-eval box-f.nrrd p3.txt -o v.txt
+implicit-eval box-f.nrrd --random 1000 -v
+implicit2mesh box-f.nrrd m.stl -v --progress
+implicit2mesh box-f.nrrd m.ply --normals
+implicit2mesh box-f.nrrd m.obj --max-points 10
+implicit2mesh box.nrrd m.off
+implicit2mesh box-f.nrrd nodir/m.off
+img2poly labels.nrrd l.poly -v --svg l.svg
+img2poly nodata.mha l.poly
+poly2tri s.poly m.1.ele -v --svg m.svg
+poly2tri s.poly m.1.ele --max-edge 1 --max-vertices 34000
+poly2tri s.poly m.1.ele --max-area 1e-9
+tri2quad s.1.ele q.ele -v --svg q.svg
+tri2quad s.poly q.ele
+quadsmooth s.q.ele qs.ele -v --svg qs.svg
+quadsmooth s.1.ele qs.vtk
+quadsmooth s.q.ele qs.xyz
+meshinfo tet.off -v
+meshinfo box.nrrd
+meshinfo tet.off --image critical.nrrd
+meshinfo --no-such-option
+CMDS
 
 echo "pipes e2e: $([[ $fail -eq 0 ]] && echo ok || echo FAILED)"
 exit $fail
