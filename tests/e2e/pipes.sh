@@ -174,6 +174,15 @@ open("labels.nrrd", "wb").write(b"NRRD0004\ntype: uint8\ndimension: 2\nsizes: 3 
 "$BIN/img2poly" labels.nrrd o.poly --label 4 2> err.txt
 [[ $(cat err.txt) == *"label 4 does not occur in the image (labels present: 0 2-3 5)" ]] || t "img2poly --label 4: $(cat err.txt)"
 
+# A grey image without --threshold: said, with the fix; a label image is not.
+cp "$DATA/BrainT1Slice.png" .
+"$BIN/img2poly" "$DATA/BrainT1Slice.png" g.poly 2> err.txt || t "img2poly grey: exit $?"
+grep -q "^img2poly: .*BrainT1Slice.png: .*--threshold" err.txt || t "img2poly grey image: no warning: $(cat err.txt)"
+"$BIN/img2poly" "$DATA/VentricleModel.png" g.poly 2> err.txt || t "img2poly labels: exit $?"
+grep -q -- "--threshold" err.txt && t "img2poly label image: warned: $(cat err.txt)"
+"$BIN/img2poly" -q "$DATA/BrainT1Slice.png" g.poly --threshold 100 2> err.txt
+[[ -s err.txt ]] && t "img2poly --threshold: $(cat err.txt)"
+
 # quadsmooth - writes OFF on stdout: the .off it writes to a file.
 "$BIN/quadsmooth" -q s.q.ele - > qs-stdout.off || t "quadsmooth -: exit $?"
 "$BIN/quadsmooth" -q s.q.ele qs.off || t "quadsmooth .off: exit $?"
@@ -219,6 +228,7 @@ implicit2mesh box-f.nrrd m.obj --max-points 10
 implicit2mesh box.nrrd m.off
 implicit2mesh box-f.nrrd nodir/m.off
 img2poly labels.nrrd l.poly -v --svg l.svg
+img2poly BrainT1Slice.png l.poly
 img2poly nodata.mha l.poly
 poly2tri s.poly m.1.ele -v --svg m.svg
 poly2tri s.poly m.1.ele --max-edge 1 --max-vertices 34000
