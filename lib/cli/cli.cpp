@@ -213,6 +213,7 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
 
   int code = kFailure;
   std::string error;
+  bool stats_unwritable = false;  // its folder is missing: said once, not again
   try {
     OutputGroup outputs;  // exit 1 or 2 leaves no output
     check_outputs();
@@ -224,6 +225,7 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
     code = kUsage;
   } catch (const Error& e) {
     error = e.message();
+    stats_unwritable = e.path() == stats_path_;
   } catch (const std::bad_alloc&) {
     error = "out of memory (the input is too large for this machine)";
   } catch (const std::exception& e) {
@@ -236,7 +238,7 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
       if (c == '\n' || c == '\r') c = ' ';
     std::cerr << name_ << ": " << error << '\n';
   }
-  if (!stats_path_.empty() && code != kUsage) {
+  if (!stats_path_.empty() && code != kUsage && !stats_unwritable) {
     try {
       Json report = has_stdout_json_ ? stdout_json_ : Json::object();
       report["tool"] = name_;

@@ -138,7 +138,7 @@ done
 nofolder() {  # TOOL ARGS... (the output in nodir/)
   local tool=$1; shift
   "$BIN/$tool" "$@" > /dev/null 2> err.txt; local rc=$?
-  [[ $rc -eq 1 && $(cat err.txt) == "$tool: nodir/"*": no such folder" ]] || t "$tool $*: exit $rc, $(cat err.txt)"
+  [[ $rc -eq 1 && $(wc -l < err.txt) -eq 1 && $(cat err.txt) == "$tool: nodir/"*": no such folder" ]] || t "$tool $*: exit $rc, $(cat err.txt)"
 }
 nofolder img2wc missing.nrrd nodir/x.nrrd
 nofolder wc2implicit missing.nrrd nodir/x.nrrd
