@@ -110,6 +110,11 @@ TMPDIR=$PWD/tmp "$BIN/poly2tri" -q s.poly o/m.1.ele --max-edge 1 --max-vertices 
 [[ $rc -eq 3 ]] || t "poly2tri --max-vertices: exit $rc, want 3"
 [[ $(ls -A o | tr '\n' ' ') == "m.1.ele m.1.node m.1.poly " && -z $(ls -A tmp) ]] || t "poly2tri exit 3 left: $(ls -A o tmp)"
 "$BIN/meshinfo" --json o/m.1.ele | one_object components=1 || t "poly2tri exit 3: the mesh does not read back"
+# A small bound holds too (s.1.ele, unbounded, has 619 vertices).
+"$BIN/poly2tri" -q s.poly o/b.1.ele --max-vertices 300; rc=$?
+nodes=$(grep -v '^#' o/b.1.node | head -1 | cut -d' ' -f1)
+[[ $rc -eq 3 && $nodes -le 301 && $(grep -v '^#' s.1.node | head -1 | cut -d' ' -f1) -gt 301 ]] ||
+  t "poly2tri --max-vertices 300: exit $rc, $nodes vertices"
 rm -rf o; mkdir o
 TMPDIR=$PWD/tmp "$BIN/implicit2mesh" -q box-f.nrrd o/m.off --max-points 10; rc=$?
 [[ $rc -eq 3 ]] || t "implicit2mesh --max-points: exit $rc, want 3"
