@@ -8,8 +8,12 @@
 #include "util/error.hpp"
 
 #include <sstream>
+#include <unordered_set>
 
 using namespace imgmesh;
+
+// More distinct values than this without --label or --threshold: a grey image, most likely.
+constexpr std::size_t kGreyLevels = 64;
 
 int main(int argc, char** argv) {
   cli::Tool tool("img2poly",
@@ -21,6 +25,7 @@ int main(int argc, char** argv) {
   ImagePslgOptions opt;
   tool.app.add_option("IN", in, "Input 2D image (PNG, NRRD, MetaImage, NIfTI; - for stdin)")->required();
   tool.app.add_option("OUT", out, "Output PSLG, Triangle .poly (- for stdout)")->required();
+  tool.data_output(out);
   auto* label = tool.app.add_option("--label", sel.labels,
                                     "Keep this label (repeatable); other pixels become background 0. "
                                     "Default: every value is a label")
@@ -59,6 +64,14 @@ int main(int argc, char** argv) {
     }
     sel.has_threshold = thr->count() > 0;
     const LabelImage img = read_labels(in, sel);
+    if (!sel.has_threshold && sel.labels.empty()) {
+      // Every value is a label: a grey image makes a region of each.
+      std::unordered_set<std::int32_t> values;
+      for (std::size_t i = 0; i < img.data.size() && values.size() <= kGreyLevels; ++i) values.insert(img.data[i]);
+      if (values.size() > kGreyLevels)
+        tool.info(in + ": more than " + std::to_string(kGreyLevels) +
+                  " distinct values, each taken as a label: for a grey image give --threshold T (or --label L)");
+    }
 
     tool.report_progress("tracing and simplifying the pixel boundary");
     const auto r = naming_input(in, [&] { return image_to_pslg(img, opt); });

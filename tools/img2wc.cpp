@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   bool check = false, thesis_rules = false;
   tool.app.add_option("IN", in, "Input image (NRRD, MetaImage, NIfTI, PNG; - for stdin)")->required();
   tool.app.add_option("OUT", out, "Output 0/1 uint8 image, format by extension (- for NRRD on stdout)");
+  tool.data_output(out, cli::Stream::Binary);
   auto* label = tool.app.add_option("--label", sel.labels,
                                     "Foreground is this label (repeatable: the union); default: nonzero");
   label->type_name("L")->allow_extra_args(false);
@@ -38,8 +39,6 @@ int main(int argc, char** argv) {
     sel.has_threshold = thr->count() > 0;
     if (!check && out.empty()) throw UsageError("OUT is required (or use --check)");
     if (check && !out.empty()) throw UsageError("--check writes nothing: give no OUT");
-    if (out == "-" && tool.app.get_option("--stats")->as<std::string>() == "-")
-      throw UsageError("OUT and --stats cannot both be standard output");
 
     BinaryImage img = read_foreground(in, sel);
     tool.stats["input"] = in;

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   tool.app.add_option("IMPLICIT", implicit_path, "Implicit function file (.nrrd from wc2implicit; - for stdin)")->required();
   tool.app.add_option("POINTS", points, "Text file of points, one 'x y z' a line (default - : stdin)");
   tool.app.add_option("-o,--output", output, "Where to write the values (default - : stdout)")->type_name("FILE|-");
+  tool.data_output(output, cli::Stream::Text, [&] { return random_n == 0; });
   tool.app.add_flag("--gradient", gradient, "Also write the gradient: 'f gx gy gz' a line");
   tool.app.add_flag("--allow-outside", allow_outside,
                     "Write nan for points outside the domain instead of failing");

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   bool json = false;
   tool.app.add_option("MESH", in, "mesh: .off .ply .obj .stl (surface) or .ele/.node, .off (planar); - = OFF on stdin")
       ->required();
+  tool.data_output(imgmesh::cli::Tool::kStdout, imgmesh::cli::Stream::Text, [&] { return !json; });  // --json: one object
   tool.app.add_flag("--json", json, "print one JSON object (keys 'components' and 'euler' first) instead of text");
   tool.app.add_option("--image", image,
                       "well-composed image: compare the mesh with bdCA(X) component by component (exit 3 if different)");
@@ -20,7 +21,7 @@ int main(int argc, char** argv) {
     std::optional<imgmesh::BinaryImage> img;
     if (!image.empty()) img = imgmesh::read_foreground(image, {});
     const imgmesh::MeshInfo info = imgmesh::mesh_info(mesh, in, img ? &*img : nullptr, image);
-    if (json) std::cout << info.report.dump(2) << "\n";
+    if (json) tool.print_json(info.report);
     else std::cout << imgmesh::format_report(info.report);
     return tool.finish(info);
   });

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
                       "Output mesh: NAME.ele (writes NAME.node and NAME.poly beside it); .off, .vtk, .msh "
                       "or .svg also work")
       ->required();
+  tool.data_output(out);
   tool.app.add_option("--min-angle", opt.min_angle,
                       "Smallest angle in degrees (0 = no quality refinement; at most 34); the bound holds "
                       "except near input angles below 60 degrees")

@@ -16,8 +16,9 @@ int main(int argc, char** argv) {
   imgmesh::SmoothOptions opt;
   bool no_cleanup = false;
   tool.app.add_option("IN", in, "quad mesh: .ele (with its .node, and .poly for segments) or .off")->required();
-  tool.app.add_option("OUT", out, "output mesh by extension: .ele (+ .node, .poly), .off, .vtk, .msh, .svg")
+  tool.app.add_option("OUT", out, "output mesh by extension: .ele (+ .node, .poly), .off, .vtk, .msh, .svg; - for OFF on stdout")
       ->required();
+  tool.data_output(out);
   tool.app.add_option("--iterations", opt.iterations, "smoothing passes (default 10)")
       ->check(CLI::Range(0, 1000000));
   tool.app.add_flag("--no-cleanup", no_cleanup, "no diagonal swaps, doublet removal or quad collapses");

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   tool.app.add_option("OUT", out, "Output quad mesh by extension: .ele (+ .node, + .poly of the segments), "
                                   ".off, .vtk, .msh (Gmsh 2.2) or .svg; - for OFF on stdout")
       ->required();
+  tool.data_output(out);
   tool.app.add_option("--constraints", constraints, "Constraint segments from this .poly instead")
       ->type_name("FILE");
   tool.app.add_flag("--allow-outside", opt.allow_outside,
@@ -55,13 +56,7 @@ int main(int argc, char** argv) {
     for (const auto& f : r.quads)
       mu.push_back(joe_mu(r.points[f[0]], r.points[f[1]], r.points[f[2]], r.points[f[3]]));
     if (ext == ".svg" || ext == ".vtk") { wo.element_scalar = mu; wo.scalar_name = "mu"; }
-    if (out == "-") {
-      AtomicOutput o("-", false, ".off");
-      write_planar_mesh(o.path(), q, wo);
-      o.commit();
-    } else {
-      write_planar_mesh(out, q, wo);
-    }
+    write_planar_mesh(out, q, wo);  // "-": OFF on stdout
     if (!svg.empty()) {
       PlanarWriteOptions so;
       so.element_scalar = mu;

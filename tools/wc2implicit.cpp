@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   std::string in, out;
   tool.app.add_option("IN", in, "Well-composed 3D binary image (nonzero = foreground; - for stdin)")->required();
   tool.app.add_option("OUT", out, "Implicit function file (.nrrd; - for NRRD on stdout)")->required();
+  tool.data_output(out, cli::Stream::Binary);
   tool.add_threads();
   return tool.run(argc, argv, [&] {
     if (out != "-" && extension_of(out) != ".nrrd")

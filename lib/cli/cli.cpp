@@ -18,7 +18,7 @@ Tool::Tool(std::string name, std::string description)
   app.set_version_flag("--version", std::string(name_) + " (imgmesh) " IMGMESH_VERSION);
   app.add_flag("-q,--quiet", quiet_, "Print nothing on stderr but errors");
   app.add_flag("-v,--verbose", verbose_, "Print more about what is done");
-  app.add_option("--stats", stats_path_, "Write a JSON report (counts, timings, guarantees) to FILE, or - for stdout")
+  app.add_option("--stats", stats_path_, "Write a JSON report (counts, timings, guarantees) to FILE, or - for stdout when the data does not go there")
       ->type_name("FILE|-");
   app.add_flag("--progress", progress_flag_, "Show progress on stderr even when it is not a terminal");
   add_help_man();
@@ -32,9 +32,41 @@ void Tool::add_seed(std::uint64_t default_seed) {
 
 void Tool::add_threads() {
   threads_ = int(std::max(1u, std::thread::hardware_concurrency()));
-  app.add_option("--threads", threads_, "Number of threads (default: all cores)")
-      ->check(CLI::Range(1, 1024))
+  // The range in the words, not CLI11's "INT:INT in [1 - 1024]".
+  app.add_option("--threads", threads_, "Number of threads, 1 to 1024 (default: all cores)")
+      ->type_name("N")
+      ->check(CLI::Range(1, 1024).description(""))
       ->capture_default_str();
+}
+
+const std::string Tool::kStdout = "-";
+
+void Tool::data_output(const std::string& path, Stream kind, std::function<bool()> used) {
+  outputs_.push_back({&path, kind, std::move(used)});
+}
+
+void Tool::check_outputs() const {
+  for (const DataOutput& o : outputs_) {
+    const std::string& path = *o.path;
+    if (path.empty() || (o.used && !o.used())) continue;  // not written by this run
+    if (path != "-") {
+      check_output_folder(path);
+    } else if (stats_path_ == "-") {
+      throw UsageError("the data goes to standard output: give --stats a file name");
+    } else if (o.kind == Stream::Binary && isatty(STDOUT_FILENO)) {
+      throw UsageError(kBinaryOnTerminal, "-");
+    }
+  }
+  if (!stats_path_.empty() && stats_path_ != "-") check_output_folder(stats_path_);
+}
+
+void Tool::print_json(const Json& report) {
+  if (stats_path_ == "-") {
+    stdout_json_ = report;
+    has_stdout_json_ = true;
+  } else {
+    std::cout << report.dump(2) << "\n";
+  }
 }
 
 void Tool::info(const std::string& msg) const {
@@ -181,13 +213,19 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
 
   int code = kFailure;
   std::string error;
+  bool stats_unwritable = false;  // its folder is missing: said once, not again
   try {
-    code = body();
+    OutputGroup outputs;  // exit 1 or 2 leaves no output
+    check_outputs();
+    const int done = body();
+    if (done == kOk || done == kGuarantee) outputs.commit();
+    code = done;
   } catch (const UsageError& e) {
     error = e.message();
     code = kUsage;
   } catch (const Error& e) {
     error = e.message();
+    stats_unwritable = e.path() == stats_path_;
   } catch (const std::bad_alloc&) {
     error = "out of memory (the input is too large for this machine)";
   } catch (const std::exception& e) {
@@ -200,9 +238,9 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
       if (c == '\n' || c == '\r') c = ' ';
     std::cerr << name_ << ": " << error << '\n';
   }
-  if (!stats_path_.empty() && code != kUsage) {
+  if (!stats_path_.empty() && code != kUsage && !stats_unwritable) {
     try {
-      Json report = Json::object();
+      Json report = has_stdout_json_ ? stdout_json_ : Json::object();
       report["tool"] = name_;
       report["version"] = IMGMESH_VERSION;
       report["exit_status"] = code;

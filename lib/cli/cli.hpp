@@ -27,8 +27,12 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace imgmesh::cli {
+
+// What a data output carries: binary data is refused on a terminal.
+enum class Stream { Text, Binary };
 
 enum ExitCode : int {
   kOk = 0,         // done
@@ -48,6 +52,19 @@ public:
   // -q, -v, --stats, --progress).
   void add_seed(std::uint64_t default_seed = 0);
   void add_threads();
+
+  // Declares that `path` (an option's variable) names a data output, "-"
+  // being standard output. Checked after parsing, before any work: "-" there
+  // with --stats - is a usage error (one stream cannot carry both), binary
+  // data is refused on a terminal, and a file's folder must exist. `used`
+  // (default: always) says whether this run writes the output at all.
+  void data_output(const std::string& path, Stream kind = Stream::Text, std::function<bool()> used = {});
+  // The path for data_output of a tool whose data always goes to stdout.
+  static const std::string kStdout;
+
+  // Prints `report` on stdout as the run's one JSON object; with --stats -
+  // the stats join it (after its keys) and all is printed at the end.
+  void print_json(const Json& report);
 
   // The result's to_json() entries join the stats; a failed guarantee is said
   // on stderr ("guarantee not met: ...") and gives kGuarantee, else kOk.
@@ -85,10 +102,19 @@ public:
   std::string man_sections() const;
 
 private:
+  struct DataOutput {
+    const std::string* path;
+    Stream kind;
+    std::function<bool()> used;
+  };
   void add_help_man();
+  void check_outputs() const;
 
   std::string name_;
   std::string stats_path_;
+  std::vector<DataOutput> outputs_;
+  Json stdout_json_;  // print_json's report, held for --stats -
+  bool has_stdout_json_ = false;
   bool quiet_ = false, verbose_ = false, progress_flag_ = false, progress_ = false;
   std::uint64_t seed_ = 0;
   int threads_ = 1;

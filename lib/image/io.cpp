@@ -27,6 +27,7 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <sstream>
 #include <unistd.h>
 
 namespace imgmesh {
@@ -59,6 +60,40 @@ std::string itk_message(const itk::ExceptionObject& e) {
   while (!d.empty() && d.back() == ' ') d.pop_back();
   return d.empty() ? "cannot read the image" : "cannot read the image: " + d;
 }
+
+// ITK and MetaIO say some reasons on std::cerr only (MetaIO's "Cannot open
+// data file", a short LOCAL block read as zeros after "data not read
+// completely", itk::OutputWindow warnings). The library never prints: while
+// a CerrCapture lives they are kept, to become part of the Error.
+class CerrCapture {
+public:
+  CerrCapture() : old_(std::cerr.rdbuf(text_.rdbuf())) {}
+  ~CerrCapture() { std::cerr.rdbuf(old_); }
+  CerrCapture(const CerrCapture&) = delete;
+  CerrCapture& operator=(const CerrCapture&) = delete;
+  // What was said, on one line.
+  std::string text() const {
+    std::string t, word;
+    std::istringstream in(text_.str());
+    while (in >> word) t += (t.empty() ? "" : " ") + word;
+    return t;
+  }
+  // An Error for ITK's exception, with what was said (often the real reason).
+  Error error(const itk::ExceptionObject& e, const std::string& path) const {
+    const std::string said = text();
+    return Error(itk_message(e) + (said.empty() ? "" : " (" + said + ")"), path);
+  }
+  // A read that ITK let pass though the data was short.
+  void check_read(const std::string& path) const {
+    const std::string said = text();
+    if (said.find("not read completely") != std::string::npos)
+      throw Error("cannot read the image: truncated data (" + said + ")", path);
+  }
+
+private:
+  std::ostringstream text_;
+  std::streambuf* old_;
+};
 
 // ITK's NIfTI reader returns a zero-padded image for a truncated file (the
 // gzip stream or the raw data ends early) instead of failing: check that the
@@ -130,13 +165,14 @@ Opened open_image(const std::string& path, const std::string& file) {
     if (!probe) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
   }
   Opened o;
+  const CerrCapture said;
   o.io = itk::ImageIOFactory::CreateImageIO(file.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
   if (!o.io) throw Error("not an image ITK can read (NRRD, MetaImage, NIfTI or PNG expected)", path);
   try {
     o.io->SetFileName(file);
     o.io->ReadImageInformation();
   } catch (const itk::ExceptionObject& e) {
-    throw Error(itk_message(e), path);
+    throw said.error(e, path);
   }
   const unsigned n = o.io->GetNumberOfDimensions();
   // Trailing axes of size 1 do not count (a 3D file holding one slice is 2D
@@ -198,10 +234,14 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
   const std::size_t c = o.io->GetNumberOfComponents();
   std::vector<char> raw(o.io->GetImageSizeInBytes());
   check_nifti_complete(path, o.io->GetFileName(), raw.size());
-  try {
-    o.io->Read(raw.data());
-  } catch (const itk::ExceptionObject& e) {
-    throw Error(itk_message(e), path);
+  {
+    const CerrCapture said;
+    try {
+      o.io->Read(raw.data());
+    } catch (const itk::ExceptionObject& e) {
+      throw said.error(e, path);
+    }
+    said.check_read(path);
   }
   auto convert = [&](auto tag) {
     using T = decltype(tag);
@@ -275,13 +315,37 @@ void write_any(const std::string& path, const Image<T>& img, const std::map<std:
   if (ext == ".nhdr" || ext == ".mhd")
     throw UsageError("detached-header formats write two files; use .nrrd or .mha", path);
   AtomicOutput out(path, true, ".nrrd");
+  const CerrCapture said;
   try {
     if (img.dimension == 2) write_itk<2>(out.path(), img, fields);
     else write_itk<3>(out.path(), img, fields);
   } catch (const itk::ExceptionObject& e) {
-    throw Error(itk_message(e), path);
+    throw said.error(e, path);
   }
   out.commit();
+}
+
+// "labels present: 0-3 7 12" (ranges of consecutive values, the first 20).
+template <class Values> std::string labels_present(const Values& values) {
+  std::ostringstream out;
+  out << "labels present:";
+  int shown = 0;
+  for (auto it = values.begin(); it != values.end(); ++shown) {
+    if (shown == 20) {
+      out << " ...";
+      break;
+    }
+    auto last = it;
+    while (std::next(last) != values.end() && *std::next(last) == *last + 1) ++last;
+    out << ' ' << (long long)*it;
+    if (last != it) out << '-' << (long long)*last;
+    it = std::next(last);
+  }
+  return out.str();
+}
+
+[[noreturn]] void absent_label(long long label, const std::string& labels, const std::string& path) {
+  throw Error("label " + std::to_string(label) + " does not occur in the image (" + labels + ")", path);
 }
 
 } // namespace
@@ -307,8 +371,12 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel) {
     visit_values(path, o, [&](std::size_t i, double v) {
       if (wanted.count(v)) { out.data[i] = 1; seen.insert(v); ++count; }
     });
-    for (long long l : sel.labels)
-      if (!seen.count(double(l))) throw Error("label " + std::to_string(l) + " does not occur in the image", path);
+    for (long long l : sel.labels) {
+      if (seen.count(double(l))) continue;
+      std::set<long long> present;  // a second pass: only on this error
+      visit_values(path, o, [&](std::size_t, double v) { present.insert((long long)v); });
+      absent_label(l, labels_present(present), path);
+    }
   } else if (sel.has_threshold) {
     visit_values(path, o, [&](std::size_t i, double v) {
       if (v >= sel.threshold) { out.data[i] = 1; ++count; }
@@ -343,13 +411,12 @@ LabelImage read_labels(const std::string& path, const Selection& sel) {
   }
   LabelImage img = read_labels(path);
   if (!sel.labels.empty()) {
-    std::set<long long> keep(sel.labels.begin(), sel.labels.end()), found;
-    for (auto& v : img.data) {
-      if (keep.count(v)) found.insert(v);
-      else v = 0;
-    }
+    const std::set<long long> keep(sel.labels.begin(), sel.labels.end());
     for (long long l : keep)
-      if (!found.count(l)) throw Error("label " + std::to_string(l) + " does not occur in the image", path);
+      if (std::find(img.data.begin(), img.data.end(), l) == img.data.end())
+        absent_label(l, labels_present(std::set<long long>(img.data.begin(), img.data.end())), path);
+    for (auto& v : img.data)
+      if (!keep.count(v)) v = 0;
   }
   return img;
 }

@@ -11,6 +11,8 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <sstream>
 
 namespace imgmesh {
@@ -97,6 +99,65 @@ void write_off(std::ostream& out, const SurfaceMesh& m) {
   for (const auto& f : m.triangles) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
 }
 
+// Little-endian bytes of a value (PLY and STL binary are little-endian).
+template <class T> void put(std::ostream& out, T v) {
+  unsigned char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  std::uint32_t one = 1;
+  unsigned char first;
+  std::memcpy(&first, &one, 1);
+  if (first != 1)
+    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+  out.write(reinterpret_cast<const char*>(b), sizeof(T));
+}
+
+// A triangle set OpenMesh's halfedge mesh cannot hold (not a manifold: e.g.
+// a refinement stopped by --max-points), in the layout OpenMesh writes for
+// a manifold one (binary PLY of floats, OBJ, binary STL), so that the run
+// still leaves its output (exit 3) in the format asked for.
+void write_triangle_set(std::ostream& out, const std::string& ext, const SurfaceMesh& m, bool normals) {
+  if (ext == ".ply") {
+    out << "ply\nformat binary_little_endian 1.0\nelement vertex " << m.points.size()
+        << "\nproperty float x\nproperty float y\nproperty float z\n";
+    if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
+    out << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (std::size_t i = 0; i < m.points.size(); ++i) {
+      for (double c : m.points[i]) put(out, float(c));
+      if (normals)
+        for (double c : m.normals[i]) put(out, float(c));
+    }
+    for (const auto& f : m.triangles) {
+      put(out, std::uint8_t(3));
+      for (int v : f) put(out, std::int32_t(v));
+    }
+  } else if (ext == ".obj") {
+    out << "# " << m.points.size() << " vertices, " << m.triangles.size() << " faces\n";
+    for (std::size_t i = 0; i < m.points.size(); ++i) {
+      out << "v " << m.points[i][0] << ' ' << m.points[i][1] << ' ' << m.points[i][2] << '\n';
+      if (normals) out << "vn " << m.normals[i][0] << ' ' << m.normals[i][1] << ' ' << m.normals[i][2] << '\n';
+    }
+    for (const auto& f : m.triangles) {
+      out << 'f';
+      for (int v : f) out << ' ' << v + 1 << (normals ? "//" + std::to_string(v + 1) : "");
+      out << '\n';
+    }
+  } else {  // .stl
+    out << std::string(80, ' ');
+    put(out, std::uint32_t(m.triangles.size()));
+    for (const auto& f : m.triangles) {
+      const auto &a = m.points[std::size_t(f[0])], &b = m.points[std::size_t(f[1])], &c = m.points[std::size_t(f[2])];
+      std::array<double, 3> n{(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+                              (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+                              (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
+      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+      for (double x : n) put(out, float(len > 0 ? x / len : 0));
+      for (const auto* p : {&a, &b, &c})
+        for (double x : *p) put(out, float(x));
+      put(out, std::uint16_t(0));
+    }
+  }
+}
+
 } // namespace
 
 SurfaceMesh read_surface(const std::string& path) {
@@ -158,10 +219,18 @@ void write_surface(const std::string& path, const SurfaceMesh& m) {
     vh.push_back(tm.add_vertex(TriMesh::Point(p[0], p[1], p[2])));
     if (normals) tm.set_normal(vh.back(), TriMesh::Normal(m.normals[i][0], m.normals[i][1], m.normals[i][2]));
   }
+  // OpenMesh logs on the terminal ("[STLWriter] : write binary file"); the
+  // library never prints.
   omerr().disable();
+  omlog().disable();
+  omout().disable();
   for (const auto& f : m.triangles) {
     auto fh = tm.add_face(vh[std::size_t(f[0])], vh[std::size_t(f[1])], vh[std::size_t(f[2])]);
-    if (!fh.is_valid()) throw Error("the mesh is not a manifold that " + ext + " output can hold", path);
+    if (!fh.is_valid()) {
+      write_triangle_set(out.stream(), ext, m, normals);
+      out.commit();
+      return;
+    }
   }
   OpenMesh::IO::Options opt;
   if (ext == ".ply" || ext == ".stl") opt += OpenMesh::IO::Options::Binary;

@@ -357,9 +357,9 @@ PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t m
 
 void write_planar_mesh(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt) {
   check_mesh(m, path);
-  const std::string ext = extension_of(path);
+  // "-": OFF on standard output, the one single-file planar mesh format.
+  const std::string ext = path == "-" ? std::string(".off") : extension_of(path);
   if (ext == ".ele") {
-    if (path == "-") throw Error("an .ele output needs a file name (it has a .node beside it)", path);
     write_node(replace_extension(path, ".node"), m);
     if (!m.segments.empty()) write_poly(replace_extension(path, ".poly"), m, false);
     write_ele(path, m);

@@ -255,13 +255,12 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
     std::size_t steps = 0;
     while (!mesher.is_refinement_done()) {
       mesher.step_by_step_refine_mesh();
-      if (++steps % 4096 == 0) {
-        if (opt.progress) opt.progress(cdt.number_of_vertices());
-        if (cdt.number_of_vertices() > opt.max_vertices) {
-          res.limit_reached = true;
-          break;
-        }
+      // Every step: a small --max-vertices must hold too (a step adds one vertex).
+      if (cdt.number_of_vertices() > opt.max_vertices) {
+        res.limit_reached = true;
+        break;
       }
+      if (++steps % 4096 == 0 && opt.progress) opt.progress(cdt.number_of_vertices());
     }
   }
 

@@ -35,12 +35,29 @@ std::string replace_extension(const std::string& path, const std::string& ext) {
   return path.substr(0, path.size() - old.size()) + ext;
 }
 
-static std::string make_temp(const std::string& dir_prefix, const std::string& ext) {
+const char* const kBinaryOnTerminal = "refusing to write binary data to a terminal (redirect it or give a file name)";
+
+void check_output_folder(const std::string& target) {
+  const auto slash = target.find_last_of('/');
+  if (slash == std::string::npos) return;  // the working folder
+  const std::string dir = slash == 0 ? "/" : target.substr(0, slash);
+  struct stat st;
+  if (::stat(dir.c_str(), &st) != 0) throw Error(errno == ENOENT ? "no such folder" : std::strerror(errno), target);
+  if (!S_ISDIR(st.st_mode)) throw Error("not a folder: " + dir, target);
+}
+
+// A new empty file dir_prefix.imgmesh-XXXXXXext; errors name `target`, the
+// file the user asked for.
+static std::string make_temp(const std::string& dir_prefix, const std::string& ext, const std::string& target) {
   std::string templ = dir_prefix + ".imgmesh-XXXXXX" + ext;
   std::vector<char> buf(templ.begin(), templ.end());
   buf.push_back('\0');
   int fd = mkstemps(buf.data(), static_cast<int>(ext.size()));
-  if (fd < 0) throw Error(std::string("cannot create a temporary file: ") + std::strerror(errno), templ);
+  if (fd < 0) {
+    const std::string why = std::strerror(errno);
+    if (target == "-") throw Error("cannot create a temporary file in " + templ.substr(0, templ.rfind('/')) + ": " + why, target);
+    throw Error("cannot create a file in its folder: " + why, target);
+  }
   // mkstemp makes the file 0600; the output gets what open() would give it.
   const mode_t mask = umask(0);
   umask(mask);
@@ -49,21 +66,60 @@ static std::string make_temp(const std::string& dir_prefix, const std::string& e
   return std::string(buf.data());
 }
 
+namespace {
+
+OutputGroup* current_group = nullptr;
+
+// The last step of a commit: the finished temporary file becomes the target.
+void move_into_place(const std::string& tmp, const std::string& target) {
+  if (target == "-") {
+    std::ifstream in(tmp, std::ios::binary);
+    if (!in) throw Error("output was not written", target);
+    std::cout << in.rdbuf();
+    std::cout.flush();
+    if (!std::cout) throw Error("write to standard output failed", target);
+    std::remove(tmp.c_str());
+  } else if (std::rename(tmp.c_str(), target.c_str()) != 0) {
+    throw Error(std::string("cannot move output into place: ") + std::strerror(errno), target);
+  }
+}
+
+} // namespace
+
+OutputGroup::OutputGroup() : outer_(current_group) { current_group = this; }
+
+OutputGroup::~OutputGroup() {
+  for (const Finished& f : finished_) std::remove(f.tmp.c_str());
+  current_group = outer_;
+}
+
+void OutputGroup::commit() {
+  std::size_t done = 0;
+  try {
+    for (; done < finished_.size(); ++done) move_into_place(finished_[done].tmp, finished_[done].target);
+  } catch (...) {
+    finished_.erase(finished_.begin(), finished_.begin() + std::ptrdiff_t(done));
+    throw;
+  }
+  finished_.clear();
+}
+
 AtomicOutput::AtomicOutput(std::string target, bool binary, const std::string& stdout_extension)
     : target_(std::move(target)) {
   if (target_.empty()) throw Error("empty output path");
   if (target_ == "-") {
     if (binary && isatty(STDOUT_FILENO))
-      throw UsageError("refusing to write binary data to a terminal (redirect it or give a file name)", "-");
+      throw UsageError(kBinaryOnTerminal, "-");
     const char* tmpdir = std::getenv("TMPDIR");
     std::string dir = (tmpdir && *tmpdir) ? tmpdir : "/tmp";
-    tmp_ = make_temp(dir + "/stdout", stdout_extension);
+    tmp_ = make_temp(dir + "/stdout", stdout_extension, target_);
   } else {
     auto slash = target_.find_last_of('/');
     std::string dir = slash == std::string::npos ? "" : target_.substr(0, slash + 1);
     std::string base = slash == std::string::npos ? target_ : target_.substr(slash + 1);
     if (base.empty()) throw Error("output path names a directory", target_);
-    tmp_ = make_temp(dir + base, extension_of(target_));
+    check_output_folder(target_);
+    tmp_ = make_temp(dir + base, extension_of(target_), target_);
   }
 }
 
@@ -87,17 +143,8 @@ void AtomicOutput::commit() {
     if (!out_) throw Error("write failed (disk full?)", target_);
     out_.close();
   }
-  if (target_ == "-") {
-    std::ifstream in(tmp_, std::ios::binary);
-    if (!in) throw Error("output was not written", target_);
-    std::cout << in.rdbuf();
-    std::cout.flush();
-    if (!std::cout) throw Error("write to standard output failed", target_);
-    std::remove(tmp_.c_str());
-  } else {
-    if (std::rename(tmp_.c_str(), target_.c_str()) != 0)
-      throw Error(std::string("cannot move output into place: ") + std::strerror(errno), target_);
-  }
+  if (current_group) current_group->finished_.push_back({tmp_, target_});
+  else move_into_place(tmp_, target_);
   committed_ = true;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace imgmesh {
 
@@ -26,7 +27,8 @@ public:
   bool is_stdout() const { return target_ == "-"; }
   // A text/binary stream on path(), opened on first use.
   std::ofstream& stream();
-  // Flush, check, and move into place. Throws Error on failure.
+  // Flush, check, and move into place (within an OutputGroup: hand the
+  // file to the group). Throws Error on failure.
   void commit();
 
 private:
@@ -34,6 +36,35 @@ private:
   std::ofstream out_;
   bool committed_ = false;
 };
+
+// All or nothing for the outputs of one run (an .ele with its .node, OUT
+// and --svg): while a group lives, AtomicOutput::commit() only finishes the
+// temporary file; the group's commit() moves them all into place (or copies
+// them to stdout) in the order they were committed, and a group that ends
+// without commit() removes them. cli::Tool::run holds one around the tool.
+class OutputGroup {
+public:
+  OutputGroup();  // the current group until it ends
+  ~OutputGroup();
+  OutputGroup(const OutputGroup&) = delete;
+  OutputGroup& operator=(const OutputGroup&) = delete;
+  void commit();  // throws Error
+
+private:
+  friend class AtomicOutput;
+  struct Finished {
+    std::string tmp, target;
+  };
+  std::vector<Finished> finished_;
+  OutputGroup* outer_;
+};
+
+// What AtomicOutput says when binary data would go to a terminal.
+extern const char* const kBinaryOnTerminal;
+
+// Throws Error naming `target` when the folder it would be written in does
+// not exist ("no such folder") or is not a folder.
+void check_output_folder(const std::string& target);
 
 // The extension of a path in lower case, with a leading dot, counting ".gz"
 // compound extensions (".nii.gz"); "" if none.

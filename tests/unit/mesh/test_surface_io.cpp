@@ -2,7 +2,11 @@
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
+#include <iterator>
+#include <vector>
 #include <set>
 #include <unistd.h>
 
@@ -70,4 +74,60 @@ TEST_CASE("bad surface files give an Error") {
   CHECK_THROWS_AS(read_surface(d), Error);
   CHECK_THROWS_AS(read_surface(temp_dir() + "/missing.ply"), Error);
   CHECK_THROWS_AS(write_surface(temp_dir() + "/x.vtk", tetra()), UsageError);
+}
+
+TEST_CASE("a triangle set that is not a manifold is still written as PLY, OBJ and STL") {
+  // Three triangles on one edge: OpenMesh's halfedge mesh cannot hold it.
+  SurfaceMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0.5, 1, 0}, {0.5, -1, 0}, {0.5, 0, 1.25}};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  auto f32 = [](const std::string& b, std::size_t at) {
+    float v;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+  };
+  SECTION("PLY: header counts, float coordinates, faces as given") {
+    write_surface(temp_dir() + "/nm.ply", m);
+    const std::string b = bytes(temp_dir() + "/nm.ply");
+    const auto body = b.find("end_header\n") + 11;
+    REQUIRE(body > 11);
+    CHECK(b.find("element vertex 5\n") != std::string::npos);
+    CHECK(b.find("element face 3\n") != std::string::npos);
+    REQUIRE(b.size() == body + 5 * 12 + 3 * 13);
+    CHECK(f32(b, body + 4 * 12 + 8) == 1.25f);  // z of the last point
+    const std::size_t face2 = body + 5 * 12 + 2 * 13;
+    CHECK(b[face2] == 3);
+    std::int32_t ids[3];
+    std::memcpy(ids, b.data() + face2 + 1, 12);
+    CHECK((ids[0] == 0 && ids[1] == 1 && ids[2] == 4));
+  }
+  SECTION("OBJ: every vertex and face, 1-based") {
+    write_surface(temp_dir() + "/nm.obj", m);
+    std::ifstream in(temp_dir() + "/nm.obj");
+    std::string line;
+    int v = 0;
+    std::vector<std::string> faces;
+    while (std::getline(in, line)) {
+      if (line.rfind("v ", 0) == 0) ++v;
+      if (line.rfind("f ", 0) == 0) faces.push_back(line);
+    }
+    CHECK(v == 5);
+    CHECK(faces == std::vector<std::string>{"f 1 2 3", "f 2 1 4", "f 1 2 5"});
+  }
+  SECTION("STL: the count and each triangle's corners") {
+    write_surface(temp_dir() + "/nm.stl", m);
+    const std::string b = bytes(temp_dir() + "/nm.stl");
+    REQUIRE(b.size() == 84 + 3 * 50);
+    std::uint32_t n;
+    std::memcpy(&n, b.data() + 80, 4);
+    CHECK(n == 3);
+    // Third triangle (0, 1, 4): normal (0, -1, 0), last corner (0.5, 0, 1.25).
+    const std::size_t t2 = 84 + 2 * 50;
+    CHECK(f32(b, t2 + 4) == -1.0f);
+    CHECK(f32(b, t2 + 12 + 24 + 8) == 1.25f);
+  }
 }
