@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   bool normals = false;
   tool.app.add_option("IN", in, "Implicit function file written by wc2implicit (- for stdin)")->required();
   tool.app.add_option("OUT", out, "Output surface: .off, .ply, .obj or .stl (- for OFF on stdout)")->required();
+  tool.data_output(out);
   tool.app.add_option("--ratio", opt.ratio, "Radius-edge ratio bound rho_0 of every triangle (>= (1+k)^2 = 1.1236)")
       ->type_name("R")
       ->capture_default_str();

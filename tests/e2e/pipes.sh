@@ -48,6 +48,7 @@ refused quadsmooth s.q.ele - --stats -
 refused implicit-eval box-f.nrrd p.txt --stats -            # values on stdout by default
 refused implicit-eval box-f.nrrd p.txt -o - --stats -
 refused meshinfo tet.off --stats -                           # the text report is on stdout
+refused implicit2mesh box-f.nrrd - --stats -
 # The check comes before the work: a missing input is not even opened.
 refused img2wc no-such-input.nrrd - --stats -
 
