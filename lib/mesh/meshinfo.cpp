@@ -149,12 +149,13 @@ Json mesh_report(const PolyMesh& m) {
   return j;
 }
 
-Json image_comparison(const MeshTopology& mesh, const MeshTopology& image) {
+Json image_comparison(const MeshTopology& mesh, const MeshTopology& image, const ComponentCorrespondence* by_place) {
   Json j = Json::object();
   j["components"] = image.components.size();
   j["euler"] = image.euler_list();
   j["manifold"] = image.manifold;
-  j["matches"] = same_topology(mesh, image);
+  j["matches"] = by_place ? by_place->matches() : same_topology(mesh, image);
+  if (by_place) j["correspondence"] = by_place->to_json();
   return j;
 }
 
@@ -217,6 +218,24 @@ std::string format_report(const Json& r) {
     o << "bdCA(X)     " << im.at("components").integer() << " component(s), euler";
     for (const Json& e : im.at("euler").items()) o << ' ' << e.integer();
     o << "; mesh " << (im.at("matches").boolean() ? "MATCHES" : "DOES NOT MATCH") << " component by component\n";
+    if (im.contains("correspondence")) {
+      int m = 0;
+      for (const Json& c : im.at("correspondence").at("mesh_components").items()) {
+        if (c.at("verdict").string() != "ok") {
+          o << "  mesh #" << m << ": " << c.at("verdict").string();
+          if (c.at("boundary_component").integer() >= 0)
+            o << " (on bdCA #" << c.at("boundary_component").integer() << ", euler " << c.at("euler").integer()
+              << " vs " << c.at("boundary_euler").integer() << ")";
+          o << "\n";
+        }
+        ++m;
+      }
+      int b = 0;
+      for (const Json& c : im.at("correspondence").at("boundary_components").items())
+        if (c.at("verdict").string() == "unmatched")
+          o << "  bdCA #" << b++ << ": unmatched (euler " << c.at("euler").integer() << ")\n";
+        else ++b;
+    }
   }
   return o.str();
 }
@@ -231,10 +250,18 @@ MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const Bin
   if (!it.manifold)
     throw Error("bdCA(X) is not a manifold: the image is not well-composed (run img2wc first)", image_name);
   const MeshTopology mt = mesh_topology(mesh.points.size(), mesh.faces);
-  r.report["image"] = image_comparison(mt, it);
   r.compared = true;
-  r.matches = r.report.at("image").at("matches").boolean();
   r.image_name = image_name;
+  if (image->dimension == 2 || image->size[2] == 1) {  // pixel loops: sorted Euler lists only
+    r.report["image"] = image_comparison(mt, it);
+    r.matches = r.report.at("image").at("matches").boolean();
+    return r;
+  }
+  // 3D: the certificate by correspondence; voxel_boundary_topology counted the same quads.
+  const VoxelBoundary vb = voxel_boundary(*image);
+  r.by_place = match_components(mt, mesh.points, *image, vb, mesh_topology(vb));
+  r.report["image"] = image_comparison(mt, it, &r.by_place);
+  r.matches = r.by_place.matches();
   return r;
 }
 
@@ -247,7 +274,8 @@ Json MeshInfo::to_json() const {
 
 std::string MeshInfo::failed_guarantee() const {
   if (matches) return "";
-  return "the mesh does not match bdCA(X) of " + image_name + " component by component";
+  const std::string why = by_place.failed_guarantee();
+  return "the mesh does not match bdCA(X) of " + image_name + " component by component" + (why.empty() ? "" : ": " + why);
 }
 
 } // namespace imgmesh

@@ -28,8 +28,11 @@ PolyMesh read_poly_mesh(const std::string& path);
 Json mesh_report(const PolyMesh& m);
 
 // The "image" section for --image: bdCA(X)'s components and whether the
-// mesh matches it component by component ("matches").
-Json image_comparison(const MeshTopology& mesh, const MeshTopology& image);
+// mesh matches it component by component ("matches"): by place when
+// by_place is given (its verdicts under "correspondence"), else by sorted
+// Euler characteristics.
+Json image_comparison(const MeshTopology& mesh, const MeshTopology& image,
+                      const ComponentCorrespondence* by_place = nullptr);
 
 // Human-readable lines for a report made by mesh_report.
 std::string format_report(const Json& report);
@@ -40,12 +43,15 @@ struct MeshInfo {
   Json report;  // mesh_report(), with "image" (image_comparison) when compared
   bool compared = false, matches = true;
   std::string image_name;
+  ComponentCorrespondence by_place;  // 3D images: the certificate by correspondence
   Json to_json() const;  // vertices, faces, components, euler; matches_image when compared
   std::string failed_guarantee() const;
 };
 
 // mesh_report of `mesh` and, when `image` is given, its comparison with
-// bdCA(X) of the image's foreground. Throws Error naming mesh_name (no face,
+// bdCA(X) of the image's foreground: for a 3D image by correspondence
+// (match_components, the mesh's points in the image's world coordinates); for
+// a 2D image by sorted Euler characteristics. Throws Error naming mesh_name (no face,
 // bad ids) or image_name (no foreground, not well-composed).
 MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image = nullptr,
                    const std::string& image_name = "");

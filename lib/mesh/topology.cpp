@@ -3,6 +3,7 @@
 #include "util/error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <string>
@@ -219,9 +220,19 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
       c.genus = c.orientable ? (x % 2 == 0 && x >= 0 ? x / 2 : -1) : x;
     }
   }
-  std::stable_sort(comps.begin(), comps.end(),
-                   [](const ComponentTopology& a, const ComponentTopology& b) { return a.faces > b.faces; });
-  t.components = std::move(comps);
+  // Largest first; component_of follows the new order.
+  std::vector<std::size_t> order(comps.size());
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return comps[a].faces > comps[b].faces; });
+  std::vector<int> rank(comps.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    rank[order[i]] = int(i);
+    t.components.push_back(comps[order[i]]);
+  }
+  t.component_of.assign(nv, -1);
+  for (std::size_t v = 0; v < nv; ++v)
+    if (used[v]) t.component_of[v] = rank[std::size_t(comp_id[vuf.find(v)])];
   t.closed = t.manifold = t.oriented = !t.components.empty();
   for (const auto& c : t.components) {
     t.euler += c.euler;
@@ -397,5 +408,142 @@ bool same_topology(const MeshTopology& a, const MeshTopology& b) { return a.sort
 MeshTopology mesh_topology(const SurfaceMesh& mesh) { return mesh_topology(mesh.points.size(), mesh.triangles); }
 
 MeshTopology voxel_boundary_topology(const FloatImage& g) { return mesh_topology(voxel_boundary(g)); }
+
+} // namespace imgmesh
+
+namespace imgmesh {
+
+namespace {
+
+// The bdCA(X) component a world point lies on, -1 when no boundary corner is
+// less than one lattice step away on every axis.
+int boundary_component_at(const Vec3& p, const Geometry& grid, const VoxelBoundary& b, const MeshTopology& bt) {
+  const Vec3 ci = grid.continuous_index(p);
+  double best = 0;
+  int found = -1;
+  long long lo[3], hi[3];
+  double l[3];
+  for (int a = 0; a < 3; ++a) {
+    l[a] = ci[a] + 0.5;  // corner i sits at voxel index i - 1/2
+    if (!(l[a] > -1 && l[a] < double(b.lattice[a]))) return -1;  // no corner within reach (or NaN)
+    lo[a] = std::max(0LL, (long long)std::ceil(l[a] - 1));
+    hi[a] = std::min((long long)b.lattice[a] - 1, (long long)std::floor(l[a] + 1));
+  }
+  for (long long k = lo[2]; k <= hi[2]; ++k)
+    for (long long j = lo[1]; j <= hi[1]; ++j)
+      for (long long i = lo[0]; i <= hi[0]; ++i) {
+        const double d[3] = {l[0] - double(i), l[1] - double(j), l[2] - double(k)};
+        if (std::abs(d[0]) >= 1 || std::abs(d[1]) >= 1 || std::abs(d[2]) >= 1) continue;
+        const std::uint64_t id = (std::uint64_t(k) * b.lattice[1] + std::uint64_t(j)) * b.lattice[0] + std::uint64_t(i);
+        const auto it = std::lower_bound(b.lattice_ids.begin(), b.lattice_ids.end(), id);
+        if (it == b.lattice_ids.end() || *it != id) continue;
+        const int c = bt.component_of[std::size_t(it - b.lattice_ids.begin())];
+        if (c < 0) continue;
+        double dist = 0;
+        for (int a = 0; a < 3; ++a) dist += (d[a] * grid.spacing[a]) * (d[a] * grid.spacing[a]);
+        if (found < 0 || dist < best) { best = dist; found = c; }
+      }
+  return found;
+}
+
+} // namespace
+
+ComponentCorrespondence match_components(const MeshTopology& mesh, const std::vector<Vec3>& points,
+                                         const Geometry& grid, const VoxelBoundary& boundary,
+                                         const MeshTopology& bt) {
+  if (mesh.component_of.size() != points.size() || bt.component_of.size() != boundary.lattice_ids.size())
+    throw Error("match_components: vertex labels do not fit the points");
+  ComponentCorrespondence r;
+  r.mesh.resize(mesh.components.size());
+  r.boundary.resize(bt.components.size());
+  for (std::size_t c = 0; c < mesh.components.size(); ++c) r.mesh[c].euler = mesh.components[c].euler;
+  for (std::size_t c = 0; c < bt.components.size(); ++c) r.boundary[c].euler = bt.components[c].euler;
+  // (mesh component, boundary component) per placed vertex, counted in runs.
+  std::vector<std::pair<int, int>> votes;
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    const int m = mesh.component_of[v];
+    if (m < 0) continue;
+    ++r.mesh[std::size_t(m)].vertices;
+    const int c = boundary_component_at(points[v], grid, boundary, bt);
+    if (c >= 0) votes.push_back({m, c});
+  }
+  std::sort(votes.begin(), votes.end());
+  for (std::size_t i = 0; i < votes.size();) {
+    std::size_t j = i;
+    while (j < votes.size() && votes[j] == votes[i]) ++j;
+    auto& ms = r.mesh[std::size_t(votes[i].first)];
+    ms.placed += j - i;
+    if (j - i > ms.votes) { ms.votes = j - i; ms.boundary = votes[i].second; }
+    i = j;
+  }
+  for (std::size_t m = 0; m < r.mesh.size(); ++m)
+    if (r.mesh[m].boundary >= 0) r.boundary[std::size_t(r.mesh[m].boundary)].matched_by.push_back(int(m));
+  for (auto& b : r.boundary) b.verdict = b.matched_by.empty() ? "unmatched" : b.matched_by.size() > 1 ? "matched twice" : "ok";
+  for (auto& m : r.mesh) {
+    if (m.boundary < 0) m.verdict = "unplaced";
+    else if (r.boundary[std::size_t(m.boundary)].matched_by.size() > 1) m.verdict = "matched twice";
+    else if (m.euler != r.boundary[std::size_t(m.boundary)].euler) m.verdict = "euler differs";
+    else m.verdict = "ok";
+  }
+  return r;
+}
+
+bool ComponentCorrespondence::matches() const {
+  for (const auto& m : mesh) if (m.verdict != "ok") return false;
+  for (const auto& b : boundary) if (b.verdict != "ok") return false;
+  return true;
+}
+
+Json ComponentCorrespondence::to_json() const {
+  Json j = Json::object();
+  j["matches"] = matches();
+  Json ms = Json::array();
+  for (const auto& m : mesh) {
+    Json o = Json::object();
+    o["boundary_component"] = m.boundary;
+    o["euler"] = m.euler;
+    if (m.boundary >= 0) o["boundary_euler"] = boundary[std::size_t(m.boundary)].euler;
+    o["vertices"] = m.vertices;
+    o["placed"] = m.placed;
+    o["votes"] = m.votes;
+    o["verdict"] = m.verdict;
+    ms.push_back(o);
+  }
+  j["mesh_components"] = ms;
+  Json bs = Json::array();
+  for (const auto& b : boundary) {
+    Json o = Json::object();
+    o["euler"] = b.euler;
+    o["matched_by"] = b.matched_by;
+    o["verdict"] = b.verdict;
+    bs.push_back(o);
+  }
+  j["boundary_components"] = bs;
+  return j;
+}
+
+std::string ComponentCorrespondence::failed_guarantee() const {
+  std::string s;
+  auto add = [&](const std::string& x) { s += (s.empty() ? "" : "; ") + x; };
+  for (std::size_t i = 0; i < mesh.size(); ++i) {
+    const auto& m = mesh[i];
+    const std::string name = "mesh component " + std::to_string(i);
+    if (m.verdict == "unplaced") add(name + ": no vertex lies on bdCA(X)");
+    else if (m.verdict == "euler differs")
+      add(name + ": euler " + std::to_string(m.euler) + ", its bdCA(X) component " + std::to_string(m.boundary) +
+          " has " + std::to_string(boundary[std::size_t(m.boundary)].euler));
+  }
+  for (std::size_t i = 0; i < boundary.size(); ++i) {
+    const auto& b = boundary[i];
+    const std::string name = "bdCA(X) component " + std::to_string(i);
+    if (b.verdict == "unmatched") add(name + " (euler " + std::to_string(b.euler) + "): no mesh component");
+    else if (b.verdict == "matched twice") {
+      std::string who;
+      for (int m : b.matched_by) who += (who.empty() ? "" : ", ") + std::to_string(m);
+      add(name + ": matched by mesh components " + who);
+    }
+  }
+  return s;
+}
 
 } // namespace imgmesh

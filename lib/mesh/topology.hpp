@@ -11,6 +11,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace imgmesh {
@@ -31,6 +32,7 @@ struct ComponentTopology {
 
 struct MeshTopology {
   std::vector<ComponentTopology> components;  // largest (by faces) first
+  std::vector<int> component_of;              // per vertex: its component, -1 if in no face (empty for 2D pixel loops)
   std::size_t isolated_vertices = 0;          // in no face
   std::size_t boundary_edges = 0, nonmanifold_edges = 0, nonmanifold_vertices = 0;
   std::size_t inconsistent_edges = 0;         // shared edge traversed the same way twice
@@ -83,5 +85,39 @@ MeshTopology voxel_boundary_topology(const BinaryImage& img);
 
 // Same components, matched by count and sorted Euler characteristics.
 bool same_topology(const MeshTopology& a, const MeshTopology& b);
+
+// The topology certificate by correspondence (thesis Thm 7.3.1, component by
+// component): each mesh component is matched by place to the component of
+// bdCA(X) it lies on, the match must be one to one, and each matched pair
+// must have the same Euler characteristic. A vertex lies on the component of
+// the boundary corner nearest to it (world distance) among the corners less
+// than one lattice step away on every axis; S lies in the active cubes,
+// whose centres are exactly the boundary corners, so a vertex on S always
+// finds one. A mesh component goes to the boundary component most of its
+// placed vertices lie on (ties: the lower index).
+struct ComponentCorrespondence {
+  struct MeshSide {
+    int boundary = -1;            // matched bdCA(X) component, -1 when no vertex is placed
+    std::size_t vertices = 0, placed = 0, votes = 0;  // votes: placed vertices on `boundary`
+    long long euler = 0;
+    std::string verdict;          // "ok", "unplaced", "matched twice", "euler differs"
+  };
+  struct BoundarySide {
+    long long euler = 0;
+    std::vector<int> matched_by;  // mesh components
+    std::string verdict;          // "ok", "unmatched", "matched twice"
+  };
+  std::vector<MeshSide> mesh;          // as MeshTopology::components
+  std::vector<BoundarySide> boundary;  // as bdCA(X)'s components
+  bool matches() const;                // every verdict "ok"
+  Json to_json() const;
+  std::string failed_guarantee() const;  // each failing component and why
+};
+// points: the mesh's vertices in world coordinates; grid: the image's (the
+// lattice of `boundary` is its voxel corners); boundary_topology =
+// mesh_topology(boundary).
+ComponentCorrespondence match_components(const MeshTopology& mesh, const std::vector<Vec3>& points,
+                                         const Geometry& grid, const VoxelBoundary& boundary,
+                                         const MeshTopology& boundary_topology);
 
 } // namespace imgmesh
