@@ -1,7 +1,8 @@
 #!/bin/bash
 # meshinfo end to end: hand-made closed and open surfaces with several
 # components (OFF), a planar quad mesh (.ele), --json keys, --image against a
-# hand-written well-composed NRRD, and bad input.
+# hand-written well-composed NRRD, the certificate by correspondence on a
+# ball and a torus meshed by the real tools (and that mesh mirrored), and bad input.
 set -u
 mkdir -p "$TMP"
 cd "$TMP" || exit 1
@@ -77,6 +78,52 @@ grep -q "MATCHES" img.txt || fail "no match line"
 "$M" cube.off --image edge.nrrd 2> edge.err > /dev/null; rc=$?
 [ $rc = 1 ] || fail "non-well-composed image: exit $rc"
 grep -q "well-composed" edge.err || fail "message does not say well-composed"
+
+# The certificate by correspondence through the real tools: a ball around
+# x = 10 and a solid torus around x = 29 in a 40 x 24 x 24 grid. The mesh
+# passes; mirrored in x about the grid's centre (faces flipped, so the
+# sphere sits where the torus is) it has the same sorted Euler list and must
+# be refused.
+for t in img2wc wc2implicit implicit2mesh; do [ -x "$BIN/$t" ] || fail "no $BIN/$t: the pipeline case needs it"; done
+python3 - <<'P'
+import math
+nx, ny, nz = 40, 24, 24
+b = bytearray()
+for z in range(nz):
+    for y in range(ny):
+        for x in range(nx):
+            ball = (x - 10) ** 2 + (y - 11.5) ** 2 + (z - 11.5) ** 2 <= 36
+            torus = (math.hypot(x - 29, y - 11.5) - 6) ** 2 + (z - 11.5) ** 2 <= 2.5 ** 2
+            b.append(1 if ball or torus else 0)
+open('two.nrrd', 'wb').write(b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 40 24 24\nencoding: raw\n\n" + bytes(b))
+P
+"$BIN/img2wc" -q two.nrrd two-wc.nrrd && "$BIN/wc2implicit" -q two-wc.nrrd two-f.nrrd \
+    && "$BIN/implicit2mesh" -q two-f.nrrd two.off || fail "pipeline on two.nrrd"
+"$M" -q --json two.off --image two-wc.nrrd > two.json; rc=$?
+[ $rc = 0 ] || fail "the right mesh of a ball and a torus: exit $rc"
+[ "$(comps two.off)" = "2 0,2" ] || fail "two.off: $(comps two.off)"
+[ "$(tr -d ' \n' < two.json | grep -o '"verdict":"ok"' | wc -l)" = 4 ] || fail "two.off: not 4 ok verdicts"
+python3 - two.off two-wc.nrrd > swapped.off <<'P'
+import re, sys
+# Mirror an OFF mesh in x about the centre of an axis-aligned NRRD grid; flip faces.
+head = open(sys.argv[2], 'rb').read().split(b'\n\n', 1)[0].decode()
+n = int(re.search(r'sizes: *(\d+)', head).group(1))
+o = float(re.search(r'space origin: *\(([^,]*),', head).group(1))
+s = float(re.search(r'space directions: *\(([^,]*),', head).group(1))
+c = o + s * (n - 1) / 2
+lines = open(sys.argv[1]).read().split('\n')
+nv, nf = map(int, lines[1].split()[:2])
+out = lines[:2]
+out += [' '.join([repr(2 * c - float(l.split()[0]))] + l.split()[1:]) for l in lines[2:2 + nv]]
+out += [' '.join([l.split()[0]] + l.split()[1:][::-1]) for l in lines[2 + nv:2 + nv + nf]]
+print('\n'.join(out))
+P
+[ "$(comps swapped.off)" = "2 0,2" ] || fail "swapped.off: $(comps swapped.off)"
+"$M" swapped.off --image two-wc.nrrd > swapped.txt 2> swapped.err; rc=$?
+[ $rc = 3 ] || fail "the swapped mesh: exit $rc, expected 3"
+grep -q "DOES NOT MATCH" swapped.txt || fail "swapped: no mismatch line"
+grep -q "euler differs" swapped.txt || fail "swapped: no per-component verdict"
+grep -q "mesh component .: euler 2, its bdCA(X) component . has 0" swapped.err || fail "swapped: message $(cat swapped.err)"
 
 # Bad input: truncated, missing, unknown format, usage.
 head -c 40 cube.off > trunc.off
