@@ -28,7 +28,8 @@ expect_status 2 "$tool" in.nrrd out.off --roughness 0.2
 expect_status 2 "$tool" in.nrrd out.off --max-distance -1
 expect_status 1 "$tool" missing.nrrd out.off
 expect_status 1 "$tool" "$DATA/bunny00-96.nrrd" out.off    # not an implicit function file
-grep -q "implicit" err.txt || fail "unclear message for a non-implicit file"
+# The reason itself: every message of the tool starts with "implicit2mesh:".
+grep -q "not an implicit function file" err.txt || { cat err.txt >&2; fail "a non-implicit file is not named as such"; }
 : > empty.nrrd
 expect_status 1 "$tool" empty.nrrd out.off
 [ ! -e out.off ] || fail "output written on error"
