@@ -267,6 +267,9 @@ TEST_CASE("two (C1) sharing a background point take one voxel", "[wellcomposed]"
     opt.seed = seed;
     const auto r = make_well_composed(img, opt);
     check_result(img, r, RepairMode::Add);
+    CHECK(r.changed == 1);
+    CHECK(r.created == 0);
+    CHECK(out_at(r, 2, 2, 2) == 1);
   }
 }
 
