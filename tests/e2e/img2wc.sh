@@ -124,12 +124,16 @@ brain=$DATA/brain-kmeans-labels.nii.gz
 # 6. Bad input: one line on stderr, exit 1 or 2, no output file.
 bad() {  # expected-exit description args...
   local want=$1 what=$2; shift 2
-  rm -f "$TMP/bad.mha"
-  "$W" "$@" 2>"$TMP/bad.err" >/dev/null; local rc=$?
+  rm -f "$TMP/bad.mha" "$TMP"/bad.*imgmesh-*
+  # Temporary files are TARGET.imgmesh-XXXXXX.EXT beside the target, and
+  # $TMPDIR/stdout.imgmesh-XXXXXX.EXT for -; $TMPDIR is an empty folder here.
+  rm -rf "$TMP/tmpdir"; mkdir "$TMP/tmpdir"
+  TMPDIR="$TMP/tmpdir" "$W" "$@" 2>"$TMP/bad.err" >"${BAD_STDOUT:-/dev/null}"; local rc=$?
   [[ $rc -eq $want ]] || t "$what: exit $rc, want $want"
   [[ $(wc -l <"$TMP/bad.err") -eq 1 ]] || t "$what: stderr not one line: $(cat "$TMP/bad.err")"
   [[ ! -e "$TMP/bad.mha" ]] || t "$what: output written"
-  ls "$TMP" | grep -q '^bad.*tmp' && t "$what: temporary file left"
+  ! ls -A "$TMP" | grep '^bad\..*imgmesh-' || t "$what: temporary file left beside the target"
+  [[ -z $(ls -A "$TMP/tmpdir") ]] || t "$what: temporary file left in \$TMPDIR: $(ls -A "$TMP/tmpdir")"
   return 0
 }
 bad 1 "missing file" "$TMP/nope.nrrd" "$TMP/bad.mha"
@@ -150,6 +154,10 @@ bad 2 "no OUT" "$DATA/bunny00-96.nrrd"
 bad 2 "--label with --threshold" "$DATA/bunny00-96.nrrd" "$TMP/bad.mha" --label 1 --threshold 1
 bad 2 "OUT and --stats both stdout" "$DATA/bunny00-96.nrrd" - --stats -
 bad 2 "unknown output format" "$DATA/bunny00-96.nrrd" "$TMP/bad.xyz"
+# Write failures after the work is done: the temporary file must go.
+mkdir -p "$TMP/bad.dir.mha"
+bad 1 "output path is a folder" "$DATA/bunny00-96.nrrd" "$TMP/bad.dir.mha"
+BAD_STDOUT=/dev/full bad 1 "stdout is /dev/full" "$DATA/bunny00-96.nrrd" -
 
 echo "img2wc e2e: $([[ $fail -eq 0 ]] && echo ok || echo FAILED)"
 exit $fail

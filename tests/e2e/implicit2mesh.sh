@@ -28,7 +28,8 @@ expect_status 2 "$tool" in.nrrd out.off --roughness 0.2
 expect_status 2 "$tool" in.nrrd out.off --max-distance -1
 expect_status 1 "$tool" missing.nrrd out.off
 expect_status 1 "$tool" "$DATA/bunny00-96.nrrd" out.off    # not an implicit function file
-grep -q "implicit" err.txt || fail "unclear message for a non-implicit file"
+# The reason itself: every message of the tool starts with "implicit2mesh:".
+grep -q "not an implicit function file" err.txt || { cat err.txt >&2; fail "a non-implicit file is not named as such"; }
 : > empty.nrrd
 expect_status 1 "$tool" empty.nrrd out.off
 [ ! -e out.off ] || fail "output written on error"
@@ -49,6 +50,35 @@ grep -q '"restricted_delaunay_violations": 0' stats.json || fail "stats: restric
 "$check" stdout.off bunny-wc.nrrd 2 || fail "OFF on stdout: topology"
 "$tool" -q bunny-f.nrrd bunny-n.ply --normals --max-distance 0.02
 "$check" bunny-n.ply bunny-wc.nrrd 2 || fail "bunny with normals and --max-distance"
+# The normals read back: every one unit and on the outer side of the
+# (outward, checked above) triangles around its vertex.
+python3 - bunny-n.ply <<'PY' || fail "bunny-n.ply: normals not unit or not outward"
+import math, struct, sys
+b = open(sys.argv[1], 'rb').read()
+h = b[:b.index(b'end_header\n') + 11].decode().split('\n')
+assert 'format binary_little_endian 1.0' in h and h.count('property float nx') == 1
+nv = int(next(l for l in h if l.startswith('element vertex')).split()[2])
+nf = int(next(l for l in h if l.startswith('element face')).split()[2])
+at = len('\n'.join(h))
+V = [struct.unpack_from('<6f', b, at + 24 * i) for i in range(nv)]
+at += 24 * nv
+acc = [[0.0, 0.0, 0.0] for _ in range(nv)]
+for k in range(nf):
+    assert b[at] == 3
+    i, j, l = struct.unpack_from('<3i', b, at + 1); at += 13
+    p, q, r = V[i], V[j], V[l]
+    u = [q[m] - p[m] for m in range(3)]; w = [r[m] - p[m] for m in range(3)]
+    n = (u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0])
+    for v in (i, j, l):
+        for m in range(3): acc[v][m] += n[m]
+assert at == len(b)
+bad = 0
+for v, a in zip(V, acc):
+    n = v[3:]
+    if abs(math.hypot(*n) - 1) > 1e-5: sys.exit('normal not unit: %r' % (n,))
+    if sum(n[m] * a[m] for m in range(3)) <= 0: bad += 1
+sys.exit('%d of %d normals point inward' % (bad, nv) if bad else 0)
+PY
 
 # The FacetCycle checks run on --threads threads: same mesh for 1 and 2.
 "$tool" -q bunny-f.nrrd bunny-t1.off --threads 1

@@ -79,9 +79,30 @@ N
 check_stats sq.json
 [ "$(stat components sq.json)" = 2 ] || fail "sq: expected 2 components"
 [ "$(stat triangles sq.json)" = 12 ] || fail "sq: 12 triangles"
-# The interior loop is kept: the output .poly has the loop's marker 2 on
-# segments that chain 5-6-7-8.
-grep -q " 2$" sq.q.poly || fail "sq.q.poly: constraint marker lost"
+# The constraints are kept with their markers: for each marker, every output
+# segment lies on an input segment of that marker and their lengths add up
+# to the input's (the square's sides 1, the interior loop 5-6-7-8 2).
+python3 - sq.node sq.poly sq.q.node sq.q.poly <<'PY' || fail "sq.q.poly: constraint segments or markers lost"
+import math, sys
+def rows(path):
+    return [l.split('#', 1)[0].split() for l in open(path) if l.split('#', 1)[0].split()]
+def segments(node, poly):
+    N = rows(node); pts = {r[0]: (float(r[1]), float(r[2])) for r in N[1:1 + int(N[0][0])]}
+    P = rows(poly); k = 1 + int(P[0][0]); ns = int(P[k][0])
+    return [(pts[r[1]], pts[r[2]], int(r[3])) for r in P[k + 1:k + 1 + ns]]
+def on(p, a, b):  # p on the closed segment ab
+    ux, uy, vx, vy = b[0] - a[0], b[1] - a[1], p[0] - a[0], p[1] - a[1]
+    l2 = ux * ux + uy * uy; t = (ux * vx + uy * vy) / l2
+    return abs(ux * vy - uy * vx) <= 1e-9 * l2 and -1e-9 <= t <= 1 + 1e-9
+inp, out = segments(*sys.argv[1:3]), segments(*sys.argv[3:5])
+ok = True
+for m in sorted({s[2] for s in inp}):
+    I = [s for s in inp if s[2] == m]; O = [s for s in out if s[2] == m]
+    ok &= all(any(on(a, c, d) and on(b, c, d) for c, d, _ in I) for a, b, _ in O)
+    ok &= abs(sum(math.dist(a, b) for a, b, _ in O) - sum(math.dist(a, b) for a, b, _ in I)) < 1e-9
+ok &= {s[2] for s in out} == {s[2] for s in inp} == {1, 2}
+sys.exit(0 if ok else 1)
+PY
 # Regions carried: both attributes 1 and 2 appear on quads.
 grep -v '^ *#' sq.q.ele | tail -n +2 | awk 'NF >= 6 { seen[$6] = 1 } END { exit !(seen[1] && seen[2]) }' \
   || fail "region attributes not carried"

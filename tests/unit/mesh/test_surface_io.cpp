@@ -2,6 +2,8 @@
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -27,15 +29,19 @@ SurfaceMesh tetra() {
   m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
   return m;
 }
-// Triangles as sets of point coordinates, independent of vertex numbering.
-std::multiset<std::multiset<std::array<float, 3>>> shape(const SurfaceMesh& m) {
-  std::multiset<std::multiset<std::array<float, 3>>> s;
+// Triangles as cycles of point coordinates, independent of vertex numbering
+// and of the first vertex, but not of the winding: each cycle starts at its
+// smallest point and keeps its order, so a flipped triangle compares unequal.
+using Corner = std::array<float, 3>;
+std::multiset<std::array<Corner, 3>> shape(const SurfaceMesh& m) {
+  std::multiset<std::array<Corner, 3>> s;
   for (const auto& t : m.triangles) {
-    std::multiset<std::array<float, 3>> tri;
-    for (int v : t) {
-      const auto& p = m.points[std::size_t(v)];
-      tri.insert({float(p[0]), float(p[1]), float(p[2])});
+    std::array<Corner, 3> tri;
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = m.points[std::size_t(t[k])];
+      tri[k] = {float(p[0]), float(p[1]), float(p[2])};
     }
+    std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
     s.insert(tri);
   }
   return s;

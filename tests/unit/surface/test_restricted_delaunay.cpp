@@ -5,6 +5,7 @@
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
 
 using namespace imgmesh;
@@ -104,13 +105,36 @@ TEST_CASE("world geometry: anisotropic spacing, rotated and reflected axes") {
   Geometry g = grid(17, 17, 13);
   g.spacing = {1.0, 1.0, 1.5};
   g.origin = {-5, 3, 2};
-  g.direction = {0, 1, 0, 1, 0, 0, 0, 0, 1};  // swaps x and y: a reflection
+  // D = Rz(30 deg) Rx(40 deg) S, S swapping x and y (a reflection): D is not
+  // symmetric, so D and D^T (its inverse) differ and a mix-up shows.
+  const double a = M_PI / 6, b = 2 * M_PI / 9;
+  const double rz[9] = {std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1};
+  const double rx[9] = {1, 0, 0, 0, std::cos(b), -std::sin(b), 0, std::sin(b), std::cos(b)};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double rij = 0;  // (Rz Rx)_ij
+      for (int k = 0; k < 3; ++k) rij += rz[3 * i + k] * rx[3 * k + j];
+      g.direction[3 * i + (j == 0 ? 1 : j == 1 ? 0 : 2)] = rij;  // times S: columns 0 and 1 swapped
+    }
+  REQUIRE(std::abs(g.direction[1] - g.direction[3]) > 0.1);
   const Vec3 c = g.world(8.3, 7.9, 6.2);
   FunctionSurface s(g, [&](const Vec3& p) { return sphere(p, c, 5.3); });
   RestrictedDelaunayOptions o;
   auto r = restricted_delaunay_mesh(s, o);
   check_guarantees(s, r, o.ratio);
   CHECK(test::winding_number(r.mesh, c) == Approx(1).margin(1e-6));  // outward orientation
+  // Normals from grad f in world coordinates: unit and along p - c.
+  add_normals(s, r.mesh);
+  REQUIRE(r.mesh.normals.size() == r.mesh.points.size());
+  double worst = 1;
+  for (std::size_t k = 0; k < r.mesh.points.size(); ++k) {
+    const Vec3& p = r.mesh.points[k];
+    const Vec3& n = r.mesh.normals[k];
+    const double l = std::sqrt(test::dist2(p, c));
+    CHECK(n[0] * n[0] + n[1] * n[1] + n[2] * n[2] == Approx(1).margin(1e-9));
+    worst = std::min(worst, (n[0] * (p[0] - c[0]) + n[1] * (p[1] - c[1]) + n[2] * (p[2] - c[2])) / l);
+  }
+  CHECK(worst > 0.999);
 }
 
 TEST_CASE("limits: refused parameters, max points, deterministic output") {

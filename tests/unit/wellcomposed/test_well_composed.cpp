@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cstdint>
 #include <random>
 
@@ -79,7 +80,8 @@ void check_result(const BinaryImage& in, const WellComposedResult& r, RepairMode
   for (int a = 0; a < 3; ++a) REQUIRE(w0[a] == Approx(w1[a]));
   // X subset of X' (add) or X' subset of X (remove); |P| = changed voxels;
   // the added border (if any) stays background.
-  std::size_t diff = 0, out_fg = 0, in_fg = 0;
+  std::size_t diff = 0, out_fg = 0;
+  std::array<std::size_t, 3> touches_before{0, 0, 0}, touches_after{0, 0, 0};
   for (std::size_t z = 0; z < in.size[2]; ++z)
     for (std::size_t y = 0; y < in.size[1]; ++y)
       for (std::size_t x = 0; x < in.size[0]; ++x) {
@@ -88,8 +90,13 @@ void check_result(const BinaryImage& in, const WellComposedResult& r, RepairMode
         if (a != b) ++diff;
         if (r.mode_used == RepairMode::Add) REQUIRE(b >= a);
         if (r.mode_used == RepairMode::Remove) REQUIRE(b <= a);
-        in_fg += a;
         out_fg += b;
+        const std::size_t p[3] = {x, y, z};
+        for (int k = 0; k < 3; ++k)
+          if (a && (in.dimension == 3 || k < 2)) {
+            if (p[k] == 0) touches_before[k] = 1;
+            if (p[k] + 1 == in.size[k]) touches_after[k] = 1;
+          }
       }
   std::size_t total_fg = 0;
   for (auto v : r.image.data) total_fg += v;
@@ -97,8 +104,9 @@ void check_result(const BinaryImage& in, const WellComposedResult& r, RepairMode
   REQUIRE(r.changed == diff);
   if (mode != RepairMode::Min) REQUIRE(r.mode_used == mode);
   if (bf_in.total() == 0) REQUIRE(diff == 0);
-  // Padding exactly where foreground touches the border.
-  (void)in_fg;
+  // Padding exactly where the input's foreground touches the border (2D: x, y).
+  REQUIRE(r.padded_before == touches_before);
+  REQUIRE(r.padded_after == touches_after);
 }
 
 } // namespace
@@ -259,6 +267,9 @@ TEST_CASE("two (C1) sharing a background point take one voxel", "[wellcomposed]"
     opt.seed = seed;
     const auto r = make_well_composed(img, opt);
     check_result(img, r, RepairMode::Add);
+    CHECK(r.changed == 1);
+    CHECK(r.created == 0);
+    CHECK(out_at(r, 2, 2, 2) == 1);
   }
 }
 
