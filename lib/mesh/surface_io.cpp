@@ -67,6 +67,10 @@ SurfaceMesh read_off(const std::string& path) {
   const long nv = t.get<long>("the vertex count"), nf = t.get<long>("the face count");
   t.get<long>("the edge count");
   if (nv < 0 || nf < 0 || nv > 1L << 31 || nf > 1L << 31) t.fail("bad counts");
+  // A vertex is 3 numbers and a face 4, each at least a character and a
+  // blank: counts the text cannot hold are refused before allocating.
+  if (3 * nv + 4 * nf > (long(text.size()) + 1) / 2)
+    t.fail("truncated: the counts announce more vertices and faces than the file holds");
   SurfaceMesh m;
   m.points.resize(std::size_t(nv));
   for (auto& p : m.points)
