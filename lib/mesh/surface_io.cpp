@@ -11,6 +11,8 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <cmath>
+#include <fstream>
+#include <set>
 #include <sstream>
 
 namespace imgmesh {
@@ -94,6 +96,54 @@ SurfaceMesh read_off(const std::string& path) {
   return m;
 }
 
+// OpenMesh's PLY reader trusts its header: without "end_header" it never
+// stops, a property before any element crashes it, and it reserves what the
+// counts say. So the header is checked here first against the PLY grammar,
+// and every element count against the bytes of the file.
+void check_ply_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const long long file_size = in.tellg();
+  in.seekg(0);
+  static const std::set<std::string> types{"char",  "uchar",  "short",  "ushort", "int",     "uint",
+                                           "float", "double", "int8",   "uint8",  "int16",   "uint16",
+                                           "int32", "uint32", "float32", "float64"};
+  std::string line;
+  int number = 0;
+  bool element = false;
+  auto fail = [&](const std::string& what) {
+    throw Error("cannot read the mesh: PLY header line " + std::to_string(number) + ": " + what, path);
+  };
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string x; words >> x;) w.push_back(x);
+    if (number == 1) {
+      if (w.size() != 1 || w[0] != "ply") fail("not a PLY file (no 'ply' line)");
+      continue;
+    }
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "end_header") return;
+    if (w[0] == "format") {
+      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+        fail("bad format line");
+    } else if (w[0] == "element") {
+      long long n = -1;
+      if (w.size() != 3 || !(std::istringstream(w[2]) >> n) || n < 0) fail("bad element line");
+      if (n > file_size) fail("element count " + w[2] + " beyond the " + std::to_string(file_size) + " bytes of the file");
+      element = true;
+    } else if (w[0] == "property") {
+      if (!element) fail("a property before any element");
+      const bool list = w.size() == 5 && w[1] == "list" && types.count(w[2]) && types.count(w[3]);
+      if (!list && (w.size() != 3 || !types.count(w[1]))) fail("bad property line");
+    } else {
+      fail("unknown keyword '" + w[0] + "'");
+    }
+  }
+  fail("no end_header");
+}
+
 void write_off(std::ostream& out, const SurfaceMesh& m) {
   out.precision(17);
   out << "OFF\n" << m.points.size() << ' ' << m.triangles.size() << " 0\n";
@@ -112,6 +162,7 @@ SurfaceMesh read_surface(const std::string& path) {
     std::ifstream probe(path);
     if (!probe) throw Error("cannot open", path);
   }
+  if (ext == ".ply") check_ply_header(path);
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   omerr().disable();
