@@ -235,7 +235,7 @@ struct Opened {
   ImageInfo info;
 };
 
-Opened open_image(const std::string& path, const std::string& file) {
+Opened open_image_itk(const std::string& path, const std::string& file) {
   register_factories();
   {
     std::ifstream probe(file, std::ios::binary);
@@ -302,6 +302,16 @@ Opened open_image(const std::string& path, const std::string& file) {
     if (!(g.spacing[i] > 0) || !std::isfinite(g.spacing[i]))
       throw Error("spacing must be positive and finite", path);
   return o;
+}
+
+// ITK throws from its queries too (an unknown component type, ...): those
+// come out as Error naming the file, like the reader's own.
+Opened open_image(const std::string& path, const std::string& file) {
+  try {
+    return open_image_itk(path, file);
+  } catch (const itk::ExceptionObject& e) {
+    throw Error(itk_message(e), path);
+  }
 }
 
 // Calls f(i, value) for every voxel i, value as double (exact for every

@@ -144,6 +144,41 @@ void check_ply_header(const std::string& path) {
   fail("no end_header");
 }
 
+// OpenMesh's OBJ reader asserts (aborts) on a face without a vertex it can
+// use: every face is checked here first to be at least 3 references
+// "v[/vt][/vn]" to vertices defined before it (1-based, or negative from
+// the last one).
+void check_obj_faces(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line, word;
+  long long vertices = 0;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream words(line);
+    if (!(words >> word)) continue;
+    if (word == "v") ++vertices;
+    if (word != "f") continue;
+    int refs = 0;
+    while (words >> word) {
+      const std::string v = word.substr(0, word.find('/'));
+      long long id = 0;
+      std::size_t used = 0;
+      try {
+        id = std::stoll(v, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != v.size() || id == 0 || id > vertices || -id > vertices)
+        throw Error("cannot read the mesh: line " + std::to_string(number) + ": bad vertex reference '" + word + "'",
+                    path);
+      ++refs;
+    }
+    if (refs < 3)
+      throw Error("cannot read the mesh: line " + std::to_string(number) + ": a face needs 3 vertices", path);
+  }
+}
+
 void write_off(std::ostream& out, const SurfaceMesh& m) {
   out.precision(17);
   out << "OFF\n" << m.points.size() << ' ' << m.triangles.size() << " 0\n";
@@ -163,6 +198,7 @@ SurfaceMesh read_surface(const std::string& path) {
     if (!probe) throw Error("cannot open", path);
   }
   if (ext == ".ply") check_ply_header(path);
+  if (ext == ".obj") check_obj_faces(path);
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   omerr().disable();
