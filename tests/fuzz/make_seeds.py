@@ -27,13 +27,13 @@ def nrrd(sizes, typ="uint8", enc="raw", payload=b"", extra=""):
 cube = bytes([0] * 13 + [1] + [0] * 13)  # 3x3x3, the centre voxel
 # images: selector 0 .nrrd, 1 .mha, 2 .nii, 3 .nii.gz, 4 .png, 5 stdin
 put("image", "nrrd-raw", b"\0" + nrrd([3, 3, 3], payload=cube))
-put("image", "nrrd-gzip", b"\0" + nrrd([3, 3, 3], enc="gzip", payload=gzip.compress(cube)))
+put("image", "nrrd-gzip", b"\0" + nrrd([3, 3, 3], enc="gzip", payload=gzip.compress(cube, mtime=0)))
 put("image", "nrrd-float", b"\0" + nrrd([2, 2], typ="float", payload=struct.pack("<4f", 0, 1.5, float("nan"), 2)))
 put("image", "nrrd-int16-endian", b"\0" + nrrd([2, 2, 1], typ="int16", payload=struct.pack(">4h", 0, 3, -2, 7),
                                              extra="endian: big\nspacings: 0.5 1 2"))
 put("image", "nrrd-truncated", b"\0" + nrrd([4, 4, 4], payload=cube))
 put("image", "nrrd-huge", b"\0" + nrrd([100000, 100000, 100000], payload=cube))
-put("image", "nrrd-huge-gzip", b"\0" + nrrd([60000, 60000, 60], enc="gzip", payload=gzip.compress(cube)))
+put("image", "nrrd-huge-gzip", b"\0" + nrrd([60000, 60000, 60], enc="gzip", payload=gzip.compress(cube, mtime=0)))
 put("image", "nrrd-ascii", b"\0" + nrrd([2, 2], typ="int", enc="ascii", payload=b"0 1 2 inf\n"))
 put("image", "nrrd-stdin", b"\5" + nrrd([3, 3, 3], payload=cube))
 mha = "ObjectType = Image\nNDims = 3\nBinaryData = True\nDimSize = 3 3 3\nElementSpacing = 1 1 1\n" \
@@ -56,8 +56,8 @@ def nifti(dims, datatype=2, bitpix=8, payload=cube, magic=b"n+1\0"):
 
 
 put("image", "nii", b"\2" + nifti([3, 3, 3]))
-put("image", "nii-gz", b"\3" + gzip.compress(nifti([3, 3, 3])))
-put("image", "nii-gz-truncated", b"\3" + gzip.compress(nifti([3, 3, 3]))[:-12])
+put("image", "nii-gz", b"\3" + gzip.compress(nifti([3, 3, 3]), mtime=0))
+put("image", "nii-gz-truncated", b"\3" + gzip.compress(nifti([3, 3, 3]), mtime=0)[:-12])
 put("image", "nii-huge", b"\2" + nifti([30000, 30000, 30000]))
 put("image", "nii-stdin", b"\5" + nifti([3, 3, 3]))
 with open(os.path.join(data, "BinaryImage.png"), "rb") as f:
@@ -117,7 +117,7 @@ grid = ["OFF", "9 4 0"] + ["%d %d 0" % (x, y) for y in range(3) for x in range(3
 grid += ["4 0 1 4 3", "4 1 2 5 4", "4 3 4 7 6", "4 4 5 8 7"]
 put("quadsmooth", "grid", "\1" + "\n".join(grid) + "\n")
 put("quadsmooth", "grid-slide", "\2" + "\n".join(grid).replace("4 4 0", "4.3 3.8 0") + "\n")
-put("quadsmooth", "mixed", "\3" + sq.replace("4 0\n", "4 0\n", 1))
+put("quadsmooth", "mixed", "\3OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0.5 0\n4 0 1 2 3\n3 1 4 2\n")
 put("quadsmooth", "flipped", "\1OFF\n4 1 0\n0 0 0\n0 1 0\n1 1 0\n1 0 0\n4 0 1 2 3\n")
 
 # surfaces: selector 0 .off, 1 .ply, 2 .obj, 3 .stl, 4 OFF on standard input
