@@ -18,9 +18,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csetjmp>
+#include <png.h>
 #include <zlib.h>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -118,6 +121,115 @@ void check_nifti_complete(const std::string& path, const std::string& file, std:
                 path);
 }
 
+// Limits before allocation: the voxel block a header declares must fit in
+// this machine's memory and, when it is stored in the file read, in what
+// that file can hold. The most bytes of voxels `file` (of file_size bytes)
+// can hold, or 0 when that is not known here (data in another file, bzip2).
+// Deflate (gzip, zlib, PNG) expands at most 1032:1; a PNG of 1-bit palette
+// indices reads as 8-bit RGB (24 times its bits).
+std::uintmax_t max_data_bytes(const std::string& file, std::uintmax_t file_size) {
+  constexpr std::uintmax_t deflate = 1032, slack = 4096;
+  std::ifstream in(file, std::ios::binary);
+  std::string head(1 << 16, '\0');
+  in.read(&head[0], std::streamsize(head.size()));
+  head.resize(std::size_t(in.gcount()));
+  auto starts = [&](const char* m) { return head.compare(0, std::strlen(m), m) == 0; };
+  // The value of the header line "key<sep>value" (up to the blank line that
+  // ends a NRRD header), or "" when absent.
+  auto field = [&](const std::string& key, char sep) {
+    std::size_t pos = 0;
+    while (pos < head.size()) {
+      std::size_t end = head.find('\n', pos);
+      if (end == std::string::npos) end = head.size();
+      std::string line = head.substr(pos, end - pos);
+      while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+      if (line.empty() && sep == ':') break;
+      if (line.compare(0, key.size(), key) == 0 && line.find(":=") == std::string::npos) {
+        std::size_t v = line.find(sep, key.size());
+        if (v != std::string::npos && line.find_first_not_of(' ', key.size()) == v) {
+          v = line.find_first_not_of(" =:", v);
+          return v == std::string::npos ? std::string() : line.substr(v);
+        }
+      }
+      pos = end + 1;
+    }
+    return std::string();
+  };
+  if (starts("NRRD")) {
+    if (!field("data file", ':').empty() || !field("datafile", ':').empty()) return 0;
+    const std::string enc = field("encoding", ':');
+    if (enc == "raw" || enc == "hex") return file_size;
+    if (enc == "ascii" || enc == "text" || enc == "txt") return 8 * file_size;  // a value: one digit, 8 bytes
+    if (enc == "gzip" || enc == "gz") return deflate * file_size + slack;
+    return 0;
+  }
+  if (starts("ObjectType") || starts("NDims")) {
+    if (field("ElementDataFile", '=') != "LOCAL") return 0;
+    const std::string c = field("CompressedData", '='), b = field("BinaryData", '=');
+    if (c == "True" || c == "true") return deflate * file_size + slack;
+    return b == "False" || b == "false" ? 8 * file_size : file_size;
+  }
+  if (starts("\x89PNG")) return 24 * deflate * file_size + slack;
+  if (head.size() >= 2 && (unsigned char)head[0] == 0x1f && (unsigned char)head[1] == 0x8b)
+    return extension_of(file) == ".nii.gz" ? deflate * file_size + slack : 0;
+  if (head.size() > 348 && head.compare(344, 3, "n+1") == 0) return file_size;
+  return 0;
+}
+
+std::uintmax_t physical_memory() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  return pages > 0 && page > 0 ? std::uintmax_t(pages) * std::uintmax_t(page)
+                               : std::numeric_limits<std::uintmax_t>::max();
+}
+
+void check_declared_size(const std::string& path, const std::string& file, std::uintmax_t data_bytes) {
+  std::error_code ec;
+  const std::uintmax_t file_size = std::filesystem::file_size(file, ec);
+  const std::uintmax_t most = ec ? 0 : max_data_bytes(file, file_size);
+  if (most && data_bytes > most)
+    throw Error("the header declares " + std::to_string(data_bytes) + " bytes of voxels, more than the file (" +
+                    std::to_string(file_size) + " bytes) can hold",
+                path);
+  const std::uintmax_t memory = physical_memory();
+  if (data_bytes > memory)
+    throw Error("the header declares " + std::to_string(data_bytes) + " bytes of voxels, more than this machine's memory (" +
+                    std::to_string(memory) + " bytes)",
+                path);
+}
+
+// ITK's PNG reader sets no libpng error handler before reading the header,
+// so a bad IHDR, a bad CRC or an unknown critical chunk aborts the program:
+// read the header here first, where libpng's errors come back as a message
+// (its warnings are dropped). Empty when libpng reads it.
+std::string png_header_error(const std::string& file) {
+  struct Messages { std::string error, warning; } msg;
+  FILE* fp = std::fopen(file.c_str(), "rb");
+  if (!fp) return "cannot open";
+  png_structp png = png_create_read_struct(
+      PNG_LIBPNG_VER_STRING, &msg,
+      [](png_structp p, png_const_charp m) {
+        static_cast<Messages*>(png_get_error_ptr(p))->error = m;
+        png_longjmp(p, 1);
+      },
+      [](png_structp p, png_const_charp m) { static_cast<Messages*>(png_get_error_ptr(p))->warning = m; });
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_read_struct(&png, nullptr, nullptr);
+    std::fclose(fp);
+    return "out of memory";
+  }
+  if (setjmp(png_jmpbuf(png)) == 0) {
+    png_init_io(png, fp);
+    png_read_info(png, info);
+  } else if (msg.error.empty()) {
+    msg.error = "unreadable PNG header";
+  }
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(fp);
+  if (!msg.error.empty() && !msg.warning.empty()) msg.error += " (" + msg.warning + ")";
+  return msg.error;
+}
+
 // stdin is spooled to a temporary file whose extension comes from the content,
 // since ITK reads only from paths and picks readers by name and content.
 class Spool {
@@ -158,11 +270,20 @@ struct Opened {
   ImageInfo info;
 };
 
-Opened open_image(const std::string& path, const std::string& file) {
+Opened open_image_itk(const std::string& path, const std::string& file) {
   register_factories();
   {
     std::ifstream probe(file, std::ios::binary);
     if (!probe) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
+  }
+  {
+    std::ifstream probe(file, std::ios::binary);
+    char sig[8] = {};
+    probe.read(sig, 8);
+    if (probe.gcount() == 8 && png_sig_cmp(reinterpret_cast<png_const_bytep>(sig), 0, 8) == 0) {
+      const std::string e = png_header_error(file);
+      if (!e.empty()) throw Error("cannot read the image: " + e, path);
+    }
   }
   Opened o;
   const CerrCapture said;
@@ -212,10 +333,21 @@ Opened open_image(const std::string& path, const std::string& file) {
     if (count > (std::size_t(1) << 40) / s) throw Error("image too large", path);
     count *= s;
   }
+  check_declared_size(path, file, std::uintmax_t(count) * comps * o.io->GetComponentSize());
   for (int i = 0; i < 3; ++i)
     if (!(g.spacing[i] > 0) || !std::isfinite(g.spacing[i]))
       throw Error("spacing must be positive and finite", path);
   return o;
+}
+
+// ITK throws from its queries too (an unknown component type, ...): those
+// come out as Error naming the file, like the reader's own.
+Opened open_image(const std::string& path, const std::string& file) {
+  try {
+    return open_image_itk(path, file);
+  } catch (const itk::ExceptionObject& e) {
+    throw Error(itk_message(e), path);
+  }
 }
 
 // Calls f(i, value) for every voxel i, value as double (exact for every
@@ -232,8 +364,8 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
   o.io->SetIORegion(region);
   const std::size_t count = o.info.geometry.count();
   const std::size_t c = o.io->GetNumberOfComponents();
+  check_nifti_complete(path, o.io->GetFileName(), o.io->GetImageSizeInBytes());
   std::vector<char> raw(o.io->GetImageSizeInBytes());
-  check_nifti_complete(path, o.io->GetFileName(), raw.size());
   {
     const CerrCapture said;
     try {

@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <set>
 #include <sstream>
 
 namespace imgmesh {
@@ -69,6 +71,10 @@ SurfaceMesh read_off(const std::string& path) {
   const long nv = t.get<long>("the vertex count"), nf = t.get<long>("the face count");
   t.get<long>("the edge count");
   if (nv < 0 || nf < 0 || nv > 1L << 31 || nf > 1L << 31) t.fail("bad counts");
+  // A vertex is 3 numbers and a face 4, each at least a character and a
+  // blank: counts the text cannot hold are refused before allocating.
+  if (3 * nv + 4 * nf > (long(text.size()) + 1) / 2)
+    t.fail("truncated: the counts announce more vertices and faces than the file holds");
   SurfaceMesh m;
   m.points.resize(std::size_t(nv));
   for (auto& p : m.points)
@@ -90,6 +96,89 @@ SurfaceMesh read_off(const std::string& path) {
     // try to be clever here: standard OFF from our tools has none.
   }
   return m;
+}
+
+// OpenMesh's PLY reader trusts its header: without "end_header" it never
+// stops, a property before any element crashes it, and it reserves what the
+// counts say. So the header is checked here first against the PLY grammar,
+// and every element count against the bytes of the file.
+void check_ply_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  in.seekg(0, std::ios::end);
+  const long long file_size = in.tellg();
+  in.seekg(0);
+  static const std::set<std::string> types{"char",  "uchar",  "short",  "ushort", "int",     "uint",
+                                           "float", "double", "int8",   "uint8",  "int16",   "uint16",
+                                           "int32", "uint32", "float32", "float64"};
+  std::string line;
+  int number = 0;
+  bool element = false;
+  auto fail = [&](const std::string& what) {
+    throw Error("cannot read the mesh: PLY header line " + std::to_string(number) + ": " + what, path);
+  };
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream words(line);
+    std::vector<std::string> w;
+    for (std::string x; words >> x;) w.push_back(x);
+    if (number == 1) {
+      if (w.size() != 1 || w[0] != "ply") fail("not a PLY file (no 'ply' line)");
+      continue;
+    }
+    if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "end_header") return;
+    if (w[0] == "format") {
+      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
+        fail("bad format line");
+    } else if (w[0] == "element") {
+      long long n = -1;
+      if (w.size() != 3 || !(std::istringstream(w[2]) >> n) || n < 0) fail("bad element line");
+      if (n > file_size) fail("element count " + w[2] + " beyond the " + std::to_string(file_size) + " bytes of the file");
+      element = true;
+    } else if (w[0] == "property") {
+      if (!element) fail("a property before any element");
+      const bool list = w.size() == 5 && w[1] == "list" && types.count(w[2]) && types.count(w[3]);
+      if (!list && (w.size() != 3 || !types.count(w[1]))) fail("bad property line");
+    } else {
+      fail("unknown keyword '" + w[0] + "'");
+    }
+  }
+  fail("no end_header");
+}
+
+// OpenMesh's OBJ reader asserts (aborts) on a face without a vertex it can
+// use: every face is checked here first to be at least 3 references
+// "v[/vt][/vn]" to vertices defined before it (1-based, or negative from
+// the last one).
+void check_obj_faces(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line, word;
+  long long vertices = 0;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    std::istringstream words(line);
+    if (!(words >> word)) continue;
+    if (word == "v") ++vertices;
+    if (word != "f") continue;
+    int refs = 0;
+    while (words >> word) {
+      const std::string v = word.substr(0, word.find('/'));
+      long long id = 0;
+      std::size_t used = 0;
+      try {
+        id = std::stoll(v, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != v.size() || id == 0 || id > vertices || -id > vertices)
+        throw Error("cannot read the mesh: line " + std::to_string(number) + ": bad vertex reference '" + word + "'",
+                    path);
+      ++refs;
+    }
+    if (refs < 3)
+      throw Error("cannot read the mesh: line " + std::to_string(number) + ": a face needs 3 vertices", path);
+  }
 }
 
 void write_off(std::ostream& out, const SurfaceMesh& m) {
@@ -169,6 +258,8 @@ SurfaceMesh read_surface(const std::string& path) {
     std::ifstream probe(path);
     if (!probe) throw Error("cannot open", path);
   }
+  if (ext == ".ply") check_ply_header(path);
+  if (ext == ".obj") check_obj_faces(path);
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   omerr().disable();

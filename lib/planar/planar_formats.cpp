@@ -329,7 +329,7 @@ PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t m
   if (counts.size() < 2) fail("expected vertex and face counts");
   const long long nv = integer(counts[0]), nf = integer(counts[1]);
   if (nv < 0 || nf < 0) fail("negative count");
-  if (std::size_t(nv + nf) > lines.size() - li) fail("truncated: fewer lines than the counts announce");
+  if (std::size_t(nv) > lines.size() - li || std::size_t(nf) > lines.size() - li - std::size_t(nv)) fail("truncated: fewer lines than the counts announce");
   PlanarMesh m;
   for (long long i = 0; i < nv; ++i, ++li) {
     const auto& f = lines[li].second;

@@ -301,7 +301,12 @@ private:
     for (std::size_t i : inserted_) {
       g_.v[i] = 0;
       bool ok = true;
-      for (int k = 0; k < 8 && ok; ++k) ok = !critical_configurations(g_.code(i - g_.off[k]));
+      // Blocks inside the grid only: in 2D (two layers) a point of the
+      // bottom layer has no block below it; that one, outside the grid and
+      // background there, mirrors the block above, which is checked.
+      const bool bottom = i < g_.sz;
+      for (int k = 0; k < 8 && ok; ++k)
+        if (!(bottom && (k & 4))) ok = !critical_configurations(g_.code(i - g_.off[k]));
       if (ok) --changed;
       else g_.v[i] = 1;
     }

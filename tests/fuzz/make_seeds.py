@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""Writes the hand-made seeds of tests/fuzz/corpus/<target>/ (run from
+anywhere; files found by fuzzing are added beside them by hand, named
+crash-*, leak-*, oom-* or timeout-*). Each seed is small: the fuzzer grows
+inputs from them. The first byte of a seed is the target's selector (see
+each fuzz_<target>.cpp)."""
+import gzip, os, struct, zlib
+
+root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
+data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "share", "data")
+
+
+def put(target, name, content):
+    os.makedirs(os.path.join(root, target), exist_ok=True)
+    if isinstance(content, str):
+        content = content.encode()
+    with open(os.path.join(root, target, name), "wb") as f:
+        f.write(content)
+
+
+def nrrd(sizes, typ="uint8", enc="raw", payload=b"", extra=""):
+    h = "NRRD0004\ntype: %s\ndimension: %d\nsizes: %s\nencoding: %s\n%s\n" % (
+        typ, len(sizes), " ".join(map(str, sizes)), enc, extra)
+    return h.encode() + payload
+
+
+cube = bytes([0] * 13 + [1] + [0] * 13)  # 3x3x3, the centre voxel
+# images: selector 0 .nrrd, 1 .mha, 2 .nii, 3 .nii.gz, 4 .png, 5 stdin
+put("image", "nrrd-raw", b"\0" + nrrd([3, 3, 3], payload=cube))
+put("image", "nrrd-gzip", b"\0" + nrrd([3, 3, 3], enc="gzip", payload=gzip.compress(cube, mtime=0)))
+put("image", "nrrd-float", b"\0" + nrrd([2, 2], typ="float", payload=struct.pack("<4f", 0, 1.5, float("nan"), 2)))
+put("image", "nrrd-int16-endian", b"\0" + nrrd([2, 2, 1], typ="int16", payload=struct.pack(">4h", 0, 3, -2, 7),
+                                             extra="endian: big\nspacings: 0.5 1 2"))
+put("image", "nrrd-truncated", b"\0" + nrrd([4, 4, 4], payload=cube))
+put("image", "nrrd-huge", b"\0" + nrrd([100000, 100000, 100000], payload=cube))
+put("image", "nrrd-huge-gzip", b"\0" + nrrd([60000, 60000, 60], enc="gzip", payload=gzip.compress(cube, mtime=0)))
+put("image", "nrrd-ascii", b"\0" + nrrd([2, 2], typ="int", enc="ascii", payload=b"0 1 2 inf\n"))
+put("image", "nrrd-stdin", b"\5" + nrrd([3, 3, 3], payload=cube))
+mha = "ObjectType = Image\nNDims = 3\nBinaryData = True\nDimSize = 3 3 3\nElementSpacing = 1 1 1\n" \
+      "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n"
+put("image", "mha-local", b"\1" + mha.encode() + cube)
+put("image", "mha-compressed", b"\1" + mha.replace("ElementType", "CompressedData = True\nElementType").encode()
+    + zlib.compress(cube))
+put("image", "mha-stdin", b"\5" + mha.encode() + cube)
+
+
+def nifti(dims, datatype=2, bitpix=8, payload=cube, magic=b"n+1\0"):
+    h = struct.pack("<i", 348) + b"\0" * 36
+    dim = [len(dims)] + list(dims) + [1] * (7 - len(dims))
+    h += struct.pack("<8h", *dim) + b"\0" * 14
+    h += struct.pack("<hhh", datatype, bitpix, 0)
+    h += struct.pack("<8f", 1, 1, 1, 1, 1, 1, 1, 1)
+    h += struct.pack("<f", 352.0)  # vox_offset
+    h += b"\0" * (344 - len(h)) + magic
+    return h + b"\0" * 4 + payload
+
+
+put("image", "nii", b"\2" + nifti([3, 3, 3]))
+put("image", "nii-gz", b"\3" + gzip.compress(nifti([3, 3, 3]), mtime=0))
+put("image", "nii-gz-truncated", b"\3" + gzip.compress(nifti([3, 3, 3]), mtime=0)[:-12])
+put("image", "nii-huge", b"\2" + nifti([30000, 30000, 30000]))
+put("image", "nii-stdin", b"\5" + nifti([3, 3, 3]))
+with open(os.path.join(data, "BinaryImage.png"), "rb") as f:
+    put("image", "png", b"\4" + f.read())
+
+
+def png(w, h, rows):
+    def chunk(t, d):
+        return struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d) & 0xffffffff)
+    raw = b"".join(b"\0" + r for r in rows)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 0, 0, 0, 0)) + \
+        chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
+
+
+put("image", "png-tiny", b"\4" + png(2, 2, [b"\0\xff", b"\xff\0"]))
+put("image", "png-huge", b"\4" + png(1 << 20, 1 << 20, [b"\0\xff"]))
+
+# implicit function files: a 3x3x3 g, negative at the centre
+g = struct.pack("<27f", *[1.0] * 13 + [-0.5] + [1.0] * 13)
+fields = "imgmesh_kind:=pu-implicit\nimgmesh_version:=1\nimgmesh_d:=1.5 1.5 1.5"
+put("implicit", "good", nrrd([3, 3, 3], typ="float", payload=g, extra=fields))
+put("implicit", "bad-d", nrrd([3, 3, 3], typ="float", payload=g, extra=fields.replace("1.5 1.5 1.5", "0 nan 1e308")))
+put("implicit", "zero-sample", nrrd([3, 3, 3], typ="float", payload=struct.pack("<27f", *[0.0] * 27), extra=fields))
+put("implicit", "2d", nrrd([3, 3], typ="float", payload=g[:36], extra=fields))
+
+# implicit-eval point lines: selector bit 0 --gradient, bit 1 --allow-outside
+put("implicit_eval", "points", b"\0" + b"1 1 1\n0.5 0.25 2 # comment\n\n  2\t1  3  \n")
+put("implicit_eval", "outside", b"\3" + b"-5 0 0\n1e308 1e308 1e308\n")
+put("implicit_eval", "bad", b"\1" + b"1 2\nnan 0 0\n1 2 3 4\n")
+
+# Triangle: selector 0 .node, 1 .poly(+.node after a NUL), 2 .ele(+.node after a NUL)
+node = "4 2 1 1\n1 0 0 5 1\n2 1 0 5 1\n3 1 1 5 1\n4 0 1 5 1\n"
+put("triangle", "node", "\0" + node)
+put("triangle", "node-comments", "\0# square\n4 2 0 0 # header\n0 0 0\n1 1 0\n2 1 1\n3 0 1\n")
+put("triangle", "poly-inline", "\1" + node + "4 1\n1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 1 1\n1\n1 0.5 0.5\n1\n1 0.2 0.2 3 0.1\n")
+put("triangle", "poly-node", "\1" + "0 2 0 0\n2 0\n1 1 2\n2 2 3\n0\n\0" + node)
+put("triangle", "ele", "\2" + "2 3 1\n1 1 2 3 7\n2 1 3 4 7\n\0" + node)
+put("triangle", "ele-quad", "\2" + "1 4 0\n1 1 2 3 4\n\0" + node)
+put("triangle", "ele-dangling", "\2" + "1 3 0\n1 1 2 9\n\0" + node)
+put("triangle", "ele-huge-count", "\2" + "2000000000 3 0\n1 1 2 3\n\0" + "2000000000 2 0 0\n1 0 0\n")
+
+# planar OFF: selector bit 0 = standard input
+sq = "OFF\n5 4 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 0\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n"
+put("planar_off", "tris", "\0" + sq)
+put("planar_off", "stdin", "\1" + sq)
+put("planar_off", "quad", "\0OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")
+put("planar_off", "huge-count", "\0OFF\n2000000000 2000000000 0\n0 0 0\n")
+put("planar_off", "bad-id", "\0OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n")
+
+# tri2quad and quadsmooth: OFF meshes (selector bits: options)
+put("tri2quad", "square", "\0" + sq)
+put("tri2quad", "square-pairs", "\2" + sq)
+strip = "OFF\n8 6 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n0 1 0\n1 1 0\n2 1 0\n3 1 0\n" \
+        "3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n"
+put("tri2quad", "strip", "\1" + strip)
+grid = ["OFF", "9 4 0"] + ["%d %d 0" % (x, y) for y in range(3) for x in range(3)]
+grid += ["4 0 1 4 3", "4 1 2 5 4", "4 3 4 7 6", "4 4 5 8 7"]
+put("quadsmooth", "grid", "\1" + "\n".join(grid) + "\n")
+put("quadsmooth", "grid-slide", "\2" + "\n".join(grid).replace("4 4 0", "4.3 3.8 0") + "\n")
+put("quadsmooth", "mixed", "\3OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0.5 0\n4 0 1 2 3\n3 1 4 2\n")
+put("quadsmooth", "flipped", "\1OFF\n4 1 0\n0 0 0\n0 1 0\n1 1 0\n1 0 0\n4 0 1 2 3\n")
+
+# surfaces: selector 0 .off, 1 .ply, 2 .obj, 3 .stl, 4 OFF on standard input
+tet = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"
+put("surface", "off", "\0" + tet)
+put("surface", "off-stdin", "\4" + tet)
+put("surface", "off-quad", "\0OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")
+put("surface", "ply-ascii", "\1ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+    "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+put("surface", "ply-binary", b"\1ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+    b"property float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    + struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3i", 3, 0, 1, 2))
+put("surface", "obj", "\2v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n")
+put("surface", "stl-ascii", "\3solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n"
+    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n")
+put("surface", "stl-binary", b"\3" + b"\0" * 80 + struct.pack("<I", 1) + struct.pack("<12f", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0)
+    + b"\0\0")
+put("surface", "stl-binary-huge-count", b"\3" + b"\0" * 80 + struct.pack("<I", 0xffffffff) + b"\0" * 50)
