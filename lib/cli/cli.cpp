@@ -118,6 +118,12 @@ std::string roff(const std::string& text) {
   return out;
 }
 
+// The entries of the object `from` set in `to`, in their order.
+void add_entries(Json& to, const Json& from) {
+  if (from.kind() != Json::Kind::Object) return;
+  for (std::size_t i = 0; i < from.keys().size(); ++i) to[from.keys()[i]] = from.items()[i];
+}
+
 bool repeatable(const CLI::Option* o) { return o->get_expected_max() >= CLI::detail::expected_max_vector_size; }
 // Flags have no type name.
 bool takes_value(const CLI::Option* o) { return o->get_type_size() != 0 && !o->get_type_name().empty(); }
@@ -190,8 +196,7 @@ std::string Tool::man_sections() const {
 }
 
 int Tool::finish(const Json& result, const std::string& failed_guarantee) {
-  if (result.kind() == Json::Kind::Object)
-    for (std::size_t i = 0; i < result.keys().size(); ++i) stats[result.keys()[i]] = result.items()[i];
+  add_entries(stats, result);
   if (failed_guarantee.empty()) return kOk;
   info("guarantee not met: " + failed_guarantee);
   return kGuarantee;
@@ -247,8 +252,7 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
       report["seconds"] = elapsed();
       if (!error.empty()) report["error"] = error;
       // The tool's own entries follow the common ones.
-      if (stats.kind() == Json::Kind::Object)
-        for (std::size_t i = 0; i < stats.keys().size(); ++i) report[stats.keys()[i]] = stats.items()[i];
+      add_entries(report, stats);
       AtomicOutput out(stats_path_);
       out.stream() << report.dump(2) << '\n';
       out.commit();
