@@ -67,8 +67,7 @@ int main(int argc, char** argv) {
     }
     if (tool.progress())
       opt.progress = [&](std::size_t n) { tool.report_progress(std::to_string(n) + " vertices"); };
-    const PlanarMesh pslg = extension_of(in) == ".node" ? read_pslg(replace_extension(in, ".poly"))
-                                                        : read_pslg(in);
+    const PlanarMesh pslg = read_pslg(in);
     const auto r = naming_input(in, [&] { return triangulate_pslg(pslg, opt); });
     write_planar_mesh(out, r.mesh);
     if (!svg.empty()) write_planar_mesh(svg, r.mesh);

@@ -383,7 +383,10 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
       if (c > 1 && (px[0] != px[1] || px[0] != px[2]))
         throw Error("a colour image (R, G, B differ): a grey or label image is expected", path);
       const double v = double(px[0]);
-      if (std::isnan(v)) throw Error("image contains NaN values", path);
+      // A label or intensity image holds finite values; thresholding an
+      // infinity would hide a broken export.
+      if (!std::isfinite(v))
+        throw Error(std::isnan(v) ? "image contains NaN values" : "image contains infinite values", path);
       f(i, v);
     }
   };
@@ -557,10 +560,7 @@ FloatImage read_float(const std::string& path, std::map<std::string, std::string
   Spool spool(path);
   Opened o = open_image(path, spool.file());
   FloatImage out(o.info.geometry, 0.f);
-  visit_values(path, o, [&](std::size_t i, double v) {
-    if (!std::isfinite(v)) throw Error("image contains infinite values", path);
-    out.data[i] = float(v);
-  });
+  visit_values(path, o, [&](std::size_t i, double v) { out.data[i] = float(v); });
   if (fields) {
     fields->clear();
     const auto& dict = o.io->GetMetaDataDictionary();

@@ -433,6 +433,11 @@ PlanarMesh read_planar_mesh(const std::string& path) {
 PlanarMesh read_pslg(const std::string& path) {
   const std::string ext = extension_of(path);
   if (ext == ".poly" || path == "-") return read_poly(path);  // stdin: .poly text
+  if (ext == ".node") {  // the .poly beside it holds the segments that bound the domain
+    const std::string poly = replace_extension(path, ".poly");
+    if (!exists(poly)) throw Error("no " + poly + " beside it (the segments that bound the domain)", path);
+    return read_poly(poly);
+  }
   if (ext == ".off") {
     PlanarMesh m = read_off(path, 2, 1 << 30);
     std::set<std::pair<int, int>> seen;
@@ -449,7 +454,7 @@ PlanarMesh read_pslg(const std::string& path) {
     m.elements.clear();
     return m;
   }
-  throw Error("unknown PSLG format '" + ext + "' (use .poly or .off)", path);
+  throw Error("unknown PSLG format '" + ext + "' (use .poly, .node or .off)", path);
 }
 
 } // namespace imgmesh
