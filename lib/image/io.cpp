@@ -172,7 +172,8 @@ std::uintmax_t max_data_bytes(const std::string& file, std::uintmax_t file_size)
   if (starts("\x89PNG")) return 24 * deflate * file_size + slack;
   if (head.size() >= 2 && (unsigned char)head[0] == 0x1f && (unsigned char)head[1] == 0x8b)
     return extension_of(file) == ".nii.gz" ? deflate * file_size + slack : 0;
-  if (head.size() > 348 && head.compare(344, 3, "n+1") == 0) return file_size;
+  // A .nii holds its voxels whatever its magic says (ITK reads it as one file).
+  if (extension_of(file) == ".nii" || (head.size() > 348 && head.compare(344, 3, "n+1") == 0)) return file_size;
   return 0;
 }
 
