@@ -279,4 +279,61 @@ meshinfo --no-such-option
 CMDS
 }
 
+# Write failures after the work: the output path is an existing folder, a
+# later file of a multi-file set (.node, .poly) or the --svg is one, stdout
+# is /dev/full. Exit 1, one line (-q), and nothing left: the folder o/ holds only
+# the folders made here, TMPDIR (tmp/) stays empty.
+# write_fails STDOUT FOLDERS TOOL ARGS...: FOLDERS (comma-separated) made in o/ first.
+write_fails() {
+  local stdout=$1 dirs=$2 tool=$3; shift 3
+  rm -rf o tmp; mkdir o tmp
+  local d made=""
+  for d in ${dirs//,/ }; do mkdir -p "o/$d"; made+="$d "; done
+  TMPDIR=$PWD/tmp "$BIN/$tool" "$@" -q < /dev/null > "$stdout" 2> err.txt; local rc=$?
+  [[ $rc -eq 1 ]] || fail "$tool $* (> $stdout): exit $rc, want 1 ($(cat err.txt))"
+  [[ $(wc -l < err.txt) -eq 1 && $(grep -c "^$tool: " err.txt) -eq 1 ]] || fail "$tool $* (> $stdout): stderr: $(cat err.txt)"
+  [[ "$(ls -A o | tr '\n' ' ')" == "$made" ]] || fail "$tool $* (> $stdout): left in the output folder: $(ls -A o)"
+  [[ -z $(ls -A tmp) ]] || fail "$tool $* (> $stdout): left in TMPDIR: $(ls -A tmp)"
+}
+case_write_failures_leave_nothing() {
+  inputs_here
+  local n=/dev/null f=/dev/full
+  # The output itself an existing folder.
+  write_fails $n w.nrrd img2wc box.nrrd o/w.nrrd
+  write_fails $n f.nrrd wc2implicit box.nrrd o/f.nrrd
+  write_fails $n v.txt implicit-eval box-f.nrrd p.txt -o o/v.txt
+  write_fails $n m.off implicit2mesh box-f.nrrd o/m.off --max-points 10
+  write_fails $n s.poly img2poly "$DATA2D" o/s.poly --threshold 128
+  write_fails $n m.1.ele poly2tri s.poly o/m.1.ele
+  write_fails $n q.ele tri2quad s.1.ele o/q.ele
+  write_fails $n qs.ele quadsmooth s.q.ele o/qs.ele
+  write_fails $n s.json meshinfo tet.off --stats o/s.json
+  write_fails $n s.json img2wc box.nrrd o/w.nrrd --stats o/s.json
+  # A later file of the set: the ones before it are rolled back.
+  write_fails $n m.1.node poly2tri s.poly o/m.1.ele
+  write_fails $n m.1.poly poly2tri s.poly o/m.1.ele
+  write_fails $n q.node tri2quad s.1.ele o/q.ele
+  write_fails $n q.poly tri2quad s.1.ele o/q.ele
+  write_fails $n qs.node quadsmooth s.q.ele o/qs.ele
+  write_fails $n qs.poly quadsmooth s.q.ele o/qs.ele
+  # --svg that cannot be written (a folder; one in no folder is refused before the work).
+  write_fails $n x.svg img2poly "$DATA2D" o/s.poly --threshold 128 --svg o/x.svg
+  write_fails $n x.svg poly2tri s.poly o/m.1.ele --svg o/x.svg
+  write_fails $n x.svg tri2quad s.1.ele o/q.ele --svg o/x.svg
+  write_fails $n x.svg tri2quad s.1.ele - --svg o/x.svg
+  write_fails $n x.svg quadsmooth s.q.ele o/qs.ele --svg o/x.svg
+  # stdout is /dev/full.
+  write_fails $f "" img2wc box.nrrd -
+  write_fails $f "" wc2implicit box.nrrd -
+  write_fails $f "" implicit-eval box-f.nrrd p.txt
+  write_fails $f "" implicit2mesh box-f.nrrd - --max-points 10
+  write_fails $f "" img2poly "$DATA2D" - --threshold 128
+  write_fails $f "" tri2quad s.1.ele -
+  write_fails $f "" quadsmooth s.q.ele -
+  write_fails $f "" meshinfo tet.off
+  write_fails $f "" meshinfo --json tet.off
+  write_fails $f "" img2wc box.nrrd o/w.nrrd --stats -
+  write_fails $f x.svg img2poly "$DATA2D" - --threshold 128 --svg o/x.svg
+}
+
 run_cases "$@"
