@@ -30,7 +30,7 @@ case_usage_and_bad_input_exit_1_2_without_output() {
   : > empty.nrrd
   expect 1 implicit2mesh empty.nrrd out.off
   [[ $(wc -l < err.txt) == 1 ]] || fail "the error is not one line"
-  [[ -z $(ls -A | grep -v -e '^err.txt$' -e '^out.txt$' -e '^empty.nrrd$') ]] || fail "left: $(ls -A)"
+  [[ -z $(ls | grep -v -e '^err.txt$' -e '^out.txt$' -e '^empty.nrrd$') ]] || fail "left: $(ls)"
 }
 
 case_bunny_through_pipes_has_voxel_topology() {

@@ -4,14 +4,15 @@
 # checks, and ends with `run_cases "$@"`. tests/CMakeLists.txt makes each
 # case its own ctest entry e2e.SUITE.WHAT (`bash SUITE.sh WHAT`); `bash
 # SUITE.sh` alone runs every case, in order. A case runs in a subshell in its
-# own empty folder $TMP/WHAT, under `set -u` but not `set -e`: checks are
-# `COND || fail "why"`, which prints "FAIL e2e.SUITE.WHAT: why" and goes on
+# own empty folder $TMP/WHAT (TMPDIR is its .tmp, which must end empty),
+# under `set -u` but not `set -e`: checks are `COND || fail "why"`, which
+# prints "FAIL e2e.SUITE.WHAT: why" and goes on
 # (`die` also ends the case); the next cases run whatever happens. Tools run
 # through `expect STATUS TOOL ARGS...` (stdin $IN or /dev/null, stdout $OUT
 # or out.txt, stderr err.txt): a wrong status fails naming the command and
 # shows the tool's stderr, and so does any stderr line of a built tool that
 # does not start with "TOOL: ". Inputs come from fixed seeds (python's
-# random.Random, never awk's srand or /dev/urandom) or tests/e2e/fixtures;
+# random.Random, never awk's srand or /dev/urandom) or small committed files;
 # one that several cases need is made once by `shared FILE FUNC`.
 #
 # Adopting an old-style script: put each block in a case_WHAT function, run
@@ -22,7 +23,6 @@ SUITE=$(basename "${BASH_SOURCE[1]}" .sh)
 E2E=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)  # tests/e2e, for its checkers
 SCRIPT=$E2E/$(basename "${BASH_SOURCE[1]}")
 : "${BIN:?BIN: the tools folder}" "${TMP:?TMP: a scratch folder}"
-FIXTURES=$E2E/fixtures
 CASE=${CASE:-} CASE_DIR=${CASE_DIR:-}
 
 fail() {  # fail WHY...: the case fails, and goes on
@@ -90,7 +90,9 @@ run_cases() {
     if ! declare -F "case_$c" > /dev/null; then
       echo "FAIL e2e.$SUITE.$c: no such case"; failed=1; continue
     fi
-    ( CASE=$c CASE_DIR=$dir; cd "$dir" && "case_$c" )
+    mkdir "$dir/.tmp"
+    ( CASE=$c CASE_DIR=$dir; export TMPDIR=$dir/.tmp; cd "$dir" && "case_$c" )
+    [[ -z $(ls -A "$dir/.tmp") ]] || { CASE=$c CASE_DIR=$dir fail "left in TMPDIR: $(ls -A "$dir/.tmp")"; }
     if [[ -e $dir/.failed ]]; then echo "FAIL e2e.$SUITE.$c"; failed=1; else echo "PASS e2e.$SUITE.$c"; fi
   done
   exit $failed

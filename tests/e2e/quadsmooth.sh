@@ -132,7 +132,7 @@ case_bad_input_exit_1_2_without_output() {
   expect 2 quadsmooth in.ele x.ele --iterations -1
   expect 2 quadsmooth in.ele
   expect 2 quadsmooth in.ele x.ele --bogus
-  [[ -z $(ls -A | grep -v -e '^in\.' -e '^trunc\.' -e '^cw\.' -e '^err.txt$' -e '^out.txt$') ]] || fail "left: $(ls -A)"
+  [[ -z $(ls | grep -v -e '^in\.' -e '^trunc\.' -e '^cw\.' -e '^err.txt$' -e '^out.txt$') ]] || fail "left: $(ls)"
 }
 
 run_cases "$@"

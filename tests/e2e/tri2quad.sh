@@ -201,7 +201,7 @@ case_bad_input_exit_1_2_without_output() {
   expect 2 tri2quad sq.ele x.txt
   expect 2 tri2quad sq.ele x.ele --bogus
   expect 1 tri2quad sq.q.ele x.ele
-  [[ -z $(ls -A | grep -v -e '^sq\.' -e '^trunc\.' -e '^err.txt$' -e '^out.txt$') ]] || fail "left: $(ls -A)"
+  [[ -z $(ls | grep -v -e '^sq\.' -e '^trunc\.' -e '^err.txt$' -e '^out.txt$') ]] || fail "left: $(ls)"
 }
 
 run_cases "$@"
