@@ -57,7 +57,7 @@ case_stdout_is_the_file_output() {
 # The normals read back: every one unit and on the outer side of the
 # triangles around its vertex (which surface_check finds outward).
 case_normals_unit_and_outward() {
-  expect 0 implicit2mesh "$(shared bunny-f.nrrd bunny_f)" bunny-n.ply --normals --max-distance 0.25
+  expect 0 implicit2mesh "$(shared bunny-f.nrrd bunny_f)" bunny-n.ply --normals --max-distance 0.02
   surface bunny-n.ply "$(shared bunny-wc.nrrd bunny_wc)" 2
   python3 "$SURF" bunny-n.ply --normals > n.txt 2>&1 || fail "bunny-n.ply: $(cat n.txt)"
 }
