@@ -81,6 +81,17 @@ print(d)' "$1" "$2"
 # count FILE: the first number of a Triangle file (nodes or elements).
 count() { grep -v '^ *#' "$1" | head -1 | cut -d' ' -f1; }
 
+# whole FILE: an .svg, .msh or legacy .vtk file ends where its format says
+# (a writer cut short fails): </svg>, $End..., the last data block's count.
+whole() {
+  case $1 in
+    *.svg) [[ $(tail -n 1 "$1") == "</svg>" ]] ;;
+    *.msh) [[ $(tail -n 1 "$1") == \$End* ]] ;;
+    *.vtk) awk '/^(CELL|POINT)_DATA/ { n = $2 } /^LOOKUP_TABLE/ { k = 0; next } { k++ } END { exit !(n > 0 && k == n) }' "$1" ;;
+    *) return 1 ;;
+  esac || { fail "$1 is cut short"; return 1; }
+}
+
 run_cases() {
   local cases=("$@") c failed=0
   ((${#cases[@]})) || mapfile -t cases < <(sed -n 's/^case_\([A-Za-z0-9_]*\) *().*/\1/p' "$SCRIPT")

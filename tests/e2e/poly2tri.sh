@@ -132,6 +132,7 @@ case_formats_off_vtk_msh_svg_hold_the_triangles() {
   grep -q '^\$MeshFormat' sq.msh && [[ $(awk '/^\$Elements/ { e = 1; getline; next } /^\$EndElements/ { e = 0 } e && $2 == 2' sq.msh | wc -l) == "$t" ]] ||
     fail ".msh: not $t triangles"
   [[ $(grep -c '<polygon' sq.svg) == "$t" ]] || fail ".svg: not $t polygons"
+  for f in sq.vtk sq.msh sq.svg; do whole "$f"; done
 }
 
 # --lattice: the same guarantees (segments, angle, hole, regions, area) with

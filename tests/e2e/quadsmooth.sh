@@ -87,6 +87,7 @@ case_formats_off_vtk_msh_hold_the_mesh() {
   grep -q "^CELLS $q " out.vtk || fail ".vtk: not $q cells"
   grep -q '^\$MeshFormat' out.msh && [[ $(awk '/^\$Elements/ { e = 1; getline; next } /^\$EndElements/ { e = 0 } e && $2 == 3' out.msh | wc -l) == "$q" ]] ||
     fail ".msh: not $q elements"
+  for f in out.vtk out.msh; do whole "$f"; done
   # The OFF reads back as input.
   expect 0 quadsmooth out.off again.ele --iterations 1
   python3 "$QC" again.ele > qc.txt 2>&1 || fail "OFF input: $(cat qc.txt)"

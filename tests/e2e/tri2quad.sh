@@ -144,6 +144,7 @@ case_formats_off_vtk_msh_svg_hold_the_quads() {
   grep -q '^\$MeshFormat' sq.q.msh && [[ $(awk '/^\$Elements/ { e = 1; getline; next } /^\$EndElements/ { e = 0 } e && $2 == 3' sq.q.msh | wc -l) == "$q" ]] ||
     fail ".msh: not $q elements"
   [[ $(grep -c '<polygon' sq.q.svg) == "$q" ]] || fail ".svg: not $q polygons"
+  for f in sq.q.vtk sq.q.msh sq.q.svg; do whole "$f"; done
 }
 
 case_stdin_stdout_are_the_files() {
