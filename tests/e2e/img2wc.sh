@@ -61,25 +61,25 @@ for spec in bunny00-96:3:0 elephant-96:13:0 armadillo-96:38:1; do
   msg=$("$W" "$in" --check); rc=$?
   [[ $rc -eq 1 ]] || fail "$name --check exit $rc, want 1"
   [[ "$msg" == *"not well-composed (C1 $c1, C2 $c2)"* ]] || fail "$name counts: $msg"
-  "$W" "$in" "$name.wc.mha" --stats "$name.json" -q || fail "$name repair exit $?"
-  "$W" "$name.wc.mha" --check >/dev/null || fail "$name output not well-composed"
+  expect 0 img2wc "$in" "$name.wc.mha" --stats "$name.json" || fail "$name repair"
+  expect 0 img2wc "$name.wc.mha" --check || fail "$name output not well-composed"
   [[ $(st "$name.json" c1) == "$c1" && $(st "$name.json" c2) == "$c2" ]] || fail "$name stats counts"
   [[ $(st "$name.json" well_composed) == True ]] || fail "$name stats well_composed"
   read -r changed bad _ <<<"$(py subset "$in" "$name.wc.mha" add 0,0,0)"
   [[ $bad -eq 0 ]] || fail "$name: X not a subset of X' ($bad voxels)"
   [[ $changed -eq $(st "$name.json" changed) && $changed -ge 1 ]] || fail "$name: changed $changed vs stats"
   # Idempotent: a well-composed image comes back unchanged.
-  "$W" "$name.wc.mha" "$name.wc2.mha" --stats "$name.2.json" -q || fail "$name rerun"
+  expect 0 img2wc "$name.wc.mha" "$name.wc2.mha" --stats "$name.2.json" || fail "$name rerun"
   [[ $(st "$name.2.json" changed) == 0 ]] || fail "$name: repair of a well-composed image changed voxels"
 done
 }
 
 case_remove_and_min_modes() {
-  "$W" "$DATA/armadillo-96.nrrd" armadillo-96.wc.mha --stats armadillo-96.json -q || fail "add mode exit $?"
+  expect 0 img2wc "$DATA/armadillo-96.nrrd" armadillo-96.wc.mha --stats armadillo-96.json || fail "add mode"
 in="$DATA/armadillo-96.nrrd"
 for mode in remove min; do
-  "$W" "$in" "arm.$mode.mha" --mode $mode --stats "arm.$mode.json" -q || fail "mode $mode exit $?"
-  "$W" "arm.$mode.mha" --check >/dev/null || fail "mode $mode output not well-composed"
+  expect 0 img2wc "$in" "arm.$mode.mha" --mode $mode --stats "arm.$mode.json" || fail "mode $mode"
+  expect 0 img2wc "arm.$mode.mha" --check || fail "mode $mode output not well-composed"
   used=$(st "arm.$mode.json" mode_used)
   read -r changed bad _ <<<"$(py subset "$in" "arm.$mode.mha" "$used" 0,0,0)"
   [[ $bad -eq 0 && $changed -eq $(st "arm.$mode.json" changed) ]] || fail "mode $mode ($used): bad $bad changed $changed"
@@ -97,21 +97,21 @@ r = random.Random(7)  # half foreground, touching every side
 hdr = b"NRRD0004\ntype: uint8\ndimension: 3\nsizes: 40 40 40\nspacings: 0.5 0.7 1.3\nencoding: raw\n\n"
 open("noise.nrrd", "wb").write(hdr + bytes(r.getrandbits(1) for _ in range(64000)))
 PY
-"$W" "noise.nrrd" "noise.wc.mha" --seed 7 --stats "noise.json" 2>"noise.err" || fail "noise exit $?"
+expect 0 img2wc "noise.nrrd" "noise.wc.mha" --seed 7 --stats "noise.json" && cp err.txt noise.err
 grep -q "grown to 42x42x42" "noise.err" || fail "noise: no notice of the grown grid: $(cat "noise.err")"
-"$W" "noise.wc.mha" --check >/dev/null || fail "noise output not well-composed"
+expect 0 img2wc "noise.wc.mha" --check || fail "noise output not well-composed"
 read -r changed bad sx sy sz <<<"$(py subset "noise.nrrd" "noise.wc.mha" add 1,1,1)"
 [[ $bad -eq 0 && "$sx $sy $sz" == "42 42 42" ]] || fail "noise: bad $bad size $sx $sy $sz"
 m=$(( $(st "noise.json" c1) + $(st "noise.json" c2) ))
 [[ $m -gt 1000 && $changed -eq $(st "noise.json" changed) && $changed -lt $m ]] || fail "noise: $changed changed for $m configurations"
-"$W" "noise.nrrd" "noise.again.mha" --seed 7 -q || fail "noise rerun"
+expect 0 img2wc "noise.nrrd" "noise.again.mha" --seed 7 || fail "noise rerun"
 cmp -s "noise.wc.mha" "noise.again.mha" || fail "same seed, different output"
 "$W" "noise.nrrd" "noise.q.mha" -q 2>"quiet.err"; [[ ! -s "quiet.err" ]] || fail "--quiet printed"
 }
 
 case_slice_2d_and_pipes() {
-"$W" "$DATA/RatLungSlice1.mha" --threshold 100 "lung.mha" --stats "lung.json" -q || fail "2D exit $?"
-"$W" "lung.mha" --check >/dev/null || fail "2D output not well-composed"
+expect 0 img2wc "$DATA/RatLungSlice1.mha" --threshold 100 "lung.mha" --stats "lung.json" || fail "2D"
+expect 0 img2wc "lung.mha" --check || fail "2D output not well-composed"
 [[ $(st "lung.json" dimension) == 2 && $(st "lung.json" c1) -gt 0 ]] || fail "2D stats"
 b=$(st "lung.json" padded_before | tr -d '[] ')
 read -r changed bad sx sy sz <<<"$(py subset "$DATA/RatLungSlice1.mha" "lung.mha" add "$b" 100)"
@@ -131,8 +131,8 @@ cat "$DATA/bunny00-96.nrrd" | "$W" - - -q | "$W" - --check >/dev/null || fail "p
 case_brain_repair_under_0_75_a_configuration() {
 brain=$DATA/brain-kmeans-labels.nii.gz
 {
-  "$W" "$brain" --label 2 "brain.mha" --stats "brain.json" -q || fail "brain exit $?"
-  "$W" "brain.mha" --check >/dev/null || fail "brain output not well-composed"
+  expect 0 img2wc "$brain" --label 2 "brain.mha" --stats "brain.json" || fail "brain"
+  expect 0 img2wc "brain.mha" --check || fail "brain output not well-composed"
   python3 -c "import json,sys; d=json.load(open(sys.argv[1])); m=d['c1']+d['c2']; sys.exit(0 if m > 10000 and d['changed'] <= 0.75 * m else 1)" "brain.json" \
     || fail "brain: |P|/(C1+C2) too high: $(grep -E '"(c1|c2|changed)"' "brain.json" | tr -d '\n ')"
 }
