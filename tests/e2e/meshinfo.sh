@@ -48,7 +48,7 @@ case_components_euler_boundary_loops() {
 [ "$(comps cube.off)" = "1 2" ] || fail "cube: $(comps cube.off)"
 out=$(comps three.off)
 [ "$out" = "3 2,2,1" ] || fail "two cubes and an open box: '$out'"
-"$M" three.off > three.txt || fail "text report"
+OUT=three.txt expect 0 meshinfo three.off
 grep -q "1 boundary loop" three.txt || fail "open box: no boundary loop in the text report"
 }
 
@@ -82,8 +82,7 @@ case_image_one_voxel_matches_the_cube_only() {
   surfaces
 { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n'
   for i in $(seq 0 63); do if [ $i = 21 ]; then printf '\001'; else printf '\000'; fi; done; } > voxel.nrrd
-"$M" -q cube.off --image voxel.nrrd > img.txt; rc=$?
-[ $rc = 0 ] || fail "cube vs one voxel: exit $rc"
+OUT=img.txt expect 0 meshinfo cube.off --image voxel.nrrd
 grep -q "MATCHES" img.txt || fail "no match line"
 expect 3 meshinfo three.off --image voxel.nrrd --json
 mv out.txt three-file.json
@@ -92,9 +91,8 @@ sed 's/"three.off"/"-"/' three-file.json | cmp -s - out.txt || fail "exit 3: MES
 # Two voxels sharing only an edge: not well-composed, refused.
 { printf 'NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\n'
   for i in $(seq 0 63); do if [ $i = 21 ] || [ $i = 26 ]; then printf '\001'; else printf '\000'; fi; done; } > edge.nrrd
-"$M" cube.off --image edge.nrrd 2> edge.err > /dev/null; rc=$?
-[ $rc = 1 ] || fail "non-well-composed image: exit $rc"
-grep -q "well-composed" edge.err || fail "message does not say well-composed"
+expect 1 meshinfo cube.off --image edge.nrrd
+grep -q "well-composed" err.txt || fail "message does not say well-composed"
 }
 
 # The certificate by correspondence through the real tools: a ball around
@@ -115,10 +113,9 @@ for z in range(nz):
             b.append(1 if ball or torus else 0)
 open('two.nrrd', 'wb').write(b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 40 24 24\nencoding: raw\n\n" + bytes(b))
 P
-"$BIN/img2wc" -q two.nrrd two-wc.nrrd && "$BIN/wc2implicit" -q two-wc.nrrd two-f.nrrd \
-    && "$BIN/implicit2mesh" -q two-f.nrrd two.off || fail "pipeline on two.nrrd"
-"$M" -q --json two.off --image two-wc.nrrd > two.json; rc=$?
-[ $rc = 0 ] || fail "the right mesh of a ball and a torus: exit $rc"
+expect 0 img2wc two.nrrd two-wc.nrrd && expect 0 wc2implicit two-wc.nrrd two-f.nrrd &&
+  expect 0 implicit2mesh two-f.nrrd two.off || return
+OUT=two.json expect 0 meshinfo --json two.off --image two-wc.nrrd || fail "the right mesh of a ball and a torus"
 [ "$(comps two.off)" = "2 0,2" ] || fail "two.off: $(comps two.off)"
 [ "$(tr -d ' \n' < two.json | grep -o '"verdict":"ok"' | wc -l)" = 4 ] || fail "two.off: not 4 ok verdicts"
 python3 - two.off two-wc.nrrd > swapped.off <<'P'
@@ -137,8 +134,8 @@ out += [' '.join([l.split()[0]] + l.split()[1:][::-1]) for l in lines[2 + nv:2 +
 print('\n'.join(out))
 P
 [ "$(comps swapped.off)" = "2 0,2" ] || fail "swapped.off: $(comps swapped.off)"
-"$M" swapped.off --image two-wc.nrrd > swapped.txt 2> swapped.err; rc=$?
-[ $rc = 3 ] || fail "the swapped mesh: exit $rc, expected 3"
+OUT=swapped.txt expect 3 meshinfo swapped.off --image two-wc.nrrd || fail "the swapped mesh"
+cp err.txt swapped.err
 grep -q "DOES NOT MATCH" swapped.txt || fail "swapped: no mismatch line"
 grep -q "euler differs" swapped.txt || fail "swapped: no per-component verdict"
 grep -q "mesh component .: euler 2, its bdCA(X) component . has 0" swapped.err || fail "swapped: message $(cat swapped.err)"
