@@ -202,6 +202,20 @@ int Tool::finish(const Json& result, const std::string& failed_guarantee) {
   return kGuarantee;
 }
 
+// The --stats report: the common entries, then the tool's own.
+void Tool::write_stats(int code, const std::string& error) const {
+  Json report = has_stdout_json_ ? stdout_json_ : Json::object();
+  report["tool"] = name_;
+  report["version"] = IMGMESH_VERSION;
+  report["exit_status"] = code;
+  report["seconds"] = elapsed();
+  if (!error.empty()) report["error"] = error;
+  add_entries(report, stats);
+  AtomicOutput out(stats_path_);
+  out.stream() << report.dump(2) << '\n';
+  out.commit();
+}
+
 int Tool::run(int argc, char** argv, const std::function<int()>& body) {
   try {
     app.parse(argc, argv);
@@ -219,11 +233,20 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
   int code = kFailure;
   std::string error;
   bool stats_unwritable = false;  // its folder is missing: said once, not again
+  bool stats_written = false;
   try {
     OutputGroup outputs;  // exit 1 or 2 leaves no output
     check_outputs();
     const int done = body();
-    if (done == kOk || done == kGuarantee) outputs.commit();
+    if (done == kOk || done == kGuarantee) {
+      // What the body printed must have reached stdout; the --stats report
+      // joins the group, so that the outputs and it land together.
+      std::cout.flush();
+      if (!std::cout) throw Error("write to standard output failed", "-");
+      if (!stats_path_.empty()) write_stats(done, "");
+      outputs.commit();
+      stats_written = !stats_path_.empty();
+    }
     code = done;
   } catch (const UsageError& e) {
     error = e.message();
@@ -243,19 +266,9 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
       if (c == '\n' || c == '\r') c = ' ';
     std::cerr << name_ << ": " << error << '\n';
   }
-  if (!stats_path_.empty() && code != kUsage && !stats_unwritable) {
+  if (!stats_path_.empty() && code != kUsage && !stats_unwritable && !stats_written) {
     try {
-      Json report = has_stdout_json_ ? stdout_json_ : Json::object();
-      report["tool"] = name_;
-      report["version"] = IMGMESH_VERSION;
-      report["exit_status"] = code;
-      report["seconds"] = elapsed();
-      if (!error.empty()) report["error"] = error;
-      // The tool's own entries follow the common ones.
-      add_entries(report, stats);
-      AtomicOutput out(stats_path_);
-      out.stream() << report.dump(2) << '\n';
-      out.commit();
+      write_stats(code, error);
     } catch (const Error& e) {
       std::cerr << name_ << ": " << e.message() << '\n';
       if (code == kOk) code = kFailure;

@@ -109,6 +109,7 @@ private:
   };
   void add_help_man();
   void check_outputs() const;
+  void write_stats(int code, const std::string& error) const;
 
   std::string name_;
   std::string stats_path_;

@@ -93,14 +93,50 @@ OutputGroup::~OutputGroup() {
   current_group = outer_;
 }
 
+// Files first, then standard output (which cannot be taken back). A target
+// that is a folder fails before anything moves; a target that exists is
+// kept under a hard link until the whole set is in place. A failure moves
+// every placed file back to its temporary name (removed with the group) and
+// the earlier contents back, so the set lands whole or not at all.
 void OutputGroup::commit() {
-  std::size_t done = 0;
+  for (const Finished& f : finished_) {
+    struct stat st;
+    if (f.target != "-" && ::stat(f.target.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+      throw Error("cannot write: it is a folder", f.target);
+  }
+  std::vector<std::string> backup(finished_.size());
+  std::vector<bool> placed(finished_.size(), false);
+  auto forget_backups = [&] {
+    for (const std::string& b : backup)
+      if (!b.empty()) std::remove(b.c_str());
+  };
   try {
-    for (; done < finished_.size(); ++done) move_into_place(finished_[done].tmp, finished_[done].target);
+    for (std::size_t i = 0; i < finished_.size(); ++i) {
+      const Finished& f = finished_[i];
+      if (f.target == "-") continue;
+      if (::access(f.target.c_str(), F_OK) == 0) {
+        std::string b = make_temp(f.target, ".bak", f.target);
+        std::remove(b.c_str());
+        if (::link(f.target.c_str(), b.c_str()) != 0)
+          throw Error(std::string("cannot keep the earlier file: ") + std::strerror(errno), f.target);
+        backup[i] = b;
+      }
+      move_into_place(f.tmp, f.target);
+      placed[i] = true;
+    }
+    for (const Finished& f : finished_)
+      if (f.target == "-") move_into_place(f.tmp, f.target);
   } catch (...) {
-    finished_.erase(finished_.begin(), finished_.begin() + std::ptrdiff_t(done));
+    for (std::size_t i = finished_.size(); i-- > 0;) {
+      const Finished& f = finished_[i];
+      if (!placed[i]) continue;
+      std::rename(f.target.c_str(), f.tmp.c_str());
+      if (!backup[i].empty() && std::rename(backup[i].c_str(), f.target.c_str()) == 0) backup[i].clear();
+    }
+    forget_backups();
     throw;
   }
+  forget_backups();
   finished_.clear();
 }
 

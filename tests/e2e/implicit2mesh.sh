@@ -1,126 +1,121 @@
-#!/bin/bash
-# implicit2mesh end to end: the real pipeline on a bundled image, the
-# topology certificate checked independently (surface_check computes bdCA(X)
-# of the well-composed image from its boundary faces), exit codes, atomic
-# outputs, and share/examples/Makefile on a bundled multi-label image.
-set -euo pipefail
-mkdir -p "$TMP"
-cd "$TMP"
-rm -rf ./*
-tool="$BIN/implicit2mesh"
-check="$BIN/../tests/unit/surface/surface_check"
-fail() { echo "FAIL: $*" >&2; exit 1; }
-[ -x "$tool" ] || fail "no $tool"
-[ -x "$check" ] || fail "no $check"
+#!/usr/bin/env bash
+# implicit2mesh end to end: the real pipeline on bundled images, each mesh
+# checked independently (surface_check: closed oriented 2-manifold without
+# self-intersections, bdCA(X)'s Euler characteristics, radius-edge ratio;
+# surface_check.py: roughness, signed volume, component boxes), exit codes,
+# stdout against the file output, normals read back, and
+# share/examples/Makefile on a bundled multi-label image.
+source "$(dirname "$0")/lib.sh"
+CHECK=$BIN/../tests/unit/surface/surface_check
+SURF=$E2E/surface_check.py
 
-expect_status() {  # expect_status CODE command...
-  local want=$1; shift
-  set +e; "$@" 2>err.txt; local got=$?; set -e
-  [ "$got" = "$want" ] || { cat err.txt >&2; fail "exit $got, want $want: $*"; }
-  [ "$want" = 0 ] || [ "$(wc -l < err.txt)" -ge 1 ] || fail "no message on stderr: $*"
+# surface MESH WC RATIO [ROUGHNESS]: both independent surface checkers.
+surface() {
+  "$CHECK" "$1" "$2" "$3" > check.txt 2>&1 || { fail "$1: surface_check: $(cat check.txt)"; return; }
+  python3 "$SURF" "$1" "$2" --roughness "${4:-1.0471975511965976}" > surf.txt 2>&1 || fail "$1: surface_check.py: $(cat surf.txt)"
+}
+bunny_wc() { expect 0 img2wc "$DATA/bunny00-96.nrrd" bunny-wc.nrrd -q; }
+bunny_f() { expect 0 wc2implicit "$(shared bunny-wc.nrrd bunny_wc)" bunny-f.nrrd -q; }
+
+case_usage_and_bad_input_exit_1_2_without_output() {
+  expect 2 implicit2mesh
+  expect 2 implicit2mesh in.nrrd out.xyz
+  expect 2 implicit2mesh in.nrrd out.off --ratio 1.1
+  expect 2 implicit2mesh in.nrrd out.off --roughness 0.2
+  expect 2 implicit2mesh in.nrrd out.off --max-distance -1
+  expect 1 implicit2mesh missing.nrrd out.off
+  expect 1 implicit2mesh "$DATA/bunny00-96.nrrd" out.off
+  # The reason itself (every message starts with "implicit2mesh:").
+  grep -q "not an implicit function file" err.txt || fail "a non-implicit file is not named as such: $(cat err.txt)"
+  : > empty.nrrd
+  expect 1 implicit2mesh empty.nrrd out.off
+  [[ $(wc -l < err.txt) == 1 ]] || fail "the error is not one line"
+  [[ -z $(ls | grep -v -e '^err.txt$' -e '^out.txt$' -e '^empty.nrrd$') ]] || fail "left: $(ls)"
 }
 
-# Usage errors (2) and bad input (1) leave no output behind.
-expect_status 2 "$tool"
-expect_status 2 "$tool" in.nrrd out.xyz
-expect_status 2 "$tool" in.nrrd out.off --ratio 1.1
-expect_status 2 "$tool" in.nrrd out.off --roughness 0.2
-expect_status 2 "$tool" in.nrrd out.off --max-distance -1
-expect_status 1 "$tool" missing.nrrd out.off
-expect_status 1 "$tool" "$DATA/bunny00-96.nrrd" out.off    # not an implicit function file
-# The reason itself: every message of the tool starts with "implicit2mesh:".
-grep -q "not an implicit function file" err.txt || { cat err.txt >&2; fail "a non-implicit file is not named as such"; }
-: > empty.nrrd
-expect_status 1 "$tool" empty.nrrd out.off
-[ ! -e out.off ] || fail "output written on error"
+case_bunny_through_pipes_has_voxel_topology() {
+  "$BIN/img2wc" -q "$DATA/bunny00-96.nrrd" - | "$BIN/wc2implicit" -q - - > f.nrrd || fail "img2wc | wc2implicit"
+  IN=f.nrrd expect 0 implicit2mesh - bunny.ply --stats stats.json
+  surface bunny.ply "$(shared bunny-wc.nrrd bunny_wc)" 2
+  [[ $(json stats.json restricted_delaunay_violations) == 0 ]] || fail "stats: restricted Delaunay violations"
+}
 
-for t in img2wc wc2implicit; do [ -x "$BIN/$t" ] || fail "no $BIN/$t: the pipeline part needs it"; done
+case_bunny_ratio_1_2() {
+  expect 0 implicit2mesh "$(shared bunny-f.nrrd bunny_f)" bunny12.off --ratio 1.2
+  surface bunny12.off "$(shared bunny-wc.nrrd bunny_wc)" 1.2
+}
 
-# The pipeline through pipes, default bounds; then rho_0 = 1.2.
-"$BIN/img2wc" -q "$DATA/bunny00-96.nrrd" bunny-wc.nrrd
-"$BIN/img2wc" -q "$DATA/bunny00-96.nrrd" - | "$BIN/wc2implicit" -q - - | "$tool" -q - bunny.ply --stats stats.json
-"$check" bunny.ply bunny-wc.nrrd 2 || fail "bunny: topology or ratio"
-grep -q '"topology_matches": true' stats.json || fail "stats: topology_matches"
-grep -q '"restricted_delaunay_violations": 0' stats.json || fail "stats: restricted Delaunay"
-"$BIN/wc2implicit" -q bunny-wc.nrrd bunny-f.nrrd
-"$tool" -q bunny-f.nrrd bunny12.off --ratio 1.2 --normals
-"$check" bunny12.off bunny-wc.nrrd 1.2 || fail "bunny at rho_0 = 1.2"
-"$tool" -q bunny-f.nrrd - > stdout.off
-[ "$(head -1 stdout.off)" = OFF ] || fail "OFF on stdout"
-"$check" stdout.off bunny-wc.nrrd 2 || fail "OFF on stdout: topology"
-"$tool" -q bunny-f.nrrd bunny-n.ply --normals --max-distance 0.02
-"$check" bunny-n.ply bunny-wc.nrrd 2 || fail "bunny with normals and --max-distance"
+case_stdout_is_the_file_output() {
+  local f; f=$(shared bunny-f.nrrd bunny_f)
+  OUT=stdout.off expect 0 implicit2mesh "$f" - --threads 1
+  expect 0 implicit2mesh "$f" file.off --threads 1
+  cmp -s stdout.off file.off || fail "OUT - differs from OUT file.off"
+  IN=$f OUT=stdin.off expect 0 implicit2mesh - - --threads 1
+  cmp -s stdin.off file.off || fail "IN - differs from IN FILE"
+}
+
 # The normals read back: every one unit and on the outer side of the
-# (outward, checked above) triangles around its vertex.
-python3 - bunny-n.ply <<'PY' || fail "bunny-n.ply: normals not unit or not outward"
-import math, struct, sys
-b = open(sys.argv[1], 'rb').read()
-h = b[:b.index(b'end_header\n') + 11].decode().split('\n')
-assert 'format binary_little_endian 1.0' in h and h.count('property float nx') == 1
-nv = int(next(l for l in h if l.startswith('element vertex')).split()[2])
-nf = int(next(l for l in h if l.startswith('element face')).split()[2])
-at = len('\n'.join(h))
-V = [struct.unpack_from('<6f', b, at + 24 * i) for i in range(nv)]
-at += 24 * nv
-acc = [[0.0, 0.0, 0.0] for _ in range(nv)]
-for k in range(nf):
-    assert b[at] == 3
-    i, j, l = struct.unpack_from('<3i', b, at + 1); at += 13
-    p, q, r = V[i], V[j], V[l]
-    u = [q[m] - p[m] for m in range(3)]; w = [r[m] - p[m] for m in range(3)]
-    n = (u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0])
-    for v in (i, j, l):
-        for m in range(3): acc[v][m] += n[m]
-assert at == len(b)
-bad = 0
-for v, a in zip(V, acc):
-    n = v[3:]
-    if abs(math.hypot(*n) - 1) > 1e-5: sys.exit('normal not unit: %r' % (n,))
-    if sum(n[m] * a[m] for m in range(3)) <= 0: bad += 1
-sys.exit('%d of %d normals point inward' % (bad, nv) if bad else 0)
-PY
+# triangles around its vertex (which surface_check finds outward).
+case_normals_unit_and_outward() {
+  expect 0 implicit2mesh "$(shared bunny-f.nrrd bunny_f)" bunny-n.ply --normals --max-distance 0.02
+  surface bunny-n.ply "$(shared bunny-wc.nrrd bunny_wc)" 2
+  python3 "$SURF" bunny-n.ply --normals > n.txt 2>&1 || fail "bunny-n.ply: $(cat n.txt)"
+}
 
-# The FacetCycle checks run on --threads threads: same mesh for 1 and 2.
-"$tool" -q bunny-f.nrrd bunny-t1.off --threads 1
-"$tool" -q bunny-f.nrrd bunny-t2.off --threads 2
-cmp -s bunny-t1.off bunny-t2.off || fail "--threads changes the mesh"
+case_threads_do_not_change_the_mesh() {
+  local f; f=$(shared bunny-f.nrrd bunny_f)
+  expect 0 implicit2mesh "$f" t1.off --threads 1
+  expect 0 implicit2mesh "$f" t2.off --threads 2
+  cmp -s t1.off t2.off || fail "--threads 1 and 2 give different meshes"
+}
 
 # Real brain tissue: a noisy k-means class (289 components, one of genus
 # 1482; among them thin rods whose cross-sections nearly fill a Voronoi facet).
-"$BIN/img2wc" -q "$DATA/brain-kmeans-labels.nii.gz" --label 5 brain-wc.nrrd
-"$BIN/wc2implicit" -q brain-wc.nrrd brain-f.nrrd
-"$tool" -q brain-f.nrrd brain.off --roughness 1.5708 --stats brain.json
-"$check" brain.off brain-wc.nrrd 2 || fail "brain label 5: topology or ratio"
-grep -q '"restricted_delaunay_violations": 0' brain.json || fail "brain: restricted Delaunay"
-# The thesis's TOPOLOGY steps suffice here: the certificate passes at once.
-grep -q '"topology_fallback_rounds": 0' brain.json || fail "brain: certificate needed repairs"
+case_brain_label5_has_voxel_topology() {
+  expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 5 brain-wc.nrrd -q
+  expect 0 wc2implicit brain-wc.nrrd brain-f.nrrd -q
+  expect 0 implicit2mesh brain-f.nrrd brain.off --roughness 1.5708 --stats brain.json
+  surface brain.off brain-wc.nrrd 2 1.5708
+  [[ $(json brain.json restricted_delaunay_violations) == 0 ]] || fail "brain: restricted Delaunay violations"
+}
 
 # A real organ: CGAL's liver CT labels, the whole organ (35 components, the
 # liver's surface of Euler characteristic -6 around its vessels), at the
 # default settings, with anisotropic voxels (0.62 x 0.62 x 1.33 mm).
-"$BIN/img2wc" -q "$DATA/liver-labels.nrrd" --threshold 1 liver-wc.nrrd
-"$BIN/wc2implicit" -q liver-wc.nrrd liver-f.nrrd
-"$tool" -q liver-f.nrrd liver.ply --threads 2 --stats liver.json
-"$check" liver.ply liver-wc.nrrd 2 || fail "liver: topology, self-intersection or ratio"
-grep -q '"topology_fallback_rounds": 0' liver.json || fail "liver: certificate needed repairs"
+case_liver_has_voxel_topology() {
+  expect 0 img2wc "$DATA/liver-labels.nrrd" --threshold 1 liver-wc.nrrd -q
+  expect 0 wc2implicit liver-wc.nrrd liver-f.nrrd -q
+  expect 0 implicit2mesh liver-f.nrrd liver.ply --threads 2
+  surface liver.ply liver-wc.nrrd 2
+}
 
-# --max-points: the mesh is written, status 3, the failed guarantee named.
-expect_status 3 "$tool" bunny-f.nrrd small.off --max-points 40
-grep -q "max-points" err.txt || fail "max-points not named"
-[ -s small.off ] || fail "max-points: no mesh written"
+# --max-points: the mesh is written, exit 3, the failed guarantee named;
+# - gives the same bytes.
+case_max_points_exit_3_with_mesh() {
+  local f; f=$(shared bunny-f.nrrd bunny_f)
+  expect 3 implicit2mesh "$f" small.off --max-points 40 --threads 1
+  grep -q "max-points" err.txt || fail "max-points not named: $(cat err.txt)"
+  [[ $(sed -n 2p small.off | cut -d' ' -f2) -gt 0 ]] || fail "max-points: no triangle written"
+  OUT=small-stdout.off expect 3 implicit2mesh "$f" - --max-points 40 --threads 1
+  cmp -s small.off small-stdout.off || fail "exit 3: OUT - differs from the file output"
+}
 
 # share/examples/Makefile on the bundled liver labels: vessels (127, 29
 # components), parenchyma (255) and label 85, one mesh per label, in parallel.
-make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85 127 255" BIN="$BIN/" OUT=ex -j2
-for l in 85 127 255; do
-  "$check" "ex/label-$l.ply" "ex/label-$l.wc.nrrd" 2 || fail "example label $l"
-  [ -s "ex/label-$l.json" ] || fail "example label $l: no --stats report"
-done
-# The same workflow as share/examples/Snakefile, where Snakemake is installed
-# (Debian package snakemake; not needed by the build or CI).
-if command -v snakemake >/dev/null; then
-  snakemake -q -s "$SRC/share/examples/Snakefile" --cores 2 -d sk \
-    --config scan="$DATA/liver-labels.nrrd" labels="85" bin="$BIN/" out=ex >/dev/null 2>&1 || fail "Snakefile"
-  grep -q '"topology_matches": true' sk/ex/label-85.json || fail "Snakefile: topology"
-fi
-echo "implicit2mesh e2e: ok"
+case_examples_makefile_one_mesh_per_label() {
+  make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85 127 255" BIN="$BIN/" OUT=ex -j2 \
+    2> make.err || fail "make: $(cat make.err)"
+  for l in 85 127 255; do
+    "$CHECK" "ex/label-$l.ply" "ex/label-$l.wc.nrrd" 2 > c.txt || fail "example label $l: $(cat c.txt)"
+    [[ $(json "ex/label-$l.json" exit_status) == 0 ]] || fail "example label $l: no --stats report"
+  done
+  # The same workflow as share/examples/Snakefile, where Snakemake is
+  # installed (Debian package snakemake; not needed by the build or CI).
+  if command -v snakemake > /dev/null; then
+    snakemake -q -s "$SRC/share/examples/Snakefile" --cores 2 -d sk \
+      --config scan="$DATA/liver-labels.nrrd" labels="85" bin="$BIN/" out=ex > /dev/null 2>&1 || fail "Snakefile"
+    cmp -s sk/ex/label-85.ply ex/label-85.ply || fail "Snakefile and Makefile give different meshes"
+  fi
+}
+
+run_cases "$@"

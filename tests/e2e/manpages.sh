@@ -3,29 +3,31 @@
 # option its --help prints appears in that page. The pages are the build's
 # (build/man/NAME.1: man/NAME.1.in with SYNOPSIS and OPTIONS from the tool's
 # --help-man), so this checks the generator and the join too.
-set -u
+source "$(dirname "$0")/lib.sh"
+
+case_every_tool_page_has_every_option() {
 pages=${PAGES:-$BIN/../man}
-fail=0
 count=0
 for tool in img2wc wc2implicit implicit-eval implicit2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
   [[ -x "$BIN/$tool" ]] || continue
   count=$((count + 1))
-  [[ -f "$MAN/$tool.1.in" ]] || { echo "FAIL: $tool has no hand-written page $MAN/$tool.1.in"; fail=1; }
+  [[ -f "$MAN/$tool.1.in" ]] || fail "$tool has no hand-written page $MAN/$tool.1.in"
   page="$pages/$tool.1"
-  if [[ ! -f "$page" ]]; then echo "FAIL: $tool has no man page $page"; fail=1; continue; fi
-  ! grep -q '@SYNOPSIS@\|@OPTIONS@\|@NOTE\|@END@' "$page" || { echo "FAIL: $tool.1 keeps a marker of its .in"; fail=1; }
+  [[ -f "$page" ]] || { fail "$tool has no man page $page"; continue; }
+  ! grep -q '@SYNOPSIS@\|@OPTIONS@\|@NOTE\|@END@' "$page" || fail "$tool.1 keeps a marker of its .in"
   text=$(sed 's/\\-/-/g; s/\\f[BIRP]//g' "$page")
   for section in NAME SYNOPSIS DESCRIPTION OPTIONS "EXIT STATUS" EXAMPLES "SEE ALSO"; do
-    grep -q "^\.SH \"\?$section\"\?" <<<"$text" || { echo "FAIL: $tool.1 lacks section $section"; fail=1; }
+    grep -q "^\.SH \"\?$section\"\?" <<<"$text" || fail "$tool.1 lacks section $section"
   done
-  help=$("$BIN/$tool" --help) || { echo "FAIL: $tool --help exited non-zero"; fail=1; continue; }
+  help=$("$BIN/$tool" --help) || { fail "$tool --help exited non-zero"; continue; }
   # Each option of --help is an entry of OPTIONS, not only a word elsewhere.
   options=$(sed -n '/^\.SH "\?OPTIONS/,/^\.SH /p' <<<"$text")
   for opt in $(grep -oE -- '--[a-z][a-z0-9-]*' <<<"$help" | sort -u); do
-    grep -qE -- "${opt}([^a-z0-9-]|$)" <<<"$options" || { echo "FAIL: $tool.1 does not document $opt in OPTIONS"; fail=1; }
+    grep -qE -- "${opt}([^a-z0-9-]|$)" <<<"$options" || fail "$tool.1 does not document $opt in OPTIONS"
   done
-  "$BIN/$tool" --version | grep -q "$tool" || { echo "FAIL: $tool --version does not name the tool"; fail=1; }
+  "$BIN/$tool" --version | grep -q "$tool" || fail "$tool --version does not name the tool"
 done
-echo "checked $count tools"
-[[ $count -gt 0 ]] || { echo "FAIL: no tool built"; exit 1; }
-exit $fail
+[[ $count == 9 ]] || fail "$count tools checked, not 9"
+}
+
+run_cases "$@"

@@ -1,24 +1,16 @@
 #!/usr/bin/env bash
 # poly2tri end to end: Triangle's .poly conventions (comments, ids from 1,
 # holes, regional attributes, markers), OFF polygons, angle and size bounds,
-# outputs readable back (.ele/.node/.poly), and bad input (crossing segments,
-# dangling id, truncated file) giving one line, exit 1 and no output.
-set -euo pipefail
-mkdir -p "$TMP"
-cd "$TMP"
-T="$BIN/poly2tri"
-fail() { echo "FAIL: $*" >&2; exit 1; }
-expect() {
-  local want=$1; shift
-  set +e; "$@" > out.txt 2> err.txt; local got=$?; set -e
-  [[ $got -eq $want ]] || { cat err.txt >&2; fail "exit $got (want $want): $*"; }
-}
-json() { python3 -c "import json,sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])" "$1" "$2"; }
-
-cp "$SRC/tests/e2e/planar_check.py" check.py  # independent mesh checker, shared with the other planar e2e test
+# lattices, outputs readable back (.ele/.node/.poly, .off, .vtk, .msh, .svg
+# holding the same triangles), and bad input (crossing segments, dangling
+# id, truncated file) giving one line, exit 1 and no output. Meshes are
+# checked by planar_check.py (CCW, conformity to the segments, angles).
+source "$(dirname "$0")/lib.sh"
+CHECK=$E2E/planar_check.py
 
 # A 10 x 10 square, ids from 1, a square hole (4..6)^2, a dividing segment at
 # y = 2 with its own marker, two regions (below: 10, above: 20), comments.
+square() {
 cat > sq.poly <<'PEOF'
 # vertices: id x y, one marker
 10 2 0 1
@@ -53,9 +45,12 @@ cat > sq.poly <<'PEOF'
 1 1 1 10 -1
 2 1 9 20 -1
 PEOF
-expect 0 "$T" sq.poly sq.1.ele --stats s.json --svg sq.svg
-[[ -s sq.1.ele && -s sq.1.node && -s sq.1.poly && -s sq.svg ]] || fail "outputs missing"
-python3 check.py sq.1.ele sq.poly 20.7 > c.txt || { cat c.txt; fail "sq mesh"; }
+}
+
+case_square_hole_regions_markers_ids() {
+  square
+  expect 0 poly2tri sq.poly sq.1.ele --svg sq.svg
+python3 "$CHECK" sq.1.ele sq.poly 20.7 > c.txt || { fail "$(cat c.txt) sq mesh"; }
 python3 - <<'PYEOF' || fail "sq: area, hole, regions, markers, ids"
 L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
 N, E, P = L("sq.1.node"), L("sq.1.ele"), L("sq.1.poly")
@@ -81,11 +76,13 @@ for x, y, m in pts.values():
     elif abs(max(abs(x - 5), abs(y - 5)) - 1) < 1e-12: assert m == 2, (x, y, m)
     elif y == 2 and 0 < x < 10: assert m == 3, (x, y, m)
 PYEOF
-grep -q '"triangles"' s.json || fail "stats"
+  [[ $(grep -c '<polygon' sq.svg) == $(count sq.1.ele) ]] || fail "the SVG does not draw every triangle"
+}
 
-# Angle and size bounds.
-expect 0 "$T" sq.poly sq.2.ele --min-angle 30 --max-area 0.25
-python3 check.py sq.2.ele sq.poly 30 > c.txt || { cat c.txt; fail "30 degrees"; }
+case_angle_area_edge_bounds() {
+  square
+expect 0 poly2tri sq.poly sq.2.ele --min-angle 30 --max-area 0.25
+python3 "$CHECK" sq.2.ele sq.poly 30 > c.txt || { fail "$(cat c.txt) 30 degrees"; }
 python3 - <<'PYEOF' || fail "max area"
 L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
 N, E = L("sq.2.node"), L("sq.2.ele")
@@ -94,7 +91,7 @@ for r in E[1:]:
     a, b, c = (pts[int(t)] for t in r[1:4])
     assert ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2 <= 0.25 + 1e-12
 PYEOF
-expect 0 "$T" sq.poly sq.3.ele --max-edge 0.5 --min-angle 0
+expect 0 poly2tri sq.poly sq.3.ele --max-edge 0.5 --min-angle 0
 python3 - <<'PYEOF' || fail "max edge"
 import math
 L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
@@ -104,28 +101,50 @@ for r in E[1:]:
     p = [pts[int(t)] for t in r[1:4]]
     assert max(math.dist(p[k], p[(k + 1) % 3]) for k in range(3)) <= 0.5 + 1e-12
 PYEOF
-# A sharp input angle (about 6 degrees): the bound holds away from it.
+  # A sharp input angle (about 6 degrees): the bound holds away from it.
 printf '4 2 0 0\n0 0 0\n1 10 0\n2 10 1.1\n3 3 4\n4 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n0\n' > sharp.poly
-expect 0 "$T" sharp.poly sharp.1.ele --stats sh.json
-python3 check.py sharp.1.ele sharp.poly 20.7 > c.txt || { cat c.txt; fail "sharp"; }
+expect 0 poly2tri sharp.poly sharp.1.ele
+python3 "$CHECK" sharp.1.ele sharp.poly 20.7 > c.txt || { fail "$(cat c.txt) sharp"; }
+}
+
+case_output_poly_and_off_polygons_read_back() {
+  square
+  expect 0 poly2tri sq.poly sq.1.ele
 # The output .poly (vertices in the .node) is itself a valid input.
-expect 0 "$T" sq.1.poly sq.4.ele
+expect 0 poly2tri sq.1.poly sq.4.ele
 # OFF polygons: a square with a square inside it (two polygons).
 printf 'OFF\n8 2 0\n0 0 0\n4 0 0\n4 4 0\n0 4 0\n1 1 0\n3 1 0\n3 3 0\n1 3 0\n4 0 1 2 3\n4 4 5 6 7\n' > sq.off
-expect 0 "$T" sq.off off.1.ele
+expect 0 poly2tri sq.off off.1.ele
 printf '0 2 0 0\n8 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n4 4 5\n5 5 6\n6 6 7\n7 7 4\n' > off.poly
 printf '8 2 0 0\n0 0 0\n1 4 0\n2 4 4\n3 0 4\n4 1 1\n5 3 1\n6 3 3\n7 1 3\n' > off.node
-python3 check.py off.1.ele off.poly 20.7 > c.txt || { cat c.txt; fail "OFF input"; }
-# Other output formats by extension.
-for ext in off vtk msh svg; do expect 0 "$T" sq.poly "sq.$ext"; [[ -s "sq.$ext" ]] || fail "no .$ext"; done
-grep -q '^\$MeshFormat' sq.msh || fail "msh header"
+python3 "$CHECK" off.1.ele off.poly 20.7 > c.txt || { fail "$(cat c.txt) OFF input"; }
+  # The output .poly (vertices in the .node) gives the same mesh again.
+  python3 "$CHECK" sq.4.ele sq.poly 20.7 > c.txt || fail "$(cat c.txt) sq.1.poly as input"
+}
+
+case_formats_off_vtk_msh_svg_hold_the_triangles() {
+  square
+  expect 0 poly2tri sq.poly ref.1.ele
+  local t; t=$(count ref.1.ele)
+  for ext in off vtk msh svg; do expect 0 poly2tri sq.poly "sq.$ext"; done
+  [[ $(sed -n 2p sq.off | cut -d' ' -f2) == "$t" && $(tail -n "$t" sq.off | grep -c '^3 ') == "$t" ]] || fail ".off: not $t triangles"
+  grep -q "^CELLS $t " sq.vtk || fail ".vtk: not $t cells"
+  grep -q '^\$MeshFormat' sq.msh && [[ $(awk '/^\$Elements/ { e = 1; getline; next } /^\$EndElements/ { e = 0 } e && $2 == 2' sq.msh | wc -l) == "$t" ]] ||
+    fail ".msh: not $t triangles"
+  [[ $(grep -c '<polygon' sq.svg) == "$t" ]] || fail ".svg: not $t polygons"
+  for f in sq.vtk sq.msh sq.svg; do whole "$f"; done
+}
 
 # --lattice: the same guarantees (segments, angle, hole, regions, area) with
 # the lattice points in, on the square above and on random star polygons
 # with a square hole, lattice sides from a twentieth to a half of the size.
-expect 0 "$T" sq.poly sq.l.ele --lattice 0.5 --stats l.json
-python3 check.py sq.l.ele sq.poly 20.7 > c.txt || { cat c.txt; fail "lattice: sq mesh"; }
-[[ $(json l.json lattice_points) -gt 100 ]] || fail "lattice: $(json l.json lattice_points) lattice points"
+case_lattices_keep_every_guarantee() {
+  square
+expect 0 poly2tri sq.poly sq.l.ele --lattice 0.5
+python3 "$CHECK" sq.l.ele sq.poly 20.7 > c.txt || { fail "$(cat c.txt) lattice: sq mesh"; }
+# An equilateral lattice of side 0.5 has 2 / (sqrt(3) 0.5^2) = 4.6 points a
+# unit area: about 440 in the 96 of the domain.
+(( $(count sq.l.node) >= 350 )) || fail "lattice: $(count sq.l.node) vertices for about 440 lattice points"
 python3 - <<'PYEOF' || fail "lattice: area, hole, regions"
 L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
 N, E = L("sq.l.node"), L("sq.l.ele")
@@ -142,8 +161,8 @@ assert abs(area - 96) < 1e-9, area
 PYEOF
 # --square-lattice: the same guarantees, and the interior is right isosceles
 # triangles (halves of the lattice squares; the equilateral lattice's are 60).
-expect 0 "$T" sq.poly sq.s.ele --square-lattice 0.5 --stats s.json
-python3 check.py sq.s.ele sq.poly 20.7 > c.txt || { cat c.txt; fail "square lattice: sq mesh"; }
+expect 0 poly2tri sq.poly sq.s.ele --square-lattice 0.5
+python3 "$CHECK" sq.s.ele sq.poly 20.7 > c.txt || { fail "$(cat c.txt) square lattice: sq mesh"; }
 python3 - <<'PYEOF' || fail "square lattice: not mostly right isosceles triangles"
 import math
 L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
@@ -158,7 +177,8 @@ def angles(a, b, c):
 right = sum(1 for r in E[1:] if all(abs(x - y) < 1e-6 for x, y in zip(angles(*(pts[int(t)] for t in r[1:4])), (45, 45, 90))))
 assert right > 0.6 * (len(E) - 1), (right, len(E) - 1)
 PYEOF
-for seed in 1 2 3 4 5 6; do
+  local seed side kind
+  for seed in 1 2 3 4 5 6; do
   python3 - "$seed" > star.poly <<'PYEOF'
 import math, random, sys
 r = random.Random(int(sys.argv[1])); n = r.randint(12, 60)
@@ -172,43 +192,52 @@ for k in range(n): print(k, k, (k + 1) % n)
 for k in range(4): print(n + k, n + k, n + (k + 1) % 4)
 print(1); print(0, 10, 10)
 PYEOF
-  side=$(awk -v s="$seed" 'BEGIN { srand(s); printf "%.3f", 1 + 9 * rand() }')
+    side=$(python3 -c "import random, sys; print('%.3f' % (1 + 9 * random.Random(int(sys.argv[1])).random()))" "$seed")
   kind=lattice; [[ $((seed % 2)) = 1 ]] && kind=square-lattice  # both lattices keep the angle bound
-  expect 0 "$T" star.poly star.1.ele "--$kind" "$side" --stats st.json
-  python3 check.py star.1.ele star.poly 20.7 > c.txt || { cat c.txt; fail "lattice $side, star $seed"; }
+  expect 0 poly2tri star.poly star.1.ele "--$kind" "$side"
+  python3 "$CHECK" star.1.ele star.poly 20.7 > c.txt || { fail "$(cat c.txt) lattice $side, star $seed"; }
   python3 - star.1 <<'PYEOF' || fail "lattice $side, star $seed: hole"
 import sys
 L = lambda f: [l for l in (x.split('#')[0].split() for x in open(f)) if l]
 assert not any(9 < float(r[1]) < 11 and 9 < float(r[2]) < 11 for r in L(sys.argv[1] + ".node")[1:])
 PYEOF
 done
-expect 2 "$T" sq.poly x.1.ele --lattice 0
-expect 2 "$T" sq.poly x.1.ele --lattice 1 --square-lattice 1
-expect 2 "$T" sq.poly x.1.ele --lattice 0.001 --max-vertices 1000
+}
+
+case_lattice_and_size_usage_errors_before_work() {
+  square
+expect 2 poly2tri sq.poly x.1.ele --lattice 0
+expect 2 poly2tri sq.poly x.1.ele --lattice 1 --square-lattice 1
+expect 2 poly2tri sq.poly x.1.ele --lattice 0.001 --max-vertices 1000
 [[ ! -e x.1.ele ]] || fail "output written on a lattice usage error"
 # A size bound beyond --max-vertices is refused at once, not after the refinement.
 for bound in "--max-area 1e-9" "--max-edge 1e-5" "--max-area 0.001 --max-vertices 1000"; do
   # shellcheck disable=SC2086  # an option and its value
-  expect 2 timeout 10 "$T" sq.poly x.1.ele $bound
+  expect 2 timeout 10 "$BIN/poly2tri" sq.poly x.1.ele $bound
   grep -q "max-vertices" err.txt || fail "$bound: $(cat err.txt)"
   [[ ! -e x.1.ele ]] || fail "output written on a refused size bound"
 done
+}
 
+case_bad_input_one_line_exit_1_without_output() {
+  square
 # Bad input: one line on stderr, exit 1, nothing written.
 printf '4 2 0 0\n0 0 0\n1 2 2\n2 2 0\n3 0 2\n3 0\n0 0 1\n1 2 3\n2 0 2\n' > cross.poly
 printf '3 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 0\n0 0 1\n1 1 2\n2 2 7\n' > dangling.poly
 head -c 60 sq.poly > trunc.poly
 printf '3 2 0 0\n0 0 0\n1 nan 0\n2 0 1\n3 0\n0 0 1\n1 1 2\n2 2 0\n' > nan.poly
 for bad in cross dangling trunc nan; do
-  expect 1 "$T" $bad.poly $bad.1.ele
+  expect 1 poly2tri $bad.poly $bad.1.ele
   [[ $(wc -l < err.txt) -eq 1 ]] || fail "$bad: error is not one line"
   grep -q "$bad.poly" err.txt || fail "$bad: the error does not name the file"
   [[ ! -e $bad.1.ele && ! -e $bad.1.node && ! -e $bad.1.poly ]] || fail "$bad: output written"
 done
 grep -q "line" err.txt || fail "no line number"
-expect 1 "$T" missing.poly m.1.ele
-expect 2 "$T" sq.poly x.1.ele --min-angle 40
-expect 2 "$T" sq.poly x.1.ele --max-area 1 --max-edge 1
-expect 2 "$T" sq.poly x.1.txt
+expect 1 poly2tri missing.poly m.1.ele
+expect 2 poly2tri sq.poly x.1.ele --min-angle 40
+expect 2 poly2tri sq.poly x.1.ele --max-area 1 --max-edge 1
+expect 2 poly2tri sq.poly x.1.txt
 [[ ! -e x.1.ele ]] || fail "output written on usage error"
-echo "poly2tri e2e ok"
+}
+
+run_cases "$@"

@@ -1,40 +1,17 @@
-#!/bin/bash
-# tri2quad end to end: a real image through img2poly and poly2tri (when they
-# are built), a hand-made constrained mesh, every output format, and bad
-# input (dangling constraint edge, truncated file, usage errors).
-set -u
-mkdir -p "$TMP"
-cd "$TMP" || exit 1
-fail() { echo "FAIL: $*" >&2; exit 1; }
-T="$BIN/tri2quad"
-[ -x "$T" ] || fail "no $T"
+#!/usr/bin/env bash
+# tri2quad end to end on hand-made constrained meshes and a random one made
+# here from a fixed seed (the real images through img2poly and poly2tri are
+# in pipeline2d.sh): quads checked by quad_check.py (strictly convex, edge to
+# edge, area and region areas kept), constraints and markers by the segment
+# check below, the size bounds counted from the files; every output format,
+# stdout against the file output, and bad input (dangling constraint edge,
+# truncated file, usage errors).
+source "$(dirname "$0")/lib.sh"
+QC=$E2E/quad_check.py
 
-# Statistic from a --stats JSON (first match, numbers and booleans).
-stat() { sed -n "s/^ *\"$1\": *\([^,]*\),*$/\1/p" "$2" | head -1; }
-
-check_stats() {  # stats file: strictly convex and within the size bounds
-  [ "$(stat non_convex "$1")" = 0 ] || fail "$1: non-convex quads"
-  [ "$(stat within_bounds "$1")" = true ] || fail "$1: size bounds exceeded"
-  q=$(stat quads "$1"); s=$(stat steiner_points "$1")
-  qb=$(stat quad_bound "$1"); sb=$(stat steiner_bound "$1")
-  [ "$q" -le "$qb" ] && [ "$s" -le "$sb" ] || fail "$1: bounds"
-}
-
-# 1. A real image through the upstream tools (all built with the suite).
-for t in img2poly poly2tri; do [ -x "$BIN/$t" ] || fail "no $BIN/$t"; done
-if [ -x "$BIN/img2poly" ] && [ -x "$BIN/poly2tri" ]; then
-  "$BIN/img2poly" -q "$DATA/RatLungSlice1.mha" lung.poly --threshold 100 || fail "img2poly"
-  "$BIN/poly2tri" -q lung.poly lung.1.ele --min-angle 20 || fail "poly2tri"
-  "$T" -q lung.1.ele lung.q.ele --svg lung.q.svg --stats lung.json || fail "tri2quad on the lung mesh"
-  check_stats lung.json
-  grep -v '^ *#' lung.q.ele | head -1 | awk '{ if ($2 != 4) exit 1 }' || fail "lung.q.ele: not 4 nodes an element"
-  [ -s lung.q.node ] && [ -s lung.q.poly ] && [ -s lung.q.svg ] || fail "lung outputs missing"
-  # Every element line has 4 node ids (plus the region attribute).
-  grep -v '^ *#' lung.q.ele | tail -n +2 | awk 'NF > 0 && NF < 5 { exit 1 }' || fail "short element line"
-fi
-
-# 2. A hand-made constrained mesh: a square with an interior constraint loop
-# (a diamond around the centre), 1-based ids like Triangle's.
+# The square with an interior constraint loop (a diamond around the centre),
+# 1-based ids like Triangle's: 12 triangles, 2 constraint-bounded components.
+square() {
 cat > sq.node <<'N'
 9 2 0 0
 1 0 0
@@ -75,14 +52,12 @@ cat > sq.poly <<'N'
 8 8 5 2
 0
 N
-"$T" -q sq.ele sq.q.ele --stats sq.json || fail "tri2quad on sq"
-check_stats sq.json
-[ "$(stat components sq.json)" = 2 ] || fail "sq: expected 2 components"
-[ "$(stat triangles sq.json)" = 12 ] || fail "sq: 12 triangles"
-# The constraints are kept with their markers: for each marker, every output
-# segment lies on an input segment of that marker and their lengths add up
-# to the input's (the square's sides 1, the interior loop 5-6-7-8 2).
-python3 - sq.node sq.poly sq.q.node sq.q.poly <<'PY' || fail "sq.q.poly: constraint segments or markers lost"
+}
+
+# segments_kept IN OUT: for each marker, every output segment lies on an
+# input segment of that marker and their lengths add up to the input's.
+segments_kept() {
+  python3 - "$1.node" "$1.poly" "$2.node" "$2.poly" <<'PY' > seg.txt 2>&1 || fail "$2.poly: constraint segments or markers lost: $(cat seg.txt)"
 import math, sys
 def rows(path):
     return [l.split('#', 1)[0].split() for l in open(path) if l.split('#', 1)[0].split()]
@@ -102,24 +77,90 @@ for m in sorted({s[2] for s in inp}):
     ok &= abs(sum(math.dist(a, b) for a, b, _ in O) - sum(math.dist(a, b) for a, b, _ in I)) < 1e-9
 ok &= {s[2] for s in out} == {s[2] for s in inp} == {1, 2}
 sys.exit(0 if ok else 1)
+ok &= {s[2] for s in out} == {s[2] for s in inp}
+sys.exit(0 if ok else 1)
 PY
-# Regions carried: both attributes 1 and 2 appear on quads.
-grep -v '^ *#' sq.q.ele | tail -n +2 | awk 'NF >= 6 { seen[$6] = 1 } END { exit !(seen[1] && seen[2]) }' \
-  || fail "region attributes not carried"
-for ext in off vtk msh svg; do
-  "$T" -q sq.ele "sq.q.$ext" || fail "output .$ext"
-  [ -s "sq.q.$ext" ] || fail "empty .$ext"
-done
-grep -q '^\$MeshFormat' sq.q.msh || fail "msh header"
-# OFF through pipes.
-"$T" -q sq.q.off - < /dev/null > /dev/null 2>&1 && fail "quad OFF accepted as triangles"
-"$T" -q sq.ele - | head -1 | grep -q '^OFF' || fail "OFF on stdout"
-printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' | "$T" -q - - | head -2 | tail -1 | awk '{ if ($2 != 5) exit 1 }' \
-  || fail "one triangle from stdin: expected Joe's 5 quads"
-"$T" -q sq.ele sq.o.ele --allow-outside --stats sq.o.json || fail "--allow-outside"
-check_stats sq.o.json
+}
 
-# 3. Bad input: a dangling constraint edge (Fig. 3.26) names the edge.
+# bounds IN OUT T H [--allow-outside]: at most floor(3T/2) + 4H quads and
+# T + 7H Steiner points (T + 3H with --allow-outside), from the files.
+bounds() {
+  local q s k=7
+  [[ -n ${5:-} ]] && k=3
+  q=$(count "$2.ele"); s=$(( $(count "$2.node") - $(count "$1.node") ))
+  local sb=$(( $3 + k * $4 ))
+  (( q <= 3 * $3 / 2 + 4 * $4 && s <= sb && s >= 0 )) || fail "$2: $q quads, $s Steiner points for t = $3, h = $4"
+}
+
+case_constrained_square_keeps_constraints_regions_area() {
+  square
+  expect 0 tri2quad sq.ele sq.q.ele
+  python3 "$QC" sq.q.ele sq.ele --fixed > qc.txt 2>&1 || fail "$(cat qc.txt)"
+  segments_kept sq sq.q
+  bounds sq sq.q 12 2
+  expect 0 tri2quad sq.ele sq.o.ele --allow-outside
+  python3 "$QC" sq.o.ele sq.ele --fixed > qc.txt 2>&1 || fail "--allow-outside: $(cat qc.txt)"
+  segments_kept sq sq.o
+  bounds sq sq.o 12 2 --allow-outside
+}
+
+# A jittered 20 x 20 grid split along random diagonals (python's Random(7)),
+# no constraints but the boundary: one component.
+case_random_triangulation_within_bounds() {
+  python3 - <<'PY'
+import random
+r, n = random.Random(7), 20
+m = n + 1
+with open('g.node', 'w') as f:
+    print(m * m, 2, 0, 1, file=f)
+    for j in range(m):
+        for i in range(m):
+            b = i in (0, n) or j in (0, n)
+            x, y = (i, j) if b else (i + 0.6 * (r.random() - 0.5), j + 0.6 * (r.random() - 0.5))
+            print(j * m + i, repr(x), repr(y), int(b), file=f)
+with open('g.ele', 'w') as f:
+    print(2 * n * n, 3, 0, file=f)
+    k = 0
+    for j in range(n):
+        for i in range(n):
+            a = i + m * j; b, c, d = a + 1, a + m + 1, a + m
+            for t in ((a, b, c), (a, c, d)) if r.random() < 0.5 else ((a, b, d), (b, c, d)):
+                print(k, *t, file=f); k += 1
+PY
+  for pa in 0 40; do
+    expect 0 tri2quad g.ele g$pa.q.ele --pair-above $pa
+    python3 "$QC" g$pa.q.ele g.ele --fixed > qc.txt 2>&1 || fail "--pair-above $pa: $(cat qc.txt)"
+    bounds g g$pa.q 800 1
+  done
+}
+
+case_formats_off_vtk_msh_svg_hold_the_quads() {
+  square
+  expect 0 tri2quad sq.ele ref.ele
+  local q; q=$(count ref.ele)
+  for ext in off vtk msh svg; do expect 0 tri2quad sq.ele "sq.q.$ext"; done
+  [[ $(sed -n 2p sq.q.off | cut -d' ' -f2) == "$q" && $(tail -n "$q" sq.q.off | grep -c '^4 ') == "$q" ]] || fail ".off: not $q quads"
+  grep -q "^CELLS $q " sq.q.vtk || fail ".vtk: not $q cells"
+  grep -q '^\$MeshFormat' sq.q.msh && [[ $(awk '/^\$Elements/ { e = 1; getline; next } /^\$EndElements/ { e = 0 } e && $2 == 3' sq.q.msh | wc -l) == "$q" ]] ||
+    fail ".msh: not $q elements"
+  [[ $(grep -c '<polygon' sq.q.svg) == "$q" ]] || fail ".svg: not $q polygons"
+  for f in sq.q.vtk sq.q.msh sq.q.svg; do whole "$f"; done
+}
+
+case_stdin_stdout_are_the_files() {
+  square
+  OUT=stdout.off expect 0 tri2quad sq.ele -
+  expect 0 tri2quad sq.ele file.off
+  cmp -s stdout.off file.off || fail "OUT - differs from OUT file.off"
+  printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n' > one.off
+  IN=one.off OUT=one-stdout.off expect 0 tri2quad - -
+  expect 0 tri2quad one.off one-file.off
+  cmp -s one-stdout.off one-file.off || fail "IN - differs from IN one.off"
+  [[ $(sed -n 2p one-file.off | cut -d' ' -f2) == 5 ]] || fail "one triangle: expected Joe's 5 quads"
+  IN=file.off expect 1 tri2quad - x.off
+}
+
+case_dangling_constraint_refused_naming_the_edge() {
 cat > bad.node <<'N'
 5 2 0 0
 1 0 0
@@ -135,32 +176,33 @@ cat > bad.ele <<'N'
 3 3 4 5
 4 4 1 5
 N
-printf '0 2 0 1\n1 1\n1 1 5 1\n0\n' > bad.poly
-for pa in 0 40; do  # pairs first refuses it the same way (its pairs would hide it)
-  "$T" bad.ele bad.q.ele --pair-above $pa 2> bad.err; rc=$?
-  [ $rc = 1 ] || fail "dangling edge, --pair-above $pa: exit $rc, expected 1"
-  grep -Eq '\((1, 5|5, 1)\)' bad.err || fail "dangling edge not named: $(cat bad.err)"
-  [ "$(wc -l < bad.err)" = 1 ] || fail "error is not one line"
-  [ ! -e bad.q.ele ] || fail "output written on error"
-done
-# A dangling constraint between triangles that pairs first would merge
-# (every lattice square across its diagonal): still refused.
-printf '9 2 0 0\n1 0 0\n2 1 0\n3 2 0\n4 0 1\n5 1 1\n6 2 1\n7 0 2\n8 1 2\n9 2 2\n' > bad2.node
-printf '8 3 0\n1 1 2 5\n2 1 5 4\n3 2 3 6\n4 2 6 5\n5 4 5 8\n6 4 8 7\n7 5 6 9\n8 5 9 8\n' > bad2.ele
-printf '0 2 0 1\n1 1\n1 2 5 1\n0\n' > bad2.poly
-"$T" bad2.ele bad2.q.ele --pair-above 40 2> bad.err; rc=$?
-[ $rc = 1 ] || fail "dangling edge under merged pairs: exit $rc, expected 1"
-grep -Eq '\((2, 5|5, 2)\)' bad.err || fail "dangling edge not named: $(cat bad.err)"
-[ ! -e bad2.q.ele ] || fail "output written on error"
+  printf '0 2 0 1\n1 1\n1 1 5 1\n0\n' > bad.poly
+  for pa in 0 40; do  # pairs first refuses it the same way (its pairs would hide it)
+    expect 1 tri2quad bad.ele bad.q.ele --pair-above $pa
+    grep -Eq '\((1, 5|5, 1)\)' err.txt || fail "dangling edge not named: $(cat err.txt)"
+    [[ $(wc -l < err.txt) == 1 ]] || fail "error is not one line"
+    [[ ! -e bad.q.ele ]] || fail "output written on error"
+  done
+  # A dangling constraint between triangles that pairs first would merge
+  # (every lattice square across its diagonal): still refused.
+  printf '9 2 0 0\n1 0 0\n2 1 0\n3 2 0\n4 0 1\n5 1 1\n6 2 1\n7 0 2\n8 1 2\n9 2 2\n' > bad2.node
+  printf '8 3 0\n1 1 2 5\n2 1 5 4\n3 2 3 6\n4 2 6 5\n5 4 5 8\n6 4 8 7\n7 5 6 9\n8 5 9 8\n' > bad2.ele
+  printf '0 2 0 1\n1 1\n1 2 5 1\n0\n' > bad2.poly
+  expect 1 tri2quad bad2.ele bad2.q.ele --pair-above 40
+  grep -Eq '\((2, 5|5, 2)\)' err.txt || fail "dangling edge not named: $(cat err.txt)"
+  [[ ! -e bad2.q.ele ]] || fail "output written on error"
+}
 
-# Truncated input.
-head -3 sq.ele > trunc.ele; cp sq.node trunc.node
-"$T" trunc.ele trunc.q.ele 2> trunc.err; rc=$?
-[ $rc = 1 ] || fail "truncated .ele: exit $rc"
-# Missing file, unknown output extension, unknown option: exit 1, 2, 2.
-"$T" nothere.ele x.ele 2>/dev/null; [ $? = 1 ] || fail "missing input"
-"$T" sq.ele x.txt 2>/dev/null; [ $? = 2 ] || fail "bad output extension"
-"$T" sq.ele x.ele --bogus 2>/dev/null; [ $? = 2 ] || fail "unknown option"
-# Quads as input are refused.
-"$T" sq.q.ele x.ele 2>/dev/null; [ $? = 1 ] || fail "quad input accepted"
-echo "tri2quad e2e: ok"
+case_bad_input_exit_1_2_without_output() {
+  square
+  expect 0 tri2quad sq.ele sq.q.ele
+  head -3 sq.ele > trunc.ele; cp sq.node trunc.node
+  expect 1 tri2quad trunc.ele trunc.q.ele
+  expect 1 tri2quad nothere.ele x.ele
+  expect 2 tri2quad sq.ele x.txt
+  expect 2 tri2quad sq.ele x.ele --bogus
+  expect 1 tri2quad sq.q.ele x.ele
+  [[ -z $(ls | grep -v -e '^sq\.' -e '^trunc\.' -e '^err.txt$' -e '^out.txt$') ]] || fail "left: $(ls)"
+}
+
+run_cases "$@"

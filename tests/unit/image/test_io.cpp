@@ -13,7 +13,7 @@ using namespace imgmesh;
 namespace {
 std::string temp_dir() {
   static std::string dir = [] {
-    char templ[] = "/tmp/imgmesh-io-XXXXXX";
+    char templ[] = "imgmesh-io-XXXXXX";  // in the test's working folder
     return std::string(mkdtemp(templ));
   }();
   return dir;

@@ -17,7 +17,7 @@ using namespace imgmesh::test;
 
 namespace {
 std::string temp_path(const std::string& name) {
-  return "/tmp/imgmesh_test_implicit_" + std::to_string(::getpid()) + "_" + name;
+  return "imgmesh_test_implicit_" + std::to_string(::getpid()) + "_" + name;
 }
 } // namespace
 

@@ -17,7 +17,7 @@ using namespace imgmesh;
 namespace {
 std::string temp_dir() {
   static std::string dir = [] {
-    char templ[] = "/tmp/imgmesh-mesh-XXXXXX";
+    char templ[] = "imgmesh-mesh-XXXXXX";  // in the test's working folder
     return std::string(mkdtemp(templ));
   }();
   return dir;

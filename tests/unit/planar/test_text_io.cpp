@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("imgmesh_text_io_" + std::to_string(::getpid()));
+  const fs::path dir = fs::current_path() / ("imgmesh_text_io_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return (dir / name).string();
 }

@@ -20,7 +20,7 @@ namespace {
 struct Scratch {
   fs::path dir;
   Scratch() {
-    dir = fs::temp_directory_path() / ("imgmesh_planar_" + std::to_string(::getpid()));
+    dir = fs::current_path() / ("imgmesh_planar_" + std::to_string(::getpid()));
     fs::create_directories(dir);
   }
   ~Scratch() { fs::remove_all(dir); }
