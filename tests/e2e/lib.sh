@@ -71,6 +71,23 @@ shared() {
   echo "$dir/$file"
 }
 
+# refused TOOL PATTERN IN [OUT]: bad input refused: exit 1 within 10 s, one
+# stderr line "TOOL: NAMED: ...PATTERN" (NAMED defaults to IN: the file the
+# message must name), OUT not created.
+refused() {
+  local tool=$1 pattern=$2 in=$3 out=${4:-} named=${NAMED:-$3}
+  rm -f err
+  [[ -n $out ]] && rm -f "$out"
+  local start=$SECONDS
+  timeout 20 "$BIN/$tool" "$in" ${out:+"$out"} 2>err </dev/null >/dev/null
+  local rc=$? took=$((SECONDS - start))
+  [[ $rc == 1 ]] || fail "$tool $in: exit $rc, expected 1 ($(head -c 300 err))"
+  [[ $(wc -l <err) == 1 ]] || fail "$tool $in: $(wc -l <err) lines on stderr, expected 1"
+  grep -q "^$tool: $named: .*$pattern" err || fail "$tool $in: message '$(head -c 300 err)' does not match '$tool: $named: ...$pattern'"
+  ((took <= 10)) || fail "$tool $in: took $took s"
+  [[ -z $out || ! -e $out ]] || fail "$tool $in: left $out"
+}
+
 # json FILE KEY[.KEY...]: a value of a JSON file (- for stdin), as python's str().
 json() {
   python3 -c 'import json, sys

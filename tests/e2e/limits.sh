@@ -5,23 +5,6 @@
 # file, exit status 1 and no output file. The files are made here, small.
 source "$(dirname "$0")/lib.sh"
 
-# refused TOOL PATTERN IN [OUT]: exit 1, one stderr line "TOOL: IN: ..."
-# matching PATTERN, within 20 s, OUT not created.
-refused() {
-  local tool=$1 pattern=$2 in=$3 out=${4:-}
-  rm -f "err"
-  [[ -n "$out" ]] && rm -f "$out"
-  local start=$SECONDS
-  timeout 20 "$BIN/$tool" "$in" ${out:+"$out"} 2>"err" >/dev/null
-  local rc=$?
-  local took=$((SECONDS - start))
-  [[ $rc == 1 ]] || fail "$tool $in: exit $rc, expected 1 ($(head -c 300 "err"))"
-  [[ $(wc -l <"err") == 1 ]] || fail "$tool $in: $(wc -l <"err") lines on stderr, expected 1"
-  grep -q "^$tool: $in: .*$pattern" "err" || fail "$tool $in: message '$(cat "err")' does not match '$tool: $in: ...$pattern'"
-  ((took <= 10)) || fail "$tool $in: took $took s"
-  [[ -z "$out" || ! -e "$out" ]] || fail "$tool $in: left $out"
-}
-
 # NRRD headers over a few bytes of data.
 nrrd() {  # FILE TYPE SIZES ENCODING [EXTRA]
   printf 'NRRD0004\ntype: %s\ndimension: %s\nsizes: %s\nencoding: %s\n' "$2" "$(wc -w <<<"$3")" "$3" "$4" >"$1"
