@@ -128,8 +128,10 @@ void check_ply_header(const std::string& path) {
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "end_header") return;
     if (w[0] == "format") {
-      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian"))
-        fail("bad format line");
+      // OpenMesh loops for ever on a version it cannot parse.
+      if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian") ||
+          (w[2] != "1.0" && w[2] != "1"))
+        fail("bad format line (ascii, binary_little_endian or binary_big_endian, version 1.0)");
     } else if (w[0] == "element") {
       long long n = -1;
       if (w.size() != 3 || !(std::istringstream(w[2]) >> n) || n < 0) fail("bad element line");
