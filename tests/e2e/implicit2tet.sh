@@ -128,6 +128,12 @@ else
   echo "skipped: gmsh not installed"
 fi
 
+# share/examples/Makefile's volume target on a small bundled label.
+[ -x "$BIN/img2wc" ] && [ -x "$BIN/wc2implicit" ] || fail "the Makefile part needs img2wc and wc2implicit"
+make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85" BIN="$BIN/" OUT=ex volume
+"$BIN/meshinfo" ex/label-85.msh --image ex/label-85.wc.nrrd > /dev/null || fail "make volume: the mesh does not match its label"
+grep -q '"exit_status": 0' ex/label-85.tet.json || fail "make volume: no --stats or a failed guarantee"
+
 # --max-points stops the surface mesher: exit 3, the mesh written.
 expect_status 3 "$tool" bunny-f.nrrd small.msh --max-points 300
 [ -s small.msh ] || fail "exit 3 without the mesh"
