@@ -35,6 +35,12 @@ int main(int argc, char** argv) {
   tool.app.add_option("--cell-size", opt.cell_size, "Circumradius bound of every tetrahedron (world units); 0: none")
       ->type_name("S")
       ->capture_default_str();
+  tool.app.add_option("--sliver-angle", opt.sliver_angle,
+                      "Slivers: refine every inside tetrahedron with a dihedral angle below A degrees too (its "
+                      "circumcentre, or the surface triangle it encroaches on), after the ratio and size bounds; "
+                      "best effort, counted in --stats (slivers_left); 0: off")
+      ->type_name("A")
+      ->capture_default_str();
   tool.app.add_option("--msh-version", wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")
       ->type_name("V")
       ->check(CLI::IsMember({"4.1", "2.2"}))

@@ -38,8 +38,10 @@ public:
     return SurfaceSampler::inside(f_.value(q));
   }
 
-  // How far a finite cell is beyond the bounds (0: within them).
-  double badness(const Tr& tr, Ch c) const {
+  // How far a finite cell is beyond the bounds (0: within them); slivers
+  // (only a small dihedral angle) come after every other bad cell.
+  double badness(const Tr& tr, Ch c, bool& sliver) const {
+    sliver = false;
     if (tr.is_infinite(c)) return 0;
     const Point& cc = c->circumcenter();
     const double r2 = d2(cc, c->vertex(0)->point());
@@ -48,8 +50,18 @@ public:
       for (int j = i + 1; j < 4; ++j) lmin2 = std::min(lmin2, d2(c->vertex(i)->point(), c->vertex(j)->point()));
     const double ratio = std::sqrt(r2 / lmin2), size = std::sqrt(r2);
     double bad = 0;
-    if (ratio > opt_.cell_ratio) bad = ratio / opt_.cell_ratio;
-    if (opt_.cell_size > 0 && size > opt_.cell_size) bad = std::max(bad, size / opt_.cell_size);
+    if (ratio > opt_.cell_ratio) bad = 1 + ratio / opt_.cell_ratio;
+    if (opt_.cell_size > 0 && size > opt_.cell_size) bad = std::max(bad, 1 + size / opt_.cell_size);
+    if (bad == 0 && opt_.sliver_angle > 0) {
+      std::array<double, 3> p[4];
+      for (int i = 0; i < 4; ++i) p[i] = vec(c->vertex(i)->point());
+      const auto a = tet_dihedral_angles(p[0], p[1], p[2], p[3]);
+      const double lo = *std::min_element(a.begin(), a.end());
+      if (lo < opt_.sliver_angle) {
+        bad = 1 - lo / opt_.sliver_angle;  // in (0, 1]: below every other
+        sliver = true;
+      }
+    }
     if (bad == 0 || !inside(cc)) return 0;
     return bad;
   }
@@ -68,7 +80,7 @@ public:
 
   int rounds = 0;
   bool exhausted = false;
-  long long volume_points = 0, facet_points = 0, off_surface_points = 0, refused = 0;
+  long long volume_points = 0, facet_points = 0, off_surface_points = 0, refused = 0, sliver_points = 0;
   double seconds = 0;
 
 private:
@@ -77,12 +89,14 @@ private:
     std::uint64_t seq;
     Ch c;
     std::array<Vh, 4> v;
+    bool sliver;
     bool operator<(const Entry& o) const { return bad != o.bad ? bad < o.bad : seq > o.seq; }
   };
 
   void push_if_bad(const Tr& tr, Ch c) {
-    const double bad = badness(tr, c);
-    if (bad > 0) queue_.push({bad, seq_++, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}});
+    bool sliver;
+    const double bad = badness(tr, c, sliver);
+    if (bad > 0) queue_.push({bad, seq_++, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, sliver});
   }
   void push_around(const Tr& tr, Vh v) {
     cells_.clear();
@@ -162,6 +176,7 @@ private:
       } else {
         ok = dm.insert(vec(cc), kVolume, Facet(at, 0));
         volume_points += ok;
+        sliver_points += ok && e.sliver;
       }
       if (!ok) {
         ++refused;
@@ -249,6 +264,7 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   // refinement can cascade without end); 1 would not be a bound at all.
   if (!(opt.cell_ratio >= 2) || !std::isfinite(opt.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
   if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be >= 0");
+  if (!(opt.sliver_angle >= 0 && opt.sliver_angle < 30)) throw UsageError("--sliver-angle must be in [0, 30) degrees");
 
   DelMesh dm(surface, so);
   CellRefinement cells(dm.sampler(), opt);
@@ -266,12 +282,19 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   r.facet_points = cells.facet_points;
   r.off_surface_facet_points = cells.off_surface_points;
   r.refused = cells.refused;
+  r.sliver_points = cells.sliver_points;
+  r.sliver_angle = opt.sliver_angle;
   r.rounds = cells.rounds;
   r.rounds_exhausted = cells.exhausted;
   r.seconds_cells = cells.seconds;
   r.cell_ratio = opt.cell_ratio;
   r.cell_size = opt.cell_size;
   r.ratio_ok = r.quality.max_radius_edge_ratio <= opt.cell_ratio * (1 + 1e-9);
+  for (const auto& t : r.mesh.tets) {
+    const auto& p = r.mesh.points;
+    const auto a = tet_dihedral_angles(p[std::size_t(t[0])], p[std::size_t(t[1])], p[std::size_t(t[2])], p[std::size_t(t[3])]);
+    r.slivers_left += *std::min_element(a.begin(), a.end()) < opt.sliver_angle;
+  }
   r.size_ok = opt.cell_size <= 0 || r.quality.max_circumradius <= opt.cell_size * (1 + 1e-9);
   return r;
 }
@@ -305,8 +328,11 @@ Json TetRefinementResult::to_json() const {
   pts["volume"] = volume_points;
   pts["encroached_facet"] = facet_points;
   pts["off_surface_facet"] = off_surface_facet_points;
+  pts["sliver"] = sliver_points;
   pts["refused"] = refused;
   j["cell_refinement_points"] = pts;
+  j["sliver_angle_bound"] = sliver_angle;
+  j["slivers_left"] = slivers_left;
   j["cell_refinement_rounds"] = rounds;
   j["cell_refinement_seconds"] = seconds_cells;
   j["surface"] = surface.to_json();

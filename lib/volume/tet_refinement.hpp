@@ -6,14 +6,16 @@
 //   each time the certificate holds, one round:            tet_refinement.cpp
 //     restricted facets with a vertex off S: insert their surface centre
 //     cells with circumcentre c inside (f(c) < 0) and radius-edge ratio
-//     above R or circumradius above S, largest ratio first:
+//     above R or circumradius above S, largest ratio first, then slivers
+//     (a dihedral angle below --sliver-angle, Delaunay refinement of
+//     slivers instead of exudation: the boundary is refined and certified
+//     again rather than kept):
 //       c in a restricted facet's surface Delaunay ball: insert that
 //       facet's surface centre instead (the facet is refined)
 //       else insert c
 //   a round that inserted: REFINE and the certificate again, then a round
 //   the output: the cells whose circumcentre lies inside; their boundary is
 //   checked to be the restricted Delaunay surface, face for face
-//   sliver exudation on the output                         sliver_exudation.cpp
 #pragma once
 #include "mesh/tet_mesh.hpp"
 #include "mesh/topology.hpp"
@@ -28,6 +30,11 @@ struct TetRefinementOptions {
   double cell_ratio = 2;  // R: radius-edge ratio bound of the tetrahedra
   double cell_size = 0;   // S > 0: circumradius bound (world units); 0: none
   int max_rounds = 100;   // rounds of cell refinement (each followed by the surface steps)
+  // Slivers: an inside tetrahedron with a dihedral angle below this
+  // (degrees) is refined as a bad one, after them (not guaranteed to
+  // terminate in theory, hence after every bound that is; the rounds and
+  // --max-points bound it). 0: off.
+  double sliver_angle = 10;
 };
 
 struct TetRefinementResult {
@@ -39,6 +46,9 @@ struct TetRefinementResult {
   ComponentCorrespondence boundary_match;  // against bdCA(X), by place
   bool boundary_is_surface = false;       // boundary faces = restricted facets
   long long volume_points = 0, facet_points = 0, off_surface_facet_points = 0, refused = 0;
+  long long sliver_points = 0;  // circumcentres of slivers inserted
+  long long slivers_left = 0;   // output tetrahedra with a dihedral angle below sliver_angle
+  double sliver_angle = 0;
   int rounds = 0;
   bool rounds_exhausted = false;
   double cell_ratio = 0, cell_size = 0;

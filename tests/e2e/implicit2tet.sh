@@ -61,6 +61,7 @@ t = r["tetrahedra"]
 assert r["image"]["matches"], "boundary does not match bdCA(X)"
 assert t["conformity"]["conforming"] and t["conformity"]["nonpositive_tetrahedra"] == 0
 assert t["max_radius_edge_ratio"] <= 2 * (1 + 1e-9), t["max_radius_edge_ratio"]
+assert t["min_dihedral_degrees"] >= 10, t["min_dihedral_degrees"]  # slivers refined (default --sliver-angle 10)
 assert t["tetrahedra"] > 1000 and t["boundary_triangles_in_file"] == r["faces"], (t["tetrahedra"], r["faces"])
 assert list(t["volume_by_region"]) == ["1"]
 PY

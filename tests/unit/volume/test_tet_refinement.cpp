@@ -120,6 +120,15 @@ TEST_CASE("ball: tetrahedra inside the certified sphere, volume close to the bal
   CHECK(r.boundary_topology.sorted_euler() == std::vector<long long>{2});
   CHECK(r.quality.total_volume == Approx(4 * M_PI * R * R * R / 3).epsilon(0.03));
   CHECK(r.volume_points > 0);  // the inside was refined, not only the surface
+  // Slivers refined at the default 10 degrees (measured, not a theorem);
+  // without that, this ball keeps some.
+  CHECK(r.quality.min_dihedral >= 10);
+  CHECK(r.slivers_left == 0);
+  o.sliver_angle = 0;
+  const auto plain = tetrahedral_mesh(s, o);
+  check_tets(s, plain, o.cell_ratio);
+  CHECK(plain.quality.min_dihedral < 10);
+  CHECK(plain.sliver_points == 0);
 }
 
 TEST_CASE("hollow ball: the cavity stays empty; solid torus with a size bound") {
