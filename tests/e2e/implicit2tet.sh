@@ -67,6 +67,11 @@ assert list(t["volume_by_region"]) == ["1"]
 PY
 done
 
+# meshinfo refuses a mesh whose tetrahedron is inverted (exit 3).
+printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 3 2 4 1\nEnd\n' > inverted.mesh
+set +e; "$BIN/meshinfo" inverted.mesh > /dev/null 2> err.txt; got=$?; set -e
+[ "$got" = 3 ] || fail "meshinfo: an inverted tetrahedron gives exit $got, not 3"
+
 # The volume at a quarter-voxel distance bound (voxels of 0.0103977):
 # within 3% of the foreground's voxel volume.
 "$tool" -q bunny-f.nrrd bunny-d.mesh --max-distance 0.0026
