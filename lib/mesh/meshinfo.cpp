@@ -213,6 +213,20 @@ std::string format_report(const Json& r) {
         << (i + 1 == bins.size() ? "] " : ") ") << bins[i].at("count").integer();
     o << "\n";
   }
+  if (r.contains("tetrahedra")) {
+    const Json& q = r.at("tetrahedra");
+    std::snprintf(buf, sizeof buf,
+                  "tetrahedra  %lld, conforming %s, radius-edge max %.3f mean %.3f, dihedral %.2f..%.2f deg, "
+                  "under 10 deg %.2f%%, volume %.6g\n",
+                  q.at("tetrahedra").integer(), q.at("conformity").at("conforming").boolean() ? "yes" : "no",
+                  q.at("max_radius_edge_ratio").number(), q.at("mean_radius_edge_ratio").number(),
+                  q.at("min_dihedral_degrees").number(), q.at("max_dihedral_degrees").number(),
+                  100 * q.at("share_dihedral_under_10").number(), q.at("volume").number());
+    o << buf << "  smallest dihedral histogram (10 deg bins):";
+    for (const Json& n : q.at("min_dihedral_histogram_10deg").items()) o << ' ' << n.integer();
+    o << "\n";
+    if (q.contains("foreground_voxel_volume")) o << "  foreground voxel volume " << q.at("foreground_voxel_volume").number() << "\n";
+  }
   if (r.contains("image")) {
     const Json& im = r.at("image");
     o << "bdCA(X)     " << im.at("components").integer() << " component(s), euler";
@@ -265,6 +279,41 @@ MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const Bin
   return r;
 }
 
+MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
+                       const std::string& image_name) {
+  // The boundary on its own vertices (interior ones would count as isolated).
+  PolyMesh b;
+  b.format = "tetrahedra";
+  std::vector<int> index(mesh.points.size(), -1);
+  for (const auto& t : tet_boundary(mesh)) {
+    std::vector<int> f;
+    for (int v : t) {
+      int& k = index[std::size_t(v)];
+      if (k < 0) {
+        k = int(b.points.size());
+        b.points.push_back(mesh.points[std::size_t(v)]);
+      }
+      f.push_back(k);
+    }
+    b.faces.push_back(f);
+  }
+  MeshInfo r = mesh_info(b, mesh_name, image, image_name);
+  const TetConformity c = tet_conformity(mesh);
+  r.conforming = c.ok();
+  Json tj = tet_quality(mesh).to_json();
+  tj["vertices"] = mesh.points.size();
+  tj["boundary_triangles_in_file"] = mesh.triangles.size();
+  tj["conformity"] = c.to_json();
+  if (image) {
+    std::size_t n = 0;
+    for (auto v : image->data) n += v != 0;
+    const double voxel = image->spacing[0] * image->spacing[1] * (image->dimension == 3 ? image->spacing[2] : 1);
+    tj["foreground_voxel_volume"] = double(n) * voxel;
+  }
+  r.report["tetrahedra"] = tj;
+  return r;
+}
+
 Json MeshInfo::to_json() const {
   Json j = Json::object();
   for (const char* k : {"vertices", "faces", "components", "euler"}) j[k] = report.at(k);
@@ -273,6 +322,7 @@ Json MeshInfo::to_json() const {
 }
 
 std::string MeshInfo::failed_guarantee() const {
+  if (!conforming) return "the tetrahedra are not all positively oriented and conforming";
   if (matches) return "";
   const std::string why = by_place.failed_guarantee();
   return "the mesh does not match bdCA(X) of " + image_name + " component by component" + (why.empty() ? "" : ": " + why);

@@ -1,6 +1,7 @@
 // meshinfo's library: read any mesh of the suite and describe it (topology
 // and element quality) as one ordered JSON object, or as text.
 #pragma once
+#include "mesh/tet_mesh.hpp"
 #include "mesh/topology.hpp"
 #include "util/json.hpp"
 
@@ -42,6 +43,7 @@ std::string format_report(const Json& report);
 struct MeshInfo {
   Json report;  // mesh_report(), with "image" (image_comparison) when compared
   bool compared = false, matches = true;
+  bool conforming = true;  // tetrahedral meshes: positive, conforming tetrahedra
   std::string image_name;
   ComponentCorrespondence by_place;  // 3D images: the certificate by correspondence
   Json to_json() const;  // vertices, faces, components, euler; matches_image when compared
@@ -55,5 +57,13 @@ struct MeshInfo {
 // bad ids) or image_name (no foreground, not well-composed).
 MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image = nullptr,
                    const std::string& image_name = "");
+
+// A tetrahedral mesh (.msh, .mesh, .vtu): mesh_info of the boundary of all
+// its tetrahedra (compared with bdCA(X) when `image` is given), with a
+// "tetrahedra" section: conformity and orientation, radius-edge ratios,
+// dihedral angles (smallest, histogram), volume per region, and with an
+// image the foreground's voxel volume.
+MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image = nullptr,
+                       const std::string& image_name = "");
 
 } // namespace imgmesh

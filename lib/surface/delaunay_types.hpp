@@ -26,8 +26,9 @@ using GT = CGAL::Robust_circumcenter_filtered_traits_3<K0>;
 using Point = GT::Point_3;
 
 // Why a vertex is in W; also the per-subroutine counters of --stats.
-enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kFacetCycle, kHandle, kQuality, kSmooth, kDistance, kFallback, kOrigins };
-inline constexpr const char* kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "facet_cycle", "handle_detection", "quality", "smooth", "max_distance", "topology_fallback"};
+// kVolume: implicit2tet's points inside S (lib/volume), not on S.
+enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kFacetCycle, kHandle, kQuality, kSmooth, kDistance, kFallback, kVolume, kOrigins };
+inline constexpr const char* kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "facet_cycle", "handle_detection", "quality", "smooth", "max_distance", "topology_fallback", "volume"};
 
 struct VInfo {
   int id = -1;

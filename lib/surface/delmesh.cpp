@@ -435,6 +435,10 @@ RestrictedDelaunayResult DelMesh::run() {
   Certificate cert;
   for (;;) {
     cert = certify(tr_, vertices_.size(), expected);
+    if (cert.ok && !max_hit_ && after_certificate_ && after_certificate_(*this)) {
+      refine();
+      continue;
+    }
     if (cert.ok || max_hit_ || rounds >= 40) break;
     if (cert.bad.empty()) cert.bad = euler_mismatches(cert, expected);
     cert.bad.erase(std::remove(cert.bad.begin(), cert.bad.end(), -1), cert.bad.end());

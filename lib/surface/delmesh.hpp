@@ -40,6 +40,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <queue>
 #include <string>
@@ -64,6 +65,11 @@ public:
   // Inserts x (a point of S) into W unless --max-points is reached or x is a
   // vertex already; `hint`: the facet that asked for it.
   bool insert(const Vec3& x, Origin origin, Facet hint = Facet(Ch(), 0));
+
+  // implicit2tet's entry (lib/volume): called each time the certificate
+  // holds; when it inserts points (true), REFINE and the certificate run
+  // again, so the surface guarantees hold on the final triangulation.
+  void set_after_certificate(std::function<bool(DelMesh&)> step) { after_certificate_ = std::move(step); }
 
   const Tr& triangulation() const { return tr_; }
   const CubeGrid& grid() const { return grid_; }
@@ -150,6 +156,7 @@ private:
   std::vector<Ch> zone_cells_, cells_buf_;
   std::vector<Vh> touched_;
   std::uint32_t stamp_ = 0;
+  std::function<bool(DelMesh&)> after_certificate_;
 };
 
 // DelMesh(surface, options).run(), for restricted_delaunay_mesh().

@@ -8,7 +8,7 @@ source "$(dirname "$0")/lib.sh"
 case_every_tool_page_has_every_option() {
 pages=${PAGES:-$BIN/../man}
 count=0
-for tool in img2wc wc2implicit implicit-eval implicit2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
+for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet img2poly poly2tri tri2quad quadsmooth meshinfo; do
   [[ -x "$BIN/$tool" ]] || continue
   count=$((count + 1))
   [[ -f "$MAN/$tool.1.in" ]] || fail "$tool has no hand-written page $MAN/$tool.1.in"

@@ -1,0 +1,215 @@
+#include "mesh/tet_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace imgmesh {
+
+namespace {
+using P = std::array<double, 3>;
+P sub(const P& a, const P& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const P& a, const P& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+P cross(const P& a, const P& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
+
+// The four faces of a positive tetrahedron, outward: opposite a, b, c, d.
+constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+
+struct FaceKey {
+  std::array<int, 3> v;  // sorted
+  bool operator==(const FaceKey& o) const { return v == o.v; }
+};
+struct FaceHash {
+  std::size_t operator()(const FaceKey& k) const {
+    return std::hash<long long>()((long long)k.v[0] * 73856093LL ^ (long long)k.v[1] * 19349663LL ^ (long long)k.v[2] * 83492791LL);
+  }
+};
+// The parity of a triangle's vertex order against its sorted order.
+bool even(const std::array<int, 3>& t) {
+  int inversions = (t[0] > t[1]) + (t[0] > t[2]) + (t[1] > t[2]);
+  return inversions % 2 == 0;
+}
+} // namespace
+
+double tet_orient(const P& a, const P& b, const P& c, const P& d) { return dot(sub(b, a), cross(sub(c, a), sub(d, a))); }
+
+double tet_circumradius(const P& a, const P& b, const P& c, const P& d) {
+  const P u = sub(b, a), v = sub(c, a), w = sub(d, a);
+  const double det = 2 * dot(u, cross(v, w));
+  if (det == 0) return std::numeric_limits<double>::infinity();
+  const P vw = cross(v, w), wu = cross(w, u), uv = cross(u, v);
+  P o;
+  for (int i = 0; i < 3; ++i) o[i] = (dot(u, u) * vw[i] + dot(v, v) * wu[i] + dot(w, w) * uv[i]) / det;
+  return std::sqrt(dot(o, o));
+}
+
+double tet_radius_edge_ratio(const P& a, const P& b, const P& c, const P& d) {
+  const P all[4] = {a, b, c, d};
+  double lmin2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      const P e = sub(all[i], all[j]);
+      lmin2 = std::min(lmin2, dot(e, e));
+    }
+  if (lmin2 == 0) return std::numeric_limits<double>::infinity();
+  return tet_circumradius(a, b, c, d) / std::sqrt(lmin2);
+}
+
+std::array<double, 6> tet_dihedral_angles(const P& a, const P& b, const P& c, const P& d) {
+  const P p[4] = {a, b, c, d};
+  std::array<double, 6> angles{};
+  int n = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      int k = 0;
+      while (k == i || k == j) ++k;
+      const int l = 6 - i - j - k;
+      // The angle between the two faces at edge ij: between the parts of
+      // pk - pi and pl - pi orthogonal to the edge.
+      const P e = sub(p[j], p[i]);
+      const double ee = dot(e, e);
+      P u = sub(p[k], p[i]), v = sub(p[l], p[i]);
+      const double su = ee > 0 ? dot(u, e) / ee : 0, sv = ee > 0 ? dot(v, e) / ee : 0;
+      for (int m = 0; m < 3; ++m) {
+        u[m] -= su * e[m];
+        v[m] -= sv * e[m];
+      }
+      const double nu = std::sqrt(dot(u, u)), nv = std::sqrt(dot(v, v));
+      angles[std::size_t(n++)] = nu > 0 && nv > 0 ? std::acos(std::clamp(dot(u, v) / (nu * nv), -1.0, 1.0)) * 180 / M_PI : 0;
+    }
+  return angles;
+}
+
+TetQualityReport tet_quality(const TetMesh& m) {
+  TetQualityReport r;
+  r.tetrahedra = m.tets.size();
+  if (m.tets.empty()) return r;
+  r.min_dihedral = 180;
+  double sum_ratio = 0;
+  for (std::size_t t = 0; t < m.tets.size(); ++t) {
+    const auto& q = m.tets[t];
+    const P &a = m.points[std::size_t(q[0])], &b = m.points[std::size_t(q[1])], &c = m.points[std::size_t(q[2])],
+            &d = m.points[std::size_t(q[3])];
+    const double ratio = tet_radius_edge_ratio(a, b, c, d);
+    r.max_radius_edge_ratio = std::max(r.max_radius_edge_ratio, ratio);
+    sum_ratio += ratio;
+    r.max_circumradius = std::max(r.max_circumradius, tet_circumradius(a, b, c, d));
+    const double edges[6] = {0.6, 1, 1.5, 2, 3, 5};
+    std::size_t bin = 0;
+    while (bin + 1 < 6 && ratio >= edges[bin + 1]) ++bin;
+    ++r.ratio_histogram[bin];
+    const auto ang = tet_dihedral_angles(a, b, c, d);
+    const double lo = *std::min_element(ang.begin(), ang.end()), hi = *std::max_element(ang.begin(), ang.end());
+    r.min_dihedral = std::min(r.min_dihedral, lo);
+    r.max_dihedral = std::max(r.max_dihedral, hi);
+    if (lo < 10) ++r.under_10_degrees;
+    ++r.min_dihedral_histogram[std::min<std::size_t>(8, std::size_t(lo / 10))];
+    const double vol = tet_orient(a, b, c, d) / 6;
+    r.volume_by_region[t < m.tet_region.size() ? m.tet_region[t] : 1] += vol;
+    r.total_volume += vol;
+  }
+  r.mean_radius_edge_ratio = sum_ratio / double(m.tets.size());
+  return r;
+}
+
+Json TetQualityReport::to_json() const {
+  Json j = Json::object();
+  j["tetrahedra"] = tetrahedra;
+  j["max_radius_edge_ratio"] = max_radius_edge_ratio;
+  j["mean_radius_edge_ratio"] = mean_radius_edge_ratio;
+  j["max_circumradius"] = max_circumradius;
+  j["min_dihedral_degrees"] = min_dihedral;
+  j["max_dihedral_degrees"] = max_dihedral;
+  j["share_dihedral_under_10"] = share_under_10();
+  Json h = Json::array();
+  for (std::size_t n : min_dihedral_histogram) h.push_back(n);
+  j["min_dihedral_histogram_10deg"] = h;
+  Json rh = Json::array();
+  for (std::size_t n : ratio_histogram) rh.push_back(n);
+  j["radius_edge_histogram"] = rh;  // [0.6,1) [1,1.5) [1.5,2) [2,3) [3,5) >=5
+  Json vol = Json::object();
+  for (const auto& [region, v] : volume_by_region) vol[std::to_string(region)] = v;
+  j["volume_by_region"] = vol;
+  j["volume"] = total_volume;
+  return j;
+}
+
+TetConformity tet_conformity(const TetMesh& m) {
+  TetConformity c;
+  const int n = int(m.points.size());
+  struct Side {
+    int count = 0;
+    bool parity[2] = {false, false};
+  };
+  std::unordered_map<FaceKey, Side, FaceHash> faces;
+  faces.reserve(m.tets.size() * 2);
+  std::vector<std::array<int, 4>> sorted;
+  sorted.reserve(m.tets.size());
+  for (const auto& q : m.tets) {
+    if (std::any_of(q.begin(), q.end(), [n](int v) { return v < 0 || v >= n; })) {
+      ++c.bad_ids;
+      continue;
+    }
+    if (!(tet_orient(m.points[std::size_t(q[0])], m.points[std::size_t(q[1])], m.points[std::size_t(q[2])],
+                     m.points[std::size_t(q[3])]) > 0))
+      ++c.nonpositive;
+    auto s = q;
+    std::sort(s.begin(), s.end());
+    sorted.push_back(s);
+    for (const auto& f : kFace) {
+      std::array<int, 3> t{q[std::size_t(f[0])], q[std::size_t(f[1])], q[std::size_t(f[2])]};
+      FaceKey k{t};
+      std::sort(k.v.begin(), k.v.end());
+      Side& side = faces[k];
+      if (side.count < 2) side.parity[side.count] = even(t);
+      ++side.count;
+    }
+  }
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 1; i < sorted.size(); ++i) c.duplicates += sorted[i] == sorted[i - 1];
+  for (const auto& [k, side] : faces) {
+    if (side.count == 1) ++c.boundary_faces;
+    else if (side.count == 2) {
+      ++c.interior_faces;
+      if (side.parity[0] == side.parity[1]) ++c.inconsistent_faces;
+    } else ++c.overfull_faces;
+  }
+  return c;
+}
+
+Json TetConformity::to_json() const {
+  Json j = Json::object();
+  j["conforming"] = ok();
+  j["nonpositive_tetrahedra"] = nonpositive;
+  j["duplicate_tetrahedra"] = duplicates;
+  j["faces_in_more_than_two"] = overfull_faces;
+  j["faces_same_orientation_twice"] = inconsistent_faces;
+  j["bad_vertex_ids"] = bad_ids;
+  j["interior_faces"] = interior_faces;
+  j["boundary_faces"] = boundary_faces;
+  return j;
+}
+
+std::vector<std::array<int, 3>> tet_boundary(const TetMesh& m, int region) {
+  std::unordered_map<FaceKey, std::pair<int, std::array<int, 3>>, FaceHash> faces;
+  faces.reserve(m.tets.size() * 2);
+  for (std::size_t t = 0; t < m.tets.size(); ++t) {
+    if (region != 0 && (t < m.tet_region.size() ? m.tet_region[t] : 1) != region) continue;
+    const auto& q = m.tets[t];
+    for (const auto& f : kFace) {
+      std::array<int, 3> tri{q[std::size_t(f[0])], q[std::size_t(f[1])], q[std::size_t(f[2])]};
+      FaceKey k{tri};
+      std::sort(k.v.begin(), k.v.end());
+      auto& e = faces[k];
+      if (e.first++ == 0) e.second = tri;
+    }
+  }
+  std::vector<std::array<int, 3>> out;
+  for (const auto& [k, e] : faces)
+    if (e.first == 1) out.push_back(e.second);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+} // namespace imgmesh

@@ -1,0 +1,66 @@
+// Tetrahedral meshes as plain data (implicit2tet's output, meshinfo's
+// input), their element quality (radius-edge ratio, dihedral angles,
+// volume per region) and their combinatorial checks (orientation,
+// conformity, the boundary of a region). No CGAL; world coordinates.
+#pragma once
+#include "util/json.hpp"
+
+#include <array>
+#include <cstddef>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace imgmesh {
+
+struct TetMesh {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<int, 4>> tets;        // 0-based, det(b-a, c-a, d-a) > 0
+  std::vector<int> tet_region;                 // per tetrahedron, >= 1
+  std::vector<std::array<int, 3>> triangles;   // the boundary, counter-clockwise seen from outside
+  std::vector<int> triangle_region;            // per triangle: the region it bounds
+};
+
+// Six times the signed volume: positive for a positively oriented tetrahedron.
+double tet_orient(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c,
+                  const std::array<double, 3>& d);
+// Circumradius over shortest edge (infinity when degenerate).
+double tet_radius_edge_ratio(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                             const std::array<double, 3>& c, const std::array<double, 3>& d);
+double tet_circumradius(const std::array<double, 3>& a, const std::array<double, 3>& b, const std::array<double, 3>& c,
+                        const std::array<double, 3>& d);
+// The six interior dihedral angles, in degrees (0 when degenerate).
+std::array<double, 6> tet_dihedral_angles(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                                          const std::array<double, 3>& c, const std::array<double, 3>& d);
+
+struct TetQualityReport {
+  std::size_t tetrahedra = 0;
+  double max_radius_edge_ratio = 0, mean_radius_edge_ratio = 0;
+  double max_circumradius = 0;
+  double min_dihedral = 0, max_dihedral = 0;  // degrees
+  std::size_t under_10_degrees = 0;           // tetrahedra with a dihedral angle under 10 degrees
+  std::array<std::size_t, 9> min_dihedral_histogram{};  // smallest dihedral per tetrahedron, 10-degree bins to 90
+  std::array<std::size_t, 6> ratio_histogram{};         // radius-edge ratio in [0.6,1), [1,1.5), [1.5,2), [2,3), [3,5), >= 5
+  std::map<int, double> volume_by_region;
+  double total_volume = 0;
+  double share_under_10() const { return tetrahedra ? double(under_10_degrees) / double(tetrahedra) : 0; }
+  Json to_json() const;
+};
+TetQualityReport tet_quality(const TetMesh& mesh);
+
+// Conformity of a tetrahedral mesh: every triangle a face of one or two
+// tetrahedra, traversed oppositely by the two, no two tetrahedra on the same
+// four vertices, every tetrahedron of positive volume.
+struct TetConformity {
+  std::size_t nonpositive = 0, duplicates = 0, overfull_faces = 0, inconsistent_faces = 0, bad_ids = 0;
+  std::size_t interior_faces = 0, boundary_faces = 0;
+  bool ok() const { return !nonpositive && !duplicates && !overfull_faces && !inconsistent_faces && !bad_ids; }
+  Json to_json() const;
+};
+TetConformity tet_conformity(const TetMesh& mesh);
+
+// The faces with a tetrahedron of `region` on one side only (region 0: of
+// any region), oriented outward from it, in a deterministic order.
+std::vector<std::array<int, 3>> tet_boundary(const TetMesh& mesh, int region = 0);
+
+} // namespace imgmesh

@@ -1,0 +1,30 @@
+// Tetrahedral mesh files, chosen by extension: Gmsh .msh (4.1, or 2.2 for
+// the solvers that read only that), MEDIT .mesh, VTK .vtu (XML, ASCII) and
+// Abaqus .inp. Regions travel as physical groups (tetrahedra: dimension 3,
+// tag = region; boundary triangles: dimension 2, same tag, "boundary_R"),
+// references, cell data "region" (and "boundary": 1 on triangles), element
+// sets REGION_R with the boundary as an element-face surface BOUNDARY_R.
+// Writes are atomic. Plain C++.
+#pragma once
+#include "mesh/tet_mesh.hpp"
+
+#include <string>
+
+namespace imgmesh {
+
+// The extensions write_tet_mesh knows, for messages.
+extern const char* const kTetMeshExtensions;
+bool is_tet_mesh_path(const std::string& path);
+
+struct TetWriteOptions {
+  std::string msh_version = "4.1";  // or "2.2"
+};
+
+// Throws Error on failure (no file left), UsageError on an unknown extension.
+void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWriteOptions& options = {});
+
+// .msh (2.2 and 4.1 ASCII), .mesh, .vtu (ASCII): tetrahedra and triangles
+// with their regions. Throws Error naming the file on anything malformed.
+TetMesh read_tet_mesh(const std::string& path);
+
+} // namespace imgmesh

@@ -1,0 +1,355 @@
+#include "volume/tet_refinement.hpp"
+
+#include "surface/delmesh.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <queue>
+#include <set>
+
+namespace imgmesh {
+
+using namespace surface_detail;
+
+namespace {
+
+double d2(const Point& a, const Point& b) { return CGAL::to_double(CGAL::squared_distance(a, b)); }
+
+// One round of cell refinement, run by DELMESH each time the certificate
+// holds (DelMesh::set_after_certificate).
+class CellRefinement {
+public:
+  CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt) : f_(f), opt_(opt) {}
+
+  // Which side of S a local point is on: f's sign, read off the samples
+  // where the cube around q has one sign (no zero there, thesis F1); beyond
+  // the box of samples, outside.
+  bool inside(const Point& p) const {
+    const CubeGrid& g = f_.grid();
+    const Vec3 q = vec(p);
+    long c[3];
+    for (int i = 0; i < 3; ++i) {
+      if (!(q[i] >= 0 && q[i] <= g.hi[i])) return false;
+      c[i] = std::min(long(q[i] / g.s[i]), g.n[i] - 2);
+    }
+    if (!g.active(c[0], c[1], c[2])) return g.neg(c[0], c[1], c[2]);
+    return SurfaceSampler::inside(f_.value(q));
+  }
+
+  // How far a finite cell is beyond the bounds (0: within them); slivers
+  // (only a small dihedral angle) come after every other bad cell.
+  double badness(const Tr& tr, Ch c, bool& sliver) const {
+    sliver = false;
+    if (tr.is_infinite(c)) return 0;
+    const Point& cc = c->circumcenter();
+    const double r2 = d2(cc, c->vertex(0)->point());
+    double lmin2 = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) lmin2 = std::min(lmin2, d2(c->vertex(i)->point(), c->vertex(j)->point()));
+    const double ratio = std::sqrt(r2 / lmin2), size = std::sqrt(r2);
+    double bad = 0;
+    if (ratio > opt_.cell_ratio) bad = 1 + ratio / opt_.cell_ratio;
+    if (opt_.cell_size > 0 && size > opt_.cell_size) bad = std::max(bad, 1 + size / opt_.cell_size);
+    if (bad == 0 && opt_.sliver_angle > 0) {
+      std::array<double, 3> p[4];
+      for (int i = 0; i < 4; ++i) p[i] = vec(c->vertex(i)->point());
+      const auto a = tet_dihedral_angles(p[0], p[1], p[2], p[3]);
+      const double lo = *std::min_element(a.begin(), a.end());
+      if (lo < opt_.sliver_angle) {
+        bad = 1 - lo / opt_.sliver_angle;  // in (0, 1]: below every other
+        sliver = true;
+      }
+    }
+    if (bad == 0 || !inside(cc)) return 0;
+    return bad;
+  }
+
+  bool operator()(DelMesh& dm) {
+    if (rounds >= opt_.max_rounds) {
+      exhausted = true;
+      return false;
+    }
+    ++rounds;
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool any = off_surface_facets(dm) | refine_cells(dm);
+    seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return any;
+  }
+
+  int rounds = 0;
+  bool exhausted = false;
+  long long volume_points = 0, facet_points = 0, off_surface_points = 0, refused = 0, sliver_points = 0;
+  double seconds = 0;
+
+private:
+  struct Entry {
+    double bad;
+    std::uint64_t seq;
+    Ch c;
+    std::array<Vh, 4> v;
+    bool sliver;
+    bool operator<(const Entry& o) const { return bad != o.bad ? bad < o.bad : seq > o.seq; }
+  };
+
+  void push_if_bad(const Tr& tr, Ch c) {
+    bool sliver;
+    const double bad = badness(tr, c, sliver);
+    if (bad > 0) queue_.push({bad, seq_++, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, sliver});
+  }
+  void push_around(const Tr& tr, Vh v) {
+    cells_.clear();
+    tr.incident_cells(v, std::back_inserter(cells_));
+    for (Ch c : cells_) push_if_bad(tr, c);
+  }
+
+  // A restricted facet with a vertex inserted off S (a cell point whose
+  // Voronoi cell reached S): its surface centre goes in, so that every
+  // vertex of the surface lies on S. Points within half their facet's
+  // radius of one inserted in this pass wait for the next.
+  bool off_surface_facets(DelMesh& dm) {
+    const Tr& tr = dm.triangulation();
+    std::vector<std::pair<double, Vec3>> todo;
+    for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it) {
+      const FacetInfo& fi = it->first->facet[it->second];
+      if (!(fi.state & kRestricted)) continue;
+      for (int m = 1; m < 4; ++m)
+        if (it->first->vertex((it->second + m) & 3)->info().origin == kVolume) {
+          todo.emplace_back(fi.r2, Vec3{fi.x[0], fi.x[1], fi.x[2]});
+          break;
+        }
+    }
+    std::sort(todo.begin(), todo.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    bool any = false;
+    for (const auto& [r2, x] : todo) {
+      const Point p(x[0], x[1], x[2]);
+      const Vh nv = tr.nearest_vertex(p);
+      if (d2(p, nv->point()) < r2 / 4) continue;
+      if (dm.insert(x, kQuality)) {
+        ++off_surface_points;
+        any = true;
+      } else ++refused;
+    }
+    return any;
+  }
+
+  bool refine_cells(DelMesh& dm) {
+    const Tr& tr = dm.triangulation();
+    queue_ = {};
+    for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) push_if_bad(tr, c);
+    const double guard2 = std::pow(1e-3 * f_.grid().delta, 2);
+    bool any = false;
+    while (!queue_.empty()) {
+      const Entry e = queue_.top();
+      queue_.pop();
+      if (!tr.tds().cells().is_used(e.c)) continue;
+      bool same = true;
+      for (int i = 0; i < 4; ++i) same = same && e.c->vertex(i) == e.v[std::size_t(i)];
+      if (!same) continue;
+      const Point cc = e.c->circumcenter();
+      Tr::Locate_type lt;
+      int li, lj;
+      const Ch at = tr.locate(cc, lt, li, lj, e.c);
+      if (lt == Tr::VERTEX) continue;
+      // The facets whose surface Delaunay ball holds cc are facets of cells
+      // in conflict with cc (such a ball lies in the circumballs of the
+      // facet's two cells).
+      zone_.clear();
+      tr.find_conflicts(cc, at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      Facet worst(Ch(), 0);
+      double worst_r2 = 0;
+      for (Ch c : zone_)
+        for (int i = 0; i < 4; ++i) {
+          const FacetInfo& fi = c->facet[i];
+          if (!(fi.state & kRestricted) || fi.r2 <= worst_r2) continue;
+          if (d2(cc, Point(fi.x[0], fi.x[1], fi.x[2])) < fi.r2) {
+            worst = Facet(c, i);
+            worst_r2 = fi.r2;
+          }
+        }
+      bool ok;
+      if (worst.first != Ch()) {
+        const FacetInfo& fi = worst.first->facet[worst.second];
+        ok = fi.r2 >= guard2 && dm.insert(Vec3{fi.x[0], fi.x[1], fi.x[2]}, kQuality, worst);
+        facet_points += ok;
+      } else {
+        ok = dm.insert(vec(cc), kVolume, Facet(at, 0));
+        volume_points += ok;
+        sliver_points += ok && e.sliver;
+      }
+      if (!ok) {
+        ++refused;
+        if (tr.number_of_vertices() >= opt_.surface.max_points) break;
+        continue;
+      }
+      any = true;
+      push_around(tr, dm.vertices().back());
+    }
+    return any;
+  }
+
+  const SurfaceSampler& f_;
+  const TetRefinementOptions& opt_;
+  std::priority_queue<Entry> queue_;
+  std::uint64_t seq_ = 0;
+  std::vector<Ch> cells_, zone_;
+};
+
+// The cells whose circumcentre lies inside, positively oriented in world
+// coordinates, and whether their boundary is the set of restricted facets.
+void extract(const DelMesh& dm, const CellRefinement& inside, const ImplicitSurface& surface, TetRefinementResult& r) {
+  const Tr& tr = dm.triangulation();
+  std::vector<int> index(dm.vertices().size(), -1);
+  std::vector<int> id_of;  // output vertex -> triangulation id
+  auto out = [&](Vh v) {
+    int& k = index[std::size_t(v->info().id)];
+    if (k < 0) {
+      k = int(id_of.size());
+      id_of.push_back(v->info().id);
+      r.mesh.points.push_back(surface.to_world(vec(v->point())));
+    }
+    return k;
+  };
+  // Cells in the order of their sorted vertex ids (CGAL's storage order
+  // depends on addresses).
+  std::vector<std::array<int, 4>> cells;
+  for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) {
+    if (!inside.inside(c->circumcenter())) continue;
+    cells.push_back({c->vertex(0)->info().id, c->vertex(1)->info().id, c->vertex(2)->info().id, c->vertex(3)->info().id});
+  }
+  std::sort(cells.begin(), cells.end(), [](auto a, auto b) {
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    return a < b;
+  });
+  const bool flip = surface.reflects();
+  for (const auto& ids : cells) {
+    std::array<int, 4> t;
+    for (int i = 0; i < 4; ++i) t[std::size_t(i)] = out(dm.vertices()[std::size_t(ids[std::size_t(i)])]);
+    if (flip) std::swap(t[2], t[3]);
+    r.mesh.tets.push_back(t);
+    r.mesh.tet_region.push_back(1);
+  }
+  r.mesh.triangles = tet_boundary(r.mesh);
+  r.mesh.triangle_region.assign(r.mesh.triangles.size(), 1);
+
+  std::set<std::array<int, 3>> restricted, boundary;
+  for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it)
+    if (it->first->facet[it->second].state & kRestricted) {
+      std::array<int, 3> k;
+      for (int m = 1; m < 4; ++m) k[std::size_t(m - 1)] = it->first->vertex((it->second + m) & 3)->info().id;
+      std::sort(k.begin(), k.end());
+      restricted.insert(k);
+    }
+  for (const auto& t : r.mesh.triangles) {
+    std::array<int, 3> k{id_of[std::size_t(t[0])], id_of[std::size_t(t[1])], id_of[std::size_t(t[2])]};
+    std::sort(k.begin(), k.end());
+    boundary.insert(k);
+  }
+  r.boundary_is_surface = restricted == boundary;
+}
+
+} // namespace
+
+TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRefinementOptions& opt) {
+  const RestrictedDelaunayOptions& so = opt.surface;
+  if (!(so.ratio >= min_ratio_bound()))
+    throw UsageError("--ratio must be at least (1+k)^2 = " + std::to_string(min_ratio_bound()) + " (k = 0.06)");
+  if (!(so.roughness >= min_roughness_bound()))
+    throw UsageError("--roughness must be at least " + std::to_string(min_roughness_bound()) + " rad");
+  if (!(so.max_distance >= 0) || !std::isfinite(so.max_distance)) throw UsageError("--max-distance must be >= 0");
+  if (so.max_points < 4) throw UsageError("--max-points must be at least 4");
+  // Shewchuk's and Oudot-Rineau-Yvinec's termination needs R >= 2 (below,
+  // refinement can cascade without end); 1 would not be a bound at all.
+  if (!(opt.cell_ratio >= 2) || !std::isfinite(opt.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
+  if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be >= 0");
+  if (!(opt.sliver_angle >= 0 && opt.sliver_angle < 30)) throw UsageError("--sliver-angle must be in [0, 30) degrees");
+
+  DelMesh dm(surface, so);
+  CellRefinement cells(dm.sampler(), opt);
+  dm.set_after_certificate([&](DelMesh& m) { return cells(m); });
+  TetRefinementResult r;
+  r.surface = dm.run();
+  extract(dm, cells, surface, r);
+
+  r.quality = tet_quality(r.mesh);
+  r.conformity = tet_conformity(r.mesh);
+  r.boundary_topology = mesh_topology(r.mesh.points.size(), r.mesh.triangles);
+  const VoxelBoundary vb = voxel_boundary(surface.samples());
+  r.boundary_match = match_components(r.boundary_topology, r.mesh.points, surface.samples(), vb, mesh_topology(vb));
+  r.volume_points = cells.volume_points;
+  r.facet_points = cells.facet_points;
+  r.off_surface_facet_points = cells.off_surface_points;
+  r.refused = cells.refused;
+  r.sliver_points = cells.sliver_points;
+  r.sliver_angle = opt.sliver_angle;
+  r.rounds = cells.rounds;
+  r.rounds_exhausted = cells.exhausted;
+  r.seconds_cells = cells.seconds;
+  r.cell_ratio = opt.cell_ratio;
+  r.cell_size = opt.cell_size;
+  r.ratio_ok = r.quality.max_radius_edge_ratio <= opt.cell_ratio * (1 + 1e-9);
+  for (const auto& t : r.mesh.tets) {
+    const auto& p = r.mesh.points;
+    const auto a = tet_dihedral_angles(p[std::size_t(t[0])], p[std::size_t(t[1])], p[std::size_t(t[2])], p[std::size_t(t[3])]);
+    r.slivers_left += *std::min_element(a.begin(), a.end()) < opt.sliver_angle;
+  }
+  r.size_ok = opt.cell_size <= 0 || r.quality.max_circumradius <= opt.cell_size * (1 + 1e-9);
+  return r;
+}
+
+Json TetRefinementResult::to_json() const {
+  Json j = Json::object();
+  j["vertices"] = mesh.points.size();
+  j["tetrahedra"] = mesh.tets.size();
+  j["boundary_triangles"] = mesh.triangles.size();
+  Json comps = Json::array();
+  for (long long e : boundary_topology.sorted_euler()) comps.push_back(e);
+  j["components_euler"] = comps;
+  Json ex = Json::array();
+  for (long long e : surface.expected.sorted_euler()) ex.push_back(e);
+  j["voxel_boundary_euler"] = ex;
+  j["boundary_closed_manifold"] = boundary_topology.closed && boundary_topology.manifold;
+  j["boundary_oriented"] = boundary_topology.oriented;
+  j["boundary_matches_voxel_boundary"] = boundary_match.matches();
+  j["boundary_is_restricted_surface"] = boundary_is_surface;
+  j["topology_matches"] = surface.topology_ok && boundary_match.matches() && boundary_is_surface;
+  j["conforming"] = conformity.ok();
+  j["cell_ratio_bound"] = cell_ratio;
+  j["cell_size_bound"] = cell_size;
+  j["quality"] = quality.to_json();
+  j["max_radius_edge_ratio"] = quality.max_radius_edge_ratio;
+  j["min_dihedral_degrees"] = quality.min_dihedral;
+  j["share_dihedral_under_10"] = quality.share_under_10();
+  j["volume"] = quality.total_volume;
+  j["conformity"] = conformity.to_json();
+  Json pts = Json::object();
+  pts["volume"] = volume_points;
+  pts["encroached_facet"] = facet_points;
+  pts["off_surface_facet"] = off_surface_facet_points;
+  pts["sliver"] = sliver_points;
+  pts["refused"] = refused;
+  j["cell_refinement_points"] = pts;
+  j["sliver_angle_bound"] = sliver_angle;
+  j["slivers_left"] = slivers_left;
+  j["cell_refinement_rounds"] = rounds;
+  j["cell_refinement_seconds"] = seconds_cells;
+  j["surface"] = surface.to_json();
+  return j;
+}
+
+std::string TetRefinementResult::failed_guarantee() const {
+  std::string f = surface.failed_guarantee();
+  auto add = [&f](const std::string& s) { f += (f.empty() ? "" : "; ") + s; };
+  if (mesh.tets.empty()) add("no tetrahedron inside the surface");
+  if (!conformity.ok()) add("tetrahedra not positively oriented or not conforming");
+  if (!boundary_is_surface) add("the tetrahedra's boundary is not the restricted Delaunay surface");
+  if (!boundary_match.matches()) add("the tetrahedra's boundary differs from the voxel boundary bdCA(X): " + boundary_match.failed_guarantee());
+  if (!ratio_ok) add("a tetrahedron's radius-edge ratio is above --cell-ratio");
+  if (!size_ok) add("a tetrahedron's circumradius is above --cell-size");
+  if (rounds_exhausted) add("cell refinement stopped after " + std::to_string(rounds) + " rounds");
+  return f;
+}
+
+} // namespace imgmesh

@@ -1,0 +1,64 @@
+// implicit2tet's library (thesis 9.1, after Oudot-Rineau-Yvinec 2005): the
+// surface mesher's Delaunay triangulation, refined inside S = f^-1(0) until
+// its tetrahedra are well shaped, with the surface kept certified:
+//
+//   DELMESH and its certificate (lib/surface, delmesh.hpp)
+//   each time the certificate holds, one round:            tet_refinement.cpp
+//     restricted facets with a vertex off S: insert their surface centre
+//     cells with circumcentre c inside (f(c) < 0) and radius-edge ratio
+//     above R or circumradius above S, largest ratio first, then slivers
+//     (a dihedral angle below --sliver-angle, Delaunay refinement of
+//     slivers instead of exudation: the boundary is refined and certified
+//     again rather than kept):
+//       c in a restricted facet's surface Delaunay ball: insert that
+//       facet's surface centre instead (the facet is refined)
+//       else insert c
+//   a round that inserted: REFINE and the certificate again, then a round
+//   the output: the cells whose circumcentre lies inside; their boundary is
+//   checked to be the restricted Delaunay surface, face for face
+#pragma once
+#include "mesh/tet_mesh.hpp"
+#include "mesh/topology.hpp"
+#include "surface/restricted_delaunay.hpp"
+
+#include <string>
+
+namespace imgmesh {
+
+struct TetRefinementOptions {
+  RestrictedDelaunayOptions surface;
+  double cell_ratio = 2;  // R: radius-edge ratio bound of the tetrahedra
+  double cell_size = 0;   // S > 0: circumradius bound (world units); 0: none
+  int max_rounds = 100;   // rounds of cell refinement (each followed by the surface steps)
+  // Slivers: an inside tetrahedron with a dihedral angle below this
+  // (degrees) is refined as a bad one, after them (not guaranteed to
+  // terminate in theory, hence after every bound that is; the rounds and
+  // --max-points bound it). 0: off.
+  double sliver_angle = 10;
+};
+
+struct TetRefinementResult {
+  RestrictedDelaunayResult surface;  // the certified surface: the tetrahedra's boundary
+  TetMesh mesh;                      // world coordinates, region 1, boundary triangles outward
+  TetQualityReport quality;
+  TetConformity conformity;
+  MeshTopology boundary_topology;         // of mesh.triangles
+  ComponentCorrespondence boundary_match;  // against bdCA(X), by place
+  bool boundary_is_surface = false;       // boundary faces = restricted facets
+  long long volume_points = 0, facet_points = 0, off_surface_facet_points = 0, refused = 0;
+  long long sliver_points = 0;  // circumcentres of slivers inserted
+  long long slivers_left = 0;   // output tetrahedra with a dihedral angle below sliver_angle
+  double sliver_angle = 0;
+  int rounds = 0;
+  bool rounds_exhausted = false;
+  double cell_ratio = 0, cell_size = 0;
+  bool ratio_ok = false, size_ok = false;
+  double seconds_cells = 0;
+  Json to_json() const;
+  std::string failed_guarantee() const;
+};
+
+// Throws Error as restricted_delaunay_mesh, UsageError on bad bounds.
+TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRefinementOptions& options);
+
+} // namespace imgmesh

@@ -1,0 +1,69 @@
+// Element measures and checks of lib/mesh/tet_mesh on tetrahedra whose
+// figures are known in closed form, and readers on malformed files.
+#include "mesh/tet_mesh.hpp"
+#include "mesh/volume_io.hpp"
+#include "util/error.hpp"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace imgmesh;
+
+TEST_CASE("regular and right-corner tetrahedra: ratio, dihedral angles, volume") {
+  const std::array<double, 3> a{1, 1, 1}, b{1, -1, -1}, c{-1, 1, -1}, d{-1, -1, 1};
+  REQUIRE(tet_orient(a, b, c, d) != 0);
+  CHECK(tet_radius_edge_ratio(a, b, c, d) == Approx(std::sqrt(6.0) / 4));  // R = sqrt 3, edge 2 sqrt 2
+  for (double angle : tet_dihedral_angles(a, b, c, d)) CHECK(angle == Approx(std::acos(1.0 / 3) * 180 / M_PI));
+  // The corner of a cube: three right dihedral angles at the corner, three of acos(1/sqrt 3).
+  const std::array<double, 3> o{0, 0, 0}, x{1, 0, 0}, y{0, 1, 0}, z{0, 0, 1};
+  auto ang = tet_dihedral_angles(o, x, y, z);
+  std::sort(ang.begin(), ang.end());
+  CHECK(ang[0] == Approx(std::acos(1 / std::sqrt(3.0)) * 180 / M_PI));
+  CHECK(ang[3] == Approx(90));
+  CHECK(ang[5] == Approx(90));
+  CHECK(tet_orient(o, x, y, z) == Approx(1));
+  CHECK(tet_circumradius(o, x, y, z) == Approx(std::sqrt(3.0) / 2));
+
+  TetMesh m;
+  m.points = {o, x, y, z, {1, 1, 1}};
+  m.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
+  REQUIRE(tet_orient(x, y, z, {1, 1, 1}) > 0);
+  m.tet_region = {1, 2};
+  TetConformity ok = tet_conformity(m);
+  CHECK(ok.ok());
+  CHECK(ok.interior_faces == 1);
+  CHECK(ok.boundary_faces == 6);
+  const TetQualityReport q = tet_quality(m);
+  CHECK(q.volume_by_region.at(1) == Approx(1.0 / 6));
+  CHECK(q.volume_by_region.at(2) == Approx(1.0 / 3));  // (1,0,0),(0,1,0),(0,0,1),(1,1,1): a third of the cube
+  CHECK(tet_boundary(m).size() == 6);
+  CHECK(tet_boundary(m, 1).size() == 4);
+  // Broken on purpose: an inverted tetrahedron, then one face in three.
+  m.tets[1] = {1, 3, 2, 4};
+  CHECK(tet_conformity(m).nonpositive == 1);
+  CHECK(tet_conformity(m).inconsistent_faces == 1);
+  m.tets[1] = {1, 2, 3, 4};
+  m.points.push_back({-1, -1, -1});
+  m.tets.push_back({5, 1, 2, 3});  // shares face 1-2-3 with both
+  if (tet_orient(m.points[5], x, y, z) < 0) m.tets.back() = {5, 1, 3, 2};
+  CHECK(tet_conformity(m).overfull_faces == 1);
+  CHECK(!tet_conformity(m).ok());
+}
+
+TEST_CASE("malformed tetrahedral mesh files: an Error naming the file") {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "imgmesh_test_tet_mesh";
+  std::filesystem::create_directories(dir);
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  };
+  CHECK_THROWS_AS(read_tet_mesh(write("a.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0\n")), Error);
+  CHECK_THROWS_AS(read_tet_mesh(write("b.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n$EndNodes\n$Elements\n1\n1 4 2 1 1 1 2 3 4\n$EndElements\n")), Error);
+  CHECK_THROWS_AS(read_tet_mesh(write("c.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 0\nTetrahedra\n1\n1 2 3 4 1\nEnd\n")), Error);
+  CHECK_THROWS_AS(read_tet_mesh(write("d.mesh", "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 nan 0\nEnd\n")), Error);
+  CHECK_THROWS_AS(read_tet_mesh(write("e.vtu", "<VTKFile type=\"UnstructuredGrid\"><Points><DataArray format=\"binary\">")), Error);
+  CHECK_THROWS_AS(read_tet_mesh(write("f.msh", "")), Error);
+  std::filesystem::remove_all(dir);
+}

@@ -1,0 +1,96 @@
+// implicit2tet: tetrahedra inside the certified surface of f^-1(0) (thesis
+// 9.1): implicit2mesh's restricted Delaunay surface, then the same
+// triangulation refined inside until every tetrahedron's radius-edge ratio
+// is within --cell-ratio, the surface certificate holding at the end.
+#include "cli/cli.hpp"
+#include "implicit/implicit_file.hpp"
+#include "mesh/volume_io.hpp"
+#include "surface/restricted_delaunay.hpp"
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+#include "volume/tet_refinement.hpp"
+
+#include <cmath>
+#include <sstream>
+
+using namespace imgmesh;
+
+int main(int argc, char** argv) {
+  cli::Tool tool("implicit2tet",
+                 "Mesh the inside of the zero set of an implicit function file (wc2implicit's output) by "
+                 "tetrahedra: the surface as implicit2mesh makes it (closed, oriented, with the voxel boundary's "
+                 "topology, certified), then the same Delaunay triangulation refined inside until every "
+                 "tetrahedron's radius-edge ratio is within --cell-ratio (Siqueira 2006, 9.1; Oudot-Rineau-Yvinec 2005).");
+  std::string in, out;
+  TetRefinementOptions opt;
+  RestrictedDelaunayOptions& so = opt.surface;
+  TetWriteOptions wopt;
+  tool.app.add_option("IN", in, "Implicit function file written by wc2implicit (- for stdin)")->required();
+  tool.app.add_option("OUT", out, "Output tetrahedral mesh: .msh (Gmsh), .mesh (MEDIT), .vtu (VTK) or .inp (Abaqus)")
+      ->required();
+  tool.data_output(out);
+  tool.app.add_option("--cell-ratio", opt.cell_ratio, "Radius-edge ratio bound R of every tetrahedron (>= 2)")
+      ->type_name("R")
+      ->capture_default_str();
+  tool.app.add_option("--cell-size", opt.cell_size, "Circumradius bound of every tetrahedron (world units); 0: none")
+      ->type_name("S")
+      ->capture_default_str();
+  tool.app.add_option("--sliver-angle", opt.sliver_angle,
+                      "Slivers: refine every inside tetrahedron with a dihedral angle below A degrees too (its "
+                      "circumcentre, or the surface triangle it encroaches on), after the ratio and size bounds; "
+                      "best effort, counted in --stats (slivers_left); 0: off")
+      ->type_name("A")
+      ->capture_default_str();
+  tool.app.add_option("--msh-version", wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")
+      ->type_name("V")
+      ->check(CLI::IsMember({"4.1", "2.2"}))
+      ->capture_default_str();
+  tool.app.add_option("--ratio", so.ratio, "Radius-edge ratio bound rho_0 of every boundary triangle (>= (1+k)^2 = 1.1236)")
+      ->type_name("R")
+      ->capture_default_str();
+  tool.app.add_option("--roughness", so.roughness,
+                      "Roughness bound g of the boundary in radians (>= 0.2587); default pi/3")
+      ->type_name("G");
+  tool.app.add_option("--max-distance", so.max_distance,
+                      "Also refine the boundary while a triangle's surface Delaunay ball centre is farther than E "
+                      "(world units) from its plane; 0: off")
+      ->type_name("E")
+      ->capture_default_str();
+  tool.app.add_option("--max-points", so.max_points,
+                      "Safety bound on the number of points; when hit, the mesh is written and the exit status is 3")
+      ->type_name("N")
+      ->capture_default_str();
+  tool.add_seed();
+  tool.add_threads();
+
+  return tool.run(argc, argv, [&] {
+    if (out == "-") throw UsageError("tetrahedral meshes are written to a file (.msh, .mesh, .vtu or .inp), not to stdout");
+    if (!is_tet_mesh_path(out))
+      throw UsageError(std::string("output format is chosen by extension: ") + kTetMeshExtensions, out);
+    if (!(opt.cell_ratio >= 2) || !std::isfinite(opt.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
+    if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be a finite number >= 0");
+    if (!(so.ratio >= min_ratio_bound()))
+      throw UsageError("--ratio " + std::to_string(so.ratio) + " is below the termination limit (1+k)^2 = 1.1236");
+    if (!(so.roughness >= min_roughness_bound()))
+      throw UsageError("--roughness " + std::to_string(so.roughness) + " is below the termination limit 0.2587 rad");
+    if (!(so.max_distance >= 0) || !std::isfinite(so.max_distance))
+      throw UsageError("--max-distance must be a finite number >= 0");
+    so.seed = tool.seed();
+    so.threads = tool.threads();
+    if (tool.progress()) so.progress = [&](const std::string& msg) { tool.report_progress(msg); };
+
+    tool.report_progress("reading " + in);
+    const PartitionOfUnity pu = read_implicit(in);
+    const PartitionOfUnitySurface surface(pu);
+    const TetRefinementResult res = tetrahedral_mesh(surface, opt);
+    write_tet_mesh(out, res.mesh, wopt);
+
+    tool.stats["input"] = in;
+    tool.stats["output"] = out;
+    std::ostringstream msg;
+    msg << res.mesh.tets.size() << " tetrahedra, " << res.mesh.points.size() << " vertices, largest radius-edge ratio "
+        << res.quality.max_radius_edge_ratio << ", smallest dihedral angle " << res.quality.min_dihedral << " degrees";
+    tool.debug(msg.str());
+    return tool.finish(res);
+  });
+}
