@@ -27,7 +27,7 @@ for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet img2poly
   done
   "$BIN/$tool" --version | grep -q "$tool" || fail "$tool --version does not name the tool"
 done
-[[ $count == 9 ]] || fail "$count tools checked, not 9"
+[[ $count == 10 ]] || fail "$count tools checked, not 10"
 }
 
 run_cases "$@"
