@@ -59,13 +59,14 @@ h = b[:b.index(b'end_header\n') + 11].decode().split('\n')
 assert 'format binary_little_endian 1.0' in h and h.count('property float nx') == 1
 nv = int(next(l for l in h if l.startswith('element vertex')).split()[2])
 nf = int(next(l for l in h if l.startswith('element face')).split()[2])
+face_ints = len([l for l in h[h.index(next(l for l in h if l.startswith('element face'))):] if l.startswith('property int ')])
 at = len('\n'.join(h))
 V = [struct.unpack_from('<6f', b, at + 24 * i) for i in range(nv)]
 at += 24 * nv
 acc = [[0.0, 0.0, 0.0] for _ in range(nv)]
 for k in range(nf):
     assert b[at] == 3
-    i, j, l = struct.unpack_from('<3i', b, at + 1); at += 13
+    i, j, l = struct.unpack_from('<3i', b, at + 1); at += 13 + 4 * face_ints  # then the component id
     p, q, r = V[i], V[j], V[l]
     u = [q[m] - p[m] for m in range(3)]; w = [r[m] - p[m] for m in range(3)]
     n = (u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0])
