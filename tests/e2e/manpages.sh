@@ -7,7 +7,7 @@ set -u
 pages=${PAGES:-$BIN/../man}
 fail=0
 count=0
-for tool in img2wc wc2implicit implicit-eval implicit2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
+for tool in img2wc wc2implicit implicit-eval implicit2mesh seg2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
   [[ -x "$BIN/$tool" ]] || continue
   count=$((count + 1))
   [[ -f "$MAN/$tool.1.in" ]] || { echo "FAIL: $tool has no hand-written page $MAN/$tool.1.in"; fail=1; }
