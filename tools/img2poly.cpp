@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
       ->type_name("A")
       ->check(CLI::Range(0.0, 60.0));
   tool.app.add_option("--svg", svg, "Also draw the curves over the image to this SVG file")->type_name("FILE");
+  bool svg_whole = false;
+  tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole image in the SVG, not a frame around the foreground");
   tool.add_seed();
 
   return tool.run(argc, argv, [&] {
@@ -80,6 +82,7 @@ int main(int argc, char** argv) {
       const SvgBackground bg = label_background(r.labels);
       PlanarWriteOptions wo;
       wo.background = &bg;
+      wo.svg_frame_foreground = !svg_whole;
       write_planar_mesh(svg, r.pslg, wo);
     }
 

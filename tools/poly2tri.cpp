@@ -53,6 +53,8 @@ int main(int argc, char** argv) {
       ->capture_default_str()
       ->type_name("N")
       ->check(CLI::PositiveNumber);
+  bool svg_whole = false;
+  tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole mesh in the SVG, not a frame around the foreground");
   tool.app.add_option("--svg", svg, "Also draw the mesh (regions coloured, segments on top) to this SVG file")
       ->type_name("FILE");
 
@@ -71,7 +73,11 @@ int main(int argc, char** argv) {
                                                         : read_pslg(in);
     const auto r = naming_input(in, [&] { return triangulate_pslg(pslg, opt); });
     write_planar_mesh(out, r.mesh);
-    if (!svg.empty()) write_planar_mesh(svg, r.mesh);
+    if (!svg.empty()) {
+      PlanarWriteOptions so;
+      so.svg_frame_foreground = !svg_whole;
+      write_planar_mesh(svg, r.mesh, so);
+    }
 
     tool.stats["input"] = in;
     std::ostringstream msg;

@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 45.0))
       ->capture_default_str();
   tool.app.add_option("--svg", svg, "also draw the result as SVG, quads coloured by Joe's mu");
+  bool svg_whole = false;
+  tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole mesh in the SVG, not a frame around the foreground");
   tool.add_threads();
   return tool.run(argc, argv, [&] {
     opt.cleanup = !no_cleanup;
@@ -51,7 +53,10 @@ int main(int argc, char** argv) {
         w.element_scalar.push_back(e.size() == 4 ? imgmesh::joe_mu(mesh.points[e[0]], mesh.points[e[1]],
                                                                    mesh.points[e[2]], mesh.points[e[3]])
                                                  : 0.0);
-      w.scalar_name = "joe_mu";
+      w.scalar_name = "Joe's mu (deg)";
+      w.scalar_min = 0;
+      w.scalar_max = 45;
+      w.svg_frame_foreground = !svg_whole;
       imgmesh::write_planar_mesh(svg, mesh, w);
     }
     tool.stats["input"] = in;
