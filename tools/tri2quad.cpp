@@ -30,9 +30,9 @@ int main(int argc, char** argv) {
   tool.app.add_option("--pair-above", opt.pair_above,
                       "First merge adjacent triangles whose quad has Joe's mu of at least MU degrees (best "
                       "first), then convert the rest around them; same guarantees (the plain conversion "
-                      "is used where they would not hold)")
+                      "is used where they would not hold); 0 to 45, default: off")
       ->type_name("MU")
-      ->check(CLI::Range(0.0, 45.0));
+      ->check(CLI::Range(0.0, 45.0).description(""));
   bool svg_whole = false;
   tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole mesh in the SVG, not a frame around the foreground");
   tool.app.add_option("--svg", svg, "Also draw the quad mesh, coloured by Joe's mu, to this SVG file")

@@ -19,6 +19,11 @@ for tool in img2wc wc2implicit implicit-eval implicit2mesh seg2mesh img2poly pol
     grep -q "^\.SH \"\?$section\"\?" <<<"$text" || { echo "FAIL: $tool.1 lacks section $section"; fail=1; }
   done
   help=$("$BIN/$tool" --help) || { echo "FAIL: $tool --help exited non-zero"; fail=1; continue; }
+  # Ranges and defaults in words: no CLI11 validator text ("FLOAT in [0 -
+  # 45]", ":POSITIVE"), no "TEXT" for a file, and --threads shows no number
+  # as its default (that would be this machine's core count).
+  ! grep -E -- ':(INT|FLOAT) in \[|:POSITIVE|--[a-z-]+ TEXT |--threads N=' <<<"$help" ||
+    { echo "FAIL: $tool --help shows CLI11's validator text or a machine's default (above)"; fail=1; }
   # Each option of --help is an entry of OPTIONS, not only a word elsewhere.
   options=$(sed -n '/^\.SH "\?OPTIONS/,/^\.SH /p' <<<"$text")
   for opt in $(grep -oE -- '--[a-z][a-z0-9-]*' <<<"$help" | sort -u); do
