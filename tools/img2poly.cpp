@@ -35,18 +35,20 @@ int main(int argc, char** argv) {
                   ->type_name("T")
                   ->excludes(label);
   tool.app.add_option("--tolerance", opt.tolerance,
-                      "Hausdorff bound E between each simplified curve and the pixel boundary, in pixels "
-                      "(0 keeps every corner)")
+                      "Hausdorff bound E between each simplified curve and the pixel boundary, in pixels, 0 to "
+                      "1000000 (0 keeps every corner)")
       ->capture_default_str()
       ->type_name("E")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(CLI::Range(0.0, 1e6).description(""));
   tool.app.add_option("--min-angle", opt.min_angle,
-                      "Do not simplify into angles below A degrees between segments (keeps thin parts from "
-                      "becoming slivers; 0 = off)")
+                      "Do not simplify into angles below A degrees between segments, 0 to 60 (keeps thin parts "
+                      "from becoming slivers; 0 = off)")
       ->capture_default_str()
       ->type_name("A")
-      ->check(CLI::Range(0.0, 60.0));
+      ->check(CLI::Range(0.0, 60.0).description(""));
   tool.app.add_option("--svg", svg, "Also draw the curves over the image to this SVG file")->type_name("FILE");
+  bool svg_whole = false;
+  tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole image in the SVG, not a frame around the foreground");
   tool.add_seed();
 
   return tool.run(argc, argv, [&] {
@@ -80,6 +82,7 @@ int main(int argc, char** argv) {
       const SvgBackground bg = label_background(r.labels);
       PlanarWriteOptions wo;
       wo.background = &bg;
+      wo.svg_frame_foreground = !svg_whole;
       write_planar_mesh(svg, r.pslg, wo);
     }
 

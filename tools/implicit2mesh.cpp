@@ -22,8 +22,12 @@ int main(int argc, char** argv) {
   RestrictedDelaunayOptions opt;
   bool normals = false;
   tool.app.add_option("IN", in, "Implicit function file written by wc2implicit (- for stdin)")->required();
-  tool.app.add_option("OUT", out, "Output surface: .off, .ply, .obj or .stl (- for OFF on stdout)")->required();
+  tool.app.add_option("OUT", out,
+                      "Output surface in world (LPS) coordinates: .off, .ply, .obj, .stl, .vtp, .vtk or .msh "
+                      "(- for OFF on stdout); .ply, .vtp, .vtk and .msh carry each face's component id")
+      ->required();
   tool.data_output(out);
+  SurfaceWriteOptions write_opt;
   tool.app.add_option("--ratio", opt.ratio, "Radius-edge ratio bound rho_0 of every triangle (>= (1+k)^2 = 1.1236)")
       ->type_name("R")
       ->capture_default_str();
@@ -43,15 +47,20 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   tool.add_seed();
   tool.add_threads();
-  tool.app.add_flag("--normals", normals, "Write per-vertex normals from grad f (PLY and OBJ)");
+  tool.app.add_flag("--normals", normals, "Write per-vertex normals from grad f (PLY, OBJ, VTP, VTK, msh)");
+  tool.app.add_option("--msh-version", write_opt.msh_version, "Gmsh format version of a .msh OUT")
+      ->check(CLI::IsMember({"4.1", "2.2"}))
+      ->capture_default_str();
   tool.app.add_flag("--seed-deletion", opt.seed_deletion,
                     "SAMPLETOPOLOGY as published (7.6.2): TOPOLOGY alone first, then delete the seeds and HandleDetection's points one by one; "
                     "slower and not smaller in practice");
 
   return tool.run(argc, argv, [&] {
-    const std::string ext = extension_of(out);
-    if (out != "-" && ext != ".off" && ext != ".ply" && ext != ".obj" && ext != ".stl")
-      throw UsageError("output format is chosen by extension: .off, .ply, .obj or .stl", out);
+    if (!is_surface_output(out))
+      throw UsageError(std::string("output format is chosen by extension: ") + kSurfaceExtensions, out);
+    if (normals && !surface_output_holds_normals(out))
+      tool.info("warning: --normals ignored: " + std::string(out == "-" ? "OFF" : extension_of(out)) +
+                " holds no normals (use .ply, .obj, .vtp, .vtk or .msh)");
     if (!(opt.ratio >= min_ratio_bound()))
       throw UsageError("--ratio " + std::to_string(opt.ratio) + " is below the termination limit (1+k)^2 = 1.1236");
     if (!(opt.roughness >= min_roughness_bound()))
@@ -68,7 +77,7 @@ int main(int argc, char** argv) {
     const PartitionOfUnitySurface surface(pu);
     RestrictedDelaunayResult res = restricted_delaunay_mesh(surface, opt);
     if (normals) add_normals(surface, res.mesh);
-    write_surface(out, res.mesh);
+    write_surface(out, res.mesh, write_opt);
 
     tool.stats["input"] = in;
     tool.stats["output"] = out;

@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   tool.data_output(imgmesh::cli::Tool::kStdout, imgmesh::cli::Stream::Text, [&] { return !json; });  // --json: one object
   tool.app.add_flag("--json", json, "print one JSON object (keys 'components' and 'euler' first) instead of text");
   tool.app.add_option("--image", image,
-                      "well-composed image: match each mesh component by place to a bdCA(X) component, one to one, same euler (exit 3 if not)");
+                      "well-composed image: match each mesh component by place to a bdCA(X) component, one to one, same euler (exit 3 if not)")
+      ->type_name("FILE");
   return tool.run(argc, argv, [&] {
     const std::string ext = imgmesh::extension_of(in);
     const bool tets = ext == ".msh" || ext == ".mesh" || ext == ".vtu";

@@ -28,31 +28,33 @@ int main(int argc, char** argv) {
                       "except near input angles below 60 degrees")
       ->capture_default_str()
       ->type_name("A");
-  auto* area = tool.app.add_option("--max-area", opt.max_area, "No triangle larger than S (world units squared)")
+  auto* area = tool.app.add_option("--max-area", opt.max_area, "No triangle larger than S > 0 (world units squared; default: no bound)")
                    ->type_name("S")
-                   ->check(CLI::PositiveNumber);
-  tool.app.add_option("--max-edge", opt.max_edge, "No edge longer than L (world units)")
+                   ->check(CLI::PositiveNumber.description(""));
+  tool.app.add_option("--max-edge", opt.max_edge, "No edge longer than L > 0 (world units; default: no bound)")
       ->type_name("L")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::PositiveNumber.description(""))
       ->excludes(area);
   auto* lattice = tool.app.add_option("--lattice", opt.lattice,
                                       "Fill the domain with Steiner points on an equilateral-triangle lattice of "
                                       "side L, half a side away from the segments, before refining (tri2quad "
-                                      "then makes 60-degree rhombi of them)")
+                                      "then makes 60-degree rhombi of them); L > 0 in world units, default: none")
                       ->type_name("L")
-                      ->check(CLI::PositiveNumber);
+                      ->check(CLI::PositiveNumber.description(""));
   double square_lattice = 0;
   tool.app.add_option("--square-lattice", square_lattice,
                       "The same with a square lattice of side L: its right triangles make squares "
-                      "(tri2quad --pair-above 40)")
+                      "(tri2quad --pair-above 40); default: none")
       ->type_name("L")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::PositiveNumber.description(""))
       ->excludes(lattice);
   tool.app.add_option("--max-vertices", max_vertices,
                       "Stop refining beyond this many vertices (exit status 3); a size bound that alone asks for more is refused at once")
-      ->capture_default_str()
+      ->default_str(std::to_string(opt.max_vertices))
       ->type_name("N")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber.description(""));
+  bool svg_whole = false;
+  tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole mesh in the SVG, not a frame around the foreground");
   tool.app.add_option("--svg", svg, "Also draw the mesh (regions coloured, segments on top) to this SVG file")
       ->type_name("FILE");
 
@@ -70,7 +72,11 @@ int main(int argc, char** argv) {
     const PlanarMesh pslg = read_pslg(in);
     const auto r = naming_input(in, [&] { return triangulate_pslg(pslg, opt); });
     write_planar_mesh(out, r.mesh);
-    if (!svg.empty()) write_planar_mesh(svg, r.mesh);
+    if (!svg.empty()) {
+      PlanarWriteOptions so;
+      so.svg_frame_foreground = !svg_whole;
+      write_planar_mesh(svg, r.mesh, so);
+    }
 
     tool.stats["input"] = in;
     std::ostringstream msg;

@@ -19,17 +19,22 @@ int main(int argc, char** argv) {
   tool.app.add_option("OUT", out, "output mesh by extension: .ele (+ .node, .poly), .off, .vtk, .msh, .svg; - for OFF on stdout")
       ->required();
   tool.data_output(out);
-  tool.app.add_option("--iterations", opt.iterations, "smoothing passes (default 10)")
-      ->check(CLI::Range(0, 1000000));
+  tool.app.add_option("--iterations", opt.iterations, "smoothing passes, 0 to 1000000")
+      ->type_name("N")
+      ->check(CLI::Range(0, 1000000).description(""))
+      ->capture_default_str();
   tool.app.add_flag("--no-cleanup", no_cleanup, "no diagonal swaps, doublet removal or quad collapses");
   tool.app.add_flag("--slide-boundary", opt.slide_boundary,
                     "let boundary and constrained vertices slide along their own straight segment");
   tool.app.add_option("--split-below", opt.split_below,
-                      "split quad pairs around a new point where mu is below this many degrees (more: better "
+                      "split quad pairs around a new point where mu is below MU degrees, 0 to 45 (more: better "
                       "angles, more quads)")
-      ->check(CLI::Range(0.0, 45.0))
+      ->type_name("MU")
+      ->check(CLI::Range(0.0, 45.0).description(""))
       ->capture_default_str();
-  tool.app.add_option("--svg", svg, "also draw the result as SVG, quads coloured by Joe's mu");
+  tool.app.add_option("--svg", svg, "also draw the result as SVG, quads coloured by Joe's mu")->type_name("FILE");
+  bool svg_whole = false;
+  tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole mesh in the SVG, not a frame around the foreground");
   tool.add_threads();
   return tool.run(argc, argv, [&] {
     opt.cleanup = !no_cleanup;
@@ -51,7 +56,10 @@ int main(int argc, char** argv) {
         w.element_scalar.push_back(e.size() == 4 ? imgmesh::joe_mu(mesh.points[e[0]], mesh.points[e[1]],
                                                                    mesh.points[e[2]], mesh.points[e[3]])
                                                  : 0.0);
-      w.scalar_name = "joe_mu";
+      w.scalar_name = "Joe's mu (deg)";
+      w.scalar_min = 0;
+      w.scalar_max = 45;
+      w.svg_frame_foreground = !svg_whole;
       imgmesh::write_planar_mesh(svg, mesh, w);
     }
     tool.stats["input"] = in;

@@ -30,9 +30,11 @@ int main(int argc, char** argv) {
   tool.app.add_option("--pair-above", opt.pair_above,
                       "First merge adjacent triangles whose quad has Joe's mu of at least MU degrees (best "
                       "first), then convert the rest around them; same guarantees (the plain conversion "
-                      "is used where they would not hold)")
+                      "is used where they would not hold); 0 to 45, default: off")
       ->type_name("MU")
-      ->check(CLI::Range(0.0, 45.0));
+      ->check(CLI::Range(0.0, 45.0).description(""));
+  bool svg_whole = false;
+  tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole mesh in the SVG, not a frame around the foreground");
   tool.app.add_option("--svg", svg, "Also draw the quad mesh, coloured by Joe's mu, to this SVG file")
       ->type_name("FILE");
 
@@ -56,11 +58,15 @@ int main(int argc, char** argv) {
     for (const auto& f : r.quads)
       mu.push_back(joe_mu(r.points[f[0]], r.points[f[1]], r.points[f[2]], r.points[f[3]]));
     if (ext == ".svg" || ext == ".vtk") { wo.element_scalar = mu; wo.scalar_name = "mu"; }
+    if (ext == ".svg") { wo.scalar_name = "Joe's mu (deg)"; wo.scalar_min = 0; wo.scalar_max = 45; wo.svg_frame_foreground = !svg_whole; }
     write_planar_mesh(out, q, wo);  // "-": OFF on stdout
     if (!svg.empty()) {
       PlanarWriteOptions so;
       so.element_scalar = mu;
-      so.scalar_name = "mu";
+      so.scalar_name = "Joe's mu (deg)";
+      so.scalar_min = 0;
+      so.scalar_max = 45;
+      so.svg_frame_foreground = !svg_whole;
       write_planar_mesh(svg, q, so);
     }
 

@@ -32,11 +32,11 @@ void Tool::add_seed(std::uint64_t default_seed) {
 
 void Tool::add_threads() {
   threads_ = int(std::max(1u, std::thread::hardware_concurrency()));
-  // The range in the words, not CLI11's "INT:INT in [1 - 1024]".
+  // The range and the default in the words: not CLI11's "INT:INT in
+  // [1 - 1024]", nor this machine's core count as if it were the default.
   app.add_option("--threads", threads_, "Number of threads, 1 to 1024 (default: all cores)")
       ->type_name("N")
-      ->check(CLI::Range(1, 1024).description(""))
-      ->capture_default_str();
+      ->check(CLI::Range(1, 1024).description(""));
 }
 
 const std::string Tool::kStdout = "-";

@@ -1,7 +1,11 @@
 // Surface mesh I/O. OFF is read and written here directly (it is the format
 // on pipes, and reading it ourselves keeps non-manifold input intact so that
-// checks can report it); PLY, OBJ and STL go through OpenMesh.
+// checks can report it); PLY, VTK and msh are written by surface_formats.cpp
+// (they carry per-face data); reading PLY, OBJ, STL and writing OBJ, STL go
+// through OpenMesh.
 #include "mesh/surface_io.hpp"
+
+#include "mesh/surface_formats.hpp"
 
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
@@ -204,24 +208,10 @@ template <class T> void put(std::ostream& out, T v) {
 
 // A triangle set OpenMesh's halfedge mesh cannot hold (not a manifold: e.g.
 // a refinement stopped by --max-points), in the layout OpenMesh writes for
-// a manifold one (binary PLY of floats, OBJ, binary STL), so that the run
-// still leaves its output (exit 3) in the format asked for.
+// a manifold one (OBJ, binary STL), so that the run still leaves its output
+// (exit 3) in the format asked for.
 void write_triangle_set(std::ostream& out, const std::string& ext, const SurfaceMesh& m, bool normals) {
-  if (ext == ".ply") {
-    out << "ply\nformat binary_little_endian 1.0\nelement vertex " << m.points.size()
-        << "\nproperty float x\nproperty float y\nproperty float z\n";
-    if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
-    out << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
-    for (std::size_t i = 0; i < m.points.size(); ++i) {
-      for (double c : m.points[i]) put(out, float(c));
-      if (normals)
-        for (double c : m.normals[i]) put(out, float(c));
-    }
-    for (const auto& f : m.triangles) {
-      put(out, std::uint8_t(3));
-      for (int v : f) put(out, std::int32_t(v));
-    }
-  } else if (ext == ".obj") {
+  if (ext == ".obj") {
     out << "# " << m.points.size() << " vertices, " << m.triangles.size() << " faces\n";
     for (std::size_t i = 0; i < m.points.size(); ++i) {
       out << "v " << m.points[i][0] << ' ' << m.points[i][1] << ' ' << m.points[i][2] << '\n';
@@ -289,16 +279,46 @@ SurfaceMesh read_surface(const std::string& path) {
   return m;
 }
 
-void write_surface(const std::string& path, const SurfaceMesh& m) {
+const char* const kSurfaceExtensions = ".off, .ply, .obj, .stl, .vtp, .vtk or .msh";
+
+bool is_surface_output(const std::string& path) {
+  static const std::set<std::string> exts{".off", ".ply", ".obj", ".stl", ".vtp", ".vtk", ".msh"};
+  return path == "-" || exts.count(extension_of(path)) > 0;
+}
+
+bool surface_output_holds_normals(const std::string& path) {
+  const std::string ext = extension_of(path);
+  return path != "-" && ext != ".off" && ext != ".stl";
+}
+
+bool surface_output_holds_labels(const std::string& path) {
+  const std::string ext = extension_of(path);
+  return ext == ".ply" || ext == ".vtp" || ext == ".vtk" || ext == ".msh";
+}
+
+void write_surface(const std::string& path, const SurfaceMesh& m, const SurfaceWriteOptions& options) {
   const std::string ext = path == "-" ? ".off" : extension_of(path);
-  if (ext != ".off" && ext != ".ply" && ext != ".obj" && ext != ".stl")
-    throw UsageError("unknown mesh extension '" + ext + "' (use .off, .ply, .obj or .stl)", path);
+  if (!is_surface_output(path))
+    throw UsageError("unknown mesh extension '" + ext + "' (use " + kSurfaceExtensions + ")", path);
+  if (options.msh_version != "4.1" && options.msh_version != "2.2")
+    throw UsageError("msh version '" + options.msh_version + "': 4.1 or 2.2 expected");
   for (const auto& f : m.triangles)
     for (int v : f)
       if (v < 0 || std::size_t(v) >= m.points.size()) throw Error("internal: triangle refers to a missing vertex", path);
-  AtomicOutput out(path, ext != ".off" && ext != ".obj");
+  AtomicOutput out(path, ext == ".ply" || ext == ".stl");
   if (ext == ".off") {
     write_off(out.stream(), m);
+    out.commit();
+    return;
+  }
+  // The formats with per-face data are written here whatever the mesh is
+  // (a triangle set that is not a manifold too).
+  if (ext == ".ply" || ext == ".vtp" || ext == ".vtk" || ext == ".msh") {
+    const std::vector<int> component = face_components(m);
+    if (ext == ".ply") write_ply(out.stream(), m, component);
+    if (ext == ".vtp") write_vtp(out.stream(), m, component);
+    if (ext == ".vtk") write_vtk_legacy(out.stream(), m, component);
+    if (ext == ".msh") write_msh(out.stream(), m, component, options.msh_version);
     out.commit();
     return;
   }
@@ -326,7 +346,7 @@ void write_surface(const std::string& path, const SurfaceMesh& m) {
     }
   }
   OpenMesh::IO::Options opt;
-  if (ext == ".ply" || ext == ".stl") opt += OpenMesh::IO::Options::Binary;
+  if (ext == ".stl") opt += OpenMesh::IO::Options::Binary;
   if (normals) opt += OpenMesh::IO::Options::VertexNormal;
   if (!OpenMesh::IO::write_mesh(tm, out.path(), opt, 17)) throw Error("cannot write the mesh", path);
   out.commit();

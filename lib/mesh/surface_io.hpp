@@ -1,6 +1,7 @@
-// Triangle surface meshes in world coordinates, and their I/O through
-// OpenMesh (OFF, PLY, OBJ, STL by extension; "-" is OFF on stdin/stdout).
-// This header is plain data; OpenMesh stays inside surface_io.cpp.
+// Triangle surface meshes in world coordinates (LPS, as ITK), and their I/O:
+// read OFF, PLY, OBJ, STL; write those and VTK (.vtp, .vtk) and Gmsh .msh
+// (surface_formats.hpp), by extension; "-" is OFF on stdin/stdout. This
+// header is plain data; OpenMesh stays inside surface_io.cpp.
 #pragma once
 #include <array>
 #include <string>
@@ -12,11 +13,25 @@ struct SurfaceMesh {
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<int, 3>> triangles;   // 0-based, counter-clockwise seen from outside
   std::vector<std::array<double, 3>> normals;  // per vertex, empty or points.size()
+  std::vector<int> labels;  // per triangle: the segmentation label it bounds, empty when not known
 };
+
+struct SurfaceWriteOptions {
+  std::string msh_version = "4.1";  // or "2.2"
+};
+
+// The output extensions write_surface takes, for messages and checks.
+extern const char* const kSurfaceExtensions;  // ".off, .ply, .obj, .stl, .vtp, .vtk or .msh"
+bool is_surface_output(const std::string& path);  // "-" or one of those
+// Whether the format of `path` holds vertex normals / face labels.
+bool surface_output_holds_normals(const std::string& path);
+bool surface_output_holds_labels(const std::string& path);
 
 // Throws Error on unreadable files, non-triangle faces, bad ids, NaNs.
 SurfaceMesh read_surface(const std::string& path);
-// Atomic; binary PLY/STL, ASCII OFF/OBJ; normals written when present (PLY/OBJ).
-void write_surface(const std::string& path, const SurfaceMesh& mesh);
+// Atomic; binary PLY/STL, ASCII OFF/OBJ/VTK/msh; normals written when
+// present (PLY, OBJ, VTK, msh); per-face component ids and labels in PLY, VTK
+// and msh. Throws UsageError on an unknown extension or msh version.
+void write_surface(const std::string& path, const SurfaceMesh& mesh, const SurfaceWriteOptions& options = {});
 
 } // namespace imgmesh

@@ -405,17 +405,14 @@ std::string ImagePslgResult::failed_guarantee() const {
 }
 
 SvgBackground label_background(const LabelImage& L) {
+  // Each label in its region tint (as poly2tri's pictures fill its regions).
   SvgBackground bg;
   bg.width = L.size[0];
   bg.height = L.size[1];
-  std::vector<std::int32_t> values(L.data);
-  std::sort(values.begin(), values.end());
-  values.erase(std::unique(values.begin(), values.end()), values.end());
-  bg.grey.resize(L.data.size());
-  const double span = values.size() > 1 ? double(values.size() - 1) : 1.0;
+  bg.rgb.resize(3 * L.data.size());
   for (std::size_t i = 0; i < L.data.size(); ++i) {
-    const auto r = std::lower_bound(values.begin(), values.end(), L.data[i]) - values.begin();
-    bg.grey[i] = std::uint8_t(40 + std::lround(175.0 * double(r) / span));
+    const auto c = region_tint(L.data[i]);
+    std::copy(c.begin(), c.end(), bg.rgb.begin() + std::ptrdiff_t(3 * i));
   }
   const Vec3 o = L.world(0, 0, 0), c = L.world(1, 0, 0), r = L.world(0, 1, 0);
   bg.origin = {o[0], o[1]};

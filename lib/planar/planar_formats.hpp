@@ -3,6 +3,8 @@
 #pragma once
 #include "planar/triangle_io.hpp"
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@ namespace imgmesh {
 struct SvgBackground {
   std::size_t width = 0, height = 0;
   std::vector<std::uint8_t> grey;  // width * height, row r = c + width * r
+  std::vector<std::uint8_t> rgb;   // or 3 * width * height: a colour raster (used when set)
   Point2 origin{0, 0}, column{1, 0}, row{0, 1};
 };
 
@@ -23,10 +26,23 @@ struct PlanarWriteOptions {
   // colours elements by their region attribute.
   std::vector<double> element_scalar;
   std::string scalar_name = "quality";
+  // The colour scale's ends (e.g. 0 and 1 for Joe's mu, so that pictures
+  // compare); NaN: the scalar's range.
+  double scalar_min = std::nan(""), scalar_max = std::nan("");
   // SVG only.
   const SvgBackground* background = nullptr;
   double svg_width_px = 1000;  // picture width; the height follows the aspect ratio
+  std::string svg_title;       // the title line; empty: svg_counts(m)
+  bool svg_frame_foreground = true;  // frame the foreground (nonzero regions, curves); false: the whole picture
 };
+
+// The SVG tint of a region label (0: background grey); img2poly's raster
+// uses the same.
+std::array<std::uint8_t, 3> region_tint(long label);
+// "V vertices, T triangles, Q quads, S segments[, P regional points], L labels".
+std::string svg_counts(const PlanarMesh& m);
+// The SVG picture alone (write_planar_mesh chooses it for .svg).
+void write_svg(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt);
 
 // By extension: .ele (+ .node beside it, + .poly with the segments when there
 // are any), .off, .vtk, .msh, .svg. Every file is written atomically.

@@ -8,7 +8,7 @@ source "$(dirname "$0")/lib.sh"
 case_every_tool_page_has_every_option() {
 pages=${PAGES:-$BIN/../man}
 count=0
-for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet img2poly poly2tri tri2quad quadsmooth meshinfo; do
+for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet seg2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
   [[ -x "$BIN/$tool" ]] || continue
   count=$((count + 1))
   [[ -f "$MAN/$tool.1.in" ]] || fail "$tool has no hand-written page $MAN/$tool.1.in"
@@ -20,6 +20,11 @@ for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet img2poly
     grep -q "^\.SH \"\?$section\"\?" <<<"$text" || fail "$tool.1 lacks section $section"
   done
   help=$("$BIN/$tool" --help) || { fail "$tool --help exited non-zero"; continue; }
+  # Ranges and defaults in words: no CLI11 validator text ("FLOAT in [0 -
+  # 45]", ":POSITIVE"), no "TEXT" for a file, and --threads shows no number
+  # as its default (that would be this machine's core count).
+  ! grep -E -- ':(INT|FLOAT) in \[|:POSITIVE|--[a-z-]+ TEXT |--threads N=' <<<"$help" ||
+    fail "$tool --help shows CLI11's validator text or a machine's default (above)"
   # Each option of --help is an entry of OPTIONS, not only a word elsewhere.
   options=$(sed -n '/^\.SH "\?OPTIONS/,/^\.SH /p' <<<"$text")
   for opt in $(grep -oE -- '--[a-z][a-z0-9-]*' <<<"$help" | sort -u); do
@@ -27,7 +32,7 @@ for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet img2poly
   done
   "$BIN/$tool" --version | grep -q "$tool" || fail "$tool --version does not name the tool"
 done
-[[ $count == 10 ]] || fail "$count tools checked, not 10"
+[[ $count == 11 ]] || fail "$count tools checked, not 11"
 }
 
 run_cases "$@"

@@ -60,6 +60,7 @@ refused implicit-eval box-f.nrrd p.txt --stats -            # values on stdout b
 refused implicit-eval box-f.nrrd p.txt -o - --stats -
 refused meshinfo tet.off --stats -                           # the text report is on stdout
 refused implicit2mesh box-f.nrrd - --stats -
+refused seg2mesh box.nrrd - --stats -
 # The check comes before the work: a missing input is not even opened.
 refused img2wc no-such-input.nrrd - --stats -
 }
@@ -106,6 +107,8 @@ leaves_nothing 1 p3.txt implicit-eval box-f.nrrd - -o o/v.txt     # written up t
 leaves_nothing 1 p3.txt implicit-eval box-f.nrrd -                 # the same behind "-"
 leaves_nothing 1 box.nrrd implicit2mesh - o/m.off                   # not an implicit function file
 leaves_nothing 2 /dev/null implicit2mesh box-f.nrrd o/m.off --ratio 1
+leaves_nothing 1 box.nrrd seg2mesh - o/m.vtp --labels 9
+leaves_nothing 2 box.nrrd seg2mesh - o/m.msh --msh-version 3
 leaves_nothing 1 "$DATA2D" img2poly - o/s.poly --threshold 128 --svg o/nodir/s.svg  # OUT done, --svg fails
 leaves_nothing 1 /dev/null poly2tri s.poly o/m.1.ele --svg o/nodir/m.svg    # .ele, .node, .poly done
 leaves_nothing 1 /dev/null tri2quad s.1.ele o/q.ele --svg o/nodir/q.svg
@@ -134,9 +137,10 @@ TMPDIR=$PWD/tmp "$BIN/implicit2mesh" -q box-f.nrrd o/m.off --max-points 10; rc=$
 "$BIN/meshinfo" --json o/m.off > m.json || fail "implicit2mesh exit 3: the mesh does not read back"
 
 # A refinement stopped early need not be a manifold: every format still
-# holds all its triangles (OFF is our own writer; PLY, OBJ, STL count them).
+# holds all its triangles (OFF, PLY, VTK, msh are our own writers; OBJ, STL
+# OpenMesh's layout).
 "$BIN/img2wc" -q "$DATA/bunny00-96.nrrd" - | "$BIN/wc2implicit" -q - bunny-f.nrrd || fail "setup: bunny f"
-for ext in off ply obj stl; do
+for ext in off ply obj stl vtp vtk msh; do
   rm -rf o; mkdir o
   TMPDIR=$PWD/tmp "$BIN/implicit2mesh" -q bunny-f.nrrd o/b.$ext --max-points 100 --threads 1 --stats o.json; rc=$?
   [[ $rc -eq 3 && $(ls -A o) == b.$ext && -z $(ls -A tmp) ]] || fail "implicit2mesh --max-points 100 .$ext: exit $rc, $(ls -A o tmp)"
@@ -146,6 +150,9 @@ for ext in off ply obj stl; do
     ply) got=$(head -c 400 o/b.ply | grep -a "^element face" | cut -d" " -f3) ;;
     obj) got=$(grep -c "^f " o/b.obj) ;;
     stl) got=$(od -An -t u4 -j 80 -N 4 o/b.stl | tr -d " ") ;;
+    vtp) got=$(grep -o 'NumberOfPolys="[0-9]*"' o/b.vtp | tr -dc 0-9) ;;
+    vtk) got=$(grep "^POLYGONS" o/b.vtk | cut -d" " -f2) ;;
+    msh) got=$(sed -n '/^\$Elements/{n;p;q}' o/b.msh | cut -d" " -f2) ;;
   esac
   [[ $got == "$n" && $n -gt 0 ]] || fail "implicit2mesh exit 3 .$ext: $got triangles in the file, $n in --stats"
 done
@@ -169,6 +176,7 @@ nofolder quadsmooth missing.q.ele nodir/x.qs.ele
 nofolder implicit-eval missing.nrrd p.txt -o nodir/v.txt
 nofolder meshinfo missing.off --stats nodir/s.json
 nofolder implicit2mesh box-f.nrrd nodir/x.off          # found when writing, same words
+nofolder seg2mesh missing.nrrd nodir/x.vtp
 ls -A | grep -q imgmesh- && fail "a temporary file left: $(ls -A | grep imgmesh-)"
 }
 

@@ -27,7 +27,18 @@ def read_mesh(path):
         fmt = head[1].split()[1]
         nv = int(next(l for l in head if l.startswith('element vertex')).split()[2])
         nf = int(next(l for l in head if l.startswith('element face')).split()[2])
-        props = [l.split()[-1] for l in head if l.startswith('property') and 'list' not in l]
+        # Properties per element: the vertex's floats; the face's list, then
+        # int properties (component id, label) after it.
+        element, props, face_ints = None, [], 0
+        for l in head:
+            w = l.split()
+            if w[:1] == ['element']:
+                element = w[1]
+            elif w[:1] == ['property'] and element == 'vertex':
+                props.append(w[-1])
+            elif w[:1] == ['property'] and element == 'face' and 'list' not in w:
+                assert w[1] in ('int', 'int32'), 'face property %s' % w[1]
+                face_ints += 1
         if fmt == 'ascii':
             rows = raw[end:].decode().split('\n')
             V = [tuple(map(float, r.split())) for r in rows[:nv]]
@@ -41,7 +52,7 @@ def read_mesh(path):
             for _ in range(nf):
                 assert raw[at] == 3, 'not a triangle'
                 F.append(struct.unpack_from('<3i', raw, at + 1))
-                at += 13
+                at += 13 + 4 * face_ints
             assert at == len(raw), 'trailing bytes'
         return [v[:3] for v in V], F, ([v[3:6] for v in V] if 'nx' in props else None)
     words = [w for l in raw.decode().split('\n') for w in l.split('#')[0].split()]

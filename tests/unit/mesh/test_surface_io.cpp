@@ -79,7 +79,7 @@ TEST_CASE("bad surface files give an Error") {
   std::ofstream(d) << "OFF\n3 1 0\n0 0 nan\n1 0 0\n0 1 0\n3 0 1 2\n";
   CHECK_THROWS_AS(read_surface(d), Error);
   CHECK_THROWS_AS(read_surface(temp_dir() + "/missing.ply"), Error);
-  CHECK_THROWS_AS(write_surface(temp_dir() + "/x.vtk", tetra()), UsageError);
+  CHECK_THROWS_AS(write_surface(temp_dir() + "/x.gts", tetra()), UsageError);
 }
 
 TEST_CASE("a triangle set that is not a manifold is still written as PLY, OBJ and STL") {
@@ -103,13 +103,13 @@ TEST_CASE("a triangle set that is not a manifold is still written as PLY, OBJ an
     REQUIRE(body > 11);
     CHECK(b.find("element vertex 5\n") != std::string::npos);
     CHECK(b.find("element face 3\n") != std::string::npos);
-    REQUIRE(b.size() == body + 5 * 12 + 3 * 13);
+    REQUIRE(b.size() == body + 5 * 12 + 3 * 17);  // a face: count, 3 ids, its component id
     CHECK(f32(b, body + 4 * 12 + 8) == 1.25f);  // z of the last point
-    const std::size_t face2 = body + 5 * 12 + 2 * 13;
+    const std::size_t face2 = body + 5 * 12 + 2 * 17;
     CHECK(b[face2] == 3);
-    std::int32_t ids[3];
-    std::memcpy(ids, b.data() + face2 + 1, 12);
-    CHECK((ids[0] == 0 && ids[1] == 1 && ids[2] == 4));
+    std::int32_t ids[4];
+    std::memcpy(ids, b.data() + face2 + 1, 16);
+    CHECK((ids[0] == 0 && ids[1] == 1 && ids[2] == 4 && ids[3] == 0));
   }
   SECTION("OBJ: every vertex and face, 1-based") {
     write_surface(temp_dir() + "/nm.obj", m);

@@ -1,0 +1,65 @@
+#include "mesh/surface_formats.hpp"
+#include "mesh/surface_io.hpp"
+
+#include <catch2/catch.hpp>
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+#include <string>
+
+using namespace imgmesh;
+
+namespace {
+// Two disjoint tetrahedra, the second (vertices 4..7) first in the face
+// list and smaller (3 faces of its 4, so it is not the largest).
+SurfaceMesh two_pieces() {
+  SurfaceMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {5, 0, 0}, {6, 0, 0}, {5, 1, 0}, {5, 0, 1}};
+  m.triangles = {{4, 6, 5}, {0, 2, 1}, {4, 5, 7}, {0, 1, 3}, {1, 2, 3}, {5, 6, 7}, {0, 3, 2}};
+  return m;
+}
+} // namespace
+
+TEST_CASE("face_components: connected by shared vertices, largest first") {
+  const SurfaceMesh m = two_pieces();
+  CHECK(face_components(m) == std::vector<int>{1, 0, 1, 0, 0, 1, 0});
+  SurfaceMesh joined = m;
+  joined.triangles.push_back({3, 7, 2});  // a face joining them: one component
+  CHECK(face_components(joined) == std::vector<int>(8, 0));
+}
+
+TEST_CASE("PLY face properties: component and label per face, in order") {
+  SurfaceMesh m = two_pieces();
+  m.labels = {7, 3, 7, 3, 3, 7, 3};
+  std::ostringstream out;
+  write_ply(out, m, face_components(m));
+  const std::string b = out.str();
+  CHECK(b.find("property int component\nproperty int label\nend_header\n") != std::string::npos);
+  const std::size_t faces = b.find("end_header\n") + 11 + 8 * 12;
+  REQUIRE(b.size() == faces + 7 * 21);
+  for (std::size_t i = 0; i < 7; ++i) {
+    std::int32_t v[5];
+    std::memcpy(v, b.data() + faces + 21 * i + 1, 20);
+    CHECK(v[0] == m.triangles[i][0]);
+    CHECK(v[3] == (m.triangles[i][0] >= 4 ? 1 : 0));
+    CHECK(v[4] == m.labels[i]);
+  }
+}
+
+TEST_CASE("msh: one entity per component, physical group per label") {
+  SurfaceMesh m = two_pieces();
+  m.labels = {7, 3, 7, 3, 3, 7, 3};
+  for (const std::string version : {"4.1", "2.2"}) {
+    std::ostringstream out;
+    write_msh(out, m, face_components(m), version);
+    const std::string s = out.str();
+    CHECK(s.find("$MeshFormat\n" + version + " 0 8\n") == 0);
+    CHECK(s.find("$PhysicalNames\n2\n2 3 \"label 3\"\n2 7 \"label 7\"\n") != std::string::npos);
+    if (version == "2.2") {
+      CHECK(s.find("\n1 2 2 7 2 5 7 6\n") != std::string::npos);  // face 0: label 7, entity 2, 1-based ids
+    } else {
+      CHECK(s.find("$Entities\n0 0 2 0\n") != std::string::npos);
+      CHECK(s.find(" 1 3 0\n2 ") != std::string::npos);  // entity 1 (the larger piece) in group 3
+    }
+  }
+}

@@ -1,0 +1,122 @@
+// seg2mesh: every label of a segmentation meshed in one command, in
+// parallel, into one surface file with a label per face: for each label L,
+// what img2wc --label L | wc2implicit | implicit2mesh make, certified alike.
+#include "cli/cli.hpp"
+#include "image/io.hpp"
+#include "mesh/surface_io.hpp"
+#include "segmentation/label_surfaces.hpp"
+#include "util/atomic_file.hpp"
+#include "util/error.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+using namespace imgmesh;
+
+namespace {
+// "all" or "1,2,5".
+std::vector<long long> parse_labels(const std::string& text) {
+  std::vector<long long> out;
+  if (text == "all") return out;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    std::size_t used = 0;
+    long long v = 0;
+    try {
+      v = std::stoll(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size())
+      throw UsageError("--labels " + text + ": 'all' or a comma-separated list of integers expected");
+    out.push_back(v);
+  }
+  if (out.empty()) throw UsageError("--labels: no label given");
+  return out;
+}
+} // namespace
+
+int main(int argc, char** argv) {
+  cli::Tool tool("seg2mesh",
+                 "Mesh every label of a 3D segmentation (or those of --labels) into one surface file with a label per "
+                 "face: each label's surface is what img2wc (that label) | wc2implicit | implicit2mesh makes, certified "
+                 "alike (closed, oriented, the topology of the label's voxel boundary); labels run in parallel.");
+  std::string in, out, labels_text = "all", mode = "add";
+  LabelSurfacesOptions opt;
+  SurfaceWriteOptions write_opt;
+  opt.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
+  tool.app.add_option("IN", in, "Label image (NRRD, MetaImage, NIfTI; - for stdin)")->required();
+  tool.app.add_option("OUT", out,
+                      "Output surface in world (LPS) coordinates: .ply, .vtp, .vtk or .msh (a label and a component "
+                      "id per face); .off, .obj, .stl (no labels; - for OFF on stdout)")
+      ->required();
+  tool.data_output(out);
+  tool.app.add_option("--labels", labels_text, "Labels to mesh: all (every nonzero value) or a list such as 1,2,5")
+      ->type_name("all|L,L,...")
+      ->capture_default_str();
+  tool.app.add_option("--jobs", opt.jobs, "Labels meshed at once, one thread each, 1 to 1024 (default: all cores)")
+      ->type_name("N")
+      ->check(CLI::Range(1, 1024).description(""));
+  tool.app.add_option("--mode", mode, "img2wc's --mode for each label: add, remove or min")
+      ->check(CLI::IsMember({"add", "remove", "min"}))
+      ->capture_default_str();
+  tool.app.add_option("--ratio", opt.mesher.ratio, "implicit2mesh's --ratio: radius-edge ratio bound (>= 1.1236)")
+      ->type_name("R")
+      ->capture_default_str();
+  tool.app.add_option("--roughness", opt.mesher.roughness,
+                      "implicit2mesh's --roughness: normal angle bound across an edge, radians (>= 0.2587)")
+      ->type_name("G")
+      ->capture_default_str();
+  tool.app.add_option("--max-distance", opt.mesher.max_distance,
+                      "implicit2mesh's --max-distance E (world units); 0: off")
+      ->type_name("E")
+      ->capture_default_str();
+  tool.app.add_option("--max-points", opt.mesher.max_points, "implicit2mesh's --max-points, per label")
+      ->type_name("N")
+      ->capture_default_str();
+  tool.add_seed();
+  tool.app.add_flag("--normals", opt.normals, "Write per-vertex normals from grad f (PLY, OBJ, VTP, VTK, msh)");
+  tool.app.add_option("--msh-version", write_opt.msh_version, "Gmsh format version of a .msh OUT")
+      ->check(CLI::IsMember({"4.1", "2.2"}))
+      ->capture_default_str();
+
+  return tool.run(argc, argv, [&] {
+    if (!is_surface_output(out))
+      throw UsageError(std::string("output format is chosen by extension: ") + kSurfaceExtensions, out);
+    if (!surface_output_holds_labels(out))
+      tool.info("warning: " + std::string(out == "-" ? "OFF" : extension_of(out)) +
+                " holds no labels: use .ply, .vtp, .vtk or .msh to tell the labels' surfaces apart");
+    if (opt.normals && !surface_output_holds_normals(out))
+      tool.info("warning: --normals ignored: " + std::string(out == "-" ? "OFF" : extension_of(out)) +
+                " holds no normals");
+    opt.labels = parse_labels(labels_text);
+    if (!(opt.mesher.ratio >= min_ratio_bound()))
+      throw UsageError("--ratio " + std::to_string(opt.mesher.ratio) + " is below the termination limit 1.1236");
+    if (!(opt.mesher.roughness >= min_roughness_bound()))
+      throw UsageError("--roughness " + std::to_string(opt.mesher.roughness) +
+                       " is below the termination limit 0.2587 rad (14.8 degrees)");
+    if (!(opt.mesher.max_distance >= 0) || !std::isfinite(opt.mesher.max_distance))
+      throw UsageError("--max-distance must be a finite number >= 0");
+    opt.mode = mode == "remove" ? RepairMode::Remove : mode == "min" ? RepairMode::Min : RepairMode::Add;
+    opt.mesher.seed = tool.seed();
+    opt.threads = opt.jobs;
+    if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
+
+    tool.report_progress("reading " + in);
+    const LabelImage image = read_labels(in);
+    const LabelSurfacesResult res = naming_input(in, [&] { return mesh_label_surfaces(image, opt); });
+    write_surface(out, res.mesh, write_opt);
+
+    tool.stats["input"] = in;
+    tool.stats["output"] = out;
+    for (const LabelSurface& l : res.labels) {
+      std::ostringstream msg;
+      msg << "label " << l.label << ": " << l.mesh.mesh.triangles.size() << " triangles, Euler characteristic(s)";
+      for (long long e : l.mesh.topology.sorted_euler()) msg << ' ' << e;
+      msg << ", " << l.seconds << " s";
+      tool.debug(msg.str());
+    }
+    return tool.finish(res);
+  });
+}
