@@ -271,6 +271,31 @@ struct Opened {
   ImageInfo info;
 };
 
+// ITK's NIfTI reader aborts (a vnl assertion) on a header whose spacing or
+// orientation is not finite: the header's floats are checked here first.
+// Returns what is wrong, or "" (also for a header too short to be NIfTI's).
+std::string nifti_header_error(const std::string& file) {
+  unsigned char h[348];
+  gzFile gz = gzopen(file.c_str(), "rb");  // reads plain files too
+  if (!gz) return "";
+  const int got = gzread(gz, h, sizeof h);
+  gzclose(gz);
+  if (got != int(sizeof h)) return "";
+  const bool swap = !(h[0] == 92 && h[1] == 1 && h[2] == 0 && h[3] == 0);  // sizeof_hdr 348, little-endian
+  auto real = [&](int at) {
+    unsigned char b[4];
+    for (int i = 0; i < 4; ++i) b[i] = h[at + (swap ? 3 - i : i)];
+    float v;
+    std::memcpy(&v, b, 4);
+    return v;
+  };
+  for (int at = 76; at < 108; at += 4)  // pixdim
+    if (!std::isfinite(real(at))) return "the NIfTI header's voxel size is not finite";
+  for (int at = 256; at < 328; at += 4)  // quatern_b..d, qoffset, srow_x..z
+    if (!std::isfinite(real(at))) return "the NIfTI header's orientation is not finite";
+  return "";
+}
+
 Opened open_image_itk(const std::string& path, const std::string& file) {
   register_factories();
   {
@@ -290,6 +315,10 @@ Opened open_image_itk(const std::string& path, const std::string& file) {
   const CerrCapture said;
   o.io = itk::ImageIOFactory::CreateImageIO(file.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
   if (!o.io) throw Error("not an image ITK can read (NRRD, MetaImage, NIfTI or PNG expected)", path);
+  if (std::strcmp(o.io->GetNameOfClass(), "NiftiImageIO") == 0) {
+    const std::string e = nifti_header_error(file);
+    if (!e.empty()) throw Error("cannot read the image: " + e, path);
+  }
   try {
     o.io->SetFileName(file);
     o.io->ReadImageInformation();

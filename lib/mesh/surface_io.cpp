@@ -104,8 +104,34 @@ SurfaceMesh read_off(const std::string& path) {
 
 // OpenMesh's PLY reader trusts its header: without "end_header" it never
 // stops, a property before any element crashes it, and it reserves what the
-// counts say. So the header is checked here first against the PLY grammar,
-// and every element count against the bytes of the file.
+// counts say, list lengths too. So the header is checked here first against
+// the PLY grammar, every element count against the bytes of the file, and in
+// an ASCII file every face's vertex count against the vertices there are.
+// The body of an ASCII PLY, one element a line: each face line starts with
+// a vertex count from 3 to the number of vertices.
+void check_ascii_ply_faces(std::istream& in, const std::vector<std::pair<std::string, long long>>& elements,
+                           int number, const std::string& path) {
+  long long vertices = 0;
+  std::string line;
+  for (const auto& [name, count] : elements) {
+    if (name == "vertex") vertices = count;
+    for (long long i = 0; i < count; ++i) {
+      if (!std::getline(in, line)) return;  // short: OpenMesh reports it
+      ++number;
+      if (name != "face") continue;
+      std::istringstream words(line);
+      std::string first;
+      long long n = 0;
+      if (!(words >> first) || !(std::istringstream(first) >> n) || n < 3 || n > vertices)
+        throw Error("cannot read the mesh: PLY line " + std::to_string(number) + ": " +
+                        (first.empty() ? std::string("a face without its vertex count")
+                                       : "a face of " + first.substr(0, 20) + " vertices (" +
+                                             std::to_string(vertices) + " in the file)"),
+                    path);
+    }
+  }
+}
+
 void check_ply_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   in.seekg(0, std::ios::end);
@@ -116,7 +142,8 @@ void check_ply_header(const std::string& path) {
                                            "int32", "uint32", "float32", "float64"};
   std::string line;
   int number = 0;
-  bool element = false;
+  bool element = false, ascii = false;
+  std::vector<std::pair<std::string, long long>> elements;  // in file order
   auto fail = [&](const std::string& what) {
     throw Error("cannot read the mesh: PLY header line " + std::to_string(number) + ": " + what, path);
   };
@@ -130,16 +157,21 @@ void check_ply_header(const std::string& path) {
       continue;
     }
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "end_header") return;
+    if (w[0] == "end_header") {
+      if (ascii) check_ascii_ply_faces(in, elements, number, path);
+      return;
+    }
     if (w[0] == "format") {
       // OpenMesh loops for ever on a version it cannot parse.
       if (w.size() != 3 || (w[1] != "ascii" && w[1] != "binary_little_endian" && w[1] != "binary_big_endian") ||
           (w[2] != "1.0" && w[2] != "1"))
         fail("bad format line (ascii, binary_little_endian or binary_big_endian, version 1.0)");
+      ascii = w[1] == "ascii";
     } else if (w[0] == "element") {
       long long n = -1;
       if (w.size() != 3 || !(std::istringstream(w[2]) >> n) || n < 0) fail("bad element line");
       if (n > file_size) fail("element count " + w[2] + " beyond the " + std::to_string(file_size) + " bytes of the file");
+      elements.emplace_back(w[1], n);
       element = true;
     } else if (w[0] == "property") {
       if (!element) fail("a property before any element");

@@ -122,6 +122,9 @@ case_surface_meshes_refused() {
   # OpenMesh loops for ever on a format version it cannot parse (fuzz_surface).
   sed 's/^format ascii 1.0/format ascii f1.0/' truncated.ply >version.ply
   refused meshinfo "bad format line" version.ply
+  # A face's vertex count beyond the vertices: OpenMesh reserved it (fuzz_surface).
+  { sed -n '1,/^end_header/p' truncated.ply; printf '0 0 0\n1 0 0\n0 1 0\n300 0 1 2\n'; } >count.ply
+  refused meshinfo "a face of 300 vertices (3 in the file)" count.ply
   printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n' >range.obj
   refused meshinfo "bad vertex reference .4." range.obj
   printf 'solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n' >truncated.stl

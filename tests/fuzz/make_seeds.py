@@ -137,3 +137,20 @@ put("surface", "stl-ascii", "\3solid t\nfacet normal 0 0 1\nouter loop\nvertex 0
 put("surface", "stl-binary", b"\3" + b"\0" * 80 + struct.pack("<I", 1) + struct.pack("<12f", 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0)
     + b"\0\0")
 put("surface", "stl-binary-huge-count", b"\3" + b"\0" * 80 + struct.pack("<I", 0xffffffff) + b"\0" * 50)
+
+# tetrahedral meshes: selector 0 .msh, 1 .mesh, 2 .vtu; one tetrahedron and its boundary
+pts = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+put("volume", "msh22", "\0$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n"
+    "$EndNodes\n$Elements\n2\n1 4 2 1 1 1 2 3 4\n2 2 2 1 1 1 3 2\n$EndElements\n")
+put("volume", "msh41", "\0$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n3 1 \"region_1\"\n$EndPhysicalNames\n"
+    "$Entities\n0 0 0 1\n1 0 0 0 1 1 1 1 1 0\n$EndEntities\n$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n" + pts +
+    "$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n")
+put("volume", "medit", "\1MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n"
+    "Triangles\n1\n1 3 2 1\nTetrahedra\n1\n1 2 3 4 1\nEnd\n")
+put("volume", "vtu", "\2<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n<UnstructuredGrid>\n"
+    "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+    "format=\"ascii\">\n" + pts + "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" "
+    "format=\"ascii\">\n0 1 2 3\n</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n4\n</DataArray>\n"
+    "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n10\n</DataArray>\n</Cells>\n<CellData>\n"
+    "<DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">\n1\n</DataArray>\n</CellData>\n</Piece>\n"
+    "</UnstructuredGrid>\n</VTKFile>\n")
