@@ -13,7 +13,7 @@ nrrd_header() {  # TYPE SIZES ENCODING [EXTRA LINE]
   printf '\n'
 }
 
-# Images: img2wc, wc2implicit (3D) and img2poly (2D).
+# Images: img2wc, wc2implicit, seg2mesh (3D) and img2poly (2D).
 case_images_refused() {
   : >empty.nrrd
   { nrrd_header float "2 2 2" ascii; echo "1 2 nan 4 5 6 7 8"; } >nan.nrrd
@@ -27,17 +27,19 @@ case_images_refused() {
   # Flip bytes inside the deflate stream: a corrupt block or a CRC mismatch.
   { nrrd_header uint8 "16 16 16" gzip; head -c 12 zeros.gz; printf '\377\377\377\377'; tail -c +17 zeros.gz; } >corrupt-gzip.nrrd
   { nrrd_header uint8 "10 10 10" raw; head -c 500 /dev/zero; } >truncated.nrrd
-  for tool in img2wc wc2implicit; do
-    refused $tool "not an image ITK can read" empty.nrrd out.nrrd
-    refused $tool "NaN values" nan.nrrd out.nrrd
-    refused $tool "infinite values" inf.nrrd out.nrrd
-    refused $tool "size is zero" zero.nrrd out.nrrd
-    refused $tool "4D image: 2D or 3D expected" four.nrrd out.nrrd
-    refused $tool "absent.raw" missing.nhdr out.nrrd
-    refused $tool "cannot read the image" missing.mhd out.nrrd
-    refused $tool "expected 4096 bytes but received" truncated-gzip.nrrd out.nrrd
-    refused $tool "cannot read the image" corrupt-gzip.nrrd out.nrrd
-    refused $tool "more than the file" truncated.nrrd out.nrrd
+  for tool in img2wc wc2implicit seg2mesh; do
+    out=out.nrrd
+    [[ $tool == seg2mesh ]] && out=out.ply
+    refused $tool "not an image ITK can read" empty.nrrd $out
+    refused $tool "NaN values" nan.nrrd $out
+    refused $tool "infinite values" inf.nrrd $out
+    refused $tool "size is zero" zero.nrrd $out
+    refused $tool "4D image: 2D or 3D expected" four.nrrd $out
+    refused $tool "absent.raw" missing.nhdr $out
+    refused $tool "cannot read the image" missing.mhd $out
+    refused $tool "expected 4096 bytes but received" truncated-gzip.nrrd $out
+    refused $tool "cannot read the image" corrupt-gzip.nrrd $out
+    refused $tool "more than the file" truncated.nrrd $out
   done
   { nrrd_header uint8 "4 4 4" raw; head -c 64 /dev/zero; } >volume.nrrd
   refused img2poly "3D image" volume.nrrd out.poly
@@ -47,7 +49,7 @@ case_images_refused() {
   refused img2poly "cannot read the image" truncated.png out.poly
 }
 
-# The implicit function file: implicit2mesh and implicit-eval.
+# The implicit function file: implicit2mesh, implicit2tet and implicit-eval.
 case_implicit_files_refused() {
   : >empty.nrrd
   { nrrd_header uint8 "6 6 6" raw; head -c 216 /dev/zero; } >plain.nrrd
@@ -57,8 +59,9 @@ case_implicit_files_refused() {
   head -c $(($(stat -c %s f.nrrd) / 2)) f.nrrd >truncated-f.nrrd
   sed 's/^imgmesh_d:=.*/imgmesh_d:=nan nan nan/' f.nrrd >nan-d.nrrd
   sed 's/^imgmesh_version:=.*/imgmesh_version:=99/' f.nrrd >version.nrrd
-  for tool in implicit2mesh implicit-eval; do
+  for tool in implicit2mesh implicit2tet implicit-eval; do
     out=out.off
+    [[ $tool == implicit2tet ]] && out=out.msh
     [[ $tool == implicit-eval ]] && out=
     refused $tool "not an image ITK can read" empty.nrrd $out
     refused $tool "not an implicit function file" plain.nrrd $out
