@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const imgmesh::BinaryImage x = imgmesh::read_foreground(argv[1], {});
+    // One background voxel around: a label touching the image's border
+    // still gets a closed surface (implicit2mesh's f is closed there too).
+    const imgmesh::BinaryImage x = imgmesh::pad(imgmesh::read_foreground(argv[1], {}), {1, 1, 1}, {1, 1, 1});
     using Image = itk::Image<unsigned char, 3>;
     using Mesh = itk::Mesh<double, 3>;
     const auto t0 = std::chrono::steady_clock::now();
@@ -33,6 +35,10 @@ int main(int argc, char** argv) {
     for (int i = 0; i < 3; ++i) { spacing[i] = x.spacing[i]; origin[i] = x.origin[i]; }
     img->SetSpacing(spacing);
     img->SetOrigin(origin);
+    Image::DirectionType direction;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) direction(i, j) = x.direction[std::size_t(3 * i + j)];
+    img->SetDirection(direction);
     img->Allocate();
     std::copy(x.data.begin(), x.data.end(), img->GetBufferPointer());
     auto mc = itk::BinaryMask3DMeshSource<Image, Mesh>::New();

@@ -26,6 +26,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
@@ -42,7 +43,9 @@ int main(int argc, char** argv) {
   try {
     const std::string mode = argv[3];
     const double distance = argc == 5 ? std::atof(argv[4]) : 0.25;
-    const imgmesh::BinaryImage x = imgmesh::read_foreground(argv[1], {});
+    // One background voxel around: a label touching the image's border
+    // still gets a closed surface (implicit2mesh's f is closed there too).
+    const imgmesh::BinaryImage x = imgmesh::pad(imgmesh::read_foreground(argv[1], {}), {1, 1, 1}, {1, 1, 1});
     const double h = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
     const auto t0 = std::chrono::steady_clock::now();
     _image* im = _createImage(x.size[0], x.size[1], x.size[2], 1, x.spacing[0], x.spacing[1], x.spacing[2], 1,
@@ -63,8 +66,25 @@ int main(int argc, char** argv) {
       c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, p::manifold(), p::no_perturb(), p::no_exude());
     }
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // CGAL's image has no direction: world = origin + direction * (p - origin).
+    std::stringstream off;
+    c3t3.output_boundary_to_off(off);
     std::ofstream out(argv[2]);
-    c3t3.output_boundary_to_off(out);
+    out.precision(17);
+    std::string magic;
+    std::size_t nv, nf, ne;
+    off >> magic >> nv >> nf >> ne;
+    out << "OFF\n" << nv << ' ' << nf << " 0\n";
+    for (std::size_t k = 0; k < nv; ++k) {
+      double p[3];
+      off >> p[0] >> p[1] >> p[2];
+      for (int i = 0; i < 3; ++i) p[i] -= x.origin[std::size_t(i)];
+      for (int i = 0; i < 3; ++i)
+        out << x.origin[std::size_t(i)] + x.direction[std::size_t(3 * i)] * p[0] +
+                   x.direction[std::size_t(3 * i + 1)] * p[1] + x.direction[std::size_t(3 * i + 2)] * p[2]
+            << (i < 2 ? ' ' : '\n');
+    }
+    out << off.rdbuf();
     std::cout << '\n' << secs << ' ' << c3t3.number_of_facets_in_complex() << '\n';
     return out ? 0 : 1;
   } catch (const std::exception& e) {
