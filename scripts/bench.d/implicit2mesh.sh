@@ -5,7 +5,8 @@
 # and plain make_mesh_3 (facet angle 30, distance 1/4 voxel, manifold), CGAL
 # Surface_mesher on the same f (angle 30, distance 1/4 voxel, manifold), and
 # ITK marching cubes (BinaryMask3DMeshSource) on the well-composed image.
-# Columns: wall seconds, triangles, smallest angle, max |f| at the triangles'
+# Columns: wall seconds (CPU seconds, user + system: the fairer clock on a
+# shared machine), triangles, smallest angle, max |f| at the triangles'
 # centroids in voxels, largest normal jump between triangles sharing an
 # edge, topology equal to the voxel boundary (meshinfo --image), peak RSS of
 # the process (/usr/bin/time -v). Ours is implicit2mesh alone (wc2implicit's
@@ -45,22 +46,24 @@ run() {
   local tag=$1 name=$2 mesh=$3; shift 3
   local rc=0
   rm -f "$mesh"
-  nice timeout "$limit" /usr/bin/time -f '%e %M' -o "$work/time" "$@" > "$work/out" 2> "$work/err" || rc=$?
+  nice timeout "$limit" /usr/bin/time -f '%e %U %S %M' -o "$work/time" "$@" > "$work/out" 2> "$work/err" || rc=$?
   if [[ ! -s $mesh ]] || { [[ $rc -ne 0 && $rc -ne 3 ]]; }; then
     printf '| %s | %s | failed (exit %d%s) | | | | | | |\n' "$img" "$name" "$rc" \
       "$([[ $rc -eq 124 ]] && echo ", over $limit s")"
     return
   fi
-  read -r secs kb < <(tail -1 "$work/time")
+  read -r secs user sys kb < <(tail -1 "$work/time")
+  local cpu
+  cpu=$(echo "$user + $sys" | bc)
   read -r tris angle jump err < <(/usr/bin/python3 "$src/scripts/bench.d/mesh_metrics.py" "$mesh" "$work/f.nrrd" "$tools/implicit-eval")
   local topo=wrong
   "$tools/meshinfo" -q --image "$work/wc.nrrd" "$mesh" > /dev/null 2>&1 && topo=right
-  printf '| %s | %s | %.1f | %d | %.1f | %.2f | %.0f | %s | %.0f |\n' "$img" "$name" "$secs" "$tris" "$angle" "$err" \
+  printf '| %s | %s | %.1f (%.1f) | %d | %.1f | %.2f | %.0f | %s | %.0f |\n' "$img" "$name" "$secs" "$cpu" "$tris" "$angle" "$err" \
     "$jump" "$topo" "$((kb / 1024))"
-  echo "$img $tag $secs $tris $kb" >> "$work/summary"
+  echo "$img $tag $cpu $tris $kb" >> "$work/summary"
 }
 
-echo "| image | mesher | seconds | triangles | min angle (deg) | max \|f\| at centroids (voxels) | max normal jump (deg) | topology | peak MB |"
+echo "| image | mesher | wall s (CPU s) | triangles | min angle (deg) | max \|f\| at centroids (voxels) | max normal jump (deg) | topology | peak MB |"
 echo "|---|---|---|---|---|---|---|---|---|"
 for img in $images; do
   case $img in
@@ -81,7 +84,7 @@ for img in $images; do
 done
 # Per image: ours against the Done-when marks of issue 17.
 echo
-echo "| image | wc2implicit s | time / Mesh_3 seeded | triangles / marching cubes | peak bytes per triangle |"
+echo "| image | wc2implicit s | CPU time / Mesh_3 seeded | triangles / marching cubes | peak bytes per triangle |"
 echo "|---|---|---|---|---|"
 awk '$2 == "f" { f[$1] = $3; order[++n] = $1 } $2 == "ours" { os[$1] = $3; ot[$1] = $4; ok[$1] = $5 }
      $2 == "m3s" { ms[$1] = $3 } $2 == "mc" { mt[$1] = $4 }
