@@ -4,11 +4,15 @@
 #include "cli/cli.hpp"
 #include "implicit/implicit_file.hpp"
 #include "mesh/surface_io.hpp"
+#include "surface_options.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 using namespace imgmesh;
@@ -28,23 +32,7 @@ int main(int argc, char** argv) {
       ->required();
   tool.data_output(out);
   SurfaceWriteOptions write_opt;
-  tool.app.add_option("--ratio", opt.ratio, "Radius-edge ratio bound rho_0 of every triangle (>= (1+k)^2 = 1.1236)")
-      ->type_name("R")
-      ->capture_default_str();
-  tool.app.add_option("--roughness", opt.roughness,
-                      "Roughness bound g in radians: largest angle between the normals of two triangles sharing an "
-                      "edge (>= 2(arcsin k + arcsin(2k/sqrt 3)) = 0.2587); default pi/3")
-      ->type_name("G");
-  tool.app.add_option("--max-distance", opt.max_distance,
-                      "Also refine while a triangle's surface Delaunay ball centre (a point of the surface) is "
-                      "farther than E (world units) from the triangle's plane; 0: off")
-      ->type_name("E")
-      ->capture_default_str();
-  tool.app.add_option("--max-points", opt.max_points,
-                      "Safety bound on the number of sample points; when hit, the mesh is written and the exit "
-                      "status is 3")
-      ->type_name("N")
-      ->capture_default_str();
+  SurfaceOptions surface_options(tool, opt);
   tool.add_seed();
   tool.add_threads();
   tool.app.add_flag("--normals", normals, "Write per-vertex normals from grad f (PLY, OBJ, VTP, VTK, msh)");
@@ -61,13 +49,7 @@ int main(int argc, char** argv) {
     if (normals && !surface_output_holds_normals(out))
       tool.info("warning: --normals ignored: " + std::string(out == "-" ? "OFF" : extension_of(out)) +
                 " holds no normals (use .ply, .obj, .vtp, .vtk or .msh)");
-    if (!(opt.ratio >= min_ratio_bound()))
-      throw UsageError("--ratio " + std::to_string(opt.ratio) + " is below the termination limit (1+k)^2 = 1.1236");
-    if (!(opt.roughness >= min_roughness_bound()))
-      throw UsageError("--roughness " + std::to_string(opt.roughness) +
-                       " is below the termination limit 2(arcsin k + arcsin(2k/sqrt 3)) = 0.2587 rad (14.8 degrees)");
-    if (!(opt.max_distance >= 0) || !std::isfinite(opt.max_distance))
-      throw UsageError("--max-distance must be a finite number >= 0");
+    surface_options.check();
     opt.seed = tool.seed();
     opt.threads = tool.threads();
     if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
@@ -75,6 +57,8 @@ int main(int argc, char** argv) {
     tool.report_progress("reading " + in);
     const PartitionOfUnity pu = read_implicit(in);
     const PartitionOfUnitySurface surface(pu);
+    const Vec3& h = surface.samples().spacing;
+    surface_options.resolve(std::min({h[0], h[1], h[2]}));
     RestrictedDelaunayResult res = restricted_delaunay_mesh(surface, opt);
     if (normals) add_normals(surface, res.mesh);
     write_surface(out, res.mesh, write_opt);

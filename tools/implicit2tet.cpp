@@ -5,11 +5,13 @@
 #include "cli/cli.hpp"
 #include "implicit/implicit_file.hpp"
 #include "mesh/volume_io.hpp"
+#include "surface_options.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 #include "volume/tet_refinement.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -45,21 +47,7 @@ int main(int argc, char** argv) {
       ->type_name("V")
       ->check(CLI::IsMember({"4.1", "2.2"}))
       ->capture_default_str();
-  tool.app.add_option("--ratio", so.ratio, "Radius-edge ratio bound rho_0 of every boundary triangle (>= (1+k)^2 = 1.1236)")
-      ->type_name("R")
-      ->capture_default_str();
-  tool.app.add_option("--roughness", so.roughness,
-                      "Roughness bound g of the boundary in radians (>= 0.2587); default pi/3")
-      ->type_name("G");
-  tool.app.add_option("--max-distance", so.max_distance,
-                      "Also refine the boundary while a triangle's surface Delaunay ball centre is farther than E "
-                      "(world units) from its plane; 0: off")
-      ->type_name("E")
-      ->capture_default_str();
-  tool.app.add_option("--max-points", so.max_points,
-                      "Safety bound on the number of points; when hit, the mesh is written and the exit status is 3")
-      ->type_name("N")
-      ->capture_default_str();
+  SurfaceOptions surface_options(tool, so, "boundary triangle");
   tool.add_seed();
   tool.add_threads();
 
@@ -69,12 +57,7 @@ int main(int argc, char** argv) {
       throw UsageError(std::string("output format is chosen by extension: ") + kTetMeshExtensions, out);
     if (!(opt.cell_ratio >= 2) || !std::isfinite(opt.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
     if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be a finite number >= 0");
-    if (!(so.ratio >= min_ratio_bound()))
-      throw UsageError("--ratio " + std::to_string(so.ratio) + " is below the termination limit (1+k)^2 = 1.1236");
-    if (!(so.roughness >= min_roughness_bound()))
-      throw UsageError("--roughness " + std::to_string(so.roughness) + " is below the termination limit 0.2587 rad");
-    if (!(so.max_distance >= 0) || !std::isfinite(so.max_distance))
-      throw UsageError("--max-distance must be a finite number >= 0");
+    surface_options.check();
     so.seed = tool.seed();
     so.threads = tool.threads();
     if (tool.progress()) so.progress = [&](const std::string& msg) { tool.report_progress(msg); };
@@ -82,6 +65,8 @@ int main(int argc, char** argv) {
     tool.report_progress("reading " + in);
     const PartitionOfUnity pu = read_implicit(in);
     const PartitionOfUnitySurface surface(pu);
+    const Vec3& h = surface.samples().spacing;
+    surface_options.resolve(std::min({h[0], h[1], h[2]}));
     const TetRefinementResult res = tetrahedral_mesh(surface, opt);
     write_tet_mesh(out, res.mesh, wopt);
 

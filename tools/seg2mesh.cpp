@@ -5,9 +5,11 @@
 #include "image/io.hpp"
 #include "mesh/surface_io.hpp"
 #include "segmentation/label_surfaces.hpp"
+#include "surface_options.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <thread>
@@ -61,20 +63,7 @@ int main(int argc, char** argv) {
   tool.app.add_option("--mode", mode, "img2wc's --mode for each label: add, remove or min")
       ->check(CLI::IsMember({"add", "remove", "min"}))
       ->capture_default_str();
-  tool.app.add_option("--ratio", opt.mesher.ratio, "implicit2mesh's --ratio: radius-edge ratio bound (>= 1.1236)")
-      ->type_name("R")
-      ->capture_default_str();
-  tool.app.add_option("--roughness", opt.mesher.roughness,
-                      "implicit2mesh's --roughness: normal angle bound across an edge, radians (>= 0.2587)")
-      ->type_name("G")
-      ->capture_default_str();
-  tool.app.add_option("--max-distance", opt.mesher.max_distance,
-                      "implicit2mesh's --max-distance E (world units); 0: off")
-      ->type_name("E")
-      ->capture_default_str();
-  tool.app.add_option("--max-points", opt.mesher.max_points, "implicit2mesh's --max-points, per label")
-      ->type_name("N")
-      ->capture_default_str();
+  SurfaceOptions surface_options(tool, opt.mesher);
   tool.add_seed();
   tool.app.add_flag("--normals", opt.normals, "Write per-vertex normals from grad f (PLY, OBJ, VTP, VTK, msh)");
   tool.app.add_option("--msh-version", write_opt.msh_version, "Gmsh format version of a .msh OUT")
@@ -91,13 +80,7 @@ int main(int argc, char** argv) {
       tool.info("warning: --normals ignored: " + std::string(out == "-" ? "OFF" : extension_of(out)) +
                 " holds no normals");
     opt.labels = parse_labels(labels_text);
-    if (!(opt.mesher.ratio >= min_ratio_bound()))
-      throw UsageError("--ratio " + std::to_string(opt.mesher.ratio) + " is below the termination limit 1.1236");
-    if (!(opt.mesher.roughness >= min_roughness_bound()))
-      throw UsageError("--roughness " + std::to_string(opt.mesher.roughness) +
-                       " is below the termination limit 0.2587 rad (14.8 degrees)");
-    if (!(opt.mesher.max_distance >= 0) || !std::isfinite(opt.mesher.max_distance))
-      throw UsageError("--max-distance must be a finite number >= 0");
+    surface_options.check();
     opt.mode = mode == "remove" ? RepairMode::Remove : mode == "min" ? RepairMode::Min : RepairMode::Add;
     opt.mesher.seed = tool.seed();
     opt.threads = opt.jobs;
@@ -105,6 +88,8 @@ int main(int argc, char** argv) {
 
     tool.report_progress("reading " + in);
     const LabelImage image = read_labels(in);
+    const auto& h = image.spacing;
+    surface_options.resolve(std::min({h[0], h[1], h[2]}));
     const LabelSurfacesResult res = naming_input(in, [&] { return mesh_label_surfaces(image, opt); });
     write_surface(out, res.mesh, write_opt);
 

@@ -18,8 +18,7 @@ void DelMesh::compute_facet(Ch c, int i) {
   FacetInfo fi = edge_surface_of(tr_, sampler_, c, i);
   fi.computed = ++computed_;
   Ch n = c->neighbor(i);
-  c->facet[i] = fi;
-  n->facet[n->index(c)] = fi;
+  FacetRefs::set(c->facet, i, n->facet, n->index(c), fi);
   enqueue_facet(c, i);
 }
 
@@ -203,7 +202,8 @@ void DelMesh::refine() {
 // that depend on addresses, and the queue's ties would then differ from run
 // to run.
 void DelMesh::compute_new_cells() {
-  for (Ch c : cells_buf_) c->facet[0].state = c->facet[1].state = c->facet[2].state = c->facet[3].state = 0;
+  for (Ch c : cells_buf_)
+    for (int i = 0; i < 4; ++i) c->facet.clear(i);
   thread_local std::vector<std::pair<std::array<int, 3>, Facet>> order;
   order.clear();
   for (Ch c : cells_buf_)
@@ -276,11 +276,32 @@ bool DelMesh::facet_of(const Item& it, Ch& c, int& i) const {
   return true;
 }
 
+// A facet entry whose facet is gone or was recomputed (never true again).
+bool DelMesh::stale(const Item& it) const {
+  if (it.kind == kQTopoDisk || it.kind == kQSmooth) return false;
+  Ch c;
+  int i;
+  if (!facet_of(it, c, i)) return true;
+  const FacetInfo& fi = c->facet[i];
+  return !(fi.state & kRestricted) || fi.computed != it.computed;
+}
+
+// Drops the stale entries; the heap order of the others is total (kind,
+// priority, sequence number), so the pops that follow are the same.
+void DelMesh::purge() {
+  auto& v = queue_.c;
+  v.erase(std::remove_if(v.begin(), v.end(), [this](const Item& it) { return stale(it); }), v.end());
+  std::make_heap(v.begin(), v.end(), std::less<Item>());
+  v.shrink_to_fit();
+  purge_at_ = std::max<std::size_t>(1 << 16, 2 * v.size());
+}
+
 // DELMESH as one loop over prioritised queues (doc/implicit2mesh.md 4.8): VorEdge, TopoDisk,
 // QUALITY, SMOOTH, max-distance; every insertion re-queues only what changed.
 void DelMesh::drain() {
   const double guard2 = std::pow(1e-3 * grid_.delta, 2);  // quality/smooth minimum distance
   while (!queue_.empty() && !max_hit_) {
+    if (queue_.size() > purge_at_) purge();
     const Item it = queue_.top();
     queue_.pop();
     if (it.kind == kQTopoDisk || it.kind == kQSmooth) {
@@ -299,9 +320,9 @@ void DelMesh::drain() {
     }
     Ch c;
     int i;
-    if (!facet_of(it, c, i)) continue;  // facet destroyed since
+    if (stale(it)) continue;  // facet destroyed or recomputed since
+    facet_of(it, c, i);
     const FacetInfo& fi = c->facet[i];
-    if (!(fi.state & kRestricted) || fi.computed != it.computed) continue;  // stale entry
     const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
     if (it.kind == kQVorEdge) {
       phase_ = "topology";

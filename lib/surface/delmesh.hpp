@@ -108,6 +108,8 @@ private:
   void mark_restricted(Ch c, int i);
   void drain();
   bool facet_of(const Item& it, Ch& c, int& i) const;
+  bool stale(const Item& it) const;
+  void purge();
   bool insert_batch(const Candidates& pts, Origin origin);
   bool facet_cycle_pass();
   bool handle_vertex_pass();
@@ -122,7 +124,15 @@ private:
   Tr tr_;
   std::vector<Vh> vertices_;  // by id; null where a vertex was deleted
   Vh walk_start_;             // a live vertex near the last change
-  std::priority_queue<Item> queue_;
+  // The heap's vector is reachable for purge(): entries of facets destroyed
+  // or recomputed since they were queued pile up (every insertion queues
+  // the new facets and destroys the old ones) and would hold most of the
+  // memory; purging them changes no pop.
+  struct Queue : std::priority_queue<Item> {
+    using std::priority_queue<Item>::c;
+  };
+  Queue queue_;
+  std::size_t purge_at_ = 1 << 16;
   std::uint64_t seq_ = 0;
   std::uint32_t computed_ = 0;  // facet computations so far
   long long inserted_[kOrigins] = {};

@@ -1,94 +1,94 @@
 #!/usr/bin/env bash
-# implicit2mesh: time and size at rho_0 = 2, 1.5, 1.2 on the bundled real
-# images, and CGAL's Surface_mesher (make_surface_mesh, 30-degree angle bound,
-# Manifold_tag) on the same implicit function f, side by side: time,
-# triangles, smallest angle, largest radius-edge ratio, topology equal to the
-# voxel boundary bdCA(X') or not, and max |f| at the triangles' centroids
-# (f ~ signed distance: a geometric error estimate).   $1: the build's tool folder.
+# implicit2mesh at its defaults beside its peers, one table in one run:
+# CGAL Mesh_3 on the labeled (well-composed) image, seeded from every
+# component (initialize_triangulation_from_labeled_image, then refine_mesh_3)
+# and plain make_mesh_3 (facet angle 30, distance 1/4 voxel, manifold), CGAL
+# Surface_mesher on the same f (angle 30, distance 1/4 voxel, manifold), and
+# ITK marching cubes (BinaryMask3DMeshSource) on the well-composed image.
+# Columns: wall seconds (CPU seconds, user + system: the fairer clock on a
+# shared machine), triangles, smallest angle, max |f| at the triangles'
+# centroids in voxels, largest normal jump between triangles sharing an
+# edge, topology equal to the voxel boundary (meshinfo --image), peak RSS of
+# the process (/usr/bin/time -v). Ours is implicit2mesh alone (wc2implicit's
+# time, f for implicit2mesh and Surface_mesher, is printed per image).
+#   $1: the build's tool folder. IMPLICIT2MESH_IMAGES: which images (default
+#   all): bunny elephant armadillo liver brain1 .. brain5 cheese; e.g.
+#   IMPLICIT2MESH_IMAGES="bunny brain3" scripts/bench implicit2mesh.
 set -euo pipefail
 tools=${1:?tool folder}
 build=$(cd "$tools/.." && pwd)
 src=$(cd "$(dirname "$0")/../.." && pwd)
-check="$build/tests/unit/surface/surface_check"
-peer="$build/scripts/bench.d/surface_mesher_peer"
-cmake --build "$build" --target surface_check surface_mesher_peer >/dev/null
+peers="$build/scripts/bench.d"
+cmake --build "$build" --target implicit2mesh img2wc wc2implicit implicit-eval meshinfo \
+  surface_mesher_peer mesh3_peer marching_cubes_peer >/dev/null
+images=${IMPLICIT2MESH_IMAGES:-bunny elephant armadillo liver brain1 brain2 brain3 brain4 brain5}
+limit=${IMPLICIT2MESH_TIMEOUT:-1800}  # seconds a peer may take
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-row() {  # row NAME MESH WC SECONDS BOUND MAX|f|-AT-CENTROIDS
-  local line status=yes
-  line=$("$check" "$2" "$3" "$5") || status=no
-  awk -v name="$1" -v secs="$4" -v ok="$status" -v err="$6" '{
-    for (i = 1; i <= NF; ++i) { if ($i == "triangles") t = $(i+1); if ($i == "max_ratio") r = $(i+1); if ($i == "min_angle_deg") a = $(i+1) }
-    printf "  %-34s %8.2f s %9d %9.2f %9.3f %9.3f   %s\n", name, secs, t, a, r, err, ok }' <<< "$line"
-}
-centroid_error() { grep -o '"max_abs_f_at_centroids": [0-9.e+-]*' "$1" | awk '{print $2}'; }
-
 # A generated "Swiss cheese" (a block with two tunnels and six cavities: seven
 # components, Euler characteristics -2 and 2 x 6), where topology is hard.
-awk 'BEGIN {
-  n = 40; print "NRRD0004"; print "type: uint8"; print "dimension: 3"
-  print "sizes: " n " " n " " n; print "spacings: 1 1 1"; print "encoding: ascii"; print ""
-  split("12.3 11.6 12.2 27.4 12.1 11.8 12.2 27.7 12.4 27.9 27.3 12.1 12.6 12.2 27.6 27.2 27.8 27.5", c, " ")
-  for (z = 0; z < n; z++) for (y = 0; y < n; y++) for (x = 0; x < n; x++) {
-    v = (x >= 3 && x <= 36 && y >= 3 && y <= 36 && z >= 3 && z <= 36)
-    if ((x - 20)^2 + (y - 20)^2 < 9 || (y - 20)^2 + (z - 30)^2 < 6) v = 0
-    for (k = 0; k < 6; k++) if ((x - c[3*k+1])^2 + (y - c[3*k+2])^2 + (z - c[3*k+3])^2 < 9) v = 0
-    printf "%d\n", v
-  } }' > "$work/cheese.nrrd"
+cheese() {
+  awk 'BEGIN {
+    n = 40; print "NRRD0004"; print "type: uint8"; print "dimension: 3"
+    print "sizes: " n " " n " " n; print "spacings: 1 1 1"; print "encoding: ascii"; print ""
+    split("12.3 11.6 12.2 27.4 12.1 11.8 12.2 27.7 12.4 27.9 27.3 12.1 12.6 12.2 27.6 27.2 27.8 27.5", c, " ")
+    for (z = 0; z < n; z++) for (y = 0; y < n; y++) for (x = 0; x < n; x++) {
+      v = (x >= 3 && x <= 36 && y >= 3 && y <= 36 && z >= 3 && z <= 36)
+      if ((x - 20)^2 + (y - 20)^2 < 9 || (y - 20)^2 + (z - 30)^2 < 6) v = 0
+      for (k = 0; k < 6; k++) if ((x - c[3*k+1])^2 + (y - c[3*k+2])^2 + (z - c[3*k+3])^2 < 9) v = 0
+      printf "%d\n", v
+    } }' > "$1"
+}
 
-for img in bunny00-96 elephant-96 armadillo-96 cheese; do
-  # A quarter voxel in world units (the images' spacings), as the peer's bound.
-  case $img in bunny*) E=0.0026;; elephant*) E=0.0026;; armadillo*) E=0.394;; *) E=0.25;; esac
-  data="$src/share/data/$img.nrrd"
-  [ -f "$data" ] || data="$work/$img.nrrd"
-  "$tools/img2wc" -q "$data" "$work/$img-wc.nrrd"
-  "$tools/wc2implicit" -q "$work/$img-wc.nrrd" "$work/$img-f.nrrd"
-  echo "$img:"
-  printf "  %-34s %10s %9s %9s %9s %9s   %s\n" "mesher" "time" "triangles" "min angle" "max ratio" "max |f|" "topology ok"
-  for r in 2 1.5 1.2; do
-    start=$(date +%s.%N)
-    "$tools/implicit2mesh" -q "$work/$img-f.nrrd" "$work/$img-$r.off" --ratio "$r" --stats "$work/s.json" || true
-    secs=$(echo "$(date +%s.%N) - $start" | bc)
-    row "implicit2mesh --ratio $r" "$work/$img-$r.off" "$work/$img-wc.nrrd" "$secs" "$r" "$(centroid_error "$work/s.json")"
-  done
-  start=$(date +%s.%N)
-  "$tools/implicit2mesh" -q "$work/$img-f.nrrd" "$work/$img-d.off" --max-distance "$E" --stats "$work/s.json" || true
-  secs=$(echo "$(date +%s.%N) - $start" | bc)
-  row "implicit2mesh --max-distance 1/4 vx" "$work/$img-d.off" "$work/$img-wc.nrrd" "$secs" 2 "$(centroid_error "$work/s.json")"
-  # Surface_mesher: no size bound, distance bound 0.25 voxel.
-  for d in 0.25; do
-    if out=$(timeout 600 "$peer" "$work/$img-f.nrrd" "$work/$img-peer.off" 0 "$d"); then
-      read -r psecs ptris perr <<< "$out"
-      row "CGAL Surface_mesher dist. $d vx" "$work/$img-peer.off" "$work/$img-wc.nrrd" "$psecs" 1000 "$perr"
-    else
-      echo "  CGAL Surface_mesher dist. $d vx: failed or timed out (600 s)"
-    fi
-  done
-done
-
-# Real tissue: two classes of the bundled brain k-means segmentation (noisy:
-# hundreds of components, genus in the hundreds) and CGAL's liver CT labels
-# (whole organ: 35 components), at the default roughness pi/3 and at pi/2,
-# beside CGAL's Surface_mesher on the same f.
-for case in "brain3 brain-kmeans-labels.nii.gz --label 3" "brain4 brain-kmeans-labels.nii.gz --label 4" \
-            "liver liver-labels.nrrd --threshold 1"; do
-  read -r name file sel <<< "$case"
-  # shellcheck disable=SC2086  # $sel is an option and its value
-  "$tools/img2wc" -q "$src/share/data/$file" $sel "$work/$name-wc.nrrd"
-  "$tools/wc2implicit" -q "$work/$name-wc.nrrd" "$work/$name-f.nrrd"
-  echo "$file, $sel:"
-  printf "  %-34s %10s %9s %9s %9s %9s   %s\n" "mesher" "time" "triangles" "min angle" "max ratio" "max |f|" "topology ok"
-  for g in 1.0471975511965976 1.5707963267948966; do
-    start=$(date +%s.%N)
-    "$tools/implicit2mesh" -q "$work/$name-f.nrrd" "$work/$name-$g.off" --roughness "$g" --stats "$work/s.json" || true
-    secs=$(echo "$(date +%s.%N) - $start" | bc)
-    row "implicit2mesh --roughness ${g:0:6}" "$work/$name-$g.off" "$work/$name-wc.nrrd" "$secs" 2 "$(centroid_error "$work/s.json")"
-  done
-  if out=$(timeout 600 "$peer" "$work/$name-f.nrrd" "$work/$name-peer.off" 0 0.25); then
-    read -r psecs ptris perr <<< "$out"
-    row "CGAL Surface_mesher dist. 0.25 vx" "$work/$name-peer.off" "$work/$name-wc.nrrd" "$psecs" 1000 "$perr"
-  else
-    echo "  CGAL Surface_mesher dist. 0.25 vx: failed or timed out (600 s)"
+# run TAG NAME MESH COMMAND...: COMMAND's wall time and peak RSS, then the row.
+run() {
+  local tag=$1 name=$2 mesh=$3; shift 3
+  local rc=0
+  rm -f "$mesh"
+  nice timeout "$limit" /usr/bin/time -f '%e %U %S %M' -o "$work/time" "$@" > "$work/out" 2> "$work/err" || rc=$?
+  if [[ ! -s $mesh ]] || { [[ $rc -ne 0 && $rc -ne 3 ]]; }; then
+    printf '| %s | %s | failed (exit %d%s) | | | | | | |\n' "$img" "$name" "$rc" \
+      "$([[ $rc -eq 124 ]] && echo ", over $limit s")"
+    return
   fi
+  read -r secs user sys kb < <(tail -1 "$work/time")
+  local cpu
+  cpu=$(echo "$user + $sys" | bc)
+  read -r tris angle jump err < <(/usr/bin/python3 "$src/scripts/bench.d/mesh_metrics.py" "$mesh" "$work/f.nrrd" "$tools/implicit-eval")
+  local topo=wrong
+  "$tools/meshinfo" -q --image "$work/wc.nrrd" "$mesh" > /dev/null 2>&1 && topo=right
+  printf '| %s | %s | %.1f (%.1f) | %d | %.1f | %.2f | %.0f | %s | %.0f |\n' "$img" "$name" "$secs" "$cpu" "$tris" "$angle" "$err" \
+    "$jump" "$topo" "$((kb / 1024))"
+  echo "$img $tag $cpu $tris $kb" >> "$work/summary"
+}
+
+echo "| image | mesher | wall s (CPU s) | triangles | min angle (deg) | max \|f\| at centroids (voxels) | max normal jump (deg) | topology | peak MB |"
+echo "|---|---|---|---|---|---|---|---|---|"
+for img in $images; do
+  case $img in
+    bunny) "$tools/img2wc" -q "$src/share/data/bunny00-96.nrrd" "$work/wc.nrrd" ;;
+    elephant|armadillo) "$tools/img2wc" -q "$src/share/data/$img-96.nrrd" "$work/wc.nrrd" ;;
+    liver) "$tools/img2wc" -q "$src/share/data/liver-labels.nrrd" --threshold 1 "$work/wc.nrrd" ;;
+    brain[1-5]) "$tools/img2wc" -q "$src/share/data/brain-kmeans-labels.nii.gz" --label "${img#brain}" "$work/wc.nrrd" ;;
+    cheese) cheese "$work/cheese.nrrd"; "$tools/img2wc" -q "$work/cheese.nrrd" "$work/wc.nrrd" ;;
+    *) echo "implicit2mesh.sh: unknown image $img" >&2; exit 2 ;;
+  esac
+  /usr/bin/time -f '%e' -o "$work/time" "$tools/wc2implicit" -q "$work/wc.nrrd" "$work/f.nrrd"
+  echo "$img f $(tail -1 "$work/time")" >> "$work/summary"
+  run ours "implicit2mesh (defaults)" "$work/ours.off" "$tools/implicit2mesh" -q "$work/f.nrrd" "$work/ours.off"
+  run m3s "CGAL Mesh_3, seeded from every component" "$work/m3s.off" "$peers/mesh3_peer" "$work/wc.nrrd" "$work/m3s.off" seeded
+  run m3p "CGAL make_mesh_3" "$work/m3p.off" "$peers/mesh3_peer" "$work/wc.nrrd" "$work/m3p.off" plain
+  run sm "CGAL Surface_mesher, same f" "$work/sm.off" "$peers/surface_mesher_peer" "$work/f.nrrd" "$work/sm.off" 0 0.25
+  run mc "ITK marching cubes" "$work/mc.off" "$peers/marching_cubes_peer" "$work/wc.nrrd" "$work/mc.off"
 done
+# Per image: ours against the Done-when marks of issue 17.
+echo
+echo "| image | wc2implicit s | CPU time / Mesh_3 seeded | triangles / marching cubes | peak bytes per triangle |"
+echo "|---|---|---|---|---|"
+awk '$2 == "f" { f[$1] = $3; order[++n] = $1 } $2 == "ours" { os[$1] = $3; ot[$1] = $4; ok[$1] = $5 }
+     $2 == "m3s" { ms[$1] = $3 } $2 == "mc" { mt[$1] = $4 }
+     END { for (i = 1; i <= n; ++i) { k = order[i]
+       printf "| %s | %.1f | %s | %s | %s |\n", k, f[k], (ms[k] && os[k] != "") ? sprintf("%.2f", os[k] / ms[k]) : "-",
+         (mt[k] && ot[k]) ? sprintf("%.2f", ot[k] / mt[k]) : "-", ot[k] ? sprintf("%.0f", ok[k] * 1024 / ot[k]) : "-" } }' \
+  "$work/summary"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # implicit2tet beside CGAL Mesh_3 (make_mesh_3 on the well-composed labeled
 # image: facet angle 30, facet distance 1/4 voxel, cell radius-edge 2,
-# default perturb and exude; scripts/bench.d/mesh3_peer.cpp) and TetGen
+# default perturb and exude; scripts/bench.d/mesh3_tet_peer.cpp) and TetGen
 # (`tetgen -pq1.414Y`, Debian's binary run as a separate program, never
 # linked: AGPL) on implicit2mesh's surface, all at a quarter-voxel distance
 # bound: seconds, tetrahedra, smallest dihedral angle, share of tetrahedra
@@ -13,8 +13,8 @@ set -euo pipefail
 tools=${1:?tool folder}
 build=$(cd "$tools/.." && pwd)
 src=$(cd "$(dirname "$0")/../.." && pwd)
-peer="$build/scripts/bench.d/mesh3_peer"
-cmake --build "$build" --target implicit2tet implicit2mesh meshinfo mesh3_peer >/dev/null
+peer="$build/scripts/bench.d/mesh3_tet_peer"
+cmake --build "$build" --target implicit2tet implicit2mesh meshinfo mesh3_tet_peer >/dev/null
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 tetgen=$(command -v tetgen || true)
@@ -39,7 +39,7 @@ secs_since() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a
 cases=${BENCH_TET_CASES:-"bunny bunny00-96.nrrd 0.0026
 armadillo armadillo-96.nrrd 0.394
 liver liver-labels.nrrd 0.1543 --label 255
-brain3 brain-kmeans-labels.nii.gz 0.5 --label 3 -- --roughness 1.5708"}
+brain3 brain-kmeans-labels.nii.gz 0.5 --label 3 -- --roughness 90"}
 while read -r name img E rest; do
   [ -n "$name" ] || continue
   wcopts=$rest; meshopts=""

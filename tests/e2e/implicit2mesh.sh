@@ -36,13 +36,8 @@ case_usage_and_bad_input_exit_1_2_without_output() {
 case_bunny_through_pipes_has_voxel_topology() {
   "$BIN/img2wc" -q "$DATA/bunny00-96.nrrd" - | "$BIN/wc2implicit" -q - - > f.nrrd || fail "img2wc | wc2implicit"
   IN=f.nrrd expect 0 implicit2mesh - bunny.ply --stats stats.json
-  surface bunny.ply "$(shared bunny-wc.nrrd bunny_wc)" 2
+  surface bunny.ply "$(shared bunny-wc.nrrd bunny_wc)" 1.2 1.5707963267948966
   [[ $(json stats.json restricted_delaunay_violations) == 0 ]] || fail "stats: restricted Delaunay violations"
-}
-
-case_bunny_ratio_1_2() {
-  expect 0 implicit2mesh "$(shared bunny-f.nrrd bunny_f)" bunny12.off --ratio 1.2
-  surface bunny12.off "$(shared bunny-wc.nrrd bunny_wc)" 1.2
 }
 
 case_stdout_is_the_file_output() {
@@ -54,19 +49,63 @@ case_stdout_is_the_file_output() {
   cmp -s stdin.off file.off || fail "IN - differs from IN FILE"
 }
 
+# At the defaults: ratio 1.2, roughness 90 degrees, every triangle's surface
+# centre within a quarter of the smallest voxel spacing of its plane.
+case_bunny_defaults_hold_each_bound() {
+  local f; f=$(shared bunny-f.nrrd bunny_f)
+  expect 0 implicit2mesh "$f" bunny.ply --stats stats.json
+  surface bunny.ply "$(shared bunny-wc.nrrd bunny_wc)" 1.2 1.5707963267948966
+  python3 - stats.json "$f" <<'PY' || fail "bunny at the defaults: a bound exceeded"
+import json, re, sys
+s = json.load(open(sys.argv[1]))
+head = open(sys.argv[2], 'rb').read().split(b'\n\n')[0].decode()
+dirs = re.search(r'space directions: (.*)', head).group(1)
+h = min(sum(float(x) ** 2 for x in v.strip('()').split(',')) ** 0.5 for v in dirs.split())
+assert s['max_distance_to_plane'] <= h / 4 * (1 + 1e-9), (s['max_distance_to_plane'], h)
+assert s['max_roughness_degrees'] <= 90 + 1e-9 and abs(s['roughness_bound_degrees'] - 90) < 1e-9, s['max_roughness_degrees']
+assert s['min_angle_degrees'] >= 24.6, s['min_angle_degrees']
+PY
+}
+
+# The thesis's bounds (rho_0 = 2, 60 degrees, no distance bound) give a
+# coarser mesh; radians and degrees are one angle (pi/3 = 60 =
+# 1.0471975511965976rad); an old radian value without unit is refused.
+LOOSE=(--ratio 2 --max-distance 0)
+case_loosened_bounds_and_angle_units() {
+  local f; f=$(shared bunny-f.nrrd bunny_f)
+  expect 0 implicit2mesh "$f" loose.off "${LOOSE[@]}" --roughness pi/3 --stats loose.json
+  surface loose.off "$(shared bunny-wc.nrrd bunny_wc)" 2
+  expect 0 implicit2mesh "$f" tight.off --stats tight.json
+  python3 - loose.json tight.json <<'PY' || fail "loosened bounds: still acting, or not fewer triangles"
+import json, sys
+s, d = (json.load(open(a)) for a in sys.argv[1:3])
+assert s['max_distance_to_plane'] > d['max_distance_to_plane'], s['max_distance_to_plane']  # --max-distance 0: off
+assert s['triangles'] < d['triangles'] and abs(s['roughness_bound_degrees'] - 60) < 1e-9, (s['triangles'], d['triangles'])
+PY
+  expect 0 implicit2mesh "$f" loose-deg.off "${LOOSE[@]}" --roughness 60
+  expect 0 implicit2mesh "$f" loose-rad.off "${LOOSE[@]}" --roughness 1.0471975511965976rad
+  cmp -s loose.off loose-deg.off && cmp -s loose.off loose-rad.off || fail "--roughness pi/3, 60 and 1.047...rad differ"
+  expect 2 implicit2mesh "$f" out.off --roughness 1.5708     # degrees: below the limit
+  grep -q "degrees" err.txt || fail "--roughness 1.5708: the message does not name the unit"
+  expect 2 implicit2mesh "$f" out.off --roughness pi/x
+}
+
 # The normals read back: every one unit and on the outer side of the
 # triangles around its vertex (which surface_check finds outward).
 case_normals_unit_and_outward() {
-  expect 0 implicit2mesh "$(shared bunny-f.nrrd bunny_f)" bunny-n.ply --normals --max-distance 0.02
-  surface bunny-n.ply "$(shared bunny-wc.nrrd bunny_wc)" 2
+  expect 0 implicit2mesh "$(shared bunny-f.nrrd bunny_f)" bunny-n.ply --normals --ratio 2 --max-distance 0.02
+  surface bunny-n.ply "$(shared bunny-wc.nrrd bunny_wc)" 2 1.5707963267948966
   python3 "$SURF" bunny-n.ply --normals > n.txt 2>&1 || fail "bunny-n.ply: $(cat n.txt)"
 }
 
+# FacetCycle and HandleDetection run on --threads threads, which take
+# chunks of the work as they finish: the same mesh for 1, 2 and 3 threads.
 case_threads_do_not_change_the_mesh() {
   local f; f=$(shared bunny-f.nrrd bunny_f)
   expect 0 implicit2mesh "$f" t1.off --threads 1
   expect 0 implicit2mesh "$f" t2.off --threads 2
-  cmp -s t1.off t2.off || fail "--threads 1 and 2 give different meshes"
+  expect 0 implicit2mesh "$f" t3.off --threads 3
+  cmp -s t1.off t2.off && cmp -s t1.off t3.off || fail "--threads 1, 2 and 3 give different meshes"
 }
 
 # Real brain tissue: a noisy k-means class (289 components, one of genus
@@ -74,18 +113,18 @@ case_threads_do_not_change_the_mesh() {
 case_brain_label5_has_voxel_topology() {
   expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 5 brain-wc.nrrd -q
   expect 0 wc2implicit brain-wc.nrrd brain-f.nrrd -q
-  expect 0 implicit2mesh brain-f.nrrd brain.off --roughness 1.5708 --stats brain.json
-  surface brain.off brain-wc.nrrd 2 1.5708
+  expect 0 implicit2mesh brain-f.nrrd brain.off "${LOOSE[@]}" --stats brain.json
+  surface brain.off brain-wc.nrrd 2 1.5707963267948966
   [[ $(json brain.json restricted_delaunay_violations) == 0 ]] || fail "brain: restricted Delaunay violations"
 }
 
 # A real organ: CGAL's liver CT labels, the whole organ (35 components, the
-# liver's surface of Euler characteristic -6 around its vessels), at the
-# default settings, with anisotropic voxels (0.62 x 0.62 x 1.33 mm).
+# liver's surface of Euler characteristic -6 around its vessels), with
+# anisotropic voxels (0.62 x 0.62 x 1.33 mm), at the thesis's bounds.
 case_liver_has_voxel_topology() {
   expect 0 img2wc "$DATA/liver-labels.nrrd" --threshold 1 liver-wc.nrrd -q
   expect 0 wc2implicit liver-wc.nrrd liver-f.nrrd -q
-  expect 0 implicit2mesh liver-f.nrrd liver.ply --threads 2
+  expect 0 implicit2mesh liver-f.nrrd liver.ply "${LOOSE[@]}" --roughness 60 --threads 2
   surface liver.ply liver-wc.nrrd 2
 }
 
@@ -104,7 +143,7 @@ case_max_points_exit_3_with_mesh() {
 # components), parenchyma (255) and label 85, one mesh per label, in parallel.
 case_examples_makefile_one_mesh_per_label() {
   make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85 127 255" BIN="$BIN/" OUT=ex -j2 \
-    2> make.err || fail "make: $(cat make.err)"
+    RATIO=2 FLAGS="--max-distance 0" 2> make.err || fail "make: $(cat make.err)"
   for l in 85 127 255; do
     "$CHECK" "ex/label-$l.ply" "ex/label-$l.wc.nrrd" 2 > c.txt || fail "example label $l: $(cat c.txt)"
     [[ $(json "ex/label-$l.json" exit_status) == 0 ]] || fail "example label $l: no --stats report"
@@ -113,7 +152,8 @@ case_examples_makefile_one_mesh_per_label() {
   # installed (Debian package snakemake; not needed by the build or CI).
   if command -v snakemake > /dev/null; then
     snakemake -q -s "$SRC/share/examples/Snakefile" --cores 2 -d sk \
-      --config scan="$DATA/liver-labels.nrrd" labels="85" bin="$BIN/" out=ex > /dev/null 2>&1 || fail "Snakefile"
+      --config scan="$DATA/liver-labels.nrrd" labels="85" bin="$BIN/" out=ex ratio=2 flags="--max-distance 0" \
+      > /dev/null 2>&1 || fail "Snakefile"
     cmp -s sk/ex/label-85.ply ex/label-85.ply || fail "Snakefile and Makefile give different meshes"
   fi
 }
