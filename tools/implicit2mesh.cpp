@@ -44,6 +44,17 @@ int main(int argc, char** argv) {
   tool.add_seed();
   tool.add_threads();
   tool.app.add_flag("--normals", normals, "Write per-vertex normals from grad f (PLY and OBJ)");
+  tool.app.add_option("--fallback-rounds", opt.fallback_rounds,
+                      "Where the final certificate finds a component with the wrong topology (TOPOLOGY should "
+                      "leave none), at most this many rounds of HandleDetection and then denser sampling there; "
+                      "if it still differs, the mesh is written and the exit status is 3, naming the component")
+      ->type_name("N")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  // Tests only (hidden): no VorEdge, TopoDisk, FacetCycle or HandleDetection,
+  // so that the certificate fails and its repairs must act.
+  bool skip_topology = false;
+  tool.app.add_flag("--skip-topology-steps", skip_topology)->group("");
   tool.app.add_flag("--seed-deletion", opt.seed_deletion,
                     "SAMPLETOPOLOGY as published (7.6.2): TOPOLOGY alone first, then delete the seeds and HandleDetection's points one by one; "
                     "slower and not smaller in practice");
@@ -59,6 +70,7 @@ int main(int argc, char** argv) {
                        " is below the termination limit 2(arcsin k + arcsin(2k/sqrt 3)) = 0.2587 rad (14.8 degrees)");
     if (!(opt.max_distance >= 0) || !std::isfinite(opt.max_distance))
       throw UsageError("--max-distance must be a finite number >= 0");
+    opt.topology_steps = !skip_topology;
     opt.seed = tool.seed();
     opt.threads = tool.threads();
     if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
