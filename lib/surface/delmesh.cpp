@@ -507,6 +507,8 @@ RestrictedDelaunayResult DelMesh::run() {
   res.facet_cycle_passes = facet_cycle_passes_;
   res.handle_detection_checks = handle_checks_.full;
   res.handle_detection_certified = handle_checks_.certified;
+  res.handle_detection_undecided = handle_checks_.undecided;
+  res.handle_detection_unresolved = handle_checks_.unresolved;
   res.function_evaluations = sampler_.evaluations();
   res.seconds_seeds = t_seeds;
   res.seconds_refinement = t_refine_s;

@@ -39,6 +39,8 @@ Json RestrictedDelaunayResult::to_json() const {
   st["facet_cycle_passes"] = facet_cycle_passes;
   st["handle_detection_checks"] = handle_detection_checks;
   st["handle_detection_certified"] = handle_detection_certified;
+  st["handle_detection_undecided"] = handle_detection_undecided;
+  st["handle_detection_unresolved"] = handle_detection_unresolved;
   st["vertices"] = mesh.points.size();
   st["triangles"] = mesh.triangles.size();
   Json comps = Json::array();
@@ -76,6 +78,8 @@ std::string RestrictedDelaunayResult::failed_guarantee() const {
   if (topology_insertions_refused)
     failure += std::to_string(topology_insertions_refused) + " TOPOLOGY insertion(s) refused, the first " +
                topology_insertion_refused_first + "; ";
+  if (handle_detection_unresolved)
+    failure += std::to_string(handle_detection_unresolved) + " HandleDetection check(s) undecided with nothing to refine; ";
   if (!ratio_ok) failure += "radius-edge ratio above the bound; ";
   if (!roughness_ok) failure += "roughness above the bound; ";
   if (!distance_ok) failure += "distance to the surface above --max-distance; ";

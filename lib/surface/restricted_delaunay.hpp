@@ -67,6 +67,9 @@ struct RestrictedDelaunayResult {
   std::string topology_insertion_refused_first;
   long long facet_cycle_checks = 0, facet_cycle_passes = 0;
   long long handle_detection_checks = 0, handle_detection_certified = 0;  // full tests; settled by the cube grid
+  // Full tests without an answer (refined at p instead), and of those the
+  // ones with nothing to refine: a failed guarantee.
+  long long handle_detection_undecided = 0, handle_detection_unresolved = 0;
   long long function_evaluations = 0;
   // Measured on the output.
   TriangleQualityReport quality;
