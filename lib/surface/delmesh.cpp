@@ -319,8 +319,13 @@ void DelMesh::drain() {
 bool DelMesh::facet_cycle_pass() {
   ++facet_cycle_passes_;
   phase_ = "facet cycle";
-  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_);
+  std::vector<int> skipped;
+  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_, skipped);
   dirty_.clear();
+  // Skipped facets are not answers: their edges are checked again in the
+  // next pass (after later insertions); what the last pass skipped is counted.
+  for (int id : skipped) dirty_.add(id);
+  facet_cycle_skipped_ = static_cast<long long>(skipped.size());
   return insert_batch(pts, kFacetCycle);
 }
 
@@ -505,6 +510,7 @@ RestrictedDelaunayResult DelMesh::run() {
   res.topology_fallback_rounds = rounds;
   res.facet_cycle_checks = facet_cycle_checks_;
   res.facet_cycle_passes = facet_cycle_passes_;
+  res.facet_cycle_skipped = facet_cycle_skipped_;
   res.handle_detection_checks = handle_checks_.full;
   res.handle_detection_certified = handle_checks_.certified;
   res.handle_detection_undecided = handle_checks_.undecided;

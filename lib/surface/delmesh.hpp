@@ -142,6 +142,7 @@ private:
   long long seeds_deleted_ = 0;
   std::vector<int> comp_vertices_;  // vertices per S component
   long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
+  long long facet_cycle_skipped_ = 0;  // edges the last FacetCycle pass could not rasterise
   HandleChecks handle_checks_;
   // The HandleDetection point being deleted (8.3): it goes back if
   // HandleDetection finds a handle again.

@@ -37,6 +37,7 @@ Json RestrictedDelaunayResult::to_json() const {
   st["topology_fallback_points"] = inserted("topology_fallback");
   st["facet_cycle_checks"] = facet_cycle_checks;
   st["facet_cycle_passes"] = facet_cycle_passes;
+  st["facet_cycle_skipped"] = facet_cycle_skipped;
   st["handle_detection_checks"] = handle_detection_checks;
   st["handle_detection_certified"] = handle_detection_certified;
   st["handle_detection_undecided"] = handle_detection_undecided;
@@ -78,6 +79,8 @@ std::string RestrictedDelaunayResult::failed_guarantee() const {
   if (topology_insertions_refused)
     failure += std::to_string(topology_insertions_refused) + " TOPOLOGY insertion(s) refused, the first " +
                topology_insertion_refused_first + "; ";
+  if (facet_cycle_skipped)
+    failure += std::to_string(facet_cycle_skipped) + " Voronoi facet(s) too large for FacetCycle to check; ";
   if (handle_detection_unresolved)
     failure += std::to_string(handle_detection_unresolved) + " HandleDetection check(s) undecided with nothing to refine; ";
   if (!ratio_ok) failure += "radius-edge ratio above the bound; ";

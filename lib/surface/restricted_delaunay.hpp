@@ -66,6 +66,7 @@ struct RestrictedDelaunayResult {
   long long topology_insertions_refused = 0;
   std::string topology_insertion_refused_first;
   long long facet_cycle_checks = 0, facet_cycle_passes = 0;
+  long long facet_cycle_skipped = 0;  // edges whose facet the last pass could not rasterise (too large)
   long long handle_detection_checks = 0, handle_detection_certified = 0;  // full tests; settled by the cube grid
   // Full tests without an answer (refined at p instead), and of those the
   // ones with nothing to refine: a failed guarantee.
