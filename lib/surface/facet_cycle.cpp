@@ -110,7 +110,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   long total = 0;
   for (long j = 0; j < nb; ++j) total += std::max(0L, hi[j] - lo[j] + 1);
   if (total < 9) return kNone;
-  if (total > 4000000) return FacetAnswer::kSkipped;  // the caller checks it again later
+  if (total > 64000000) return FacetAnswer::kSkipped;  // the caller checks it again later
   auto point = [&](long i, long j) {
     const double a = a0 + i * step, b = b0 + j * step;
     return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
