@@ -53,6 +53,13 @@ SurfaceOptions::SurfaceOptions(cli::Tool& tool, RestrictedDelaunayOptions& opt, 
                       "than E (world units) from the " + what + "'s plane; 0: off")
       ->type_name("E")
       ->capture_default_str();
+  tool.app.add_option("--fallback-rounds", opt_.fallback_rounds,
+                      "Where the final certificate finds a component with the wrong topology (TOPOLOGY should "
+                      "leave none), at most this many rounds of HandleDetection and then denser sampling there; "
+                      "if it still differs, the mesh is written and the exit status is 3, naming the component")
+      ->type_name("N")
+      ->check(CLI::NonNegativeNumber.description(""))
+      ->capture_default_str();
   tool.app.add_option("--max-points", opt_.max_points,
                       "Safety bound on the number of sample points; when hit, the mesh is written and the exit "
                       "status is 3")

@@ -15,7 +15,8 @@ namespace imgmesh {
 
 class SurfaceOptions {
 public:
-  // Adds --ratio, --roughness, --max-distance and --max-points (described
+  // Adds --ratio, --roughness, --max-distance, --fallback-rounds and
+  // --max-points (described
   // for `what`, e.g. "triangle" or "boundary triangle") and sets the tools'
   // defaults in opt, which must outlive this object.
   SurfaceOptions(cli::Tool& tool, RestrictedDelaunayOptions& opt, const std::string& what = "triangle");

@@ -23,33 +23,26 @@ std::vector<Facet> restricted_facets(const Tr& tr) {
 }
 
 ExpectedTopology expected_topology(const CubeGrid& grid) {
-  const VoxelBoundary boundary = voxel_boundary(grid.g);
   ExpectedTopology e;
-  e.topology = mesh_topology(boundary);
-  e.by_component.assign(std::size_t(grid.components), 0);
+  e.boundary = voxel_boundary(grid.g);
+  e.topology = mesh_topology(e.boundary);
   for (const ComponentTopology& c : e.topology.components) {
     // Corner (i, j, k) is the centre of the cube whose lowest sample is
     // (i-1, j-1, k-1); it is active, being on the voxel boundary.
-    const std::array<std::size_t, 3> k = boundary.corner(c.first_vertex);
+    const std::array<std::size_t, 3> k = e.boundary.corner(c.first_vertex);
     long cube[3];
     for (int a = 0; a < 3; ++a) cube[a] = std::clamp(long(k[a]) - 1, 0L, grid.n[a] - 2);
-    const int s = grid.comp_of(cube[0], cube[1], cube[2]);
-    if (s >= 0) e.by_component[std::size_t(s)] += c.euler;
+    e.s_component.push_back(grid.comp_of(cube[0], cube[1], cube[2]));
   }
   return e;
 }
 
-Certificate certify(const Tr& tr, std::size_t vertex_count, const ExpectedTopology& expected) {
+Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid, const ExpectedTopology& expected) {
   Certificate cert;
   SurfaceMesh& mesh = cert.mesh;
-  std::vector<Vec3>& centers = cert.centers;
-  std::vector<int>& tri_comp = cert.tri_comp;
-  std::map<int, std::vector<int>>& mesh_comps = cert.mesh_comps;
-  std::vector<int>& bad = cert.bad;
   cert.facets = restricted_facets(tr);
   const std::vector<Facet>& fs = cert.facets;
   std::vector<int> index(vertex_count, -1);
-  std::vector<int> comp_of_vertex;
   for (const Facet& f : fs) {
     std::array<int, 3> t;
     const std::array<Vh, 3> vs = facet_vertices(f.first, f.second);
@@ -58,17 +51,16 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const ExpectedTopolo
       if (id < 0) {
         id = int(mesh.points.size());
         mesh.points.push_back(vec(vs[m]->point()));
-        comp_of_vertex.push_back(vs[m]->info().comp);
+        cert.vertex_comp.push_back(vs[m]->info().comp);
       }
       t[m] = id;
     }
     // Outward: along grad f at the surface centre.
     const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
-    const Vec3 x = facet_center(f);
     const FacetInfo& fi = f.first->facet[f.second];
     if (dot(n, Vec3{fi.grad[0], fi.grad[1], fi.grad[2]}) < 0) std::swap(t[1], t[2]);
     mesh.triangles.push_back(t);
-    centers.push_back(x);
+    cert.centers.push_back(facet_center(f));
   }
   // Make orientation consistent per mesh component (BFS), by majority.
   {
@@ -77,13 +69,10 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const ExpectedTopolo
     for (std::size_t t = 0; t < nt; ++t)
       for (int k = 0; k < 3; ++k) by_edge[edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(int(t));
     std::vector<int> flip(nt, -1);
-    tri_comp.assign(nt, -1);
-    int ncomp = 0;
     for (std::size_t s0 = 0; s0 < nt; ++s0) {
       if (flip[s0] >= 0) continue;
       std::vector<int> members{int(s0)}, stack{int(s0)};
       flip[s0] = 0;
-      tri_comp[s0] = ncomp;
       while (!stack.empty()) {
         const int t = stack.back();
         stack.pop_back();
@@ -98,7 +87,6 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const ExpectedTopolo
             bool forward = false;
             for (int m = 0; m < 3; ++m) forward = forward || (tu[m] == a && tu[(m + 1) % 3] == b);
             flip[u] = forward ? 1 : 0;
-            tri_comp[u] = ncomp;
             members.push_back(u);
             stack.push_back(u);
           }
@@ -108,43 +96,52 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const ExpectedTopolo
       for (int t : members) agree += flip[t] ? -1 : 1;
       if (agree < 0)
         for (int t : members) flip[t] = 1 - flip[t];
-      ++ncomp;
     }
     for (std::size_t t = 0; t < nt; ++t)
       if (flip[t] == 1) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
   }
-  cert.topology = mesh_topology(mesh);
-  // Per S component: exactly one mesh component with bdCA's Euler characteristic.
-  {
-    std::map<int, int> seen;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-      const int sc = comp_of_vertex[mesh.triangles[t][0]];
-      if (seen.emplace(tri_comp[t], sc).second) mesh_comps[sc].push_back(tri_comp[t]);
-    }
-  }
-  bad.clear();
-  for (int c = 0; c < int(expected.by_component.size()); ++c)
-    if (mesh_comps[c].size() != 1) bad.push_back(c);
-  if (mesh_comps.count(-1)) bad.push_back(-1);
-  cert.ok = bad.empty() && cert.topology.closed && cert.topology.manifold && cert.topology.oriented &&
-            same_topology(cert.topology, expected.topology);
+  check_certificate(cert, grid, expected);
   return cert;
 }
 
-std::vector<int> euler_mismatches(const Certificate& cert, const ExpectedTopology& expected) {
-  // chi of each mesh component (its triangles alone) against its S component's.
-  std::map<int, std::vector<std::array<int, 3>>> triangles_of;
-  for (std::size_t t = 0; t < cert.mesh.triangles.size(); ++t)
-    triangles_of[cert.tri_comp[t]].push_back(cert.mesh.triangles[t]);
-  std::vector<int> out;
-  for (const auto& kv : cert.mesh_comps) {
-    if (kv.first < 0) continue;
-    const MeshTopology t = mesh_topology(cert.mesh.points.size(), triangles_of[kv.second.front()]);
-    long long chi = 0;
-    for (const ComponentTopology& c : t.components) chi += c.euler;
-    if (chi != expected.by_component[std::size_t(kv.first)]) out.push_back(kv.first);
+void check_certificate(Certificate& cert, const CubeGrid& grid, const ExpectedTopology& expected) {
+  cert.topology = mesh_topology(cert.mesh);
+  // The mesher's local frame as a grid: voxel centre i at i * spacing.
+  Geometry local;
+  local.size = grid.g.size;
+  local.spacing = grid.g.spacing;
+  cert.correspondence = match_components(cert.topology, cert.mesh.points, local, expected.boundary, expected.topology);
+  const MeshTopology& t = cert.topology;
+  cert.ok = cert.correspondence.matches() && t.closed && t.manifold && t.oriented;
+  // What to repair: the S components under every failing mesh component
+  // (its vertices' sites) and of every failing bdCA(X) component.
+  std::vector<char> bad_mesh(t.components.size(), 0);
+  for (std::size_t m = 0; m < t.components.size(); ++m) {
+    const ComponentTopology& c = t.components[m];
+    bad_mesh[m] = cert.correspondence.mesh[m].verdict != "ok" || !c.closed || !c.manifold || !c.oriented;
   }
-  return out;
+  std::set<int> bad;
+  for (std::size_t v = 0; v < cert.mesh.points.size(); ++v) {
+    const int m = t.component_of[v];
+    if (m >= 0 && bad_mesh[std::size_t(m)] && cert.vertex_comp[v] >= 0) bad.insert(cert.vertex_comp[v]);
+  }
+  for (std::size_t b = 0; b < cert.correspondence.boundary.size(); ++b)
+    if (cert.correspondence.boundary[b].verdict != "ok" && expected.s_component[b] >= 0) bad.insert(expected.s_component[b]);
+  cert.bad.assign(bad.begin(), bad.end());
+}
+
+std::string topology_failure(const Certificate& cert) {
+  if (cert.ok) return "";
+  std::string s = cert.correspondence.failed_guarantee();
+  for (std::size_t m = 0; m < cert.topology.components.size(); ++m) {
+    const ComponentTopology& c = cert.topology.components[m];
+    std::string what;
+    if (!c.closed) what += " not closed";
+    if (!c.manifold) what += " not manifold";
+    else if (!c.oriented) what += " not oriented";
+    if (!what.empty()) s += (s.empty() ? "" : "; ") + ("mesh component " + std::to_string(m) + what);
+  }
+  return s;
 }
 
 MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sampler, const Certificate& cert) {
@@ -201,10 +198,10 @@ MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sample
   return m;
 }
 
-Candidates fallback_points(const Tr& tr, const SurfaceSampler& sampler, const std::vector<Facet>& fs, int comp) {
+Candidates fallback_points(const Tr& tr, const SurfaceSampler& sampler, int comp) {
   const CubeGrid& grid = sampler.grid();
   std::vector<std::pair<double, Facet>> mine;
-  for (const Facet& f : fs)
+  for (const Facet& f : restricted_facets(tr))
     if (f.first->vertex((f.second + 1) & 3)->info().comp == comp) mine.emplace_back(f.first->facet[f.second].r2, f);
   std::stable_sort(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   const std::size_t take = std::min<std::size_t>(mine.size(), std::max<std::size_t>(1, mine.size() / 10));

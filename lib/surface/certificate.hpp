@@ -1,16 +1,16 @@
 // The certificate (after DELMESH): the restricted facets as an oriented
 // triangle mesh, its components matched one to one, by place, with those of
-// the voxel boundary bdCA(X), each with the same Euler characteristic; the
-// guarantees measured on the output; and the fallback's points where a
-// component does not match. Queries: DELMESH inserts what the fallback
-// returns. Counts with lib/mesh's topology module, as meshinfo does.
+// the voxel boundary bdCA(X), each with the same Euler characteristic
+// (match_components, the code meshinfo --image runs); the guarantees
+// measured on the output; and the fallback's points where a component does
+// not match. Queries: DELMESH inserts what the fallback returns.
 #pragma once
 #include "surface/cube_grid.hpp"
 #include "surface/delaunay_types.hpp"
 #include "mesh/topology.hpp"
 #include "mesh/triangle_quality.hpp"
 
-#include <map>
+#include <string>
 #include <vector>
 
 namespace imgmesh::surface_detail {
@@ -18,12 +18,13 @@ namespace imgmesh::surface_detail {
 // The restricted facets in a deterministic order (by vertex ids).
 std::vector<Facet> restricted_facets(const Tr& tr);
 
-// bdCA(X) for X = {g < 0}, and its Euler characteristic per S component
-// (the cube grid's numbering: each voxel-boundary component goes to the S
-// component of the active cube around one of its corners).
+// bdCA(X) for X = {g < 0}: its quads, components and Euler characteristics,
+// and per component the S component (cube-grid numbering) of the active cube
+// around one of its corners, to name what the repairs refine.
 struct ExpectedTopology {
+  VoxelBoundary boundary;
   MeshTopology topology;
-  std::vector<long long> by_component;
+  std::vector<int> s_component;  // per topology component
 };
 ExpectedTopology expected_topology(const CubeGrid& grid);
 
@@ -31,25 +32,25 @@ struct Certificate {
   SurfaceMesh mesh;                 // local coordinates, outward per component
   std::vector<Vec3> centers;        // per triangle: its surface centre
   std::vector<Facet> facets;        // per triangle: its Delaunay facet
-  std::vector<int> tri_comp;        // per triangle: its mesh component
-  std::map<int, std::vector<int>> mesh_comps;  // S component -> its mesh components (-1: on none)
+  std::vector<int> vertex_comp;     // per mesh vertex: the S component of its site
   MeshTopology topology;            // of mesh
-  // S components with other than one mesh component, and -1 when a mesh
-  // component lies on no S component.
-  std::vector<int> bad;
-  bool ok = false;  // bad empty, closed oriented manifold, sorted Euler characteristics equal
+  ComponentCorrespondence correspondence;  // mesh components against bdCA(X)'s, by place
+  std::vector<int> bad;             // S components to repair, ascending
+  // One-to-one match by place, chi per matched pair, closed, manifold, oriented.
+  bool ok = false;
 };
 
 // The restricted Delaunay surface of W as a mesh (vertices in id order of
 // first use, triangles in restricted_facets() order, each oriented along
 // grad f, then consistently per component by majority) and its check.
 // `vertex_count`: one more than the largest vertex id.
-Certificate certify(const Tr& tr, std::size_t vertex_count, const ExpectedTopology& expected);
+Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid, const ExpectedTopology& expected);
 
-// The S components whose single mesh component has another Euler
-// characteristic than bdCA(X)'s (when `bad` is empty: sorted lists can
-// agree while components are in each other's places).
-std::vector<int> euler_mismatches(const Certificate& cert, const ExpectedTopology& expected);
+// The check alone, on cert.mesh (local coordinates of `grid`) and
+// cert.vertex_comp: sets topology, correspondence, bad and ok.
+void check_certificate(Certificate& cert, const CubeGrid& grid, const ExpectedTopology& expected);
+// Why cert is not ok, naming each failing component; empty when it is.
+std::string topology_failure(const Certificate& cert);
 
 // The guarantees measured on the output (local coordinates).
 struct MeasuredGuarantees {
@@ -60,9 +61,10 @@ struct MeasuredGuarantees {
 MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& f, const Certificate& cert);
 
 // The fallback's points on S component `comp`: the surface centres of the
-// largest tenth of its restricted facets `fs` and the mixed-edge crossing
-// farthest from W. Denser samples end as an epsilon-sample, where the
-// restricted Delaunay surface is homeomorphic to S (Amenta-Bern, CDRR).
-Candidates fallback_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Facet>& fs, int comp);
+// largest tenth of its restricted facets (read from `tr` as it is now) and
+// the mixed-edge crossing farthest from W. Denser samples end as an
+// epsilon-sample, where the restricted Delaunay surface is homeomorphic to S
+// (Amenta-Bern, CDRR).
+Candidates fallback_points(const Tr& tr, const SurfaceSampler& f, int comp);
 
 } // namespace imgmesh::surface_detail

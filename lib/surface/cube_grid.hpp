@@ -80,6 +80,8 @@ public:
     f_.value_gradient(c, gr);
     return gr;
   }
+  // An enclosure of f on the local box [a, b] when the surface has one.
+  bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const { return f_.range(a, b, lo, hi); }
   // Sign convention for zeros (8.4(1)): f == 0 counts as outside, i.e. we
   // mesh f^-1(-eps) symbolically, consistently on every edge.
   static bool inside(double v) { return v < 0; }

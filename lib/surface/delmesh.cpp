@@ -28,7 +28,7 @@ void DelMesh::enqueue_facet(Ch c, int i) {
   const FacetInfo& fi = c->facet[i];
   if (!(fi.state & kRestricted)) return;
   const auto [a, b, d] = facet_vertices(c, i);
-  if (fi.state & kMulti) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i, fi.computed});
+  if ((fi.state & kMulti) && opt_.topology_steps) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i, fi.computed});
   const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
   if (topology_only_) return;
   if (quality_refines(pa, pb, pd, opt_.ratio)) queue_.push({kQQuality, fi.r2, seq_++, a, b, d, c, i, fi.computed});
@@ -39,7 +39,7 @@ void DelMesh::enqueue_facet(Ch c, int i) {
 // A vertex is queued at most once per check: the check runs on the state at
 // pop time, which includes every change since it was queued.
 void DelMesh::enqueue_vertex(Vh v) {
-  if (!(v->info().queued & 1)) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
+  if (!(v->info().queued & 1) && opt_.topology_steps) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
   v->info().queued |= 1;
   if (topology_only_) return;
   if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
@@ -191,7 +191,7 @@ void DelMesh::requeue_grown() {
 void DelMesh::refine() {
   for (;;) {
     drain();
-    if (max_hit_) return;
+    if (max_hit_ || !opt_.topology_steps) return;
     if (opt_.facet_cycle && facet_cycle_pass()) continue;
     if (!handle_vertex_pass()) return;
   }
@@ -310,7 +310,7 @@ void DelMesh::drain() {
       if (it.kind == kQTopoDisk) {
         phase_ = "topology";
         if (topo_disk_(tr_, it.a, &worst)) continue;
-        if (!insert(facet_center(worst), kTopoDisk, worst)) ++refused_;
+        if (!insert(facet_center(worst), kTopoDisk, worst)) refuse_topology("TopoDisk", facet_center(worst));
       } else {
         phase_ = "smooth";
         if (smooth_(tr_, it.a, opt_.roughness, &worst)) continue;
@@ -327,7 +327,7 @@ void DelMesh::drain() {
     if (it.kind == kQVorEdge) {
       phase_ = "topology";
       if (!(fi.state & kMulti)) continue;
-      if (!insert(x, kVorEdge, Facet(c, i))) ++refused_;
+      if (!insert(x, kVorEdge, Facet(c, i))) refuse_topology("VorEdge", x);
     } else {
       phase_ = it.kind == kQQuality ? "quality" : "max-distance";
       if (fi.r2 < guard2 || !insert(x, it.kind == kQQuality ? kQuality : kDistance, Facet(c, i))) ++refused_;
@@ -340,8 +340,13 @@ void DelMesh::drain() {
 bool DelMesh::facet_cycle_pass() {
   ++facet_cycle_passes_;
   phase_ = "facet cycle";
-  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_);
+  std::vector<int> skipped;
+  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_, skipped);
   dirty_.clear();
+  // Skipped facets are not answers: their edges are checked again in the
+  // next pass (after later insertions); what the last pass skipped is counted.
+  for (int id : skipped) dirty_.add(id);
+  facet_cycle_skipped_ = static_cast<long long>(skipped.size());
   return insert_batch(pts, kFacetCycle);
 }
 
@@ -359,7 +364,8 @@ bool DelMesh::handle_vertex_pass() {
     const Vec3 x = *handle_trial_;
     handle_trial_.reset();
     ++handle_points_restored_;
-    return insert(x, kHandle);
+    if (!insert(x, kHandle)) refuse_topology("HandleDetection", x);
+    return true;
   }
   return insert_batch(pts, kHandle);
 }
@@ -373,11 +379,12 @@ bool DelMesh::handle_pass(const std::vector<int>& bad) {
 }
 
 // Beyond HandleDetection: when the certificate still (or again) finds a
-// component of S whose mesh has the wrong topology, refine it there.
+// component of S whose mesh has the wrong topology, refine it there. Each
+// component's points are found on the triangulation as it is then (the
+// insertions for the one before destroyed cells).
 bool DelMesh::fallback(const std::vector<int>& bad) {
   bool any = false;
-  const std::vector<Facet> fs = restricted_facets(tr_);
-  for (int comp : bad) any = insert_batch(fallback_points(tr_, sampler_, fs, comp), kFallback) || any;
+  for (int comp : bad) any = insert_batch(fallback_points(tr_, sampler_, comp), kFallback) || any;
   return any;
 }
 
@@ -391,7 +398,10 @@ void DelMesh::progress() {
 // Points found on one state of W, inserted one after the other: a point
 // goes in only while it is still at least half its clearance (its distance
 // to W when it was found) away from W, so two points found for neighbouring
-// features do not both go in and make a tiny, unrefinable triangle.
+// features do not both go in and make a tiny, unrefinable triangle. Such a
+// point is deferred, not lost: the pass runs again after any insertion, and
+// the certificate judges the end. A point that cannot go in (a vertex
+// already) is a refused TOPOLOGY insertion.
 bool DelMesh::insert_batch(const Candidates& pts, Origin origin) {
   bool any = false;
   for (const auto& [x, clearance2] : pts) {
@@ -400,9 +410,20 @@ bool DelMesh::insert_batch(const Candidates& pts, Origin origin) {
       ++refused_;
       continue;
     }
-    any = insert(x, origin) || any;
+    if (insert(x, origin)) any = true;
+    else if (!max_hit_) refuse_topology(kOriginName[origin], x);
   }
   return any;
+}
+
+// A TOPOLOGY step asked for a point that cannot go in (rounding put it on a
+// vertex): what it would have repaired may stay wrong, so the run reports
+// it as a failed guarantee (max_hit_ is reported on its own).
+void DelMesh::refuse_topology(const char* step, const Vec3& x) {
+  if (max_hit_) return;
+  if (topology_refused_++ == 0)
+    topology_refused_first_ = std::string(step) + " at (" + std::to_string(x[0]) + ", " + std::to_string(x[1]) + ", " +
+                              std::to_string(x[2]) + ")";
 }
 
 void DelMesh::prepare() {
@@ -449,24 +470,24 @@ RestrictedDelaunayResult DelMesh::run() {
   }
   refine();
 
-  // Certificate: components and Euler characteristics per S component; on a
-  // mismatch, HandleDetection there, else the fallback, and DELMESH's queues
-  // again.
+  // Certificate: mesh components matched by place to bdCA(X)'s, one to one,
+  // chi per pair. On a mismatch (TOPOLOGY should leave none), HandleDetection
+  // on the failing S components, else the fallback, and DELMESH's queues
+  // again. Termination: at most opt_.fallback_rounds rounds, each of which
+  // inserts at least one point (else the loop stops) and ends with REFINE,
+  // which terminates on its own (and at --max-points).
   int rounds = 0;
   Certificate cert;
   for (;;) {
-    cert = certify(tr_, vertices_.size(), expected);
+    cert = certify(tr_, vertices_.size(), grid_, expected);
     if (cert.ok && !max_hit_ && after_certificate_ && after_certificate_(*this)) {
       refine();
       continue;
     }
-    if (cert.ok || max_hit_ || rounds >= 40) break;
-    if (cert.bad.empty()) cert.bad = euler_mismatches(cert, expected);
-    cert.bad.erase(std::remove(cert.bad.begin(), cert.bad.end(), -1), cert.bad.end());
+    if (cert.ok || max_hit_ || rounds >= opt_.fallback_rounds || cert.bad.empty()) break;
     ++rounds;
-    if (cert.bad.empty()) break;
     phase_ = "handle detection";
-    if (!handle_pass(cert.bad)) {
+    if (!opt_.topology_steps || !handle_pass(cert.bad)) {
       phase_ = "topology fallback";
       if (!fallback(cert.bad)) break;
     }
@@ -479,6 +500,7 @@ RestrictedDelaunayResult DelMesh::run() {
   const MeasuredGuarantees m = measure_guarantees(tr_, sampler_, cert);
   res.topology = cert.topology;
   res.topology_ok = cert.ok;
+  res.topology_failure = topology_failure(cert);
   res.ratio_ok = m.quality.largest_radius_edge_ratio() <= opt_.ratio * (1 + 1e-9);
   res.roughness_ok = m.max_roughness <= opt_.roughness + 1e-9;
   res.distance_ok = opt_.max_distance <= 0 || m.max_distance_to_plane <= opt_.max_distance * (1 + 1e-9);
@@ -505,14 +527,19 @@ RestrictedDelaunayResult DelMesh::run() {
 
   for (int o = 0; o < kOrigins; ++o) res.points_inserted.emplace_back(kOriginName[o], inserted_[o]);
   res.points_refused = refused_;
+  res.topology_insertions_refused = topology_refused_;
+  res.topology_insertion_refused_first = topology_refused_first_;
   res.seeds_deleted = seeds_deleted_;
   res.handle_points_deleted = handle_points_deleted_;
   res.handle_points_restored = handle_points_restored_;
   res.topology_fallback_rounds = rounds;
   res.facet_cycle_checks = facet_cycle_checks_;
   res.facet_cycle_passes = facet_cycle_passes_;
+  res.facet_cycle_skipped = facet_cycle_skipped_;
   res.handle_detection_checks = handle_checks_.full;
   res.handle_detection_certified = handle_checks_.certified;
+  res.handle_detection_undecided = handle_checks_.undecided;
+  res.handle_detection_unresolved = handle_checks_.unresolved;
   res.function_evaluations = sampler_.evaluations();
   res.seconds_seeds = t_seeds;
   res.seconds_refinement = t_refine_s;

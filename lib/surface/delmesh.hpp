@@ -22,7 +22,7 @@
 //         HandleDetection: S inside a Voronoi cell not a disk      handle_detection.cpp (8.3)
 //     certificate: components and Euler characteristics against
 //       bdCA(X), per component and by place                        certificate.cpp
-//     while a component differs (at most 40 rounds):
+//     while a component differs (at most --fallback-rounds rounds):
 //       HandleDetection on all its vertices, else the fallback;
 //       REFINE; certificate again                                  handle_detection.cpp, certificate.cpp
 //     the guarantees measured on the output                        certificate.cpp
@@ -115,6 +115,7 @@ private:
   bool handle_vertex_pass();
   bool handle_pass(const std::vector<int>& bad_components);
   bool fallback(const std::vector<int>& bad_components);
+  void refuse_topology(const char* step, const Vec3& x);
   void progress();
 
   const ImplicitSurface& f_;
@@ -136,7 +137,9 @@ private:
   std::uint64_t seq_ = 0;
   std::uint32_t computed_ = 0;  // facet computations so far
   long long inserted_[kOrigins] = {};
-  long long refused_ = 0;
+  long long refused_ = 0;            // QUALITY/SMOOTH guards and deferred batch points
+  long long topology_refused_ = 0;   // TOPOLOGY points that could not go in
+  std::string topology_refused_first_;
   bool max_hit_ = false;
   std::size_t last_progress_ = 0;
   std::string phase_ = "seeds";
@@ -155,6 +158,7 @@ private:
   long long seeds_deleted_ = 0;
   std::vector<int> comp_vertices_;  // vertices per S component
   long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
+  long long facet_cycle_skipped_ = 0;  // edges the last FacetCycle pass could not rasterise
   HandleChecks handle_checks_;
   // The HandleDetection point being deleted (8.3): it goes back if
   // HandleDetection finds a handle again.

@@ -8,9 +8,11 @@ namespace imgmesh::surface_detail {
 
 // EdgeSurface (8.2): clip the Voronoi edge to the box of voxel centres, walk
 // the cubes it crosses, look for roots only in active cubes (F1), and find the
-// first and the last crossing. Roots are isolated by sampling at delta/8
-// inside active cubes, then refined; two roots closer than that are missed
-// (documented limitation, see the man page).
+// first and the last crossing. Where the surface gives an enclosure of f
+// (the partition of unity does) and it excludes 0 on the piece in a cube,
+// that piece certainly holds no root and is skipped. Elsewhere roots are
+// isolated by sampling at delta/8, then refined; two roots closer than that
+// are missed (documented limitation, see the man page).
 EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b, const Vec3& site) {
   const CubeGrid& grid = f.grid();
   EdgeCrossing out;
@@ -69,6 +71,18 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
       long c[3];
       for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(m[i] / grid.s[i])), 0L, grid.n[i] - 2);
       if (!grid.active(c[0], c[1], c[2])) continue;
+      // Where an enclosure of f on the piece's box excludes 0, S is
+      // provably not there: no sampling.
+      {
+        const Vec3 xa = at(ta), xb = at(tb);
+        Vec3 lo, hi;
+        for (int i = 0; i < 3; ++i) {
+          lo[i] = std::min(xa[i], xb[i]);
+          hi[i] = std::max(xa[i], xb[i]);
+        }
+        double flo, fhi;
+        if (f.range(lo, hi, flo, fhi) && (flo > 0 || fhi < 0)) continue;
+      }
       if (!pieces.empty() && pieces.back().tb == ta) pieces.back().tb = tb;  // merge runs of active cubes
       else pieces.push_back({ta, tb});
     }

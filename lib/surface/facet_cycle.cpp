@@ -3,6 +3,7 @@
 #include "implicit/parallel.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace imgmesh::surface_detail {
@@ -15,15 +16,18 @@ namespace imgmesh::surface_detail {
 // one sign. The sign of f at a sample is the corner sign in an inactive
 // cube (F1) and f's sign in an active one. A sign region that does not
 // reach the border of h is enclosed by a cycle of S; its point farthest from p is found on the sample pair (region,
-// neighbour) farthest from p, by root finding along that segment, i.e. on
-// S inside Pi. Cycles narrower than the step are missed (like EdgeSurface).
-bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out) {
+// neighbour) farthest from p that brackets a root, by root finding along
+// that segment, i.e. on S inside Pi. Cycles narrower than the step are
+// missed (like EdgeSurface). Facets of more than 4M samples are not
+// rasterised: kSkipped, and DELMESH checks them again after later insertions.
+FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out) {
+  constexpr FacetAnswer kNone = FacetAnswer::kNone;
   const CubeGrid& grid = f.grid();
   const Vh p = e.first->vertex(e.second), q = e.first->vertex(e.third);
   const Vec3 pp = vec(p->point()), pq = vec(q->point());
   Vec3 n = sub(pq, pp);
   const double nl = norm(n);
-  if (!(nl > 0)) return false;
+  if (!(nl > 0)) return kNone;
   n = {n[0] / nl, n[1] / nl, n[2] / nl};
   const Vec3 m{(pp[0] + pq[0]) / 2, (pp[1] + pq[1]) / 2, (pp[2] + pq[2]) / 2};
   Vec3 u = std::abs(n[0]) < 0.6 ? cross(n, Vec3{1, 0, 0}) : cross(n, Vec3{0, 1, 0});
@@ -71,7 +75,7 @@ bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3&
   }
   if (!bounded) { a0 = ba0; a1 = ba1; b0 = bb0; b1 = bb1; }
   a0 = std::max(a0, ba0); a1 = std::min(a1, ba1); b0 = std::max(b0, bb0); b1 = std::min(b1, bb1);
-  if (!(a0 < a1 && b0 < b1)) return false;
+  if (!(a0 < a1 && b0 < b1)) return kNone;
   // Tighten b by the polygon: rows where the a-interval is empty are skipped anyway.
   const double step = grid.delta / 16;
   const long nb = long(std::ceil((b1 - b0) / step)) + 1;
@@ -99,13 +103,14 @@ bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3&
     hi[j] = long(std::floor((ahi - a0) / step));
     if (hi[j] >= lo[j]) ++rows_used;
   }
-  if (rows_used < 3) return false;
+  if (rows_used < 3) return kNone;
   // Samples inside h, with their signs, as runs of one sign per row: an
   // inactive cube's samples all take its corner sign (F1), so the raster
   // jumps to the cube's exit; f is evaluated only in active cubes.
   long total = 0;
   for (long j = 0; j < nb; ++j) total += std::max(0L, hi[j] - lo[j] + 1);
-  if (total < 9 || total > 4000000) return false;
+  if (total < 9) return kNone;
+  if (total > 64000000) return FacetAnswer::kSkipped;  // the caller checks it again later
   auto point = [&](long i, long j) {
     const double a = a0 + i * step, b = b0 + j * step;
     return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
@@ -153,7 +158,7 @@ bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3&
     }
   }
   row_run[nb] = long(runs.size());
-  if (!(any_neg && any_pos)) return false;
+  if (!(any_neg && any_pos)) return kNone;
   // Sign regions (4-connected): runs of one sign overlapping in adjacent rows,
   // joined by union-find. A region touching h's border is open; one that
   // never does is enclosed by a cycle of S.
@@ -218,23 +223,30 @@ bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3&
     const long root = find(long(r));
     if (!open[std::size_t(root)] && exits(runs[r])) open[std::size_t(root)] = 1;
   }
-  // Enclosed regions: the sample pair (region, neighbour) farthest from p;
-  // along a row or an overlap of two rows the distance is convex, so only
-  // the ends of runs and overlaps are candidates.
-  double best = -1;
-  Vec3 ba{}, bb{};
-  auto candidate = [&](long i, long j, long i2, long j2) {
-    const Vec3 xa = point(i, j), xb = point(i2, j2);
+  // Enclosed regions: the sample pairs (region, neighbour), farthest from p
+  // first; along a row or an overlap of two rows the distance is convex, so
+  // only the ends of runs and overlaps are candidates. Every point is in h:
+  // a run at its row's end pairs with the exact border point (of the other
+  // sign, or the region would be open).
+  thread_local std::vector<std::pair<double, std::array<Vec3, 2>>> cands;
+  cands.clear();
+  auto add = [&](const Vec3& xa, const Vec3& xb) {
     const Vec3 mid{(xa[0] + xb[0]) / 2, (xa[1] + xb[1]) / 2, (xa[2] + xb[2]) / 2};
-    const double d = dist2(mid, pp);
-    if (d > best) { best = d; ba = xa; bb = xb; }
+    cands.push_back({-dist2(mid, pp), {xa, xb}});
+  };
+  auto candidate = [&](long i, long j, long i2, long j2) { add(point(i, j), point(i2, j2)); };
+  auto border_point = [&](double a, long j) {
+    const double b = b0 + j * step;
+    return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
   };
   for (long j = 0; j < nb; ++j)
     for (long r = row_run[j]; r < row_run[j + 1]; ++r) {
       if (open[std::size_t(find(r))]) continue;
       const Run& x = runs[std::size_t(r)];
-      candidate(x.s, j, x.s - 1, j);  // enclosed: its neighbours are in h
-      candidate(x.e, j, x.e + 1, j);
+      if (x.s > lo[j]) candidate(x.s, j, x.s - 1, j);
+      else add(point(x.s, j), border_point(alo_row[j], j));
+      if (x.e < hi[j]) candidate(x.e, j, x.e + 1, j);
+      else add(point(x.e, j), border_point(ahi_row[j], j));
       for (long j2 : {j - 1, j + 1})
         for (long r2 = row_run[j2]; r2 < row_run[j2 + 1]; ++r2) {
           const Run& y = runs[std::size_t(r2)];
@@ -246,13 +258,20 @@ bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3&
           candidate(e0, j, e0, j2);
         }
     }
-  if (best < 0) return false;
-  out = f.bisect(ba, bb, f.value(ba));
-  return true;
+  // The farthest pair that brackets a root of f (signs are f's own, or F1's
+  // corner sign, which f has in an inactive cube; the check makes sure).
+  std::sort(cands.begin(), cands.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (const auto& c : cands) {
+    const double fa = f.value(c.second[0]), fb = f.value(c.second[1]);
+    if (SurfaceSampler::inside(fa) == SurfaceSampler::inside(fb)) continue;
+    out = f.bisect(c.second[0], c.second[1], fa);
+    return FacetAnswer::kCycle;
+  }
+  return kNone;
 }
 
 Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
-                              std::uint32_t& stamp, int threads, long long& checks) {
+                              std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped) {
   std::vector<Ch> cells;
   // The edges at new vertices, each once (from the smaller id when both
   // ends are new), found from the new vertices' cells.
@@ -279,14 +298,17 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
   // circumcentre is cached by then: EdgeSurface asked for it), so they run
   // on --threads threads; the points go in afterwards, in edge order.
   checks += static_cast<long long>(edges.size());
-  std::vector<char> found(edges.size(), 0);
+  std::vector<FacetAnswer> found(edges.size(), FacetAnswer::kNone);
   std::vector<Vec3> xs(edges.size());
   implicit_detail::parallel_for(long(edges.size()), unsigned(std::max(1, threads)), [&](long a, long b, unsigned) {
     for (long k = a; k < b; ++k) found[std::size_t(k)] = facet_cycle(tr, f, edges[std::size_t(k)].second, xs[std::size_t(k)]);
   });
   Candidates pts;
+  skipped.clear();
   for (std::size_t k = 0; k < edges.size(); ++k)
-    if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(edges[k].second.first->vertex(edges[k].second.second)->point())));
+    if (found[k] == FacetAnswer::kSkipped) skipped.push_back(edges[k].first.first);
+  for (std::size_t k = 0; k < edges.size(); ++k)
+    if (found[k] == FacetAnswer::kCycle) pts.emplace_back(xs[k], dist2(xs[k], vec(edges[k].second.first->vertex(edges[k].second.second)->point())));
   return pts;
 }
 

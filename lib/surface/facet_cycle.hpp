@@ -11,15 +11,18 @@
 namespace imgmesh::surface_detail {
 
 // Does S have a closed curve inside the Voronoi facet dual to edge e = pq?
-// If so, x is a point of it (on S) far from p, e's first vertex.
+// kCycle: x is a point of it (on S) far from p, e's first vertex; kSkipped:
+// the facet is too large to rasterise now (not an answer).
 // Thread-safe once every finite cell's circumcentre is cached.
-bool facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& x);
+enum class FacetAnswer { kNone, kCycle, kSkipped };
+FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& x);
 
 // One pass: FacetCycle on every edge at a vertex of `changed` (ids into
 // `vertices`, null where deleted), each edge once, on `threads` threads.
 // Returns the cycle points found, in edge order; `checks` counts the edges.
-// Uses the vertices' stamps with `stamp` (DELMESH's counter).
+// Uses the vertices' stamps with `stamp` (DELMESH's counter). `skipped`:
+// the first vertex of each edge FacetCycle skipped, to check again.
 Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
-                              std::uint32_t& stamp, int threads, long long& checks);
+                              std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped);
 
 } // namespace imgmesh::surface_detail

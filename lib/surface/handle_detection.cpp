@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <map>
 #include <unordered_map>
 
 namespace imgmesh::surface_detail {
@@ -22,18 +23,37 @@ void voronoi_cell(const Tr& tr, Vh p, std::vector<HalfSpace>& hs) {
     }
 }
 
+namespace {
+
+// A vertex of S n V(p) clipped by marching tetrahedra: an MT vertex {0, i},
+// the point where MT edge i-j meets plane h {1, edge_key(i, j), h}, or where
+// planes h1 < h2 meet inside MT triangle t {2, t, h1 * H + h2}.
+using ClipKey = std::array<long long, 3>;
+struct ClipVertex {
+  Vec3 x;
+  ClipKey key;
+  long long support;  // of the polygon edge to the next vertex: an MT edge key (>= 0) or -1 - plane
+};
+
+} // namespace
+
 // HandleDetection (8.3): is S inside V(p) a disk? S is triangulated by
 // marching tetrahedra on a grid of half the voxel spacing (f sampled only in
 // active cubes; F1 gives the sign elsewhere) in a box around p, twice the
-// reach of p's surface Delaunay balls and doubled while that part of S
-// reaches the box's border; the triangles whose vertices all lie in V(p)
-// approximate S inside V(p), and their Euler characteristic must be 1 (a
-// handle makes it <= -1, a second piece >= 2). If not, q is the vertex there
-// farthest from p, moved onto S (the thesis's choice; a whole component
-// inside V(p) has characteristic 2 and gets a second point). No answer (false)
-// when the box would exceed 300,000 sample points. It costs about a
-// thousand evaluations of f: handle_free() settles most vertices first.
-bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
+// reach of p's surface Delaunay balls, doubled while the piece of S in V(p)
+// reaches a side of the box that is not a face of the grid or of V(p)'s
+// bounding box (S n V(p) lies inside both, so the growth ends at the latest
+// when the box is their intersection).
+// Each triangle is clipped to V(p) (convex: one half-space after the other),
+// the pieces glued along shared MT edges and clipping points, and S n V(p)
+// is a disk iff that complex is connected with Euler characteristic 1: a
+// handle makes it <= -1, a second piece (a disk and an annulus, a whole
+// component) makes it disconnected. If not a disk, q is the MT vertex in
+// V(p) farthest from p, moved onto S and still inside V(p) (the thesis's
+// choice). Undecided when the box would exceed 300,000 sample points, S n
+// V(p) is below the MT resolution, or no such q is found: the caller
+// refines (or counts), never passes.
+HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
   const CubeGrid& grid = f.grid();
   // Runs on several threads: thread-safe adjacency, thread-local scratch.
   thread_local std::vector<Ch> cells;
@@ -49,33 +69,100 @@ bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
   if (reach2 <= 0) reach2 = grid.delta * grid.delta;
   thread_local std::vector<HalfSpace> hs;
   voronoi_cell(tr, p, hs);
-  auto in_cell = [&](const Vec3& x) {
-    for (const HalfSpace& e : hs)
-      if (dot(e.d, x) > e.c) return false;
-    return true;
-  };
-  // The box grows while that part of S reaches its border.
+  // V(p)'s bounding box (its vertices: the circumcentres of the cells at p,
+  // computed here, not from CGAL's lazy cache, as this runs on threads);
+  // unbounded at a hull vertex.
+  Vec3 vlo{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, vhi{HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  bool bounded = true;
+  for (Ch c : cells) bounded = bounded && !tr.is_infinite(c);
+  if (bounded) {
+    vlo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+    vhi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (Ch c : cells) {
+      const Vec3 v = vec(CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point()));
+      for (int i = 0; i < 3; ++i) {
+        vlo[i] = std::min(vlo[i], v[i]);
+        vhi[i] = std::max(vhi[i], v[i]);
+      }
+    }
+  }
+  const long long H = static_cast<long long>(hs.size());
   const long long NX = 2 * grid.n[0], NY = 2 * grid.n[1];
   thread_local std::vector<double> fv;
   thread_local std::unordered_map<long long, int> vid;
-  struct PV { Vec3 x; long long a, b; bool in; };
+  struct PV { Vec3 x; long long a, b; };
   thread_local std::vector<PV> pv;
   thread_local std::vector<std::array<int, 3>> tris;
-  bool border = false;
+  thread_local std::vector<char> tri_border;
+  thread_local std::vector<std::vector<ClipVertex>> polys;
+  thread_local std::vector<ClipVertex> poly, next;
   const double h[3] = {grid.s[0] / 2, grid.s[1] / 2, grid.s[2] / 2};
   auto point = [&](long x, long y, long z) { return Vec3{x * h[0], y * h[1], z * h[2]}; };
+  // The part of MT triangle t inside V(p), as a convex polygon (empty if none).
+  auto clip = [&](int t, std::vector<ClipVertex>& out) {
+    const auto& tv = tris[std::size_t(t)];
+    out.clear();
+    for (int k = 0; k < 3; ++k)
+      out.push_back({pv[std::size_t(tv[k])].x, ClipKey{0, tv[k], 0}, edge_key(tv[k], tv[(k + 1) % 3])});
+    for (long long hi = 0; hi < H && !out.empty(); ++hi) {
+      const HalfSpace& e = hs[std::size_t(hi)];
+      bool any_out = false;
+      for (const ClipVertex& v : out) any_out = any_out || dot(e.d, v.x) > e.c;
+      if (!any_out) continue;
+      next.clear();
+      for (std::size_t m = 0; m < out.size(); ++m) {
+        const ClipVertex& P = out[m];
+        const ClipVertex& Q = out[(m + 1) % out.size()];
+        const bool pin = dot(e.d, P.x) <= e.c, qin = dot(e.d, Q.x) <= e.c;
+        if (pin == qin) {
+          if (pin) next.push_back(P);
+          continue;
+        }
+        // The crossing, from the edge's own ends in a fixed order so that
+        // both triangles at an MT edge compute the same point.
+        Vec3 A = P.x, B = Q.x;
+        ClipKey key;
+        if (P.support >= 0) {
+          const int i = int(P.support >> 32), j = int(P.support & 0xffffffff);
+          A = pv[std::size_t(i)].x;
+          B = pv[std::size_t(j)].x;
+          key = {1, P.support, hi};
+        } else {
+          const long long h0 = -1 - P.support;
+          if (!pin) std::swap(A, B);
+          key = {2, t, std::min(h0, hi) * H + std::max(h0, hi)};
+        }
+        const double sa = dot(e.d, A) - e.c, sb = dot(e.d, B) - e.c;
+        const double u = sa / (sa - sb);
+        const Vec3 X{A[0] + u * (B[0] - A[0]), A[1] + u * (B[1] - A[1]), A[2] + u * (B[2] - A[2])};
+        if (pin) {
+          next.push_back(P);
+          next.push_back({X, key, -1 - hi});  // leaves along the plane
+        } else {
+          next.push_back({X, key, P.support});
+        }
+      }
+      out.swap(next);
+    }
+  };
   for (double scale = 2;; scale *= 2) {
     const double reach = scale * std::sqrt(reach2);
-    // Box in sub-grid indices (spacing s_i / 2).
+    // Box in sub-grid indices (spacing s_i / 2), inside the grid and V(p)'s
+    // bounding box; sides on those do not ask for growth.
     long lo[3], n[3];
+    bool grid_face_lo[3], grid_face_hi[3], whole = true;
     for (int i = 0; i < 3; ++i) {
       const long top = 2 * (grid.n[i] - 1);
-      lo[i] = std::clamp(long(std::floor((pp[i] - reach) / h[i])), 0L, top);
-      const long hi = std::clamp(long(std::ceil((pp[i] + reach) / h[i])), 0L, top);
+      const long cell_lo = std::clamp(long(std::floor(std::max(vlo[i] / h[i], -1.0))), 0L, top - 1);
+      const long cell_hi = std::clamp(long(std::ceil(std::min(vhi[i] / h[i], double(top) + 1))), cell_lo + 1, top);
+      lo[i] = std::clamp(long(std::floor((pp[i] - reach) / h[i])), cell_lo, cell_hi - 1);
+      const long hi = std::clamp(long(std::ceil((pp[i] + reach) / h[i])), lo[i] + 1, cell_hi);
       n[i] = hi - lo[i] + 1;
-      if (n[i] < 2) return false;
+      grid_face_lo[i] = lo[i] == cell_lo;
+      grid_face_hi[i] = hi == cell_hi;
+      whole = whole && grid_face_lo[i] && grid_face_hi[i];
     }
-    if (n[0] * n[1] * n[2] > 300000) return false;
+    if (n[0] * n[1] * n[2] > 300000) return HandleAnswer::kUndecided;
     // Signs and values at the sub-grid points (NaN: not evaluated).
     fv.assign(std::size_t(n[0] * n[1] * n[2]), NAN);
     auto idx = [&](long x, long y, long z) { return std::size_t((x - lo[0]) + n[0] * ((y - lo[1]) + n[1] * (z - lo[2]))); };
@@ -95,11 +182,12 @@ bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
     };
     // Marching tetrahedra (6 tetrahedra around each sub-cube's main diagonal:
     // the same split in every sub-cube, so the pieces fit). Vertices are keyed
-    // by their sub-grid edge; triangles kept only when all three are in V(p).
+    // by their sub-grid edge.
     static const int tets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
     vid.clear();
     pv.clear();
     tris.clear();
+    tri_border.clear();
     auto vertex = [&](long long ka, long long kb, const long (&ca)[3], const long (&cb)[3]) {
       // The edge: its first end and the step to the other (27 directions).
       const long long key = ka * 27 + (cb[0] - ca[0] + 1) + 3 * (cb[1] - ca[1] + 1) + 9 * (cb[2] - ca[2] + 1);
@@ -109,7 +197,7 @@ bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
       const double t = fa / (fa - fb);
       const Vec3 xa = point(ca[0], ca[1], ca[2]), xb = point(cb[0], cb[1], cb[2]);
       const Vec3 x{xa[0] + t * (xb[0] - xa[0]), xa[1] + t * (xb[1] - xa[1]), xa[2] + t * (xb[2] - xa[2])};
-      pv.push_back({x, ka, kb, in_cell(x)});
+      pv.push_back({x, ka, kb});
       vid.emplace(key, int(pv.size()) - 1);
       return int(pv.size()) - 1;
     };
@@ -118,6 +206,14 @@ bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
         for (long x = lo[0]; x + 1 < lo[0] + n[0]; ++x) {
           // Only sub-cubes of active cubes can meet S.
           if (!grid.active(x / 2, y / 2, z / 2)) continue;
+          // Sub-cubes wholly beyond one face of V(p) hold none of S n V(p).
+          bool beyond = false;
+          for (std::size_t e = 0; e < hs.size() && !beyond; ++e) {
+            bool all = true;
+            for (int k = 0; k < 8 && all; ++k) all = dot(hs[e].d, point(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1))) > hs[e].c;
+            beyond = all;
+          }
+          if (beyond) continue;
           long c[8][3];
           double v[8];
           long long key[8];
@@ -128,6 +224,9 @@ bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
             v[k] = f_at(c[k][0], c[k][1], c[k][2]);
             key[k] = c[k][0] + NX * (c[k][1] + NY * c[k][2]);
           }
+          const bool side = (x == lo[0] && !grid_face_lo[0]) || (y == lo[1] && !grid_face_lo[1]) ||
+                            (z == lo[2] && !grid_face_lo[2]) || (x + 2 == lo[0] + n[0] && !grid_face_hi[0]) ||
+                            (y + 2 == lo[1] + n[1] && !grid_face_hi[1]) || (z + 2 == lo[2] + n[2] && !grid_face_hi[2]);
           for (const auto& t : tets) {
             int ins[4], outs[4], ni = 0, no = 0;
             for (int m = 0; m < 4; ++m) (SurfaceSampler::inside(v[t[m]]) ? ins[ni++] : outs[no++]) = t[m];
@@ -136,55 +235,105 @@ bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
               if (key[a] > key[b]) std::swap(a, b);
               return vertex(key[a], key[b], c[a], c[b]);
             };
-            const bool edge_box = x == lo[0] || y == lo[1] || z == lo[2] || x + 2 == lo[0] + n[0] || y + 2 == lo[1] + n[1] || z + 2 == lo[2] + n[2];
-            auto keep = [&](const std::array<int, 3>& tr) {
-              if (!(pv[tr[0]].in && pv[tr[1]].in && pv[tr[2]].in)) return;
-              if (edge_box) border = true;
+            auto add = [&](const std::array<int, 3>& tr) {
               tris.push_back(tr);
+              tri_border.push_back(side);
             };
             if (ni == 1 || no == 1) {
               const int a = ni == 1 ? ins[0] : outs[0];
               const int* o = ni == 1 ? outs : ins;
-              keep({vx(a, o[0]), vx(a, o[1]), vx(a, o[2])});
+              add({vx(a, o[0]), vx(a, o[1]), vx(a, o[2])});
             } else {
               const int q0 = vx(ins[0], outs[0]), q1 = vx(ins[0], outs[1]), q2 = vx(ins[1], outs[1]), q3 = vx(ins[1], outs[0]);
-              keep({q0, q1, q2});
-              keep({q0, q2, q3});
+              add({q0, q1, q2});
+              add({q0, q2, q3});
             }
           }
         }
-    if (tris.empty()) return false;
-    if (!border) break;
-    border = false;
-  }
-  // Euler characteristic V - E + F of the kept triangles.
-  thread_local std::vector<long long> edges;
-  thread_local std::vector<int> verts;
-  edges.clear();
-  verts.clear();
-  for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) {
-      const int a = t[k], b = t[(k + 1) % 3];
-      edges.push_back(edge_key(a, b));
-      verts.push_back(a);
+    // Clip every triangle to V(p); grow the box while a clipped piece lies
+    // in a sub-cube on a side of the box that could still move.
+    polys.resize(std::max(polys.size(), tris.size()));
+    bool border = false;
+    for (std::size_t t = 0; t < tris.size(); ++t) {
+      clip(int(t), polys[t]);
+      border = border || (tri_border[t] && !polys[t].empty());
     }
-  std::sort(edges.begin(), edges.end());
-  std::sort(verts.begin(), verts.end());
-  const long long E = std::unique(edges.begin(), edges.end()) - edges.begin();
-  const long long V = std::unique(verts.begin(), verts.end()) - verts.begin();
-  if (V - E + static_cast<long long>(tris.size()) == 1) return false;
-  // The kept vertex farthest from p, moved onto S along its sub-grid edge.
-  int best = -1;
-  double bd = -1;
-  for (std::size_t k = 0; k < std::size_t(V); ++k) {
-    const double d = dist2(pv[std::size_t(verts[k])].x, pp);
-    if (d > bd) { bd = d; best = verts[k]; }
+    if (!border || whole) break;
   }
-  const PV& b = pv[std::size_t(best)];
+  // The clipped complex: vertices by key, edges by their ends' keys,
+  // components by union-find, Euler characteristic V - E + F.
+  std::map<ClipKey, int> vkey;
+  std::vector<int> parent;
+  std::vector<Vec3> vx;
+  auto find = [&](int x) {
+    while (parent[std::size_t(x)] != x) x = parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
+    return x;
+  };
+  std::vector<std::pair<int, int>> edges;
+  long long faces = 0;
+  for (std::size_t t = 0; t < tris.size(); ++t) {
+    const std::vector<ClipVertex>& pg = polys[t];
+    if (pg.size() < 3) continue;
+    ++faces;
+    int first = -1, prev = -1;
+    for (const ClipVertex& cv : pg) {
+      auto [it, fresh] = vkey.emplace(cv.key, int(vx.size()));
+      if (fresh) {
+        vx.push_back(cv.x);
+        parent.push_back(it->second);
+      }
+      const int id = it->second;
+      if (prev >= 0) edges.emplace_back(std::min(prev, id), std::max(prev, id));
+      else first = id;
+      prev = id;
+    }
+    edges.emplace_back(std::min(prev, first), std::max(prev, first));
+  }
+  if (faces == 0) return HandleAnswer::kUndecided;  // S n V(p) below the MT resolution
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  for (const auto& [a, b] : edges) parent[std::size_t(find(a))] = find(b);
+  long long components = 0;
+  for (std::size_t v = 0; v < vx.size(); ++v) components += find(int(v)) == int(v);
+  const long long chi = static_cast<long long>(vx.size()) - static_cast<long long>(edges.size()) + faces;
+  if (components == 1 && chi == 1) return HandleAnswer::kDisk;
+  // The MT vertex strictly inside V(p) farthest from p whose point of S
+  // (moved along its sub-grid edge) is still strictly inside and not p
+  // itself (10^-3 delta away); none of the first 64: undecided (the caller refines at p's farthest surface centre).
+  auto interior = [&](const Vec3& x) {  // a point on a face is also the neighbour's
+    for (const HalfSpace& e : hs)
+      if (dot(e.d, x) >= e.c - 1e-9 * grid.delta * norm(e.d)) return false;
+    return true;
+  };
+  std::vector<std::pair<double, int>> order;  // (-distance^2, MT vertex)
+  for (const auto& [key, id] : vkey)
+    if (key[0] == 0 && interior(vx[std::size_t(id)])) order.emplace_back(-dist2(vx[std::size_t(id)], pp), int(key[1]));
+  std::sort(order.begin(), order.end());
   auto coords = [&](long long key) { return point(long(key % NX), long((key / NX) % NY), long(key / NX / NY)); };
-  const Vec3 xa = coords(b.a), xb = coords(b.b);
-  q = f.bisect(xa, xb, f.value(xa));
-  return true;
+  for (std::size_t k = 0; k < order.size() && k < 64; ++k) {
+    const PV& b = pv[std::size_t(order[k].second)];
+    const Vec3 xa = coords(b.a), xb = coords(b.b);
+    q = f.bisect(xa, xb, f.value(xa));
+    if (interior(q) && dist2(q, pp) > 1e-6 * grid.delta * grid.delta) return HandleAnswer::kNotDisk;
+  }
+  return HandleAnswer::kUndecided;
+}
+
+// Where HandleDetection cannot decide: the surface centre of p's restricted
+// facet farthest from p (a point of S that shrinks V(p)); false if p has none.
+static bool refinement_point(const Tr& tr, Vh p, Vec3& x) {
+  thread_local std::vector<Ch> cells;
+  cells.clear();
+  tr.incident_cells_threadsafe(p, std::back_inserter(cells));
+  const Vec3 pp = vec(p->point());
+  double best = -1;
+  for (Ch c : cells)
+    for (int i = 0; i < 4; ++i)
+      if (c->vertex(i) != p && (c->facet[i].state & kRestricted) && dist2(facet_center(Facet(c, i)), pp) > best) {
+        best = dist2(facet_center(Facet(c, i)), pp);
+        x = facet_center(Facet(c, i));
+      }
+  return best > 0;
 }
 
 // HandleDetection's cheap certificate (doc/implicit2mesh.md 4.3(a)): the active cubes
@@ -258,26 +407,45 @@ bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p) {
   return static_cast<long long>(cubes.size()) - F + E == 1;
 }
 
-// TOPOLOGY's pass (8.3, after TopoDisk and FacetCycle): the full test
-// (marching tetrahedra, about a thousand evaluations of f) only where the
-// cheap certificate does not settle it.
-Candidates handle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& todo, int threads, HandleChecks& checks) {
+// One vertex: the cheap certificate (when `cheap`), then the full test; an
+// undecided answer asks for a refinement point instead. True: x goes in.
+static bool check_vertex(const Tr& tr, const SurfaceSampler& f, Vh p, bool cheap, Vec3& x, std::atomic<long long>& full,
+                         std::atomic<long long>& undecided, std::atomic<long long>& unresolved) {
+  if (cheap && handle_free(tr, f.grid(), p)) return false;
+  full.fetch_add(1, std::memory_order_relaxed);
+  const HandleAnswer a = handle_detection(tr, f, p, x);
+  if (a == HandleAnswer::kNotDisk) return true;
+  if (a == HandleAnswer::kDisk) return false;
+  undecided.fetch_add(1, std::memory_order_relaxed);
+  if (refinement_point(tr, p, x)) return true;
+  unresolved.fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
+static Candidates check_all(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& todo, bool cheap, int threads,
+                            HandleChecks& checks) {
   std::vector<char> found(todo.size(), 0);
   std::vector<Vec3> xs(todo.size());
-  std::atomic<long long> full{0};
+  std::atomic<long long> full{0}, undecided{0}, unresolved{0};
   implicit_detail::parallel_for(long(todo.size()), unsigned(std::max(1, threads)), [&](long a, long b, unsigned) {
-    for (long k = a; k < b; ++k) {
-      if (handle_free(tr, f.grid(), todo[std::size_t(k)])) continue;
-      full.fetch_add(1, std::memory_order_relaxed);
-      found[std::size_t(k)] = handle_detection(tr, f, todo[std::size_t(k)], xs[std::size_t(k)]);
-    }
+    for (long k = a; k < b; ++k)
+      found[std::size_t(k)] = check_vertex(tr, f, todo[std::size_t(k)], cheap, xs[std::size_t(k)], full, undecided, unresolved);
   });
   checks.full += full.load();
   checks.certified += static_cast<long long>(todo.size()) - full.load();
+  checks.undecided += undecided.load();
+  checks.unresolved += unresolved.load();
   Candidates pts;
   for (std::size_t k = 0; k < todo.size(); ++k)
     if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(todo[k]->point())));
   return pts;
+}
+
+// TOPOLOGY's pass (8.3, after TopoDisk and FacetCycle): the full test
+// (marching tetrahedra, about a thousand evaluations of f) only where the
+// cheap certificate does not settle it.
+Candidates handle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& todo, int threads, HandleChecks& checks) {
+  return check_all(tr, f, todo, true, threads, checks);
 }
 
 bool handle_component_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const std::vector<int>& bad,
@@ -291,15 +459,7 @@ bool handle_component_points(const Tr& tr, const SurfaceSampler& f, const std::v
   // On components of more than kHandleBudget samples (brain tissue of genus
   // ~2600), the fallback's refinement is much cheaper.
   if (todo.size() > kHandleBudget) return false;
-  std::vector<char> found(todo.size(), 0);
-  std::vector<Vec3> xs(todo.size());
-  implicit_detail::parallel_for(long(todo.size()), unsigned(std::max(1, threads)), [&](long a, long b, unsigned) {
-    for (long k = a; k < b; ++k) found[std::size_t(k)] = handle_detection(tr, f, todo[std::size_t(k)], xs[std::size_t(k)]);
-  });
-  pts.clear();
-  for (std::size_t k = 0; k < todo.size(); ++k)
-    if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(todo[k]->point())));
-  checks.full += static_cast<long long>(todo.size());
+  pts = check_all(tr, f, todo, false, threads, checks);
   return true;
 }
 

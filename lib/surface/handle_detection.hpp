@@ -18,17 +18,22 @@ struct HalfSpace {  // d.x <= c
 // V(p): |x - p|^2 <= |x - w|^2 for every Delaunay neighbour w (thread-safe).
 void voronoi_cell(const Tr& tr, Vh p, std::vector<HalfSpace>& hs);
 
-// The full test by marching tetrahedra: true if S inside V(p) is not a
-// disk, with q the point of S there farthest from p. Thread-safe.
-bool handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q);
+// The full test by marching tetrahedra, clipped to V(p): kNotDisk (a
+// handle, or more than one piece) with q a point of S in V(p) far from p;
+// kUndecided when V(p) is too large for the test's box or S n V(p) too small
+// for its resolution. Thread-safe.
+enum class HandleAnswer { kDisk, kNotDisk, kUndecided };
+HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q);
 
 // The cheap certificate from the cube grid alone: true if S inside V(p) is
 // certainly a disk (false: not settled). Thread-safe.
 bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p);
 
 struct HandleChecks {
-  long long full = 0;       // full tests run
-  long long certified = 0;  // settled by handle_free
+  long long full = 0;        // full tests run
+  long long certified = 0;   // settled by handle_free
+  long long undecided = 0;   // full tests without an answer: p's farthest surface centre went in instead
+  long long unresolved = 0;  // of those, with no restricted facet at p to refine (counted, reported)
 };
 
 // TOPOLOGY's pass over `todo` (vertices whose Voronoi cell changed): the

@@ -42,6 +42,8 @@ FunctionSurface::FunctionSurface(const Geometry& grid, Function f)
         samples_(x, y, z) = float(f_(grid.world(double(x), double(y), double(z))));
 }
 
+bool ImplicitSurface::range(const Vec3&, const Vec3&, double&, double&) const { return false; }
+
 double FunctionSurface::value(const Vec3& q) const { return f_(to_world(q)); }
 
 double FunctionSurface::value_gradient(const Vec3& q, Vec3& gradient) const {

@@ -25,6 +25,9 @@ public:
   // g at the voxel centres with the world geometry: f has g's sign there,
   // and f has no zero in a cube whose 8 corners share one sign (thesis F1).
   virtual const FloatImage& samples() const = 0;
+  // An enclosure [lo, hi] of f on the local box [a, b] (a <= b), when the
+  // surface can give one (false: none; the default).
+  virtual bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const;
 
   // Local frame <-> world coordinates.
   Vec3 to_world(const Vec3& q) const;
@@ -59,6 +62,12 @@ public:
   double value(const Vec3& q) const override;
   double value_gradient(const Vec3& q, Vec3& gradient) const override;
   const FloatImage& samples() const override;
+  // f = sum_j w_j f_j with weights w_j >= 0 summing to 1, w_j = 0 beyond
+  // cell j dilated by d, and each f_j multilinear (the trilinear
+  // interpolant of g on cell j, extended): on a box, f lies within the
+  // range of the f_j of the cells whose dilated box meets it, each at the
+  // box's 8 corners.
+  bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const override;
 
 private:
   const PartitionOfUnity& pu_;

@@ -33,11 +33,15 @@ Json RestrictedDelaunayResult::to_json() const {
   st["handle_points_deleted"] = handle_points_deleted;
   st["handle_points_restored"] = handle_points_restored;
   st["topology_fallback_rounds"] = topology_fallback_rounds;
+  st["topology_insertions_refused"] = topology_insertions_refused;
   st["topology_fallback_points"] = inserted("topology_fallback");
   st["facet_cycle_checks"] = facet_cycle_checks;
   st["facet_cycle_passes"] = facet_cycle_passes;
+  st["facet_cycle_skipped"] = facet_cycle_skipped;
   st["handle_detection_checks"] = handle_detection_checks;
   st["handle_detection_certified"] = handle_detection_certified;
+  st["handle_detection_undecided"] = handle_detection_undecided;
+  st["handle_detection_unresolved"] = handle_detection_unresolved;
   st["vertices"] = mesh.points.size();
   st["triangles"] = mesh.triangles.size();
   Json comps = Json::array();
@@ -49,6 +53,7 @@ Json RestrictedDelaunayResult::to_json() const {
   st["closed_manifold"] = topology.closed && topology.manifold;
   st["oriented"] = topology.oriented;
   st["topology_matches"] = topology_ok;
+  if (!topology_ok) st["topology_failure"] = topology_failure;
   st["min_angle_degrees"] = quality.smallest_angle();
   st["max_radius_edge_ratio"] = quality.largest_radius_edge_ratio();
   st["ratio_bound"] = ratio_bound;
@@ -70,7 +75,14 @@ Json RestrictedDelaunayResult::to_json() const {
 std::string RestrictedDelaunayResult::failed_guarantee() const {
   std::string failure;
   if (max_points_hit) failure = "--max-points reached (" + std::to_string(max_points) + " points); ";
-  if (!topology_ok) failure += "topology differs from the voxel boundary bdCA(X); ";
+  if (!topology_ok) failure += "topology differs from the voxel boundary bdCA(X) (" + topology_failure + "); ";
+  if (topology_insertions_refused)
+    failure += std::to_string(topology_insertions_refused) + " TOPOLOGY insertion(s) refused, the first " +
+               topology_insertion_refused_first + "; ";
+  if (facet_cycle_skipped)
+    failure += std::to_string(facet_cycle_skipped) + " Voronoi facet(s) too large for FacetCycle to check; ";
+  if (handle_detection_unresolved)
+    failure += std::to_string(handle_detection_unresolved) + " HandleDetection check(s) undecided with nothing to refine; ";
   if (!ratio_ok) failure += "radius-edge ratio above the bound; ";
   if (!roughness_ok) failure += "roughness above the bound; ";
   if (!distance_ok) failure += "distance to the surface above --max-distance; ";

@@ -35,6 +35,12 @@ struct RestrictedDelaunayOptions {
   int threads = 1;
   bool facet_cycle = true;      // FacetCycle (8.2) on the Voronoi facets of Delaunay edges
   bool seed_deletion = false;   // SAMPLETOPOLOGY as published: TOPOLOGY alone, then delete the seeds (7.6.2)
+  // The certificate's repairs: at most this many rounds of HandleDetection
+  // or the fallback (a counted last resort: TOPOLOGY should leave nothing).
+  int fallback_rounds = 40;
+  // false (tests only): no VorEdge, TopoDisk, FacetCycle or HandleDetection,
+  // so that the certificate fails and the fallback must act.
+  bool topology_steps = true;
   // Called now and then with the phase and the number of points so far.
   std::function<void(const std::string&)> progress;
 };
@@ -44,7 +50,8 @@ struct RestrictedDelaunayResult {
   std::vector<Vec3> centers;        // per triangle: its surface Delaunay ball centre (world)
   MeshTopology topology;            // of mesh
   MeshTopology expected;            // of bdCA(X)
-  bool topology_ok = false;         // closed oriented manifold with expected topology
+  bool topology_ok = false;         // closed oriented manifold, components matched by place one to one, same chi
+  std::string topology_failure;     // when not: each failing component and why
   bool ratio_ok = false, roughness_ok = false, distance_ok = false;
   bool max_points_hit = false;
 
@@ -54,8 +61,16 @@ struct RestrictedDelaunayResult {
   std::vector<std::pair<std::string, long long>> points_inserted;
   long long points_refused = 0, seeds_deleted = 0, handle_points_deleted = 0, handle_points_restored = 0;
   int topology_fallback_rounds = 0;  // certificate rounds that repaired a component
+  // TOPOLOGY points that could not go in (a vertex already): a failed
+  // guarantee, the first one described.
+  long long topology_insertions_refused = 0;
+  std::string topology_insertion_refused_first;
   long long facet_cycle_checks = 0, facet_cycle_passes = 0;
+  long long facet_cycle_skipped = 0;  // edges whose facet the last pass could not rasterise (too large)
   long long handle_detection_checks = 0, handle_detection_certified = 0;  // full tests; settled by the cube grid
+  // Full tests without an answer (refined at p instead), and of those the
+  // ones with nothing to refine: a failed guarantee.
+  long long handle_detection_undecided = 0, handle_detection_unresolved = 0;
   long long function_evaluations = 0;
   // Measured on the output.
   TriangleQualityReport quality;

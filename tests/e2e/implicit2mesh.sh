@@ -139,6 +139,30 @@ case_max_points_exit_3_with_mesh() {
   cmp -s small.off small-stdout.off || fail "exit 3: OUT - differs from the file output"
 }
 
+# The certificate's repairs (tests switch TOPOLOGY off) on a ball and a
+# torus: the fallback restores the topology, counted; with no repair round
+# the mesh is written, status 3, the failing component named.
+python3 - <<'P'
+import math
+b = bytearray()
+for z in range(24):
+    for y in range(24):
+        for x in range(40):
+            ball = (x - 10) ** 2 + (y - 11.5) ** 2 + (z - 11.5) ** 2 <= 36
+            torus = (math.hypot(x - 29, y - 11.5) - 6) ** 2 + (z - 11.5) ** 2 <= 2.5 ** 2
+            b.append(1 if ball or torus else 0)
+open('two.nrrd', 'wb').write(b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 40 24 24\nencoding: raw\n\n" + bytes(b))
+P
+"$BIN/img2wc" -q two.nrrd two-wc.nrrd
+"$BIN/wc2implicit" -q two-wc.nrrd two-f.nrrd
+"$tool" -q two-f.nrrd nt.off --skip-topology-steps --stats nt.json
+"$check" nt.off two-wc.nrrd 2 || fail "fallback: topology not restored"
+grep -q '"topology_fallback_rounds": [1-9]' nt.json || fail "fallback: no round counted"
+grep -q '"topology_fallback_points": [1-9]' nt.json || fail "fallback: no point counted"
+expect_status 3 "$tool" two-f.nrrd nt0.off --skip-topology-steps --fallback-rounds 0
+grep -q "mesh component [0-9]*: euler 1, its bdCA(X) component [0-9]* has 0" err.txt || fail "fallback-rounds 0: $(cat err.txt)"
+[ -s nt0.off ] || fail "fallback-rounds 0: no mesh written"
+
 # share/examples/Makefile on the bundled liver labels: vessels (127, 29
 # components), parenchyma (255) and label 85, one mesh per label, in parallel.
 case_examples_makefile_one_mesh_per_label() {

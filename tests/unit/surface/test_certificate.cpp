@@ -1,5 +1,6 @@
 // The certificate alone: the restricted facets as an oriented mesh, its
-// components matched by place with bdCA(X)'s, and the fallback's points.
+// components matched by place with bdCA(X)'s (match_components), wrong
+// meshes refused, and the fallback's points.
 #include "shapes.hpp"
 #include "surface/certificate.hpp"
 #include "surface/delmesh.hpp"
@@ -10,54 +11,72 @@ using namespace imgmesh;
 using namespace imgmesh::surface_detail;
 
 namespace {
-// A closed triangle mesh: the boundary of a tetrahedron (chi 2) or an
-// n x m torus grid (chi 0), its vertex ids shifted by `first`.
-void add_tetrahedron(SurfaceMesh& mesh) {
-  const int o = int(mesh.points.size());
-  mesh.points.insert(mesh.points.end(), {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
-  for (std::array<int, 3> t : {std::array<int, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}})
-    mesh.triangles.push_back({t[0] + o, t[1] + o, t[2] + o});
+// A ball (x = 9.2) and a solid torus (x = 27.8) placed symmetrically about
+// the grid's centre plane x = 18.5, so mirroring swaps their places.
+constexpr double kBallX = 9.2, kTorusX = 27.8;
+double ball_and_torus(const Vec3& p, bool fill_hole) {
+  const Vec3 a{kBallX, 8.3, 7.2}, c{kTorusX, 9.2, 7.4};
+  double torus = test::torus_f(p, c, 5.2, 2.1);
+  if (fill_hole) {  // the torus with its hole closed by a slab: a sphere's topology
+    const double q = std::max(std::hypot(p[0] - c[0], p[1] - c[1]) - 5.2, 0.0);
+    torus = std::hypot(q, p[2] - c[2]) - 2.1;
+  }
+  return std::min(test::sphere_f(p, a, 3.9), torus);
 }
-void add_torus(SurfaceMesh& mesh, int n = 4, int m = 3) {
-  const int o = int(mesh.points.size());
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const double u = 2 * M_PI * i / n, v = 2 * M_PI * j / m;
-      mesh.points.push_back({(3 + std::cos(v)) * std::cos(u), (3 + std::cos(v)) * std::sin(u), std::sin(v)});
-    }
-  auto id = [&](int i, int j) { return o + (i % n) * m + (j % m); };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      mesh.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      mesh.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-}
-// One mesh component per S component, component k's triangles in order.
-Certificate certificate_of(const SurfaceMesh& mesh, const std::vector<int>& tri_comp) {
-  Certificate cert;
-  cert.mesh = mesh;
-  cert.tri_comp = tri_comp;
-  for (int k : tri_comp)
-    if (cert.mesh_comps[k].empty()) cert.mesh_comps[k].push_back(k);
-  return cert;
+// DELMESH's certificate of the refined mesh of one of the two shapes.
+Certificate refined_certificate(bool fill_hole, ExpectedTopology* expected_out = nullptr) {
+  FunctionSurface s(test::box(38, 19, 15), [&](const Vec3& p) { return ball_and_torus(p, fill_hole); });
+  DelMesh m(s, RestrictedDelaunayOptions{});
+  m.prepare();
+  const ExpectedTopology expected = expected_topology(m.grid());
+  m.seeds();
+  m.refine();
+  if (expected_out) *expected_out = expected;
+  return certify(m.triangulation(), m.vertices().size(), m.grid(), expected);
 }
 } // namespace
 
-TEST_CASE("certificate: components in each other's places are refused though the sorted lists agree") {
-  SurfaceMesh mesh;
-  add_tetrahedron(mesh);  // 4 triangles: mesh component 0
-  add_torus(mesh);        // 24 triangles: mesh component 1
-  std::vector<int> tri_comp(4, 0);
-  tri_comp.resize(28, 1);
-  ExpectedTopology right, swapped;
-  right.by_component = {2, 0};
-  swapped.by_component = {0, 2};
-  const Certificate cert = certificate_of(mesh, tri_comp);
-  CHECK(euler_mismatches(cert, right).empty());
-  CHECK(euler_mismatches(cert, swapped) == std::vector<int>{0, 1});
-  ExpectedTopology genus2;
-  genus2.by_component = {2, -2};
-  CHECK(euler_mismatches(cert, genus2) == std::vector<int>{1});
+TEST_CASE("certificate: refuses the ball and torus in each other's places and a torus meshed as a sphere") {
+  FunctionSurface s(test::box(38, 19, 15), [&](const Vec3& p) { return ball_and_torus(p, false); });
+  CubeGrid grid(s.samples());
+  grid.label();
+  ExpectedTopology expected = expected_topology(grid);
+  REQUIRE(expected.topology.sorted_euler() == std::vector<long long>{0, 2});
+  const Certificate right = refined_certificate(false);
+  REQUIRE(right.ok);
+  REQUIRE(right.topology.sorted_euler() == std::vector<long long>{0, 2});
+  {
+    // Mirrored in x about the grid's centre, faces flipped to stay outward:
+    // the same sorted Euler list, the components in each other's places.
+    Certificate swapped = right;
+    for (Vec3& p : swapped.mesh.points) p[0] = grid.hi[0] - p[0];
+    for (auto& t : swapped.mesh.triangles) std::swap(t[1], t[2]);
+    check_certificate(swapped, grid, expected);
+    CHECK(swapped.topology.sorted_euler() == expected.topology.sorted_euler());
+    CHECK(swapped.topology.closed);
+    CHECK(swapped.topology.oriented);
+    CHECK_FALSE(swapped.ok);
+    CHECK(swapped.bad.size() == 2);  // both S components need repair
+    CHECK(!topology_failure(swapped).empty());
+    // The unmirrored copy, checked the same way, passes.
+    Certificate again = right;
+    check_certificate(again, grid, expected);
+    CHECK(again.ok);
+    CHECK(again.bad.empty());
+    CHECK(topology_failure(again).empty());
+  }
+  {
+    // The torus with its hole closed: a sphere where the torus is.
+    const Certificate filled = refined_certificate(true);
+    REQUIRE(filled.ok);  // against its own voxel boundary
+    REQUIRE(filled.topology.sorted_euler() == std::vector<long long>{2, 2});
+    Certificate wrong = filled;
+    check_certificate(wrong, grid, expected);
+    CHECK_FALSE(wrong.ok);
+    const int torus = grid.comp_at(Vec3{kTorusX + 5.2 + 2.1, 9.2, 7.4});
+    CHECK(wrong.bad == std::vector<int>{torus});
+    CHECK(topology_failure(wrong).find("euler 2") != std::string::npos);
+  }
 }
 
 TEST_CASE("certificate: refuses DELMESH's seeds alone on a ball and a torus, accepts the refined mesh, oriented outward") {
@@ -70,29 +89,28 @@ TEST_CASE("certificate: refuses DELMESH's seeds alone on a ball and a torus, acc
   const ExpectedTopology expected = expected_topology(m.grid());
   REQUIRE(expected.topology.sorted_euler() == std::vector<long long>{0, 2});
   // Each voxel-boundary component counts for the S component where it is.
-  REQUIRE(expected.by_component.size() == 2);
+  REQUIRE(expected.s_component.size() == 2);
   const int ball = m.grid().comp_at(Vec3{a[0] + 3.9, a[1], a[2]});
   const int torus = m.grid().comp_at(Vec3{c[0] + 5.2 + 2.1, c[1], c[2]});
   REQUIRE(ball >= 0);
   REQUIRE(torus >= 0);
   REQUIRE(ball != torus);
-  CHECK(expected.by_component[std::size_t(ball)] == 2);
-  CHECK(expected.by_component[std::size_t(torus)] == 0);
+  for (std::size_t b = 0; b < 2; ++b)
+    CHECK(expected.s_component[b] == (expected.topology.components[b].euler == 2 ? ball : torus));
   m.seeds();
-  const Certificate seeds_only = certify(m.triangulation(), m.vertices().size(), expected);
+  const Certificate seeds_only = certify(m.triangulation(), m.vertices().size(), m.grid(), expected);
   CHECK_FALSE(seeds_only.ok);
   // The fallback's points on a refused component lie on S.
-  const std::vector<Facet> fs = restricted_facets(m.triangulation());
   for (int comp = 0; comp < 2; ++comp) {
-    const Candidates pts = fallback_points(m.triangulation(), m.sampler(), fs, comp);
+    const Candidates pts = fallback_points(m.triangulation(), m.sampler(), comp);
     CHECK(!pts.empty());
     for (const auto& [x, clearance] : pts) CHECK(std::abs(s.value(x)) < 1e-9);
   }
   m.refine();
-  const Certificate cert = certify(m.triangulation(), m.vertices().size(), expected);
+  const Certificate cert = certify(m.triangulation(), m.vertices().size(), m.grid(), expected);
   CHECK(cert.ok);
   CHECK(cert.bad.empty());
-  CHECK(euler_mismatches(cert, expected).empty());
+  CHECK(cert.correspondence.matches());
   CHECK(cert.topology.sorted_euler() == std::vector<long long>{0, 2});
   REQUIRE(cert.facets.size() == cert.mesh.triangles.size());
   // Restricted facets in vertex-id order, each restricted.
@@ -107,4 +125,24 @@ TEST_CASE("certificate: refuses DELMESH's seeds alone on a ball and a torus, acc
   CHECK(g.max_abs_f_at_vertices < 1e-9);
   CHECK(g.quality.largest_radius_edge_ratio() <= o.ratio * (1 + 1e-9));
   CHECK(g.max_roughness <= o.roughness + 1e-9);
+}
+
+TEST_CASE("certificate: the fallback acts when TOPOLOGY is skipped, and its failure names the component") {
+  FunctionSurface s(test::box(38, 19, 15), [&](const Vec3& p) { return ball_and_torus(p, false); });
+  RestrictedDelaunayOptions o;
+  o.topology_steps = false;  // QUALITY and SMOOTH alone leave the topology wrong
+  const RestrictedDelaunayResult r = restricted_delaunay_mesh(s, o);
+  CHECK(r.topology_fallback_rounds > 0);
+  CHECK(r.inserted("topology_fallback") > 0);
+  CHECK(r.inserted("vor_edge") + r.inserted("topo_disk") + r.inserted("facet_cycle") + r.inserted("handle_detection") == 0);
+  CHECK(r.topology_ok);
+  CHECK(r.topology.sorted_euler() == std::vector<long long>{0, 2});
+  CHECK(r.failed_guarantee().empty());
+  // No repair round allowed: the certificate fails and says where.
+  o.fallback_rounds = 0;
+  const RestrictedDelaunayResult f = restricted_delaunay_mesh(s, o);
+  CHECK(f.topology_fallback_rounds == 0);
+  CHECK_FALSE(f.topology_ok);
+  CHECK(f.failed_guarantee().find("component") != std::string::npos);
+  CHECK(f.to_json().at("topology_failure").string() == f.topology_failure);
 }

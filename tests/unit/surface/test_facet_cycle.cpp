@@ -35,14 +35,14 @@ TEST_CASE("FacetCycle: a small sphere or a thin torus around the middle of pq is
   DelMesh m(s, o);
   const Tr::Edge pq = edge_pq(m, kP, kQ, kFar);
   Vec3 x;
-  REQUIRE(facet_cycle(m.triangulation(), m.sampler(), pq, x));
+  REQUIRE(facet_cycle(m.triangulation(), m.sampler(), pq, x) == FacetAnswer::kCycle);
   CHECK(std::abs(s.value(x)) < 1e-9);                                  // on S
   CHECK(std::abs(dist2(x, kP) - dist2(x, kQ)) < 1e-6 * dist2(x, kP));  // on the bisector
   // The torus lies in the bisector plane: S meets it in two circles.
   FunctionSurface t(test::box(21, 21, 21), [&](const Vec3& y) { return test::torus_f(y, kMid, 4.5, 1.0); });
   DelMesh mt(t, o);
   const Tr::Edge pq2 = edge_pq(mt, kP, kQ, kFar);
-  REQUIRE(facet_cycle(mt.triangulation(), mt.sampler(), pq2, x));
+  REQUIRE(facet_cycle(mt.triangulation(), mt.sampler(), pq2, x) == FacetAnswer::kCycle);
   CHECK(std::abs(t.value(x)) < 1e-9);
   CHECK(std::abs(x[2] - kMid[2]) < 1e-6);
 }
@@ -59,17 +59,17 @@ TEST_CASE("FacetCycle: no cycle where S crosses the facet to its border, or miss
   DelMesh m(sheets, o);
   const Tr::Edge pq = edge_pq(m, kP, kQ, ring);
   Vec3 x;
-  CHECK_FALSE(facet_cycle(m.triangulation(), m.sampler(), pq, x));
+  CHECK(facet_cycle(m.triangulation(), m.sampler(), pq, x) == FacetAnswer::kNone);
   // The same sheets with the whole plane as pq's facet: their cross-section
   // is a closed rectangle, a cycle.
   DelMesh all(sheets, o);
   const Tr::Edge pq_all = edge_pq(all, kP, kQ, kFar);
-  CHECK(facet_cycle(all.triangulation(), all.sampler(), pq_all, x));
+  CHECK(facet_cycle(all.triangulation(), all.sampler(), pq_all, x) == FacetAnswer::kCycle);
   // A ball beside the plane: S does not meet the facet.
   FunctionSurface ball(test::box(21, 21, 21), [&](const Vec3& y) { return test::sphere_f(y, Vec3{10, 10, 15}, 2.5); });
   DelMesh mb(ball, o);
   const Tr::Edge pq_ball = edge_pq(mb, kP, kQ, kFar);
-  CHECK_FALSE(facet_cycle(mb.triangulation(), mb.sampler(), pq_ball, x));
+  CHECK(facet_cycle(mb.triangulation(), mb.sampler(), pq_ball, x) == FacetAnswer::kNone);
 }
 
 TEST_CASE("FacetCycle's pass: on a thin torus after the seeds it finds cycle points on S, each in its facet") {
@@ -83,7 +83,9 @@ TEST_CASE("FacetCycle's pass: on a thin torus after the seeds it finds cycle poi
   for (Vh v : m.vertices()) all.add(v->info().id);
   std::uint32_t stamp = 1000;
   long long checks = 0;
-  const Candidates pts = facet_cycle_points(m.triangulation(), m.sampler(), m.vertices(), all, stamp, 2, checks);
+  std::vector<int> skipped;
+  const Candidates pts = facet_cycle_points(m.triangulation(), m.sampler(), m.vertices(), all, stamp, 2, checks, skipped);
+  CHECK(skipped.empty());
   CHECK(checks == long(m.triangulation().number_of_finite_edges()));  // every edge once
   REQUIRE(!pts.empty());
   for (const auto& [x, clearance2] : pts) {

@@ -29,7 +29,7 @@ TEST_CASE("HandleDetection: a whole torus inside V(p) has a handle; the point re
   const Vh p = lone_vertex(m, Vec3{c[0] + 9.6, c[1], c[2]});  // on the torus' outer equator
   Vec3 q;
   CHECK_FALSE(handle_free(m.triangulation(), m.grid(), p));
-  REQUIRE(handle_detection(m.triangulation(), m.sampler(), p, q));
+  REQUIRE(handle_detection(m.triangulation(), m.sampler(), p, q) == HandleAnswer::kNotDisk);
   CHECK(std::abs(s.value(q)) < 1e-9);
   CHECK(m.triangulation().nearest_vertex(Point(q[0], q[1], q[2])) == p);
   CHECK(std::sqrt(dist2(q, vec(p->point()))) > 15);  // the far side of the ring
@@ -48,7 +48,7 @@ TEST_CASE("HandleDetection: a whole sphere inside V(p) is a second piece, not a 
   DelMesh m(s, o);
   const Vh p = lone_vertex(m, Vec3{c[0], c[1], c[2] + 6.3});
   Vec3 q;
-  REQUIRE(handle_detection(m.triangulation(), m.sampler(), p, q));
+  REQUIRE(handle_detection(m.triangulation(), m.sampler(), p, q) == HandleAnswer::kNotDisk);
   CHECK(std::abs(s.value(q)) < 1e-9);
   CHECK(q[2] < c[2] - 5);  // near the opposite pole
 }
@@ -64,7 +64,7 @@ TEST_CASE("HandleDetection after DELMESH on a ball: every cell's piece of S is a
   int certified = 0;
   for (Vh v : m.vertices()) {
     Vec3 q;
-    CHECK_FALSE(handle_detection(m.triangulation(), m.sampler(), v, q));
+    CHECK(handle_detection(m.triangulation(), m.sampler(), v, q) == HandleAnswer::kDisk);
     certified += handle_free(m.triangulation(), m.grid(), v);
   }
   CHECK(certified > 0);
@@ -78,4 +78,65 @@ TEST_CASE("HandleDetection after DELMESH on a ball: every cell's piece of S is a
   REQUIRE(handle_component_points(m.triangulation(), m.sampler(), m.vertices(), {0}, 2, all, pts));
   CHECK(pts.empty());
   CHECK(all.full == long(m.vertices().size()));
+}
+
+TEST_CASE("HandleDetection: a cell holding a disk and an annulus is not a disk (their Euler characteristics sum to 1)") {
+  // V(p) = the cube [12, 28]^3 (p and its six neighbours 16 away). S in it:
+  // the top of a slab (z = 16: a disk) and a tube along x (y = 20, z = 23,
+  // radius 2.5: an annulus), both closed well outside the cube.
+  auto fn = [](const Vec3& x) {
+    const double along = std::clamp(x[0], 5.0, 35.0);
+    const double tube = std::sqrt((x[0] - along) * (x[0] - along) + (x[1] - 20) * (x[1] - 20) + (x[2] - 23) * (x[2] - 23)) - 2.5;
+    const double slab = std::max({std::abs(x[0] - 20) - 15, std::abs(x[1] - 20) - 15, x[2] - 16, 5 - x[2]});
+    return std::min(tube, slab);
+  };
+  FunctionSurface s(test::box(41, 41, 41), fn);
+  DelMesh m(s, RestrictedDelaunayOptions{});
+  m.prepare();
+  for (const Vec3& x : {Vec3{-900, -900, -900}, Vec3{900, -800, -700}, Vec3{100, 900, -600}, Vec3{50, 80, 950}})
+    REQUIRE(m.insert(x, kSeed));
+  const Vec3 c{20, 20, 20};
+  for (int a = 0; a < 3; ++a)
+    for (double sgn : {-1.0, 1.0}) {
+      Vec3 x = c;
+      x[a] += sgn * 16;
+      REQUIRE(m.insert(x, kSeed));
+    }
+  REQUIRE(m.insert(c, kSeed));
+  const Vh p = m.vertices().back();
+  Vec3 q;
+  CHECK(handle_detection(m.triangulation(), m.sampler(), p, q) == HandleAnswer::kNotDisk);
+  CHECK(std::abs(s.value(q)) < 1e-9);
+  INFO("q " << q[0] << " " << q[1] << " " << q[2] << " nearest " << m.triangulation().nearest_vertex(Point(q[0], q[1], q[2]))->point());
+  CHECK(m.triangulation().nearest_vertex(Point(q[0], q[1], q[2])) == p);
+  // Only the slab: one disk.
+  FunctionSurface d(test::box(41, 41, 41), [](const Vec3& x) {
+    return std::max({std::abs(x[0] - 20) - 15, std::abs(x[1] - 20) - 15, x[2] - 16, 5 - x[2]});
+  });
+  DelMesh md(d, RestrictedDelaunayOptions{});
+  md.prepare();
+  for (const Vec3& x : {Vec3{-900, -900, -900}, Vec3{900, -800, -700}, Vec3{100, 900, -600}, Vec3{50, 80, 950}})
+    REQUIRE(md.insert(x, kSeed));
+  for (int a = 0; a < 3; ++a)
+    for (double sgn : {-1.0, 1.0}) {
+      Vec3 x = c;
+      x[a] += sgn * 16;
+      REQUIRE(md.insert(x, kSeed));
+    }
+  REQUIRE(md.insert(c, kSeed));
+  CHECK(handle_detection(md.triangulation(), md.sampler(), md.vertices().back(), q) == HandleAnswer::kDisk);
+}
+
+TEST_CASE("HandleDetection: the box stops growing at the grid's faces (tissue one voxel from the border)") {
+  // A ball filling an 11^3 grid but for the border samples (S within half a
+  // voxel of the border, in the box's outer sub-cubes): V(p) holds the
+  // whole grid and S reaches every side of the box once it is the grid.
+  const Vec3 c{5, 5, 5};
+  FunctionSurface s(test::box(11, 11, 11), [&](const Vec3& x) { return test::sphere_f(x, c, 4.6); });
+  DelMesh m(s, RestrictedDelaunayOptions{});
+  const Vh p = lone_vertex(m, Vec3{c[0], c[1], c[2] + 4.6});
+  Vec3 q;
+  REQUIRE(handle_detection(m.triangulation(), m.sampler(), p, q) == HandleAnswer::kNotDisk);  // a whole sphere
+  CHECK(std::abs(s.value(q)) < 1e-9);
+  CHECK(q[2] < c[2] - 3);
 }

@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include <functional>
+#include <random>
 
 using namespace imgmesh;
 
@@ -141,4 +142,36 @@ TEST_CASE("pipeline: seed deletion (7.6.2) keeps the topology, also of a one-vox
   }), 2, true);
   CHECK(r.got.sorted_euler() == std::vector<long long>{0, 2, 2});
   CHECK(r.result.to_json().at("seeds_deleted").number() > 0);
+}
+
+TEST_CASE("partition of unity: the enclosure of f on a box holds f everywhere in it, and excludes 0 away from S") {
+  BinaryImage raw = make(28, 24, 16, [](double x, double y, double z) { return torus(x, y, z, 13.6, 11.8, 7.7, 7) < 2.8; });
+  raw.spacing = {0.8, 1.2, 2.0};  // anisotropic: d differs per axis
+  const BinaryImage wc = make_well_composed(raw).image;
+  PartitionOfUnity pu = implicit_from_well_composed(wc);
+  PartitionOfUnitySurface s(pu);
+  std::mt19937 rng(7);
+  const Vec3 top{27 * 0.8, 23 * 1.2, 15 * 2.0};
+  std::uniform_real_distribution<double> u01(0, 1);
+  int excluded = 0, boxes = 0;
+  for (int k = 0; k < 3000; ++k) {
+    Vec3 a, b;
+    const double size = std::pow(10.0, -2 + 2.5 * u01(rng));  // 0.01 .. 3 world units
+    for (int i = 0; i < 3; ++i) {
+      a[i] = u01(rng) * top[i];
+      b[i] = std::min(top[i], a[i] + size * u01(rng));
+    }
+    double lo, hi;
+    REQUIRE(s.range(a, b, lo, hi));
+    REQUIRE(lo <= hi);
+    ++boxes;
+    excluded += lo > 0 || hi < 0;
+    for (int m = 0; m < 64; ++m) {  // corners, then random points
+      Vec3 x;
+      for (int i = 0; i < 3; ++i) x[i] = m < 8 ? ((m >> i) & 1 ? b[i] : a[i]) : a[i] + u01(rng) * (b[i] - a[i]);
+      const double v = s.value(x);
+      if (!(v >= lo && v <= hi)) FAIL("f " << v << " outside [" << lo << ", " << hi << "] at box " << k);
+    }
+  }
+  CHECK(excluded > boxes / 3);  // not vacuous: most of the grid is far from S
 }
