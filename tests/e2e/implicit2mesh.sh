@@ -142,7 +142,8 @@ case_max_points_exit_3_with_mesh() {
 # The certificate's repairs (tests switch TOPOLOGY off) on a ball and a
 # torus: the fallback restores the topology, counted; with no repair round
 # the mesh is written, status 3, the failing component named.
-python3 - <<'P'
+case_fallback_repairs_and_exit_3_naming_the_component() {
+  python3 - <<'P'
 import math
 b = bytearray()
 for z in range(24):
@@ -153,15 +154,16 @@ for z in range(24):
             b.append(1 if ball or torus else 0)
 open('two.nrrd', 'wb').write(b"NRRD0004\ntype: uchar\ndimension: 3\nsizes: 40 24 24\nencoding: raw\n\n" + bytes(b))
 P
-"$BIN/img2wc" -q two.nrrd two-wc.nrrd
-"$BIN/wc2implicit" -q two-wc.nrrd two-f.nrrd
-"$tool" -q two-f.nrrd nt.off --skip-topology-steps --stats nt.json
-"$check" nt.off two-wc.nrrd 2 || fail "fallback: topology not restored"
-grep -q '"topology_fallback_rounds": [1-9]' nt.json || fail "fallback: no round counted"
-grep -q '"topology_fallback_points": [1-9]' nt.json || fail "fallback: no point counted"
-expect_status 3 "$tool" two-f.nrrd nt0.off --skip-topology-steps --fallback-rounds 0
-grep -q "mesh component [0-9]*: euler 1, its bdCA(X) component [0-9]* has 0" err.txt || fail "fallback-rounds 0: $(cat err.txt)"
-[ -s nt0.off ] || fail "fallback-rounds 0: no mesh written"
+  expect 0 img2wc two.nrrd two-wc.nrrd -q
+  expect 0 wc2implicit two-wc.nrrd two-f.nrrd -q
+  expect 0 implicit2mesh two-f.nrrd nt.off "${LOOSE[@]}" --roughness 60 --skip-topology-steps --stats nt.json
+  surface nt.off two-wc.nrrd 2
+  [[ $(json nt.json topology_fallback_rounds) -ge 1 ]] || fail "fallback: no round counted"
+  [[ $(json nt.json topology_fallback_points) -ge 1 ]] || fail "fallback: no point counted"
+  expect 3 implicit2mesh two-f.nrrd nt0.off "${LOOSE[@]}" --roughness 60 --skip-topology-steps --fallback-rounds 0
+  grep -q "mesh component [0-9]*: euler 1, its bdCA(X) component [0-9]* has 0" err.txt || fail "fallback-rounds 0: $(cat err.txt)"
+  [[ -s nt0.off ]] || fail "fallback-rounds 0: no mesh written"
+}
 
 # share/examples/Makefile on the bundled liver labels: vessels (127, 29
 # components), parenchyma (255) and label 85, one mesh per label, in parallel.
