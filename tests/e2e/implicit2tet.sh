@@ -9,9 +9,9 @@
 source "$(dirname "$0")/lib.sh"
 
 bunny_wc() { expect 0 img2wc "$DATA/bunny00-96.nrrd" bunny-wc.nrrd -q; }
-bunny_f() { expect 0 wc2implicit "$(shared bunny-wc.nrrd bunny_wc)" bunny-f.nrrd -q; }
+bunny_f() { local wc; wc=$(shared bunny-wc.nrrd bunny_wc) && expect 0 wc2implicit "$wc" bunny-f.nrrd -q; }
 # One mesh a format, made once for the cases that read it.
-tet() { expect 0 implicit2tet "$(shared bunny-f.nrrd bunny_f)" "$@" -q; }
+tet() { local f; f=$(shared bunny-f.nrrd bunny_f) && expect 0 implicit2tet "$f" "$@" -q; }
 bunny_msh() { tet bunny.msh --stats stats.json; }
 bunny22_msh() { tet bunny22.msh --msh-version 2.2; }
 bunny_mesh() { tet bunny.mesh; }

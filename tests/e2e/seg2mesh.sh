@@ -10,10 +10,10 @@ CHECK=$BIN/../tests/unit/surface/surface_check
 
 labels_image() { python3 "$E2E/labels_image.py" labels.nrrd; }
 labels() { shared labels.nrrd labels_image; }
-all_ply() { expect 0 seg2mesh "$(labels)" all.ply --jobs 2 --stats s.json -q; }
-all_msh() { expect 0 seg2mesh "$(labels)" all.msh --jobs 1 -q; }
-all1_ply() { expect 0 seg2mesh "$(labels)" all1.ply --jobs 1 -q; }
-label_wc() { expect 0 img2wc "$(labels)" --label "$1" "wc$1.nrrd" -q; }
+all_ply() { local l; l=$(labels) && expect 0 seg2mesh "$l" all.ply --jobs 2 --stats s.json -q; }
+all_msh() { local l; l=$(labels) && expect 0 seg2mesh "$l" all.msh --jobs 1 -q; }
+all1_ply() { local l; l=$(labels) && expect 0 seg2mesh "$l" all1.ply --jobs 1 -q; }
+label_wc() { local l; l=$(labels) && expect 0 img2wc "$l" --label "$1" "wc$1.nrrd" -q; }
 # here FILE FUNC: the shared FILE linked into the case's folder.
 here() { local f; f=$(shared "$@") && ln -sf "$f" "$1"; }
 

@@ -22,7 +22,7 @@ image_f() {
   python3 "$E2E/labels_image.py" labels.nrrd || return
   expect 0 img2wc labels.nrrd --label 1 --label 5 wc.nrrd -q && expect 0 wc2implicit wc.nrrd f.nrrd -q
 }
-M() { expect 0 implicit2mesh "$(shared f.nrrd image_f)" -q --threads 1 "$@"; }
+M() { local f; f=$(shared f.nrrd image_f) && expect 0 implicit2mesh "$f" -q --threads 1 "$@"; }
 reference() { M ref.off; }
 # Every format with and without --normals (plain-*).
 outputs() {

@@ -10,10 +10,10 @@ source "$(dirname "$0")/lib.sh"
 # shared folder (poly2tri's .node and .poly land there beside its .ele).
 v_poly() { expect 0 img2poly "$DATA/VentricleModel.png" v.poly --svg v.svg -q; }
 w_poly() { expect 0 img2poly "$DATA/VentricleModel.png" w.poly --svg w.svg --svg-whole -q; }
-v_tri() { expect 0 poly2tri "$(shared v.poly v_poly)" v.1.ele --svg v.1.svg -q; }
-w_tri() { expect 0 poly2tri "$(shared v.poly v_poly)" w.1.ele --svg w.1.svg --svg-whole -q; }
-v_quad() { expect 0 tri2quad "$(shared v.1.ele v_tri)" v.q.ele --svg v.q.svg -q; }
-v_smooth() { expect 0 quadsmooth "$(shared v.q.ele v_quad)" v.qs.ele --svg v.qs.svg -q; }
+v_tri() { local p; p=$(shared v.poly v_poly) && expect 0 poly2tri "$p" v.1.ele --svg v.1.svg -q; }
+w_tri() { local p; p=$(shared v.poly v_poly) && expect 0 poly2tri "$p" w.1.ele --svg w.1.svg --svg-whole -q; }
+v_quad() { local t; t=$(shared v.1.ele v_tri) && expect 0 tri2quad "$t" v.q.ele --svg v.q.svg -q; }
+v_smooth() { local q; q=$(shared v.q.ele v_quad) && expect 0 quadsmooth "$q" v.qs.ele --svg v.qs.svg -q; }
 # here FILE FUNC...: shared files linked into the case's folder, FILE's
 # picture FILE%.*.svg (v.1.ele: v.1.svg) with it.
 here() {
