@@ -1,4 +1,4 @@
-#!/bin/bash
+#!/usr/bin/env bash
 # implicit2tet end to end: usage errors and bad input leave no file; the
 # bundled bunny through the real pipeline into every format, each read back
 # by meshinfo (conformity, boundary topology by place against the
@@ -6,55 +6,72 @@
 # its regions; the volume at a quarter-voxel distance bound against the
 # foreground's voxel volume; exit 3 with the mesh written when --max-points
 # stops it.
-set -euo pipefail
-mkdir -p "$TMP"
-cd "$TMP"
-rm -rf ./*
-tool="$BIN/implicit2tet"
-fail() { echo "FAIL: $*" >&2; exit 1; }
-[ -x "$tool" ] || fail "no $tool"
+source "$(dirname "$0")/lib.sh"
 
-expect_status() {  # expect_status CODE command...
-  local want=$1; shift
-  set +e; "$@" 2>err.txt; local got=$?; set -e
-  [ "$got" = "$want" ] || { cat err.txt >&2; fail "exit $got, want $want: $*"; }
-  if [ "$want" != 0 ] && [ "$want" != 3 ]; then
-    [ "$(wc -l < err.txt)" = 1 ] || { cat err.txt >&2; fail "not one line on stderr: $*"; }
-    grep -q '^implicit2tet: ' err.txt || fail "message does not start with the tool's name: $*"
-  fi
+bunny_wc() { expect 0 img2wc "$DATA/bunny00-96.nrrd" bunny-wc.nrrd -q; }
+bunny_f() { local wc; wc=$(shared bunny-wc.nrrd bunny_wc) && expect 0 wc2implicit "$wc" bunny-f.nrrd -q; }
+# One mesh a format, made once for the cases that read it.
+tet() { local f; f=$(shared bunny-f.nrrd bunny_f) && expect 0 implicit2tet "$f" "$@" -q; }
+bunny_msh() { tet bunny.msh --stats stats.json; }
+bunny22_msh() { tet bunny22.msh --msh-version 2.2; }
+bunny_mesh() { tet bunny.mesh; }
+bunny_vtu() { tet bunny.vtu; }
+bunny_inp() { tet bunny.inp; }
+# mesh NAME: the shared mesh NAME (bunny.msh: bunny_msh) linked into the case's folder.
+mesh() { local f; f=$(shared "$1" "$(tr . _ <<< "$1")") && ln -sf "$f" "$1"; }
+
+# refuses STATUS ARGS...: implicit2tet exits STATUS with one stderr line.
+refuses() {
+  OUT=stdout.txt expect "$@" || return
+  [[ $(wc -l < err.txt) == 1 ]] || fail "implicit2tet ${*:2}: not one line on stderr: $(cat err.txt)"
+}
+no_output_left() {
+  local left; left=$(ls | grep -v -e '^err.txt$' -e '^stdout.txt$' -e '^empty.nrrd$')
+  [[ -z $left ]] || fail "output written on error: $left"
 }
 
-"$BIN/img2wc" -q "$DATA/bunny00-96.nrrd" bunny-wc.nrrd
-"$BIN/wc2implicit" -q bunny-wc.nrrd bunny-f.nrrd
+case_usage_errors_exit_2_without_output() {
+  local f; f=$(shared bunny-f.nrrd bunny_f) || return
+  refuses 2 implicit2tet
+  refuses 2 implicit2tet "$f" out.stl
+  refuses 2 implicit2tet "$f" -
+  refuses 2 implicit2tet "$f" out.msh --cell-ratio 1.5
+  refuses 2 implicit2tet "$f" out.msh --cell-size -1
+  refuses 2 implicit2tet "$f" out.msh --msh-version 3.0
+  refuses 2 implicit2tet "$f" out.msh --ratio 1.1
+  no_output_left
+}
 
-expect_status 2 "$tool"
-expect_status 2 "$tool" bunny-f.nrrd out.stl
-expect_status 2 "$tool" bunny-f.nrrd -
-expect_status 2 "$tool" bunny-f.nrrd out.msh --cell-ratio 1.5
-expect_status 2 "$tool" bunny-f.nrrd out.msh --cell-size -1
-expect_status 2 "$tool" bunny-f.nrrd out.msh --msh-version 3.0
-expect_status 2 "$tool" bunny-f.nrrd out.msh --ratio 1.1
-expect_status 1 "$tool" missing.nrrd out.msh
-expect_status 1 "$tool" "$DATA/bunny00-96.nrrd" out.msh   # not an implicit function file
-: > empty.nrrd
-expect_status 1 "$tool" empty.nrrd out.msh
-expect_status 1 "$tool" bunny-f.nrrd no/such/folder/out.msh
-ls out.* 2>/dev/null && fail "output written on error"
+case_bad_input_exit_1_without_output() {
+  local f; f=$(shared bunny-f.nrrd bunny_f) || return
+  refuses 1 implicit2tet missing.nrrd out.msh
+  refuses 1 implicit2tet "$DATA/bunny00-96.nrrd" out.msh   # not an implicit function file
+  : > empty.nrrd
+  refuses 1 implicit2tet empty.nrrd out.msh
+  refuses 1 implicit2tet "$f" no/such/folder/out.msh
+  no_output_left
+}
 
-# Every format; the default .msh with --stats.
-"$tool" -q bunny-f.nrrd bunny.msh --stats stats.json
-grep -q '"topology_matches": true' stats.json || fail "stats: topology_matches"
-grep -q '"boundary_is_restricted_surface": true' stats.json || fail "stats: the boundary is not the certified surface"
-"$tool" -q bunny-f.nrrd bunny22.msh --msh-version 2.2
-head -2 bunny22.msh | grep -q '^2.2 0 8' || fail "--msh-version 2.2: not a 2.2 file"
-head -2 bunny.msh | grep -q '^4.1 0 8' || fail "default .msh: not 4.1"
-for e in mesh vtu inp; do "$tool" -q bunny-f.nrrd "bunny.$e"; done
+case_default_msh_is_4_1_with_certified_stats() {
+  mesh bunny.msh || return
+  local stats; stats=$(dirname "$(readlink bunny.msh)")/stats.json
+  [[ $(json "$stats" topology_matches) == True ]] || fail "stats: topology_matches"
+  [[ $(json "$stats" boundary_is_restricted_surface) == True ]] || fail "stats: the boundary is not the certified surface"
+  head -2 bunny.msh | grep -q '^4.1 0 8' || fail "default .msh: not 4.1"
+}
 
-# meshinfo reads them back: conforming, positive, the boundary matching
+case_msh_version_2_2_followed() {
+  mesh bunny22.msh || return
+  head -2 bunny22.msh | grep -q '^2.2 0 8' || fail "--msh-version 2.2: not a 2.2 file"
+}
+
+# meshinfo reads it back: conforming, positive, the boundary matching
 # bdCA(X) by place, radius-edge ratios within 2.
-for f in bunny.msh bunny22.msh bunny.mesh bunny.vtu; do
-  "$BIN/meshinfo" "$f" --image bunny-wc.nrrd --json > info.json || fail "$f: meshinfo refuses it or it does not match bdCA(X)"
-  python3 - info.json "$f" <<'PY' || fail "$f: meshinfo's report"
+read_back() {
+  mesh "$1" || return
+  OUT=info.json expect 0 meshinfo "$1" --image "$(shared bunny-wc.nrrd bunny_wc)" --json ||
+    { fail "$1: meshinfo refuses it or it does not match bdCA(X)"; return; }
+  python3 - info.json "$1" > report.txt 2>&1 <<'PY' || fail "$1: meshinfo's report: $(cat report.txt)"
 import json, sys
 r = json.load(open(sys.argv[1]))
 t = r["tetrahedra"]
@@ -65,27 +82,35 @@ assert t["min_dihedral_degrees"] >= 10, t["min_dihedral_degrees"]  # slivers ref
 assert t["tetrahedra"] > 1000 and t["boundary_triangles_in_file"] == r["faces"], (t["tetrahedra"], r["faces"])
 assert list(t["volume_by_region"]) == ["1"]
 PY
-done
+}
+case_msh_read_back_conforming_matching_the_image() { read_back bunny.msh; }
+case_msh22_read_back_conforming_matching_the_image() { read_back bunny22.msh; }
+case_mesh_read_back_conforming_matching_the_image() { read_back bunny.mesh; }
+case_vtu_read_back_conforming_matching_the_image() { read_back bunny.vtu; }
 
-# meshinfo refuses a mesh whose tetrahedron is inverted (exit 3).
-printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 3 2 4 1\nEnd\n' > inverted.mesh
-set +e; "$BIN/meshinfo" inverted.mesh > /dev/null 2> err.txt; got=$?; set -e
-[ "$got" = 3 ] || fail "meshinfo: an inverted tetrahedron gives exit $got, not 3"
+case_meshinfo_inverted_tetrahedron_exit_3() {
+  printf 'MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\nTetrahedra\n1\n1 3 2 4 1\nEnd\n' > inverted.mesh
+  expect 3 meshinfo inverted.mesh
+}
 
 # The volume at a quarter-voxel distance bound (voxels of 0.0103977):
 # within 3% of the foreground's voxel volume.
-"$tool" -q bunny-f.nrrd bunny-d.mesh --max-distance 0.0026
-"$BIN/meshinfo" bunny-d.mesh --image bunny-wc.nrrd --json > info.json
-python3 - info.json <<'PY' || fail "volume not within 3% of the voxel volume"
+case_volume_within_3_percent_at_quarter_voxel_bound() {
+  tet bunny-d.mesh --max-distance 0.0026 || return
+  OUT=info.json expect 0 meshinfo bunny-d.mesh --image "$(shared bunny-wc.nrrd bunny_wc)" --json || return
+  python3 - info.json > report.txt 2>&1 <<'PY' || fail "volume not within 3% of the voxel volume: $(cat report.txt)"
 import json, sys
 t = json.load(open(sys.argv[1]))["tetrahedra"]
 v, fg = t["volume"], t["foreground_voxel_volume"]
 assert abs(v - fg) <= 0.03 * fg, (v, fg)
 PY
+}
 
 # python3-meshio (the system python, where it is installed) reads every format with its regions.
-if /usr/bin/python3 -c 'import meshio' 2>/dev/null; then
-  /usr/bin/python3 - <<'PY' || fail "meshio reads the outputs differently"
+case_meshio_reads_every_format_with_regions() {
+  if ! /usr/bin/python3 -c 'import meshio' 2>/dev/null; then echo "skipped: python3-meshio not installed"; return; fi
+  for f in bunny.msh bunny22.msh bunny.mesh bunny.vtu bunny.inp; do mesh $f || return; done
+  /usr/bin/python3 - > meshio.txt 2>&1 <<'PY' || fail "meshio reads the outputs differently: $(cat meshio.txt)"
 import meshio
 n = None
 for f, key in [("bunny.msh", "gmsh:physical"), ("bunny22.msh", "gmsh:physical"), ("bunny.mesh", "medit:ref"),
@@ -103,19 +128,19 @@ for f, key in [("bunny.msh", "gmsh:physical"), ("bunny22.msh", "gmsh:physical"),
     else:
         assert "REGION_1" in m.cell_sets, (f, list(m.cell_sets))
 PY
-else
-  echo "skipped: python3-meshio not installed"
-fi
+}
 
 # gmsh reads .msh (4.1 and 2.2) and .mesh and writes them again with the
 # same elements and physical groups (MEDIT references become elementary
 # entities there).
-if command -v gmsh > /dev/null; then
+case_gmsh_reads_msh_and_mesh_with_the_same_elements() {
+  if ! command -v gmsh > /dev/null; then echo "skipped: gmsh not installed"; return; fi
+  for f in bunny.msh bunny22.msh bunny.mesh; do mesh $f || return; done
   for f in bunny.msh bunny22.msh bunny.mesh; do
-    gmsh "$f" -0 -o "re-$f.msh" -format msh22 > gmsh.log 2>&1 || { cat gmsh.log >&2; fail "gmsh cannot read $f"; }
-    ! grep -q '^Error' gmsh.log || { cat gmsh.log >&2; fail "gmsh: errors reading $f"; }
-    tag=3; [ "$f" = bunny.mesh ] && tag=4
-    python3 - "re-$f.msh" bunny22.msh "$tag" <<'PY' || fail "gmsh read $f with other elements or regions"
+    gmsh "$f" -0 -o "re-$f.msh" -format msh22 > gmsh.log 2>&1 || { fail "gmsh cannot read $f: $(cat gmsh.log)"; continue; }
+    ! grep -q '^Error' gmsh.log || { fail "gmsh: errors reading $f: $(cat gmsh.log)"; continue; }
+    local tag=3; [[ $f == bunny.mesh ]] && tag=4
+    python3 - "re-$f.msh" bunny22.msh "$tag" > cmp.txt 2>&1 <<'PY' || fail "gmsh read $f with other elements or regions: $(cat cmp.txt)"
 import sys
 tag = int(sys.argv[3])
 def elements(path):
@@ -130,18 +155,22 @@ a, b = elements(sys.argv[1]), elements(sys.argv[2])
 assert a == b, (a, b)
 PY
   done
-else
-  echo "skipped: gmsh not installed"
-fi
+}
 
 # share/examples/Makefile's volume target on a small bundled label.
-[ -x "$BIN/img2wc" ] && [ -x "$BIN/wc2implicit" ] || fail "the Makefile part needs img2wc and wc2implicit"
-make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85" BIN="$BIN/" OUT=ex volume
-"$BIN/meshinfo" ex/label-85.msh --image ex/label-85.wc.nrrd > /dev/null || fail "make volume: the mesh does not match its label"
-grep -q '"exit_status": 0' ex/label-85.tet.json || fail "make volume: no --stats or a failed guarantee"
+case_examples_makefile_volume_matches_its_label() {
+  [[ -x $BIN/img2wc && -x $BIN/wc2implicit ]] || die "the Makefile part needs img2wc and wc2implicit"
+  make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85" BIN="$BIN/" OUT=ex volume \
+    > make.out 2>&1 || { fail "make volume: $(cat make.out)"; return; }
+  OUT=/dev/null expect 0 meshinfo ex/label-85.msh --image ex/label-85.wc.nrrd || fail "make volume: the mesh does not match its label"
+  [[ $(json ex/label-85.tet.json exit_status) == 0 ]] || fail "make volume: no --stats or a failed guarantee"
+}
 
 # --max-points stops the surface mesher: exit 3, the mesh written.
-expect_status 3 "$tool" bunny-f.nrrd small.msh --max-points 300
-[ -s small.msh ] || fail "exit 3 without the mesh"
-grep -q "guarantee not met" err.txt || fail "exit 3 without saying which guarantee"
-echo ok
+case_max_points_exit_3_with_the_mesh() {
+  expect 3 implicit2tet "$(shared bunny-f.nrrd bunny_f)" small.msh --max-points 300
+  [[ -s small.msh ]] || fail "exit 3 without the mesh"
+  grep -q "guarantee not met" err.txt || fail "exit 3 without saying which guarantee: $(cat err.txt)"
+}
+
+run_cases "$@"

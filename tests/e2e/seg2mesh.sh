@@ -1,28 +1,27 @@
-#!/bin/bash
+#!/usr/bin/env bash
 # seg2mesh end to end on a fixed three-label image (labels_image.py: a ball,
 # a box touching it, a solid torus): every label's faces, cut out of the one
 # output file by their label, are checked against that label's own
 # well-composed image by surface_check (closed, oriented, the voxel
 # boundary's components and Euler characteristics, ratio bound); labels and
 # component ids read back; --labels, --jobs, the exit-3 and error contracts.
-set -euo pipefail
-mkdir -p "$TMP"
-cd "$TMP"
-rm -rf ./*
-fail() { echo "FAIL: $*" >&2; exit 1; }
-here=$(dirname "$0")
-tool="$BIN/seg2mesh"
-check="$BIN/../tests/unit/surface/surface_check"
-[ -x "$tool" ] || fail "no $tool"
+source "$(dirname "$0")/lib.sh"
+CHECK=$BIN/../tests/unit/surface/surface_check
 
-python3 "$here/labels_image.py" labels.nrrd
-"$tool" -q labels.nrrd all.ply --jobs 2 --stats s.json || fail "exit $?"
-"$tool" -q labels.nrrd all.msh --jobs 1
-"$tool" -q labels.nrrd all1.ply --jobs 1
-# Cut each label's faces out (its own vertices) as OFF; print the labels and
-# the number of component ids, or "inward" for a label whose enclosed
-# volume is not positive (outward orientation).
-cat > cut.py <<'PY'
+labels_image() { python3 "$E2E/labels_image.py" labels.nrrd; }
+labels() { shared labels.nrrd labels_image; }
+all_ply() { local l; l=$(labels) && expect 0 seg2mesh "$l" all.ply --jobs 2 --stats s.json -q; }
+all_msh() { local l; l=$(labels) && expect 0 seg2mesh "$l" all.msh --jobs 1 -q; }
+all1_ply() { local l; l=$(labels) && expect 0 seg2mesh "$l" all1.ply --jobs 1 -q; }
+label_wc() { local l; l=$(labels) && expect 0 img2wc "$l" --label "$1" "wc$1.nrrd" -q; }
+# here FILE FUNC: the shared FILE linked into the case's folder.
+here() { local f; f=$(shared "$@") && ln -sf "$f" "$1"; }
+
+# cut MESH: each label's faces cut out (its own vertices) as MESH.LABEL.off;
+# prints the labels and the number of component ids, or "inward" for a
+# label whose enclosed volume is not positive (outward orientation).
+cut() {
+  python3 - "$1" "$E2E" 2> cut.err <<'PY' || fail "$1: cannot cut it by label: $(cat cut.err)"
 import sys; sys.path.insert(0, sys.argv[2]); import surface_read as r
 m = r.read(sys.argv[1])
 lab = m['label'] if m['label'] is not None else m['physical']
@@ -42,47 +41,85 @@ for L in sorted(set(lab)):
     print(L, len(comps) if volume > 0 else 'inward', end=' ')
 print()
 PY
-[ "$(python3 cut.py all.ply "$here")" = "1 1 2 1 5 1 " ] || fail "all.ply: labels 1 2 5 with one component each expected"
-[ "$(python3 cut.py all.msh "$here")" = "1 1 2 1 5 1 " ] || fail "all.msh: physical groups 1 2 5 expected"
-for L in 1 2 5; do
-  "$BIN/img2wc" -q labels.nrrd --label $L wc$L.nrrd
-  "$check" all.ply.$L.off wc$L.nrrd 2 > c.txt || { cat c.txt; fail "label $L's surface not certified"; }
-  expected=$([ $L = 5 ] && echo 0 || echo 2)
-  grep -q "euler $expected expected $expected " c.txt || { cat c.txt; fail "label $L: Euler characteristic"; }
-  "$check" all.msh.$L.off wc$L.nrrd 2 > /dev/null || fail "label $L's surface in .msh (--jobs 1)"
-done
+}
+
+case_ply_holds_labels_1_2_5_one_component_each() {
+  here all.ply all_ply || return
+  [[ $(cut all.ply) == "1 1 2 1 5 1 " ]] || fail "all.ply: labels 1 2 5 with one component each expected"
+}
+
+case_msh_holds_physical_groups_1_2_5() {
+  here all.msh all_msh || return
+  [[ $(cut all.msh) == "1 1 2 1 5 1 " ]] || fail "all.msh: physical groups 1 2 5 expected"
+}
+
+# certified MESH: each label's surface cut out of MESH against the label's
+# own well-composed image; the ball and the box of Euler characteristic 2,
+# the torus 0.
+certified() {
+  here "$1" "$(tr . _ <<< "$1")" || return
+  cut "$1" > /dev/null
+  local L wc expected
+  for L in 1 2 5; do
+    wc=$(shared wc$L.nrrd label_wc $L) || return
+    "$CHECK" "$1.$L.off" "$wc" 2 > c.txt 2>&1 || { fail "$1: label $L's surface not certified: $(cat c.txt)"; continue; }
+    expected=2; [[ $L == 5 ]] && expected=0
+    grep -q "euler $expected expected $expected " c.txt || fail "$1: label $L: Euler characteristic: $(cat c.txt)"
+  done
+}
+case_ply_each_label_certified_against_its_image() { certified all.ply; }
+case_msh_each_label_certified_against_its_image() { certified all.msh; }
+
 # --jobs 1: each label as the pipeline makes it (byte for byte, seeded alike).
-python3 cut.py all1.ply "$here" > /dev/null
-for L in 1 2 5; do
-  "$BIN/wc2implicit" -q wc$L.nrrd - | "$BIN/implicit2mesh" -q --threads 1 - pipe$L.ply
-  python3 - pipe$L.ply all1.ply.$L.off "$here" <<'PY' || fail "label $L: seg2mesh --jobs 1 is not the pipeline's mesh"
+case_jobs_1_is_the_pipelines_mesh() {
+  here all1.ply all1_ply || return
+  cut all1.ply > /dev/null
+  local L wc
+  for L in 1 2 5; do
+    wc=$(shared wc$L.nrrd label_wc $L) || return
+    "$BIN/wc2implicit" -q "$wc" - 2> e1.txt | "$BIN/implicit2mesh" -q --threads 1 - pipe$L.ply 2> e2.txt
+    local st=("${PIPESTATUS[@]}")
+    [[ ${st[*]} == "0 0" ]] || { fail "label $L: wc2implicit | implicit2mesh: exit ${st[*]}: $(cat e1.txt e2.txt)"; continue; }
+    python3 - pipe$L.ply all1.ply.$L.off "$E2E" > cmp.txt 2>&1 <<'PY' || fail "label $L: seg2mesh --jobs 1 is not the pipeline's mesh: $(cat cmp.txt)"
 import sys; sys.path.insert(0, sys.argv[3]); import surface_read as r
 a, b = r.read(sys.argv[1]), r.read(sys.argv[2])
 assert a['triangles'] == b['triangles'] and max(abs(x - y) for p, q in zip(a['points'], b['points']) for x, y in zip(p, q)) < 1e-9
 PY
-done
-python3 -c "
-import json; d = json.load(open('s.json'))
+  done
+}
+
+case_stats_every_label_certified() {
+  local f; f=$(shared all.ply all_ply) || return
+  python3 - "$(dirname "$f")/s.json" > stats.txt 2>&1 <<'PY' || fail "stats: $(cat stats.txt)"
+import json, sys; d = json.load(open(sys.argv[1]))
 assert d['all_certified'] is True and [l['label'] for l in d['labels']] == [1, 2, 5], d
-assert all(l['certified'] and l['topology_matches'] for l in d['labels'])" || fail "stats"
+assert all(l['certified'] and l['topology_matches'] for l in d['labels'])
+PY
+}
 
 # --labels: a subset; an absent label is an error naming those present.
-"$tool" -q labels.nrrd some.ply --labels 5,2
-[ "$(python3 cut.py some.ply "$here")" = "2 1 5 1 " ] || fail "--labels 5,2"
-set +e
-"$tool" labels.nrrd bad.ply --labels 1,9 2> err.txt; rc=$?
-set -e
-[ $rc = 1 ] && [ ! -e bad.ply ] && grep -q "^seg2mesh: .*label 9 does not occur (labels present: 1 2 5)" err.txt \
-  || { cat err.txt; fail "absent label: exit $rc"; }
-set +e
-"$tool" labels.nrrd bad.ply --labels 1,x 2> err.txt; rc=$?
-set -e
-[ $rc = 2 ] && [ ! -e bad.ply ] || fail "--labels 1,x: exit $rc"
+case_labels_subset() {
+  expect 0 seg2mesh "$(labels)" some.ply --labels 5,2 -q || return
+  [[ $(cut some.ply) == "2 1 5 1 " ]] || fail "--labels 5,2"
+}
+
+case_absent_label_exit_1_names_those_present() {
+  expect 1 seg2mesh "$(labels)" bad.ply --labels 1,9
+  [[ ! -e bad.ply ]] || fail "absent label: bad.ply left"
+  grep -q "^seg2mesh: .*label 9 does not occur (labels present: 1 2 5)" err.txt || fail "absent label: $(cat err.txt)"
+}
+
+case_bad_labels_list_exit_2_without_output() {
+  expect 2 seg2mesh "$(labels)" bad.ply --labels 1,x
+  [[ ! -e bad.ply ]] || fail "--labels 1,x: bad.ply left"
+}
+
 # A guarantee that fails for one label (too few points allowed): the file is
 # written, exit 3, and the label is named.
-set +e
-"$tool" labels.nrrd cap.ply --max-points 40 2> err.txt; rc=$?
-set -e
-[ $rc = 3 ] && [ -s cap.ply ] || { cat err.txt; fail "--max-points 40: exit $rc, want 3 with the file"; }
-grep -q "^seg2mesh: .*label [125]: " err.txt || { cat err.txt; fail "the failing label is not named"; }
-echo ok
+case_max_points_exit_3_with_the_file_naming_the_label() {
+  expect 3 seg2mesh "$(labels)" cap.ply --max-points 40
+  [[ -s cap.ply ]] || fail "--max-points 40: exit 3 without the file"
+  grep -q "^seg2mesh: .*label [125]: " err.txt || fail "the failing label is not named: $(cat err.txt)"
+}
+
+run_cases "$@"

@@ -1,4 +1,4 @@
-#!/bin/bash
+#!/usr/bin/env bash
 # The surface formats users open (ParaView/Slicer: .vtp, .vtk; Gmsh: .msh
 # 4.1 and 2.2; MeshLab/Slicer: PLY with face properties) read back by
 # readers that are not ours: VTK's Python readers and meshio where installed
@@ -7,13 +7,8 @@
 # must hold the certified OFF's vertices (world coordinates) and triangles
 # (winding), a component id per face, and outward unit normals with
 # --normals; .msh a physical group per component.
-set -euo pipefail
-mkdir -p "$TMP"
-cd "$TMP"
-rm -rf ./*
-fail() { echo "FAIL: $*" >&2; exit 1; }
-here=$(dirname "$0")
-check="$BIN/../tests/unit/surface/surface_check"
+source "$(dirname "$0")/lib.sh"
+CHECK=$BIN/../tests/unit/surface/surface_check
 # A python that has the module, or none: the pyenv python on PATH may not
 # see Debian's python3-vtk9 / python3-meshio.
 python_with() {
@@ -21,45 +16,74 @@ python_with() {
     if command -v "$py" > /dev/null && "$py" -c "import $1" 2> /dev/null; then echo "$py"; return; fi
   done
 }
-VTKPY=$(python_with vtk)
-MESHIOPY=$(python_with meshio)
 
 # Two components (a ball and a solid torus) of a rotated anisotropic image.
-python3 "$here/labels_image.py" labels.nrrd
-"$BIN/img2wc" -q labels.nrrd --label 1 --label 5 wc.nrrd
-"$BIN/wc2implicit" -q wc.nrrd f.nrrd
-M() { "$BIN/implicit2mesh" -q --threads 1 f.nrrd "$@"; }
-M ref.off
-"$check" ref.off wc.nrrd 2 || fail "reference OFF not certified"
-
-for out in s.ply s.vtp s.vtk s.msh s22.msh; do
-  version=4.1; [ "$out" = s22.msh ] && version=2.2
-  M "$out" --normals --msh-version $version
-  M "plain-$out" --msh-version $version   # without normals
-done
-grep -qx "4.1 0 8" s.msh && grep -qx "2.2 0 8" s22.msh || fail "--msh-version not followed"
-# One python run for each reader: python's start is most of the time.
-PY=${VTKPY:-python3}
-$PY "$here/surface_compare.py" ref.off s.ply:text:1e-6 plain-s.ply:text:1e-6 s.msh plain-s.msh s22.msh plain-s22.msh \
-  || fail "PLY or msh"
-if [ -n "$VTKPY" ]; then
-  $VTKPY "$here/surface_compare.py" ref.off s.vtp:vtk plain-s.vtp:vtk s.vtk:vtk plain-s.vtk:vtk || fail "read by VTK"
-else
-  echo "skipped: no python with vtk (python3-vtk9) to read .vtp and .vtk"
-fi
-if [ -n "$MESHIOPY" ]; then
-  $MESHIOPY "$here/surface_compare.py" ref.off s.msh:meshio s22.msh:meshio || fail "read by meshio"
-else
-  echo "skipped: no python with meshio to read .msh"
-fi
-if command -v gmsh > /dev/null; then
-  # Gmsh reads each (an error exits non-zero) and writes it again: the
-  # physical groups and the triangles are still there.
-  for out in s.msh s22.msh; do
-    gmsh "$out" -0 -format msh22 -o "gmsh-$out" > gmsh.log 2>&1 || { cat gmsh.log; fail "gmsh cannot read $out"; }
-    ! grep -qi "error" gmsh.log || { cat gmsh.log; fail "gmsh: errors reading $out"; }
+image_f() {
+  python3 "$E2E/labels_image.py" labels.nrrd || return
+  expect 0 img2wc labels.nrrd --label 1 --label 5 wc.nrrd -q && expect 0 wc2implicit wc.nrrd f.nrrd -q
+}
+M() { local f; f=$(shared f.nrrd image_f) && expect 0 implicit2mesh "$f" -q --threads 1 "$@"; }
+reference() { M ref.off; }
+# Every format with and without --normals (plain-*).
+outputs() {
+  local out version
+  for out in s.ply s.vtp s.vtk s.msh s22.msh; do
+    version=4.1; [[ $out == s22.msh ]] && version=2.2
+    M "$out" --normals --msh-version $version
+    M "plain-$out" --msh-version $version
   done
-  $PY - "$here" <<'PY' || fail "gmsh lost triangles or physical groups"
+}
+# Links to the shared image, reference and outputs in the case's folder.
+inputs_here() {
+  local f; f=$(shared s.ply outputs) && shared ref.off reference > /dev/null || return
+  ln -sf "$(dirname "$f")"/{wc.nrrd,f.nrrd,ref.off,s.ply,s.vtp,s.vtk,s.msh,s22.msh,plain-s.ply,plain-s.vtp,plain-s.vtk,plain-s.msh,plain-s22.msh} .
+}
+
+case_reference_off_certified() {
+  inputs_here || return
+  "$CHECK" ref.off wc.nrrd 2 > c.txt 2>&1 || fail "reference OFF not certified: $(cat c.txt)"
+}
+
+case_msh_version_followed() {
+  inputs_here || return
+  grep -qx "4.1 0 8" s.msh || fail "s.msh: not 4.1"
+  grep -qx "2.2 0 8" s22.msh || fail "--msh-version 2.2 not followed"
+}
+
+case_ply_and_msh_hold_the_reference_mesh() {
+  inputs_here || return
+  local py; py=$(python_with vtk); py=${py:-python3}
+  $py "$E2E/surface_compare.py" ref.off s.ply:text:1e-6 plain-s.ply:text:1e-6 s.msh plain-s.msh s22.msh plain-s22.msh \
+    > cmp.txt 2>&1 || fail "PLY or msh: $(cat cmp.txt)"
+}
+
+case_vtp_and_vtk_read_by_vtk() {
+  local py; py=$(python_with vtk)
+  [[ -n $py ]] || { echo "skipped: no python with vtk (python3-vtk9) to read .vtp and .vtk"; return; }
+  inputs_here || return
+  $py "$E2E/surface_compare.py" ref.off s.vtp:vtk plain-s.vtp:vtk s.vtk:vtk plain-s.vtk:vtk > cmp.txt 2>&1 ||
+    fail "read by VTK: $(cat cmp.txt)"
+}
+
+case_msh_read_by_meshio() {
+  local py; py=$(python_with meshio)
+  [[ -n $py ]] || { echo "skipped: no python with meshio to read .msh"; return; }
+  inputs_here || return
+  $py "$E2E/surface_compare.py" ref.off s.msh:meshio s22.msh:meshio > cmp.txt 2>&1 || fail "read by meshio: $(cat cmp.txt)"
+}
+
+# Gmsh reads each (an error exits non-zero) and writes it again: the
+# physical groups and the triangles are still there.
+case_gmsh_keeps_triangles_and_physical_groups() {
+  command -v gmsh > /dev/null || { echo "skipped: no gmsh to read .msh"; return; }
+  inputs_here || return
+  local out
+  for out in s.msh s22.msh; do
+    gmsh "$out" -0 -format msh22 -o "gmsh-$out" > gmsh.log 2>&1 || { fail "gmsh cannot read $out: $(cat gmsh.log)"; return; }
+    ! grep -qi "error" gmsh.log || { fail "gmsh: errors reading $out: $(cat gmsh.log)"; return; }
+  done
+  local py; py=$(python_with vtk); py=${py:-python3}
+  $py - "$E2E" > cmp.txt 2>&1 <<'PY' || fail "gmsh lost triangles or physical groups: $(cat cmp.txt)"
 import sys; sys.path.insert(0, sys.argv[1]); import surface_read as r
 key = lambda m: sorted((tuple(tuple(round(x, 9) for x in m['points'][v]) for v in t), p)
                        for t, p in zip(m['triangles'], m['physical']))
@@ -67,24 +91,30 @@ for f in ('s.msh', 's22.msh'):
     a, b = r.read(f), r.read('gmsh-' + f)
     assert len(b['triangles']) == len(a['triangles']) and key(a) == key(b), f
 PY
-else
-  echo "skipped: no gmsh to read .msh"
-fi
+}
 
 # --normals where the format holds none: one warning line, the mesh written.
-"$BIN/implicit2mesh" --threads 1 f.nrrd n.off --normals 2> warn.txt
-[ -s n.off ] || fail "n.off not written"
-[ "$(wc -l < warn.txt)" = 1 ] && grep -q "^implicit2mesh: warning: --normals ignored" warn.txt \
-  || { cat warn.txt; fail "--normals with .off: no one-line warning"; }
-"$BIN/implicit2mesh" --threads 1 f.nrrd n.ply --normals 2> warn.txt
-[ ! -s warn.txt ] || { cat warn.txt; fail "--normals with .ply warned"; }
+case_normals_with_off_one_warning_and_the_mesh() {
+  expect 0 implicit2mesh "$(shared f.nrrd image_f)" n.off --normals --threads 1
+  [[ -s n.off ]] || fail "n.off not written"
+  [[ $(wc -l < err.txt) == 1 ]] && grep -q "^implicit2mesh: warning: --normals ignored" err.txt ||
+    fail "--normals with .off: no one-line warning: $(cat err.txt)"
+}
+
+case_normals_with_ply_no_warning() {
+  expect 0 implicit2mesh "$(shared f.nrrd image_f)" n.ply --normals --threads 1
+  [[ ! -s err.txt ]] || fail "--normals with .ply warned: $(cat err.txt)"
+}
+
 # Bad choices are usage errors before any work, and leave nothing.
-set +e
-M x.msh --msh-version 3.0 2> err.txt; rc=$?
-set -e
-[ $rc = 2 ] && [ ! -e x.msh ] || fail "--msh-version 3.0: exit $rc"
-set +e
-M x.gts 2> err.txt; rc=$?
-set -e
-[ $rc = 2 ] && grep -q ".vtp" err.txt || { cat err.txt; fail "unknown extension: exit $rc or the formats not listed"; }
-echo "ok"
+case_bad_msh_version_exit_2_without_output() {
+  expect 2 implicit2mesh "$(shared f.nrrd image_f)" x.msh --msh-version 3.0
+  [[ ! -e x.msh ]] || fail "--msh-version 3.0: x.msh left"
+}
+
+case_unknown_extension_exit_2_lists_the_formats() {
+  expect 2 implicit2mesh "$(shared f.nrrd image_f)" x.gts
+  grep -q ".vtp" err.txt || fail "unknown extension: the formats not listed: $(cat err.txt)"
+}
+
+run_cases "$@"
