@@ -17,6 +17,7 @@
 #include <itkPNGImageIOFactory.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <csetjmp>
 #include <png.h>
@@ -271,6 +272,28 @@ struct Opened {
   ImageInfo info;
 };
 
+// MetaIO formats a list-of-files ElementDataFile ("slice%03d.raw 1 9 1")
+// with printf and an int: any other conversion ("%s", "%n") reads or
+// writes through garbage. So a '%' there must start one "%[0][width]d".
+std::string metaimage_header_error(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line;
+  for (int n = 0; n < 200 && std::getline(in, line); ++n) {
+    const std::size_t key = line.find("ElementDataFile");
+    if (key == std::string::npos) continue;
+    int conversions = 0;
+    for (std::size_t i = line.find('%'); i != std::string::npos; i = line.find('%', i + 1)) {
+      std::size_t j = i + 1;
+      while (j < line.size() && std::isdigit(static_cast<unsigned char>(line[j]))) ++j;
+      if (j >= line.size() || line[j] != 'd' || ++conversions > 1)
+        return "the MetaImage's ElementDataFile pattern may hold one %d (and width digits) only";
+      i = j;
+    }
+    return "";
+  }
+  return "";
+}
+
 // ITK's NIfTI reader aborts (a vnl assertion) on a header whose spacing or
 // orientation is not finite: the header's floats are checked here first.
 // Returns what is wrong, or "" (also for a header too short to be NIfTI's).
@@ -315,6 +338,10 @@ Opened open_image_itk(const std::string& path, const std::string& file) {
   const CerrCapture said;
   o.io = itk::ImageIOFactory::CreateImageIO(file.c_str(), itk::ImageIOFactory::IOFileModeEnum::ReadMode);
   if (!o.io) throw Error("not an image ITK can read (NRRD, MetaImage, NIfTI or PNG expected)", path);
+  if (std::strcmp(o.io->GetNameOfClass(), "MetaImageIO") == 0) {
+    const std::string e = metaimage_header_error(file);
+    if (!e.empty()) throw Error("cannot read the image: " + e, path);
+  }
   if (std::strcmp(o.io->GetNameOfClass(), "NiftiImageIO") == 0) {
     const std::string e = nifti_header_error(file);
     if (!e.empty()) throw Error("cannot read the image: " + e, path);
