@@ -356,8 +356,12 @@ bool DelMesh::facet_cycle_pass() {
 bool DelMesh::handle_vertex_pass() {
   std::sort(cell_changed_.ids.begin(), cell_changed_.ids.end());
   std::vector<Vh> todo;
-  for (int id : cell_changed_.ids)
-    if (vertices_[std::size_t(id)] != Vh()) todo.push_back(vertices_[std::size_t(id)]);
+  // HandleDetection is about the sample P on S: implicit2tet's inside
+  // points are not checked (their cells hold no piece of S to test).
+  for (int id : cell_changed_.ids) {
+    const Vh v = vertices_[std::size_t(id)];
+    if (v != Vh() && v->info().origin != kVolume) todo.push_back(v);
+  }
   cell_changed_.clear();
   const Candidates pts = handle_points(tr_, sampler_, todo, opt_.threads, handle_checks_);
   if (handle_trial_ && !pts.empty()) {  // the deleted handle point goes back
