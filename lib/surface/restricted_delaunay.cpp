@@ -91,13 +91,17 @@ std::string RestrictedDelaunayResult::failed_guarantee() const {
   return failure;
 }
 
-RestrictedDelaunayResult restricted_delaunay_mesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions& options) {
+void check_options(const RestrictedDelaunayOptions& options) {
   if (!(options.ratio >= min_ratio_bound()))
     throw UsageError("--ratio must be at least (1+k)^2 = " + std::to_string(min_ratio_bound()) + " (k = 0.06)");
   if (!(options.roughness >= min_roughness_bound()))
     throw UsageError("--roughness must be at least 2(arcsin k + arcsin(2k/sqrt 3)) = " + std::to_string(min_roughness_bound()) + " rad");
   if (!(options.max_distance >= 0) || !std::isfinite(options.max_distance)) throw UsageError("--max-distance must be >= 0");
   if (options.max_points < 4) throw UsageError("--max-points must be at least 4");
+}
+
+RestrictedDelaunayResult restricted_delaunay_mesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions& options) {
+  check_options(options);
   return surface_detail::delmesh(surface, options);
 }
 

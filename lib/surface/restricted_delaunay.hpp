@@ -89,6 +89,10 @@ struct RestrictedDelaunayResult {
   std::string failed_guarantee() const;
 };
 
+// UsageError naming the option when a bound is outside what the proofs
+// (and termination) allow; restricted_delaunay_mesh checks it first.
+void check_options(const RestrictedDelaunayOptions& options);
+
 // Throws Error when S is empty or the options are out of range.
 RestrictedDelaunayResult restricted_delaunay_mesh(const ImplicitSurface& surface,
                                                   const RestrictedDelaunayOptions& options);

@@ -253,20 +253,14 @@ void extract(const DelMesh& dm, const CellRefinement& inside, const ImplicitSurf
 } // namespace
 
 TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRefinementOptions& opt) {
-  const RestrictedDelaunayOptions& so = opt.surface;
-  if (!(so.ratio >= min_ratio_bound()))
-    throw UsageError("--ratio must be at least (1+k)^2 = " + std::to_string(min_ratio_bound()) + " (k = 0.06)");
-  if (!(so.roughness >= min_roughness_bound()))
-    throw UsageError("--roughness must be at least " + std::to_string(min_roughness_bound()) + " rad");
-  if (!(so.max_distance >= 0) || !std::isfinite(so.max_distance)) throw UsageError("--max-distance must be >= 0");
-  if (so.max_points < 4) throw UsageError("--max-points must be at least 4");
+  check_options(opt.surface);
   // Shewchuk's and Oudot-Rineau-Yvinec's termination needs R >= 2 (below,
   // refinement can cascade without end); 1 would not be a bound at all.
   if (!(opt.cell_ratio >= 2) || !std::isfinite(opt.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
   if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be >= 0");
   if (!(opt.sliver_angle >= 0 && opt.sliver_angle < 30)) throw UsageError("--sliver-angle must be in [0, 30) degrees");
 
-  DelMesh dm(surface, so);
+  DelMesh dm(surface, opt.surface);
   CellRefinement cells(dm.sampler(), opt);
   dm.set_after_certificate([&](DelMesh& m) { return cells(m); });
   TetRefinementResult r;
