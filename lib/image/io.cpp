@@ -279,6 +279,11 @@ std::string metaimage_header_error(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   std::string line;
   for (int n = 0; n < 200 && std::getline(in, line); ++n) {
+    // MetaIO copies a field's name into 255 bytes and its value into a
+    // fixed buffer, unchecked.
+    const std::size_t eq = line.find('=');
+    if (line.size() > 1000 || (eq != std::string::npos && eq > 200))
+      return "a MetaImage header line longer than MetaIO can read";
     const std::size_t key = line.find("ElementDataFile");
     if (key == std::string::npos) continue;
     int conversions = 0;
