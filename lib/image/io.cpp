@@ -284,6 +284,14 @@ std::string metaimage_header_error(const std::string& file) {
     const std::size_t eq = line.find('=');
     if (line.size() > 1000 || (eq != std::string::npos && eq > 200))
       return "a MetaImage header line longer than MetaIO can read";
+    // MetaIO allocates CompressedDataSize bytes as the header says.
+    if (line.compare(0, 18, "CompressedDataSize") == 0 && eq != std::string::npos) {
+      std::error_code ec;
+      const double declared = std::strtod(line.c_str() + eq + 1, nullptr);
+      const auto size = std::filesystem::file_size(file, ec);
+      if (!(declared >= 0) || (!ec && declared > double(size)))
+        return "the MetaImage's CompressedDataSize is more than the file holds";
+    }
     const std::size_t key = line.find("ElementDataFile");
     if (key == std::string::npos) continue;
     int conversions = 0;
