@@ -307,6 +307,129 @@ std::string metaimage_header_error(const std::string& file) {
   return "";
 }
 
+// MetaIO reads a data file it cannot open, a LIST or a %d pattern naming
+// files that are missing, or compressed data that does not inflate, as
+// zeros (printing at most "Uncompress failed"), and takes a directory's
+// size as 2^63. So the data the header points to is checked here: every
+// file it names is a regular file, and compressed data inflates to the
+// image's `bytes` (the inflated bytes are counted, not kept).
+std::string inflate_error(const std::string& file, std::uintmax_t offset, std::uintmax_t& bytes) {
+  std::ifstream in(file, std::ios::binary);
+  in.seekg(std::streamoff(offset));
+  z_stream z{};
+  if (!in || inflateInit2(&z, 47) != Z_OK) return "compressed data cannot be read";  // 47: zlib or gzip
+  std::vector<unsigned char> input(1 << 16), output(1 << 16);
+  int err = Z_OK;
+  while (bytes > 0 && err != Z_STREAM_END) {
+    if (z.avail_in == 0) {
+      in.read(reinterpret_cast<char*>(input.data()), std::streamsize(input.size()));
+      z.next_in = input.data();
+      z.avail_in = uInt(in.gcount());
+      if (z.avail_in == 0) break;
+    }
+    z.next_out = output.data();
+    z.avail_out = uInt(output.size());
+    err = inflate(&z, Z_NO_FLUSH);
+    if (err != Z_OK && err != Z_STREAM_END) break;
+    const std::uintmax_t got = output.size() - z.avail_out;
+    bytes -= std::min(bytes, got);
+  }
+  inflateEnd(&z);
+  if (err != Z_OK && err != Z_STREAM_END) return "compressed data is corrupt (zlib: " + std::string(z.msg ? z.msg : "error") + ")";
+  return "";
+}
+
+std::string metaimage_data_error(const std::string& file, std::uintmax_t bytes) {
+  std::ifstream in(file, std::ios::binary);
+  std::string line, data, ndims, dimsize;
+  bool compressed = false;
+  std::uintmax_t offset = 0;
+  auto value = [](const std::string& l) {
+    std::size_t v = l.find_first_not_of(" \t", l.find('=') + 1);
+    std::string s = v == std::string::npos ? "" : l.substr(v);
+    while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.pop_back();
+    return s;
+  };
+  auto key = [](const std::string& l, const char* k) {
+    const std::size_t n = std::strlen(k);
+    return l.compare(0, n, k) == 0 && l.find_first_not_of(" \t", n) == l.find('=');
+  };
+  while (std::getline(in, line)) {
+    if (line.find('=') == std::string::npos) continue;
+    if (key(line, "CompressedData")) compressed = value(line) == "True" || value(line) == "true";
+    if (key(line, "NDims")) ndims = value(line);
+    if (key(line, "DimSize")) dimsize = value(line);
+    if (key(line, "ElementDataFile")) {
+      data = value(line);
+      offset = std::uintmax_t(in.tellg());
+      break;
+    }
+  }
+  if (data.empty()) return "";  // MetaIO itself refuses a header without one
+  const std::string fewer = "the MetaImage's compressed data holds fewer bytes than its size declares";
+  if (data == "LOCAL") {
+    if (!compressed) return "";
+    const std::string e = inflate_error(file, offset, bytes);
+    return !e.empty() ? "the MetaImage's " + e : bytes ? fewer : "";
+  }
+  const std::filesystem::path dir = std::filesystem::path(file).parent_path();
+  std::vector<std::string> names;
+  std::istringstream words(data);
+  std::string first;
+  words >> first;
+  // Files of a LIST or a pattern hold slices: as many as the last axes (of
+  // the file's own dimension, NDims - 1 unless "LIST 2D" and such say).
+  std::vector<long> dims;
+  {
+    std::istringstream d(dimsize);
+    for (long x; d >> x;) dims.push_back(x);
+  }
+  const long n = std::atol(ndims.c_str());
+  auto slices = [&](long file_dims) {
+    long count = 1;
+    for (long i = std::max(0L, file_dims); i < n && i < long(dims.size()); ++i) count *= std::max(1L, dims[i]);
+    return count;
+  };
+  long needed = 1;
+  if (first == "LIST") {
+    std::string d;
+    words >> d;
+    needed = slices(d.empty() ? n - 1 : std::atol(d.c_str()));
+    for (std::string name; std::getline(in, name);) {
+      while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.pop_back();
+      if (!name.empty()) names.push_back(name);
+    }
+  } else if (first.find('%') != std::string::npos) {
+    long lo = 0, hi = -1, step = 1;
+    words >> lo >> hi >> step;
+    if (step <= 0 || hi < lo || (hi - lo) / step > 100000) return "the MetaImage's ElementDataFile pattern has a bad range";
+    needed = slices(n - 1);
+    for (long i = lo; i <= hi; i += step) {
+      char name[1100];
+      std::snprintf(name, sizeof name, first.c_str(), int(i));  // one %d only (metaimage_header_error)
+      names.push_back(name);
+    }
+  } else {
+    names.push_back(data);
+  }
+  if (long(names.size()) < needed)
+    return "the MetaImage's ElementDataFile names " + std::to_string(names.size()) + " files, " +
+           std::to_string(needed) + " needed";
+  for (const std::string& name : names) {
+    const std::filesystem::path p = std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : dir / name;
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(p, ec))
+      return "the MetaImage's data file '" + name + "' is missing or not a regular file";
+  }
+  if (!compressed) return "";
+  for (const std::string& name : names) {
+    const std::filesystem::path p = std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : dir / name;
+    const std::string e = inflate_error(p.string(), 0, bytes);
+    if (!e.empty()) return "the MetaImage's data file '" + name + "': " + e;
+  }
+  return bytes ? fewer : "";
+}
+
 // ITK's NIfTI reader aborts (a vnl assertion) on a header whose spacing or
 // orientation is not finite: the header's floats are checked here first.
 // Returns what is wrong, or "" (also for a header too short to be NIfTI's).
@@ -404,6 +527,10 @@ Opened open_image_itk(const std::string& path, const std::string& file) {
     count *= s;
   }
   check_declared_size(path, file, std::uintmax_t(count) * comps * o.io->GetComponentSize());
+  if (std::strcmp(o.io->GetNameOfClass(), "MetaImageIO") == 0) {
+    const std::string e = metaimage_data_error(file, std::uintmax_t(count) * comps * o.io->GetComponentSize());
+    if (!e.empty()) throw Error("cannot read the image: " + e, path);
+  }
   for (int i = 0; i < 3; ++i)
     if (!(g.spacing[i] > 0) || !std::isfinite(g.spacing[i]))
       throw Error("spacing must be positive and finite", path);

@@ -49,6 +49,36 @@ case_images_refused() {
   refused img2poly "cannot read the image" truncated.png out.poly
 }
 
+# MetaImage data that MetaIO reads as zeros, or takes a directory's size
+# for: the reader checks the files the header names and inflates its
+# compressed data once.
+case_metaimage_data_refused() {
+  mha() { printf 'ObjectType = Image\nNDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\n%bElementDataFile = %s\n' "$1" "$2"; }
+  head -c 16 /dev/zero | tr '\0' '\1' >slice.raw
+  { mha "" LIST; printf 'slice.raw\nslice.raw\nslice.raw\n'; } >short-list.mha
+  mha "" "slice%d.raw 1 4 1" >pattern-missing.mha
+  mha "" "$PWD" >directory.mha
+  { mha "CompressedData = True\n" LOCAL; printf 'not deflate data'; } >corrupt.mha
+  python3 -c 'import sys, zlib; sys.stdout.buffer.write(zlib.compress(bytes(60)))' >short.zraw
+  mha "CompressedData = True\n" short.zraw >short-inflate.mha
+  for tool in img2wc wc2implicit seg2mesh; do
+    out=out.nrrd
+    [[ $tool == seg2mesh ]] && out=out.ply
+    refused $tool "names 3 files, 4 needed" short-list.mha $out
+    refused $tool "'slice1.raw' is missing" pattern-missing.mha $out
+    refused $tool "not a regular file" directory.mha $out
+    refused $tool "compressed data is corrupt" corrupt.mha $out
+    refused $tool "fewer bytes than its size declares" short-inflate.mha $out
+  done
+  # The same files made whole are read: the check refuses only what is wrong.
+  { mha "" LIST; printf 'slice.raw\nslice.raw\nslice.raw\nslice.raw\n'; } >list.mha
+  python3 -c 'import sys, zlib; sys.stdout.buffer.write(zlib.compress(bytes(range(64))))' >whole.zraw
+  mha "CompressedData = True\n" whole.zraw >whole.mha
+  expect 0 img2wc --threshold 1 -q list.mha list-out.nrrd
+  expect 0 img2wc --threshold 1 -q whole.mha whole-out.nrrd
+  [[ -s list-out.nrrd && -s whole-out.nrrd ]] || fail "the whole MetaImages gave no output"
+}
+
 # The implicit function file: implicit2mesh, implicit2tet and implicit-eval.
 case_implicit_files_refused() {
   : >empty.nrrd
