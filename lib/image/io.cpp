@@ -284,6 +284,14 @@ std::string metaimage_header_error(const std::string& file) {
     const std::size_t eq = line.find('=');
     if (line.size() > 1000 || (eq != std::string::npos && eq > 200))
       return "a MetaImage header line longer than MetaIO can read";
+    // MetaIO reads NDims numbers for each per-axis field: a huge NDims reads
+    // on (a hang) and one above 10 overruns its arrays.
+    if (line.compare(0, 5, "NDims") == 0 && eq != std::string::npos) {
+      char* end = nullptr;
+      const long n = std::strtol(line.c_str() + eq + 1, &end, 10);
+      if (n < 1 || n > 10 || end == line.c_str() + eq + 1 || end[std::strspn(end, " \t\r")] != '\0')
+        return "the MetaImage's NDims must be a whole number from 1 to 10";
+    }
     // MetaIO allocates CompressedDataSize bytes as the header says.
     if (line.compare(0, 18, "CompressedDataSize") == 0 && eq != std::string::npos) {
       std::error_code ec;

@@ -59,12 +59,14 @@ case_metaimage_data_refused() {
   mha "" "slice%d.raw 1 4 1" >pattern-missing.mha
   mha "" "$PWD" >directory.mha
   { mha "CompressedData = True\n" LOCAL; printf 'not deflate data'; } >corrupt.mha
+  printf 'ObjectType = Image\nNDims = 99999999999\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = LOCAL\n' >ndims.mha
   python3 -c 'import sys, zlib; sys.stdout.buffer.write(zlib.compress(bytes(60)))' >short.zraw
   mha "CompressedData = True\n" short.zraw >short-inflate.mha
   for tool in img2wc wc2implicit seg2mesh; do
     out=out.nrrd
     [[ $tool == seg2mesh ]] && out=out.ply
     refused $tool "names 3 files, 4 needed" short-list.mha $out
+    refused $tool "NDims must be a whole number" ndims.mha $out
     refused $tool "'slice1.raw' is missing" pattern-missing.mha $out
     refused $tool "not a regular file" directory.mha $out
     refused $tool "compressed data is corrupt" corrupt.mha $out
