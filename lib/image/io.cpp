@@ -67,18 +67,36 @@ std::string itk_message(const itk::ExceptionObject& e) {
 
 // ITK and MetaIO say some reasons on std::cerr only (MetaIO's "Cannot open
 // data file", a short LOCAL block read as zeros after "data not read
-// completely", itk::OutputWindow warnings). The library never prints: while
-// a CerrCapture lives they are kept, to become part of the Error.
+// completely", itk::OutputWindow warnings), and niftilib on C's stderr
+// ("** ERROR: nifti_convert_nhdr2nim: bad dim[0]"). The library never
+// prints: while a CerrCapture lives both are kept, to become part of the
+// Error (C's stderr goes to a temporary file, descriptor 2 restored after).
 class CerrCapture {
 public:
-  CerrCapture() : old_(std::cerr.rdbuf(text_.rdbuf())) {}
-  ~CerrCapture() { std::cerr.rdbuf(old_); }
+  CerrCapture() : old_(std::cerr.rdbuf(text_.rdbuf())) {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    saved_ = file_ ? dup(2) : -1;
+    if (saved_ < 0 || dup2(fileno(file_), 2) < 0) restore_fd();
+  }
+  ~CerrCapture() {
+    restore_fd();
+    std::cerr.rdbuf(old_);
+  }
   CerrCapture(const CerrCapture&) = delete;
   CerrCapture& operator=(const CerrCapture&) = delete;
   // What was said, on one line.
   std::string text() const {
+    std::string all = text_.str();
+    if (file_) {
+      std::fflush(stderr);
+      std::rewind(file_);
+      char buf[4096];
+      for (std::size_t got; (got = std::fread(buf, 1, sizeof buf, file_)) > 0 && all.size() < 65536;) all.append(buf, got);
+      std::fseek(file_, 0, SEEK_END);  // the offset is descriptor 2's too
+    }
     std::string t, word;
-    std::istringstream in(text_.str());
+    std::istringstream in(all);
     while (in >> word) t += (t.empty() ? "" : " ") + word;
     return t;
   }
@@ -95,8 +113,20 @@ public:
   }
 
 private:
+  void restore_fd() {
+    if (saved_ >= 0) {
+      std::fflush(stderr);
+      dup2(saved_, 2);
+      close(saved_);
+      saved_ = -1;
+    }
+    if (file_) std::fclose(file_);
+    file_ = nullptr;
+  }
   std::ostringstream text_;
   std::streambuf* old_;
+  std::FILE* file_ = nullptr;
+  int saved_ = -1;
 };
 
 // ITK's NIfTI reader returns a zero-padded image for a truncated file (the

@@ -27,6 +27,8 @@ case_images_refused() {
   # Flip bytes inside the deflate stream: a corrupt block or a CRC mismatch.
   { nrrd_header uint8 "16 16 16" gzip; head -c 12 zeros.gz; printf '\377\377\377\377'; tail -c +17 zeros.gz; } >corrupt-gzip.nrrd
   { nrrd_header uint8 "10 10 10" raw; head -c 500 /dev/zero; } >truncated.nrrd
+  # dim[0] = 9: niftilib prints its own "** ERROR" line on C's stderr.
+  python3 -c 'import struct, sys; h = bytearray(348); struct.pack_into("<i", h, 0, 348); struct.pack_into("<8h", h, 40, 9, 4, 4, 4, 1, 1, 1, 1); struct.pack_into("<h", h, 70, 2); h[344:348] = b"n+1\0"; sys.stdout.buffer.write(bytes(h) + bytes(68))' >baddim.nii
   for tool in img2wc wc2implicit seg2mesh; do
     out=out.nrrd
     [[ $tool == seg2mesh ]] && out=out.ply
@@ -40,6 +42,7 @@ case_images_refused() {
     refused $tool "expected 4096 bytes but received" truncated-gzip.nrrd $out
     refused $tool "cannot read the image" corrupt-gzip.nrrd $out
     refused $tool "more than the file" truncated.nrrd $out
+    refused $tool "not recognized as a NIFTI file" baddim.nii $out
   done
   { nrrd_header uint8 "4 4 4" raw; head -c 64 /dev/zero; } >volume.nrrd
   refused img2poly "3D image" volume.nrrd out.poly
