@@ -302,6 +302,10 @@ struct Opened {
   ImageInfo info;
 };
 
+// The MetaImage header is checked before MetaIO reads it. Every line up to
+// ElementDataFile (the last field) must be "Key = Value": MetaIO takes any
+// byte after a key as its '=', so a header it reads differently from this
+// check (and from metaimage_data_error) is refused rather than guessed at.
 // MetaIO formats a list-of-files ElementDataFile ("slice%03d.raw 1 9 1")
 // with printf and an int: any other conversion ("%s", "%n") reads or
 // writes through garbage. So a '%' there must start one "%[0][width]d".
@@ -309,6 +313,15 @@ std::string metaimage_header_error(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
   std::string line;
   for (int n = 0; n < 200 && std::getline(in, line); ++n) {
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    if (line.empty()) continue;
+    {
+      std::size_t k = 0;
+      while (k < line.size() && (std::isalnum(static_cast<unsigned char>(line[k])) || line[k] == '_')) ++k;
+      const std::size_t e = line.find_first_not_of(" \t", k);
+      if (k == 0 || e == std::string::npos || line[e] != '=')
+        return "MetaImage header line " + std::to_string(n + 1) + " is not 'Key = Value'";
+    }
     // MetaIO copies a field's name into 255 bytes and its value into a
     // fixed buffer, unchecked.
     const std::size_t eq = line.find('=');
@@ -330,8 +343,7 @@ std::string metaimage_header_error(const std::string& file) {
       if (!(declared >= 0) || (!ec && declared > double(size)))
         return "the MetaImage's CompressedDataSize is more than the file holds";
     }
-    const std::size_t key = line.find("ElementDataFile");
-    if (key == std::string::npos) continue;
+    if (line.compare(0, 15, "ElementDataFile") != 0 || line.find_first_not_of(" \t", 15) != line.find('=')) continue;
     int conversions = 0;
     for (std::size_t i = line.find('%'); i != std::string::npos; i = line.find('%', i + 1)) {
       std::size_t j = i + 1;
@@ -342,7 +354,7 @@ std::string metaimage_header_error(const std::string& file) {
     }
     return "";
   }
-  return "";
+  return "the MetaImage header has no ElementDataFile line (in its first 200 lines)";
 }
 
 // MetaIO reads a data file it cannot open, a LIST or a %d pattern naming
