@@ -173,6 +173,7 @@ std::uintmax_t max_data_bytes(const std::string& file, std::uintmax_t file_size)
       std::size_t end = head.find('\n', pos);
       if (end == std::string::npos) end = head.size();
       std::string line = head.substr(pos, end - pos);
+      line = line.substr(0, line.find('\0'));  // the C readers stop there
       while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
       if (line.empty() && sep == ':') break;
       if (line.compare(0, key.size(), key) == 0 && line.find(":=") == std::string::npos) {
