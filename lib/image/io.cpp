@@ -158,6 +158,9 @@ void check_nifti_complete(const std::string& path, const std::string& file, std:
 // can hold, or 0 when that is not known here (data in another file, bzip2).
 // Deflate (gzip, zlib, PNG) expands at most 1032:1; a PNG of 1-bit palette
 // indices reads as 8-bit RGB (24 times its bits).
+// MetaIO reads a boolean field as true when its value starts with T, t or 1.
+bool metaio_true(const std::string& v) { return !v.empty() && (v[0] == 'T' || v[0] == 't' || v[0] == '1'); }
+
 std::uintmax_t max_data_bytes(const std::string& file, std::uintmax_t file_size) {
   constexpr std::uintmax_t deflate = 1032, slack = 4096;
   std::ifstream in(file, std::ios::binary);
@@ -198,8 +201,9 @@ std::uintmax_t max_data_bytes(const std::string& file, std::uintmax_t file_size)
   if (starts("ObjectType") || starts("NDims")) {
     if (field("ElementDataFile", '=') != "LOCAL") return 0;
     const std::string c = field("CompressedData", '='), b = field("BinaryData", '=');
-    if (c == "True" || c == "true") return deflate * file_size + slack;
-    return b == "False" || b == "false" ? 8 * file_size : file_size;
+    // MetaIO's booleans: true when the value starts with T, t or 1.
+    if (metaio_true(c)) return deflate * file_size + slack;
+    return !b.empty() && !metaio_true(b) ? 8 * file_size : file_size;
   }
   if (starts("\x89PNG")) return 24 * deflate * file_size + slack;
   if (head.size() >= 2 && (unsigned char)head[0] == 0x1f && (unsigned char)head[1] == 0x8b)
@@ -345,6 +349,9 @@ std::string metaimage_header_error(const std::string& file) {
         return "the MetaImage's CompressedDataSize is more than the file holds";
     }
     if (line.compare(0, 15, "ElementDataFile") != 0 || line.find_first_not_of(" \t", 15) != line.find('=')) continue;
+    // An empty value makes MetaIO take its file name from the data after.
+    if (line.find_first_not_of(" \t", line.find('=') + 1) == std::string::npos)
+      return "the MetaImage's ElementDataFile is empty";
     int conversions = 0;
     for (std::size_t i = line.find('%'); i != std::string::npos; i = line.find('%', i + 1)) {
       std::size_t j = i + 1;
@@ -407,7 +414,7 @@ std::string metaimage_data_error(const std::string& file, std::uintmax_t bytes) 
   };
   while (std::getline(in, line)) {
     if (line.find('=') == std::string::npos) continue;
-    if (key(line, "CompressedData")) compressed = value(line) == "True" || value(line) == "true";
+    if (key(line, "CompressedData")) compressed = metaio_true(value(line));
     if (key(line, "NDims")) ndims = value(line);
     if (key(line, "DimSize")) dimsize = value(line);
     if (key(line, "ElementDataFile")) {
