@@ -179,7 +179,10 @@ std::uintmax_t max_data_bytes(const std::string& file, std::uintmax_t file_size)
       line = line.substr(0, line.find('\0'));  // the C readers stop there
       while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
       if (line.empty() && sep == ':') break;
-      if (line.compare(0, key.size(), key) == 0 && line.find(":=") == std::string::npos) {
+      // teem matches field names whatever their case ("Encoding:").
+      auto same = [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b)); };
+      if (line.size() >= key.size() && std::equal(key.begin(), key.end(), line.begin(), same) &&
+          line.find(":=") == std::string::npos) {
         std::size_t v = line.find(sep, key.size());
         if (v != std::string::npos && line.find_first_not_of(' ', key.size()) == v) {
           v = line.find_first_not_of(" =:", v);
