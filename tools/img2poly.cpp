@@ -50,11 +50,16 @@ int main(int argc, char** argv) {
   bool svg_whole = false;
   tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole image in the SVG, not a frame around the foreground");
   tool.add_seed();
+  // Tests only (hidden): simplify without the tolerance stop, so that the
+  // final Hausdorff measure must catch the broken bound (exit 3).
+  bool skip_stop = false;
+  tool.app.add_flag("--skip-tolerance-stop", skip_stop)->group("");
 
   return tool.run(argc, argv, [&] {
     if (extension_of(out) != ".poly" && out != "-") throw UsageError("OUT must end in .poly", out);
     if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
     opt.seed = tool.seed();
+    opt.tolerance_stop = !skip_stop;
     if (in != "-") {
       // Refuse a volume or a huge grid from the header, before reading voxels.
       const ImageInfo info = read_image_info(in);

@@ -32,6 +32,10 @@ int main(int argc, char** argv) {
   tool.app.add_flag("--thesis-rules", thesis_rules,
                     "Draw at random among all of B1(r) (rule 2) or B2(r) (rule 3), as the thesis does, "
                     "instead of among the sets that eliminate the most configurations");
+  // Tests only (hidden): pad but do not repair, so that the final count must
+  // catch the critical configurations (exit 3, the output written).
+  bool skip_repair = false;
+  tool.app.add_flag("--skip-repair", skip_repair)->group("");
   tool.app.add_flag("--check", check,
                     "Write nothing: print whether IN is well-composed and its counts; exit 0 if it is, 1 if not");
 
@@ -55,6 +59,7 @@ int main(int argc, char** argv) {
     opt.mode = mode == "remove" ? RepairMode::Remove : mode == "min" ? RepairMode::Min : RepairMode::Add;
     opt.seed = tool.seed();
     opt.greedy = !thesis_rules;
+    opt.repair = !skip_repair;
     tool.report_progress("repairing " + std::to_string(img.count()) + " voxels");
     const WellComposedResult res = make_well_composed(img, opt);
     std::vector<std::uint8_t>().swap(img.data);  // the input is no longer needed: less memory while writing

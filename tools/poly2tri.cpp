@@ -17,10 +17,10 @@ int main(int argc, char** argv) {
   std::string in, out, svg;
   TriangulateOptions opt;
   double max_vertices = double(opt.max_vertices);
-  tool.app.add_option("IN", in, "Input PSLG: Triangle .poly (or its .node) or OFF of polygons")->required();
+  tool.app.add_option("IN", in, "Input PSLG: Triangle .poly (or its .node) or OFF of polygons (- for a .poly on stdin)")->required();
   tool.app.add_option("OUT", out,
                       "Output mesh: NAME.ele (writes NAME.node and NAME.poly beside it); .off, .vtk, .msh "
-                      "or .svg also work")
+                      "or .svg also work; - for OFF on stdout")
       ->required();
   tool.data_output(out);
   tool.app.add_option("--min-angle", opt.min_angle,
@@ -59,9 +59,10 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
 
   return tool.run(argc, argv, [&] {
-    const std::string ext = extension_of(out);
+    // "-": OFF on standard output (the one single-file format for triangles).
+    const std::string ext = out == "-" ? std::string(".off") : extension_of(out);
     if (ext != ".ele" && ext != ".off" && ext != ".vtk" && ext != ".msh" && ext != ".svg")
-      throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg", out);
+      throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg (or be - for OFF on stdout)", out);
     opt.max_vertices = std::size_t(max_vertices);
     if (square_lattice > 0) {
       opt.lattice = square_lattice;
@@ -71,7 +72,7 @@ int main(int argc, char** argv) {
       opt.progress = [&](std::size_t n) { tool.report_progress(std::to_string(n) + " vertices"); };
     const PlanarMesh pslg = read_pslg(in);
     const auto r = naming_input(in, [&] { return triangulate_pslg(pslg, opt); });
-    write_planar_mesh(out, r.mesh);
+    write_planar_mesh(out, r.mesh);  // "-": OFF on stdout
     if (!svg.empty()) {
       PlanarWriteOptions so;
       so.svg_frame_foreground = !svg_whole;

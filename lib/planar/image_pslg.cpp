@@ -323,7 +323,7 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
       if (piece.empty()) piece.push_back(p);
     }
   }
-  const SimplifyReport rep = simplify_polylines(set, obstacles, opt.tolerance, opt.min_angle);
+  const SimplifyReport rep = simplify_polylines(set, obstacles, opt.tolerance_stop ? opt.tolerance : 1e12, opt.min_angle);
   res.hausdorff = rep.hausdorff;
 
   // The PSLG in world coordinates.

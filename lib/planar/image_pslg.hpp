@@ -22,6 +22,10 @@ struct ImagePslgOptions {
   // segments at a vertex, so no needlessly small input angles reach the mesher.
   double min_angle = 30;
   std::uint64_t seed = 0;  // for the well-composed repair
+  // Tests only: false simplifies without the tolerance stop, so that the
+  // final Hausdorff measure must find the bound broken (img2poly's hidden
+  // --skip-tolerance-stop).
+  bool tolerance_stop = true;
 };
 
 // The interface between two labels a < b, written as segment marker `marker`.

@@ -57,6 +57,10 @@ struct Tri2QuadOptions {
   // mu of at least this (degrees; 0: off), best first, and convert the rest
   // around them (see tri2quad()).
   double pair_above = 0;
+  // Tests only: false takes every two-triangle polygon as a quad, convex or
+  // not (step 4(c) without its test), so that the final convexity check
+  // must find the bad quads (tri2quad's hidden --skip-convexity-test).
+  bool convexity_test = true;
 };
 
 struct Tri2QuadResult {

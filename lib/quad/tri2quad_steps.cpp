@@ -105,7 +105,7 @@ bool Conversion::small_node(int u, int c) {
   }
   if (boundary.size() != 4 || scratch_triangles.size() != 2) return false;
   const int* q = boundary.data();
-  if (good_quad(points[q[0]], points[q[1]], points[q[2]], points[q[3]])) {
+  if (!options.convexity_test || good_quad(points[q[0]], points[q[1]], points[q[2]], points[q[3]])) {
     result.quads.push_back({q[0], q[1], q[2], q[3]});
     if (has_regions) result.region.push_back(attribute[u]);
     ++case_counts[kQuadConvex];
@@ -142,7 +142,7 @@ Conversion::Closing Conversion::close_polygon(int u, bool is_root, const Child* 
     r = {kLeftoverTriangle, 0, 2, -1};  // local id of c
     done = true;
   } else if (nb_ == 4 && ni == 0) {  // the root or a pair with a dent
-    if (good_quad(lp.p[0], lp.p[1], lp.p[2], lp.p[3])) {
+    if (!options.convexity_test || good_quad(lp.p[0], lp.p[1], lp.p[2], lp.p[3])) {
       lp.quads.push_back({0, 1, 2, 3});
       ++case_counts[kQuadConvex];
       r = {};

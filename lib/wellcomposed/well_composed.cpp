@@ -352,7 +352,7 @@ Padding border_padding(const BinaryImage& in) {
 // complement back (the border stays background in the result, since the
 // complement's border is foreground and add never touches it).
 WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode mode, std::uint64_t seed,
-                          bool greedy) {
+                          bool greedy, bool run = true) {
   WellComposedResult res;
   res.padded_before = pad.before;
   res.padded_after = pad.after;
@@ -370,7 +370,7 @@ WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode 
     std::vector<std::uint8_t> w(2 * nx * ny, 0);
     for (std::size_t i = 0; i < nx * ny; ++i) w[i] = remove ? out.data[i] ^ 1 : out.data[i];
     Repair rep(WorkGrid(w.data(), nx, ny, 2), seed, greedy);
-    rep.run();
+    if (run) rep.run();
     for (std::size_t i = 0; i < nx * ny; ++i) out.data[i] = remove ? w[i] ^ 1 : w[i];
     res.changed = rep.changed;
     res.created = rep.created;
@@ -379,7 +379,7 @@ WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode 
   if (remove)
     for (auto& v : out.data) v ^= 1;
   Repair rep(WorkGrid(out.data.data(), nx, ny, out.size[2]), seed, greedy);
-  rep.run();
+  if (run) rep.run();
   if (remove)
     for (auto& v : out.data) v ^= 1;
   res.changed = rep.changed;
@@ -435,15 +435,15 @@ WellComposedResult make_well_composed(const BinaryImage& in, const WellComposedO
   const Padding pad = border_padding(in);
   WellComposedResult res;
   if (opt.mode == RepairMode::Min) {
-    WellComposedResult add = repair(in, pad, RepairMode::Add, opt.seed, opt.greedy);
+    WellComposedResult add = repair(in, pad, RepairMode::Add, opt.seed, opt.greedy, opt.repair);
     if (add.changed == 0) {
       res = std::move(add);
     } else {
-      WellComposedResult rem = repair(in, pad, RepairMode::Remove, opt.seed, opt.greedy);
+      WellComposedResult rem = repair(in, pad, RepairMode::Remove, opt.seed, opt.greedy, opt.repair);
       res = rem.changed < add.changed ? std::move(rem) : std::move(add);
     }
   } else {
-    res = repair(in, pad, opt.mode, opt.seed, opt.greedy);
+    res = repair(in, pad, opt.mode, opt.seed, opt.greedy, opt.repair);
   }
   res.input = counts;
   res.options = opt;

@@ -39,6 +39,9 @@ struct WellComposedOptions {
   // pass drops inserted points that became unnecessary. false: the thesis's
   // literal rules (draw among all of B1(r), resp. B2(r); one pass).
   bool greedy = true;
+  // Tests only: false pads but does not repair, so that the final count
+  // must find the critical configurations (img2wc's hidden --skip-repair).
+  bool repair = true;
 };
 
 struct WellComposedResult {

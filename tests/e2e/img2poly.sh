@@ -188,4 +188,21 @@ case_bad_input_one_line_exit_1_2_without_output() {
   [[ ! -e bad.poly && ! -e bad.txt ]] || fail "output written on error"
 }
 
+# Exit 3: simplified without the tolerance stop (the hidden test-only
+# --skip-tolerance-stop), the final Hausdorff measure must find E broken:
+# exit 3, the .poly written (file and stdout alike), fewer vertices than
+# within E, and still a PSLG poly2tri meshes.
+case_exit_3_when_the_tolerance_stop_is_skipped() {
+  input shapes.nrrd
+  expect 0 img2poly shapes.nrrd within.poly --threshold 100
+  expect 3 img2poly shapes.nrrd skip.poly --threshold 100 --skip-tolerance-stop --stats s.json
+  grep -q "^img2poly: guarantee not met: the Hausdorff bound" err.txt || fail "no guarantee message: $(cat err.txt)"
+  python3 -c 'import json, sys; d = json.load(open("s.json")); sys.exit(not d["hausdorff"] > d["tolerance"])' ||
+    fail "stats: Hausdorff within the bound: $(cat s.json)"
+  (($(count skip.poly) < $(count within.poly))) || fail "skip.poly has $(count skip.poly) vertices, within.poly $(count within.poly)"
+  OUT=skip-stdout.poly expect 3 img2poly shapes.nrrd - --threshold 100 --skip-tolerance-stop
+  cmp -s skip-stdout.poly skip.poly || fail "OUT - differs from OUT skip.poly on exit 3"
+  expect 0 poly2tri skip.poly skip.1.ele
+}
+
 run_cases "$@"

@@ -179,4 +179,16 @@ BAD_STDOUT=/dev/full bad 1 "stdout is /dev/full" "$DATA/bunny00-96.nrrd" -
 
 }
 
+# Exit 3: with the repair skipped (the hidden test-only --skip-repair), the
+# final count must find the critical configurations: exit 3, the image
+# written (file and stdout alike) and not well-composed by --check.
+case_exit_3_when_the_repair_is_skipped() {
+  expect 3 img2wc "$DATA/bunny00-96.nrrd" skip.nrrd --skip-repair --stats s.json
+  grep -q "^img2wc: guarantee not met: output is NOT well-composed" err.txt || fail "no guarantee message: $(cat err.txt)"
+  [[ $(st s.json well_composed) == False && $(st s.json output_c1) -gt 0 ]] || fail "stats: $(cat s.json)"
+  OUT=check.txt expect 1 img2wc skip.nrrd --check
+  OUT=skip-stdout.nrrd expect 3 img2wc "$DATA/bunny00-96.nrrd" - --skip-repair
+  cmp -s skip-stdout.nrrd skip.nrrd || fail "OUT - differs from OUT skip.nrrd on exit 3"
+}
+
 run_cases "$@"

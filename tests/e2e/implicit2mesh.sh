@@ -2,7 +2,8 @@
 # implicit2mesh end to end: the real pipeline on bundled images, each mesh
 # checked independently (surface_check: closed oriented 2-manifold without
 # self-intersections, bdCA(X)'s Euler characteristics, radius-edge ratio;
-# surface_check.py: roughness, signed volume, component boxes), exit codes,
+# surface_check.py: roughness, signed volume, component boxes;
+# distance_check.py: the distance bound, through implicit-eval), exit codes,
 # stdout against the file output, normals read back, and
 # share/examples/Makefile on a bundled multi-label image.
 source "$(dirname "$0")/lib.sh"
@@ -13,6 +14,16 @@ SURF=$E2E/surface_check.py
 surface() {
   "$CHECK" "$1" "$2" "$3" > check.txt 2>&1 || { fail "$1: surface_check: $(cat check.txt)"; return; }
   python3 "$SURF" "$1" "$2" --roughness "${4:-1.0471975511965976}" > surf.txt 2>&1 || fail "$1: surface_check.py: $(cat surf.txt)"
+}
+DIST=$E2E/distance_check.py
+# spacing F K: K times the smallest voxel spacing of the implicit file F.
+spacing() {
+  python3 - "$1" "$2" <<'PY'
+import re, sys
+head = open(sys.argv[1], 'rb').read().split(b'\n\n')[0].decode()
+dirs = re.search(r'space directions: (.*)', head).group(1)
+print(repr(float(sys.argv[2]) * min(sum(float(x) ** 2 for x in v.strip('()').split(',')) ** 0.5 for v in dirs.split())))
+PY
 }
 bunny_wc() { expect 0 img2wc "$DATA/bunny00-96.nrrd" bunny-wc.nrrd -q; }
 bunny_f() { expect 0 wc2implicit "$(shared bunny-wc.nrrd bunny_wc)" bunny-f.nrrd -q; }
@@ -65,6 +76,10 @@ assert s['max_distance_to_plane'] <= h / 4 * (1 + 1e-9), (s['max_distance_to_pla
 assert s['max_roughness_degrees'] <= 90 + 1e-9 and abs(s['roughness_bound_degrees'] - 90) < 1e-9, s['max_roughness_degrees']
 assert s['min_angle_degrees'] >= 24.6, s['min_angle_degrees']
 PY
+  # The distance bound measured, not read from --stats: E = a quarter of
+  # the smallest spacing (the README's default).
+  python3 "$DIST" bunny.ply "$f" "$(spacing "$f" 0.25)" "$BIN/implicit-eval" > dist.txt 2>&1 ||
+    fail "bunny at the defaults: $(cat dist.txt)"
 }
 
 # The thesis's bounds (rho_0 = 2, 60 degrees, no distance bound) give a
@@ -82,6 +97,10 @@ s, d = (json.load(open(a)) for a in sys.argv[1:3])
 assert s['max_distance_to_plane'] > d['max_distance_to_plane'], s['max_distance_to_plane']  # --max-distance 0: off
 assert s['triangles'] < d['triangles'] and abs(s['roughness_bound_degrees'] - 60) < 1e-9, (s['triangles'], d['triangles'])
 PY
+  # Without the distance bound the measure finds triangles beyond a quarter
+  # voxel (so distance_check.py can fail).
+  python3 "$DIST" loose.off "$f" "$(spacing "$f" 0.25)" "$BIN/implicit-eval" > dist.txt 2>&1 &&
+    fail "--max-distance 0: every triangle within a quarter voxel: $(cat dist.txt)"
   expect 0 implicit2mesh "$f" loose-deg.off "${LOOSE[@]}" --roughness 60
   expect 0 implicit2mesh "$f" loose-rad.off "${LOOSE[@]}" --roughness 1.0471975511965976rad
   cmp -s loose.off loose-deg.off && cmp -s loose.off loose-rad.off || fail "--roughness pi/3, 60 and 1.047...rad differ"

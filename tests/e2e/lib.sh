@@ -109,6 +109,9 @@ whole() {
   esac || { fail "$1 is cut short"; return 1; }
 }
 
+# The built tools' names, as an extended regular expression's alternatives.
+TOOLS=$(cd "$BIN" && for t in *; do [[ -f $t && -x $t ]] && printf '%s|' "$t"; done | sed 's/|$//')
+
 run_cases() {
   local cases=("$@") c failed=0
   ((${#cases[@]})) || mapfile -t cases < <(sed -n 's/^case_\([A-Za-z0-9_]*\) *().*/\1/p' "$SCRIPT")
@@ -119,7 +122,14 @@ run_cases() {
       echo "FAIL e2e.$SUITE.$c: no such case"; failed=1; continue
     fi
     mkdir "$dir/.tmp"
-    ( CASE=$c CASE_DIR=$dir; export TMPDIR=$dir/.tmp; cd "$dir" && "case_$c" )
+    # The case's stderr, kept and then shown: every line must be the
+    # harness's (FAIL, "    | ") or start with a built tool's name, so a
+    # tool run outside expect (a pipe, a setup step) is checked too.
+    ( CASE=$c CASE_DIR=$dir; export TMPDIR=$dir/.tmp; cd "$dir" && "case_$c" ) 2> "$dir/.stderr"
+    cat "$dir/.stderr" >&2
+    local stray
+    stray=$(grep -vE "^(FAIL e2e\.|    \| |($TOOLS): )" "$dir/.stderr" | head -3)
+    [[ -z $stray ]] || { CASE=$c CASE_DIR=$dir fail "a stderr line does not start with a tool's name: $stray"; }
     [[ -z $(ls -A "$dir/.tmp") ]] || { CASE=$c CASE_DIR=$dir fail "left in TMPDIR: $(ls -A "$dir/.tmp")"; }
     if [[ -e $dir/.failed ]]; then echo "FAIL e2e.$SUITE.$c"; failed=1; else echo "PASS e2e.$SUITE.$c"; fi
   done

@@ -35,4 +35,20 @@ done
 [[ $count == 11 ]] || fail "$count tools checked, not 11"
 }
 
+# Exit 3 (output written, a guarantee not met): every page either lists it
+# or says there is none; the tools with none are those with no guarantee
+# to check (their other tools' exit 3 is run in their own suites).
+case_exit_3_listed_or_said_absent() {
+  pages=${PAGES:-$BIN/../man}
+  for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet seg2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
+    status=$(sed -n '/^\.SH "\?EXIT STATUS/,/^\.SH /p' "$pages/$tool.1" | sed 's/\\-/-/g; s/\\f[BIRP]//g')
+    case $tool in
+      wc2implicit | implicit-eval)
+        grep -q "There is no exit status 3: $tool" <<<"$status" || fail "$tool.1 does not say it has no exit 3" ;;
+      *)
+        grep -qE '(^|[;,] |^\.B )3( |$)|^3$' <<<"$status" || fail "$tool.1 does not list exit 3" ;;
+    esac
+  done
+}
+
 run_cases "$@"

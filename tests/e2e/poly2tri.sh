@@ -240,4 +240,25 @@ expect 2 poly2tri sq.poly x.1.txt
 [[ ! -e x.1.ele ]] || fail "output written on usage error"
 }
 
+# "-": a .poly on stdin and OFF on stdout are the file input and the .off
+# output, byte for byte (also on exit 3); the .off is the .ele's mesh.
+case_stdin_stdout_are_the_files() {
+  square
+  expect 0 poly2tri sq.poly file.off
+  OUT=stdout.off expect 0 poly2tri sq.poly -
+  cmp -s stdout.off file.off || fail "OUT - differs from OUT file.off"
+  IN=sq.poly OUT=stdin.off expect 0 poly2tri - -
+  cmp -s stdin.off file.off || fail "IN - differs from IN sq.poly"
+  IN=sq.poly expect 0 poly2tri - stdin.1.ele
+  expect 0 poly2tri sq.poly file.1.ele
+  for f in ele node poly; do cmp -s stdin.1.$f file.1.$f || fail "IN - .$f differs from IN sq.poly"; done
+  [[ $(sed -n 2p file.off | cut -d' ' -f2) == $(count file.1.ele) ]] || fail "file.off and file.1.ele differ in triangles"
+  expect 3 poly2tri sq.poly cap.off --max-vertices 15
+  OUT=cap-stdout.off expect 3 poly2tri sq.poly - --max-vertices 15
+  cmp -s cap-stdout.off cap.off || fail "OUT - differs from OUT cap.off on exit 3"
+  printf '0 2 0 0\n0 0\n' > novert.poly
+  IN=novert.poly expect 1 poly2tri - x.off
+  [[ ! -e x.off ]] || fail "x.off written on error"
+}
+
 run_cases "$@"

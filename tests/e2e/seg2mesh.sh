@@ -70,6 +70,14 @@ certified() {
 case_ply_each_label_certified_against_its_image() { certified all.ply; }
 case_msh_each_label_certified_against_its_image() { certified all.msh; }
 
+# --jobs 2 writes the bytes --jobs 1 writes: the labels are joined in label
+# order, each meshed on one thread whatever --jobs.
+case_jobs_2_is_jobs_1_byte_for_byte() {
+  local a b
+  a=$(shared all.ply all_ply) && b=$(shared all1.ply all1_ply) || return
+  cmp -s "$a" "$b" || fail "seg2mesh --jobs 2 and --jobs 1 write different files"
+}
+
 # --jobs 1: each label as the pipeline makes it (byte for byte, seeded alike).
 case_jobs_1_is_the_pipelines_mesh() {
   here all1.ply all1_ply || return

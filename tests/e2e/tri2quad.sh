@@ -205,4 +205,22 @@ case_bad_input_exit_1_2_without_output() {
   [[ -z $(ls | grep -v -e '^sq\.' -e '^trunc\.' -e '^err.txt$' -e '^out.txt$') ]] || fail "left: $(ls)"
 }
 
+# Exit 3: a dart (two triangles whose union is not convex) taken as one
+# quad without the convexity test (the hidden test-only
+# --skip-convexity-test): the final check must find it, exit 3, the mesh
+# written (file and stdout alike), and quad_check.py rejects it too.
+case_exit_3_when_the_convexity_test_is_skipped() {
+  printf '4 2 0 1\n0 0 0 1\n1 3 1 1\n2 0 2 1\n3 1 1 0\n' > d.node
+  printf '2 3 0\n0 0 1 3\n1 3 1 2\n' > d.ele
+  expect 0 tri2quad d.ele ok.q.ele
+  python3 "$QC" ok.q.ele d.ele --fixed > qc.txt 2>&1 || fail "the dart without the skip: $(cat qc.txt)"
+  expect 3 tri2quad d.ele d.q.ele --skip-convexity-test
+  grep -q "^tri2quad: guarantee not met: 1 quads not strictly convex" err.txt || fail "no guarantee message: $(cat err.txt)"
+  [[ $(count d.q.ele) == 1 ]] || fail "$(count d.q.ele) quads, want the dart alone"
+  python3 "$QC" d.q.ele d.ele --fixed > qc.txt 2>&1 && fail "quad_check.py accepts the dart"
+  expect 3 tri2quad d.ele d.off --skip-convexity-test
+  OUT=d-stdout.off expect 3 tri2quad d.ele - --skip-convexity-test
+  cmp -s d-stdout.off d.off || fail "OUT - differs from OUT d.off on exit 3"
+}
+
 run_cases "$@"
