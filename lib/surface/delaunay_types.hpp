@@ -6,13 +6,14 @@
 #include "surface/vec3.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
-#include <CGAL/Delaunay_triangulation_cell_base_with_circumcenter_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Robust_weighted_circumcenter_filtered_traits_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -106,32 +107,52 @@ private:
 
 // The circumcentre from the vertices in lexicographic order. From CGAL's
 // vertex order, which vertex removal makes depend on addresses, it would
-// differ in its last bits from run to run (the cell base above caches it).
+// differ in its last bits from run to run. Cached in the cell (NaN: not
+// yet), not on the heap as CGAL's cell base with circumcenter does: 16
+// bytes and an allocation less a cell. Every finite cell's is computed by
+// EdgeSurface before FacetCycle reads them on threads.
 template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_3<Gt>>
-class CanonicalCircumcenter : public Cb {
-public:
-  template <class TDS2> struct Rebind_TDS {
-    using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
-    using Other = CanonicalCircumcenter<Gt, Cb2>;
-  };
-  using Cb::Cb;
-  typename Gt::Point_3 circumcenter(const Gt& gt = Gt()) const {
-    const typename Gt::Point_3* p[4];
-    for (int i = 0; i < 4; ++i) p[i] = &this->vertex(i)->point();
-    std::sort(p, p + 4, [](const auto* a, const auto* b) { return *a < *b; });
-    return gt.construct_circumcenter_3_object()(*p[0], *p[1], *p[2], *p[3]);
-  }
-};
-
-template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_with_circumcenter_3<Gt, CanonicalCircumcenter<Gt>>>
 class CellBase : public Cb {
 public:
+  using Vertex_handle = typename Cb::Vertex_handle;
+  using Cell_handle = typename Cb::Cell_handle;
+  using Point3 = typename Gt::Point_3;
   template <class TDS2> struct Rebind_TDS {
     using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
     using Other = CellBase<Gt, Cb2>;
   };
-  using Cb::Cb;
+  CellBase() = default;
+  CellBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3) : Cb(v0, v1, v2, v3) {}
+  CellBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3, Cell_handle n0, Cell_handle n1,
+           Cell_handle n2, Cell_handle n3)
+      : Cb(v0, v1, v2, v3, n0, n1, n2, n3) {}
+  // Changing a vertex forgets the circumcentre.
+  void set_vertex(int i, Vertex_handle v) {
+    forget();
+    Cb::set_vertex(i, v);
+  }
+  void set_vertices() {
+    forget();
+    Cb::set_vertices();
+  }
+  void set_vertices(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3) {
+    forget();
+    Cb::set_vertices(v0, v1, v2, v3);
+  }
+  const Point3& circumcenter(const Gt& gt = Gt()) const {
+    if (std::isnan(center_.x())) {
+      const Point3* p[4];
+      for (int i = 0; i < 4; ++i) p[i] = &this->vertex(i)->point();
+      std::sort(p, p + 4, [](const auto* a, const auto* b) { return *a < *b; });
+      center_ = gt.construct_circumcenter_3_object()(*p[0], *p[1], *p[2], *p[3]);
+    }
+    return center_;
+  }
   FacetRefs facet;
+
+private:
+  void forget() { center_ = Point3(NAN, NAN, NAN); }
+  mutable Point3 center_{NAN, NAN, NAN};
 };
 
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VInfo, GT>;

@@ -12,8 +12,12 @@ void restricted_around(const Tr& tr, Vh v, std::vector<Facet>& facets, std::vect
     const int iv = c->index(v);
     for (int i = 0; i < 4; ++i) {
       if (i == iv || !(c->facet[i].state & kRestricted)) continue;
-      Ch n = c->neighbor(i);  // also around v: take the facet from one side
-      if (&*c < &*n) facets.emplace_back(c, i);
+      // Also around v: the facet is taken from the side whose opposite
+      // vertex has the smaller id (the infinite one: -1), not by address.
+      // The side is the insertion's hint, and the hint decides the layout
+      // of the new cells, so by address the mesh depended on the allocator.
+      Ch n = c->neighbor(i);
+      if (c->vertex(i)->info().id < n->vertex(n->index(c))->info().id) facets.emplace_back(c, i);
     }
   }
 }

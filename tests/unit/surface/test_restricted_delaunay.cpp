@@ -6,7 +6,11 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <memory>
 #include <random>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 using namespace imgmesh;
 
@@ -240,4 +244,37 @@ TEST_CASE("seed deletion also deletes HandleDetection's points, and puts back th
   // on the seed, and the topology above is what must hold either way.
   CHECK(r.to_json().at("handle_points_deleted").number() > 0);
   CHECK(r.to_json().at("handle_points_restored").number() <= r.to_json().at("handle_points_deleted").number());
+}
+
+// The mesh depends on the data only: not on where the allocator puts CGAL's
+// cells (their handles compare by address), nor on the thread count. A
+// solid torus is meshed, then meshed again after the heap was
+// rearranged, so that CGAL's growing blocks land in other places and in
+// another address order (glibc: every large block mmapped, at decreasing
+// addresses), on 2 threads.
+TEST_CASE("deterministic: the same mesh after another allocation pattern and on other thread counts") {
+  const Vec3 c{12.2, 11.9, 7.1};
+  FunctionSurface s(grid(25, 25, 15), [&](const Vec3& p) { return torus(p, c, 7, 2.6); });
+  RestrictedDelaunayOptions o;
+  const auto a = restricted_delaunay_mesh(s, o);
+  // Holes of decreasing size at increasing addresses, each after a block
+  // kept: best fit puts CGAL's small first blocks high, its later ones low.
+  std::vector<std::unique_ptr<char[]>> holes, kept;
+  for (int k = 48; k > 0; --k) {
+    holes.emplace_back(new char[std::size_t(k) * 1024]);
+    kept.emplace_back(new char[48]);
+  }
+  holes.clear();
+#ifdef __GLIBC__
+  mallopt(M_MMAP_THRESHOLD, 4096);
+#endif
+  o.threads = 2;
+  const auto b = restricted_delaunay_mesh(s, o);
+#ifdef __GLIBC__
+  mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+#endif
+  INFO(a.mesh.points.size() << " and " << b.mesh.points.size() << " vertices");
+  CHECK(a.mesh.points == b.mesh.points);
+  CHECK(a.mesh.triangles == b.mesh.triangles);
+  CHECK(a.centers == b.centers);
 }

@@ -92,3 +92,29 @@ TEST_CASE("TopoDisk on a triangulation: false exactly where the restricted facet
     CHECK(star_is_disk(m.triangulation(), v));
   }
 }
+
+// The side a facet is taken from (the insertion's hint when TopoDisk or
+// SMOOTH refines there, which decides the new cells' layout) depends on the
+// data only: the side whose opposite vertex has the smaller id. By address,
+// the mesh depended on where the allocator put the cells.
+TEST_CASE("restricted_around: each facet once, from the side opposite its smaller-id vertex") {
+  const Vec3 c{11.6, 11.3, 4.6};
+  FunctionSurface s(test::box(24, 24, 10), [&](const Vec3& p) { return test::torus_f(p, c, 8.1, 1.1); });
+  RestrictedDelaunayOptions o;
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  m.refine();
+  std::vector<Facet> facets;
+  std::vector<Ch> cells;
+  long long checked = 0;
+  for (Vh v : m.vertices()) {
+    restricted_around(m.triangulation(), v, facets, cells);
+    for (const Facet& f : facets) {
+      const Ch n = f.first->neighbor(f.second);
+      CHECK(f.first->vertex(f.second)->info().id < n->vertex(n->index(f.first))->info().id);
+      ++checked;
+    }
+  }
+  CHECK(checked > 100);
+}
