@@ -14,7 +14,8 @@ namespace imgmesh::surface_detail {
 // it is rasterised row by row on Pi at delta/16 (at delta/4, curves missed
 // there cost the brain labels' certificate fallback rounds), into runs of
 // one sign. The sign of f at a sample is the corner sign in an inactive
-// cube (F1) and f's sign in an active one. A sign region that does not
+// cube (F1), the enclosure's in an active cube where the enclosure of f
+// excludes 0, and f's sign elsewhere. A sign region that does not
 // reach the border of h is enclosed by a cycle of S; its point farthest from p is found on the sample pair (region,
 // neighbour) farthest from p that brackets a root, by root finding along
 // that segment, i.e. on S inside Pi. Cycles narrower than the step are
@@ -132,10 +133,19 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       cube_of(x, c);
       long last = i;
       bool in;
-      if (grid.active(c[0], c[1], c[2])) {
-        in = SurfaceSampler::inside(f.value(x));
-      } else {
+      // One sign on the whole cube: its corners' in an inactive cube (F1),
+      // or in an active one where the enclosure of f on it excludes 0.
+      bool uniform = !grid.active(c[0], c[1], c[2]);
+      if (uniform) {
         in = grid.neg(c[0], c[1], c[2]);
+      } else {
+        double flo, fhi;
+        const Vec3 clo{c[0] * grid.s[0], c[1] * grid.s[1], c[2] * grid.s[2]};
+        const Vec3 chi{clo[0] + grid.s[0], clo[1] + grid.s[1], clo[2] + grid.s[2]};
+        uniform = f.range(clo, chi, flo, fhi) && (flo > 0 || fhi < 0);
+        in = uniform ? fhi < 0 : SurfaceSampler::inside(f.value(x));
+      }
+      if (uniform) {
         // The row leaves the cube at a_exit; the samples before it are in it
         // (a cube is convex; the floor test settles rounding at its faces).
         double a_exit = INFINITY;
@@ -262,10 +272,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   // corner sign, which f has in an inactive cube; the check makes sure).
   std::sort(cands.begin(), cands.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   for (const auto& c : cands) {
-    const double fa = f.value(c.second[0]), fb = f.value(c.second[1]);
-    if (SurfaceSampler::inside(fa) == SurfaceSampler::inside(fb)) continue;
-    out = f.bisect(c.second[0], c.second[1], fa);
-    return FacetAnswer::kCycle;
+    if (f.bisect(c.second[0], c.second[1], f.value(c.second[0]), out)) return FacetAnswer::kCycle;
   }
   return kNone;
 }
