@@ -132,20 +132,11 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       long c[3];
       cube_of(x, c);
       long last = i;
-      bool in;
-      // One sign on the whole cube: its corners' in an inactive cube (F1),
-      // or in an active one where the enclosure of f on it excludes 0.
-      bool uniform = !grid.active(c[0], c[1], c[2]);
-      if (uniform) {
-        in = grid.neg(c[0], c[1], c[2]);
-      } else {
-        double flo, fhi;
-        const Vec3 clo{c[0] * grid.s[0], c[1] * grid.s[1], c[2] * grid.s[2]};
-        const Vec3 chi{clo[0] + grid.s[0], clo[1] + grid.s[1], clo[2] + grid.s[2]};
-        uniform = f.range(clo, chi, flo, fhi) && (flo > 0 || fhi < 0);
-        in = uniform ? fhi < 0 : SurfaceSampler::inside(f.value(x));
-      }
-      if (uniform) {
+      // The samples i..last of the row in this cube: they take one sign, the
+      // corners' in an inactive cube (F1), or in an active one the sign of
+      // the enclosure of f on their bounding box where it excludes 0 (tried
+      // for 4 samples or more); else each takes f's sign.
+      {
         // The row leaves the cube at a_exit; the samples before it are in it
         // (a cube is convex; the floor test settles rounding at its faces).
         double a_exit = INFINITY;
@@ -161,9 +152,28 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
           if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
         }
       }
-      (in ? any_neg : any_pos) = true;
-      if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = last;
-      else runs.push_back({j, i, last, static_cast<signed char>(in)});
+      auto append = [&](long s0, long e0, bool in) {
+        (in ? any_neg : any_pos) = true;
+        if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = e0;
+        else runs.push_back({j, s0, e0, static_cast<signed char>(in)});
+      };
+      if (!grid.active(c[0], c[1], c[2])) {
+        append(i, last, grid.neg(c[0], c[1], c[2]));
+      } else {
+        double flo = -1, fhi = 1;
+        if (last >= i + 3) {
+          const Vec3 xe = point(last, j);
+          Vec3 blo, bhi;
+          for (int k = 0; k < 3; ++k) {
+            blo[k] = std::min(x[k], xe[k]);
+            bhi[k] = std::max(x[k], xe[k]);
+          }
+          if (!f.range(blo, bhi, flo, fhi)) flo = -1, fhi = 1;
+        }
+        if (flo > 0 || fhi < 0) append(i, last, fhi < 0);
+        else
+          for (long k = i; k <= last; ++k) append(k, k, SurfaceSampler::inside(f.value(k == i ? x : point(k, j))));
+      }
       i = last + 1;
     }
   }

@@ -332,3 +332,44 @@ TEST_CASE("FacetCycle on a partition of unity: a small ball's section is a close
   REQUIRE(m2.triangulation().is_edge(m2.vertices()[m2.vertices().size() - 2], m2.vertices().back(), cell, i, j));
   CHECK(facet_cycle(m2.triangulation(), m2.sampler(), Tr::Edge(cell, i, j), x) == FacetAnswer::kNone);
 }
+
+TEST_CASE("FacetCycle: the enclosures change no answer (the same f without them, on random facets through a blob)") {
+  using namespace imgmesh::surface_detail;
+  const BinaryImage wc = make_well_composed(make(21, 21, 21, [](double x, double y, double z) {
+    return std::hypot(x - 10.4, y - 9.6, z - 10.2) < 2.6 || std::hypot(x - 12.9, y - 11.1, z - 9.7) < 1.4;
+  })).image;
+  PartitionOfUnity pu = implicit_from_well_composed(wc);
+  PartitionOfUnitySurface with(pu);
+  FunctionSurface without(wc.geometry(), [&](const Vec3& w) { return pu.value(w); });
+  RestrictedDelaunayOptions o;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int cycles = 0;
+  for (int k = 0; k < 40; ++k) {
+    const Vec3 mid{11 + 2 * u(rng), 10 + 2 * u(rng), 10 + 2 * u(rng)};
+    Vec3 dir{u(rng), u(rng), u(rng)};
+    const double h = (2 + 5 * (u(rng) + 1)) / norm(dir);
+    const Vec3 p{mid[0] - h * dir[0], mid[1] - h * dir[1], mid[2] - h * dir[2]}, q{mid[0] + h * dir[0], mid[1] + h * dir[1], mid[2] + h * dir[2]};
+    FacetAnswer answer[2];
+    Vec3 x[2];
+    for (int s = 0; s < 2; ++s) {
+      DelMesh m(s == 0 ? static_cast<const ImplicitSurface&>(with) : without, o);
+      m.prepare();
+      for (const Vec3& y : std::vector<Vec3>{{-900, -900, -900}, {900, -800, -700}, {100, 900, -600}, {50, 80, 950}})
+        REQUIRE(m.insert(y, kSeed));
+      REQUIRE(m.insert(p, kSeed));
+      REQUIRE(m.insert(q, kSeed));
+      Ch cell;
+      int i, j;
+      REQUIRE(m.triangulation().is_edge(m.vertices()[m.vertices().size() - 2], m.vertices().back(), cell, i, j));
+      answer[s] = facet_cycle(m.triangulation(), m.sampler(), Tr::Edge(cell, i, j), x[s]);
+    }
+    INFO("facet " << k);
+    REQUIRE(answer[0] == answer[1]);
+    if (answer[0] == FacetAnswer::kCycle) {
+      ++cycles;
+      CHECK(dist2(x[0], x[1]) < 1e-16);
+    }
+  }
+  CHECK(cycles > 5);
+}
