@@ -237,7 +237,8 @@ Candidates fallback_points(const Tr& tr, const SurfaceSampler& sampler, int comp
       }
     }
   }
-  if (far > 0) pts.emplace_back(sampler.bisect(fa, fb, sampler.value(fa)), far);
+  Vec3 x;
+  if (far > 0 && sampler.bisect(fa, fb, sampler.value(fa), x)) pts.emplace_back(x, far);
   return pts;
 }
 

@@ -77,9 +77,10 @@ int CubeGrid::comp_at(const Vec3& q) const {
 
 // Illinois regula falsi with a bisection safeguard (when the bracket
 // shrinks slowly).
-Vec3 SurfaceSampler::bisect(Vec3 a, Vec3 b, double fa) const {
+bool SurfaceSampler::bisect(Vec3 a, Vec3 b, double fa, Vec3& x) const {
   double fb = value(b);
   const bool ia = inside(fa);
+  if (inside(fb) == ia) return false;
   const double tol2 = std::pow(1e-11 * grid_.delta, 2);
   int side = 0;
   double width2 = dist2(a, b);
@@ -103,7 +104,8 @@ Vec3 SurfaceSampler::bisect(Vec3 a, Vec3 b, double fa) const {
       side = 1;
     }
   }
-  return std::abs(fa) <= std::abs(fb) ? a : b;
+  x = std::abs(fa) <= std::abs(fb) ? a : b;
+  return true;
 }
 
 } // namespace imgmesh::surface_detail

@@ -82,12 +82,18 @@ public:
   }
   // An enclosure of f on the local box [a, b] when the surface has one.
   bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const { return f_.range(a, b, lo, hi); }
+  // An enclosure of f's derivative along the unit vector v on [a, b], when
+  // the surface has one.
+  bool slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi) const {
+    return f_.slope_range(a, b, v, lo, hi);
+  }
   // Sign convention for zeros (8.4(1)): f == 0 counts as outside, i.e. we
   // mesh f^-1(-eps) symbolically, consistently on every edge.
   static bool inside(double v) { return v < 0; }
-  // The point of S on segment [a, b] whose ends have opposite signs (fa =
-  // f(a)), to ~1e-11 delta.
-  Vec3 bisect(Vec3 a, Vec3 b, double fa) const;
+  // The point x of S on segment [a, b] (fa = f(a)), to ~1e-11 delta, when
+  // the ends have opposite signs; false (x untouched) when they do not: the
+  // pair brackets no root, and a point found there need not be on S.
+  bool bisect(Vec3 a, Vec3 b, double fa, Vec3& x) const;
 
 private:
   const ImplicitSurface& f_;

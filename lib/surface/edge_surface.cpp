@@ -3,16 +3,20 @@
 #include "surface/edge_surface.hpp"
 
 #include <cmath>
+#include <functional>
 
 namespace imgmesh::surface_detail {
 
 // EdgeSurface (8.2): clip the Voronoi edge to the box of voxel centres, walk
 // the cubes it crosses, look for roots only in active cubes (F1), and find the
-// first and the last crossing. Where the surface gives an enclosure of f
-// (the partition of unity does) and it excludes 0 on the piece in a cube,
-// that piece certainly holds no root and is skipped. Elsewhere roots are
-// isolated by sampling at delta/8, then refined; two roots closer than that
-// are missed (documented limitation, see the man page).
+// first and the last crossing. Where the surface gives enclosures (the
+// partition of unity does), each piece of the edge in an active cube is
+// decided by them, halving it up to kSplits times: where the enclosure of f
+// excludes 0 the piece certainly holds no root; where the enclosure of f's
+// derivative along the edge excludes 0, f is monotone there and the piece
+// holds exactly one root if its ends differ in sign, none otherwise. Only
+// the pieces left undecided are sampled at delta/8 (with the dip search);
+// two roots closer than that there are missed (see the man page).
 EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b, const Vec3& site) {
   const CubeGrid& grid = f.grid();
   EdgeCrossing out;
@@ -52,9 +56,36 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
   };
   // Scratch reused across calls (no allocation per facet).
   thread_local std::vector<double> tblock, tcube;
-  struct Piece { double ta, tb; };
+  struct Piece { double ta, tb; bool monotone; };
   thread_local std::vector<Piece> pieces;
   pieces.clear();
+  const double len = norm(d);
+  const Vec3 dir{d[0] / len, d[1] / len, d[2] / len};
+  // The piece [ta, tb] of an active cube by the enclosures (halved up to
+  // kSplits times); what they leave undecided joins the pieces to sample.
+  constexpr int kSplits = 2;
+  std::function<void(double, double, int)> decide = [&](double ta, double tb, int depth) {
+    const Vec3 xa = at(ta), xb = at(tb);
+    Vec3 lo, hi;
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(xa[i], xb[i]);
+      hi[i] = std::max(xa[i], xb[i]);
+    }
+    double flo, fhi;
+    if (!f.range(lo, hi, flo, fhi)) flo = -1, fhi = 1;  // no enclosures: sample
+    else if (flo > 0 || fhi < 0) return;                  // no root
+    else if (f.slope_range(lo, hi, dir, flo, fhi) && (flo > 0 || fhi < 0)) {
+      pieces.push_back({ta, tb, true});  // monotone: one root or none
+      return;
+    } else if (depth < kSplits) {
+      const double tm = (ta + tb) / 2;
+      decide(ta, tm, depth + 1);
+      decide(tm, tb, depth + 1);
+      return;
+    }
+    if (!pieces.empty() && !pieces.back().monotone && pieces.back().tb == ta) pieces.back().tb = tb;  // merge runs
+    else pieces.push_back({ta, tb, false});
+  };
   const double bstep[3] = {grid.s[0] * CubeGrid::kBlock, grid.s[1] * CubeGrid::kBlock, grid.s[2] * CubeGrid::kBlock};
   breakpoints(t0, t1, bstep, tblock);
   for (std::size_t kb = 0; kb + 1 < tblock.size(); ++kb) {
@@ -71,24 +102,10 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
       long c[3];
       for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(m[i] / grid.s[i])), 0L, grid.n[i] - 2);
       if (!grid.active(c[0], c[1], c[2])) continue;
-      // Where an enclosure of f on the piece's box excludes 0, S is
-      // provably not there: no sampling.
-      {
-        const Vec3 xa = at(ta), xb = at(tb);
-        Vec3 lo, hi;
-        for (int i = 0; i < 3; ++i) {
-          lo[i] = std::min(xa[i], xb[i]);
-          hi[i] = std::max(xa[i], xb[i]);
-        }
-        double flo, fhi;
-        if (f.range(lo, hi, flo, fhi) && (flo > 0 || fhi < 0)) continue;
-      }
-      if (!pieces.empty() && pieces.back().tb == ta) pieces.back().tb = tb;  // merge runs of active cubes
-      else pieces.push_back({ta, tb});
+      decide(ta, tb, 0);
     }
   }
   if (pieces.empty()) return out;
-  const double len = norm(d);
   const double step = grid.delta / 8;
   // All sign changes of one piece, as sample pairs.
   // Near-tangential crossings (8.4(2)): where |f| has a local minimum between
@@ -129,6 +146,14 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
   };
   // All sign changes of one piece, as sample pairs, in order.
   auto changes = [&](const Piece& p, std::vector<std::pair<double, double>>& ch, std::vector<double>& fv) {
+    if (p.monotone) {
+      const double fa = f.value(at(p.ta));
+      if (SurfaceSampler::inside(fa) != SurfaceSampler::inside(f.value(at(p.tb)))) {
+        ch.emplace_back(p.ta, p.tb);
+        fv.push_back(fa);
+      }
+      return;
+    }
     const int m = std::max(2, int(std::ceil((p.tb - p.ta) * len / step)));
     double tq = p.ta, fq = 0;  // the sample before the previous one
     double tp = p.ta, fp = f.value(at(tp));
@@ -162,16 +187,23 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
     changes(pieces[k], ch_last, fv_last);
     if (!ch_last.empty()) break;
   }
-  const Vec3 x0 = f.bisect(at(ch_first.front().first), at(ch_first.front().second), fv_first.front());
+  // The root of a sign change (a tangency's double root is its point). The
+  // pairs come from f's own values, so they bracket; bisect checks it.
+  auto root = [&](const std::pair<double, double>& c, double fa, Vec3& x) {
+    if (c.first == c.second) {
+      x = at(c.first);
+      return true;
+    }
+    return f.bisect(at(c.first), at(c.second), fa, x);
+  };
+  Vec3 x0, x1;
+  if (!root(ch_first.front(), fv_first.front(), x0)) return out;
   out.count = 1;
   out.x = x0;
-  Vec3 x1 = x0;
   if (!ch_last.empty()) {
-    x1 = f.bisect(at(ch_last.back().first), at(ch_last.back().second), fv_last.back());
-    out.count = 2;
+    if (root(ch_last.back(), fv_last.back(), x1)) out.count = 2;
   } else if (ch_first.size() > 1) {
-    x1 = f.bisect(at(ch_first.back().first), at(ch_first.back().second), fv_first.back());
-    out.count = 2;
+    if (root(ch_first.back(), fv_first.back(), x1)) out.count = 2;
   }
   // x_t: the crossing farthest from the facet's vertices (7.6: largest ball).
   if (out.count == 2 && dist2(x1, site) > dist2(x0, site)) out.x = x1;

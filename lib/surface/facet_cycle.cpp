@@ -14,7 +14,8 @@ namespace imgmesh::surface_detail {
 // it is rasterised row by row on Pi at delta/16 (at delta/4, curves missed
 // there cost the brain labels' certificate fallback rounds), into runs of
 // one sign. The sign of f at a sample is the corner sign in an inactive
-// cube (F1) and f's sign in an active one. A sign region that does not
+// cube (F1), the enclosure's in an active cube where the enclosure of f
+// excludes 0, and f's sign elsewhere. A sign region that does not
 // reach the border of h is enclosed by a cycle of S; its point farthest from p is found on the sample pair (region,
 // neighbour) farthest from p that brackets a root, by root finding along
 // that segment, i.e. on S inside Pi. Cycles narrower than the step are
@@ -131,11 +132,11 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       long c[3];
       cube_of(x, c);
       long last = i;
-      bool in;
-      if (grid.active(c[0], c[1], c[2])) {
-        in = SurfaceSampler::inside(f.value(x));
-      } else {
-        in = grid.neg(c[0], c[1], c[2]);
+      // The samples i..last of the row in this cube: they take one sign, the
+      // corners' in an inactive cube (F1), or in an active one the sign of
+      // the enclosure of f on their bounding box where it excludes 0 (tried
+      // for 4 samples or more); else each takes f's sign.
+      {
         // The row leaves the cube at a_exit; the samples before it are in it
         // (a cube is convex; the floor test settles rounding at its faces).
         double a_exit = INFINITY;
@@ -151,9 +152,28 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
           if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
         }
       }
-      (in ? any_neg : any_pos) = true;
-      if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = last;
-      else runs.push_back({j, i, last, static_cast<signed char>(in)});
+      auto append = [&](long s0, long e0, bool in) {
+        (in ? any_neg : any_pos) = true;
+        if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = e0;
+        else runs.push_back({j, s0, e0, static_cast<signed char>(in)});
+      };
+      if (!grid.active(c[0], c[1], c[2])) {
+        append(i, last, grid.neg(c[0], c[1], c[2]));
+      } else {
+        double flo = -1, fhi = 1;
+        if (last >= i + 3) {
+          const Vec3 xe = point(last, j);
+          Vec3 blo, bhi;
+          for (int k = 0; k < 3; ++k) {
+            blo[k] = std::min(x[k], xe[k]);
+            bhi[k] = std::max(x[k], xe[k]);
+          }
+          if (!f.range(blo, bhi, flo, fhi)) flo = -1, fhi = 1;
+        }
+        if (flo > 0 || fhi < 0) append(i, last, fhi < 0);
+        else
+          for (long k = i; k <= last; ++k) append(k, k, SurfaceSampler::inside(f.value(k == i ? x : point(k, j))));
+      }
       i = last + 1;
     }
   }
@@ -262,10 +282,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   // corner sign, which f has in an inactive cube; the check makes sure).
   std::sort(cands.begin(), cands.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   for (const auto& c : cands) {
-    const double fa = f.value(c.second[0]), fb = f.value(c.second[1]);
-    if (SurfaceSampler::inside(fa) == SurfaceSampler::inside(fb)) continue;
-    out = f.bisect(c.second[0], c.second[1], fa);
-    return FacetAnswer::kCycle;
+    if (f.bisect(c.second[0], c.second[1], f.value(c.second[0]), out)) return FacetAnswer::kCycle;
   }
   return kNone;
 }

@@ -313,7 +313,7 @@ HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3&
   for (std::size_t k = 0; k < order.size() && k < 64; ++k) {
     const PV& b = pv[std::size_t(order[k].second)];
     const Vec3 xa = coords(b.a), xb = coords(b.b);
-    q = f.bisect(xa, xb, f.value(xa));
+    if (!f.bisect(xa, xb, f.value(xa), q)) continue;  // no root between them: not a point of S
     if (interior(q) && dist2(q, pp) > 1e-6 * grid.delta * grid.delta) return HandleAnswer::kNotDisk;
   }
   return HandleAnswer::kUndecided;

@@ -43,6 +43,7 @@ FunctionSurface::FunctionSurface(const Geometry& grid, Function f)
 }
 
 bool ImplicitSurface::range(const Vec3&, const Vec3&, double&, double&) const { return false; }
+bool ImplicitSurface::slope_range(const Vec3&, const Vec3&, const Vec3&, double&, double&) const { return false; }
 
 double FunctionSurface::value(const Vec3& q) const { return f_(to_world(q)); }
 

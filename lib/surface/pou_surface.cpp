@@ -57,4 +57,60 @@ bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, do
   return true;
 }
 
+bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi) const {
+  const FloatImage& g = pu_.samples();
+  const Vec3& d = pu_.d();
+  long k0[3], k1[3];
+  for (int i = 0; i < 3; ++i) {
+    const double s = g.spacing[i];
+    const long cells = long(g.size[i]) - 1;
+    k0[i] = std::clamp(long(std::floor((a[i] - d[i]) / s)), 0L, cells - 1);
+    k1[i] = std::clamp(long(std::floor((b[i] + d[i]) / s)), 0L, cells - 1);
+  }
+  double slo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, shi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (long z = k0[2]; z <= k1[2]; ++z)
+    for (long y = k0[1]; y <= k1[1]; ++y)
+      for (long x = k0[0]; x <= k1[0]; ++x) {
+        const long k[3] = {x, y, z};
+        double c[8];
+        for (int m = 0; m < 8; ++m) c[m] = g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1)));
+        for (int m = 0; m < 8; ++m) {  // d f_j / d x_i at the box's corner m
+          double t[3];
+          for (int i = 0; i < 3; ++i) t[i] = ((m >> i) & 1 ? b[i] : a[i]) / g.spacing[i] - double(k[i]);
+          for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3, l = (i + 2) % 3;
+            double e[2];  // f_j on the faces t_i = 0 and 1, bilinear in t_j, t_l
+            for (int side = 0; side < 2; ++side) {
+              auto at = [&](int bj, int bl) { return c[(side << i) | (bj << j) | (bl << l)]; };
+              const double e0 = at(0, 0) + t[j] * (at(1, 0) - at(0, 0)), e1 = at(0, 1) + t[j] * (at(1, 1) - at(0, 1));
+              e[side] = e0 + t[l] * (e1 - e0);
+            }
+            const double sl = (e[1] - e[0]) / g.spacing[i];
+            slo[i] = std::min(slo[i], sl);
+            shi[i] = std::max(shi[i], sl);
+          }
+        }
+      }
+  lo = hi = 0;
+  for (int i = 0; i < 3; ++i) {
+    double l = slo[i], h = shi[i];
+    const double s = g.spacing[i];
+    const long cells = long(g.size[i]) - 1;
+    // An inner grid plane within d_i of the box on axis i: the blend term.
+    const long p0 = std::max(1L, long(std::ceil((a[i] - d[i]) / s))), p1 = std::min(cells - 1, long(std::floor((b[i] + d[i]) / s)));
+    if (p0 <= p1) {
+      const double w = kBlendSlope * (h - l);
+      l -= w;
+      h += w;
+    }
+    lo += std::min(v[i] * l, v[i] * h);
+    hi += std::max(v[i] * l, v[i] * h);
+  }
+  // Rounding: as in range().
+  const double pad = 1e-9 * (std::abs(lo) + std::abs(hi) + 1e-300);
+  lo -= pad;
+  hi += pad;
+  return true;
+}
+
 } // namespace imgmesh

@@ -54,8 +54,7 @@ bool Seeds::crossing(long x, long y, long z, Vec3& out, int which) const {
     if (which-- > 0) continue;
     const Vec3 a{p[0][0] * grid_.s[0], p[0][1] * grid_.s[1], p[0][2] * grid_.s[2]};
     const Vec3 b{p[1][0] * grid_.s[0], p[1][1] * grid_.s[1], p[1][2] * grid_.s[2]};
-    out = f_.bisect(a, b, f_.value(a));
-    return true;
+    return f_.bisect(a, b, f_.value(a), out);
   }
   return false;
 }

@@ -10,7 +10,11 @@
 # With OLD=<an older build's tool folder> (one that takes --roughness in
 # radians): brain label 4 at pi/2, ratio 2, no distance bound, timed with
 # the old and the new implicit2mesh, one after the other, on the same f.
-# LABELS="1 2 ..." and ROUGH="default thesis" narrow the sweep.
+# ROUGH picks the settings: default; pi2 (what --roughness 1.5708 was when
+# the roughness was in radians and the defaults ratio 2 and no distance
+# bound: --roughness 90 --ratio 2 --max-distance 0); thesis (ratio 2,
+# roughness 60, no distance bound). LABELS="1 2 ..." and ROUGH="default pi2"
+# (the default) narrow or widen the sweep. --threads 1 throughout.
 #   $1: the build's tool folder.
 set -euo pipefail
 tools=${1:?tool folder}
@@ -39,7 +43,7 @@ if [ -n "${OLD:-}" ]; then
   for which in old new; do
     bin=$tools args=(--roughness 90 --ratio 2 --max-distance 0)
     [ "$which" = old ] && bin=$OLD args=(--roughness 1.5708)
-    timed "$work/ab-$which" "$bin/implicit2mesh" -q "$work/4-f.nrrd" "$work/ab-$which.off" "${args[@]}" --stats "$work/ab-$which.json"
+    timed "$work/ab-$which" "$bin/implicit2mesh" -q --threads 1 "$work/4-f.nrrd" "$work/ab-$which.off" "${args[@]}" --stats "$work/ab-$which.json"
     read -r wall cpu mem < "$work/ab-$which.time"
     printf "  %-4s %8.1f s wall %8.1f s CPU %6d MB  triangles %s  certified %s\n" "$which" "$wall" "$cpu" "$mem" \
       "$(field triangles "$work/ab-$which.json")" "$(field topology_matches "$work/ab-$which.json")"
@@ -54,10 +58,15 @@ for L in ${LABELS:-1 2 3 4 5}; do
     /usr/bin/python3 "$indep/bdcatopo" "$work/$L-wc.nrrd" > "$work/$L-bdca.json" || true
     comps="$work/$L-bdca.json"
   fi
-  for r in ${ROUGH:-default thesis}; do
-    opt=(); [ "$r" = default ] || opt=(--ratio 2 --roughness 60 --max-distance 0)
+  for r in ${ROUGH:-default pi2}; do
+    case $r in
+      default) opt=() ;;
+      pi2) opt=(--ratio 2 --roughness 90 --max-distance 0) ;;
+      thesis) opt=(--ratio 2 --roughness 60 --max-distance 0) ;;
+      *) echo "certificate.sh: ROUGH: $r is not default, pi2 or thesis" >&2; exit 2 ;;
+    esac
     out="$work/$L-$r"
-    timed "$out" "$tools/implicit2mesh" -q "$work/$L-f.nrrd" "$out.off" "${opt[@]}" --stats "$out.json"
+    timed "$out" "$tools/implicit2mesh" -q --threads 1 "$work/$L-f.nrrd" "$out.off" "${opt[@]}" --stats "$out.json"
     read -r wall cpu mem < "$out.time"
     ind=n/a
     if [ -n "$comps" ]; then

@@ -86,3 +86,20 @@ TEST_CASE("edge_surface_of: a restricted facet's surface centre is on S, on its 
   CHECK(restricted > 50);
   CHECK(plain > restricted);
 }
+
+TEST_CASE("SurfaceSampler::bisect: a root between ends of opposite signs; a pair of one sign is refused") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  FunctionSurface s(test::box(21, 21, 21), [&](const Vec3& p) { return test::sphere_f(p, c, 6.3); });
+  CubeGrid grid(s.samples());
+  SurfaceSampler f(s, grid);
+  const Vec3 in{10.3, 9.7, 10.1}, out{19.6, 9.7, 10.1}, out2{19.6, 1.0, 10.1};
+  Vec3 x{-1, -1, -1};
+  REQUIRE(f.bisect(in, out, f.value(in), x));
+  CHECK(x[0] == Approx(16.6).margin(1e-9));
+  CHECK(std::abs(s.value(x)) < 1e-9);
+  // Both ends outside: no bracket, x untouched.
+  const Vec3 keep = x;
+  CHECK_FALSE(f.bisect(out, out2, f.value(out), x));
+  CHECK(x == keep);
+  CHECK_FALSE(f.bisect(in, in, f.value(in), x));
+}

@@ -5,6 +5,9 @@
 #include "checks.hpp"
 #include "implicit/implicit_file.hpp"
 #include "implicit/partition_of_unity.hpp"
+#include "surface/delmesh.hpp"
+#include "surface/edge_surface.hpp"
+#include "surface/facet_cycle.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "wellcomposed/well_composed.hpp"
 
@@ -174,4 +177,199 @@ TEST_CASE("partition of unity: the enclosure of f on a box holds f everywhere in
     }
   }
   CHECK(excluded > boxes / 3);  // not vacuous: most of the grid is far from S
+}
+
+TEST_CASE("partition of unity: the enclosure of f's slope on a box holds f's directional derivative in it") {
+  // The blend term's constant bounds max_u |d eta/du| |1/2 - u| (dense sample).
+  double k = 0;
+  for (int i = 0; i <= 1000000; ++i) {
+    double de;
+    const double u = i / 1e6;
+    pu_eta(u, &de);
+    k = std::max(k, std::abs(de) * std::abs(0.5 - u));
+  }
+  CHECK(k < PartitionOfUnitySurface::kBlendSlope);
+  BinaryImage raw = make(28, 24, 16, [](double x, double y, double z) { return torus(x, y, z, 13.6, 11.8, 7.7, 7) < 2.8; });
+  raw.spacing = {0.8, 1.2, 2.0};  // anisotropic: d differs per axis
+  const BinaryImage wc = make_well_composed(raw).image;
+  PartitionOfUnity pu = implicit_from_well_composed(wc);
+  PartitionOfUnitySurface s(pu);
+  std::mt19937 rng(11);
+  const Vec3 top{27 * 0.8, 23 * 1.2, 15 * 2.0};
+  std::uniform_real_distribution<double> u01(0, 1), sym(-1, 1);
+  int decided = 0;
+  for (int k = 0; k < 3000; ++k) {
+    Vec3 a, b, v{sym(rng), sym(rng), sym(rng)};
+    const double vl = norm(v);
+    v = {v[0] / vl, v[1] / vl, v[2] / vl};
+    const double size = std::pow(10.0, -2 + 2.3 * u01(rng));  // 0.01 .. 2 world units
+    for (int i = 0; i < 3; ++i) {
+      a[i] = u01(rng) * top[i];
+      b[i] = std::min(top[i], a[i] + size * u01(rng));
+    }
+    double lo, hi;
+    REQUIRE(s.slope_range(a, b, v, lo, hi));
+    REQUIRE(lo <= hi);
+    decided += lo > 0 || hi < 0;
+    for (int m = 0; m < 64; ++m) {
+      Vec3 x, gr;
+      for (int i = 0; i < 3; ++i) x[i] = m < 8 ? ((m >> i) & 1 ? b[i] : a[i]) : a[i] + u01(rng) * (b[i] - a[i]);
+      s.value_gradient(x, gr);
+      const double dv = dot(gr, v);
+      if (!(dv >= lo && dv <= hi)) FAIL("slope " << dv << " outside [" << lo << ", " << hi << "] at box " << k);
+    }
+  }
+  CHECK(decided > 1000);  // the enclosure is useful: it often excludes 0
+}
+
+namespace {
+// A many-sheeted f: level sets of a bent wave, sheets about 2.5-4 voxels apart.
+double many_sheets(const Vec3& p) {
+  return std::sin(1.1 * p[0] + 0.4 * p[1] + 0.2 * p[2]) + 0.5 * std::sin(0.7 * p[1] - 0.3 * p[2] + 0.2 * p[0]) + 0.0123;
+}
+FloatImage many_sheets_g(std::size_t n) {
+  Geometry geo;
+  geo.size = {n, n, n};
+  FloatImage g(geo, 0.f);
+  for (std::size_t z = 0; z < n; ++z)
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t x = 0; x < n; ++x) {
+        const float v = float(many_sheets(Vec3{double(x), double(y), double(z)}));
+        g(x, y, z) = v != 0 ? v : 1e-4f;  // the partition of unity wants g != 0
+      }
+  return g;
+}
+// EdgeSurface on random segments (fixed seed) against a count of f's sign
+// changes at 20000 samples per voxel of length: the same number of
+// crossings (0, 1, or 2 for two or more), and its point is the dense
+// count's first or last crossing, the one farther from the segment's start.
+void edge_surface_against_dense(const ImplicitSurface& s, std::size_t n, int segments) {
+  using namespace imgmesh::surface_detail;
+  CubeGrid grid(s.samples());
+  grid.label();
+  SurfaceSampler f(s, grid);
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> u(0.3, double(n) - 1.3);
+  int crossings[3] = {0, 0, 0};
+  for (int k = 0; k < segments; ++k) {
+    const Vec3 a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)};
+    const Vec3 d = sub(b, a);
+    const long m = long(std::ceil(norm(d) * 20000));
+    std::vector<double> roots;  // the dense count's crossings (parameter t)
+    bool prev = SurfaceSampler::inside(s.value(a));
+    for (long i = 1; i <= m; ++i) {
+      const double t = double(i) / double(m);
+      const bool in = SurfaceSampler::inside(s.value(Vec3{a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}));
+      if (in != prev) roots.push_back(t);
+      prev = in;
+    }
+    const EdgeCrossing e = edge_surface(f, a, b, a);
+    INFO("segment " << k << ": " << roots.size() << " crossings in the dense count");
+    REQUIRE(e.count == std::min<int>(2, int(roots.size())));
+    ++crossings[e.count];
+    if (e.count == 0) continue;
+    CHECK(std::abs(s.value(e.x)) < 1e-7);
+    const double te = dot(sub(e.x, a), d) / dot(d, d);
+    const double want = e.count == 1 ? roots.front() : roots.back();  // farther from a: the last
+    CHECK(std::abs(te - want) <= 2.0 / double(m));
+  }
+  // The segments cover every case.
+  CHECK(crossings[0] > 0);
+  CHECK(crossings[1] > 0);
+  CHECK(crossings[2] > 0);
+}
+} // namespace
+
+TEST_CASE("edge_surface on a many-sheeted partition of unity (enclosures) agrees with a dense count of sign changes") {
+  const std::size_t n = 20;
+  PartitionOfUnity pu(many_sheets_g(n));
+  PartitionOfUnitySurface s(pu);
+  edge_surface_against_dense(s, n, 150);
+}
+
+TEST_CASE("edge_surface on a many-sheeted analytic f (no enclosures: sampling) agrees with a dense count of sign changes") {
+  const std::size_t n = 20;
+  Geometry geo;
+  geo.size = {n, n, n};
+  FunctionSurface s(geo, many_sheets);
+  edge_surface_against_dense(s, n, 150);
+}
+
+TEST_CASE("FacetCycle on a partition of unity: a small ball's section is a closed loop inside pq's Voronoi facet") {
+  using namespace imgmesh::surface_detail;
+  // A ball of radius 1.6 voxels; p and q 6 voxels either side of its centre,
+  // four far points: pq's facet is the bisector plane, which cuts S in a
+  // loop that no Voronoi edge sees.
+  const Vec3 c{10.4, 9.6, 10.2};
+  const BinaryImage wc = make_well_composed(make(21, 21, 21, [&](double x, double y, double z) {
+    return std::hypot(x - c[0], y - c[1], z - c[2]) < 1.6;
+  })).image;
+  PartitionOfUnity pu = implicit_from_well_composed(wc);
+  PartitionOfUnitySurface s(pu);
+  RestrictedDelaunayOptions o;
+  DelMesh m(s, o);
+  m.prepare();
+  for (const Vec3& x : std::vector<Vec3>{{-900, -900, -900}, {900, -800, -700}, {100, 900, -600}, {50, 80, 950}})
+    REQUIRE(m.insert(x, kSeed));
+  const Vec3 p{c[0], c[1], c[2] - 6}, q{c[0], c[1], c[2] + 6};
+  REQUIRE(m.insert(p, kSeed));
+  REQUIRE(m.insert(q, kSeed));
+  Ch cell;
+  int i, j;
+  REQUIRE(m.triangulation().is_edge(m.vertices()[m.vertices().size() - 2], m.vertices().back(), cell, i, j));
+  Vec3 x;
+  REQUIRE(facet_cycle(m.triangulation(), m.sampler(), Tr::Edge(cell, i, j), x) == FacetAnswer::kCycle);
+  CHECK(std::abs(s.value(x)) < 1e-9);                                // on S
+  CHECK(std::abs(dist2(x, p) - dist2(x, q)) < 1e-6 * dist2(x, p));  // on the bisector
+  CHECK(std::hypot(x[0] - c[0], x[1] - c[1]) < 3);                  // on the ball's loop
+  // The same facet beside the ball (p and q moved 5 voxels in x): no loop.
+  DelMesh m2(s, o);
+  m2.prepare();
+  for (const Vec3& y : std::vector<Vec3>{{-900, -900, -900}, {900, -800, -700}, {100, 900, -600}, {50, 80, 950}})
+    REQUIRE(m2.insert(y, kSeed));
+  REQUIRE(m2.insert(Vec3{p[0] + 5, p[1], p[2] + 9}, kSeed));
+  REQUIRE(m2.insert(Vec3{q[0] + 5, q[1], q[2] + 9}, kSeed));
+  REQUIRE(m2.triangulation().is_edge(m2.vertices()[m2.vertices().size() - 2], m2.vertices().back(), cell, i, j));
+  CHECK(facet_cycle(m2.triangulation(), m2.sampler(), Tr::Edge(cell, i, j), x) == FacetAnswer::kNone);
+}
+
+TEST_CASE("FacetCycle: the enclosures change no answer (the same f without them, on random facets through a blob)") {
+  using namespace imgmesh::surface_detail;
+  const BinaryImage wc = make_well_composed(make(21, 21, 21, [](double x, double y, double z) {
+    return std::hypot(x - 10.4, y - 9.6, z - 10.2) < 2.6 || std::hypot(x - 12.9, y - 11.1, z - 9.7) < 1.4;
+  })).image;
+  PartitionOfUnity pu = implicit_from_well_composed(wc);
+  PartitionOfUnitySurface with(pu);
+  FunctionSurface without(wc.geometry(), [&](const Vec3& w) { return pu.value(w); });
+  RestrictedDelaunayOptions o;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int cycles = 0;
+  for (int k = 0; k < 40; ++k) {
+    const Vec3 mid{11 + 2 * u(rng), 10 + 2 * u(rng), 10 + 2 * u(rng)};
+    Vec3 dir{u(rng), u(rng), u(rng)};
+    const double h = (2 + 5 * (u(rng) + 1)) / norm(dir);
+    const Vec3 p{mid[0] - h * dir[0], mid[1] - h * dir[1], mid[2] - h * dir[2]}, q{mid[0] + h * dir[0], mid[1] + h * dir[1], mid[2] + h * dir[2]};
+    FacetAnswer answer[2];
+    Vec3 x[2];
+    for (int s = 0; s < 2; ++s) {
+      DelMesh m(s == 0 ? static_cast<const ImplicitSurface&>(with) : without, o);
+      m.prepare();
+      for (const Vec3& y : std::vector<Vec3>{{-900, -900, -900}, {900, -800, -700}, {100, 900, -600}, {50, 80, 950}})
+        REQUIRE(m.insert(y, kSeed));
+      REQUIRE(m.insert(p, kSeed));
+      REQUIRE(m.insert(q, kSeed));
+      Ch cell;
+      int i, j;
+      REQUIRE(m.triangulation().is_edge(m.vertices()[m.vertices().size() - 2], m.vertices().back(), cell, i, j));
+      answer[s] = facet_cycle(m.triangulation(), m.sampler(), Tr::Edge(cell, i, j), x[s]);
+    }
+    INFO("facet " << k);
+    REQUIRE(answer[0] == answer[1]);
+    if (answer[0] == FacetAnswer::kCycle) {
+      ++cycles;
+      CHECK(dist2(x[0], x[1]) < 1e-16);
+    }
+  }
+  CHECK(cycles > 5);
 }
