@@ -501,7 +501,21 @@ std::string nifti_header_error(const std::string& file) {
   const int got = gzread(gz, h, sizeof h);
   gzclose(gz);
   if (got != int(sizeof h)) return "";
-  const bool swap = !(h[0] == 92 && h[1] == 1 && h[2] == 0 && h[3] == 0);  // sizeof_hdr 348, little-endian
+  // The byte order as niftilib decides it (need_nhdr_swap): by dim[0] in
+  // 1..7 when it is not 0, else by sizeof_hdr = 348.
+  const int d0_le = h[40] | (h[41] << 8), d0_be = h[41] | (h[40] << 8);
+  bool swap;
+  if (d0_le != 0) {
+    if (d0_le >= 1 && d0_le <= 7) swap = false;
+    else if (d0_be >= 1 && d0_be <= 7) swap = true;
+    else return "";  // niftilib refuses it
+  } else if (h[0] == 92 && h[1] == 1 && h[2] == 0 && h[3] == 0) {
+    swap = false;
+  } else if (h[3] == 92 && h[2] == 1 && h[1] == 0 && h[0] == 0) {
+    swap = true;
+  } else {
+    return "";
+  }
   auto real = [&](int at) {
     unsigned char b[4];
     for (int i = 0; i < 4; ++i) b[i] = h[at + (swap ? 3 - i : i)];
