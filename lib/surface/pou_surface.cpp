@@ -8,6 +8,19 @@
 
 namespace imgmesh {
 
+namespace {
+// The sample cells [k s, (k+1) s], dilated by the support d_i, that meet the
+// box [a, b]: k0[i]..k1[i] on each axis.
+void cells_meeting(const FloatImage& g, const Vec3& d, const Vec3& a, const Vec3& b, long k0[3], long k1[3]) {
+  for (int i = 0; i < 3; ++i) {
+    const double s = g.spacing[i];
+    const long cells = long(g.size[i]) - 1;
+    k0[i] = std::clamp(long(std::floor((a[i] - d[i]) / s)), 0L, cells - 1);
+    k1[i] = std::clamp(long(std::floor((b[i] + d[i]) / s)), 0L, cells - 1);
+  }
+}
+}  // namespace
+
 PartitionOfUnitySurface::PartitionOfUnitySurface(const PartitionOfUnity& pu) : pu_(pu) {}
 
 double PartitionOfUnitySurface::value(const Vec3& q) const { return pu_.value(to_world(q)); }
@@ -23,14 +36,8 @@ const FloatImage& PartitionOfUnitySurface::samples() const { return pu_.samples(
 
 bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, double& hi) const {
   const FloatImage& g = pu_.samples();
-  const Vec3& d = pu_.d();
   long k0[3], k1[3];
-  for (int i = 0; i < 3; ++i) {  // cells [k s, (k+1) s] dilated by d_i meeting [a_i, b_i]
-    const double s = g.spacing[i];
-    const long cells = long(g.size[i]) - 1;
-    k0[i] = std::clamp(long(std::floor((a[i] - d[i]) / s)), 0L, cells - 1);
-    k1[i] = std::clamp(long(std::floor((b[i] + d[i]) / s)), 0L, cells - 1);
-  }
+  cells_meeting(g, pu_.d(), a, b, k0, k1);
   lo = HUGE_VAL;
   hi = -HUGE_VAL;
   for (long z = k0[2]; z <= k1[2]; ++z)
@@ -61,12 +68,7 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
   const FloatImage& g = pu_.samples();
   const Vec3& d = pu_.d();
   long k0[3], k1[3];
-  for (int i = 0; i < 3; ++i) {
-    const double s = g.spacing[i];
-    const long cells = long(g.size[i]) - 1;
-    k0[i] = std::clamp(long(std::floor((a[i] - d[i]) / s)), 0L, cells - 1);
-    k1[i] = std::clamp(long(std::floor((b[i] + d[i]) / s)), 0L, cells - 1);
-  }
+  cells_meeting(g, d, a, b, k0, k1);
   double slo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, shi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (long z = k0[2]; z <= k1[2]; ++z)
     for (long y = k0[1]; y <= k1[1]; ++y)
