@@ -70,7 +70,10 @@ void Tool::print_json(const Json& report) {
 }
 
 void Tool::info(const std::string& msg) const {
-  if (quiet_) return;
+  if (!quiet_) say(msg);
+}
+
+void Tool::say(const std::string& msg) const {
   if (progress_dirty_) { std::cerr << "\r\033[K"; progress_dirty_ = false; }
   std::cerr << name_ << ": " << msg << '\n';
 }
@@ -198,7 +201,7 @@ std::string Tool::man_sections() const {
 int Tool::finish(const Json& result, const std::string& failed_guarantee) {
   add_entries(stats, result);
   if (failed_guarantee.empty()) return kOk;
-  info("guarantee not met: " + failed_guarantee);
+  failed_guarantee_ = failed_guarantee;  // said by run() once the outputs are written
   return kGuarantee;
 }
 
@@ -265,6 +268,9 @@ int Tool::run(int argc, char** argv, const std::function<int()>& body) {
     for (char& c : error)
       if (c == '\n' || c == '\r') c = ' ';
     std::cerr << name_ << ": " << error << '\n';
+  } else if (code == kGuarantee) {
+    // An error of its own kind: said even with --quiet, as errors are.
+    say("guarantee not met: " + failed_guarantee_);
   }
   if (!stats_path_.empty() && code != kUsage && !stats_unwritable && !stats_written) {
     try {

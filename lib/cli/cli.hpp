@@ -66,8 +66,9 @@ public:
   // the stats join it (after its keys) and all is printed at the end.
   void print_json(const Json& report);
 
-  // The result's to_json() entries join the stats; a failed guarantee is said
-  // on stderr ("guarantee not met: ...") and gives kGuarantee, else kOk.
+  // The result's to_json() entries join the stats; a failed guarantee gives
+  // kGuarantee (else kOk) and is said on stderr ("guarantee not met: ...",
+  // even with --quiet) once the outputs are written.
   template <class Result> int finish(const Result& result) {
     return finish(result.to_json(), result.failed_guarantee());
   }
@@ -102,6 +103,9 @@ public:
   std::string man_sections() const;
 
 private:
+  // A line on stderr, "name: msg", even with --quiet.
+  void say(const std::string& msg) const;
+  std::string failed_guarantee_;  // finish()'s, for kGuarantee
   struct DataOutput {
     const std::string* path;
     Stream kind;

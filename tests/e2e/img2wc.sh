@@ -189,6 +189,9 @@ case_exit_3_when_the_repair_is_skipped() {
   OUT=check.txt expect 1 img2wc skip.nrrd --check
   OUT=skip-stdout.nrrd expect 3 img2wc "$DATA/bunny00-96.nrrd" - --skip-repair
   cmp -s skip-stdout.nrrd skip.nrrd || fail "OUT - differs from OUT skip.nrrd on exit 3"
+  # --quiet silences what is not an error; a guarantee not met is one.
+  expect 3 img2wc "$DATA/bunny00-96.nrrd" skip-q.nrrd --skip-repair -q
+  grep -q "^img2wc: guarantee not met: output is NOT well-composed" err.txt || fail "-q hides which guarantee: '$(cat err.txt)'"
 }
 
 run_cases "$@"
