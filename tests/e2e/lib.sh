@@ -26,7 +26,11 @@ SCRIPT=$E2E/$(basename "${BASH_SOURCE[1]}")
 CASE=${CASE:-} CASE_DIR=${CASE_DIR:-}
 
 fail() {  # fail WHY...: the case fails, and goes on
-  echo "FAIL e2e.$SUITE.$CASE: $*" >&2
+  # A reason of several lines (a checker's output) keeps its later lines
+  # under the FAIL line, marked as the harness's.
+  local why="$*"
+  echo "FAIL e2e.$SUITE.$CASE: ${why%%$'\n'*}" >&2
+  [[ $why != *$'\n'* ]] || sed 's/^/    | /' <<< "${why#*$'\n'}" >&2
   : > "$CASE_DIR/.failed"
   return 0
 }

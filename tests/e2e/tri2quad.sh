@@ -70,15 +70,16 @@ def on(p, a, b):  # p on the closed segment ab
     l2 = ux * ux + uy * uy; t = (ux * vx + uy * vy) / l2
     return abs(ux * vy - uy * vx) <= 1e-9 * l2 and -1e-9 <= t <= 1 + 1e-9
 inp, out = segments(*sys.argv[1:3]), segments(*sys.argv[3:5])
-ok = True
+bad = []
 for m in sorted({s[2] for s in inp}):
     I = [s for s in inp if s[2] == m]; O = [s for s in out if s[2] == m]
-    ok &= all(any(on(a, c, d) and on(b, c, d) for c, d, _ in I) for a, b, _ in O)
-    ok &= abs(sum(math.dist(a, b) for a, b, _ in O) - sum(math.dist(a, b) for a, b, _ in I)) < 1e-9
-ok &= {s[2] for s in out} == {s[2] for s in inp} == {1, 2}
-sys.exit(0 if ok else 1)
-ok &= {s[2] for s in out} == {s[2] for s in inp}
-sys.exit(0 if ok else 1)
+    off = sum(1 for a, b, _ in O if not any(on(a, c, d) and on(b, c, d) for c, d, _ in I))
+    if off: bad.append('marker %d: %d of %d segments off its input segments' % (m, off, len(O)))
+    lo, li = sum(math.dist(a, b) for a, b, _ in O), sum(math.dist(a, b) for a, b, _ in I)
+    if abs(lo - li) >= 1e-9: bad.append('marker %d: length %.9g, input %.9g' % (m, lo, li))
+if not {s[2] for s in out} == {s[2] for s in inp} == {1, 2}:
+    bad.append('markers %s, input %s' % (sorted({s[2] for s in out}), sorted({s[2] for s in inp})))
+sys.exit('; '.join(bad) if bad else 0)
 PY
 }
 

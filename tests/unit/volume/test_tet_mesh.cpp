@@ -53,7 +53,8 @@ TEST_CASE("regular and right-corner tetrahedra: ratio, dihedral angles, volume")
 }
 
 TEST_CASE("malformed tetrahedral mesh files: an Error naming the file") {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "imgmesh_test_tet_mesh";
+  // In the test's working folder, not the system temporary one.
+  const std::filesystem::path dir = "imgmesh_test_tet_mesh";
   std::filesystem::create_directories(dir);
   auto write = [&](const std::string& name, const std::string& text) {
     std::ofstream(dir / name) << text;

@@ -177,7 +177,8 @@ TEST_CASE("the files read back by the project's readers, regions and all") {
   const Vec3 c{8.3, 7.7, 8.1};
   FunctionSurface s(grid(17, 17, 17), [&](const Vec3& p) { return sphere(p, c, 4.6); });
   const auto r = tetrahedral_mesh(s, TetRefinementOptions{});
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "imgmesh_test_volume";
+  // In the test's working folder, not the system temporary one.
+  const std::filesystem::path dir = "imgmesh_test_volume";
   std::filesystem::create_directories(dir);
   for (const std::string name : {"a.msh", "b.msh", "c.mesh", "d.vtu"}) {
     INFO(name);
