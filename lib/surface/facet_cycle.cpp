@@ -119,6 +119,48 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   auto cube_of = [&](const Vec3& x, long c[3]) {
     for (int k = 0; k < 3; ++k) c[k] = std::clamp(long(std::floor(x[k] / grid.s[k])), 0L, grid.n[k] - 2);
   };
+  // Rows that meet no active cube need no walk: their samples lie in
+  // inactive cubes, and consecutive samples (delta/16 apart) in cubes that
+  // share a corner, so all take one sign (F1): one run. The rows to walk are
+  // those the active cubes among the samples' cubes span on Pi: each cube
+  // that Pi meets marks the rows between its corners' extremes along v.
+  thread_local std::vector<char> walk;
+  walk.assign(std::size_t(nb), 1);
+  {
+    Vec3 xlo{INFINITY, INFINITY, INFINITY}, xhi{-INFINITY, -INFINITY, -INFINITY};
+    double cost = 0;  // the walk's cube steps, about
+    for (long j = 0; j < nb; ++j) {
+      if (hi[j] < lo[j]) continue;
+      for (const Vec3& x : {point(lo[j], j), point(hi[j], j)})  // every sample's coordinates lie between these
+        for (int k = 0; k < 3; ++k) xlo[k] = std::min(xlo[k], x[k]), xhi[k] = std::max(xhi[k], x[k]);
+      cost += double(hi[j] - lo[j]) / 16 + 1;
+    }
+    long c0[3], c1[3];
+    cube_of(xlo, c0);
+    cube_of(xhi, c1);
+    const double cubes = double(c1[0] - c0[0] + 1) * double(c1[1] - c0[1] + 1) * double(c1[2] - c0[2] + 1);
+    if (cubes < 16 * cost) {  // else walking every row is cheaper
+      std::fill(walk.begin(), walk.end(), 0);
+      // Rounding of the samples' coordinates: far below this.
+      const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(b0) + std::abs(b1));
+      for (long z = c0[2]; z <= c1[2]; ++z)
+        for (long y = c0[1]; y <= c1[1]; ++y)
+          for (long x = c0[0]; x <= c1[0]; ++x) {
+            if (!grid.active(x, y, z)) continue;
+            double dlo = INFINITY, dhi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
+            for (int k = 0; k < 8; ++k) {
+              const Vec3 c{double(x + (k & 1)) * grid.s[0] - m[0], double(y + ((k >> 1) & 1)) * grid.s[1] - m[1],
+                           double(z + ((k >> 2) & 1)) * grid.s[2] - m[2]};
+              const double dn = dot(c, n), bv = dot(c, v);
+              dlo = std::min(dlo, dn), dhi = std::max(dhi, dn), blo = std::min(blo, bv), bhi = std::max(bhi, bv);
+            }
+            if (dlo > eps || dhi < -eps) continue;  // Pi misses the cube
+            const long j0 = std::max(0L, long(std::floor((blo - eps - b0) / step)) - 1);
+            const long j1 = std::min(nb - 1, long(std::ceil((bhi + eps - b0) / step)) + 1);
+            for (long j = j0; j <= j1; ++j) walk[std::size_t(j)] = 1;
+          }
+    }
+  }
   struct Run { long j, s, e; signed char sg; };
   thread_local std::vector<Run> runs;
   thread_local std::vector<long> row_run;  // runs of row j: [row_run[j], row_run[j + 1])
@@ -127,6 +169,16 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   bool any_neg = false, any_pos = false;
   for (long j = 0; j < nb; ++j) {
     row_run[j] = long(runs.size());
+    if (!walk[std::size_t(j)]) {
+      if (hi[j] >= lo[j]) {
+        long c[3];
+        cube_of(point(lo[j], j), c);
+        const bool in = grid.neg(c[0], c[1], c[2]);
+        (in ? any_neg : any_pos) = true;
+        runs.push_back({j, lo[j], hi[j], static_cast<signed char>(in)});
+      }
+      continue;
+    }
     for (long i = lo[j]; i <= hi[j];) {
       const Vec3 x = point(i, j);
       long c[3];
