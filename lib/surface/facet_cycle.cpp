@@ -35,16 +35,37 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   const double ul = norm(u);
   u = {u[0] / ul, u[1] / ul, u[2] / ul};
   const Vec3 v = cross(n, u);
-  // Half-planes A a + B b <= C on Pi (x = m + a u + b v): V(p)'s faces and the box.
+  // Half-planes A a + B b <= C on Pi (x = m + a u + b v): h's edges and the
+  // box. h is convex, so it is cut out by the lines of its own edges, each
+  // dual to a facet pqw of the cells around pq: the ring of w's, not all of
+  // p's neighbours (the other faces of V(p) only touch h, at most).
   struct HP { double A, B, C; };
   // Scratch reused across checks (no allocation per edge).
   thread_local std::vector<HP> hp;
-  thread_local std::vector<Vh> adj;
+  thread_local std::vector<Vh> ring;
   hp.clear();
-  adj.clear();
-  tr.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
-  for (Vh w : adj) {
-    if (w == q) continue;
+  ring.clear();
+  // Extent on Pi: the finite Voronoi vertices of h (circumcentres of the
+  // cells around pq), or the box's corners when h is unbounded.
+  double a0 = INFINITY, a1 = -INFINITY, b0 = INFINITY, b1 = -INFINITY;
+  bool bounded = true;
+  {
+    Tr::Cell_circulator cc = tr.incident_cells(e), done = cc;
+    do {
+      for (int k = 0; k < 4; ++k) {
+        const Vh w = cc->vertex(k);
+        if (w != p && w != q && !tr.is_infinite(w) && std::find(ring.begin(), ring.end(), w) == ring.end()) ring.push_back(w);
+      }
+      if (tr.is_infinite(cc)) {
+        bounded = false;
+        continue;
+      }
+      const Vec3 c = vec(tr.dual(cc));
+      const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
+      a0 = std::min(a0, a); a1 = std::max(a1, a); b0 = std::min(b0, b); b1 = std::max(b1, b);
+    } while (++cc != done);
+  }
+  for (Vh w : ring) {
     const Vec3 pw = vec(w->point());
     const Vec3 d = sub(pw, pp);  // |x-p|^2 <= |x-w|^2  <=>  2 x.d <= |w|^2 - |p|^2
     const double C = dot(pw, pw) - dot(pp, pp) - 2 * dot(m, d);
@@ -54,20 +75,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     hp.push_back({u[i], v[i], grid.hi[i] - m[i]});
     hp.push_back({-u[i], -v[i], m[i]});
   }
-  // Extent on Pi: the box's corners projected (h lies in the box).
-  double a0 = INFINITY, a1 = -INFINITY, b0 = INFINITY, b1 = -INFINITY;
-  // Extent on Pi: the finite Voronoi vertices of h (circumcentres of the
-  // cells around pq), or the box's corners when h is unbounded.
-  bool bounded = true;
-  {
-    Tr::Cell_circulator cc = tr.incident_cells(e), done = cc;
-    do {
-      if (tr.is_infinite(cc)) { bounded = false; break; }
-      const Vec3 c = vec(tr.dual(cc));
-      const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
-      a0 = std::min(a0, a); a1 = std::max(a1, a); b0 = std::min(b0, b); b1 = std::max(b1, b);
-    } while (++cc != done);
-  }
+  // The box's corners projected (h lies in the box).
   double ba0 = INFINITY, ba1 = -INFINITY, bb0 = INFINITY, bb1 = -INFINITY;
   for (int k = 0; k < 8; ++k) {
     const Vec3 c{(k & 1) ? grid.hi[0] : 0, (k & 2) ? grid.hi[1] : 0, (k & 4) ? grid.hi[2] : 0};
