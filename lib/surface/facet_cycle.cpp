@@ -8,6 +8,17 @@
 
 namespace imgmesh::surface_detail {
 
+namespace {
+// std::floor and std::ceil to a long, inline: without SSE4.1 they are libm
+// calls, and FacetCycle takes several per cube step and per row. The same
+// value for |x| < 2^63.
+long floor_long(double x) {
+  const long i = long(x);
+  return i - (double(i) > x);
+}
+long ceil_long(double x) { return -floor_long(-x); }
+} // namespace
+
 // FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
 // dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
 // h = bisector plane Pi cut by V(p)'s half-spaces and the box: convex, so
@@ -108,8 +119,8 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     if (!(alo <= ahi)) continue;
     alo_row[j] = alo;
     ahi_row[j] = ahi;
-    lo[j] = long(std::ceil((alo - a0) / step));
-    hi[j] = long(std::floor((ahi - a0) / step));
+    lo[j] = ceil_long((alo - a0) / step);
+    hi[j] = floor_long((ahi - a0) / step);
     if (hi[j] >= lo[j]) ++rows_used;
   }
   if (rows_used < 3) return kNone;
@@ -125,7 +136,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
   };
   auto cube_of = [&](const Vec3& x, long c[3]) {
-    for (int k = 0; k < 3; ++k) c[k] = std::clamp(long(std::floor(x[k] / grid.s[k])), 0L, grid.n[k] - 2);
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(floor_long(x[k] / grid.s[k]), 0L, grid.n[k] - 2);
   };
   // Rows that meet no active cube need no walk: their samples lie in
   // inactive cubes, and consecutive samples (delta/16 apart) in cubes that
@@ -205,8 +216,9 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
           if (u[k] > 1e-15) a_exit = std::min(a_exit, ((c[k] + 1) * grid.s[k] - m[k] - b * v[k]) / u[k]);
           else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid.s[k] - m[k] - b * v[k]) / u[k]);
         }
-        const double t = std::floor((a_exit - a0) / step);
-        last = std::isfinite(t) ? long(std::clamp(t, double(i), double(hi[j]))) : hi[j];
+        const double t = (a_exit - a0) / step;
+        if (!std::isfinite(t) || t >= 1e18) last = hi[j];
+        else last = t <= -1e18 ? i : std::clamp(floor_long(t), i, hi[j]);
         for (long c2[3]; last > i; --last) {
           cube_of(point(last, j), c2);
           if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
