@@ -138,13 +138,17 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   auto cube_of = [&](const Vec3& x, long c[3]) {
     for (int k = 0; k < 3; ++k) c[k] = std::clamp(floor_long(x[k] / grid.s[k]), 0L, grid.n[k] - 2);
   };
-  // Rows that meet no active cube need no walk: their samples lie in
-  // inactive cubes, and consecutive samples (delta/16 apart) in cubes that
-  // share a corner, so all take one sign (F1): one run. The rows to walk are
-  // those the active cubes among the samples' cubes span on Pi: each cube
-  // that Pi meets marks the rows between its corners' extremes along v.
-  thread_local std::vector<char> walk;
-  walk.assign(std::size_t(nb), 1);
+  // Only the samples near active cubes need a walk through the cubes: the
+  // others lie in inactive cubes, and consecutive samples (delta/16 apart) in
+  // cubes that share a corner, so a stretch of them takes one sign (F1): one
+  // run. The stretches to walk, per row: each active cube among the samples'
+  // cubes that Pi meets spans the rows and the samples between its corners'
+  // extremes along v and u, one sample wider on each side, so that a
+  // stretch begins and ends in inactive cubes.
+  struct Span { long j, s, e; };
+  thread_local std::vector<Span> spans;
+  spans.clear();
+  bool walk_all = true;
   {
     Vec3 xlo{INFINITY, INFINITY, INFINITY}, xhi{-INFINITY, -INFINITY, -INFINITY};
     double cost = 0;  // the walk's cube steps, about
@@ -159,25 +163,28 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     cube_of(xhi, c1);
     const double cubes = double(c1[0] - c0[0] + 1) * double(c1[1] - c0[1] + 1) * double(c1[2] - c0[2] + 1);
     if (cubes < 16 * cost) {  // else walking every row is cheaper
-      std::fill(walk.begin(), walk.end(), 0);
+      walk_all = false;
       // Rounding of the samples' coordinates: far below this.
-      const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(b0) + std::abs(b1));
+      const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b1));
       for (long z = c0[2]; z <= c1[2]; ++z)
         for (long y = c0[1]; y <= c1[1]; ++y)
           for (long x = c0[0]; x <= c1[0]; ++x) {
             if (!grid.active(x, y, z)) continue;
-            double dlo = INFINITY, dhi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
+            double dlo = INFINITY, dhi = -INFINITY, alo = INFINITY, ahi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
             for (int k = 0; k < 8; ++k) {
               const Vec3 c{double(x + (k & 1)) * grid.s[0] - m[0], double(y + ((k >> 1) & 1)) * grid.s[1] - m[1],
                            double(z + ((k >> 2) & 1)) * grid.s[2] - m[2]};
-              const double dn = dot(c, n), bv = dot(c, v);
-              dlo = std::min(dlo, dn), dhi = std::max(dhi, dn), blo = std::min(blo, bv), bhi = std::max(bhi, bv);
+              const double dn = dot(c, n), au = dot(c, u), bv = dot(c, v);
+              dlo = std::min(dlo, dn), dhi = std::max(dhi, dn);
+              alo = std::min(alo, au), ahi = std::max(ahi, au), blo = std::min(blo, bv), bhi = std::max(bhi, bv);
             }
             if (dlo > eps || dhi < -eps) continue;  // Pi misses the cube
-            const long j0 = std::max(0L, long(std::floor((blo - eps - b0) / step)) - 1);
-            const long j1 = std::min(nb - 1, long(std::ceil((bhi + eps - b0) / step)) + 1);
-            for (long j = j0; j <= j1; ++j) walk[std::size_t(j)] = 1;
+            const long j0 = std::max(0L, floor_long((blo - eps - b0) / step) - 1);
+            const long j1 = std::min(nb - 1, ceil_long((bhi + eps - b0) / step) + 1);
+            const long s0 = floor_long((alo - eps - a0) / step) - 1, e0 = ceil_long((ahi + eps - a0) / step) + 1;
+            for (long j = j0; j <= j1; ++j) spans.push_back({j, s0, e0});
           }
+      std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.j != y.j ? x.j < y.j : x.s < y.s; });
     }
   }
   struct Run { long j, s, e; signed char sg; };
@@ -186,19 +193,22 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   runs.clear();
   row_run.assign(nb + 1, 0);
   bool any_neg = false, any_pos = false;
-  for (long j = 0; j < nb; ++j) {
-    row_run[j] = long(runs.size());
-    if (!walk[std::size_t(j)]) {
-      if (hi[j] >= lo[j]) {
-        long c[3];
-        cube_of(point(lo[j], j), c);
-        const bool in = grid.neg(c[0], c[1], c[2]);
-        (in ? any_neg : any_pos) = true;
-        runs.push_back({j, lo[j], hi[j], static_cast<signed char>(in)});
-      }
-      continue;
-    }
-    for (long i = lo[j]; i <= hi[j];) {
+  long j = 0;
+  auto append = [&](long s0, long e0, bool in) {
+    (in ? any_neg : any_pos) = true;
+    if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = e0;
+    else runs.push_back({j, s0, e0, static_cast<signed char>(in)});
+  };
+  // Samples s0..e0 of row j, in inactive cubes only: their cube's corner sign.
+  auto fill = [&](long s0, long e0) {
+    if (s0 > e0) return;
+    long c[3];
+    cube_of(point(s0, j), c);
+    append(s0, e0, grid.neg(c[0], c[1], c[2]));
+  };
+  // Samples s0..e0 of row j, cube by cube.
+  auto walk = [&](long s0, long e0) {
+    for (long i = s0; i <= e0;) {
       const Vec3 x = point(i, j);
       long c[3];
       cube_of(x, c);
@@ -217,18 +227,13 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
           else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid.s[k] - m[k] - b * v[k]) / u[k]);
         }
         const double t = (a_exit - a0) / step;
-        if (!std::isfinite(t) || t >= 1e18) last = hi[j];
-        else last = t <= -1e18 ? i : std::clamp(floor_long(t), i, hi[j]);
+        if (!std::isfinite(t) || t >= 1e18) last = e0;
+        else last = t <= -1e18 ? i : std::clamp(floor_long(t), i, e0);
         for (long c2[3]; last > i; --last) {
           cube_of(point(last, j), c2);
           if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
         }
       }
-      auto append = [&](long s0, long e0, bool in) {
-        (in ? any_neg : any_pos) = true;
-        if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = e0;
-        else runs.push_back({j, s0, e0, static_cast<signed char>(in)});
-      };
       if (!grid.active(c[0], c[1], c[2])) {
         append(i, last, grid.neg(c[0], c[1], c[2]));
       } else {
@@ -248,6 +253,27 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       }
       i = last + 1;
     }
+  };
+  std::size_t sp = 0;
+  for (j = 0; j < nb; ++j) {
+    row_run[j] = long(runs.size());
+    while (sp < spans.size() && spans[sp].j < j) ++sp;
+    if (hi[j] < lo[j]) continue;
+    if (walk_all) {
+      walk(lo[j], hi[j]);
+      continue;
+    }
+    long pos = lo[j];  // samples before pos are done
+    while (sp < spans.size() && spans[sp].j == j) {
+      long s0 = std::max(spans[sp].s, pos), e0 = spans[sp].e;
+      for (++sp; sp < spans.size() && spans[sp].j == j && spans[sp].s <= e0 + 1; ++sp) e0 = std::max(e0, spans[sp].e);
+      e0 = std::min(e0, hi[j]);
+      if (s0 > e0) continue;
+      fill(pos, s0 - 1);
+      walk(s0, e0);
+      pos = e0 + 1;
+    }
+    fill(pos, hi[j]);
   }
   row_run[nb] = long(runs.size());
   if (!(any_neg && any_pos)) return kNone;
