@@ -8,6 +8,17 @@
 
 namespace imgmesh::surface_detail {
 
+namespace {
+// std::floor and std::ceil to a long, inline: without SSE4.1 they are libm
+// calls, and FacetCycle takes several per cube step and per row. The same
+// value for |x| < 2^63.
+long floor_long(double x) {
+  const long i = long(x);
+  return i - (double(i) > x);
+}
+long ceil_long(double x) { return -floor_long(-x); }
+} // namespace
+
 // FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
 // dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
 // h = bisector plane Pi cut by V(p)'s half-spaces and the box: convex, so
@@ -35,16 +46,37 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   const double ul = norm(u);
   u = {u[0] / ul, u[1] / ul, u[2] / ul};
   const Vec3 v = cross(n, u);
-  // Half-planes A a + B b <= C on Pi (x = m + a u + b v): V(p)'s faces and the box.
+  // Half-planes A a + B b <= C on Pi (x = m + a u + b v): h's edges and the
+  // box. h is convex, so it is cut out by the lines of its own edges, each
+  // dual to a facet pqw of the cells around pq: the ring of w's, not all of
+  // p's neighbours (the other faces of V(p) only touch h, at most).
   struct HP { double A, B, C; };
   // Scratch reused across checks (no allocation per edge).
   thread_local std::vector<HP> hp;
-  thread_local std::vector<Vh> adj;
+  thread_local std::vector<Vh> ring;
   hp.clear();
-  adj.clear();
-  tr.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
-  for (Vh w : adj) {
-    if (w == q) continue;
+  ring.clear();
+  // Extent on Pi: the finite Voronoi vertices of h (circumcentres of the
+  // cells around pq), or the box's corners when h is unbounded.
+  double a0 = INFINITY, a1 = -INFINITY, b0 = INFINITY, b1 = -INFINITY;
+  bool bounded = true;
+  {
+    Tr::Cell_circulator cc = tr.incident_cells(e), done = cc;
+    do {
+      for (int k = 0; k < 4; ++k) {
+        const Vh w = cc->vertex(k);
+        if (w != p && w != q && !tr.is_infinite(w) && std::find(ring.begin(), ring.end(), w) == ring.end()) ring.push_back(w);
+      }
+      if (tr.is_infinite(cc)) {
+        bounded = false;
+        continue;
+      }
+      const Vec3 c = vec(tr.dual(cc));
+      const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
+      a0 = std::min(a0, a); a1 = std::max(a1, a); b0 = std::min(b0, b); b1 = std::max(b1, b);
+    } while (++cc != done);
+  }
+  for (Vh w : ring) {
     const Vec3 pw = vec(w->point());
     const Vec3 d = sub(pw, pp);  // |x-p|^2 <= |x-w|^2  <=>  2 x.d <= |w|^2 - |p|^2
     const double C = dot(pw, pw) - dot(pp, pp) - 2 * dot(m, d);
@@ -54,20 +86,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     hp.push_back({u[i], v[i], grid.hi[i] - m[i]});
     hp.push_back({-u[i], -v[i], m[i]});
   }
-  // Extent on Pi: the box's corners projected (h lies in the box).
-  double a0 = INFINITY, a1 = -INFINITY, b0 = INFINITY, b1 = -INFINITY;
-  // Extent on Pi: the finite Voronoi vertices of h (circumcentres of the
-  // cells around pq), or the box's corners when h is unbounded.
-  bool bounded = true;
-  {
-    Tr::Cell_circulator cc = tr.incident_cells(e), done = cc;
-    do {
-      if (tr.is_infinite(cc)) { bounded = false; break; }
-      const Vec3 c = vec(tr.dual(cc));
-      const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
-      a0 = std::min(a0, a); a1 = std::max(a1, a); b0 = std::min(b0, b); b1 = std::max(b1, b);
-    } while (++cc != done);
-  }
+  // The box's corners projected (h lies in the box).
   double ba0 = INFINITY, ba1 = -INFINITY, bb0 = INFINITY, bb1 = -INFINITY;
   for (int k = 0; k < 8; ++k) {
     const Vec3 c{(k & 1) ? grid.hi[0] : 0, (k & 2) ? grid.hi[1] : 0, (k & 4) ? grid.hi[2] : 0};
@@ -100,8 +119,8 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     if (!(alo <= ahi)) continue;
     alo_row[j] = alo;
     ahi_row[j] = ahi;
-    lo[j] = long(std::ceil((alo - a0) / step));
-    hi[j] = long(std::floor((ahi - a0) / step));
+    lo[j] = ceil_long((alo - a0) / step);
+    hi[j] = floor_long((ahi - a0) / step);
     if (hi[j] >= lo[j]) ++rows_used;
   }
   if (rows_used < 3) return kNone;
@@ -117,17 +136,79 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
   };
   auto cube_of = [&](const Vec3& x, long c[3]) {
-    for (int k = 0; k < 3; ++k) c[k] = std::clamp(long(std::floor(x[k] / grid.s[k])), 0L, grid.n[k] - 2);
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(floor_long(x[k] / grid.s[k]), 0L, grid.n[k] - 2);
   };
+  // Only the samples near active cubes need a walk through the cubes: the
+  // others lie in inactive cubes, and consecutive samples (delta/16 apart) in
+  // cubes that share a corner, so a stretch of them takes one sign (F1): one
+  // run. The stretches to walk, per row: each active cube among the samples'
+  // cubes that Pi meets spans the rows and the samples between its corners'
+  // extremes along v and u, one sample wider on each side, so that a
+  // stretch begins and ends in inactive cubes.
+  struct Span { long j, s, e; };
+  thread_local std::vector<Span> spans;
+  spans.clear();
+  bool walk_all = true;
+  {
+    Vec3 xlo{INFINITY, INFINITY, INFINITY}, xhi{-INFINITY, -INFINITY, -INFINITY};
+    double cost = 0;  // the walk's cube steps, about
+    for (long j = 0; j < nb; ++j) {
+      if (hi[j] < lo[j]) continue;
+      for (const Vec3& x : {point(lo[j], j), point(hi[j], j)})  // every sample's coordinates lie between these
+        for (int k = 0; k < 3; ++k) xlo[k] = std::min(xlo[k], x[k]), xhi[k] = std::max(xhi[k], x[k]);
+      cost += double(hi[j] - lo[j]) / 16 + 1;
+    }
+    long c0[3], c1[3];
+    cube_of(xlo, c0);
+    cube_of(xhi, c1);
+    const double cubes = double(c1[0] - c0[0] + 1) * double(c1[1] - c0[1] + 1) * double(c1[2] - c0[2] + 1);
+    if (cubes < 16 * cost) {  // else walking every row is cheaper
+      walk_all = false;
+      // Rounding of the samples' coordinates: far below this.
+      const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b1));
+      for (long z = c0[2]; z <= c1[2]; ++z)
+        for (long y = c0[1]; y <= c1[1]; ++y)
+          for (long x = c0[0]; x <= c1[0]; ++x) {
+            if (!grid.active(x, y, z)) continue;
+            double dlo = INFINITY, dhi = -INFINITY, alo = INFINITY, ahi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
+            for (int k = 0; k < 8; ++k) {
+              const Vec3 c{double(x + (k & 1)) * grid.s[0] - m[0], double(y + ((k >> 1) & 1)) * grid.s[1] - m[1],
+                           double(z + ((k >> 2) & 1)) * grid.s[2] - m[2]};
+              const double dn = dot(c, n), au = dot(c, u), bv = dot(c, v);
+              dlo = std::min(dlo, dn), dhi = std::max(dhi, dn);
+              alo = std::min(alo, au), ahi = std::max(ahi, au), blo = std::min(blo, bv), bhi = std::max(bhi, bv);
+            }
+            if (dlo > eps || dhi < -eps) continue;  // Pi misses the cube
+            const long j0 = std::max(0L, floor_long((blo - eps - b0) / step) - 1);
+            const long j1 = std::min(nb - 1, ceil_long((bhi + eps - b0) / step) + 1);
+            const long s0 = floor_long((alo - eps - a0) / step) - 1, e0 = ceil_long((ahi + eps - a0) / step) + 1;
+            for (long j = j0; j <= j1; ++j) spans.push_back({j, s0, e0});
+          }
+      std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.j != y.j ? x.j < y.j : x.s < y.s; });
+    }
+  }
   struct Run { long j, s, e; signed char sg; };
   thread_local std::vector<Run> runs;
   thread_local std::vector<long> row_run;  // runs of row j: [row_run[j], row_run[j + 1])
   runs.clear();
   row_run.assign(nb + 1, 0);
   bool any_neg = false, any_pos = false;
-  for (long j = 0; j < nb; ++j) {
-    row_run[j] = long(runs.size());
-    for (long i = lo[j]; i <= hi[j];) {
+  long j = 0;
+  auto append = [&](long s0, long e0, bool in) {
+    (in ? any_neg : any_pos) = true;
+    if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = e0;
+    else runs.push_back({j, s0, e0, static_cast<signed char>(in)});
+  };
+  // Samples s0..e0 of row j, in inactive cubes only: their cube's corner sign.
+  auto fill = [&](long s0, long e0) {
+    if (s0 > e0) return;
+    long c[3];
+    cube_of(point(s0, j), c);
+    append(s0, e0, grid.neg(c[0], c[1], c[2]));
+  };
+  // Samples s0..e0 of row j, cube by cube.
+  auto walk = [&](long s0, long e0) {
+    for (long i = s0; i <= e0;) {
       const Vec3 x = point(i, j);
       long c[3];
       cube_of(x, c);
@@ -145,18 +226,14 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
           if (u[k] > 1e-15) a_exit = std::min(a_exit, ((c[k] + 1) * grid.s[k] - m[k] - b * v[k]) / u[k]);
           else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid.s[k] - m[k] - b * v[k]) / u[k]);
         }
-        const double t = std::floor((a_exit - a0) / step);
-        last = std::isfinite(t) ? long(std::clamp(t, double(i), double(hi[j]))) : hi[j];
+        const double t = (a_exit - a0) / step;
+        if (!std::isfinite(t) || t >= 1e18) last = e0;
+        else last = t <= -1e18 ? i : std::clamp(floor_long(t), i, e0);
         for (long c2[3]; last > i; --last) {
           cube_of(point(last, j), c2);
           if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
         }
       }
-      auto append = [&](long s0, long e0, bool in) {
-        (in ? any_neg : any_pos) = true;
-        if (long(runs.size()) > row_run[j] && runs.back().sg == static_cast<signed char>(in)) runs.back().e = e0;
-        else runs.push_back({j, s0, e0, static_cast<signed char>(in)});
-      };
       if (!grid.active(c[0], c[1], c[2])) {
         append(i, last, grid.neg(c[0], c[1], c[2]));
       } else {
@@ -176,6 +253,27 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       }
       i = last + 1;
     }
+  };
+  std::size_t sp = 0;
+  for (j = 0; j < nb; ++j) {
+    row_run[j] = long(runs.size());
+    while (sp < spans.size() && spans[sp].j < j) ++sp;
+    if (hi[j] < lo[j]) continue;
+    if (walk_all) {
+      walk(lo[j], hi[j]);
+      continue;
+    }
+    long pos = lo[j];  // samples before pos are done
+    while (sp < spans.size() && spans[sp].j == j) {
+      long s0 = std::max(spans[sp].s, pos), e0 = spans[sp].e;
+      for (++sp; sp < spans.size() && spans[sp].j == j && spans[sp].s <= e0 + 1; ++sp) e0 = std::max(e0, spans[sp].e);
+      e0 = std::min(e0, hi[j]);
+      if (s0 > e0) continue;
+      fill(pos, s0 - 1);
+      walk(s0, e0);
+      pos = e0 + 1;
+    }
+    fill(pos, hi[j]);
   }
   row_run[nb] = long(runs.size());
   if (!(any_neg && any_pos)) return kNone;

@@ -65,6 +65,15 @@ TEST_CASE("FacetCycle: no cycle where S crosses the facet to its border, or miss
   DelMesh all(sheets, o);
   const Tr::Edge pq_all = edge_pq(all, kP, kQ, kFar);
   CHECK(facet_cycle(all.triangulation(), all.sampler(), pq_all, x) == FacetAnswer::kCycle);
+  // A wider facet (a disk of radius ~5: W's ring 12.8 voxels out) that the
+  // sheets cross from border to border: most of its samples lie in inactive
+  // cubes, away from the sheets, and are not walked cube by cube; still no cycle.
+  std::vector<Vec3> wide = kFar;
+  for (int k = 0; k < 6; ++k)
+    wide.push_back({kMid[0] + 12.8 * std::cos(k * M_PI / 3 + 0.2), kMid[1] + 12.8 * std::sin(k * M_PI / 3 + 0.2), kMid[2] + 0.3});
+  DelMesh mw(sheets, o);
+  const Tr::Edge pq_wide = edge_pq(mw, kP, kQ, wide);
+  CHECK(facet_cycle(mw.triangulation(), mw.sampler(), pq_wide, x) == FacetAnswer::kNone);
   // A ball beside the plane: S does not meet the facet.
   FunctionSurface ball(test::box(21, 21, 21), [&](const Vec3& y) { return test::sphere_f(y, Vec3{10, 10, 15}, 2.5); });
   DelMesh mb(ball, o);
