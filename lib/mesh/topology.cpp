@@ -522,8 +522,13 @@ Json ComponentCorrespondence::to_json() const {
 }
 
 std::string ComponentCorrespondence::failed_guarantee() const {
+  // One line: the first failures, then how many more (the JSON has them all).
+  constexpr std::size_t kNamed = 10;
   std::string s;
-  auto add = [&](const std::string& x) { s += (s.empty() ? "" : "; ") + x; };
+  std::size_t failures = 0;
+  auto add = [&](const std::string& x) {
+    if (failures++ < kNamed) s += (s.empty() ? "" : "; ") + x;
+  };
   // 3D: mesh components against bdCA(X)'s; planar: regions of one label.
   auto mesh_name = [&](std::size_t i) {
     return planar ? "mesh region " + std::to_string(i) + " (label " + std::to_string(mesh[i].label) + ")"
@@ -553,6 +558,7 @@ std::string ComponentCorrespondence::failed_guarantee() const {
       add(name + (planar ? ": matched by mesh regions " : ": matched by mesh components ") + who);
     }
   }
+  if (failures > kNamed) s += "; and " + std::to_string(failures - kNamed) + " more";
   return s;
 }
 
