@@ -168,16 +168,17 @@ chain_2d() {  # chain_2d NAME IMAGE [img2poly options]
     expect 0 tri2quad $n.1.ele $n.q.ele && expect 0 quadsmooth $n.q.ele $n.qs.ele
 }
 make_disk_annulus_chain() { disk_annulus da.nrrd 1 1 && chain_2d da da.nrrd; }
-# Mirror a Triangle mesh in x about the centre of da.nrrd's grid (x from 10
-# to 10 + 63 * 0.5): the .node's x, the .ele copied.
+# Mirror a Triangle mesh in x about the centre of its bounding box (the
+# image's rectangle, for img2poly's meshes): the .node's x, the .ele copied.
 mirror_node() {  # mirror_node IN.ele OUT.ele
 python3 - "$1" "$2" <<'P'
 import shutil, sys
 src, dst = sys.argv[1][:-4], sys.argv[2][:-4]
 shutil.copy(src + '.ele', dst + '.ele')
-c = 10 + 0.5 * 63 / 2
 rows = [l.split('#')[0].split() for l in open(src + '.node')]
 rows = [r for r in rows if r]
+xs = [float(r[1]) for r in rows[1:]]
+c = (min(xs) + max(xs)) / 2
 for r in rows[1:]:
     r[1] = repr(2 * c - float(r[1]))
 open(dst + '.node', 'w').write('\n'.join(' '.join(r) for r in rows) + '\n')
@@ -223,6 +224,17 @@ case_planar_mirrored_mesh_refused() {
     grep -q "mesh region . (label 1): euler 1, its pixel region . (label 1) has 0" err.txt ||
       fail "m$s: message $(cat err.txt)"
     [ "$(wc -l < err.txt)" = 1 ] || fail "m$s: the message is not one line"
+  done
+}
+
+# The bundled lung slice at --threshold 60 (152 critical configurations
+# repaired): each stage matches; mirrored, refused.
+case_planar_lung_slice_every_stage_and_mirrored() {
+  chain_2d r "$DATA/RatLungSlice1.mha" --threshold 60 || return
+  for s in 1 q qs; do
+    expect 0 meshinfo r.$s.ele --image "$DATA/RatLungSlice1.mha" --threshold 60
+    mirror_node r.$s.ele m$s.ele
+    expect 3 meshinfo m$s.ele --image "$DATA/RatLungSlice1.mha" --threshold 60
   done
 }
 
