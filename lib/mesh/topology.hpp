@@ -2,7 +2,9 @@
 // of a binary image: components, Euler characteristic V - E + F, genus,
 // boundary loops, manifoldness and orientation. The one topology module:
 // meshinfo and the mesher's certificate (thesis Thm 7.3.1: the mesh has the
-// topology of bdCA(X)) both count here. Plain data, no OpenMesh.
+// topology of bdCA(X)) both count here, and so does the 2D certificate
+// (planar meshes against pixel regions, at the end; topology_planar.cpp).
+// Plain data, no OpenMesh.
 #pragma once
 #include "image/grid.hpp"
 #include "mesh/surface_io.hpp"
