@@ -97,12 +97,7 @@ SimplifyReport simplify_polylines(PolylineSet& set, const std::vector<Point2>& o
   }
   SimplifyReport rep;
   const double cos_max = std::cos(std::clamp(min_angle, 0.0, 90.0) * M_PI / 180);
-  // One constraint at a time, in the caller's order: CGAL keeps its
-  // constraints in a set ordered by address, so simplifying them all at once
-  // breaks cost ties (frequent on pixel staircases) by heap layout, and the
-  // output changed with the allocation history (stdin or file, valgrind).
-  for (const auto& id : ids)
-    rep.removed += PS::simplify(ct, id, AngleAwareCost{cos_max}, PS::Stop_above_cost_threshold(tolerance * tolerance), false);
+  rep.removed = PS::simplify(ct, AngleAwareCost{cos_max}, PS::Stop_above_cost_threshold(tolerance * tolerance), false);
   for (std::size_t i = 0; i < ids.size(); ++i) {
     std::vector<Point2> out;
     auto b = ct.vertices_in_constraint_begin(ids[i]), e = ct.vertices_in_constraint_end(ids[i]);
