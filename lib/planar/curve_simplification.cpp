@@ -21,6 +21,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace imgmesh {
 namespace {
@@ -37,8 +39,23 @@ using CT = CGAL::Constrained_triangulation_plus_2<CDT>;
 // end is not offered (cost undefined); it is reconsidered whenever a
 // neighbour goes. Thin spikes keep their square ends instead of collapsing
 // into slivers that force tiny triangles downstream.
+//
+// Pixel staircases give many equal costs, and the queue breaks ties by the
+// order it was filled in; tie (>= 0, far below the threshold) times a hash of
+// the vertex's coordinates in [0, 1) is added so that no two costs are
+// equal. Costs only grow, so the distance bound still holds.
 struct AngleAwareCost {
   double cos_max;  // cos(min_angle)
+  double tie;
+  static double hash01(const K::Point_2& p) {
+    std::uint64_t bx, by;
+    const double x = p.x(), y = p.y();
+    std::memcpy(&bx, &x, 8);
+    std::memcpy(&by, &y, 8);
+    std::uint64_t h = bx * 0x9E3779B97F4A7C15ull ^ (by + 0x632BE59BD9B4E019ull + (bx << 6) + (bx >> 2));
+    h ^= h >> 30; h *= 0xBF58476D1CE4E5B9ull; h ^= h >> 27; h *= 0x94D049BB133111EBull; h ^= h >> 31;  // splitmix64
+    return double(h >> 11) * 0x1.0p-53;
+  }
   bool ok_at(const CT& ct, CT::Vertex_handle a, CT::Vertex_handle skip, CT::Vertex_handle b) const {
     const double bx = b->point().x() - a->point().x(), by = b->point().y() - a->point().y();
     const double lb = std::hypot(bx, by);
@@ -63,7 +80,7 @@ struct AngleAwareCost {
     ++nv;
     const CT::Vertex_handle u = *pv, w = *nv;
     if (!ok_at(ct, u, *v, w) || !ok_at(ct, w, *v, u)) return boost::none;
-    return d;
+    return *d + tie * hash01((*v)->point());
   }
 };
 
@@ -97,7 +114,13 @@ SimplifyReport simplify_polylines(PolylineSet& set, const std::vector<Point2>& o
   }
   SimplifyReport rep;
   const double cos_max = std::cos(std::clamp(min_angle, 0.0, 90.0) * M_PI / 180);
-  rep.removed = PS::simplify(ct, AngleAwareCost{cos_max}, PS::Stop_above_cost_threshold(tolerance * tolerance), false);
+  // CGAL keeps its constraints in a set ordered by address, so its queue
+  // is filled in heap-layout order; AngleAwareCost's tie-break makes every
+  // cost distinct, so the order of removals (and the output) does not
+  // depend on it. (One PS::simplify call per constraint would too, but each
+  // call scans the whole triangulation: quadratic on a grey image.)
+  rep.removed = PS::simplify(ct, AngleAwareCost{cos_max, tolerance * tolerance * 1e-9},
+                             PS::Stop_above_cost_threshold(tolerance * tolerance), false);
   for (std::size_t i = 0; i < ids.size(); ++i) {
     std::vector<Point2> out;
     auto b = ct.vertices_in_constraint_begin(ids[i]), e = ct.vertices_in_constraint_end(ids[i]);
