@@ -3,6 +3,8 @@
 #include "image/io.hpp"
 #include "mesh/meshinfo.hpp"
 #include "mesh/volume_io.hpp"
+#include "planar/image_pslg.hpp"
+#include "util/error.hpp"
 #include "util/atomic_file.hpp"
 
 #include <iostream>
@@ -17,8 +19,27 @@ int main(int argc, char** argv) {
   tool.data_output(imgmesh::cli::Tool::kStdout, imgmesh::cli::Stream::Text, [&] { return !json; });  // --json: one object
   tool.app.add_flag("--json", json, "print one JSON object (keys 'components' and 'euler' first) instead of text");
   tool.app.add_option("--image", image,
-                      "well-composed image: match each mesh component by place to a bdCA(X) component, one to one, same euler (exit 3 if not)")
+                      "3D: well-composed image; match each mesh component by place to a bdCA(X) component, one to "
+                      "one, same euler. 2D: the image img2poly read (repaired as img2poly does); match each region "
+                      "of the planar mesh to a pixel region (exit 3 if not)")
       ->type_name("FILE");
+  imgmesh::Selection sel;
+  auto* label = tool.app.add_option("--label", sel.labels,
+                                    "with --image: keep this label (repeatable), other values become 0, as in img2poly and img2wc")
+                    ->type_name("L")
+                    ->allow_extra_args(false);
+  auto* thr = tool.app.add_option("--threshold", sel.threshold, "with --image: foreground is value >= T")
+                  ->type_name("T")
+                  ->excludes(label);
+  double tolerance = 1.0;
+  tool.app.add_option("--tolerance", tolerance,
+                      "with a 2D --image: img2poly's --tolerance E in pixels; a face may lie up to E + 1 pixels "
+                      "from its pixel region")
+      ->capture_default_str()
+      ->type_name("E")
+      ->check(CLI::Range(0.0, 1e6).description(""));
+  tool.add_seed();  // img2poly's --seed: the same repair of a 2D image
+
   return tool.run(argc, argv, [&] {
     const std::string ext = imgmesh::extension_of(in);
     const bool tets = ext == ".msh" || ext == ".mesh" || ext == ".vtu";
@@ -26,10 +47,22 @@ int main(int argc, char** argv) {
     std::optional<imgmesh::PolyMesh> pm;
     if (tets) tm = imgmesh::read_tet_mesh(in);
     else pm = imgmesh::read_poly_mesh(in);
+    sel.has_threshold = thr->count() > 0;
+    if (image.empty() && (sel.has_threshold || !sel.labels.empty()))
+      throw imgmesh::UsageError("--label and --threshold select the foreground of --image: give --image");
+    // A 2D image: the labels img2poly traced (same selection, same repair).
+    bool planar_image = false;
+    if (!image.empty() && !tets && image != "-") {
+      const auto g = imgmesh::read_image_info(image).geometry;
+      planar_image = g.dimension == 2 || g.size[2] == 1;
+    }
     std::optional<imgmesh::BinaryImage> img;
-    if (!image.empty()) img = imgmesh::read_foreground(image, {});
-    const imgmesh::MeshInfo info = tets ? imgmesh::tet_mesh_info(*tm, in, img ? &*img : nullptr, image)
-                                        : imgmesh::mesh_info(*pm, in, img ? &*img : nullptr, image);
+    std::optional<imgmesh::LabelImage> labels;
+    if (planar_image) labels = imgmesh::well_composed_labels(imgmesh::read_labels(image, sel), tool.seed());
+    else if (!image.empty()) img = imgmesh::read_foreground(image, sel);
+    const imgmesh::MeshInfo info = tets     ? imgmesh::tet_mesh_info(*tm, in, img ? &*img : nullptr, image)
+                                   : labels ? imgmesh::planar_mesh_info(*pm, in, *labels, image, tolerance + 1)
+                                            : imgmesh::mesh_info(*pm, in, img ? &*img : nullptr, image);
     if (json) tool.print_json(info.report);
     else std::cout << imgmesh::format_report(info.report);
     return tool.finish(info);

@@ -2,6 +2,7 @@
 
 #include "mesh/surface_io.hpp"
 #include "mesh/triangle_quality.hpp"
+#include "planar/image_pslg.hpp"
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
 #include "util/atomic_file.hpp"
@@ -92,6 +93,15 @@ PolyMesh read_poly_mesh(const std::string& path) {
     m.planar = true;
     for (const auto& p : pm.points) m.points.push_back({p[0], p[1], 0.0});
     m.faces = pm.elements;
+    if (!pm.element_attributes.empty())
+      for (std::size_t e = 0; e < pm.elements.size(); ++e) {
+        const auto& a = pm.element_attributes[e];
+        const double l = a.empty() ? 0.0 : a[0];
+        if (!(std::abs(l) < 2147483647.0) || l != std::round(l))
+          throw Error("element " + std::to_string(e) + ": region attribute " + std::to_string(l) +
+                      " is not an integer label", path);
+        m.region.push_back(std::int32_t(l));
+      }
     return m;
   }
   if (ext == ".ply" || ext == ".obj" || ext == ".stl") {
@@ -229,7 +239,9 @@ std::string format_report(const Json& r) {
   }
   if (r.contains("image")) {
     const Json& im = r.at("image");
-    o << "bdCA(X)     " << im.at("components").integer() << " component(s), euler";
+    const bool planar = im.contains("labels");
+    const char* bd = planar ? "region" : "bdCA";
+    o << (planar ? "regions     " : "bdCA(X)     ") << im.at("components").integer() << " component(s), euler";
     for (const Json& e : im.at("euler").items()) o << ' ' << e.integer();
     o << "; mesh " << (im.at("matches").boolean() ? "MATCHES" : "DOES NOT MATCH") << " component by component\n";
     if (im.contains("correspondence")) {
@@ -238,7 +250,7 @@ std::string format_report(const Json& r) {
         if (c.at("verdict").string() != "ok") {
           o << "  mesh #" << m << ": " << c.at("verdict").string();
           if (c.at("boundary_component").integer() >= 0)
-            o << " (on bdCA #" << c.at("boundary_component").integer() << ", euler " << c.at("euler").integer()
+            o << " (on " << bd << " #" << c.at("boundary_component").integer() << ", euler " << c.at("euler").integer()
               << " vs " << c.at("boundary_euler").integer() << ")";
           o << "\n";
         }
@@ -247,15 +259,47 @@ std::string format_report(const Json& r) {
       int b = 0;
       for (const Json& c : im.at("correspondence").at("boundary_components").items())
         if (c.at("verdict").string() == "unmatched")
-          o << "  bdCA #" << b++ << ": unmatched (euler " << c.at("euler").integer() << ")\n";
+          o << "  " << bd << " #" << b++ << ": unmatched (euler " << c.at("euler").integer() << ")\n";
         else ++b;
     }
   }
   return o.str();
 }
 
+MeshInfo planar_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const LabelImage& labels,
+                          const std::string& image_name, double reach) {
+  if (mesh.faces.empty()) throw Error("mesh has no faces", mesh_name);
+  if (!mesh.planar) throw Error("a 2D image needs a planar mesh (every z 0)", mesh_name);
+  MeshInfo r;
+  r.report = naming_input(mesh_name, [&] { return mesh_report(mesh); });
+  // Without region labels every face is foreground: one label for the image's too.
+  LabelImage fg = labels;
+  if (mesh.region.empty())
+    for (auto& v : fg.data) v = v != 0;
+  const PixelRegions pr = pixel_regions(fg);
+  if (pr.label.empty()) throw Error("the image has no foreground", image_name);
+  const MeshRegions mr = naming_input(mesh_name, [&] { return mesh_regions(mesh.points.size(), mesh.faces, mesh.region); });
+  r.compared = true;
+  r.image_name = image_name;
+  r.by_place = match_regions(mr, mesh.points, mesh.faces, pr, reach);
+  r.matches = r.by_place.matches();
+  Json j = Json::object();
+  j["components"] = pr.label.size();
+  j["euler"] = pr.euler;
+  j["labels"] = std::vector<long long>(pr.label.begin(), pr.label.end());
+  j["matches"] = r.matches;
+  j["correspondence"] = r.by_place.to_json();
+  r.report["image"] = j;
+  return r;
+}
+
 MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
                    const std::string& image_name) {
+  if (image && (image->dimension == 2 || image->size[2] == 1)) {
+    LabelImage labels(image->geometry());
+    for (std::size_t i = 0; i < labels.data.size(); ++i) labels.data[i] = image->data[i] != 0;
+    return planar_mesh_info(mesh, mesh_name, well_composed_labels(labels), image_name);
+  }
   if (mesh.faces.empty()) throw Error("mesh has no faces", mesh_name);
   MeshInfo r;
   r.report = naming_input(mesh_name, [&] { return mesh_report(mesh); });
@@ -266,12 +310,7 @@ MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const Bin
   const MeshTopology mt = mesh_topology(mesh.points.size(), mesh.faces);
   r.compared = true;
   r.image_name = image_name;
-  if (image->dimension == 2 || image->size[2] == 1) {  // pixel loops: sorted Euler lists only
-    r.report["image"] = image_comparison(mt, it);
-    r.matches = r.report.at("image").at("matches").boolean();
-    return r;
-  }
-  // 3D: the certificate by correspondence; voxel_boundary_topology counted the same quads.
+  // The certificate by correspondence; voxel_boundary_topology counted the same quads.
   const VoxelBoundary vb = voxel_boundary(*image);
   r.by_place = match_components(mt, mesh.points, *image, vb, mesh_topology(vb));
   r.report["image"] = image_comparison(mt, it, &r.by_place);
@@ -325,7 +364,9 @@ std::string MeshInfo::failed_guarantee() const {
   if (!conforming) return "the tetrahedra are not all positively oriented and conforming";
   if (matches) return "";
   const std::string why = by_place.failed_guarantee();
-  return "the mesh does not match bdCA(X) of " + image_name + " component by component" + (why.empty() ? "" : ": " + why);
+  return std::string(by_place.planar ? "the mesh's regions do not match the pixel regions of "
+                                     : "the mesh does not match bdCA(X) of ") +
+         image_name + " component by component" + (why.empty() ? "" : ": " + why);
 }
 
 } // namespace imgmesh

@@ -6,6 +6,7 @@
 #include "util/json.hpp"
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,9 @@ struct PolyMesh {
   std::vector<std::vector<int>> faces;
   bool planar = false;  // every z is 0: planar quality (quad convexity, Joe's mu) applies
   std::string format;   // "ele", "off", "ply", ...
+  // .ele with element attributes: each face's region label (its first
+  // attribute, an integer); empty otherwise.
+  std::vector<std::int32_t> region;
 };
 
 // By extension: .ele (+ .node), .off (any polygons), .ply/.obj/.stl
@@ -45,18 +49,28 @@ struct MeshInfo {
   bool compared = false, matches = true;
   bool conforming = true;  // tetrahedral meshes: positive, conforming tetrahedra
   std::string image_name;
-  ComponentCorrespondence by_place;  // 3D images: the certificate by correspondence
+  ComponentCorrespondence by_place;  // the certificate by correspondence (2D: by_place.planar)
   Json to_json() const;  // vertices, faces, components, euler; matches_image when compared
   std::string failed_guarantee() const;
 };
 
 // mesh_report of `mesh` and, when `image` is given, its comparison with
-// bdCA(X) of the image's foreground: for a 3D image by correspondence
-// (match_components, the mesh's points in the image's world coordinates); for
-// a 2D image by sorted Euler characteristics. Throws Error naming mesh_name (no face,
-// bad ids) or image_name (no foreground, not well-composed).
+// bdCA(X) of the image's foreground by correspondence (match_components, the
+// mesh's points in the image's world coordinates). A 2D image goes to
+// planar_mesh_info as a 0/1 label image. Throws Error naming mesh_name (no
+// face, bad ids) or image_name (no foreground, not well-composed).
 MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image = nullptr,
                    const std::string& image_name = "");
+
+// A planar mesh against a well-composed 2D label image (well_composed_labels
+// of what img2poly read): the certificate by correspondence of regions
+// (match_regions). With region labels the mesh's foreground is its faces of
+// nonzero label, each region matched within its label; without, every face is
+// foreground and the image's nonzero pixels are one label. reach: pixels, see
+// match_regions (img2poly's tolerance + 1). Throws Error as mesh_info, and on
+// a mesh that is not planar.
+MeshInfo planar_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const LabelImage& labels,
+                          const std::string& image_name, double reach = 2);
 
 // A tetrahedral mesh (.msh, .mesh, .vtu): mesh_info of the boundary of all
 // its tetrahedra (compared with bdCA(X) when `image` is given), with a

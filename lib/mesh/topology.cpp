@@ -1,5 +1,7 @@
 #include "mesh/topology.hpp"
 
+#include "mesh/topology_detail.hpp"
+
 #include "util/error.hpp"
 
 #include <algorithm>
@@ -10,20 +12,9 @@
 
 namespace imgmesh {
 
-namespace {
+using detail::UnionFind;
 
-struct UnionFind {
-  std::vector<std::size_t> p;
-  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), std::size_t(0)); }
-  std::size_t find(std::size_t x) {
-    while (p[x] != x) { p[x] = p[p[x]]; x = p[x]; }
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a); b = find(b);
-    if (a != b) p[std::max(a, b)] = std::min(a, b);
-  }
-};
+namespace {
 
 // Union-find that also tracks the parity (flip or not) of each face relative
 // to its root, to tell orientable components from non-orientable ones.
@@ -467,6 +458,11 @@ ComponentCorrespondence match_components(const MeshTopology& mesh, const std::ve
     const int c = boundary_component_at(points[v], grid, boundary, bt);
     if (c >= 0) votes.push_back({m, c});
   }
+  detail::tally_votes(r, votes);
+  return r;
+}
+
+void detail::tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes) {
   std::sort(votes.begin(), votes.end());
   for (std::size_t i = 0; i < votes.size();) {
     std::size_t j = i;
@@ -485,7 +481,6 @@ ComponentCorrespondence match_components(const MeshTopology& mesh, const std::ve
     else if (m.euler != r.boundary[std::size_t(m.boundary)].euler) m.verdict = "euler differs";
     else m.verdict = "ok";
   }
-  return r;
 }
 
 bool ComponentCorrespondence::matches() const {
@@ -497,13 +492,16 @@ bool ComponentCorrespondence::matches() const {
 Json ComponentCorrespondence::to_json() const {
   Json j = Json::object();
   j["matches"] = matches();
+  // Planar: mesh regions placed by their faces against pixel regions.
+  j["planar"] = planar;
   Json ms = Json::array();
   for (const auto& m : mesh) {
     Json o = Json::object();
+    if (planar) o["label"] = m.label;
     o["boundary_component"] = m.boundary;
     o["euler"] = m.euler;
     if (m.boundary >= 0) o["boundary_euler"] = boundary[std::size_t(m.boundary)].euler;
-    o["vertices"] = m.vertices;
+    o[planar ? "faces" : "vertices"] = m.vertices;
     o["placed"] = m.placed;
     o["votes"] = m.votes;
     o["verdict"] = m.verdict;
@@ -513,6 +511,7 @@ Json ComponentCorrespondence::to_json() const {
   Json bs = Json::array();
   for (const auto& b : boundary) {
     Json o = Json::object();
+    if (planar) o["label"] = b.label;
     o["euler"] = b.euler;
     o["matched_by"] = b.matched_by;
     o["verdict"] = b.verdict;
@@ -523,26 +522,43 @@ Json ComponentCorrespondence::to_json() const {
 }
 
 std::string ComponentCorrespondence::failed_guarantee() const {
+  // One line: the first failures, then how many more (the JSON has them all).
+  constexpr std::size_t kNamed = 10;
   std::string s;
-  auto add = [&](const std::string& x) { s += (s.empty() ? "" : "; ") + x; };
+  std::size_t failures = 0;
+  auto add = [&](const std::string& x) {
+    if (failures++ < kNamed) s += (s.empty() ? "" : "; ") + x;
+  };
+  // 3D: mesh components against bdCA(X)'s; planar: regions of one label.
+  auto mesh_name = [&](std::size_t i) {
+    return planar ? "mesh region " + std::to_string(i) + " (label " + std::to_string(mesh[i].label) + ")"
+                  : "mesh component " + std::to_string(i);
+  };
+  auto image_name = [&](std::size_t i) {
+    return planar ? "pixel region " + std::to_string(i) + " (label " + std::to_string(boundary[i].label) + ")"
+                  : "bdCA(X) component " + std::to_string(i);
+  };
   for (std::size_t i = 0; i < mesh.size(); ++i) {
     const auto& m = mesh[i];
-    const std::string name = "mesh component " + std::to_string(i);
-    if (m.verdict == "unplaced") add(name + ": no vertex lies on bdCA(X)");
+    const std::string name = mesh_name(i);
+    if (m.verdict == "unplaced")
+      add(name + (planar ? ": no face lies on a pixel of its label" : ": no vertex lies on bdCA(X)"));
     else if (m.verdict == "euler differs")
-      add(name + ": euler " + std::to_string(m.euler) + ", its bdCA(X) component " + std::to_string(m.boundary) +
-          " has " + std::to_string(boundary[std::size_t(m.boundary)].euler));
+      add(name + ": euler " + std::to_string(m.euler) + ", its " + image_name(std::size_t(m.boundary)) + " has " +
+          std::to_string(boundary[std::size_t(m.boundary)].euler));
   }
   for (std::size_t i = 0; i < boundary.size(); ++i) {
     const auto& b = boundary[i];
-    const std::string name = "bdCA(X) component " + std::to_string(i);
-    if (b.verdict == "unmatched") add(name + " (euler " + std::to_string(b.euler) + "): no mesh component");
+    const std::string name = image_name(i);
+    if (b.verdict == "unmatched")
+      add(name + " (euler " + std::to_string(b.euler) + (planar ? "): no mesh region" : "): no mesh component"));
     else if (b.verdict == "matched twice") {
       std::string who;
       for (int m : b.matched_by) who += (who.empty() ? "" : ", ") + std::to_string(m);
-      add(name + ": matched by mesh components " + who);
+      add(name + (planar ? ": matched by mesh regions " : ": matched by mesh components ") + who);
     }
   }
+  if (failures > kNamed) s += "; and " + std::to_string(failures - kNamed) + " more";
   return s;
 }
 

@@ -2,7 +2,9 @@
 // of a binary image: components, Euler characteristic V - E + F, genus,
 // boundary loops, manifoldness and orientation. The one topology module:
 // meshinfo and the mesher's certificate (thesis Thm 7.3.1: the mesh has the
-// topology of bdCA(X)) both count here. Plain data, no OpenMesh.
+// topology of bdCA(X)) both count here, and so does the 2D certificate
+// (planar meshes against pixel regions, at the end; topology_planar.cpp).
+// Plain data, no OpenMesh.
 #pragma once
 #include "image/grid.hpp"
 #include "mesh/surface_io.hpp"
@@ -98,17 +100,21 @@ bool same_topology(const MeshTopology& a, const MeshTopology& b);
 struct ComponentCorrespondence {
   struct MeshSide {
     int boundary = -1;            // matched bdCA(X) component, -1 when no vertex is placed
-    std::size_t vertices = 0, placed = 0, votes = 0;  // votes: placed vertices on `boundary`
+    // votes: placed vertices on `boundary`. Planar (match_regions): faces, not vertices.
+    std::size_t vertices = 0, placed = 0, votes = 0;
     long long euler = 0;
+    std::int32_t label = 0;       // planar: the region label of its faces
     std::string verdict;          // "ok", "unplaced", "matched twice", "euler differs"
   };
   struct BoundarySide {
     long long euler = 0;
+    std::int32_t label = 0;       // planar: the pixel region's label
     std::vector<int> matched_by;  // mesh components
     std::string verdict;          // "ok", "unmatched", "matched twice"
   };
-  std::vector<MeshSide> mesh;          // as MeshTopology::components
-  std::vector<BoundarySide> boundary;  // as bdCA(X)'s components
+  std::vector<MeshSide> mesh;          // as MeshTopology::components (planar: as mesh_regions)
+  std::vector<BoundarySide> boundary;  // as bdCA(X)'s components (planar: as PixelRegions)
+  bool planar = false;                 // made by match_regions: regions of faces and of pixels
   bool matches() const;                // every verdict "ok"
   Json to_json() const;
   std::string failed_guarantee() const;  // each failing component and why
@@ -119,5 +125,51 @@ struct ComponentCorrespondence {
 ComponentCorrespondence match_components(const MeshTopology& mesh, const std::vector<Vec3>& points,
                                          const Geometry& grid, const VoxelBoundary& boundary,
                                          const MeshTopology& boundary_topology);
+
+// The certificate by correspondence in 2D (planar meshes against a 2D label
+// image; topology_planar.cpp). What is matched are regions, not boundary
+// curves: the curves bound the regions, so regions matched one to one with
+// the same Euler characteristic (1 - holes) fix the curves too.
+//
+// A pixel region: a 4-connected component of pixels of one nonzero label
+// (the foreground; 0 is background). Well-composed images (img2wc, or
+// img2poly's repair, well_composed_labels) make 4- and 8-connectivity the
+// same. Its Euler characteristic is V - E + F of its closed pixel squares.
+struct PixelRegions {
+  Geometry grid;
+  std::vector<int> region_of;        // per pixel (x + size[0] * y): its region, -1 on label 0
+  std::vector<std::int32_t> label;   // per region
+  std::vector<long long> euler;      // per region
+  std::vector<std::size_t> pixels;   // per region
+};
+// Regions in the order of their first pixel (x fastest). A 2D image or one slice.
+PixelRegions pixel_regions(const LabelImage& labels);
+
+// A mesh region: faces with the same nonzero label joined by edges (faces
+// meeting at a vertex only are two regions, as 4-connected pixels are), with
+// V - E + F over its faces.
+struct MeshRegions {
+  std::vector<int> region_of;        // per face, -1 for label 0
+  std::vector<std::int32_t> label;   // per region
+  std::vector<long long> euler;      // per region
+  std::vector<std::size_t> faces;    // per region
+};
+// face_labels: one per face (empty: every face is label 1, the foreground
+// of a 0/1 image). Throws Error on a bad face.
+MeshRegions mesh_regions(std::size_t num_vertices, const std::vector<std::vector<int>>& faces,
+                         const std::vector<std::int32_t>& face_labels);
+
+// Each face is placed by its centroid (world coordinates; the image's x-y
+// plane): on the region of the nearest pixel centre of the face's label less
+// than `reach` pixels away (index units). A mesh region goes to the pixel
+// region most of its placed faces lie on (ties: the lower index); the match
+// must be one to one and each pair must have the same label and Euler
+// characteristic. img2poly moves a curve up to its --tolerance E off the
+// pixel boundary, so a face of a right mesh lies within E of its pixel
+// region, whose nearest pixel centre is then within E + sqrt(2)/2: reach
+// E + 1 places every face of a right mesh.
+ComponentCorrespondence match_regions(const MeshRegions& mesh, const std::vector<Vec3>& points,
+                                      const std::vector<std::vector<int>>& faces, const PixelRegions& image,
+                                      double reach);
 
 } // namespace imgmesh

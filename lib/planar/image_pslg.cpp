@@ -84,6 +84,41 @@ std::size_t repair_labels(LabelImage& L, std::size_t* initial) {
 
 } // namespace
 
+LabelImage well_composed_labels(const LabelImage& img, std::uint64_t seed, std::size_t* critical,
+                                std::size_t* changed) {
+  std::size_t crit = 0, chg = 0;
+  std::vector<std::int32_t> values(img.data);
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+  LabelImage L;
+  if (values.size() == 2) {
+    // Binary: the chapter 5 repair (2D mode), foreground = the higher value.
+    BinaryImage b(img.geometry());
+    for (std::size_t i = 0; i < img.data.size(); ++i) b.data[i] = img.data[i] == values[1];
+    b.dimension = 2;
+    b.size[2] = 1;
+    WellComposedOptions wo;
+    wo.seed = seed;
+    const WellComposedResult wc = make_well_composed(b, wo);
+    // The repair may grow the grid where foreground touches the border; the
+    // blocks inside the original grid are what matters here (the rectangle
+    // is the image's own extent), so crop back to it.
+    L = LabelImage(img.geometry());
+    for (std::size_t y = 0; y < L.size[1]; ++y)
+      for (std::size_t x = 0; x < L.size[0]; ++x)
+        L(x, y) = wc.image(x + wc.padded_before[0], y + wc.padded_before[1]) ? values[1] : values[0];
+    crit = wc.input.total();
+    chg = wc.changed;
+  } else {
+    L = img;
+    chg = repair_labels(L, &crit);
+  }
+  L.dimension = 2;
+  if (critical) *critical = crit;
+  if (changed) *changed = chg;
+  return L;
+}
+
 ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt) {
   if (img.dimension == 3 && img.size[2] != 1)
     throw Error("a 3D image with " + std::to_string(img.size[2]) + " slices: img2poly needs a 2D image");
@@ -105,35 +140,7 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
   ImagePslgResult res;
   res.tolerance = opt.tolerance;
   res.min_angle_bound = opt.min_angle;
-  std::vector<std::int32_t> values(img.data);
-  std::sort(values.begin(), values.end());
-  values.erase(std::unique(values.begin(), values.end()), values.end());
-
-  LabelImage L;
-  if (values.size() == 2) {
-    // Binary: the chapter 5 repair (2D mode), foreground = the higher value.
-    BinaryImage b(img.geometry());
-    for (std::size_t i = 0; i < img.data.size(); ++i) b.data[i] = img.data[i] == values[1];
-    b.dimension = 2;
-    b.size[2] = 1;
-    WellComposedOptions wo;
-    wo.seed = opt.seed;
-    const WellComposedResult wc = make_well_composed(b, wo);
-    // The repair may grow the grid where foreground touches the border; the
-    // blocks inside the original grid are what matters here (the rectangle
-    // is the image's own extent), so crop back to it.
-    L = LabelImage(img.geometry());
-    L.dimension = 2;
-    for (std::size_t y = 0; y < L.size[1]; ++y)
-      for (std::size_t x = 0; x < L.size[0]; ++x)
-        L(x, y) = wc.image(x + wc.padded_before[0], y + wc.padded_before[1]) ? values[1] : values[0];
-    res.critical_configurations = wc.input.total();
-    res.changed_pixels = wc.changed;
-  } else {
-    L = img;
-    res.changed_pixels = repair_labels(L, &res.critical_configurations);
-  }
-  L.dimension = 2;
+  LabelImage L = well_composed_labels(img, opt.seed, &res.critical_configurations, &res.changed_pixels);
   const std::size_t W = L.size[0], H = L.size[1];
   const Grid2 px{W, H}, cn{W + 1, H + 1};
 

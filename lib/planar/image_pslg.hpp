@@ -64,6 +64,15 @@ struct ImagePslgResult {
 // more make a label image (repaired here, see image_pslg.cpp). Throws Error.
 ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt = {});
 
+// The well-composed label image img2poly traces (ImagePslgResult::labels):
+// two values go through lib/wellcomposed's repair with `seed` (foreground =
+// the higher value), more through the label repair of image_pslg.cpp. A 2D
+// image (or one slice); dimension 2 on return. Optional counts: two-label
+// diagonal 2x2 blocks in the input, pixels changed. meshinfo repeats it to
+// check a planar mesh against the image it came from.
+LabelImage well_composed_labels(const LabelImage& img, std::uint64_t seed = 0, std::size_t* critical = nullptr,
+                                std::size_t* changed = nullptr);
+
 // The label image as a grey SVG background (labels spread over 40..215).
 SvgBackground label_background(const LabelImage& labels);
 

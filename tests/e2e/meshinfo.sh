@@ -2,7 +2,9 @@
 # meshinfo end to end: hand-made closed and open surfaces with several
 # components (OFF), a planar quad mesh (.ele), --json keys, --image against a
 # hand-written well-composed NRRD, the certificate by correspondence on a
-# ball and a torus meshed by the real tools (and that mesh mirrored), and bad input.
+# ball and a torus meshed by the real tools (and that mesh mirrored), its 2D
+# form on a disk and an annulus through img2poly, poly2tri, tri2quad and
+# quadsmooth (and those meshes mirrored), and bad input.
 source "$(dirname "$0")/lib.sh"
 M="$BIN/meshinfo"
 # First line of a compact JSON value: "components" and "euler" are the first keys.
@@ -139,6 +141,126 @@ cp err.txt swapped.err
 grep -q "DOES NOT MATCH" swapped.txt || fail "swapped: no mismatch line"
 grep -q "euler differs" swapped.txt || fail "swapped: no per-component verdict"
 grep -q "mesh component .: euler 2, its bdCA(X) component . has 0" swapped.err || fail "swapped: message $(cat swapped.err)"
+}
+
+# 2D: a disk around x = 16 and an annulus around x = 47 in a 64 x 32 NRRD
+# with an origin and a spacing (mirroring x -> 63 - x swaps their places);
+# the values V1 (disk) and V2 (annulus) are arguments, for binary and label
+# images.
+disk_annulus() {  # disk_annulus FILE V1 V2
+python3 - "$@" <<'P'
+import math, sys
+name, v1, v2 = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+b = bytearray()
+for y in range(32):
+    for x in range(64):
+        d, a = math.hypot(x - 16, y - 15.5), math.hypot(x - 47, y - 15.5)
+        b.append(v1 if d <= 9 else v2 if 4 < a <= 9 else 0)
+head = ("NRRD0004\ntype: uchar\ndimension: 2\nspace dimension: 2\nsizes: 64 32\n"
+        "space directions: (0.5,0) (0,0.5)\nspace origin: (10,-4)\nencoding: raw\n\n")
+open(name, 'wb').write(head.encode() + bytes(b))
+P
+}
+# The README's 2D chain: NAME.1.ele, NAME.q.ele, NAME.qs.ele.
+chain_2d() {  # chain_2d NAME IMAGE [img2poly options]
+  local n=$1 img=$2; shift 2
+  expect 0 img2poly "$img" "$@" $n.poly && expect 0 poly2tri $n.poly $n.1.ele &&
+    expect 0 tri2quad $n.1.ele $n.q.ele && expect 0 quadsmooth $n.q.ele $n.qs.ele
+}
+make_disk_annulus_chain() { disk_annulus da.nrrd 1 1 && chain_2d da da.nrrd; }
+# Mirror a Triangle mesh in x about the centre of its bounding box (the
+# image's rectangle, for img2poly's meshes): the .node's x, the .ele copied.
+mirror_node() {  # mirror_node IN.ele OUT.ele
+python3 - "$1" "$2" <<'P'
+import shutil, sys
+src, dst = sys.argv[1][:-4], sys.argv[2][:-4]
+shutil.copy(src + '.ele', dst + '.ele')
+rows = [l.split('#')[0].split() for l in open(src + '.node')]
+rows = [r for r in rows if r]
+xs = [float(r[1]) for r in rows[1:]]
+c = (min(xs) + max(xs)) / 2
+for r in rows[1:]:
+    r[1] = repr(2 * c - float(r[1]))
+open(dst + '.node', 'w').write('\n'.join(' '.join(r) for r in rows) + '\n')
+P
+}
+# An OFF (z = 0) of the faces of nonzero region attribute of a .ele.
+foreground_off() {  # foreground_off IN.ele OUT.off
+python3 - "$1" "$2" <<'P'
+import sys
+def rows(path):
+    return [r for r in (l.split('#')[0].split() for l in open(path)) if r]
+node, ele = rows(sys.argv[1][:-4] + '.node'), rows(sys.argv[1])
+base, k = int(node[1][0]), int(ele[0][1])
+faces = [[int(v) - base for v in r[1:1 + k]] for r in ele[1:] if float(r[1 + k]) != 0]
+with open(sys.argv[2], 'w') as o:
+    print('OFF', len(node) - 1, len(faces), 0, file=o)
+    for r in node[1:]: print(r[1], r[2], 0, file=o)
+    for f in faces: print(len(f), *f, file=o)
+P
+}
+# Number of "ok" verdicts in a --json report.
+oks() { tr -d ' \n' < "$1" | grep -o '"verdict":"ok"' | wc -l; }
+
+case_planar_chain_every_stage_matches_its_image() {
+  local d; d=$(dirname "$(shared da.qs.ele make_disk_annulus_chain)")
+  for s in 1 q qs; do
+    OUT=$s.json expect 0 meshinfo --json $d/da.$s.ele --image $d/da.nrrd || continue
+    # Two mesh regions and two pixel regions (disk euler 1, annulus 0), all ok.
+    [ "$(oks $s.json)" = 4 ] || fail "da.$s.ele: not 4 ok verdicts"
+    tr -d ' \n' < $s.json | grep -q '"image":{"components":2,"euler":\[1,0\]' || fail "da.$s.ele: image regions"
+  done
+  OUT=qs.txt expect 0 meshinfo $d/da.qs.ele --image $d/da.nrrd
+  grep -q "^regions .*MATCHES" qs.txt || fail "no match line"
+}
+
+case_planar_mirrored_mesh_refused() {
+  local d; d=$(dirname "$(shared da.qs.ele make_disk_annulus_chain)")
+  for s in 1 q qs; do
+    mirror_node $d/da.$s.ele m$s.ele
+    OUT=m$s.txt expect 3 meshinfo m$s.ele --image $d/da.nrrd || continue
+    grep -q "DOES NOT MATCH" m$s.txt || fail "m$s: no mismatch line"
+    grep -q "euler differs" m$s.txt || fail "m$s: no per-region verdict"
+    grep -q "mesh region . (label 1): euler 1, its pixel region . (label 1) has 0" err.txt ||
+      fail "m$s: message $(cat err.txt)"
+    [ "$(wc -l < err.txt)" = 1 ] || fail "m$s: the message is not one line"
+  done
+}
+
+# The bundled lung slice at --threshold 60 (152 critical configurations
+# repaired): each stage matches; mirrored, refused.
+case_planar_lung_slice_every_stage_and_mirrored() {
+  chain_2d r "$DATA/RatLungSlice1.mha" --threshold 60 || return
+  for s in 1 q qs; do
+    expect 0 meshinfo r.$s.ele --image "$DATA/RatLungSlice1.mha" --threshold 60
+    mirror_node r.$s.ele m$s.ele
+    expect 3 meshinfo m$s.ele --image "$DATA/RatLungSlice1.mha" --threshold 60
+  done
+}
+
+# Without region labels (an OFF of the disk's and the annulus's faces only)
+# every face is foreground; mirrored, refused.
+case_planar_foreground_off_without_labels() {
+  local d; d=$(dirname "$(shared da.qs.ele make_disk_annulus_chain)")
+  mirror_node $d/da.1.ele m.ele && foreground_off $d/da.1.ele da.off && foreground_off m.ele m.off || return
+  OUT=fg.json expect 0 meshinfo --json da.off --image $d/da.nrrd && [ "$(oks fg.json)" = 4 ] ||
+    fail "da.off: not 4 ok verdicts"
+  expect 3 meshinfo m.off --image $d/da.nrrd
+  grep -q "euler 1, its pixel region . (label 1) has 0" err.txt || fail "m.off: message $(cat err.txt)"
+}
+
+# A label image (disk 100, annulus 200): img2poly keeps both labels and
+# meshinfo matches each region within its label; after img2poly
+# --threshold, meshinfo needs the same --threshold (without, the labels
+# differ: refused).
+case_planar_labels_and_threshold_as_img2poly() {
+  disk_annulus la.nrrd 100 200 && chain_2d la la.nrrd && chain_2d th la.nrrd --threshold 150 || return
+  OUT=la.json expect 0 meshinfo --json la.qs.ele --image la.nrrd && [ "$(oks la.json)" = 4 ] || fail "la: not 4 ok"
+  tr -d ' \n' < la.json | grep -q '"labels":\[100,200\]' || fail "la: pixel region labels"
+  OUT=th.json expect 0 meshinfo --json th.qs.ele --image la.nrrd --threshold 150 && [ "$(oks th.json)" = 2 ] ||
+    fail "th: the annulus alone is foreground: not 2 ok verdicts"
+  expect 3 meshinfo th.qs.ele --image la.nrrd || fail "th without --threshold"
+  expect 2 meshinfo th.qs.ele --threshold 150 || fail "--threshold without --image"
 }
 
 case_bad_input_exit_1_2() {

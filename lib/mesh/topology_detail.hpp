@@ -1,0 +1,33 @@
+// Pieces the two halves of the topology module share (topology.cpp in 3D,
+// topology_planar.cpp in 2D). Internal to lib/mesh.
+#pragma once
+#include "mesh/topology.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <utility>
+#include <vector>
+
+namespace imgmesh::detail {
+
+struct UnionFind {
+  std::vector<std::size_t> p;
+  explicit UnionFind(std::size_t n) : p(n) { std::iota(p.begin(), p.end(), std::size_t(0)); }
+  std::size_t find(std::size_t x) {
+    while (p[x] != x) { p[x] = p[p[x]]; x = p[x]; }
+    return x;
+  }
+  // The smaller id stays the root, so a root is its set's smallest member.
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a); b = find(b);
+    if (a != b) p[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// The vote and the verdicts of a correspondence whose sides are sized:
+// votes holds (mesh component, image component) once per placed element; a
+// mesh component goes to the image component with most votes (ties: the
+// lower index), then one to one and equal Euler characteristics are checked.
+void tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes);
+
+} // namespace imgmesh::detail
