@@ -2,6 +2,7 @@
 
 #include "util/cpu_time.hpp"
 #include "util/error.hpp"
+#include "util/hash.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -15,18 +16,6 @@
 #include <vector>
 
 namespace imgmesh {
-
-namespace {
-
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-double unit(std::uint64_t x) { return double(x >> 11) * (1.0 / 9007199254740992.0); }
-
-} // namespace
 
 PointEvaluation evaluate_points(const PartitionOfUnity& f, std::istream& in, std::ostream& out, bool gradient,
                                 bool allow_outside, const std::string& source) {
@@ -111,7 +100,7 @@ RandomEvaluation evaluate_random(const PartitionOfUnity& f, std::uint64_t n, std
         const std::uint64_t m = std::min(kBatch, end - i0);
         for (std::uint64_t j = 0; j < m; ++j) {
           const std::uint64_t h = splitmix64(key ^ ((i0 + j) * 3));
-          p[j] = g.world(unit(h) * ext[0], unit(splitmix64(h + 1)) * ext[1], unit(splitmix64(h + 2)) * ext[2]);
+          p[j] = g.world(unit01(h) * ext[0], unit01(splitmix64(h + 1)) * ext[1], unit01(splitmix64(h + 2)) * ext[2]);
         }
         f.values(p, m, v, gradient ? gr : nullptr);
         for (std::uint64_t j = 0; j < m; ++j) {

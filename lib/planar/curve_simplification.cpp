@@ -11,6 +11,7 @@
 #include "planar/curve_simplification.hpp"
 
 #include "util/error.hpp"
+#include "util/hash.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_plus_2.h>
@@ -53,8 +54,7 @@ struct AngleAwareCost {
     std::memcpy(&bx, &x, 8);
     std::memcpy(&by, &y, 8);
     std::uint64_t h = bx * 0x9E3779B97F4A7C15ull ^ (by + 0x632BE59BD9B4E019ull + (bx << 6) + (bx >> 2));
-    h ^= h >> 30; h *= 0xBF58476D1CE4E5B9ull; h ^= h >> 27; h *= 0x94D049BB133111EBull; h ^= h >> 31;  // splitmix64
-    return double(h >> 11) * 0x1.0p-53;
+    return unit01(mix64(h));
   }
   bool ok_at(const CT& ct, CT::Vertex_handle a, CT::Vertex_handle skip, CT::Vertex_handle b) const {
     const double bx = b->point().x() - a->point().x(), by = b->point().y() - a->point().y();
