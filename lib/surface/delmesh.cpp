@@ -341,7 +341,8 @@ bool DelMesh::facet_cycle_pass() {
   ++facet_cycle_passes_;
   phase_ = "facet cycle";
   std::vector<int> skipped;
-  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_, skipped);
+  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_, skipped,
+                                             opt_.compare_facet_walks ? FacetWalk::kCompare : FacetWalk::kSpans);
   dirty_.clear();
   // Skipped facets are not answers: their edges are checked again in the
   // next pass (after later insertions); what the last pass skipped is counted.

@@ -1,10 +1,12 @@
 #include "surface/facet_cycle.hpp"
 
 #include "implicit/parallel.hpp"
+#include "util/error.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 
 namespace imgmesh::surface_detail {
 
@@ -32,7 +34,7 @@ long ceil_long(double x) { return -floor_long(-x); }
 // that segment, i.e. on S inside Pi. Cycles narrower than the step are
 // missed (like EdgeSurface). Facets of more than 4M samples are not
 // rasterised: kSkipped, and DELMESH checks them again after later insertions.
-FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out) {
+FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out, FacetWalk how) {
   constexpr FacetAnswer kNone = FacetAnswer::kNone;
   const CubeGrid& grid = f.grid();
   const Vh p = e.first->vertex(e.second), q = e.first->vertex(e.third);
@@ -149,7 +151,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   thread_local std::vector<Span> spans;
   spans.clear();
   bool walk_all = true;
-  {
+  if (how != FacetWalk::kFull) {
     Vec3 xlo{INFINITY, INFINITY, INFINITY}, xhi{-INFINITY, -INFINITY, -INFINITY};
     double cost = 0;  // the walk's cube steps, about
     for (long j = 0; j < nb; ++j) {
@@ -162,7 +164,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     cube_of(xlo, c0);
     cube_of(xhi, c1);
     const double cubes = double(c1[0] - c0[0] + 1) * double(c1[1] - c0[1] + 1) * double(c1[2] - c0[2] + 1);
-    if (cubes < 16 * cost) {  // else walking every row is cheaper
+    if (cubes < 16 * cost || how == FacetWalk::kCompare) {  // else walking every row is cheaper
       walk_all = false;
       // Rounding of the samples' coordinates: far below this.
       const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b1));
@@ -254,28 +256,60 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       i = last + 1;
     }
   };
-  std::size_t sp = 0;
-  for (j = 0; j < nb; ++j) {
-    row_run[j] = long(runs.size());
-    while (sp < spans.size() && spans[sp].j < j) ++sp;
-    if (hi[j] < lo[j]) continue;
-    if (walk_all) {
-      walk(lo[j], hi[j]);
-      continue;
+  // The runs of every row: kSpans walks the spans, kFull every row, and
+  // kCompare (the reference) gives each sample its sign by definition: its
+  // cube's corner sign if inactive, else f's.
+  auto build_runs = [&](FacetWalk mode) {
+    runs.clear();
+    any_neg = any_pos = false;
+    std::size_t sp = 0;
+    for (j = 0; j < nb; ++j) {
+      row_run[j] = long(runs.size());
+      while (sp < spans.size() && spans[sp].j < j) ++sp;
+      if (hi[j] < lo[j]) continue;
+      if (mode == FacetWalk::kCompare) {
+        for (long i = lo[j]; i <= hi[j]; ++i) {
+          const Vec3 x = point(i, j);
+          long c[3];
+          cube_of(x, c);
+          append(i, i, grid.active(c[0], c[1], c[2]) ? SurfaceSampler::inside(f.value(x)) : grid.neg(c[0], c[1], c[2]));
+        }
+        continue;
+      }
+      if (mode == FacetWalk::kFull) {
+        walk(lo[j], hi[j]);
+        continue;
+      }
+      long pos = lo[j];  // samples before pos are done
+      while (sp < spans.size() && spans[sp].j == j) {
+        long s0 = std::max(spans[sp].s, pos), e0 = spans[sp].e;
+        for (++sp; sp < spans.size() && spans[sp].j == j && spans[sp].s <= e0 + 1; ++sp) e0 = std::max(e0, spans[sp].e);
+        e0 = std::min(e0, hi[j]);
+        if (s0 > e0) continue;
+        fill(pos, s0 - 1);
+        walk(s0, e0);
+        pos = e0 + 1;
+      }
+      fill(pos, hi[j]);
     }
-    long pos = lo[j];  // samples before pos are done
-    while (sp < spans.size() && spans[sp].j == j) {
-      long s0 = std::max(spans[sp].s, pos), e0 = spans[sp].e;
-      for (++sp; sp < spans.size() && spans[sp].j == j && spans[sp].s <= e0 + 1; ++sp) e0 = std::max(e0, spans[sp].e);
-      e0 = std::min(e0, hi[j]);
-      if (s0 > e0) continue;
-      fill(pos, s0 - 1);
-      walk(s0, e0);
-      pos = e0 + 1;
+    row_run[nb] = long(runs.size());
+  };
+  if (how == FacetWalk::kCompare) {
+    // Both walks must give the reference's runs, sample for sample.
+    build_runs(FacetWalk::kCompare);
+    thread_local std::vector<Run> reference;
+    reference.assign(runs.begin(), runs.end());
+    const auto same = [](const Run& x, const Run& y) { return x.j == y.j && x.s == y.s && x.e == y.e && x.sg == y.sg; };
+    for (FacetWalk mode : {FacetWalk::kFull, FacetWalk::kSpans}) {
+      build_runs(mode);
+      if (!std::equal(runs.begin(), runs.end(), reference.begin(), reference.end(), same))
+        throw Error(std::string("FacetCycle: the ") + (mode == FacetWalk::kFull ? "full" : "span") +
+                    " walk's runs differ from the samples' signs (edge " + std::to_string(p->info().id) + "-" +
+                    std::to_string(q->info().id) + ")");
     }
-    fill(pos, hi[j]);
+  } else {
+    build_runs(walk_all ? FacetWalk::kFull : FacetWalk::kSpans);
   }
-  row_run[nb] = long(runs.size());
   if (!(any_neg && any_pos)) return kNone;
   // Sign regions (4-connected): runs of one sign overlapping in adjacent rows,
   // joined by union-find. A region touching h's border is open; one that
@@ -386,7 +420,8 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
 }
 
 Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
-                              std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped) {
+                              std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped,
+                              FacetWalk how) {
   std::vector<Ch> cells;
   // The edges at new vertices, each once (from the smaller id when both
   // ends are new), found from the new vertices' cells.
@@ -416,7 +451,7 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
   std::vector<FacetAnswer> found(edges.size(), FacetAnswer::kNone);
   std::vector<Vec3> xs(edges.size());
   implicit_detail::parallel_for(long(edges.size()), unsigned(std::max(1, threads)), [&](long a, long b, unsigned) {
-    for (long k = a; k < b; ++k) found[std::size_t(k)] = facet_cycle(tr, f, edges[std::size_t(k)].second, xs[std::size_t(k)]);
+    for (long k = a; k < b; ++k) found[std::size_t(k)] = facet_cycle(tr, f, edges[std::size_t(k)].second, xs[std::size_t(k)], how);
   });
   Candidates pts;
   skipped.clear();
