@@ -109,15 +109,21 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   alo_row.assign(nb, 0);
   ahi_row.assign(nb, 0);
   long rows_used = 0;
+  // The half-planes by the sign of A, sorted once (not tested per row):
+  // each row's bounds are the same min and max, in the same order.
+  thread_local std::vector<HP> hp_hi, hp_lo, hp_flat;
+  hp_hi.clear();
+  hp_lo.clear();
+  hp_flat.clear();
+  for (const HP& h : hp) (h.A > 1e-15 ? hp_hi : h.A < -1e-15 ? hp_lo : hp_flat).push_back(h);
   for (long j = 0; j < nb; ++j) {
     const double b = b0 + j * step;
+    bool empty = false;
+    for (const HP& h : hp_flat) empty = empty || h.C - h.B * b < 0;
+    if (empty) continue;
     double alo = a0, ahi = a1;
-    for (const HP& h : hp) {
-      const double r = h.C - h.B * b;
-      if (h.A > 1e-15) ahi = std::min(ahi, r / h.A);
-      else if (h.A < -1e-15) alo = std::max(alo, r / h.A);
-      else if (r < 0) { alo = 1; ahi = 0; break; }
-    }
+    for (const HP& h : hp_hi) ahi = std::min(ahi, (h.C - h.B * b) / h.A);
+    for (const HP& h : hp_lo) alo = std::max(alo, (h.C - h.B * b) / h.A);
     if (!(alo <= ahi)) continue;
     alo_row[j] = alo;
     ahi_row[j] = ahi;
@@ -147,9 +153,17 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   // cubes that Pi meets spans the rows and the samples between its corners'
   // extremes along v and u, one sample wider on each side, so that a
   // stretch begins and ends in inactive cubes.
-  struct Span { long j, s, e; };
-  thread_local std::vector<Span> spans;
+  // Each cube's span of rows and samples; then per row (row_span[j] ..
+  // row_span[j + 1]) the (s, e) of the cubes over it, by s: the cubes
+  // sorted by s once and dealt to their rows (a sort of every row's spans
+  // by (row, s) cost 2% of the run).
+  struct CubeSpan { long j0, j1, s, e; };
+  thread_local std::vector<CubeSpan> cube_spans;
+  thread_local std::vector<std::pair<long, long>> spans;
+  thread_local std::vector<long> row_span;
+  cube_spans.clear();
   spans.clear();
+  row_span.assign(nb + 1, 0);
   bool walk_all = true;
   if (how != FacetWalk::kFull) {
     Vec3 xlo{INFINITY, INFINITY, INFINITY}, xhi{-INFINITY, -INFINITY, -INFINITY};
@@ -184,9 +198,17 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
             const long j0 = std::max(0L, floor_long((blo - eps - b0) / step) - 1);
             const long j1 = std::min(nb - 1, ceil_long((bhi + eps - b0) / step) + 1);
             const long s0 = floor_long((alo - eps - a0) / step) - 1, e0 = ceil_long((ahi + eps - a0) / step) + 1;
-            for (long j = j0; j <= j1; ++j) spans.push_back({j, s0, e0});
+            if (j0 <= j1) cube_spans.push_back({j0, j1, s0, e0});
           }
-      std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.j != y.j ? x.j < y.j : x.s < y.s; });
+      std::sort(cube_spans.begin(), cube_spans.end(), [](const CubeSpan& x, const CubeSpan& y) { return x.s < y.s; });
+      for (const CubeSpan& c : cube_spans)
+        for (long j = c.j0; j <= c.j1; ++j) ++row_span[j + 1];
+      for (long j = 0; j < nb; ++j) row_span[j + 1] += row_span[j];
+      spans.resize(std::size_t(row_span[nb]));
+      thread_local std::vector<long> fill_at;
+      fill_at.assign(row_span.begin(), row_span.end() - 1);
+      for (const CubeSpan& c : cube_spans)
+        for (long j = c.j0; j <= c.j1; ++j) spans[std::size_t(fill_at[j]++)] = {c.s, c.e};
     }
   }
   struct Run { long j, s, e; signed char sg; };
@@ -262,10 +284,8 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   auto build_runs = [&](FacetWalk mode) {
     runs.clear();
     any_neg = any_pos = false;
-    std::size_t sp = 0;
     for (j = 0; j < nb; ++j) {
       row_run[j] = long(runs.size());
-      while (sp < spans.size() && spans[sp].j < j) ++sp;
       if (hi[j] < lo[j]) continue;
       if (mode == FacetWalk::kCompare) {
         for (long i = lo[j]; i <= hi[j]; ++i) {
@@ -281,9 +301,9 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
         continue;
       }
       long pos = lo[j];  // samples before pos are done
-      while (sp < spans.size() && spans[sp].j == j) {
-        long s0 = std::max(spans[sp].s, pos), e0 = spans[sp].e;
-        for (++sp; sp < spans.size() && spans[sp].j == j && spans[sp].s <= e0 + 1; ++sp) e0 = std::max(e0, spans[sp].e);
+      for (long sp = row_span[j]; sp < row_span[j + 1];) {
+        long s0 = std::max(spans[std::size_t(sp)].first, pos), e0 = spans[std::size_t(sp)].second;
+        for (++sp; sp < row_span[j + 1] && spans[std::size_t(sp)].first <= e0 + 1; ++sp) e0 = std::max(e0, spans[std::size_t(sp)].second);
         e0 = std::min(e0, hi[j]);
         if (s0 > e0) continue;
         fill(pos, s0 - 1);
