@@ -19,9 +19,9 @@ namespace {
 // Union-find that also tracks the parity (flip or not) of each face relative
 // to its root, to tell orientable components from non-orientable ones.
 struct ParityUnionFind {
-  std::vector<std::size_t> p;
+  std::vector<std::uint32_t> p;  // fewer than 2^31 faces (checked by the caller)
   std::vector<std::uint8_t> par;  // parity to parent
-  explicit ParityUnionFind(std::size_t n) : p(n), par(n, 0) { std::iota(p.begin(), p.end(), std::size_t(0)); }
+  explicit ParityUnionFind(std::size_t n) : p(n), par(n, 0) { std::iota(p.begin(), p.end(), std::uint32_t(0)); }
   std::size_t find(std::size_t x, std::uint8_t& parity) {
     parity = 0;
     std::size_t r = x;
@@ -31,7 +31,7 @@ struct ParityUnionFind {
     while (p[x] != r) {
       const std::size_t next = p[x];
       const std::uint8_t px = par[x];
-      p[x] = r;
+      p[x] = std::uint32_t(r);
       par[x] = acc;
       acc ^= px;
       x = next;
@@ -43,7 +43,7 @@ struct ParityUnionFind {
     std::uint8_t pa, pb;
     const std::size_t ra = find(a, pa), rb = find(b, pb);
     if (ra == rb) return (pa ^ pb) == rel;
-    p[rb] = ra;
+    p[rb] = std::uint32_t(ra);
     par[rb] = pa ^ pb ^ rel;
     return true;
   }
@@ -111,35 +111,33 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
         if (corners[k] == corners[i]) throw Error("face " + std::to_string(f) + ": repeated vertex");
     }
   }
-  // Half-edges sorted by undirected edge.
-  struct HalfEdge { std::uint64_t key; std::size_t corner; bool forward; };
+  // Half-edges sorted by undirected edge, each with its corner and face (16
+  // bytes: this runs beside the mesher's triangulation, at its peak).
+  if (corners.size() > 0x7fffffffu || nf > 0x7fffffffu) throw Error("topology: more than 2^31 corners");
+  struct HalfEdge { std::uint64_t key; std::uint32_t corner, face; };
   std::vector<HalfEdge> he;
   he.reserve(corners.size());
-  std::vector<std::size_t> face_of(corners.size());
   for (std::size_t f = 0; f < nf; ++f)
     for (std::size_t i = offsets[f]; i < offsets[f + 1]; ++i) {
-      face_of[i] = f;
       const std::size_t j = i + 1 == offsets[f + 1] ? offsets[f] : i + 1;
       const std::uint32_t a = std::uint32_t(corners[i]), b = std::uint32_t(corners[j]);
-      he.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), i, a < b});
+      he.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), std::uint32_t(i), std::uint32_t(f)});
     }
   std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return x.key != y.key ? x.key < y.key : x.corner < y.corner;
   });
-  auto next_corner = [&](std::size_t i) { return i + 1 == offsets[face_of[i] + 1] ? offsets[face_of[i]] : i + 1; };
+  auto next_corner = [&](const HalfEdge& h) { return h.corner + 1 == offsets[h.face + 1] ? offsets[h.face] : h.corner + 1; };
+  auto forward = [&](const HalfEdge& h) { return corners[h.corner] < corners[next_corner(h)]; };
 
   UnionFind vuf(nv), cuf(corners.size()), buf(nv);
   ParityUnionFind fuf(nf);
   std::vector<char> used(nv, 0), on_boundary(nv, 0), bad_vertex(nv, 0);
   for (int v : corners) used[v] = 1;
-  std::vector<char> comp_nonorientable_root(nv, 0);  // marked on a vertex of the face
   std::vector<std::size_t> nonorientable_faces;
-  std::vector<std::uint64_t> edges;  // unique edges
   for (std::size_t i = 0; i < he.size();) {
     std::size_t j = i;
     while (j < he.size() && he[j].key == he[i].key) ++j;
     const std::uint32_t a = std::uint32_t(he[i].key >> 32), b = std::uint32_t(he[i].key & 0xffffffffu);
-    edges.push_back(he[i].key);
     vuf.unite(a, b);
     const std::size_t n = j - i;
     if (n == 1) {
@@ -148,12 +146,12 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
       buf.unite(a, b);
     } else if (n == 2) {
       const HalfEdge &h1 = he[i], &h2 = he[i + 1];
-      if (h1.forward == h2.forward) ++t.inconsistent_edges;
-      if (!fuf.unite(face_of[h1.corner], face_of[h2.corner], h1.forward == h2.forward ? 1 : 0))
-        nonorientable_faces.push_back(face_of[h1.corner]);
+      const bool same = forward(h1) == forward(h2);
+      if (same) ++t.inconsistent_edges;
+      if (!fuf.unite(h1.face, h2.face, same ? 1 : 0)) nonorientable_faces.push_back(h1.face);
       // Corners of the same vertex across the edge belong to one fan.
-      const std::size_t c1a = h1.corner, c1b = next_corner(h1.corner);
-      const std::size_t c2a = h2.corner, c2b = next_corner(h2.corner);
+      const std::size_t c1a = h1.corner, c1b = next_corner(h1);
+      const std::size_t c2a = h2.corner, c2b = next_corner(h2);
       if (corners[c1a] == corners[c2a]) { cuf.unite(c1a, c2a); cuf.unite(c1b, c2b); }
       else { cuf.unite(c1a, c2b); cuf.unite(c1b, c2a); }
     } else {
@@ -164,13 +162,13 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
   }
   // A vertex whose corners form more than one fan is non-manifold (bow-tie).
   {
-    std::vector<std::pair<int, std::size_t>> vr;
-    vr.reserve(corners.size());
-    for (std::size_t i = 0; i < corners.size(); ++i) vr.push_back({corners[i], cuf.find(i)});
-    std::sort(vr.begin(), vr.end());
-    vr.erase(std::unique(vr.begin(), vr.end()), vr.end());
-    for (std::size_t i = 1; i < vr.size(); ++i)
-      if (vr[i].first == vr[i - 1].first) bad_vertex[vr[i].first] = 1;
+    std::vector<std::uint32_t> fan(nv, 0xffffffffu);  // the fan of the vertex's first corner
+    for (std::size_t i = 0; i < corners.size(); ++i) {
+      const std::uint32_t r = std::uint32_t(cuf.find(i));
+      std::uint32_t& first = fan[std::size_t(corners[i])];
+      if (first == 0xffffffffu) first = r;
+      else if (first != r) bad_vertex[std::size_t(corners[i])] = 1;
+    }
   }
   // Components, keyed by the root vertex.
   std::vector<long long> comp_id(nv, -1);
@@ -190,16 +188,16 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
     if (on_boundary[v] && buf.find(v) == v) ++c.boundary_loops;
   }
   auto comp_of = [&](int v) -> ComponentTopology& { return comps[comp_id[vuf.find(std::size_t(v))]]; };
-  for (std::uint64_t k : edges) ++comp_of(int(k >> 32)).edges;
   for (std::size_t f = 0; f < nf; ++f) ++comp_of(corners[offsets[f]]).faces;
   for (auto& c : comps) { c.oriented = true; c.orientable = true; c.closed = true; }
   for (std::size_t i = 0; i < he.size();) {
     std::size_t j = i;
     while (j < he.size() && he[j].key == he[i].key) ++j;
     auto& c = comp_of(int(he[i].key >> 32));
+    ++c.edges;
     if (j - i == 1) c.closed = false;
     if (j - i > 2) c.manifold = false;
-    if (j - i == 2 && he[i].forward == he[i + 1].forward) c.oriented = false;
+    if (j - i == 2 && forward(he[i]) == forward(he[i + 1])) c.oriented = false;
     i = j;
   }
   for (std::size_t f : nonorientable_faces) comp_of(corners[offsets[f]]).orientable = false;

@@ -1,14 +1,20 @@
 #include "surface/certificate.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <set>
-#include <unordered_map>
 
 namespace imgmesh::surface_detail {
 
 std::vector<Facet> restricted_facets(const Tr& tr) {
+  // Counted first: the vectors are as large as the mesh, and growing them
+  // by doubling would hold up to three times that at the peak.
+  std::size_t count = 0;
+  for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it)
+    count += (it->first->facet[it->second].state & kRestricted) != 0;
   std::vector<std::pair<std::array<int, 3>, Facet>> out;
+  out.reserve(count);
   for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it) {
     if (!(it->first->facet[it->second].state & kRestricted)) continue;
     std::array<int, 3> ids;
@@ -18,9 +24,26 @@ std::vector<Facet> restricted_facets(const Tr& tr) {
   }
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<Facet> fs;
+  fs.reserve(out.size());
   for (auto& p : out) fs.push_back(p.second);
   return fs;
 }
+
+namespace {
+// The triangles at each edge: (edge_key, triangle) for every side of every
+// triangle, sorted, so those of one edge are adjacent and in triangle
+// order. 16 bytes a side, where a hash map of vectors took about 100 an
+// edge.
+using EdgeSides = std::vector<std::pair<long long, int>>;
+EdgeSides edge_sides(const std::vector<std::array<int, 3>>& triangles) {
+  EdgeSides sides;
+  sides.reserve(3 * triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) sides.emplace_back(edge_key(triangles[t][k], triangles[t][(k + 1) % 3]), int(t));
+  std::sort(sides.begin(), sides.end());
+  return sides;
+}
+} // namespace
 
 ExpectedTopology expected_topology(const CubeGrid& grid) {
   ExpectedTopology e;
@@ -42,7 +65,20 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
   SurfaceMesh& mesh = cert.mesh;
   cert.facets = restricted_facets(tr);
   const std::vector<Facet>& fs = cert.facets;
+  // Sized exactly (the vertices counted first): growing by doubling would
+  // hold up to twice the mesh at the run's peak.
   std::vector<int> index(vertex_count, -1);
+  std::size_t used = 0;
+  for (const Facet& f : fs)
+    for (int m = 1; m < 4; ++m) {
+      int& id = index[std::size_t(f.first->vertex((f.second + m) & 3)->info().id)];
+      if (id < 0) id = 0, ++used;
+    }
+  std::fill(index.begin(), index.end(), -1);
+  mesh.points.reserve(used);
+  cert.vertex_comp.reserve(used);
+  mesh.triangles.reserve(fs.size());
+  cert.centers.reserve(fs.size());
   for (const Facet& f : fs) {
     std::array<int, 3> t;
     const std::array<Vh, 3> vs = facet_vertices(f.first, f.second);
@@ -65,9 +101,7 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
   // Make orientation consistent per mesh component (BFS), by majority.
   {
     const std::size_t nt = mesh.triangles.size();
-    std::unordered_map<long long, std::vector<int>> by_edge;
-    for (std::size_t t = 0; t < nt; ++t)
-      for (int k = 0; k < 3; ++k) by_edge[edge_key(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3])].push_back(int(t));
+    const EdgeSides by_edge = edge_sides(mesh.triangles);
     std::vector<int> flip(nt, -1);
     for (std::size_t s0 = 0; s0 < nt; ++s0) {
       if (flip[s0] >= 0) continue;
@@ -80,7 +114,10 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
         if (flip[t]) std::swap(tt[1], tt[2]);
         for (int k = 0; k < 3; ++k) {
           const int a = tt[k], b = tt[(k + 1) % 3];
-          for (int u : by_edge[edge_key(a, b)]) {
+          const long long key = edge_key(a, b);
+          for (auto it = std::lower_bound(by_edge.begin(), by_edge.end(), std::make_pair(key, INT_MIN));
+               it != by_edge.end() && it->first == key; ++it) {
+            const int u = it->second;
             if (u == t || flip[u] >= 0) continue;
             // u must traverse the edge as (b, a).
             const auto& tu = mesh.triangles[u];
@@ -152,18 +189,23 @@ MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sample
   double max_f = 0, max_rough = 0, max_dist = 0;
   for (const Vec3& p : mesh.points) max_f = std::max(max_f, std::abs(sampler.value(p)));
   {
-    std::unordered_map<long long, std::vector<Vec3>> nrm;
-    for (const auto& t : mesh.triangles) {
+    std::vector<Vec3> nrm(mesh.triangles.size());
+    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+      const auto& t = mesh.triangles[k];
       Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
       const double nl = norm(n);
       if (nl > 0) n = {n[0] / nl, n[1] / nl, n[2] / nl};
-      for (int k = 0; k < 3; ++k) {
-        const int a = t[k], b = t[(k + 1) % 3];
-        nrm[edge_key(a, b)].push_back(n);
-      }
+      nrm[k] = n;
     }
-    for (auto& kv : nrm)
-      if (kv.second.size() == 2) max_rough = std::max(max_rough, std::acos(std::clamp(dot(kv.second[0], kv.second[1]), -1.0, 1.0)));
+    // Roughness at the edges of exactly two triangles.
+    const EdgeSides sides = edge_sides(mesh.triangles);
+    for (std::size_t i = 0; i < sides.size();) {
+      std::size_t j = i;
+      while (j < sides.size() && sides[j].first == sides[i].first) ++j;
+      if (j - i == 2)
+        max_rough = std::max(max_rough, std::acos(std::clamp(dot(nrm[std::size_t(sides[i].second)], nrm[std::size_t(sides[i + 1].second)]), -1.0, 1.0)));
+      i = j;
+    }
     for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
       const auto& t = mesh.triangles[k];
       const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));

@@ -15,6 +15,10 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <mutex>
+#include <new>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -44,65 +48,112 @@ enum : std::uint8_t { kComputed = 1, kRestricted = 2, kMulti = 4 };
 
 // EdgeSurface's answer for one Delaunay facet.
 struct FacetInfo {
-  std::uint8_t state = 0;
-  std::uint32_t computed = 0;  // which computation: queue entries of older ones are stale
   double x[3] = {0, 0, 0};  // surface centre x_t: crossing farthest from the facet's vertices
   double r2 = 0;            // squared radius of the surface Delaunay ball
   float grad[3] = {0, 0, 0};  // grad f at x_t (orients the facet for SMOOTH and output)
+  std::uint32_t computed = 0;  // which computation: queue entries of older ones are stale
+  std::uint8_t state = 0;
 };
 
-// A cell's four facets, each a pointer to its FacetInfo: one record shared
-// by the facet's two sides, allocated only for restricted facets (a few
-// in ten), the others pointing to one of two constant records. 32 bytes a
-// cell instead of 4 x 56. Only DELMESH sets them; a copied cell starts with
+// The records of restricted facets, one per facet shared by its two sides,
+// numbered by 32 bits (a cell holds 4 numbers, 16 bytes, not 4 pointers)
+// and kept in chunks that never move, so threads read them while others
+// allocate; 0 and 1 are the constant records "not computed" and "computed,
+// not restricted". Shared by every mesh of the process (seg2mesh meshes
+// labels on several threads at once): allocation under a mutex.
+class FacetPool {
+public:
+  static constexpr std::uint32_t kUncomputed = 0, kComputedOnly = 1;
+  static const FacetInfo& get(std::uint32_t i) { return table_[i >> kShift][i & kMask]; }
+  // A record for fi, held by two sides.
+  static std::uint32_t make(const FacetInfo& fi) {
+    std::lock_guard<std::mutex> lock(mutex());
+    State& st = state();
+    std::uint32_t i = st.free;
+    if (i != kNone) {
+      st.free = table_[i >> kShift][i & kMask].link;
+    } else {
+      if (st.used == kNone) throw std::length_error("FacetPool: 2^32 facet records");
+      if ((st.used & kMask) == 0) table_[st.used >> kShift] = new Shared[kMask + 1];
+      i = st.used++;
+    }
+    Shared& r = table_[i >> kShift][i & kMask];
+    static_cast<FacetInfo&>(r) = fi;
+    r.link = 2;
+    return i;
+  }
+  // One side lets go of record i (a constant one is never freed).
+  static void release(std::uint32_t i) {
+    if (i <= kComputedOnly) return;
+    Shared& r = table_[i >> kShift][i & kMask];
+    if (--r.link > 0) return;
+    std::lock_guard<std::mutex> lock(mutex());
+    State& st = state();
+    r.link = st.free;
+    st.free = i;
+  }
+
+private:
+  static constexpr int kShift = 14;
+  static constexpr std::uint32_t kMask = (1u << kShift) - 1, kChunks = 1u << (32 - kShift), kNone = 0xffffffffu;
+  static_assert(sizeof(FacetInfo) == 56, "FacetInfo: 49 bytes of fields");
+  // The link sits in FacetInfo's tail padding (56 bytes a record): the
+  // sides holding the record, or when free the next free one.
+  struct Shared : FacetInfo {
+    std::uint32_t link = 0;
+  };
+  struct State {
+    std::uint32_t used = 2;  // records handed out so far (0, 1: the constants)
+    std::uint32_t free = kNone;
+  };
+  // The chunk table, zero pages until used (calloc of a large block).
+  static Shared** make_table() {
+    auto** t = static_cast<Shared**>(std::calloc(kChunks, sizeof(Shared*)));
+    if (!t) throw std::bad_alloc();
+    t[0] = new Shared[kMask + 1];
+    t[0][kComputedOnly].state = kComputed;
+    return t;
+  }
+  static inline Shared** const table_ = make_table();
+  static State& state() {
+    static State s;
+    return s;
+  }
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+};
+
+// A cell's four facets, each the number of its FacetPool record, shared by
+// the facet's two sides; only restricted facets (a few in ten) have a
+// record of their own. Only DELMESH sets them; a copied cell starts with
 // its facets not computed.
 class FacetRefs {
 public:
-  FacetRefs() { std::fill(p_, p_ + 4, &uncomputed()); }
+  FacetRefs() { std::fill(p_, p_ + 4, FacetPool::kUncomputed); }
   FacetRefs(const FacetRefs&) : FacetRefs() {}
   FacetRefs& operator=(const FacetRefs&) {
     for (int i = 0; i < 4; ++i) clear(i);
     return *this;
   }
   ~FacetRefs() {
-    for (int i = 0; i < 4; ++i) release(i);
+    for (int i = 0; i < 4; ++i) FacetPool::release(p_[i]);
   }
-  const FacetInfo& operator[](int i) const { return p_[i]->info; }
+  const FacetInfo& operator[](int i) const { return FacetPool::get(p_[i]); }
   // Facet i of `a`, which is facet j of `b`, is now fi (on both sides).
   static void set(FacetRefs& a, int i, FacetRefs& b, int j, const FacetInfo& fi) {
-    a.release(i);
-    b.release(j);
-    Shared* s = fi.state == kComputed ? &computed_only() : new Shared{fi, 2};
-    a.p_[i] = b.p_[j] = s;
+    FacetPool::release(a.p_[i]);
+    FacetPool::release(b.p_[j]);
+    a.p_[i] = b.p_[j] = fi.state == kComputed ? FacetPool::kComputedOnly : FacetPool::make(fi);
   }
   void clear(int i) {
-    release(i);
-    p_[i] = &uncomputed();
+    FacetPool::release(p_[i]);
+    p_[i] = FacetPool::kUncomputed;
   }
 
 private:
-  struct Shared {
-    FacetInfo info;
-    int refs;  // sides pointing here; < 0: one of the constant records
-  };
-  static Shared& uncomputed() {
-    static Shared s{FacetInfo{}, -1};
-    return s;
-  }
-  static Shared& computed_only() {
-    static Shared s{[] {
-                      FacetInfo f;
-                      f.state = kComputed;
-                      return f;
-                    }(),
-                    -1};
-    return s;
-  }
-  void release(int i) {
-    Shared* s = p_[i];
-    if (s->refs > 0 && --s->refs == 0) delete s;
-  }
-  Shared* p_[4];
+  std::uint32_t p_[4];
 };
 
 // The circumcentre from the vertices in lexicographic order. From CGAL's

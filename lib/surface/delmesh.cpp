@@ -191,10 +191,13 @@ void DelMesh::requeue_grown() {
 void DelMesh::refine() {
   for (;;) {
     drain();
-    if (max_hit_ || !opt_.topology_steps) return;
+    if (max_hit_ || !opt_.topology_steps) break;
     if (opt_.facet_cycle && facet_cycle_pass()) continue;
-    if (!handle_vertex_pass()) return;
+    if (!handle_vertex_pass()) break;
   }
+  // The drained queue's storage, as large as at its busiest, is not held
+  // through the certificate (brain label 4: 5.7 MB).
+  if (queue_.empty()) std::vector<Item>().swap(queue_.c);
 }
 
 // The facets of the new cells cells_buf_, computed (and so queued) in the
@@ -341,7 +344,8 @@ bool DelMesh::facet_cycle_pass() {
   ++facet_cycle_passes_;
   phase_ = "facet cycle";
   std::vector<int> skipped;
-  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_, skipped);
+  const Candidates pts = facet_cycle_points(tr_, sampler_, vertices_, dirty_, stamp_, opt_.threads, facet_cycle_checks_, skipped,
+                                             opt_.compare_facet_walks ? FacetWalk::kCompare : FacetWalk::kSpans);
   dirty_.clear();
   // Skipped facets are not answers: their edges are checked again in the
   // next pass (after later insertions); what the last pass skipped is counted.

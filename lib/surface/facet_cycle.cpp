@@ -1,10 +1,12 @@
 #include "surface/facet_cycle.hpp"
 
 #include "implicit/parallel.hpp"
+#include "util/error.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 
 namespace imgmesh::surface_detail {
 
@@ -32,7 +34,7 @@ long ceil_long(double x) { return -floor_long(-x); }
 // that segment, i.e. on S inside Pi. Cycles narrower than the step are
 // missed (like EdgeSurface). Facets of more than 4M samples are not
 // rasterised: kSkipped, and DELMESH checks them again after later insertions.
-FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out) {
+FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out, FacetWalk how) {
   constexpr FacetAnswer kNone = FacetAnswer::kNone;
   const CubeGrid& grid = f.grid();
   const Vh p = e.first->vertex(e.second), q = e.first->vertex(e.third);
@@ -107,15 +109,21 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   alo_row.assign(nb, 0);
   ahi_row.assign(nb, 0);
   long rows_used = 0;
+  // The half-planes by the sign of A, sorted once (not tested per row):
+  // each row's bounds are the same min and max, in the same order.
+  thread_local std::vector<HP> hp_hi, hp_lo, hp_flat;
+  hp_hi.clear();
+  hp_lo.clear();
+  hp_flat.clear();
+  for (const HP& h : hp) (h.A > 1e-15 ? hp_hi : h.A < -1e-15 ? hp_lo : hp_flat).push_back(h);
   for (long j = 0; j < nb; ++j) {
     const double b = b0 + j * step;
+    bool empty = false;
+    for (const HP& h : hp_flat) empty = empty || h.C - h.B * b < 0;
+    if (empty) continue;
     double alo = a0, ahi = a1;
-    for (const HP& h : hp) {
-      const double r = h.C - h.B * b;
-      if (h.A > 1e-15) ahi = std::min(ahi, r / h.A);
-      else if (h.A < -1e-15) alo = std::max(alo, r / h.A);
-      else if (r < 0) { alo = 1; ahi = 0; break; }
-    }
+    for (const HP& h : hp_hi) ahi = std::min(ahi, (h.C - h.B * b) / h.A);
+    for (const HP& h : hp_lo) alo = std::max(alo, (h.C - h.B * b) / h.A);
     if (!(alo <= ahi)) continue;
     alo_row[j] = alo;
     ahi_row[j] = ahi;
@@ -145,11 +153,19 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   // cubes that Pi meets spans the rows and the samples between its corners'
   // extremes along v and u, one sample wider on each side, so that a
   // stretch begins and ends in inactive cubes.
-  struct Span { long j, s, e; };
-  thread_local std::vector<Span> spans;
+  // Each cube's span of rows and samples; then per row (row_span[j] ..
+  // row_span[j + 1]) the (s, e) of the cubes over it, by s: the cubes
+  // sorted by s once and dealt to their rows (a sort of every row's spans
+  // by (row, s) cost 2% of the run).
+  struct CubeSpan { long j0, j1, s, e; };
+  thread_local std::vector<CubeSpan> cube_spans;
+  thread_local std::vector<std::pair<long, long>> spans;
+  thread_local std::vector<long> row_span;
+  cube_spans.clear();
   spans.clear();
+  row_span.assign(nb + 1, 0);
   bool walk_all = true;
-  {
+  if (how != FacetWalk::kFull) {
     Vec3 xlo{INFINITY, INFINITY, INFINITY}, xhi{-INFINITY, -INFINITY, -INFINITY};
     double cost = 0;  // the walk's cube steps, about
     for (long j = 0; j < nb; ++j) {
@@ -162,7 +178,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     cube_of(xlo, c0);
     cube_of(xhi, c1);
     const double cubes = double(c1[0] - c0[0] + 1) * double(c1[1] - c0[1] + 1) * double(c1[2] - c0[2] + 1);
-    if (cubes < 16 * cost) {  // else walking every row is cheaper
+    if (cubes < 16 * cost || how == FacetWalk::kCompare) {  // else walking every row is cheaper
       walk_all = false;
       // Rounding of the samples' coordinates: far below this.
       const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b1));
@@ -182,9 +198,17 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
             const long j0 = std::max(0L, floor_long((blo - eps - b0) / step) - 1);
             const long j1 = std::min(nb - 1, ceil_long((bhi + eps - b0) / step) + 1);
             const long s0 = floor_long((alo - eps - a0) / step) - 1, e0 = ceil_long((ahi + eps - a0) / step) + 1;
-            for (long j = j0; j <= j1; ++j) spans.push_back({j, s0, e0});
+            if (j0 <= j1) cube_spans.push_back({j0, j1, s0, e0});
           }
-      std::sort(spans.begin(), spans.end(), [](const Span& x, const Span& y) { return x.j != y.j ? x.j < y.j : x.s < y.s; });
+      std::sort(cube_spans.begin(), cube_spans.end(), [](const CubeSpan& x, const CubeSpan& y) { return x.s < y.s; });
+      for (const CubeSpan& c : cube_spans)
+        for (long j = c.j0; j <= c.j1; ++j) ++row_span[j + 1];
+      for (long j = 0; j < nb; ++j) row_span[j + 1] += row_span[j];
+      spans.resize(std::size_t(row_span[nb]));
+      thread_local std::vector<long> fill_at;
+      fill_at.assign(row_span.begin(), row_span.end() - 1);
+      for (const CubeSpan& c : cube_spans)
+        for (long j = c.j0; j <= c.j1; ++j) spans[std::size_t(fill_at[j]++)] = {c.s, c.e};
     }
   }
   struct Run { long j, s, e; signed char sg; };
@@ -254,28 +278,58 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       i = last + 1;
     }
   };
-  std::size_t sp = 0;
-  for (j = 0; j < nb; ++j) {
-    row_run[j] = long(runs.size());
-    while (sp < spans.size() && spans[sp].j < j) ++sp;
-    if (hi[j] < lo[j]) continue;
-    if (walk_all) {
-      walk(lo[j], hi[j]);
-      continue;
+  // The runs of every row: kSpans walks the spans, kFull every row, and
+  // kCompare (the reference) gives each sample its sign by definition: its
+  // cube's corner sign if inactive, else f's.
+  auto build_runs = [&](FacetWalk mode) {
+    runs.clear();
+    any_neg = any_pos = false;
+    for (j = 0; j < nb; ++j) {
+      row_run[j] = long(runs.size());
+      if (hi[j] < lo[j]) continue;
+      if (mode == FacetWalk::kCompare) {
+        for (long i = lo[j]; i <= hi[j]; ++i) {
+          const Vec3 x = point(i, j);
+          long c[3];
+          cube_of(x, c);
+          append(i, i, grid.active(c[0], c[1], c[2]) ? SurfaceSampler::inside(f.value(x)) : grid.neg(c[0], c[1], c[2]));
+        }
+        continue;
+      }
+      if (mode == FacetWalk::kFull) {
+        walk(lo[j], hi[j]);
+        continue;
+      }
+      long pos = lo[j];  // samples before pos are done
+      for (long sp = row_span[j]; sp < row_span[j + 1];) {
+        long s0 = std::max(spans[std::size_t(sp)].first, pos), e0 = spans[std::size_t(sp)].second;
+        for (++sp; sp < row_span[j + 1] && spans[std::size_t(sp)].first <= e0 + 1; ++sp) e0 = std::max(e0, spans[std::size_t(sp)].second);
+        e0 = std::min(e0, hi[j]);
+        if (s0 > e0) continue;
+        fill(pos, s0 - 1);
+        walk(s0, e0);
+        pos = e0 + 1;
+      }
+      fill(pos, hi[j]);
     }
-    long pos = lo[j];  // samples before pos are done
-    while (sp < spans.size() && spans[sp].j == j) {
-      long s0 = std::max(spans[sp].s, pos), e0 = spans[sp].e;
-      for (++sp; sp < spans.size() && spans[sp].j == j && spans[sp].s <= e0 + 1; ++sp) e0 = std::max(e0, spans[sp].e);
-      e0 = std::min(e0, hi[j]);
-      if (s0 > e0) continue;
-      fill(pos, s0 - 1);
-      walk(s0, e0);
-      pos = e0 + 1;
+    row_run[nb] = long(runs.size());
+  };
+  if (how == FacetWalk::kCompare) {
+    // Both walks must give the reference's runs, sample for sample.
+    build_runs(FacetWalk::kCompare);
+    thread_local std::vector<Run> reference;
+    reference.assign(runs.begin(), runs.end());
+    const auto same = [](const Run& x, const Run& y) { return x.j == y.j && x.s == y.s && x.e == y.e && x.sg == y.sg; };
+    for (FacetWalk mode : {FacetWalk::kFull, FacetWalk::kSpans}) {
+      build_runs(mode);
+      if (!std::equal(runs.begin(), runs.end(), reference.begin(), reference.end(), same))
+        throw Error(std::string("FacetCycle: the ") + (mode == FacetWalk::kFull ? "full" : "span") +
+                    " walk's runs differ from the samples' signs (edge " + std::to_string(p->info().id) + "-" +
+                    std::to_string(q->info().id) + ")");
     }
-    fill(pos, hi[j]);
+  } else {
+    build_runs(walk_all ? FacetWalk::kFull : FacetWalk::kSpans);
   }
-  row_run[nb] = long(runs.size());
   if (!(any_neg && any_pos)) return kNone;
   // Sign regions (4-connected): runs of one sign overlapping in adjacent rows,
   // joined by union-find. A region touching h's border is open; one that
@@ -386,44 +440,67 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
 }
 
 Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
-                              std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped) {
+                              std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped,
+                              FacetWalk how) {
   std::vector<Ch> cells;
   // The edges at new vertices, each once (from the smaller id when both
-  // ends are new), found from the new vertices' cells.
-  std::vector<std::pair<std::pair<int, int>, Tr::Edge>> edges;
-  for (int ia : changed.ids) {
-    const Vh a = vertices[std::size_t(ia)];
-    if (a == Vh()) continue;  // deleted
-    ++stamp;
-    cells.clear();
-    tr.incident_cells(a, std::back_inserter(cells));
-    for (Ch c : cells)
-      for (int k = 0; k < 4; ++k) {
-        Vh b = c->vertex(k);
-        if (b == a || tr.is_infinite(b) || b->info().stamp == stamp) continue;
-        const int ib = b->info().id;
-        if (changed.has(ib) && ib < ia) continue;
-        b->info().stamp = stamp;
-        // p (the edge's first vertex): the smaller id, as before.
-        edges.push_back({{std::min(ia, ib), std::max(ia, ib)}, ia < ib ? Tr::Edge(c, c->index(a), k) : Tr::Edge(c, k, c->index(a))});
-      }
-  }
-  std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  // ends are new), found from the new vertices' cells: the ids of its ends
+  // and a cell at it. Counted first, then stored at their exact size: the
+  // first pass takes every edge, and this was the run's peak (brain label
+  // 4: 25 MB of edges grown by doubling, 14 MB of cycle points).
+  struct EdgeAt { int lo, hi; Ch c; };
+  std::vector<EdgeAt> edges;
+  auto each_edge = [&](auto&& take) {
+    for (int ia : changed.ids) {
+      const Vh a = vertices[std::size_t(ia)];
+      if (a == Vh()) continue;  // deleted
+      ++stamp;
+      cells.clear();
+      tr.incident_cells(a, std::back_inserter(cells));
+      for (Ch c : cells)
+        for (int k = 0; k < 4; ++k) {
+          Vh b = c->vertex(k);
+          if (b == a || tr.is_infinite(b) || b->info().stamp == stamp) continue;
+          const int ib = b->info().id;
+          if (changed.has(ib) && ib < ia) continue;
+          b->info().stamp = stamp;
+          take(EdgeAt{std::min(ia, ib), std::max(ia, ib), c});
+        }
+    }
+  };
+  std::size_t count = 0;
+  each_edge([&](const EdgeAt&) { ++count; });
+  edges.reserve(count);
+  each_edge([&](const EdgeAt& e) { edges.push_back(e); });
+  std::sort(edges.begin(), edges.end(), [](const EdgeAt& x, const EdgeAt& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
+  // p (the edge's first vertex): the smaller id.
+  auto edge = [&](const EdgeAt& e) {
+    return Tr::Edge(e.c, e.c->index(vertices[std::size_t(e.lo)]), e.c->index(vertices[std::size_t(e.hi)]));
+  };
   // The checks only read the triangulation (every finite cell's
   // circumcentre is cached by then: EdgeSurface asked for it), so they run
-  // on --threads threads; the points go in afterwards, in edge order.
+  // on --threads threads; the points go in afterwards, in edge order. The
+  // few cycle points are kept per thread, with their edge.
   checks += static_cast<long long>(edges.size());
-  std::vector<FacetAnswer> found(edges.size(), FacetAnswer::kNone);
-  std::vector<Vec3> xs(edges.size());
-  implicit_detail::parallel_for(long(edges.size()), unsigned(std::max(1, threads)), [&](long a, long b, unsigned) {
-    for (long k = a; k < b; ++k) found[std::size_t(k)] = facet_cycle(tr, f, edges[std::size_t(k)].second, xs[std::size_t(k)]);
+  std::vector<std::uint8_t> found(edges.size(), std::uint8_t(FacetAnswer::kNone));
+  const unsigned nt = implicit_detail::resolve_threads(unsigned(std::max(1, threads)));
+  std::vector<std::vector<std::pair<std::size_t, Vec3>>> cycles(nt);
+  implicit_detail::parallel_for(long(edges.size()), nt, [&](long a, long b, unsigned t) {
+    for (long k = a; k < b; ++k) {
+      Vec3 x;
+      const FacetAnswer answer = facet_cycle(tr, f, edge(edges[std::size_t(k)]), x, how);
+      found[std::size_t(k)] = std::uint8_t(answer);
+      if (answer == FacetAnswer::kCycle) cycles[t].emplace_back(std::size_t(k), x);
+    }
   });
-  Candidates pts;
   skipped.clear();
   for (std::size_t k = 0; k < edges.size(); ++k)
-    if (found[k] == FacetAnswer::kSkipped) skipped.push_back(edges[k].first.first);
-  for (std::size_t k = 0; k < edges.size(); ++k)
-    if (found[k] == FacetAnswer::kCycle) pts.emplace_back(xs[k], dist2(xs[k], vec(edges[k].second.first->vertex(edges[k].second.second)->point())));
+    if (found[k] == std::uint8_t(FacetAnswer::kSkipped)) skipped.push_back(edges[k].lo);
+  std::vector<std::pair<std::size_t, Vec3>> all;
+  for (const auto& c : cycles) all.insert(all.end(), c.begin(), c.end());
+  std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  Candidates pts;
+  for (const auto& [k, x] : all) pts.emplace_back(x, dist2(x, vec(vertices[std::size_t(edges[k].lo)]->point())));
   return pts;
 }
 

@@ -15,7 +15,13 @@ namespace imgmesh::surface_detail {
 // the facet is too large to rasterise now (not an answer).
 // Thread-safe once every finite cell's circumcentre is cached.
 enum class FacetAnswer { kNone, kCycle, kSkipped };
-FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& x);
+// How the rows are walked: only the stretches near active cubes (where the
+// cost says so, else every row cube by cube), every row cube by cube, or
+// (tests) both, each compared with every sample's sign by definition (its
+// cube's corner sign if inactive, else f's), throwing Error unless their
+// runs agree: the walks are optimisations that must change no sign.
+enum class FacetWalk { kSpans, kFull, kCompare };
+FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& x, FacetWalk how = FacetWalk::kSpans);
 
 // One pass: FacetCycle on every edge at a vertex of `changed` (ids into
 // `vertices`, null where deleted), each edge once, on `threads` threads.
@@ -23,6 +29,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
 // Uses the vertices' stamps with `stamp` (DELMESH's counter). `skipped`:
 // the first vertex of each edge FacetCycle skipped, to check again.
 Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
-                              std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped);
+                              std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped,
+                              FacetWalk how = FacetWalk::kSpans);
 
 } // namespace imgmesh::surface_detail

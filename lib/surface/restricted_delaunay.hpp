@@ -34,6 +34,9 @@ struct RestrictedDelaunayOptions {
   std::uint64_t seed = 0;       // order of seed insertion
   int threads = 1;
   bool facet_cycle = true;      // FacetCycle (8.2) on the Voronoi facets of Delaunay edges
+  // Tests only: FacetCycle walks every facet both by spans and in full and
+  // throws Error where their runs differ (the same mesh otherwise).
+  bool compare_facet_walks = false;
   bool seed_deletion = false;   // SAMPLETOPOLOGY as published: TOPOLOGY alone, then delete the seeds (7.6.2)
   // The certificate's repairs: at most this many rounds of HandleDetection
   // or the fallback (a counted last resort: TOPOLOGY should leave nothing).

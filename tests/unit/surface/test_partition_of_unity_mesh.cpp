@@ -13,6 +13,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <functional>
 #include <random>
 
@@ -333,6 +334,33 @@ TEST_CASE("FacetCycle on a partition of unity: a small ball's section is a close
   CHECK(facet_cycle(m2.triangulation(), m2.sampler(), Tr::Edge(cell, i, j), x) == FacetAnswer::kNone);
 }
 
+namespace {
+// p and q either side of a random point near c (within spread), 2 h |dir|
+// apart with h in [h0, h0 + 2 h1].
+std::pair<Vec3, Vec3> random_pq(std::mt19937& rng, const Vec3& c, const Vec3& spread, double h0, double h1) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Vec3 mid{c[0] + spread[0] * u(rng), c[1] + spread[1] * u(rng), c[2] + spread[2] * u(rng)};
+  Vec3 dir{u(rng), u(rng), u(rng)};
+  const double h = (h0 + h1 * (u(rng) + 1)) / surface_detail::norm(dir);
+  return {{mid[0] - h * dir[0], mid[1] - h * dir[1], mid[2] - h * dir[2]}, {mid[0] + h * dir[0], mid[1] + h * dir[1], mid[2] + h * dir[2]}};
+}
+
+// The Delaunay edge pq of p, q and four far points in m: its Voronoi facet
+// is the bisector plane, cut by the grid's box.
+surface_detail::Tr::Edge far_edge(surface_detail::DelMesh& m, const Vec3& p, const Vec3& q) {
+  using namespace imgmesh::surface_detail;
+  m.prepare();
+  for (const Vec3& y : std::vector<Vec3>{{-900, -900, -900}, {900, -800, -700}, {100, 900, -600}, {50, 80, 950}})
+    REQUIRE(m.insert(y, kSeed));
+  REQUIRE(m.insert(p, kSeed));
+  REQUIRE(m.insert(q, kSeed));
+  Ch cell;
+  int i, j;
+  REQUIRE(m.triangulation().is_edge(m.vertices()[m.vertices().size() - 2], m.vertices().back(), cell, i, j));
+  return Tr::Edge(cell, i, j);
+}
+} // namespace
+
 TEST_CASE("FacetCycle: the enclosures change no answer (the same f without them, on random facets through a blob)") {
   using namespace imgmesh::surface_detail;
   const BinaryImage wc = make_well_composed(make(21, 21, 21, [](double x, double y, double z) {
@@ -343,26 +371,14 @@ TEST_CASE("FacetCycle: the enclosures change no answer (the same f without them,
   FunctionSurface without(wc.geometry(), [&](const Vec3& w) { return pu.value(w); });
   RestrictedDelaunayOptions o;
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1, 1);
   int cycles = 0;
   for (int k = 0; k < 40; ++k) {
-    const Vec3 mid{11 + 2 * u(rng), 10 + 2 * u(rng), 10 + 2 * u(rng)};
-    Vec3 dir{u(rng), u(rng), u(rng)};
-    const double h = (2 + 5 * (u(rng) + 1)) / norm(dir);
-    const Vec3 p{mid[0] - h * dir[0], mid[1] - h * dir[1], mid[2] - h * dir[2]}, q{mid[0] + h * dir[0], mid[1] + h * dir[1], mid[2] + h * dir[2]};
+    const auto [p, q] = random_pq(rng, {11, 10, 10}, {2, 2, 2}, 2, 5);
     FacetAnswer answer[2];
     Vec3 x[2];
     for (int s = 0; s < 2; ++s) {
       DelMesh m(s == 0 ? static_cast<const ImplicitSurface&>(with) : without, o);
-      m.prepare();
-      for (const Vec3& y : std::vector<Vec3>{{-900, -900, -900}, {900, -800, -700}, {100, 900, -600}, {50, 80, 950}})
-        REQUIRE(m.insert(y, kSeed));
-      REQUIRE(m.insert(p, kSeed));
-      REQUIRE(m.insert(q, kSeed));
-      Ch cell;
-      int i, j;
-      REQUIRE(m.triangulation().is_edge(m.vertices()[m.vertices().size() - 2], m.vertices().back(), cell, i, j));
-      answer[s] = facet_cycle(m.triangulation(), m.sampler(), Tr::Edge(cell, i, j), x[s]);
+      answer[s] = facet_cycle(m.triangulation(), m.sampler(), far_edge(m, p, q), x[s]);
     }
     INFO("facet " << k);
     REQUIRE(answer[0] == answer[1]);
@@ -372,4 +388,66 @@ TEST_CASE("FacetCycle: the enclosures change no answer (the same f without them,
     }
   }
   CHECK(cycles > 5);
+}
+
+namespace {
+// Noisy tissue in small: random balls of 0.6-2.5 voxels and single voxels
+// (fixed seed), on an anisotropic grid, so that the Voronoi facets meet
+// active cubes in every configuration.
+BinaryImage noisy_blobs(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u01(0, 1);
+  std::vector<std::array<double, 4>> balls;
+  for (int k = 0; k < 14; ++k) balls.push_back({3 + 18 * u01(rng), 3 + 16 * u01(rng), 3 + 10 * u01(rng), 0.6 + 1.9 * u01(rng)});
+  BinaryImage raw = make(25, 23, 17, [&](double x, double y, double z) {
+    for (const auto& b : balls)
+      if (std::hypot(x - b[0], y - b[1], z - b[2]) < b[3]) return true;
+    return false;
+  });
+  for (int k = 0; k < 6; ++k) raw(std::size_t(3 + 19 * u01(rng)), std::size_t(3 + 17 * u01(rng)), std::size_t(3 + 11 * u01(rng))) = 1;
+  raw.spacing = {1.0, 1.0, 1.5};
+  return raw;
+}
+} // namespace
+
+TEST_CASE("FacetCycle: its walks give every sample its own sign (random facets through noisy blobs)") {
+  using namespace imgmesh::surface_detail;
+  const BinaryImage wc = make_well_composed(noisy_blobs(3)).image;
+  PartitionOfUnity pu = implicit_from_well_composed(wc);
+  PartitionOfUnitySurface s(pu);
+  RestrictedDelaunayOptions o;
+  std::mt19937 rng(9);
+  int cycles = 0;
+  for (int k = 0; k < 60; ++k) {
+    const auto [p, q] = random_pq(rng, {12, 11, 12}, {9, 8, 8}, 0.5, 4);
+    DelMesh m(s, o);
+    const Tr::Edge pq = far_edge(m, p, q);
+    Vec3 x;
+    INFO("facet " << k);
+    FacetAnswer answer = FacetAnswer::kNone;
+    REQUIRE_NOTHROW(answer = facet_cycle(m.triangulation(), m.sampler(), pq, x, FacetWalk::kCompare));
+    cycles += answer == FacetAnswer::kCycle;
+  }
+  CHECK(cycles > 3);  // not vacuous: blobs inside facets
+}
+
+TEST_CASE("FacetCycle: its walks give every sample its own sign on every facet the mesher checks (noisy blobs)") {
+  // The whole mesher on f with the comparison on (it throws on a
+  // difference): the same mesh as without it.
+  for (unsigned seed : {1u, 2u}) {
+    const BinaryImage wc = make_well_composed(noisy_blobs(seed)).image;
+    PartitionOfUnity pu = implicit_from_well_composed(wc);
+    PartitionOfUnitySurface s(pu);
+    RestrictedDelaunayOptions o;
+    o.ratio = 1.2;
+    o.roughness = M_PI / 2;
+    o.max_distance = 0.25;
+    const RestrictedDelaunayResult plain = restricted_delaunay_mesh(s, o);
+    o.compare_facet_walks = true;
+    RestrictedDelaunayResult compared;
+    REQUIRE_NOTHROW(compared = restricted_delaunay_mesh(s, o));
+    CHECK(compared.mesh.points == plain.mesh.points);
+    CHECK(compared.mesh.triangles == plain.mesh.triangles);
+    CHECK(compared.facet_cycle_checks > 1000);  // not vacuous
+  }
 }
