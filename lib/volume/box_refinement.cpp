@@ -24,6 +24,11 @@ bool BoxRefinement::contains(const Point& p) const {
   return true;
 }
 
+Point BoxRefinement::project(const Point& p) const {
+  const Vec3 q = vec(p);
+  return Point(std::clamp(q[0], lo_[0], hi_[0]), std::clamp(q[1], lo_[1], hi_[1]), std::clamp(q[2], lo_[2], hi_[2]));
+}
+
 // Box points carry their fixed coordinates exactly (corners, and the
 // coordinates copied into every split point), so equality decides.
 int BoxRefinement::bound(const Point& p, int axis) const {
@@ -67,12 +72,14 @@ bool BoxRefinement::facet(Vh a, Vh b, Vh d, Sub& s) const {
 void BoxRefinement::subs(const Tr& tr, const std::vector<Ch>& zone, std::vector<Sub>& segs, std::vector<Sub>& facets) const {
   segs.clear();
   facets.clear();
-  auto seen = [](const std::vector<Sub>& v, Vh a, Vh b, Vh d) {
-    for (const Sub& s : v) {
-      auto has = [&s](Vh w) { return w == s.a || w == s.b || w == s.d; };
-      if (has(a) && has(b) && (d == Vh() || has(d))) return true;
-    }
-    return false;
+  // Each once: keyed by sorted vertex ids (a zone sees a hull facet from
+  // both sides and an edge from several facets).
+  std::vector<std::array<int, 3>> seen_f, seen_s;
+  auto first = [](std::vector<std::array<int, 3>>& seen, std::array<int, 3> k) {
+    std::sort(k.begin(), k.end());
+    if (std::find(seen.begin(), seen.end(), k) != seen.end()) return false;
+    seen.push_back(k);
+    return true;
   };
   for (Ch c : zone)
     for (int i = 0; i < 4; ++i) {
@@ -82,9 +89,10 @@ void BoxRefinement::subs(const Tr& tr, const std::vector<Ch>& zone, std::vector<
       if (!hull) continue;
       const Vh v[3] = {c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
       Sub s;
-      if (!seen(facets, v[0], v[1], v[2]) && facet(v[0], v[1], v[2], s)) facets.push_back(s);
+      if (facet(v[0], v[1], v[2], s) && first(seen_f, {v[0]->info().id, v[1]->info().id, v[2]->info().id})) facets.push_back(s);
       for (int k = 0; k < 3; ++k)
-        if (!seen(segs, v[k], v[(k + 1) % 3], Vh()) && segment(v[k], v[(k + 1) % 3], s)) segs.push_back(s);
+        if (segment(v[k], v[(k + 1) % 3], s) && first(seen_s, {-1, v[k]->info().id, v[(k + 1) % 3]->info().id}))
+          segs.push_back(s);
     }
 }
 

@@ -6,8 +6,9 @@
 // hull edge on an edge of B, a hull triangle) of its conflict zone. Then
 //   an encroached subsegment: split at its midpoint;
 //   else the encroached subfacet (c outside B: the largest hull triangle
-//   in c's conflict zone): its circumcentre p, unless p encroaches a
-//   subsegment or lies off its face, when that subsegment is split instead.
+//   in the conflict zone of c's projection onto B): its circumcentre p,
+//   unless p encroaches a subsegment or lies off its face, when that
+//   subsegment is split instead.
 // Private to lib/volume (CGAL).
 //
 // Termination (why B is the image extent, half a voxel beyond the samples):
@@ -43,6 +44,7 @@ public:
 
   std::array<Vec3, 8> corners() const;
   bool contains(const Point& p) const;  // closed
+  Point project(const Point& p) const;  // the point of B nearest p
   const Vec3& lo() const { return lo_; }
   const Vec3& hi() const { return hi_; }
 
@@ -52,9 +54,10 @@ public:
     Vec3 x{0, 0, 0};
     Ch near;  // a cell in conflict with x, to start its insertion
   };
-  // What to insert instead of circumcentre c, given c's conflict zone
-  // (finite and infinite cells): kNone when c is in B and encroaches no box
-  // subsegment or subfacet of the zone.
+  // What to insert instead of circumcentre c, given the conflict zone
+  // (finite and infinite cells) of c, or of its projection onto B when c
+  // is beyond B: kNone when c is in B and encroaches no box subsegment or
+  // subfacet of the zone.
   Split split_for(const Tr& tr, const Point& c, const std::vector<Ch>& zone) const;
 
 private:

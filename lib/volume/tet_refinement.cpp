@@ -174,20 +174,28 @@ private:
       const Point cc = e.c->circumcenter();
       Tr::Locate_type lt;
       int li, lj;
-      const Ch at = tr.locate(cc, lt, li, lj, e.c);
-      if (lt == Tr::VERTEX) continue;
-      // The facets whose surface Delaunay ball holds cc are facets of cells
-      // in conflict with cc (such a ball lies in the circumballs of the
-      // facet's two cells).
+      // --outside, c beyond B: the box is split near c's projection onto B
+      // (c's own conflict zone would hold every hull triangle c sees).
+      const bool beyond = box_ && !box_->contains(cc);
+      const Point q = beyond ? box_->project(cc) : cc;
+      const Ch at = tr.locate(q, lt, li, lj, e.c);
       zone_.clear();
-      tr.find_conflicts(cc, at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      if (lt == Tr::VERTEX) {
+        if (!beyond) continue;
+        tr.incident_cells(at->vertex(li), std::back_inserter(zone_));
+      } else {
+        // The facets whose surface Delaunay ball holds cc are facets of
+        // cells in conflict with cc (such a ball lies in the circumballs of
+        // the facet's two cells).
+        tr.find_conflicts(q, at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      }
       // --outside: c outside B or encroaching the box: the box is split
       // instead (box_refinement.hpp), never for a sliver.
       if (box_) {
         const BoxRefinement::Split split = box_->split_for(tr, cc, zone_);
-        if (split.kind != BoxRefinement::kNone) {
+        if (beyond || split.kind != BoxRefinement::kNone) {
           if (e.sliver) continue;
-          if (split.kind == BoxRefinement::kRefused) {
+          if (split.kind != BoxRefinement::kSegment && split.kind != BoxRefinement::kFacet) {
             ++box_refused;
             continue;
           }
