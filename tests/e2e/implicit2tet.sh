@@ -215,6 +215,7 @@ box, area = float(sys.argv[3]), float(sys.argv[4])
 assert r["image"]["matches"], "region 1's boundary does not match bdCA(X)"
 assert t["conformity"]["conforming"] and t["conformity"]["nonpositive_tetrahedra"] == 0
 assert t["max_radius_edge_ratio"] <= 2 * (1 + 1e-9), t["max_radius_edge_ratio"]
+assert t["min_dihedral_degrees"] >= 10, t["min_dihedral_degrees"]  # slivers refined in both regions (measured)
 assert sorted(t["volume_by_region"]) == ["1", "2"], t["volume_by_region"]
 assert abs(t["volume"] - box) <= 1e-6 * box, (t["volume"], box)
 assert abs(t["volume_by_region"]["1"] - t["foreground_voxel_volume"]) <= 0.03 * t["foreground_voxel_volume"]

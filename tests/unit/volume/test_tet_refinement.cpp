@@ -328,6 +328,7 @@ TEST_CASE("--outside: a ball in its box, regions 1 and 2 filling the image box")
   check_outside(s, r, o.cell_ratio);
   CHECK(r.quality.volume_by_region.at(1) == Approx(4 * M_PI * R * R * R / 3).epsilon(0.03));
   CHECK(r.box_points > 8);  // the box was split, not only its corners
+  CHECK(r.slivers_left == 0);  // measured: slivers at the box split it too
 }
 
 TEST_CASE("--outside: the surface within one voxel of the box, at a quarter-voxel distance bound") {
