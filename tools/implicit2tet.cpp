@@ -1,7 +1,8 @@
 // implicit2tet: tetrahedra inside the certified surface of f^-1(0) (thesis
-// 9.1): implicit2mesh's restricted Delaunay surface, then the same
-// triangulation refined inside until every tetrahedron's radius-edge ratio
-// is within --cell-ratio, the surface certificate holding at the end.
+// 9.1), and with --outside between it and the image box too:
+// implicit2mesh's restricted Delaunay surface, then the same triangulation
+// refined until every tetrahedron's radius-edge ratio is within
+// --cell-ratio, the surface certificate holding at the end.
 #include "cli/cli.hpp"
 #include "implicit/implicit_file.hpp"
 #include "mesh/volume_io.hpp"
@@ -43,6 +44,13 @@ int main(int argc, char** argv) {
                       "best effort, counted in --stats (slivers_left); 0: off")
       ->type_name("A")
       ->capture_default_str();
+  tool.app.add_flag("--outside", opt.outside,
+                    "Also mesh the outside of the surface up to the image box (the voxels' extent) as region 2; "
+                    "region 1 is the inside, the box's faces are boundary group 2");
+  tool.app.add_option("--max-cell-points", opt.max_cell_points,
+                      "Stop cell refinement after inserting N points (exit 3, the mesh written)")
+      ->type_name("N")
+      ->capture_default_str();
   tool.app.add_option("--msh-version", wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")
       ->type_name("V")
       ->check(CLI::IsMember({"4.1", "2.2"}))
@@ -57,6 +65,7 @@ int main(int argc, char** argv) {
       throw UsageError(std::string("output format is chosen by extension: ") + kTetMeshExtensions, out);
     if (!(opt.cell_ratio >= 2) || !std::isfinite(opt.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
     if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be a finite number >= 0");
+    if (opt.max_cell_points < 1) throw UsageError("--max-cell-points must be at least 1");
     surface_options.check();
     so.seed = tool.seed();
     so.threads = tool.threads();

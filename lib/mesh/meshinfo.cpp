@@ -321,10 +321,14 @@ MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const Bin
 MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
                        const std::string& image_name) {
   // The boundary on its own vertices (interior ones would count as isolated).
+  // With region 1 among others (implicit2tet --outside: region 2 fills the
+  // box around it), region 1's boundary: the surface of the foreground.
+  const bool others = std::any_of(mesh.tet_region.begin(), mesh.tet_region.end(), [](int r) { return r != 1; });
+  const bool has1 = std::find(mesh.tet_region.begin(), mesh.tet_region.end(), 1) != mesh.tet_region.end();
   PolyMesh b;
   b.format = "tetrahedra";
   std::vector<int> index(mesh.points.size(), -1);
-  for (const auto& t : tet_boundary(mesh)) {
+  for (const auto& t : tet_boundary(mesh, others && has1 ? 1 : 0)) {
     std::vector<int> f;
     for (int v : t) {
       int& k = index[std::size_t(v)];

@@ -150,7 +150,9 @@ void write_inp(std::ostream& o, const TetMesh& m) {
   const std::set<int> regions = regions_of(m);
   // C3D4 faces: S1 = 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
   constexpr int face[4][3] = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
-  std::map<std::array<int, 3>, std::pair<std::size_t, int>> owner;  // sorted face of a tet -> (element, face)
+  // (region, sorted face of a tet) -> (element, face): a triangle of
+  // region R is a face of R's tetrahedron, so the surface faces out of R.
+  std::map<std::pair<int, std::array<int, 3>>, std::pair<std::size_t, int>> owner;
   for (int r : regions) {
     bool any = false;
     for (std::size_t t = 0; t < m.tets.size(); ++t) {
@@ -165,7 +167,7 @@ void write_inp(std::ostream& o, const TetMesh& m) {
     for (int f = 0; f < 4; ++f) {
       std::array<int, 3> k{m.tets[t][std::size_t(face[f][0])], m.tets[t][std::size_t(face[f][1])], m.tets[t][std::size_t(face[f][2])]};
       std::sort(k.begin(), k.end());
-      owner.emplace(k, std::make_pair(t, f));
+      owner.emplace(std::make_pair(region_of(m.tet_region, t), k), std::make_pair(t, f));
     }
   for (int r : regions) {
     std::vector<std::size_t> sides[4];
@@ -173,8 +175,8 @@ void write_inp(std::ostream& o, const TetMesh& m) {
       if (region_of(m.triangle_region, t) != r) continue;
       std::array<int, 3> k = m.triangles[t];
       std::sort(k.begin(), k.end());
-      const auto it = owner.find(k);
-      if (it == owner.end()) throw Error("a boundary triangle is not a face of a tetrahedron");
+      const auto it = owner.find({r, k});
+      if (it == owner.end()) throw Error("a boundary triangle of region " + std::to_string(r) + " is not a face of its tetrahedra");
       sides[it->second.second].push_back(it->second.first);
     }
     std::string lines;

@@ -87,8 +87,10 @@ bool DelMesh::insert(const Vec3& x, Origin origin, Facet hint) {
   zone_cells_.clear();
   tr_.find_conflicts(p, c0, std::back_inserter(zone_facets_), std::back_inserter(zone_cells_));
   for (const Facet& f : zone_facets_)  // x on a vertex (rounding): refuse
-    for (int m = 1; m < 4; ++m)
-      if (f.first->vertex((f.second + m) & 3)->point() == p) return false;
+    for (int m = 1; m < 4; ++m) {
+      const Vh w = f.first->vertex((f.second + m) & 3);  // the infinite vertex's point is (0,0,0): not a vertex
+      if (!tr_.is_infinite(w) && w->point() == p) return false;
+    }
   // Vertices whose restricted facets die: TopoDisk/SMOOTH re-check them.
   ++stamp_;
   touched_.clear();
@@ -360,11 +362,11 @@ bool DelMesh::facet_cycle_pass() {
 bool DelMesh::handle_vertex_pass() {
   std::sort(cell_changed_.ids.begin(), cell_changed_.ids.end());
   std::vector<Vh> todo;
-  // HandleDetection is about the sample P on S: implicit2tet's inside
-  // points are not checked (their cells hold no piece of S to test).
+  // HandleDetection is about the sample P on S: implicit2tet's points off
+  // S are not checked (their cells hold no piece of S to test).
   for (int id : cell_changed_.ids) {
     const Vh v = vertices_[std::size_t(id)];
-    if (v != Vh() && v->info().origin != kVolume) todo.push_back(v);
+    if (v != Vh() && on_surface(v->info().origin)) todo.push_back(v);
   }
   cell_changed_.clear();
   const Candidates pts = handle_points(tr_, sampler_, todo, opt_.threads, handle_checks_);

@@ -455,7 +455,7 @@ bool handle_component_points(const Tr& tr, const SurfaceSampler& f, const std::v
     if (c >= 0) is_bad[std::size_t(c)] = 1;
   std::vector<Vh> todo;
   for (Vh v : vertices)
-    if (v != Vh() && v->info().origin != kVolume && v->info().comp >= 0 && is_bad[std::size_t(v->info().comp)])
+    if (v != Vh() && on_surface(v->info().origin) && v->info().comp >= 0 && is_bad[std::size_t(v->info().comp)])
       todo.push_back(v);
   // On components of more than kHandleBudget samples (brain tissue of genus
   // ~2600), the fallback's refinement is much cheaper.

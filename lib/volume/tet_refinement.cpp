@@ -1,11 +1,13 @@
 #include "volume/tet_refinement.hpp"
 
 #include "surface/delmesh.hpp"
+#include "volume/box_refinement.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <queue>
 #include <set>
 
@@ -21,7 +23,8 @@ double d2(const Point& a, const Point& b) { return CGAL::to_double(CGAL::squared
 // holds (DelMesh::set_after_certificate).
 class CellRefinement {
 public:
-  CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt) : f_(f), opt_(opt) {}
+  CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt, const BoxRefinement* box)
+      : f_(f), opt_(opt), box_(box) {}
 
   // Which side of S a local point is on: f's sign, read off the samples
   // where the cube around q has one sign (no zero there, thesis F1); beyond
@@ -52,7 +55,9 @@ public:
     double bad = 0;
     if (ratio > opt_.cell_ratio) bad = 1 + ratio / opt_.cell_ratio;
     if (opt_.cell_size > 0 && size > opt_.cell_size) bad = std::max(bad, 1 + size / opt_.cell_size);
-    if (bad == 0 && opt_.sliver_angle > 0) {
+    // Slivers under 1e-3 voxel are left: their circumcentres have no other
+    // floor (box_refinement.hpp, termination).
+    if (bad == 0 && opt_.sliver_angle > 0 && size >= 1e-3 * f_.grid().delta) {
       std::array<double, 3> p[4];
       for (int i = 0; i < 4; ++i) p[i] = vec(c->vertex(i)->point());
       const auto a = tet_dihedral_angles(p[0], p[1], p[2], p[3]);
@@ -62,11 +67,24 @@ public:
         sliver = true;
       }
     }
-    if (bad == 0 || !inside(cc)) return 0;
-    return bad;
+    if (bad == 0) return 0;
+    // --outside: every cell is meshed.
+    if (box_) return bad;
+    return inside(cc) ? bad : 0;
   }
 
   bool operator()(DelMesh& dm) {
+    if (box_ && !corners_in_) {  // once the surface is certified: the hull becomes B
+      corners_in_ = true;
+      bool any = false;
+      for (const Vec3& x : box_->corners())
+        if (dm.insert(x, kBox)) {
+          ++box_points;
+          any = true;
+        }
+      return any;
+    }
+    if (points_exhausted) return false;
     if (rounds >= opt_.max_rounds) {
       exhausted = true;
       return false;
@@ -79,8 +97,10 @@ public:
   }
 
   int rounds = 0;
-  bool exhausted = false;
+  bool exhausted = false, points_exhausted = false, corners_in_ = false;
   long long volume_points = 0, facet_points = 0, off_surface_points = 0, refused = 0, sliver_points = 0;
+  long long box_points = 0, box_refused = 0;
+  long long points() const { return volume_points + facet_points + off_surface_points + box_points; }
   double seconds = 0;
 
 private:
@@ -104,18 +124,20 @@ private:
     for (Ch c : cells_) push_if_bad(tr, c);
   }
 
-  // A restricted facet with a vertex inserted off S (a cell point whose
-  // Voronoi cell reached S): its surface centre goes in, so that every
-  // vertex of the surface lies on S. Points within half their facet's
-  // radius of one inserted in this pass wait for the next.
+  // A restricted facet with a vertex inserted off S (a cell or box point
+  // whose Voronoi cell reached S): its surface centre goes in, so that
+  // every vertex of the surface lies on S. Points within half their facet's
+  // radius of one inserted in this pass wait for the next; balls under
+  // 1e-3 voxel are left (the insertion floor of box_refinement.hpp).
   bool off_surface_facets(DelMesh& dm) {
     const Tr& tr = dm.triangulation();
+    const double guard2 = std::pow(1e-3 * f_.grid().delta, 2);
     std::vector<std::pair<double, Vec3>> todo;
     for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it) {
       const FacetInfo& fi = it->first->facet[it->second];
-      if (!(fi.state & kRestricted)) continue;
+      if (!(fi.state & kRestricted) || fi.r2 < guard2) continue;
       for (int m = 1; m < 4; ++m)
-        if (it->first->vertex((it->second + m) & 3)->info().origin == kVolume) {
+        if (!on_surface(it->first->vertex((it->second + m) & 3)->info().origin)) {
           todo.emplace_back(fi.r2, Vec3{fi.x[0], fi.x[1], fi.x[2]});
           break;
         }
@@ -123,6 +145,7 @@ private:
     std::sort(todo.begin(), todo.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     bool any = false;
     for (const auto& [r2, x] : todo) {
+      if (cap_reached()) break;
       const Point p(x[0], x[1], x[2]);
       const Vh nv = tr.nearest_vertex(p);
       if (d2(p, nv->point()) < r2 / 4) continue;
@@ -140,7 +163,7 @@ private:
     for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) push_if_bad(tr, c);
     const double guard2 = std::pow(1e-3 * f_.grid().delta, 2);
     bool any = false;
-    while (!queue_.empty()) {
+    while (!queue_.empty() && !cap_reached()) {
       const Entry e = queue_.top();
       queue_.pop();
       if (!tr.tds().cells().is_used(e.c)) continue;
@@ -150,13 +173,47 @@ private:
       const Point cc = e.c->circumcenter();
       Tr::Locate_type lt;
       int li, lj;
-      const Ch at = tr.locate(cc, lt, li, lj, e.c);
-      if (lt == Tr::VERTEX) continue;
-      // The facets whose surface Delaunay ball holds cc are facets of cells
-      // in conflict with cc (such a ball lies in the circumballs of the
-      // facet's two cells).
+      // --outside, c beyond B: the box is split near c's projection onto B
+      // (c's own conflict zone would hold every hull triangle c sees).
+      const bool beyond = box_ && !box_->contains(cc);
+      const Point q = beyond ? box_->project(cc) : cc;
+      const Ch at = tr.locate(q, lt, li, lj, e.c);
       zone_.clear();
-      tr.find_conflicts(cc, at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      if (lt == Tr::VERTEX) {
+        if (!beyond) continue;
+        tr.incident_cells(at->vertex(li), std::back_inserter(zone_));
+      } else {
+        // The facets whose surface Delaunay ball holds cc are facets of
+        // cells in conflict with cc (such a ball lies in the circumballs of
+        // the facet's two cells).
+        tr.find_conflicts(q, at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      }
+      // --outside: c outside B or encroaching the box: the box is split
+      // instead (box_refinement.hpp), for slivers too (measured on the
+      // bunny at a quarter voxel: 154 slivers left, all in region 2 and
+      // mostly at the box, when they did not; none when they do).
+      if (box_) {
+        const BoxRefinement::Split split = box_->split_for(tr, cc, zone_);
+        if (beyond || split.kind != BoxRefinement::kNone) {
+          if (split.kind != BoxRefinement::kSegment && split.kind != BoxRefinement::kFacet) {
+            ++box_refused;
+            continue;
+          }
+          if (!dm.insert(split.x, kBox, Facet(split.near, 0))) {
+            ++refused;
+            if (tr.number_of_vertices() >= opt_.surface.max_points) break;
+            continue;
+          }
+          ++box_points;
+          any = true;
+          push_around(tr, dm.vertices().back());
+          // A split off the cell's circumball leaves it: it asks again.
+          if (tr.tds().cells().is_used(e.c) && e.c->vertex(0) == e.v[0] && e.c->vertex(1) == e.v[1] &&
+              e.c->vertex(2) == e.v[2] && e.c->vertex(3) == e.v[3])
+            push_if_bad(tr, e.c);
+          continue;
+        }
+      }
       Facet worst(Ch(), 0);
       double worst_r2 = 0;
       for (Ch c : zone_)
@@ -189,16 +246,27 @@ private:
     return any;
   }
 
+  // --max-cell-points: the cap on the points of cell refinement.
+  bool cap_reached() {
+    if (points() >= opt_.max_cell_points) points_exhausted = true;
+    return points_exhausted;
+  }
+
   const SurfaceSampler& f_;
   const TetRefinementOptions& opt_;
+  const BoxRefinement* box_;
   std::priority_queue<Entry> queue_;
   std::uint64_t seq_ = 0;
   std::vector<Ch> cells_, zone_;
 };
 
-// The cells whose circumcentre lies inside, positively oriented in world
-// coordinates, and whether their boundary is the set of restricted facets.
-void extract(const DelMesh& dm, const CellRefinement& inside, const ImplicitSurface& surface, TetRefinementResult& r) {
+// The cells whose circumcentre lies inside (region 1) and, with --outside,
+// every other finite cell (region 2), positively oriented in world
+// coordinates; the boundary triangles: region 1's, then (--outside) the
+// box's; whether region 1's boundary is the set of restricted facets and
+// the box's lies on B.
+void extract(const DelMesh& dm, const CellRefinement& inside, const BoxRefinement* box, const ImplicitSurface& surface,
+             TetRefinementResult& r) {
   const Tr& tr = dm.triangulation();
   std::vector<int> index(dm.vertices().size(), -1);
   std::vector<int> id_of;  // output vertex -> triangulation id
@@ -211,28 +279,52 @@ void extract(const DelMesh& dm, const CellRefinement& inside, const ImplicitSurf
     }
     return k;
   };
-  // Cells in the order of their sorted vertex ids (CGAL's storage order
-  // depends on addresses).
-  std::vector<std::array<int, 4>> cells;
+  // Cells by region, then in the order of their sorted vertex ids (CGAL's
+  // storage order depends on addresses; the files keep regions in blocks).
+  std::vector<std::pair<std::array<int, 4>, int>> cells;  // ids, region
   for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) {
-    if (!inside.inside(c->circumcenter())) continue;
-    cells.push_back({c->vertex(0)->info().id, c->vertex(1)->info().id, c->vertex(2)->info().id, c->vertex(3)->info().id});
+    const int region = inside.inside(c->circumcenter()) ? 1 : 2;
+    if (region == 2 && !box) continue;
+    cells.push_back({{c->vertex(0)->info().id, c->vertex(1)->info().id, c->vertex(2)->info().id, c->vertex(3)->info().id}, region});
   }
   std::sort(cells.begin(), cells.end(), [](auto a, auto b) {
-    std::sort(a.begin(), a.end());
-    std::sort(b.begin(), b.end());
-    return a < b;
+    std::sort(a.first.begin(), a.first.end());
+    std::sort(b.first.begin(), b.first.end());
+    return a.second != b.second ? a.second < b.second : a.first < b.first;
   });
   const bool flip = surface.reflects();
-  for (const auto& ids : cells) {
+  for (const auto& [ids, region] : cells) {
     std::array<int, 4> t;
     for (int i = 0; i < 4; ++i) t[std::size_t(i)] = out(dm.vertices()[std::size_t(ids[std::size_t(i)])]);
     if (flip) std::swap(t[2], t[3]);
     r.mesh.tets.push_back(t);
-    r.mesh.tet_region.push_back(1);
+    r.mesh.tet_region.push_back(region);
   }
-  r.mesh.triangles = tet_boundary(r.mesh);
-  r.mesh.triangle_region.assign(r.mesh.triangles.size(), 1);
+  r.mesh.triangles = tet_boundary(r.mesh, 1);
+  const std::size_t surface_triangles = r.mesh.triangles.size();
+  r.mesh.triangle_region.assign(surface_triangles, 1);
+  if (box) {
+    // The box faces: on B, and their areas add up to B's.
+    const Vec3 &lo = box->lo(), &hi = box->hi();
+    double area = 0;
+    r.box_covered = true;
+    for (const auto& t : tet_boundary(r.mesh)) {
+      r.mesh.triangles.push_back(t);
+      r.mesh.triangle_region.push_back(2);
+      Vec3 p[3];
+      for (int k = 0; k < 3; ++k) p[k] = vec(dm.vertices()[std::size_t(id_of[std::size_t(t[std::size_t(k)])])]->point());
+      bool on_face = false;
+      for (int i = 0; i < 3; ++i)
+        for (double b : {lo[i], hi[i]}) on_face = on_face || (p[0][i] == b && p[1][i] == b && p[2][i] == b);
+      r.box_covered = r.box_covered && on_face;
+      const Vec3 u{p[1][0] - p[0][0], p[1][1] - p[0][1], p[1][2] - p[0][2]}, v{p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
+      area += std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
+                        std::pow(u[0] * v[1] - u[1] * v[0], 2)) / 2;
+    }
+    const double a = hi[0] - lo[0], b = hi[1] - lo[1], c = hi[2] - lo[2];
+    r.box_volume = a * b * c;
+    r.box_covered = r.box_covered && std::abs(area - 2 * (a * b + b * c + c * a)) <= 1e-9 * area;
+  }
 
   std::set<std::array<int, 3>> restricted, boundary;
   for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it)
@@ -242,7 +334,8 @@ void extract(const DelMesh& dm, const CellRefinement& inside, const ImplicitSurf
       std::sort(k.begin(), k.end());
       restricted.insert(k);
     }
-  for (const auto& t : r.mesh.triangles) {
+  for (std::size_t i = 0; i < surface_triangles; ++i) {
+    const auto& t = r.mesh.triangles[i];
     std::array<int, 3> k{id_of[std::size_t(t[0])], id_of[std::size_t(t[1])], id_of[std::size_t(t[2])]};
     std::sort(k.begin(), k.end());
     boundary.insert(k);
@@ -260,16 +353,30 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be >= 0");
   if (!(opt.sliver_angle >= 0 && opt.sliver_angle < 30)) throw UsageError("--sliver-angle must be in [0, 30) degrees");
 
+  if (opt.max_cell_points < 1) throw UsageError("--max-cell-points must be at least 1");
+
   DelMesh dm(surface, opt.surface);
-  CellRefinement cells(dm.sampler(), opt);
+  // --outside: B is the image extent, the voxels' boxes around the samples
+  // (box_refinement.hpp says why it is half a voxel from S at least).
+  std::optional<BoxRefinement> box;
+  if (opt.outside) {
+    const CubeGrid& g = dm.grid();
+    const double gap = std::min({g.s[0], g.s[1], g.s[2]}) / 2;
+    box.emplace(Vec3{-g.s[0] / 2, -g.s[1] / 2, -g.s[2] / 2}, Vec3{g.hi[0] + g.s[0] / 2, g.hi[1] + g.s[1] / 2, g.hi[2] + g.s[2] / 2},
+                gap / 8);
+  }
+  CellRefinement cells(dm.sampler(), opt, box ? &*box : nullptr);
   dm.set_after_certificate([&](DelMesh& m) { return cells(m); });
   TetRefinementResult r;
   r.surface = dm.run();
-  extract(dm, cells, surface, r);
+  r.outside = opt.outside;
+  extract(dm, cells, box ? &*box : nullptr, surface, r);
+  const std::vector<std::array<int, 3>> region1(r.mesh.triangles.begin(),
+                                                r.mesh.triangles.begin() + std::count(r.mesh.triangle_region.begin(), r.mesh.triangle_region.end(), 1));
 
   r.quality = tet_quality(r.mesh);
   r.conformity = tet_conformity(r.mesh);
-  r.boundary_topology = mesh_topology(r.mesh.points.size(), r.mesh.triangles);
+  r.boundary_topology = mesh_topology(r.mesh.points.size(), region1);
   const VoxelBoundary vb = voxel_boundary(surface.samples());
   r.boundary_match = match_components(r.boundary_topology, r.mesh.points, surface.samples(), vb, mesh_topology(vb));
   r.volume_points = cells.volume_points;
@@ -278,6 +385,11 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   r.refused = cells.refused;
   r.sliver_points = cells.sliver_points;
   r.sliver_angle = opt.sliver_angle;
+  r.box_points = cells.box_points;
+  r.box_refused = cells.box_refused;
+  r.box_filled = !opt.outside || std::abs(r.quality.total_volume - r.box_volume) <= 1e-9 * r.box_volume;
+  r.max_cell_points = opt.max_cell_points;
+  r.cell_points_exhausted = cells.points_exhausted;
   r.rounds = cells.rounds;
   r.rounds_exhausted = cells.exhausted;
   r.seconds_cells = cells.seconds;
@@ -324,10 +436,18 @@ Json TetRefinementResult::to_json() const {
   pts["off_surface_facet"] = off_surface_facet_points;
   pts["sliver"] = sliver_points;
   pts["refused"] = refused;
-  j["cell_refinement_points"] = pts;
   j["sliver_angle_bound"] = sliver_angle;
   j["slivers_left"] = slivers_left;
+  pts["box"] = box_points;
+  pts["box_refused"] = box_refused;
+  j["cell_refinement_points"] = pts;
   j["cell_refinement_rounds"] = rounds;
+  j["outside"] = outside;
+  if (outside) {
+    j["box_volume"] = box_volume;
+    j["box_filled"] = box_filled;
+    j["box_covered"] = box_covered;
+  }
   j["cell_refinement_seconds"] = seconds_cells;
   j["surface"] = surface.to_json();
   return j;
@@ -337,6 +457,9 @@ std::string TetRefinementResult::failed_guarantee() const {
   std::string f = surface.failed_guarantee();
   auto add = [&f](const std::string& s) { f += (f.empty() ? "" : "; ") + s; };
   if (mesh.tets.empty()) add("no tetrahedron inside the surface");
+  if (outside && !box_filled) add("--outside: the tetrahedra do not fill the box (volume differs)");
+  if (outside && !box_covered) add("--outside: the boundary triangles do not cover the box's faces");
+  if (cell_points_exhausted) add("cell refinement stopped at --max-cell-points (" + std::to_string(max_cell_points) + ")");
   if (!conformity.ok()) add("tetrahedra not positively oriented or not conforming");
   if (!boundary_is_surface) add("the tetrahedra's boundary is not the restricted Delaunay surface");
   if (!boundary_match.matches()) add("the tetrahedra's boundary differs from the voxel boundary bdCA(X): " + boundary_match.failed_guarantee());

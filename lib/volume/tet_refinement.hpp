@@ -35,11 +35,20 @@ struct TetRefinementOptions {
   // terminate in theory, hence after every bound that is; the rounds and
   // --max-points bound it). 0: off.
   double sliver_angle = 10;
+  // Also the outside of S up to the image box B, as region 2
+  // (box_refinement.hpp).
+  bool outside = false;
+  // Cap on the points cell refinement inserts (cells, encroached facets,
+  // box): a guarantee reported failed, never a hang.
+  long long max_cell_points = 1000000;
 };
 
 struct TetRefinementResult {
   RestrictedDelaunayResult surface;  // the certified surface: the tetrahedra's boundary
-  TetMesh mesh;                      // world coordinates, region 1, boundary triangles outward
+  // World coordinates; region 1 inside S, region 2 (--outside) between S
+  // and B; triangles: region 1's boundary (the surface) with region 1, then
+  // (--outside) the box's faces with region 2, all outward.
+  TetMesh mesh;
   TetQualityReport quality;
   TetConformity conformity;
   MeshTopology boundary_topology;         // of mesh.triangles
@@ -48,6 +57,12 @@ struct TetRefinementResult {
   long long volume_points = 0, facet_points = 0, off_surface_facet_points = 0, refused = 0;
   long long sliver_points = 0;  // circumcentres of slivers inserted
   long long slivers_left = 0;   // output tetrahedra with a dihedral angle below sliver_angle
+  bool outside = false;
+  long long box_points = 0, box_refused = 0;  // box splits inserted, refused (insertion floor)
+  double box_volume = 0;
+  bool box_filled = true, box_covered = true;  // --outside: volume = B's; box triangles on B, of B's area
+  long long max_cell_points = 0;
+  bool cell_points_exhausted = false;
   double sliver_angle = 0;
   int rounds = 0;
   bool rounds_exhausted = false;

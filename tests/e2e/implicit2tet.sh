@@ -173,4 +173,119 @@ case_max_points_exit_3_with_the_mesh() {
   grep -q "guarantee not met" err.txt || fail "exit 3 without saying which guarantee: $(cat err.txt)"
 }
 
+# --outside: regions 1 and 2 fill the image box. The quarter-voxel bound on
+# the bunny (whose surface runs within a voxel of the box) is the case an
+# earlier --outside refined without end; the point budgets make a runaway
+# fail (exit 3) rather than hang.
+outside() { tet "$@" --outside --max-points 1500000 --max-cell-points 1000000; }
+bunny_out_msh() { outside bunny_out.msh --max-distance 0.0026 --stats stats.json; }
+bunny_out_mesh() { outside bunny_out.mesh; }
+bunny_out_vtu() { outside bunny_out.vtu; }
+bunny_out_inp() { outside bunny_out.inp; }
+bunny_out22_msh() { outside bunny_out22.msh --msh-version 2.2; }
+
+# The image box's volume and face area from the NRRD header (sizes, space
+# directions), independently of the tools.
+box_of() {
+  python3 - "$1" <<'PY'
+import sys
+head = open(sys.argv[1], "rb").read(4096).split(b"\n\n")[0].decode("latin-1")
+kv = dict(l.split(": ", 1) for l in head.splitlines() if ": " in l)
+n = [int(x) for x in kv["sizes"].split()]
+dirs = [[float(c) for c in v.strip("()").split(",")] for v in kv["space directions"].split()]
+h = [sum(c * c for c in d) ** 0.5 for d in dirs]
+e = [n[i] * h[i] for i in range(3)]
+print(e[0] * e[1] * e[2], 2 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]))
+PY
+}
+
+case_outside_quarter_voxel_fills_the_box() {
+  mesh bunny_out.msh || return
+  local stats wc; stats=$(dirname "$(readlink bunny_out.msh)")/stats.json
+  wc=$(shared bunny-wc.nrrd bunny_wc) || return
+  [[ $(json "$stats" topology_matches) == True ]] || fail "stats: topology_matches"
+  [[ $(json "$stats" boundary_is_restricted_surface) == True ]] || fail "stats: region 1's boundary is not the certified surface"
+  OUT=info.json expect 0 meshinfo bunny_out.msh --image "$wc" --json || { fail "meshinfo: region 1 does not match bdCA(X)"; return; }
+  read -r vol area < <(box_of "$wc")
+  python3 - info.json bunny_out.msh "$vol" "$area" > report.txt 2>&1 <<'PY' || fail "--outside: $(cat report.txt)"
+import json, sys
+r = json.load(open(sys.argv[1]))
+t = r["tetrahedra"]
+box, area = float(sys.argv[3]), float(sys.argv[4])
+assert r["image"]["matches"], "region 1's boundary does not match bdCA(X)"
+assert t["conformity"]["conforming"] and t["conformity"]["nonpositive_tetrahedra"] == 0
+assert t["max_radius_edge_ratio"] <= 2 * (1 + 1e-9), t["max_radius_edge_ratio"]
+assert t["min_dihedral_degrees"] >= 10, t["min_dihedral_degrees"]  # slivers refined in both regions (measured)
+assert sorted(t["volume_by_region"]) == ["1", "2"], t["volume_by_region"]
+assert abs(t["volume"] - box) <= 1e-6 * box, (t["volume"], box)
+assert abs(t["volume_by_region"]["1"] - t["foreground_voxel_volume"]) <= 0.03 * t["foreground_voxel_volume"]
+PY
+}
+
+# Every format with both regions and the box's triangle group, read by meshio and gmsh where installed.
+case_outside_meshio_reads_every_format_with_two_regions() {
+  if ! /usr/bin/python3 -c 'import meshio' 2>/dev/null; then echo "skipped: python3-meshio not installed"; return; fi
+  for f in bunny_out.msh bunny_out22.msh bunny_out.mesh bunny_out.vtu bunny_out.inp; do mesh $f || return; done
+  read -r vol area < <(box_of "$(shared bunny-wc.nrrd bunny_wc)")
+  /usr/bin/python3 - "$vol" "$area" > meshio.txt 2>&1 <<'PY' || fail "meshio: $(cat meshio.txt)"
+import sys
+import meshio
+import numpy as np
+box, area = float(sys.argv[1]), float(sys.argv[2])
+def volume(p, t):
+    a, b, c, d = (p[t[:, i]] for i in range(4))
+    return np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a)) / 6
+def tri_area(p, t):
+    a, b, c = (p[t[:, i]] for i in range(3))
+    return np.linalg.norm(np.cross(b - a, c - a), axis=1) / 2
+for f, key in [("bunny_out.msh", "gmsh:physical"), ("bunny_out22.msh", "gmsh:physical"), ("bunny_out.mesh", "medit:ref"),
+               ("bunny_out.vtu", "region"), ("bunny_out.inp", None)]:
+    m = meshio.read(f)
+    tets = [i for i, c in enumerate(m.cells) if c.type == "tetra"]
+    tris = [i for i, c in enumerate(m.cells) if c.type == "triangle"]
+    assert len(tets) >= 1, f
+    v = np.concatenate([volume(m.points, m.cells[i].data) for i in tets])
+    assert (v > 0).all(), f + ": a tetrahedron not positively oriented"
+    assert abs(v.sum() - box) <= 1e-6 * box, (f, v.sum(), box)
+    if key:
+        regions = set(np.concatenate([m.cell_data[key][i] for i in tets]).tolist())
+        assert regions == {1, 2}, (f, regions)
+        box_area = sum(tri_area(m.points, m.cells[i].data)[m.cell_data[key][i] == 2].sum() for i in tris)
+        assert abs(box_area - area) <= 1e-6 * area, (f, box_area, area)
+    else:  # Abaqus: region R's boundary is a surface on faces of R's elements
+        cs = {k: set(np.concatenate([np.asarray(a, dtype=int).ravel() for a in v if a is not None]).tolist())
+              for k, v in m.cell_sets.items()}
+        assert "REGION_1" in cs and "REGION_2" in cs, (f, list(cs))
+        for r in ("1", "2"):
+            sides = [k for k in cs if k.upper().startswith("BOUNDARY_" + r + "_S")]
+            assert sides, (f, r, list(cs))
+            for k in sides:
+                assert cs[k] <= cs["REGION_" + r], (f, k, "has elements of another region")
+PY
+}
+
+case_outside_gmsh_reads_both_regions() {
+  if ! command -v gmsh > /dev/null; then echo "skipped: gmsh not installed"; return; fi
+  for f in bunny_out.msh bunny_out22.msh; do mesh $f || return; done
+  for f in bunny_out.msh bunny_out22.msh; do
+    gmsh "$f" -0 -o "re-$f.msh" -format msh22 > gmsh.log 2>&1 || { fail "gmsh cannot read $f: $(cat gmsh.log)"; continue; }
+    ! grep -q '^Error' gmsh.log || { fail "gmsh: errors reading $f: $(cat gmsh.log)"; continue; }
+    python3 - "re-$f.msh" > cmp.txt 2>&1 <<'PY' || fail "gmsh read $f without both regions: $(cat cmp.txt)"
+import sys
+lines = open(sys.argv[1]).read().split("$Elements\n")[1].split("$EndElements")[0].split("\n")[1:-1]
+groups = {(w[1], w[3]) for w in (l.split() for l in lines)}
+assert {("4", "1"), ("4", "2"), ("2", "1"), ("2", "2")} <= groups, groups
+PY
+  done
+}
+
+case_outside_usage_and_cap() {
+  local f; f=$(shared bunny-f.nrrd bunny_f) || return
+  refuses 2 implicit2tet "$f" out.msh --outside --max-cell-points 0
+  no_output_left
+  expect 3 implicit2tet "$f" capped.msh --outside --max-cell-points 50
+  [[ -s capped.msh ]] || fail "exit 3 without the mesh"
+  grep -q "max-cell-points" err.txt || fail "exit 3 without naming --max-cell-points: $(cat err.txt)"
+}
+
 run_cases "$@"

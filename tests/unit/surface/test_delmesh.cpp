@@ -54,6 +54,21 @@ TEST_CASE("DELMESH: seeds on S, refinement keeps every facet's EdgeSurface answe
   }
 }
 
+TEST_CASE("DELMESH's insert: a point outside the hull at the infinite vertex's point goes in") {
+  const Vec3 c{8.3, 8.1, 7.7};
+  FunctionSurface s(test::box(17, 17, 17), [&](const Vec3& p) { return test::sphere_f(p, c, 5.1); });
+  DelMesh m(s, RestrictedDelaunayOptions{});
+  m.prepare();
+  m.seeds();
+  // The origin is outside the seeds' hull: its conflict zone holds infinite
+  // cells. CGAL leaves the infinite vertex's point as it was constructed
+  // (zeros, or whatever the memory held): made (0,0,0) here.
+  m.triangulation().infinite_vertex()->set_point(Point(0, 0, 0));
+  CHECK(m.insert(Vec3{0, 0, 0}, kBox));
+  CHECK(m.vertices().back()->point() == Point(0, 0, 0));
+  CHECK_FALSE(m.insert(Vec3{0, 0, 0}, kBox));  // a vertex now
+}
+
 TEST_CASE("DELMESH's insert: refuses a vertex twice and non-seed points beyond --max-points") {
   const Vec3 c{8.3, 8.1, 7.7};
   FunctionSurface s(test::box(17, 17, 17), [&](const Vec3& p) { return test::sphere_f(p, c, 5.1); });

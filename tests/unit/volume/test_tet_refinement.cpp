@@ -57,10 +57,39 @@ std::vector<std::array<int, 3>> boundary(const TetMesh& m, std::size_t& overfull
   return out;
 }
 
+// Region 1 of r's mesh: its tetrahedra and the triangles with region 1.
+TetMesh region_one(const TetMesh& m) {
+  TetMesh o;
+  o.points = m.points;
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    if (m.tet_region[t] == 1) {
+      o.tets.push_back(m.tets[t]);
+      o.tet_region.push_back(1);
+    }
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    if (m.triangle_region[t] == 1) {
+      o.triangles.push_back(m.triangles[t]);
+      o.triangle_region.push_back(1);
+    }
+  return o;
+}
+
+double volume(const TetMesh& m) {
+  double vol = 0;
+  for (const auto& q : m.tets) vol += det(m.points[std::size_t(q[0])], m.points[std::size_t(q[1])], m.points[std::size_t(q[2])], m.points[std::size_t(q[3])]) / 6;
+  return vol;
+}
+
+// Region 1 (all of the mesh without --outside): positively oriented,
+// conforming, its boundary S's certified surface; every tetrahedron within
+// the ratio bound.
 void check_tets(const ImplicitSurface& s, const TetRefinementResult& r, double ratio) {
   INFO("failure: " << r.failed_guarantee());
   CHECK(r.failed_guarantee().empty());
-  const TetMesh& m = r.mesh;
+  for (const auto& q : r.mesh.tets)
+    REQUIRE(tet_radius_edge_ratio(r.mesh.points[std::size_t(q[0])], r.mesh.points[std::size_t(q[1])], r.mesh.points[std::size_t(q[2])],
+                                  r.mesh.points[std::size_t(q[3])]) <= ratio * (1 + 1e-9));
+  const TetMesh m = region_one(r.mesh);
   REQUIRE(!m.tets.empty());
   for (const auto& t : m.tets) {
     const double d = det(m.points[std::size_t(t[0])], m.points[std::size_t(t[1])], m.points[std::size_t(t[2])], m.points[std::size_t(t[3])]);
@@ -84,12 +113,15 @@ void check_tets(const ImplicitSurface& s, const TetRefinementResult& r, double r
   std::sort(sorted_b.begin(), sorted_b.end());
   std::sort(sorted_r.begin(), sorted_r.end());
   CHECK(sorted_b == sorted_r);
-  // Boundary vertices on S; the others strictly inside.
-  std::vector<char> on(m.points.size(), 0);
+  // Boundary vertices on S; region 1's others strictly inside.
+  std::vector<char> on(m.points.size(), 0), used(m.points.size(), 0);
   for (const auto& tri : b)
     for (int v : tri) on[std::size_t(v)] = 1;
+  for (const auto& q : m.tets)
+    for (int v : q) used[std::size_t(v)] = 1;
   double max_f = 0, max_inner = -1e300;
   for (std::size_t i = 0; i < m.points.size(); ++i) {
+    if (!used[i]) continue;
     const double f = s.value(s.to_local(m.points[i]));
     if (on[i]) max_f = std::max(max_f, std::abs(f));
     else max_inner = std::max(max_inner, f);
@@ -97,14 +129,84 @@ void check_tets(const ImplicitSurface& s, const TetRefinementResult& r, double r
   CHECK(max_f < 1e-6);
   CHECK(max_inner < 0);
   // Outward: the boundary's signed volume is the tetrahedra's volume.
-  double vol = 0, surf_vol = 0;
-  for (const auto& q : m.tets) vol += det(m.points[std::size_t(q[0])], m.points[std::size_t(q[1])], m.points[std::size_t(q[2])], m.points[std::size_t(q[3])]) / 6;
+  double surf_vol = 0;
   const P o{0, 0, 0};
   for (const auto& tri : b) surf_vol += det(o, m.points[std::size_t(tri[0])], m.points[std::size_t(tri[1])], m.points[std::size_t(tri[2])]) / 6;
-  CHECK(surf_vol == Approx(vol).epsilon(1e-9));
-  for (const auto& q : m.tets)
-    REQUIRE(tet_radius_edge_ratio(m.points[std::size_t(q[0])], m.points[std::size_t(q[1])], m.points[std::size_t(q[2])],
-                                  m.points[std::size_t(q[3])]) <= ratio * (1 + 1e-9));
+  CHECK(surf_vol == Approx(volume(m)).epsilon(1e-9));
+}
+
+// --outside: region 1 as above; regions 1 and 2 together conforming and
+// filling the image box (the voxels' extent), whose faces are exactly the
+// triangles the tool reports with region 2; region 2's vertices off S
+// outside it.
+void check_outside(const ImplicitSurface& s, const TetRefinementResult& r, double ratio) {
+  check_tets(s, r, ratio);
+  const TetMesh& m = r.mesh;
+  for (int reg : m.tet_region) REQUIRE((reg == 1 || reg == 2));
+  CHECK(std::count(m.tet_region.begin(), m.tet_region.end(), 2) > 0);
+  for (const auto& t : m.tets)
+    REQUIRE(det(m.points[std::size_t(t[0])], m.points[std::size_t(t[1])], m.points[std::size_t(t[2])], m.points[std::size_t(t[3])]) > 0);
+  std::size_t overfull, same_way;
+  const auto b = boundary(m, overfull, same_way);
+  CHECK(overfull == 0);
+  CHECK(same_way == 0);
+  const Geometry& g = s.samples();
+  double lo[3], hi[3], box_volume = 1;
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = -g.spacing[std::size_t(i)] / 2;
+    hi[i] = (double(g.size[std::size_t(i)]) - 0.5) * g.spacing[std::size_t(i)];
+    box_volume *= hi[i] - lo[i];
+  }
+  CHECK(volume(m) == Approx(box_volume).epsilon(1e-9));
+  // Every vertex in B; every outer face on one face of B, their areas B's.
+  const double tol = 1e-9 * (hi[0] - lo[0] + hi[1] - lo[1] + hi[2] - lo[2]);
+  for (const auto& p : m.points) {
+    const Vec3 q = s.to_local(p);
+    for (int i = 0; i < 3; ++i) REQUIRE((q[std::size_t(i)] >= lo[i] - tol && q[std::size_t(i)] <= hi[i] + tol));
+  }
+  double area = 0;
+  for (const auto& tri : b) {
+    Vec3 q[3];
+    for (int k = 0; k < 3; ++k) q[k] = s.to_local(m.points[std::size_t(tri[std::size_t(k)])]);
+    bool on_face = false;
+    for (int i = 0; i < 3; ++i)
+      for (double x : {lo[i], hi[i]})
+        on_face = on_face || (std::abs(q[0][std::size_t(i)] - x) < tol && std::abs(q[1][std::size_t(i)] - x) < tol &&
+                              std::abs(q[2][std::size_t(i)] - x) < tol);
+    REQUIRE(on_face);
+    const P &a = m.points[std::size_t(tri[0])], &c = m.points[std::size_t(tri[1])], &d = m.points[std::size_t(tri[2])];
+    const double u[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]}, v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    area += std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) + std::pow(u[0] * v[1] - u[1] * v[0], 2)) / 2;
+  }
+  const double a = hi[0] - lo[0], bb = hi[1] - lo[1], c = hi[2] - lo[2];
+  CHECK(area == Approx(2 * (a * bb + bb * c + c * a)).epsilon(1e-9));
+  std::vector<std::array<int, 3>> reported;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    if (m.triangle_region[t] == 2) reported.push_back(m.triangles[t]);
+  auto sorted_b = b;
+  std::sort(sorted_b.begin(), sorted_b.end());
+  std::sort(reported.begin(), reported.end());
+  CHECK(sorted_b == reported);
+  // Region 2's vertices that are not on S lie outside it (where f is defined).
+  std::vector<char> in1(m.points.size(), 0);
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    if (m.tet_region[t] == 1)
+      for (int v : m.tets[t]) in1[std::size_t(v)] = 1;
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    const Vec3 q = s.to_local(m.points[i]);
+    bool in_samples = true;
+    for (int k = 0; k < 3; ++k)
+      in_samples = in_samples && q[std::size_t(k)] >= 0 && q[std::size_t(k)] <= double(g.size[std::size_t(k)] - 1) * g.spacing[std::size_t(k)];
+    if (!in1[i] && in_samples) REQUIRE(s.value(q) > 0);
+  }
+}
+
+// Budgets: a runaway refinement fails the test instead of hanging it.
+TetRefinementOptions budget() {
+  TetRefinementOptions o;
+  o.surface.max_points = 300000;
+  o.max_cell_points = 200000;
+  return o;
 }
 
 } // namespace
@@ -171,12 +273,18 @@ TEST_CASE("world geometry: anisotropic, rotated and reflected axes keep positive
   REQUIRE(s.reflects());
   const auto r = tetrahedral_mesh(s, TetRefinementOptions{});
   check_tets(s, r, 2);
+  TetRefinementOptions o = budget();
+  o.outside = true;  // the box in world coordinates too
+  check_outside(s, tetrahedral_mesh(s, o), o.cell_ratio);
 }
 
 TEST_CASE("the files read back by the project's readers, regions and all") {
   const Vec3 c{8.3, 7.7, 8.1};
   FunctionSurface s(grid(17, 17, 17), [&](const Vec3& p) { return sphere(p, c, 4.6); });
-  const auto r = tetrahedral_mesh(s, TetRefinementOptions{});
+  TetRefinementOptions o = budget();
+  o.outside = true;  // two regions and the box's triangle group
+  const auto r = tetrahedral_mesh(s, o);
+  REQUIRE(std::count(r.mesh.triangle_region.begin(), r.mesh.triangle_region.end(), 2) > 0);
   // In the test's working folder, not the system temporary one.
   const std::filesystem::path dir = "imgmesh_test_volume";
   std::filesystem::create_directories(dir);
@@ -209,5 +317,64 @@ TEST_CASE("refused bounds") {
   CHECK_THROWS_AS(tetrahedral_mesh(s, o), UsageError);
   o.cell_ratio = 2;
   o.cell_size = -1;
+  CHECK_THROWS_AS(tetrahedral_mesh(s, o), UsageError);
+}
+
+TEST_CASE("--outside: a ball in its box, regions 1 and 2 filling the image box") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  const double R = 6.3;
+  FunctionSurface s(grid(21, 21, 21), [&](const Vec3& p) { return sphere(p, c, R); });
+  TetRefinementOptions o = budget();
+  o.outside = true;
+  o.surface.max_distance = 0.1;
+  const auto r = tetrahedral_mesh(s, o);
+  check_outside(s, r, o.cell_ratio);
+  CHECK(r.quality.volume_by_region.at(1) == Approx(4 * M_PI * R * R * R / 3).epsilon(0.03));
+  CHECK(r.box_points > 8);  // the box was split, not only its corners
+  CHECK(r.slivers_left == 0);  // measured: slivers at the box split it too
+}
+
+TEST_CASE("--outside: the surface within one voxel of the box, at a quarter-voxel distance bound") {
+  // Samples 1 and n-2 inside, 0 and n-1 outside: S runs 0.05 voxel from the
+  // outer samples, 0.55 from the box, on all six sides.
+  const Vec3 c{7, 7, 7};
+  FunctionSurface s(grid(15, 15, 15), [&](const Vec3& p) { return sphere(p, c, 6.95); });
+  TetRefinementOptions o = budget();
+  o.outside = true;
+  o.surface.max_distance = 0.25;
+  const auto r = tetrahedral_mesh(s, o);
+  check_outside(s, r, o.cell_ratio);
+}
+
+TEST_CASE("--outside: two balls and a hollow one, cavities in region 2") {
+  FunctionSurface two(grid(25, 15, 15), [](const Vec3& p) {
+    return std::min(sphere(p, {6.2, 7.1, 6.9}, 4.4), sphere(p, {17.3, 7.2, 7.3}, 4.8));
+  });
+  TetRefinementOptions o = budget();
+  o.outside = true;
+  const auto r = tetrahedral_mesh(two, o);
+  check_outside(two, r, o.cell_ratio);
+  CHECK(r.boundary_topology.sorted_euler() == std::vector<long long>{2, 2});
+
+  const Vec3 c{10.2, 9.9, 10.3};
+  FunctionSurface shell(grid(23, 23, 23), [&](const Vec3& p) { return std::abs(sphere(p, c, 6.4)) - 2.3; });
+  o.surface.max_distance = 0.1;
+  const auto h = tetrahedral_mesh(shell, o);
+  o.surface.max_distance = 0;
+  check_outside(shell, h, o.cell_ratio);
+  const double shell_volume = 4 * M_PI * (std::pow(8.7, 3) - std::pow(4.1, 3)) / 3;
+  CHECK(h.quality.volume_by_region.at(1) == Approx(shell_volume).epsilon(0.03));
+
+}
+
+TEST_CASE("--max-cell-points stops cell refinement as a failed guarantee") {
+  FunctionSurface s(grid(17, 17, 17), [](const Vec3& p) { return sphere(p, {8.3, 7.7, 8.1}, 5.6); });
+  TetRefinementOptions o = budget();
+  o.outside = true;
+  o.max_cell_points = 20;
+  const auto r = tetrahedral_mesh(s, o);
+  CHECK(r.cell_points_exhausted);
+  CHECK(r.failed_guarantee().find("--max-cell-points") != std::string::npos);
+  o.max_cell_points = 0;
   CHECK_THROWS_AS(tetrahedral_mesh(s, o), UsageError);
 }
