@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
                       "Seed the domain with a square lattice whose finest side is L, coarsening away from the "
                       "segments (--grading); its right triangles make squares, which tri2quad merges first. "
                       "0: no lattice, Delaunay refinement's own points")
-      ->default_str("the median segment length")
+      ->default_str("half the median segment length, at least its 10th percentile")
       ->type_name("L")
       ->check(CLI::NonNegativeNumber.description(""))
       ->excludes(lattice);
@@ -83,6 +83,7 @@ int main(int argc, char** argv) {
     // The default: a graded square lattice from the curves' own sampling.
     if (opt.lattice <= 0 && square_lattice != 0) {
       opt.lattice = square_lattice > 0 ? square_lattice : default_lattice_side(pslg);
+      opt.lattice_optional = square_lattice < 0;
       opt.square_lattice = opt.lattice > 0;
       if (opt.max_side <= 0) opt.max_side = default_max_side(pslg);
     }

@@ -350,10 +350,14 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
     }
   }
   if (opt.lattice > 0) {
-    const auto lattice =
-        opt.square_lattice
-            ? square_lattice_in_domain(in, cdt, opt.lattice, opt.grading, opt.max_side, opt.max_vertices)
-            : lattice_in_domain(in, cdt, opt.lattice, opt.max_vertices);
+    std::vector<K::Point_2> lattice;
+    try {
+      lattice = opt.square_lattice
+                    ? square_lattice_in_domain(in, cdt, opt.lattice, opt.grading, opt.max_side, opt.max_vertices)
+                    : lattice_in_domain(in, cdt, opt.lattice, opt.max_vertices);
+    } catch (const UsageError&) {
+      if (!opt.lattice_optional) throw;
+    }
     cdt.insert(lattice.begin(), lattice.end());
     res.lattice_points = cdt.number_of_vertices() - res.input_vertices;
   }
@@ -521,10 +525,15 @@ double default_lattice_side(const PlanarMesh& in) {
     if (l > 0 && std::isfinite(l)) lengths.push_back(l);
   }
   if (lengths.empty() || in.points.empty()) return 0;
-  std::nth_element(lengths.begin(), lengths.begin() + long(lengths.size() / 2), lengths.end());
-  // At most 2048 x 2048 lattice nodes, whatever the curves' sampling.
+  std::sort(lengths.begin(), lengths.end());
+  // Half the median: a lattice cell then meets about two cells of its
+  // neighbours' curve, whose band of refinement triangles (the poorer
+  // quads) stays thin; but not below the 10th percentile (pixel staircases
+  // kept whole: the lattice would be finer than the pixels), nor finer
+  // than 2048 x 2048 nodes.
   const auto box = bounding_box(in);
-  return std::max(lengths[lengths.size() / 2], std::max(box[2] - box[0], box[3] - box[1]) / 2048);
+  return std::max({lengths[lengths.size() / 2] / 2, lengths[lengths.size() / 10],
+                   std::max(box[2] - box[0], box[3] - box[1]) / 2048});
 }
 
 double default_max_side(const PlanarMesh& in) {

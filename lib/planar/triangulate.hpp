@@ -38,6 +38,10 @@ struct TriangulateOptions {
   // differ by at most 2x). 0: a uniform lattice.
   double grading = 0;
   double max_side = 0;  // > 0: the coarsest lattice side (default: no bound)
+  // A lattice whose points alone exceed max_vertices is left out (the
+  // refinement then stops at the limit) rather than refused as a usage
+  // error: poly2tri's default lattice, which the user did not ask for.
+  bool lattice_optional = false;
   // Stop refining beyond this many vertices (the result is then reported as
   // not meeting the bounds).
   std::size_t max_vertices = 50'000'000;
@@ -72,9 +76,9 @@ struct TriangulateResult {
   std::string failed_guarantee() const;
 };
 
-// The lattice side poly2tri uses by default: the median length of the input
-// segments (the curves' own sampling, so that the lattice cells next to a
-// curve match its vertices), and at least 1/2048 of the bounding box.
+// The lattice side poly2tri uses by default, from the curves' own sampling:
+// half the median length of the input segments, at least their 10th
+// percentile and 1/2048 of the bounding box.
 double default_lattice_side(const PlanarMesh& pslg);
 // The coarsest side poly2tri allows by default: a tenth of the shorter side
 // of the input's bounding box.
