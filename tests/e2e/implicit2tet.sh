@@ -220,6 +220,8 @@ assert sorted(t["volume_by_region"]) == ["1", "2"], t["volume_by_region"]
 assert abs(t["volume"] - box) <= 1e-6 * box, (t["volume"], box)
 assert abs(t["volume_by_region"]["1"] - t["foreground_voxel_volume"]) <= 0.03 * t["foreground_voxel_volume"]
 PY
+  OUT=info.txt expect 0 meshinfo bunny_out.msh || return
+  grep -Eq '^  volume by region: 1: [0-9.e+-]+ 2: [0-9.e+-]+$' info.txt || fail "meshinfo's text report does not give the volume of each region"
 }
 
 # Every format with both regions and the box's triangle group, read by meshio and gmsh where installed.
