@@ -18,6 +18,8 @@ chain() {
   local p=() t=()
   while (($#)) && [[ $1 != -- ]]; do p+=("$1"); shift; done
   (($#)) && shift && t=("$@")
+  # q() keeps meshinfo's report by file name, and a loop reuses the name.
+  rm -f "$name".*.json
   # shellcheck disable=SC2086  # opts: an option and its value
   expect 0 img2poly "$DATA/$image" "$name.poly" $opts &&
     expect 0 poly2tri "$name.poly" "$name.1.ele" "${p[@]}" &&
@@ -62,17 +64,18 @@ case_lattice_beats_max_edge_on_the_ventricles() {
 # The issue's bar on mean mu (30) through the quad-friendly chain: a square
 # lattice (poly2tri --square-lattice 2) whose right triangles tri2quad
 # merges into squares first (--pair-above 40). The thesis's BFS pairing
-# alone turns much of such a lattice into 45-degree parallelograms.
+# alone turns much of such a lattice into 45-degree parallelograms, which
+# tri2quad's output shows (quadsmooth makes up much of the gap after).
 case_square_lattice_pairs_first_mean_mu_30() {
   local spec image opts
   for spec in "${IMAGES[@]}"; do
     IFS=: read -r image opts <<< "$spec"
     chain "$image" "$opts" s0 --square-lattice 2 || continue
     chain "$image" "$opts" s40 --square-lattice 2 -- --pair-above 40 || continue
-    python3 -c "import sys; m, a, p = map(float, sys.argv[1:]); sys.exit(not (m >= 5 and a >= 30 and a > p + 2))" \
-      "$(q s40.qs.ele min_mu)" "$(q s40.qs.ele mean_mu)" "$(q s0.qs.ele mean_mu)" ||
-      fail "$image, square lattice: min mu $(q s40.qs.ele min_mu), mean $(q s40.qs.ele mean_mu)" \
-           "(without pairs first $(q s0.qs.ele mean_mu))"
+    python3 -c "import sys; m, a, p, f = map(float, sys.argv[1:]); sys.exit(not (m >= 5 and a >= 30 and f > p + 2))" \
+      "$(q s40.qs.ele min_mu)" "$(q s40.qs.ele mean_mu)" "$(q s0.q.ele mean_mu)" "$(q s40.q.ele mean_mu)" ||
+      fail "$image, square lattice: min mu $(q s40.qs.ele min_mu), mean $(q s40.qs.ele mean_mu);" \
+           "tri2quad alone: mean $(q s40.q.ele mean_mu) pairs first, $(q s0.q.ele mean_mu) without"
   done
 }
 
