@@ -5,12 +5,6 @@
 
 namespace imgmesh::surface_detail {
 
-namespace {
-double dist2v(const Vec3& a, const Vec3& b) {
-  return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
-}
-} // namespace
-
 std::array<Vec3, 8> BoxRefinement::corners() const {
   std::array<Vec3, 8> c;
   for (int k = 0; k < 8; ++k) c[std::size_t(k)] = {k & 1 ? hi_[0] : lo_[0], k & 2 ? hi_[1] : lo_[1], k & 4 ? hi_[2] : lo_[2]};
@@ -47,7 +41,7 @@ bool BoxRefinement::segment(Vh a, Vh b, Sub& s) const {
   const Vec3 pa = vec(a->point()), pb = vec(b->point());
   s = {a, b, Vh(), {}, 0};
   for (int i = 0; i < 3; ++i) s.centre[i] = pa[i] == pb[i] ? pa[i] : (pa[i] + pb[i]) / 2;
-  s.r2 = dist2v(pa, pb) / 4;
+  s.r2 = dist2(pa, pb) / 4;
   return true;
 }
 
@@ -63,7 +57,7 @@ bool BoxRefinement::facet(Vh a, Vh b, Vh d, Sub& s) const {
   const Point c = CGAL::circumcenter(a->point(), b->point(), d->point());
   s = {a, b, d, vec(c), 0};
   s.centre[axis] = bound(a->point(), axis) < 0 ? lo_[axis] : hi_[axis];
-  s.r2 = dist2v(s.centre, vec(a->point()));
+  s.r2 = dist2(s.centre, vec(a->point()));
   return true;
 }
 
@@ -99,7 +93,7 @@ void BoxRefinement::subs(const Tr& tr, const std::vector<Ch>& zone, std::vector<
 BoxRefinement::Split BoxRefinement::checked(const Tr& tr, Kind kind, const Vec3& x, Ch near) const {
   const Point p(x[0], x[1], x[2]);
   const Vh nv = tr.nearest_vertex(p, near);
-  if (dist2v(vec(nv->point()), x) < floor_ * floor_) return {kRefused, x, near};
+  if (dist2(vec(nv->point()), x) < floor_ * floor_) return {kRefused, x, near};
   return {kind, x, near};
 }
 
@@ -108,16 +102,17 @@ BoxRefinement::Split BoxRefinement::split_for(const Tr& tr, const Point& c, cons
   subs(tr, zone, segs, facets);
   const Vec3 x = vec(c);
   const Sub* worst = nullptr;
-  auto largest_encroached = [&x](const std::vector<Sub>& v, bool any) {
+  // The largest piece of v whose diametral ball holds y (any: the largest).
+  auto largest_encroached = [](const std::vector<Sub>& v, const Vec3& y, bool any) {
     const Sub* w = nullptr;
     for (const Sub& s : v)
-      if ((any || dist2v(x, s.centre) < s.r2) && (!w || s.r2 > w->r2)) w = &s;
+      if ((any || dist2(y, s.centre) < s.r2) && (!w || s.r2 > w->r2)) w = &s;
     return w;
   };
   // Subsegments before subfacets.
-  if ((worst = largest_encroached(segs, false))) return checked(tr, kSegment, worst->centre, zone.front());
-  worst = largest_encroached(facets, false);
-  if (!worst && !contains(c)) worst = largest_encroached(facets, true);
+  if ((worst = largest_encroached(segs, x, false))) return checked(tr, kSegment, worst->centre, zone.front());
+  worst = largest_encroached(facets, x, false);
+  if (!worst && !contains(c)) worst = largest_encroached(facets, x, true);
   if (!worst) return {contains(c) ? kNone : kRefused, x, zone.front()};  // c stays in B
   // The subfacet's circumcentre p, unless it encroaches a subsegment of its
   // own conflict zone or falls off its face (then the nearest subsegment).
@@ -131,12 +126,10 @@ BoxRefinement::Split BoxRefinement::split_for(const Tr& tr, const Point& c, cons
   tr.find_conflicts(pp, at, CGAL::Emptyset_iterator(), std::back_inserter(pz));
   std::vector<Sub> psegs, pfacets;
   subs(tr, pz, psegs, pfacets);
-  const Sub* seg = nullptr;
-  for (const Sub& s : psegs)
-    if (dist2v(p, s.centre) < s.r2 && (!seg || s.r2 > seg->r2)) seg = &s;
+  const Sub* seg = largest_encroached(psegs, p, false);
   if (!seg && !contains(pp))
     for (const Sub& s : psegs)
-      if (!seg || dist2v(p, s.centre) - s.r2 < dist2v(p, seg->centre) - seg->r2) seg = &s;
+      if (!seg || dist2(p, s.centre) - s.r2 < dist2(p, seg->centre) - seg->r2) seg = &s;
   if (seg) return checked(tr, kSegment, seg->centre, pz.front());
   if (!contains(pp)) return {kRefused, p, at};
   return checked(tr, kFacet, p, pz.front());
