@@ -24,7 +24,7 @@ double d2(const Point& a, const Point& b) { return CGAL::to_double(CGAL::squared
 class CellRefinement {
 public:
   CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt, const BoxRefinement* box)
-      : f_(f), opt_(opt), box_(box) {}
+      : f_(f), opt_(opt), box_(box), guard_(1e-3 * f.grid().delta) {}
 
   // Which side of S a local point is on: f's sign, read off the samples
   // where the cube around q has one sign (no zero there, thesis F1); beyond
@@ -57,7 +57,7 @@ public:
     if (opt_.cell_size > 0 && size > opt_.cell_size) bad = std::max(bad, 1 + size / opt_.cell_size);
     // Slivers under 1e-3 voxel are left: their circumcentres have no other
     // floor (box_refinement.hpp, termination).
-    if (bad == 0 && opt_.sliver_angle > 0 && size >= 1e-3 * f_.grid().delta) {
+    if (bad == 0 && opt_.sliver_angle > 0 && size >= guard_) {
       std::array<double, 3> p[4];
       for (int i = 0; i < 4; ++i) p[i] = vec(c->vertex(i)->point());
       const auto a = tet_dihedral_angles(p[0], p[1], p[2], p[3]);
@@ -131,7 +131,7 @@ private:
   // 1e-3 voxel are left (the insertion floor of box_refinement.hpp).
   bool off_surface_facets(DelMesh& dm) {
     const Tr& tr = dm.triangulation();
-    const double guard2 = std::pow(1e-3 * f_.grid().delta, 2);
+    const double guard2 = guard_ * guard_;
     std::vector<std::pair<double, Vec3>> todo;
     for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it) {
       const FacetInfo& fi = it->first->facet[it->second];
@@ -161,7 +161,7 @@ private:
     const Tr& tr = dm.triangulation();
     queue_ = {};
     for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) push_if_bad(tr, c);
-    const double guard2 = std::pow(1e-3 * f_.grid().delta, 2);
+    const double guard2 = guard_ * guard_;
     bool any = false;
     while (!queue_.empty() && !cap_reached()) {
       const Entry e = queue_.top();
@@ -255,6 +255,9 @@ private:
   const SurfaceSampler& f_;
   const TetRefinementOptions& opt_;
   const BoxRefinement* box_;
+  // No sliver or facet point below 1e-3 voxel (the insertion floor of
+  // box_refinement.hpp's termination argument).
+  const double guard_;
   std::priority_queue<Entry> queue_;
   std::uint64_t seq_ = 0;
   std::vector<Ch> cells_, zone_;
