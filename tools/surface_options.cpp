@@ -44,8 +44,8 @@ SurfaceOptions::SurfaceOptions(cli::Tool& tool, RestrictedDelaunayOptions& opt, 
       ->capture_default_str();
   tool.app.add_option("--roughness", roughness_,
                       "Roughness bound g in degrees (radians as pi/3 or 1.05rad): largest angle between the normals "
-                      "of two " + what + "s sharing an edge (>= 14.8 degrees); 90 leaves one-voxel features of noisy "
-                      "labels unresolved, 60 (the thesis's) resolves each")
+                      "of two " + what + "s sharing an edge (>= 14.8 degrees); 120 and 90 leave one-voxel features of "
+                      "noisy labels unresolved, 60 (the thesis's) resolves each")
       ->type_name("G")
       ->capture_default_str();
   tool.app.add_option("--max-distance", max_distance_,
@@ -77,7 +77,7 @@ void SurfaceOptions::check() const {
     throw UsageError("--roughness " + roughness_ +
                      " is below the termination limit 2(arcsin k + arcsin(2k/sqrt 3)) = 14.8 degrees (0.2587 rad; "
                      "a number without unit is in degrees)");
-  if (max_distance_ != "1/4 voxel") {
+  if (max_distance_ != "0.3 voxel") {
     char* end = nullptr;
     const double e = std::strtod(max_distance_.c_str(), &end);
     if (max_distance_.empty() || end != max_distance_.c_str() + max_distance_.size() || !(e >= 0) ||
@@ -90,7 +90,7 @@ void SurfaceOptions::check() const {
 void SurfaceOptions::resolve(double smallest_spacing) {
   check();
   opt_.roughness = parse_angle(roughness_);
-  opt_.max_distance = max_distance_ == "1/4 voxel" ? smallest_spacing / 4 : std::strtod(max_distance_.c_str(), nullptr);
+  opt_.max_distance = max_distance_ == "0.3 voxel" ? 0.3 * smallest_spacing : std::strtod(max_distance_.c_str(), nullptr);
 }
 
 } // namespace imgmesh

@@ -2,8 +2,8 @@
 // surface (implicit2mesh, implicit2tet, seg2mesh): the same names, units,
 // defaults and checks. The defaults are the tools' (doc/benchmarks.md,
 // issue 17): --ratio 1.2 (smallest angle about 24.6 degrees), --roughness
-// 90 degrees (one-voxel features of noisy labels left unresolved), and
-// --max-distance a quarter of the smallest voxel spacing; the library's
+// 120 degrees (one-voxel features of noisy labels left unresolved), and
+// --max-distance 0.3 of the smallest voxel spacing; the library's
 // RestrictedDelaunayOptions keep the thesis's values.
 #pragma once
 #include "cli/cli.hpp"
@@ -29,8 +29,8 @@ public:
 
 private:
   RestrictedDelaunayOptions& opt_;
-  std::string roughness_ = "90";
-  std::string max_distance_ = "1/4 voxel";
+  std::string roughness_ = "120";
+  std::string max_distance_ = "0.3 voxel";
 };
 
 // An angle of the command line in degrees ("90", "90deg"), or in radians

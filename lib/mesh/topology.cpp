@@ -96,48 +96,58 @@ Json MeshTopology::to_json() const {
   return j;
 }
 
-MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
-                           const std::vector<std::size_t>& offsets) {
+namespace {
+
+// The topology of nf faces whose corners are numbered face by face:
+// corner(i) its vertex, offset(f) the first corner of face f (offset(nf)
+// the number of corners), face_of(i) the face of corner i. Accessors, not
+// arrays, so that a triangle mesh is read in place: this runs beside the
+// mesher's triangulation, at its peak.
+template <class Corner, class Offset, class FaceOf>
+MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset offset, FaceOf face_of) {
   MeshTopology t;
-  if (offsets.empty()) throw Error("no face offsets");
-  const std::size_t nf = offsets.size() - 1;
+  const std::size_t nc = offset(nf);
   for (std::size_t f = 0; f < nf; ++f) {
-    const std::size_t b = offsets[f], e = offsets[f + 1];
-    if (e < b + 3 || e > corners.size()) throw Error("face " + std::to_string(f) + " has fewer than 3 corners");
+    const std::size_t b = offset(f), e = offset(f + 1);  // e >= b + 3: checked by the caller
     for (std::size_t i = b; i < e; ++i) {
-      if (corners[i] < 0 || std::size_t(corners[i]) >= nv)
+      if (corner(i) < 0 || std::size_t(corner(i)) >= nv)
         throw Error("face " + std::to_string(f) + ": vertex id out of range");
       for (std::size_t k = b; k < i; ++k)
-        if (corners[k] == corners[i]) throw Error("face " + std::to_string(f) + ": repeated vertex");
+        if (corner(k) == corner(i)) throw Error("face " + std::to_string(f) + ": repeated vertex");
     }
   }
-  // Half-edges sorted by undirected edge, each with its corner and face (16
-  // bytes: this runs beside the mesher's triangulation, at its peak).
-  if (corners.size() > 0x7fffffffu || nf > 0x7fffffffu) throw Error("topology: more than 2^31 corners");
-  struct HalfEdge { std::uint64_t key; std::uint32_t corner, face; };
+  // Half-edges sorted by undirected edge (lo, hi), each with its corner (12
+  // bytes; the face follows from the corner).
+  if (nc > 0x7fffffffu || nf > 0x7fffffffu) throw Error("topology: more than 2^31 corners");
+  struct HalfEdge {
+    std::uint32_t lo, hi, corner;
+    bool operator<(const HalfEdge& o) const { return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : corner < o.corner; }
+    bool same_edge(const HalfEdge& o) const { return lo == o.lo && hi == o.hi; }
+  };
   std::vector<HalfEdge> he;
-  he.reserve(corners.size());
+  he.reserve(nc);
   for (std::size_t f = 0; f < nf; ++f)
-    for (std::size_t i = offsets[f]; i < offsets[f + 1]; ++i) {
-      const std::size_t j = i + 1 == offsets[f + 1] ? offsets[f] : i + 1;
-      const std::uint32_t a = std::uint32_t(corners[i]), b = std::uint32_t(corners[j]);
-      he.push_back({(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b), std::uint32_t(i), std::uint32_t(f)});
+    for (std::size_t i = offset(f); i < offset(f + 1); ++i) {
+      const std::size_t j = i + 1 == offset(f + 1) ? offset(f) : i + 1;
+      const std::uint32_t a = std::uint32_t(corner(i)), b = std::uint32_t(corner(j));
+      he.push_back({std::min(a, b), std::max(a, b), std::uint32_t(i)});
     }
-  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return x.key != y.key ? x.key < y.key : x.corner < y.corner;
-  });
-  auto next_corner = [&](const HalfEdge& h) { return h.corner + 1 == offsets[h.face + 1] ? offsets[h.face] : h.corner + 1; };
-  auto forward = [&](const HalfEdge& h) { return corners[h.corner] < corners[next_corner(h)]; };
+  std::sort(he.begin(), he.end());
+  auto next_corner = [&](const HalfEdge& h) {
+    const std::size_t f = face_of(h.corner);
+    return h.corner + 1 == offset(f + 1) ? offset(f) : h.corner + 1;
+  };
+  auto forward = [&](const HalfEdge& h) { return corner(h.corner) < corner(next_corner(h)); };
 
-  UnionFind vuf(nv), cuf(corners.size()), buf(nv);
+  UnionFind vuf(nv), cuf(nc), buf(nv);
   ParityUnionFind fuf(nf);
   std::vector<char> used(nv, 0), on_boundary(nv, 0), bad_vertex(nv, 0);
-  for (int v : corners) used[v] = 1;
+  for (std::size_t i = 0; i < nc; ++i) used[std::size_t(corner(i))] = 1;
   std::vector<std::size_t> nonorientable_faces;
   for (std::size_t i = 0; i < he.size();) {
     std::size_t j = i;
-    while (j < he.size() && he[j].key == he[i].key) ++j;
-    const std::uint32_t a = std::uint32_t(he[i].key >> 32), b = std::uint32_t(he[i].key & 0xffffffffu);
+    while (j < he.size() && he[j].same_edge(he[i])) ++j;
+    const std::uint32_t a = he[i].lo, b = he[i].hi;
     vuf.unite(a, b);
     const std::size_t n = j - i;
     if (n == 1) {
@@ -148,11 +158,11 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
       const HalfEdge &h1 = he[i], &h2 = he[i + 1];
       const bool same = forward(h1) == forward(h2);
       if (same) ++t.inconsistent_edges;
-      if (!fuf.unite(h1.face, h2.face, same ? 1 : 0)) nonorientable_faces.push_back(h1.face);
+      if (!fuf.unite(face_of(h1.corner), face_of(h2.corner), same ? 1 : 0)) nonorientable_faces.push_back(face_of(h1.corner));
       // Corners of the same vertex across the edge belong to one fan.
       const std::size_t c1a = h1.corner, c1b = next_corner(h1);
       const std::size_t c2a = h2.corner, c2b = next_corner(h2);
-      if (corners[c1a] == corners[c2a]) { cuf.unite(c1a, c2a); cuf.unite(c1b, c2b); }
+      if (corner(c1a) == corner(c2a)) { cuf.unite(c1a, c2a); cuf.unite(c1b, c2b); }
       else { cuf.unite(c1a, c2b); cuf.unite(c1b, c2a); }
     } else {
       ++t.nonmanifold_edges;
@@ -163,11 +173,11 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
   // A vertex whose corners form more than one fan is non-manifold (bow-tie).
   {
     std::vector<std::uint32_t> fan(nv, 0xffffffffu);  // the fan of the vertex's first corner
-    for (std::size_t i = 0; i < corners.size(); ++i) {
+    for (std::size_t i = 0; i < nc; ++i) {
       const std::uint32_t r = std::uint32_t(cuf.find(i));
-      std::uint32_t& first = fan[std::size_t(corners[i])];
+      std::uint32_t& first = fan[std::size_t(corner(i))];
       if (first == 0xffffffffu) first = r;
-      else if (first != r) bad_vertex[std::size_t(corners[i])] = 1;
+      else if (first != r) bad_vertex[std::size_t(corner(i))] = 1;
     }
   }
   // Components, keyed by the root vertex.
@@ -188,19 +198,19 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
     if (on_boundary[v] && buf.find(v) == v) ++c.boundary_loops;
   }
   auto comp_of = [&](int v) -> ComponentTopology& { return comps[comp_id[vuf.find(std::size_t(v))]]; };
-  for (std::size_t f = 0; f < nf; ++f) ++comp_of(corners[offsets[f]]).faces;
+  for (std::size_t f = 0; f < nf; ++f) ++comp_of(corner(offset(f))).faces;
   for (auto& c : comps) { c.oriented = true; c.orientable = true; c.closed = true; }
   for (std::size_t i = 0; i < he.size();) {
     std::size_t j = i;
-    while (j < he.size() && he[j].key == he[i].key) ++j;
-    auto& c = comp_of(int(he[i].key >> 32));
+    while (j < he.size() && he[j].same_edge(he[i])) ++j;
+    auto& c = comp_of(int(he[i].lo));
     ++c.edges;
     if (j - i == 1) c.closed = false;
     if (j - i > 2) c.manifold = false;
     if (j - i == 2 && forward(he[i]) == forward(he[i + 1])) c.oriented = false;
     i = j;
   }
-  for (std::size_t f : nonorientable_faces) comp_of(corners[offsets[f]]).orientable = false;
+  for (std::size_t f : nonorientable_faces) comp_of(corner(offset(f))).orientable = false;
   for (auto& c : comps) {
     c.euler = (long long)c.vertices - (long long)c.edges + (long long)c.faces;
     if (!c.manifold) c.oriented = c.orientable = false;
@@ -233,6 +243,18 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
   return t;
 }
 
+} // namespace
+
+MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
+                           const std::vector<std::size_t>& offsets) {
+  if (offsets.empty()) throw Error("no face offsets");
+  for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
+    if (offsets[f + 1] < offsets[f] + 3 || offsets[f + 1] > corners.size()) throw Error("face " + std::to_string(f) + " has fewer than 3 corners");
+  return topology_of(
+      nv, offsets.size() - 1, [&](std::size_t i) { return corners[i]; }, [&](std::size_t f) { return offsets[f]; },
+      [&](std::size_t i) { return std::size_t(std::upper_bound(offsets.begin(), offsets.end(), i) - offsets.begin()) - 1; });
+}
+
 MeshTopology mesh_topology(std::size_t nv, const std::vector<std::vector<int>>& faces) {
   std::vector<int> corners;
   std::vector<std::size_t> offsets{0};
@@ -244,15 +266,9 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<std::vector<int>>& 
 }
 
 MeshTopology mesh_topology(std::size_t nv, const std::vector<std::array<int, 3>>& triangles) {
-  std::vector<int> corners;
-  corners.reserve(3 * triangles.size());
-  std::vector<std::size_t> offsets{0};
-  offsets.reserve(triangles.size() + 1);
-  for (const auto& t : triangles) {
-    corners.insert(corners.end(), t.begin(), t.end());
-    offsets.push_back(corners.size());
-  }
-  return mesh_topology(nv, corners, offsets);
+  return topology_of(
+      nv, triangles.size(), [&](std::size_t i) { return triangles[i / 3][i % 3]; }, [](std::size_t f) { return 3 * f; },
+      [](std::size_t i) { return i / 3; });
 }
 
 namespace {

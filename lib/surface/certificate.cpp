@@ -1,7 +1,6 @@
 #include "surface/certificate.hpp"
 
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <set>
 
@@ -30,19 +29,29 @@ std::vector<Facet> restricted_facets(const Tr& tr) {
 }
 
 namespace {
-// The triangles at each edge: (edge_key, triangle) for every side of every
-// triangle, sorted, so those of one edge are adjacent and in triangle
-// order. 16 bytes a side, where a hash map of vectors took about 100 an
-// edge.
-using EdgeSides = std::vector<std::pair<long long, int>>;
-EdgeSides edge_sides(const std::vector<std::array<int, 3>>& triangles) {
-  EdgeSides sides;
-  sides.reserve(3 * triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) sides.emplace_back(edge_key(triangles[t][k], triangles[t][(k + 1) % 3]), int(t));
-  std::sort(sides.begin(), sides.end());
-  return sides;
-}
+// The triangles at each vertex, in triangle order (counted, then placed):
+// 4 bytes a corner, where (edge, triangle) pairs sorted took 16 a corner
+// beside the triangulation at the run's peak. The triangles at edge (a, b)
+// are those of a that hold b, so they come in triangle order too.
+struct VertexTriangles {
+  const std::vector<std::array<int, 3>>& triangles;
+  std::vector<std::uint32_t> start, tris;
+  VertexTriangles(std::size_t nv, const std::vector<std::array<int, 3>>& ts)
+      : triangles(ts), start(nv + 1, 0), tris(3 * ts.size()) {
+    for (const auto& t : ts)
+      for (int v : t) ++start[std::size_t(v) + 1];
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::uint32_t> at(start.begin(), start.end() - 1);
+    for (std::size_t t = 0; t < ts.size(); ++t)
+      for (int v : ts[t]) tris[at[std::size_t(v)]++] = std::uint32_t(t);
+  }
+  template <class F> void at_edge(int a, int b, F f) const {
+    for (std::uint32_t i = start[std::size_t(a)]; i < start[std::size_t(a) + 1]; ++i) {
+      const auto& t = triangles[tris[i]];
+      if (t[0] == b || t[1] == b || t[2] == b) f(int(tris[i]));
+    }
+  }
+};
 } // namespace
 
 ExpectedTopology expected_topology(const CubeGrid& grid) {
@@ -57,6 +66,10 @@ ExpectedTopology expected_topology(const CubeGrid& grid) {
     for (int a = 0; a < 3; ++a) cube[a] = std::clamp(long(k[a]) - 1, 0L, grid.n[a] - 2);
     e.s_component.push_back(grid.comp_of(cube[0], cube[1], cube[2]));
   }
+  // From here on only the corners' places are read (match_components): the
+  // quads are not held through the run (brain label 4: 2.9 MB).
+  std::vector<int>().swap(e.boundary.corners);
+  std::vector<std::size_t>().swap(e.boundary.offsets);
   return e;
 }
 
@@ -78,7 +91,6 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
   mesh.points.reserve(used);
   cert.vertex_comp.reserve(used);
   mesh.triangles.reserve(fs.size());
-  cert.centers.reserve(fs.size());
   for (const Facet& f : fs) {
     std::array<int, 3> t;
     const std::array<Vh, 3> vs = facet_vertices(f.first, f.second);
@@ -96,12 +108,11 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
     const FacetInfo& fi = f.first->facet[f.second];
     if (dot(n, Vec3{fi.grad[0], fi.grad[1], fi.grad[2]}) < 0) std::swap(t[1], t[2]);
     mesh.triangles.push_back(t);
-    cert.centers.push_back(facet_center(f));
   }
   // Make orientation consistent per mesh component (BFS), by majority.
   {
     const std::size_t nt = mesh.triangles.size();
-    const EdgeSides by_edge = edge_sides(mesh.triangles);
+    const VertexTriangles at(mesh.points.size(), mesh.triangles);
     std::vector<int> flip(nt, -1);
     for (std::size_t s0 = 0; s0 < nt; ++s0) {
       if (flip[s0] >= 0) continue;
@@ -114,11 +125,8 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
         if (flip[t]) std::swap(tt[1], tt[2]);
         for (int k = 0; k < 3; ++k) {
           const int a = tt[k], b = tt[(k + 1) % 3];
-          const long long key = edge_key(a, b);
-          for (auto it = std::lower_bound(by_edge.begin(), by_edge.end(), std::make_pair(key, INT_MIN));
-               it != by_edge.end() && it->first == key; ++it) {
-            const int u = it->second;
-            if (u == t || flip[u] >= 0) continue;
+          at.at_edge(a, b, [&](int u) {
+            if (u == t || flip[u] >= 0) return;
             // u must traverse the edge as (b, a).
             const auto& tu = mesh.triangles[u];
             bool forward = false;
@@ -126,7 +134,7 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
             flip[u] = forward ? 1 : 0;
             members.push_back(u);
             stack.push_back(u);
-          }
+          });
         }
       }
       long long agree = 0;
@@ -138,6 +146,9 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
       if (flip[t] == 1) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
   }
   check_certificate(cert, grid, expected);
+  // After the check, which is the run's peak (beside the triangulation).
+  cert.centers.reserve(fs.size());
+  for (const Facet& f : fs) cert.centers.push_back(facet_center(f));
   return cert;
 }
 
@@ -189,23 +200,25 @@ MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sample
   double max_f = 0, max_rough = 0, max_dist = 0;
   for (const Vec3& p : mesh.points) max_f = std::max(max_f, std::abs(sampler.value(p)));
   {
-    std::vector<Vec3> nrm(mesh.triangles.size());
-    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+    auto unit_normal = [&](std::size_t k) {
       const auto& t = mesh.triangles[k];
       Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
       const double nl = norm(n);
       if (nl > 0) n = {n[0] / nl, n[1] / nl, n[2] / nl};
-      nrm[k] = n;
-    }
-    // Roughness at the edges of exactly two triangles.
-    const EdgeSides sides = edge_sides(mesh.triangles);
-    for (std::size_t i = 0; i < sides.size();) {
-      std::size_t j = i;
-      while (j < sides.size() && sides[j].first == sides[i].first) ++j;
-      if (j - i == 2)
-        max_rough = std::max(max_rough, std::acos(std::clamp(dot(nrm[std::size_t(sides[i].second)], nrm[std::size_t(sides[i + 1].second)]), -1.0, 1.0)));
-      i = j;
-    }
+      return n;
+    };
+    // Roughness at the edges of exactly two triangles, from the first.
+    const VertexTriangles at(mesh.points.size(), mesh.triangles);
+    for (std::size_t k = 0; k < mesh.triangles.size(); ++k)
+      for (int e = 0; e < 3; ++e) {
+        int n = 0, other = -1;
+        at.at_edge(mesh.triangles[k][e], mesh.triangles[k][(e + 1) % 3], [&](int u) {
+          ++n;
+          if (u != int(k)) other = u;
+        });
+        if (n == 2 && other > int(k))
+          max_rough = std::max(max_rough, std::acos(std::clamp(dot(unit_normal(k), unit_normal(std::size_t(other))), -1.0, 1.0)));
+      }
     for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
       const auto& t = mesh.triangles[k];
       const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));

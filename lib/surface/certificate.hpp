@@ -18,8 +18,8 @@ namespace imgmesh::surface_detail {
 // The restricted facets in a deterministic order (by vertex ids).
 std::vector<Facet> restricted_facets(const Tr& tr);
 
-// bdCA(X) for X = {g < 0}: its quads, components and Euler characteristics,
-// and per component the S component (cube-grid numbering) of the active cube
+// bdCA(X) for X = {g < 0}: its corners (the quads, once counted, are
+// dropped), components and Euler characteristics, and per component the S component (cube-grid numbering) of the active cube
 // around one of its corners, to name what the repairs refine.
 struct ExpectedTopology {
   VoxelBoundary boundary;
