@@ -18,6 +18,7 @@ Json SmoothStats::to_json() const {
   ops["rejected_moves"] = rejected;
   ops["worst_mu_climbs"] = optimized;
   ops["edge_moves"] = edge_moves;
+  ops["mean_mu_climbs"] = mean_climbs;
   ops["diagonal_swaps"] = swaps;
   ops["valence_swaps"] = valence_swaps;
   ops["pair_splits"] = splits;
@@ -77,6 +78,7 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
     swap_pass(qm, st);
     doublet_pass(qm, st);
   }
+  for (int r = 0; passes > 0 && r < opt.mean_rounds; ++r) mean_pass(qm, st);
   qm.compact();
   st.after = quality_report(mesh);
   return st;

@@ -192,6 +192,67 @@ bool optimize_star(QuadMesh& qm, int v, double h2) {
   return true;
 }
 
+bool raise_mean(QuadMesh& qm, int v, double h2) {
+  std::vector<Point2>& P = qm.points;
+  const std::vector<int>& qs = qm.vertex_quads[v];
+  double worst0 = 2, sum0 = 0;
+  for (int q : qs) {
+    worst0 = std::min(worst0, qm.quad_sin_mu[q]);
+    sum0 += qm.quad_sin_mu[q];
+  }
+  if (!(worst0 > 0)) return false;
+  const Point2 start = P[v];
+  Point2 p = start;
+  double best = sum0, h = 0.125 * std::sqrt(h2);
+  int first = 0;
+  for (int round = 0; round < kOptimizeRounds; ++round) {
+    bool improved = false;
+    for (int k = 0; k < 8 && !improved; ++k) {
+      const int d = (first + k) & 7;
+      P[v] = {p[0] + h * kCompass[d][0], p[1] + h * kCompass[d][1]};
+      // sin(mu) is concave on [0, 45] degrees: its sum also evens the quads out.
+      double sum = 0;
+      bool ok = true;
+      for (int q : qs) {
+        const double sq = qm.sin_mu_of(qm.quads[q]);
+        if (sq < worst0) { ok = false; break; }
+        sum += sq;
+      }
+      if (!ok || !(sum > best * (1 + 1e-12))) continue;
+      for (int q : qs) ok = ok && qm.convex(qm.quads[q]);
+      if (!ok) continue;
+      best = sum;
+      p = P[v];
+      first = d;
+      improved = true;
+    }
+    P[v] = p;
+    if (!improved) h *= 0.5;
+  }
+  if (!(best > sum0 * (1 + 1e-9))) { P[v] = start; return false; }
+  P[v] = p;
+  for (int q : qs) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
+  return true;
+}
+
+void mean_pass(QuadMesh& qm, SmoothStats& st) {
+  const std::vector<Point2>& P = qm.points;
+  // Vertex by vertex in id order (Gauss-Seidel, one thread: the result
+  // cannot depend on --threads); stars whose quads are all near squares
+  // (mu >= 40) are left alone, which keeps the pass cheap on good meshes.
+  constexpr double kGood = 0.6427876096865393;  // sin(40 deg)
+  for (int v = 0; v < int(P.size()); ++v) {
+    if (qm.fixed[v] || qm.vertex_dead[v] || qm.vertex_quads[v].size() < 3) continue;
+    double worst = 2;
+    for (int q : qm.vertex_quads[v]) worst = std::min(worst, qm.quad_sin_mu[q]);
+    if (worst >= kGood) continue;
+    const Quad& first = qm.quads[qm.vertex_quads[v][0]];
+    const Point2& x = P[first[0] == v ? first[1] : first[0]];
+    const double h2 = (x[0] - P[v][0]) * (x[0] - P[v][0]) + (x[1] - P[v][1]) * (x[1] - P[v][1]);
+    if (raise_mean(qm, v, h2)) ++st.mean_climbs;
+  }
+}
+
 bool optimize_edge(QuadMesh& qm, int u, int v, double h) {
   std::vector<Point2>& P = qm.points;
   std::vector<int> qs = qm.vertex_quads[u];

@@ -189,6 +189,12 @@ bool try_move(QuadMesh& qm, int v, Point2 p, bool slide_line, const Slide* s);
 // Compass search on the energy sum 1/sin(mu) around v (a soft minimum), the
 // worst mu never dropping; h2: a squared edge length around v.
 bool optimize_star(QuadMesh& qm, int v, double h2);
+// Beyond the thesis: a compass search on the sum of sin(mu) around v (the
+// mean quality), no quad around becoming non-convex or worse than the worst
+// mu around v before; true if v moved.
+bool raise_mean(QuadMesh& qm, int v, double h2);
+// raise_mean on every free vertex next to a quad of mu below 40 degrees.
+void mean_pass(QuadMesh& qm, SmoothStats& st);
 // The same moving the two free ends u, v of an edge together, step h.
 bool optimize_edge(QuadMesh& qm, int u, int v, double h);
 // One guarded angle-based move then (once qm.climb) the compass search;
