@@ -154,6 +154,29 @@ bool guarded_energy(const QuadMesh& qm, const std::vector<int>& qs, double floor
   return true;
 }
 
+// The compass search of the climbs below, on a point s from s0 (a vertex's
+// place, or the displacement of an edge's two ends): the eight directions
+// at step h polled from the last one that gained (opportunistic);
+// place(c) puts the moving vertices at candidate c, gains() judges them
+// there (keeping its new best if so); a round without a gain halves h.
+// Returns the last s that gained, the vertices placed at it.
+template <class Place, class Gains>
+Point2 compass_search(Point2 s, double h, int rounds, Place place, Gains gains) {
+  int first = 0;
+  for (int round = 0; round < rounds; ++round) {
+    bool improved = false;
+    for (int k = 0; k < 8 && !improved; ++k) {
+      const int d = (first + k) & 7;
+      const Point2 c{s[0] + h * kCompass[d][0], s[1] + h * kCompass[d][1]};
+      place(c);
+      if (gains()) { s = c; first = d; improved = true; }
+    }
+    place(s);
+    if (!improved) h *= 0.5;
+  }
+  return s;
+}
+
 } // namespace
 
 bool optimize_star(QuadMesh& qm, int v, double h2) {
@@ -165,29 +188,14 @@ bool optimize_star(QuadMesh& qm, int v, double h2) {
   }
   if (worst0 >= kOptimizeBelow || !(worst0 > 0)) return false;
   const Point2 start = P[v];
-  Point2 p = start;
-  double best = energy0, h = 0.25 * std::sqrt(h2);
-  // Opportunistic polling: the first direction that lowers the energy is
-  // taken, and polled first again from the new point.
-  int first = 0;
-  for (int round = 0; round < kOptimizeRounds; ++round) {
-    bool improved = false;
-    for (int k = 0; k < 8 && !improved; ++k) {
-      const int d = (first + k) & 7;
-      P[v] = {p[0] + h * kCompass[d][0], p[1] + h * kCompass[d][1]};
-      double e;
-      if (guarded_energy(qm, qm.vertex_quads[v], worst0, best * (1 - 1e-12), e)) {
-        best = e;
-        p = P[v];
-        first = d;
-        improved = true;
-      }
-    }
-    P[v] = p;
-    if (!improved) h *= 0.5;
-  }
+  double best = energy0;
+  compass_search(start, 0.25 * std::sqrt(h2), kOptimizeRounds, [&](const Point2& c) { P[v] = c; }, [&] {
+    double e;
+    if (!guarded_energy(qm, qm.vertex_quads[v], worst0, best * (1 - 1e-12), e)) return false;
+    best = e;
+    return true;
+  });
   if (!(best < energy0 * (1 - 1e-9))) { P[v] = start; return false; }
-  P[v] = p;
   for (int q : qm.vertex_quads[v]) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
   return true;
 }
@@ -202,35 +210,22 @@ bool raise_mean(QuadMesh& qm, int v, double h2) {
   }
   if (!(worst0 > 0)) return false;
   const Point2 start = P[v];
-  Point2 p = start;
-  double best = sum0, h = 0.125 * std::sqrt(h2);
-  int first = 0;
-  for (int round = 0; round < kOptimizeRounds; ++round) {
-    bool improved = false;
-    for (int k = 0; k < 8 && !improved; ++k) {
-      const int d = (first + k) & 7;
-      P[v] = {p[0] + h * kCompass[d][0], p[1] + h * kCompass[d][1]};
-      // sin(mu) is concave on [0, 45] degrees: its sum also evens the quads out.
-      double sum = 0;
-      bool ok = true;
-      for (int q : qs) {
-        const double sq = qm.sin_mu_of(qm.quads[q]);
-        if (sq < worst0) { ok = false; break; }
-        sum += sq;
-      }
-      if (!ok || !(sum > best * (1 + 1e-12))) continue;
-      for (int q : qs) ok = ok && qm.convex(qm.quads[q]);
-      if (!ok) continue;
-      best = sum;
-      p = P[v];
-      first = d;
-      improved = true;
+  double best = sum0;
+  compass_search(start, 0.125 * std::sqrt(h2), kOptimizeRounds, [&](const Point2& c) { P[v] = c; }, [&] {
+    // sin(mu) is concave on [0, 45] degrees: its sum also evens the quads out.
+    double sum = 0;
+    for (int q : qs) {
+      const double sq = qm.sin_mu_of(qm.quads[q]);
+      if (sq < worst0) return false;
+      sum += sq;
     }
-    P[v] = p;
-    if (!improved) h *= 0.5;
-  }
+    if (!(sum > best * (1 + 1e-12))) return false;
+    for (int q : qs)
+      if (!qm.convex(qm.quads[q])) return false;
+    best = sum;
+    return true;
+  });
   if (!(best > sum0 * (1 + 1e-9))) { P[v] = start; return false; }
-  P[v] = p;
   for (int q : qs) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
   return true;
 }
@@ -265,23 +260,18 @@ bool optimize_edge(QuadMesh& qm, int u, int v, double h) {
   }
   if (worst0 >= kOptimizeBelow || !(worst0 > 0)) return false;
   const Point2 su = P[u], sv = P[v];
-  Point2 d{0, 0};  // the displacement so far
   double best = energy0;
-  int first = 0;
-  for (int round = 0; round < 2 * kOptimizeRounds; ++round) {
-    bool improved = false;
-    for (int k = 0; k < 8 && !improved; ++k) {
-      const int dk = (first + k) & 7;
-      const Point2 c{d[0] + h * kCompass[dk][0], d[1] + h * kCompass[dk][1]};
-      P[u] = {su[0] + c[0], su[1] + c[1]};
-      P[v] = {sv[0] + c[0], sv[1] + c[1]};
-      double e;
-      if (guarded_energy(qm, qs, worst0, best * (1 - 1e-12), e)) { best = e; d = c; first = dk; improved = true; }
-    }
-    P[u] = {su[0] + d[0], su[1] + d[1]};
-    P[v] = {sv[0] + d[0], sv[1] + d[1]};
-    if (!improved) h *= 0.5;
-  }
+  compass_search(Point2{0, 0}, h, 2 * kOptimizeRounds,
+                 [&](const Point2& d) {  // the displacement of both ends
+                   P[u] = {su[0] + d[0], su[1] + d[1]};
+                   P[v] = {sv[0] + d[0], sv[1] + d[1]};
+                 },
+                 [&] {
+                   double e;
+                   if (!guarded_energy(qm, qs, worst0, best * (1 - 1e-12), e)) return false;
+                   best = e;
+                   return true;
+                 });
   if (!(best < energy0 * (1 - 1e-9))) {
     P[u] = su;
     P[v] = sv;
