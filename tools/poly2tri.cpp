@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
                       "Seed the domain with a square lattice whose finest side is L, coarsening away from the "
                       "segments (--grading); its right triangles make squares, which tri2quad merges first. "
                       "0: no lattice, Delaunay refinement's own points")
-      ->default_str("the median segment length, at least twice its 10th percentile")
+      ->default_str("half the median segment length, at least twice its 10th percentile")
       ->type_name("L")
       ->check(CLI::NonNegativeNumber.description(""))
       ->excludes(lattice);

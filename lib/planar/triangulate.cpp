@@ -526,13 +526,13 @@ double default_lattice_side(const PlanarMesh& in) {
   }
   if (lengths.empty() || in.points.empty()) return 0;
   std::sort(lengths.begin(), lengths.end());
-  // The median, at least twice the 10th percentile: a lattice cell then
-  // meets about one segment of its curve, and two pixels of a staircase
-  // (half the median, at least the 10th percentile, gave 2.5-6.6 times
-  // main's quads through the default chain on the bundled images, for
-  // 0-1.4 degrees more mean mu); not finer than 2048 x 2048 nodes.
+  // Half the median, at least twice the 10th percentile: a lattice cell
+  // then meets about two segments of its curve, and two pixels of a
+  // staircase (the 10th percentile alone gave 2.5-6.6 times main's quads
+  // through the default chain on the bundled images, for 0-1.4 degrees
+  // more mean mu); not finer than 2048 x 2048 nodes.
   const auto box = bounding_box(in);
-  return std::max({lengths[lengths.size() / 2], 2 * lengths[lengths.size() / 10],
+  return std::max({lengths[lengths.size() / 2] / 2, 2 * lengths[lengths.size() / 10],
                    std::max(box[2] - box[0], box[3] - box[1]) / 2048});
 }
 

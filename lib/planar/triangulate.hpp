@@ -77,7 +77,7 @@ struct TriangulateResult {
 };
 
 // The lattice side poly2tri uses by default, from the curves' own sampling:
-// the median length of the input segments, at least twice their 10th
+// half the median length of the input segments, at least twice their 10th
 // percentile and 1/2048 of the bounding box.
 double default_lattice_side(const PlanarMesh& pslg);
 // The coarsest side poly2tri allows by default: a tenth of the shorter side
