@@ -57,9 +57,9 @@ struct SmoothOptions {
   bool slide_boundary = false;  // boundary/constrained vertices may slide along their own straight segment
   int threads = 1;              // smoothing threads; the result does not depend on it
   // Pair splits are tried on quads with mu below this (degrees): higher
-  // values give better angles and more quads. 25: about 1.3 times the quads
-  // of 15 on the bundled images' default chain and on Gmsh triangulations,
-  // for 1-3 degrees more mean mu (the bar of 30), at 3-5 times the time.
+  // values give better angles and more quads. 25: 1.07-1.09 times the
+  // quads of 15 on the bundled images' default chain, for 0.1-0.7 degrees
+  // more mean mu (the bar of 30), at about twice the time.
   double split_below = 25;
   // Beyond the thesis: rounds of a pass that raises the mean mu vertex by
   // vertex (a compass search on the sum of sin(mu) around each, the worst
