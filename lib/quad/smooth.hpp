@@ -23,7 +23,9 @@
 //         squashed quad or two facing valence-3
 //         vertices (undone if worse)                    smooth_collapse.cpp
 //       for each free vertex of valence 2: remove the
-//         doublet (merge its two quads)                 smooth_doublet.cpp
+//         doublet (merge its two quads); of valence 3
+//         splitting a sharp fixed corner: its three
+//         quads become two (undone if not better)       smooth_doublet.cpp
 //       for each poor quad with two flat free corners:
 //         move them together (compass search)          smooth_angle.cpp
 //       colour again if the topology changed
@@ -78,6 +80,7 @@ struct SmoothStats {
   std::size_t edge_moves = 0;  // guarded climbs moving both free, flat ends of an edge of a poor quad
   std::size_t mean_climbs = 0; // vertices the mean pass moved
   std::size_t swaps = 0, doublets = 0, collapses = 0;
+  std::size_t sharp_corners = 0;      // valence-3 vertices removed to leave a sharp corner one quad
   std::size_t valence_swaps = 0;      // of the swaps, those taken to make valences regular
   std::size_t valence_collapses = 0;  // of the collapses, those of two valence-3 vertices
   std::size_t splits = 0;      // quad pairs split into three around a new point, or into four around two

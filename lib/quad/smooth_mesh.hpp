@@ -238,6 +238,13 @@ int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]);
 // Removes the free valence-2 vertex v by merging its two quads, if the
 // merged quad is strictly convex and no worse; true if done.
 bool remove_doublet(QuadMesh& qm, int v);
+// Beyond the thesis: removes the free valence-3 vertex m when two of its
+// quads share a fixed corner c whose angle wants one quad (a sharp input
+// corner split in two, each quad's mu then at most a quarter of c's angle):
+// its three quads become two, c in one, by the hexagon's diagonal beside c.
+// Taken if, once the patch is relaxed, its worst mu rose; true if done.
+bool open_sharp_corner(QuadMesh& qm, int m);
+// remove_doublet, else open_sharp_corner, on every vertex.
 void doublet_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_collapse.cpp ---------------------------------------------------

@@ -13,6 +13,7 @@
 set -euo pipefail
 BIN=${1:?usage: quadsmooth.sh TOOL_FOLDER}
 DATA=$(cd "$(dirname "$0")/../../share/data" && pwd)
+E2E=$(cd "$(dirname "$0")/../../tests/e2e" && pwd)  # before the cd below: $0 may be relative
 work=$(mktemp -d "${TMPDIR:-/tmp}/quadsmooth-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -255,7 +256,6 @@ done
 # quadsmooth on them, beside Gmsh's Blossom recombination of the same
 # triangles and Gmsh's own geometry-to-quads pipeline on the same geometry.
 if command -v gmsh > /dev/null; then
-  E2E=$(cd "$(dirname "$0")/../../tests/e2e" && pwd)
   for geo in holes inclusion; do
     cp "$E2E/$geo.geo" .
     for size in 0.4 0.2; do

@@ -624,6 +624,33 @@ TEST_CASE("doublet removal merges the two quads of a valence-2 vertex into a str
   CHECK(total_area(m) == Approx(4));
 }
 
+TEST_CASE("a sharp corner split by a valence-3 vertex is left one quad", "[smooth]") {
+  // A convex hexagon c, h1..h5 with a 30-degree corner at c (every vertex
+  // fixed, on the boundary) around the free m, whose three quads split c's
+  // corner 17.7 / 12.3 degrees: the two quads (h5, c, h1, h2) and
+  // (h2, h3, h4, h5) keep c's whole angle in one.
+  PlanarMesh m;
+  m.points = {{0, 0}, {3, 0}, {4.5, 0.6}, {5.6, 1.8}, {5.5, 2.9}, {3.9, 2.25}, {2.5, 0.8}};
+  m.elements = {{6, 0, 1, 2}, {6, 2, 3, 4}, {6, 4, 5, 0}};
+  const double area = total_area(m);
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE_FALSE(qm.fixed[6]);
+  double worst_before = 2;
+  for (double s : qm.quad_sin_mu) worst_before = std::min(worst_before, s);
+  CHECK_FALSE(qs::open_sharp_corner(qm, 0));  // c itself is fixed
+  REQUIRE(qs::open_sharp_corner(qm, 6));
+  CHECK(qm.vertex_dead[6]);
+  CHECK(qm.vertex_quads[0].size() == 1);
+  CHECK(live_quads_strictly_convex(qm));
+  qm.compact();
+  REQUIRE(m.elements.size() == 2);
+  REQUIRE(m.points.size() == 6);
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(total_area(m) == Approx(area));
+  for (const auto& e : m.elements) CHECK(std::sin(quad_mu(m, e) * (3.14159265358979323846 / 180)) > worst_before);
+}
+
 TEST_CASE("doublet removal is refused when the merged quad would not be strictly convex", "[smooth]") {
   // v on the segment a-c; the merged quad (a, b, c, d) would be reflex at c.
   PlanarMesh m;
