@@ -104,32 +104,64 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   // Rows: the a-interval where every half-plane holds.
   thread_local std::vector<long> lo, hi;
   thread_local std::vector<double> alo_row, ahi_row;  // h's exact border on each row
-  lo.assign(nb, 0);
-  hi.assign(nb, -1);
-  alo_row.assign(nb, 0);
-  ahi_row.assign(nb, 0);
-  long rows_used = 0;
   // The half-planes by the sign of A, sorted once (not tested per row):
   // each row's bounds are the same min and max, in the same order.
   thread_local std::vector<HP> hp_hi, hp_lo, hp_flat;
-  hp_hi.clear();
-  hp_lo.clear();
-  hp_flat.clear();
-  for (const HP& h : hp) (h.A > 1e-15 ? hp_hi : h.A < -1e-15 ? hp_lo : hp_flat).push_back(h);
-  for (long j = 0; j < nb; ++j) {
-    const double b = b0 + j * step;
-    bool empty = false;
-    for (const HP& h : hp_flat) empty = empty || h.C - h.B * b < 0;
-    if (empty) continue;
-    double alo = a0, ahi = a1;
-    for (const HP& h : hp_hi) ahi = std::min(ahi, (h.C - h.B * b) / h.A);
-    for (const HP& h : hp_lo) alo = std::max(alo, (h.C - h.B * b) / h.A);
-    if (!(alo <= ahi)) continue;
-    alo_row[j] = alo;
-    ahi_row[j] = ahi;
-    lo[j] = ceil_long((alo - a0) / step);
-    hi[j] = floor_long((ahi - a0) / step);
-    if (hi[j] >= lo[j]) ++rows_used;
+  const double b_last = b0 + double(nb - 1) * step;
+  // A box half-plane that holds with room to spare at the rows' rectangle
+  // [a0, a1] x [b0, b_last] (it is linear: at its corners) changes no row's
+  // bounds, which start at a0 and a1: skipped unless `all` (most facets lie
+  // well inside the box, and the box was half of the half-planes).
+  auto loose = [&](const HP& h) {
+    const double a = h.A > 1e-15 ? a1 : h.A < -1e-15 ? a0 : 0;
+    for (double b : {b0, b_last})
+      if (!(h.C - h.B * b - h.A * a > 1e-9 * (std::abs(h.C) + std::abs(h.B * b) + std::abs(h.A * a)) + 1e-12 * grid.delta))
+        return false;
+    return true;
+  };
+  const std::size_t box_from = hp.size() - 6;  // the box's six, last
+  long rows_used = 0;
+  auto rows = [&](bool all) {
+    lo.assign(nb, 0);
+    hi.assign(nb, -1);
+    alo_row.assign(nb, 0);
+    ahi_row.assign(nb, 0);
+    rows_used = 0;
+    hp_hi.clear();
+    hp_lo.clear();
+    hp_flat.clear();
+    for (std::size_t k = 0; k < hp.size(); ++k) {
+      const HP& h = hp[k];
+      if (k >= box_from && !all && loose(h)) continue;
+      (h.A > 1e-15 ? hp_hi : h.A < -1e-15 ? hp_lo : hp_flat).push_back(h);
+    }
+    for (long j = 0; j < nb; ++j) {
+      const double b = b0 + j * step;
+      bool empty = false;
+      for (const HP& h : hp_flat) empty = empty || h.C - h.B * b < 0;
+      if (empty) continue;
+      double alo = a0, ahi = a1;
+      for (const HP& h : hp_hi) ahi = std::min(ahi, (h.C - h.B * b) / h.A);
+      for (const HP& h : hp_lo) alo = std::max(alo, (h.C - h.B * b) / h.A);
+      if (!(alo <= ahi)) continue;
+      alo_row[j] = alo;
+      ahi_row[j] = ahi;
+      lo[j] = ceil_long((alo - a0) / step);
+      hi[j] = floor_long((ahi - a0) / step);
+      if (hi[j] >= lo[j]) ++rows_used;
+    }
+  };
+  if (how == FacetWalk::kCompare) {
+    // The rows with every half-plane: the skipped ones must change nothing.
+    rows(true);
+    const std::vector<long> lo_all = lo, hi_all = hi;
+    const std::vector<double> alo_all = alo_row, ahi_all = ahi_row;
+    rows(false);
+    if (lo != lo_all || hi != hi_all || alo_row != alo_all || ahi_row != ahi_all)
+      throw Error("FacetCycle: the rows without the box's loose half-planes differ (edge " + std::to_string(p->info().id) +
+                  "-" + std::to_string(q->info().id) + ")");
+  } else {
+    rows(false);
   }
   if (rows_used < 3) return kNone;
   // Samples inside h, with their signs, as runs of one sign per row: an
