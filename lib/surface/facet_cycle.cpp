@@ -262,6 +262,31 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     cube_of(point(s0, j), c);
     append(s0, e0, grid.neg(c[0], c[1], c[2]));
   };
+  // Samples s0..e0 of row j in one active cube (xs: sample s0): one run of
+  // the enclosure's sign where the enclosure of f on their bounding box
+  // excludes 0 (tried for 4 samples or more), else halved while 8 or more
+  // (where S crosses near one end, the other half is often decided),
+  // else f's sign at each.
+  auto decide = [&](auto&& self, long s0, long e0, const Vec3& xs) -> void {
+    if (e0 >= s0 + 3) {
+      const Vec3 xe = point(e0, j);
+      Vec3 blo, bhi;
+      for (int k = 0; k < 3; ++k) {
+        blo[k] = std::min(xs[k], xe[k]);
+        bhi[k] = std::max(xs[k], xe[k]);
+      }
+      double flo, fhi;
+      if (f.range(blo, bhi, flo, fhi)) {
+        if (flo > 0 || fhi < 0) return append(s0, e0, fhi < 0);
+        if (e0 >= s0 + 7) {
+          const long mid = s0 + (e0 - s0) / 2;
+          self(self, s0, mid, xs);
+          return self(self, mid + 1, e0, point(mid + 1, j));
+        }
+      }
+    }
+    for (long k = s0; k <= e0; ++k) append(k, k, SurfaceSampler::inside(f.value(k == s0 ? xs : point(k, j))));
+  };
   // Samples s0..e0 of row j, cube by cube.
   auto walk = [&](long s0, long e0) {
     for (long i = s0; i <= e0;) {
@@ -270,9 +295,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       cube_of(x, c);
       long last = i;
       // The samples i..last of the row in this cube: they take one sign, the
-      // corners' in an inactive cube (F1), or in an active one the sign of
-      // the enclosure of f on their bounding box where it excludes 0 (tried
-      // for 4 samples or more); else each takes f's sign.
+      // corners' in an inactive cube (F1); in an active one, see decide.
       {
         // The row leaves the cube at a_exit; the samples before it are in it
         // (a cube is convex; the floor test settles rounding at its faces).
@@ -290,23 +313,8 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
           if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
         }
       }
-      if (!grid.active(c[0], c[1], c[2])) {
-        append(i, last, grid.neg(c[0], c[1], c[2]));
-      } else {
-        double flo = -1, fhi = 1;
-        if (last >= i + 3) {
-          const Vec3 xe = point(last, j);
-          Vec3 blo, bhi;
-          for (int k = 0; k < 3; ++k) {
-            blo[k] = std::min(x[k], xe[k]);
-            bhi[k] = std::max(x[k], xe[k]);
-          }
-          if (!f.range(blo, bhi, flo, fhi)) flo = -1, fhi = 1;
-        }
-        if (flo > 0 || fhi < 0) append(i, last, fhi < 0);
-        else
-          for (long k = i; k <= last; ++k) append(k, k, SurfaceSampler::inside(f.value(k == i ? x : point(k, j))));
-      }
+      if (!grid.active(c[0], c[1], c[2])) append(i, last, grid.neg(c[0], c[1], c[2]));
+      else decide(decide, i, last, x);
       i = last + 1;
     }
   };
