@@ -10,16 +10,6 @@
 
 namespace imgmesh::surface_detail {
 
-namespace {
-// std::floor and std::ceil to a long, inline: without SSE4.1 they are libm
-// calls, and FacetCycle takes several per cube step and per row. The same
-// value for |x| < 2^63.
-long floor_long(double x) {
-  const long i = long(x);
-  return i - (double(i) > x);
-}
-long ceil_long(double x) { return -floor_long(-x); }
-} // namespace
 
 // FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
 // dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?

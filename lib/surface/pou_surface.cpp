@@ -2,6 +2,7 @@
 // module (chapter 6) is part of the build.
 #include "implicit/partition_of_unity.hpp"
 #include "surface/implicit_surface.hpp"
+#include "surface/vec3.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +16,8 @@ void cells_meeting(const FloatImage& g, const Vec3& d, const Vec3& a, const Vec3
   for (int i = 0; i < 3; ++i) {
     const double s = g.spacing[i];
     const long cells = long(g.size[i]) - 1;
-    k0[i] = std::clamp(long(std::floor((a[i] - d[i]) / s)), 0L, cells - 1);
-    k1[i] = std::clamp(long(std::floor((b[i] + d[i]) / s)), 0L, cells - 1);
+    k0[i] = std::clamp(surface_detail::floor_long((a[i] - d[i]) / s), 0L, cells - 1);
+    k1[i] = std::clamp(surface_detail::floor_long((b[i] + d[i]) / s), 0L, cells - 1);
   }
 }
 }  // namespace
@@ -107,7 +108,7 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
     const double s = g.spacing[i];
     const long cells = long(g.size[i]) - 1;
     // An inner grid plane within d_i of the box on axis i: the blend term.
-    const long p0 = std::max(1L, long(std::ceil((a[i] - d[i]) / s))), p1 = std::min(cells - 1, long(std::floor((b[i] + d[i]) / s)));
+    const long p0 = std::max(1L, surface_detail::ceil_long((a[i] - d[i]) / s)), p1 = std::min(cells - 1, surface_detail::floor_long((b[i] + d[i]) / s));
     if (p0 <= p1) {
       const double w = kBlendSlope * (h - l);
       l -= w;
