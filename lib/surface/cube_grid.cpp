@@ -65,7 +65,7 @@ void CubeGrid::label() {
 
 int CubeGrid::comp_at(const Vec3& q) const {
   long c[3];
-  for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(q[i] / s[i])), 0L, n[i] - 2);
+  for (int i = 0; i < 3; ++i) c[i] = std::clamp(floor_long(q[i] / s[i]), 0L, n[i] - 2);
   int r = comp_of(c[0], c[1], c[2]);
   if (r >= 0) return r;
   for (int dz = -1; dz <= 1; ++dz)

@@ -47,7 +47,7 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
       if (d[i] == 0) continue;
       const double lo = std::min(a[i] + ta * d[i], a[i] + tb * d[i]);
       const double hi = std::max(a[i] + ta * d[i], a[i] + tb * d[i]);
-      for (long k = long(std::ceil(lo / step[i])); k <= long(std::floor(hi / step[i])); ++k) {
+      for (long k = ceil_long(lo / step[i]); k <= floor_long(hi / step[i]); ++k) {
         const double t = (double(k) * step[i] - a[i]) / d[i];
         if (t > ta && t < tb) ts.push_back(t);
       }
@@ -92,7 +92,7 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
     if (!(tblock[kb + 1] > tblock[kb])) continue;
     const Vec3 mb = at((tblock[kb] + tblock[kb + 1]) / 2);
     long cb[3];
-    for (int i = 0; i < 3; ++i) cb[i] = std::clamp(long(std::floor(mb[i] / bstep[i])), 0L, grid.nb[i] - 1);
+    for (int i = 0; i < 3; ++i) cb[i] = std::clamp(floor_long(mb[i] / bstep[i]), 0L, grid.nb[i] - 1);
     if (!grid.block(cb[0], cb[1], cb[2])) continue;
     breakpoints(tblock[kb], tblock[kb + 1], grid.s, tcube);
     for (std::size_t k = 0; k + 1 < tcube.size(); ++k) {
@@ -100,7 +100,7 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
       if (!(tb > ta)) continue;
       const Vec3 m = at((ta + tb) / 2);
       long c[3];
-      for (int i = 0; i < 3; ++i) c[i] = std::clamp(long(std::floor(m[i] / grid.s[i])), 0L, grid.n[i] - 2);
+      for (int i = 0; i < 3; ++i) c[i] = std::clamp(floor_long(m[i] / grid.s[i]), 0L, grid.n[i] - 2);
       if (!grid.active(c[0], c[1], c[2])) continue;
       decide(ta, tb, 0);
     }

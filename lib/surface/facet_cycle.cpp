@@ -10,16 +10,6 @@
 
 namespace imgmesh::surface_detail {
 
-namespace {
-// std::floor and std::ceil to a long, inline: without SSE4.1 they are libm
-// calls, and FacetCycle takes several per cube step and per row. The same
-// value for |x| < 2^63.
-long floor_long(double x) {
-  const long i = long(x);
-  return i - (double(i) > x);
-}
-long ceil_long(double x) { return -floor_long(-x); }
-} // namespace
 
 // FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
 // dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
@@ -104,32 +94,64 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   // Rows: the a-interval where every half-plane holds.
   thread_local std::vector<long> lo, hi;
   thread_local std::vector<double> alo_row, ahi_row;  // h's exact border on each row
-  lo.assign(nb, 0);
-  hi.assign(nb, -1);
-  alo_row.assign(nb, 0);
-  ahi_row.assign(nb, 0);
-  long rows_used = 0;
   // The half-planes by the sign of A, sorted once (not tested per row):
   // each row's bounds are the same min and max, in the same order.
   thread_local std::vector<HP> hp_hi, hp_lo, hp_flat;
-  hp_hi.clear();
-  hp_lo.clear();
-  hp_flat.clear();
-  for (const HP& h : hp) (h.A > 1e-15 ? hp_hi : h.A < -1e-15 ? hp_lo : hp_flat).push_back(h);
-  for (long j = 0; j < nb; ++j) {
-    const double b = b0 + j * step;
-    bool empty = false;
-    for (const HP& h : hp_flat) empty = empty || h.C - h.B * b < 0;
-    if (empty) continue;
-    double alo = a0, ahi = a1;
-    for (const HP& h : hp_hi) ahi = std::min(ahi, (h.C - h.B * b) / h.A);
-    for (const HP& h : hp_lo) alo = std::max(alo, (h.C - h.B * b) / h.A);
-    if (!(alo <= ahi)) continue;
-    alo_row[j] = alo;
-    ahi_row[j] = ahi;
-    lo[j] = ceil_long((alo - a0) / step);
-    hi[j] = floor_long((ahi - a0) / step);
-    if (hi[j] >= lo[j]) ++rows_used;
+  const double b_last = b0 + double(nb - 1) * step;
+  // A box half-plane that holds with room to spare at the rows' rectangle
+  // [a0, a1] x [b0, b_last] (it is linear: at its corners) changes no row's
+  // bounds, which start at a0 and a1: skipped unless `all` (most facets lie
+  // well inside the box, and the box was half of the half-planes).
+  auto loose = [&](const HP& h) {
+    const double a = h.A > 1e-15 ? a1 : h.A < -1e-15 ? a0 : 0;
+    for (double b : {b0, b_last})
+      if (!(h.C - h.B * b - h.A * a > 1e-9 * (std::abs(h.C) + std::abs(h.B * b) + std::abs(h.A * a)) + 1e-12 * grid.delta))
+        return false;
+    return true;
+  };
+  const std::size_t box_from = hp.size() - 6;  // the box's six, last
+  long rows_used = 0;
+  auto rows = [&](bool all) {
+    lo.assign(nb, 0);
+    hi.assign(nb, -1);
+    alo_row.assign(nb, 0);
+    ahi_row.assign(nb, 0);
+    rows_used = 0;
+    hp_hi.clear();
+    hp_lo.clear();
+    hp_flat.clear();
+    for (std::size_t k = 0; k < hp.size(); ++k) {
+      const HP& h = hp[k];
+      if (k >= box_from && !all && loose(h)) continue;
+      (h.A > 1e-15 ? hp_hi : h.A < -1e-15 ? hp_lo : hp_flat).push_back(h);
+    }
+    for (long j = 0; j < nb; ++j) {
+      const double b = b0 + j * step;
+      bool empty = false;
+      for (const HP& h : hp_flat) empty = empty || h.C - h.B * b < 0;
+      if (empty) continue;
+      double alo = a0, ahi = a1;
+      for (const HP& h : hp_hi) ahi = std::min(ahi, (h.C - h.B * b) / h.A);
+      for (const HP& h : hp_lo) alo = std::max(alo, (h.C - h.B * b) / h.A);
+      if (!(alo <= ahi)) continue;
+      alo_row[j] = alo;
+      ahi_row[j] = ahi;
+      lo[j] = ceil_long((alo - a0) / step);
+      hi[j] = floor_long((ahi - a0) / step);
+      if (hi[j] >= lo[j]) ++rows_used;
+    }
+  };
+  if (how == FacetWalk::kCompare) {
+    // The rows with every half-plane: the skipped ones must change nothing.
+    rows(true);
+    const std::vector<long> lo_all = lo, hi_all = hi;
+    const std::vector<double> alo_all = alo_row, ahi_all = ahi_row;
+    rows(false);
+    if (lo != lo_all || hi != hi_all || alo_row != alo_all || ahi_row != ahi_all)
+      throw Error("FacetCycle: the rows without the box's loose half-planes differ (edge " + std::to_string(p->info().id) +
+                  "-" + std::to_string(q->info().id) + ")");
+  } else {
+    rows(false);
   }
   if (rows_used < 3) return kNone;
   // Samples inside h, with their signs, as runs of one sign per row: an
@@ -230,6 +252,31 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     cube_of(point(s0, j), c);
     append(s0, e0, grid.neg(c[0], c[1], c[2]));
   };
+  // Samples s0..e0 of row j in one active cube (xs: sample s0): one run of
+  // the enclosure's sign where the enclosure of f on their bounding box
+  // excludes 0 (tried for 4 samples or more), else halved while 8 or more
+  // (where S crosses near one end, the other half is often decided),
+  // else f's sign at each.
+  auto decide = [&](auto&& self, long s0, long e0, const Vec3& xs) -> void {
+    if (e0 >= s0 + 3) {
+      const Vec3 xe = point(e0, j);
+      Vec3 blo, bhi;
+      for (int k = 0; k < 3; ++k) {
+        blo[k] = std::min(xs[k], xe[k]);
+        bhi[k] = std::max(xs[k], xe[k]);
+      }
+      double flo, fhi;
+      if (f.range(blo, bhi, flo, fhi)) {
+        if (flo > 0 || fhi < 0) return append(s0, e0, fhi < 0);
+        if (e0 >= s0 + 7) {
+          const long mid = s0 + (e0 - s0) / 2;
+          self(self, s0, mid, xs);
+          return self(self, mid + 1, e0, point(mid + 1, j));
+        }
+      }
+    }
+    for (long k = s0; k <= e0; ++k) append(k, k, SurfaceSampler::inside(f.value(k == s0 ? xs : point(k, j))));
+  };
   // Samples s0..e0 of row j, cube by cube.
   auto walk = [&](long s0, long e0) {
     for (long i = s0; i <= e0;) {
@@ -238,9 +285,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       cube_of(x, c);
       long last = i;
       // The samples i..last of the row in this cube: they take one sign, the
-      // corners' in an inactive cube (F1), or in an active one the sign of
-      // the enclosure of f on their bounding box where it excludes 0 (tried
-      // for 4 samples or more); else each takes f's sign.
+      // corners' in an inactive cube (F1); in an active one, see decide.
       {
         // The row leaves the cube at a_exit; the samples before it are in it
         // (a cube is convex; the floor test settles rounding at its faces).
@@ -258,23 +303,8 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
           if (c2[0] == c[0] && c2[1] == c[1] && c2[2] == c[2]) break;
         }
       }
-      if (!grid.active(c[0], c[1], c[2])) {
-        append(i, last, grid.neg(c[0], c[1], c[2]));
-      } else {
-        double flo = -1, fhi = 1;
-        if (last >= i + 3) {
-          const Vec3 xe = point(last, j);
-          Vec3 blo, bhi;
-          for (int k = 0; k < 3; ++k) {
-            blo[k] = std::min(x[k], xe[k]);
-            bhi[k] = std::max(x[k], xe[k]);
-          }
-          if (!f.range(blo, bhi, flo, fhi)) flo = -1, fhi = 1;
-        }
-        if (flo > 0 || fhi < 0) append(i, last, fhi < 0);
-        else
-          for (long k = i; k <= last; ++k) append(k, k, SurfaceSampler::inside(f.value(k == i ? x : point(k, j))));
-      }
+      if (!grid.active(c[0], c[1], c[2])) append(i, last, grid.neg(c[0], c[1], c[2]));
+      else decide(decide, i, last, x);
       i = last + 1;
     }
   };

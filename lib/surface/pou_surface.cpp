@@ -2,6 +2,7 @@
 // module (chapter 6) is part of the build.
 #include "implicit/partition_of_unity.hpp"
 #include "surface/implicit_surface.hpp"
+#include "surface/vec3.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,8 +16,8 @@ void cells_meeting(const FloatImage& g, const Vec3& d, const Vec3& a, const Vec3
   for (int i = 0; i < 3; ++i) {
     const double s = g.spacing[i];
     const long cells = long(g.size[i]) - 1;
-    k0[i] = std::clamp(long(std::floor((a[i] - d[i]) / s)), 0L, cells - 1);
-    k1[i] = std::clamp(long(std::floor((b[i] + d[i]) / s)), 0L, cells - 1);
+    k0[i] = std::clamp(surface_detail::floor_long((a[i] - d[i]) / s), 0L, cells - 1);
+    k1[i] = std::clamp(surface_detail::floor_long((b[i] + d[i]) / s), 0L, cells - 1);
   }
 }
 }  // namespace
@@ -38,23 +39,31 @@ bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, do
   const FloatImage& g = pu_.samples();
   long k0[3], k1[3];
   cells_meeting(g, pu_.d(), a, b, k0, k1);
+  // The box's corners in index units: t = a / s - k (or b / s - k) in cell k.
+  double ta[3], tb[3];
+  for (int i = 0; i < 3; ++i) ta[i] = a[i] / g.spacing[i], tb[i] = b[i] / g.spacing[i];
   lo = HUGE_VAL;
   hi = -HUGE_VAL;
   for (long z = k0[2]; z <= k1[2]; ++z)
     for (long y = k0[1]; y <= k1[1]; ++y)
       for (long x = k0[0]; x <= k1[0]; ++x) {
-        const long k[3] = {x, y, z};
         double c[8];
         for (int m = 0; m < 8; ++m) c[m] = g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1)));
-        for (int m = 0; m < 8; ++m) {  // f_j at the box's corner m, in cell-relative coordinates
-          double t[3];
-          for (int i = 0; i < 3; ++i) t[i] = ((m >> i) & 1 ? b[i] : a[i]) / g.spacing[i] - double(k[i]);
-          const double c00 = c[0] + t[0] * (c[1] - c[0]), c10 = c[2] + t[0] * (c[3] - c[2]);
-          const double c01 = c[4] + t[0] * (c[5] - c[4]), c11 = c[6] + t[0] * (c[7] - c[6]);
-          const double c0 = c00 + t[1] * (c10 - c00), c1 = c01 + t[1] * (c11 - c01);
-          const double v = c0 + t[2] * (c1 - c0);
-          lo = std::min(lo, v);
-          hi = std::max(hi, v);
+        // f_j at the box's 8 corners, lerp by lerp along x, y, z: the corners
+        // with the same t0 (or t0, t1) share the first lerps.
+        const double t0[2] = {ta[0] - double(x), tb[0] - double(x)}, t1[2] = {ta[1] - double(y), tb[1] - double(y)},
+                     t2[2] = {ta[2] - double(z), tb[2] - double(z)};
+        for (double s0 : t0) {
+          const double c00 = c[0] + s0 * (c[1] - c[0]), c10 = c[2] + s0 * (c[3] - c[2]);
+          const double c01 = c[4] + s0 * (c[5] - c[4]), c11 = c[6] + s0 * (c[7] - c[6]);
+          for (double s1 : t1) {
+            const double c0 = c00 + s1 * (c10 - c00), c1 = c01 + s1 * (c11 - c01);
+            for (double s2 : t2) {
+              const double v = c0 + s2 * (c1 - c0);
+              lo = std::min(lo, v);
+              hi = std::max(hi, v);
+            }
+          }
         }
       }
   // Rounding: f is evaluated in double from float samples; widen a little.
@@ -99,7 +108,7 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
     const double s = g.spacing[i];
     const long cells = long(g.size[i]) - 1;
     // An inner grid plane within d_i of the box on axis i: the blend term.
-    const long p0 = std::max(1L, long(std::ceil((a[i] - d[i]) / s))), p1 = std::min(cells - 1, long(std::floor((b[i] + d[i]) / s)));
+    const long p0 = std::max(1L, surface_detail::ceil_long((a[i] - d[i]) / s)), p1 = std::min(cells - 1, surface_detail::floor_long((b[i] + d[i]) / s));
     if (p0 <= p1) {
       const double w = kBlendSlope * (h - l);
       l -= w;

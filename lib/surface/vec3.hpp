@@ -16,6 +16,15 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 inline double dist2(const Vec3& a, const Vec3& b) { Vec3 d = sub(a, b); return dot(d, d); }
 
+// std::floor and std::ceil to a long, inline: without SSE4.1 they are libm
+// calls, and the cube walks and enclosures take several per step. The same
+// value for |x| < 2^63.
+inline long floor_long(double x) {
+  const long i = long(x);
+  return i - (double(i) > x);
+}
+inline long ceil_long(double x) { return -floor_long(-x); }
+
 // An undirected mesh edge as one number.
 inline long long edge_key(int a, int b) { return (static_cast<long long>(std::min(a, b)) << 32) | std::max(a, b); }
 
