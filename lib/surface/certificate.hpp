@@ -19,8 +19,9 @@ namespace imgmesh::surface_detail {
 std::vector<Facet> restricted_facets(const Tr& tr);
 
 // bdCA(X) for X = {g < 0}: its corners (the quads, once counted, are
-// dropped), components and Euler characteristics, and per component the S component (cube-grid numbering) of the active cube
-// around one of its corners, to name what the repairs refine.
+// dropped), components and Euler characteristics, and per component the S
+// component (cube-grid numbering) of the active cube around one of its
+// corners, to name what the repairs refine.
 struct ExpectedTopology {
   VoxelBoundary boundary;
   MeshTopology topology;

@@ -10,7 +10,6 @@
 
 namespace imgmesh::surface_detail {
 
-
 // FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
 // dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
 // h = bisector plane Pi cut by V(p)'s half-spaces and the box: convex, so
