@@ -12,8 +12,10 @@
 # the process (/usr/bin/time -v). Ours is implicit2mesh alone (wc2implicit's
 # time, f for implicit2mesh and Surface_mesher, is printed per image).
 #   $1: the build's tool folder. IMPLICIT2MESH_IMAGES: which images (default
-#   all): bunny elephant armadillo liver brain1 .. brain5 cheese; e.g.
-#   IMPLICIT2MESH_IMAGES="bunny brain3" scripts/bench implicit2mesh.
+#   all bundled): bunny elephant armadillo liver brain1 .. brain5 cheese, and
+#   images the project has not been tuned on, fetched from Debian packages
+#   (debian_data.bash): t1-60 t1-100 t1-mask ct-skull; IMPLICIT2MESH_IMAGES=unseen
+#   runs those four; e.g. IMPLICIT2MESH_IMAGES="bunny brain3" scripts/bench implicit2mesh.
 set -euo pipefail
 tools=${1:?tool folder}
 build=$(cd "$tools/.." && pwd)
@@ -22,6 +24,8 @@ peers="$build/scripts/bench.d"
 cmake --build "$build" --target implicit2mesh img2wc wc2implicit implicit-eval meshinfo \
   surface_mesher_peer mesh3_peer marching_cubes_peer >/dev/null
 images=${IMPLICIT2MESH_IMAGES:-bunny elephant armadillo liver brain1 brain2 brain3 brain4 brain5}
+[[ $images == unseen ]] && images="t1-60 t1-100 t1-mask ct-skull"
+source "$(dirname "$0")/debian_data.bash"
 limit=${IMPLICIT2MESH_TIMEOUT:-1800}  # seconds a peer may take
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -72,7 +76,7 @@ for img in $images; do
     liver) "$tools/img2wc" -q "$src/share/data/liver-labels.nrrd" --threshold 1 "$work/wc.nrrd" ;;
     brain[1-5]) "$tools/img2wc" -q "$src/share/data/brain-kmeans-labels.nii.gz" --label "${img#brain}" "$work/wc.nrrd" ;;
     cheese) cheese "$work/cheese.nrrd"; "$tools/img2wc" -q "$work/cheese.nrrd" "$work/wc.nrrd" ;;
-    *) echo "implicit2mesh.sh: unknown image $img" >&2; exit 2 ;;
+    *) unseen_image "$img" "$work/wc.nrrd" || { echo "implicit2mesh.sh: unknown image $img" >&2; exit 2; } ;;
   esac
   /usr/bin/time -f '%e' -o "$work/time" "$tools/wc2implicit" -q "$work/wc.nrrd" "$work/f.nrrd"
   echo "$img f $(tail -1 "$work/time")" >> "$work/summary"
