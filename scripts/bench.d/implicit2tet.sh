@@ -11,8 +11,10 @@
 # degrees, largest radius-edge ratio, and whether the boundary has the voxel
 # boundary's topology (meshinfo --image: by place, component by component).
 #   $1: the build's tool folder. BENCH_TET_CASES overrides the cases ("name
-# image quarter-voxel [img2wc options] [-- implicit2mesh options]");
-# BENCH_TET_KEEP=DIR keeps every mesh and well-composed image there.
+# image quarter-voxel [img2wc options] [-- implicit2mesh options]"; image
+# "unseen": the case's name is one of debian_data.bash's images the project
+# has not been tuned on, e.g. "t1-mask unseen 0.5"); BENCH_TET_CASES=unseen
+# runs those four. BENCH_TET_KEEP=DIR keeps every mesh and well-composed image there.
 set -euo pipefail
 tools=${1:?tool folder}
 build=$(cd "$tools/.." && pwd)
@@ -22,6 +24,7 @@ cmake --build "$build" --target implicit2tet implicit2mesh meshinfo mesh3_tet_pe
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 tetgen=$(command -v tetgen || true)
+source "$(dirname "$0")/debian_data.bash"
 
 # timed COMMAND...: runs it, adding its CPU seconds and peak KB to $work/time.
 timed() { /usr/bin/time -a -o "$work/time" -f "%U %S %M" "$@"; }
@@ -49,12 +52,20 @@ cases=${BENCH_TET_CASES:-"bunny bunny00-96.nrrd 0.0026
 armadillo armadillo-96.nrrd 0.394
 liver liver-labels.nrrd 0.1543 --threshold 1
 brain3 brain-kmeans-labels.nii.gz 0.5 --label 3 -- --roughness 90"}
+[[ $cases == unseen ]] && cases="t1-60 unseen 0.5 -- --roughness 90
+t1-100 unseen 0.5 -- --roughness 90
+t1-mask unseen 0.5
+ct-skull unseen 0.9127"
 while read -r name img E rest; do
   [ -n "$name" ] || continue
   wcopts=$rest; meshopts=""
   if [[ " $rest " == *" -- "* ]]; then wcopts=${rest%%-- *}; meshopts=${rest#*-- }; fi
-  # shellcheck disable=SC2086
-  "$tools/img2wc" -q "$src/share/data/$img" $wcopts "$work/$name-wc.nrrd"
+  if [[ $img == unseen ]]; then
+    unseen_image "$name" "$work/$name-wc.nrrd" || { echo "implicit2tet.sh: no unseen image $name" >&2; exit 2; }
+  else
+    # shellcheck disable=SC2086
+    "$tools/img2wc" -q "$src/share/data/$img" $wcopts "$work/$name-wc.nrrd"
+  fi
   "$tools/wc2implicit" -q "$work/$name-wc.nrrd" "$work/$name-f.nrrd"
   echo "$name ($img $wcopts, distance bound $E = 1/4 voxel):"
   printf "  %-36s %8s %7s %9s %9s %10s %9s   %s\n" "mesher" "CPU s" "peak MB" "tets" "min dih" "<10 deg" "max ratio" "topology ok"
