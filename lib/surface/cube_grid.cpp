@@ -1,5 +1,6 @@
 #include "surface/cube_grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace imgmesh::surface_detail {
@@ -27,14 +28,22 @@ CubeGrid::CubeGrid(const FloatImage& img) : g(img) {
       }
 }
 
+// A labelled cube is marked 2 in cube_active (still active); the pairs are
+// sorted by key at the end.
 void CubeGrid::label() {
   std::vector<std::array<long, 3>> stack;
+  auto labelled = [&](long x, long y, long z) { return cube_active[std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z))] == 2; };
+  auto set = [&](long x, long y, long z, int c) {
+    cube_active[std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z))] = 2;
+    comp.emplace_back(key(x, y, z), c);
+  };
+  comp.reserve(std::size_t(std::count(cube_active.begin(), cube_active.end(), 1)));
   for (long z = 0; z + 1 < n[2]; ++z)
     for (long y = 0; y + 1 < n[1]; ++y)
       for (long x = 0; x + 1 < n[0]; ++x) {
-        if (!active(x, y, z) || comp.count(key(x, y, z))) continue;
+        if (!active(x, y, z) || labelled(x, y, z)) continue;
         const int c = components++;
-        comp[key(x, y, z)] = c;
+        set(x, y, z, c);
         stack.push_back({x, y, z});
         while (!stack.empty()) {
           auto q = stack.back();
@@ -43,7 +52,7 @@ void CubeGrid::label() {
             for (int dir = -1; dir <= 1; dir += 2) {
               std::array<long, 3> r = q;
               r[a] += dir;
-              if (!active(r[0], r[1], r[2]) || comp.count(key(r[0], r[1], r[2]))) continue;
+              if (!active(r[0], r[1], r[2]) || labelled(r[0], r[1], r[2])) continue;
               // The shared face: plane coordinate max(q[a], r[a]) on axis a.
               const long pa = std::max(q[a], r[a]);
               const int b = (a + 1) % 3, c2 = (a + 2) % 3;
@@ -56,11 +65,12 @@ void CubeGrid::label() {
                 (neg(v[0], v[1], v[2]) ? any_neg : any_pos) = true;
               }
               if (!(any_neg && any_pos)) continue;
-              comp[key(r[0], r[1], r[2])] = c;
+              set(r[0], r[1], r[2], c);
               stack.push_back(r);
             }
         }
       }
+  std::sort(comp.begin(), comp.end());
 }
 
 int CubeGrid::comp_at(const Vec3& q) const {
