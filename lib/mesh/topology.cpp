@@ -366,6 +366,9 @@ template <class In> VoxelBoundary voxel_boundary_of(const std::array<std::size_t
   vb.lattice_ids = lat;
   std::sort(vb.lattice_ids.begin(), vb.lattice_ids.end());
   vb.lattice_ids.erase(std::unique(vb.lattice_ids.begin(), vb.lattice_ids.end()), vb.lattice_ids.end());
+  // The copy had room for every corner of every quad, about four times the
+  // distinct ones; the mesher holds this through its run.
+  vb.lattice_ids.shrink_to_fit();
   vb.corners.resize(lat.size());
   for (std::size_t i = 0; i < lat.size(); ++i)
     vb.corners[i] = int(std::lower_bound(vb.lattice_ids.begin(), vb.lattice_ids.end(), lat[i]) - vb.lattice_ids.begin());

@@ -269,7 +269,7 @@ Candidates fallback_points(const Tr& tr, const SurfaceSampler& sampler, int comp
   for (auto& kc : grid.comp) count += kc.second == comp;
   stride = std::max<std::size_t>(1, count / 4000);
   std::size_t k = 0;
-  const std::vector<std::pair<long long, int>> cubes = grid.sorted_cubes();
+  const std::vector<std::pair<long long, int>>& cubes = grid.sorted_cubes();
   for (auto& kc : cubes) {
     if (kc.second != comp || (k++ % stride)) continue;
     const long x = long(kc.first % grid.n[0]), y = long((kc.first / grid.n[0]) % grid.n[1]),

@@ -1,5 +1,6 @@
 #include "surface/cube_grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace imgmesh::surface_detail {
@@ -13,7 +14,7 @@ CubeGrid::CubeGrid(const FloatImage& img) : g(img) {
   }
   delta = std::min({s[0], s[1], s[2]});
   if (n[0] < 2 || n[1] < 2 || n[2] < 2) return;
-  cube_active.assign(std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)), 0);
+  cube_active.assign((std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)) + 63) / 64, 0);
   block_active.assign(std::size_t(nb[0] * nb[1] * nb[2]), 0);
   for (long z = 0; z + 1 < n[2]; ++z)
     for (long y = 0; y + 1 < n[1]; ++y)
@@ -22,19 +23,35 @@ CubeGrid::CubeGrid(const FloatImage& img) : g(img) {
         bool mixed = false;
         for (int k = 1; k < 8 && !mixed; ++k) mixed = neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) != s0;
         if (!mixed) continue;
-        cube_active[std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z))] = 1;
+        const std::size_t i = cube_index(x, y, z);
+        cube_active[i >> 6] |= std::uint64_t(1) << (i & 63);
         block_active[std::size_t(x / kBlock + nb[0] * (y / kBlock + nb[1] * (z / kBlock)))] = 1;
       }
 }
 
+// The labelled cubes are marked in a bit set of their own; the pairs are
+// sorted by key at the end.
 void CubeGrid::label() {
   std::vector<std::array<long, 3>> stack;
+  std::vector<std::uint64_t> done(cube_active.size(), 0);
+  auto labelled = [&](long x, long y, long z) {
+    const std::size_t i = cube_index(x, y, z);
+    return (done[i >> 6] >> (i & 63)) & 1;
+  };
+  auto set = [&](long x, long y, long z, int c) {
+    const std::size_t i = cube_index(x, y, z);
+    done[i >> 6] |= std::uint64_t(1) << (i & 63);
+    comp.emplace_back(key(x, y, z), c);
+  };
+  std::size_t active_cubes = 0;
+  for (std::uint64_t w : cube_active) active_cubes += std::size_t(__builtin_popcountll(w));
+  comp.reserve(active_cubes);
   for (long z = 0; z + 1 < n[2]; ++z)
     for (long y = 0; y + 1 < n[1]; ++y)
       for (long x = 0; x + 1 < n[0]; ++x) {
-        if (!active(x, y, z) || comp.count(key(x, y, z))) continue;
+        if (!active(x, y, z) || labelled(x, y, z)) continue;
         const int c = components++;
-        comp[key(x, y, z)] = c;
+        set(x, y, z, c);
         stack.push_back({x, y, z});
         while (!stack.empty()) {
           auto q = stack.back();
@@ -43,7 +60,7 @@ void CubeGrid::label() {
             for (int dir = -1; dir <= 1; dir += 2) {
               std::array<long, 3> r = q;
               r[a] += dir;
-              if (!active(r[0], r[1], r[2]) || comp.count(key(r[0], r[1], r[2]))) continue;
+              if (!active(r[0], r[1], r[2]) || labelled(r[0], r[1], r[2])) continue;
               // The shared face: plane coordinate max(q[a], r[a]) on axis a.
               const long pa = std::max(q[a], r[a]);
               const int b = (a + 1) % 3, c2 = (a + 2) % 3;
@@ -56,11 +73,12 @@ void CubeGrid::label() {
                 (neg(v[0], v[1], v[2]) ? any_neg : any_pos) = true;
               }
               if (!(any_neg && any_pos)) continue;
-              comp[key(r[0], r[1], r[2])] = c;
+              set(r[0], r[1], r[2], c);
               stack.push_back(r);
             }
         }
       }
+  std::sort(comp.begin(), comp.end());
 }
 
 int CubeGrid::comp_at(const Vec3& q) const {

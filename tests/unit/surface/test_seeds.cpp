@@ -71,3 +71,34 @@ TEST_CASE("seeds: crossing() finds the which-th mixed edge of a cube, and next_e
   extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
   CHECK(extra.size() == 6);
 }
+
+TEST_CASE("cube grid: active cubes are the mixed ones, each in one component, listed once in key order") {
+  const Vec3 a{6.3, 7.1, 7.4}, b{17.2, 7.6, 7.9};
+  FunctionSurface s(test::box(26, 16, 16), [&](const Vec3& p) {
+    return std::min(test::sphere_f(p, a, 3.6), test::torus_f(p, b, 4.1, 1.1));
+  });
+  CubeGrid grid(s.samples());
+  grid.label();
+  REQUIRE(grid.components == 2);
+  long active = 0;
+  for (long z = -1; z < grid.n[2]; ++z)
+    for (long y = -1; y < grid.n[1]; ++y)
+      for (long x = -1; x < grid.n[0]; ++x) {
+        bool mixed = false;
+        if (x >= 0 && y >= 0 && z >= 0 && x + 1 < grid.n[0] && y + 1 < grid.n[1] && z + 1 < grid.n[2])
+          for (int k = 1; k < 8; ++k)
+            mixed = mixed || grid.neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) != grid.neg(x, y, z);
+        CHECK(grid.active(x, y, z) == mixed);
+        if (x >= 0 && y >= 0 && z >= 0 && x + 1 < grid.n[0] && y + 1 < grid.n[1] && z + 1 < grid.n[2]) {
+          const int c = grid.comp_of(x, y, z);
+          CHECK((c >= 0) == mixed);
+          CHECK(c < grid.components);
+        }
+        active += mixed;
+      }
+  const auto& cubes = grid.sorted_cubes();
+  CHECK(long(cubes.size()) == active);
+  for (std::size_t i = 1; i < cubes.size(); ++i) CHECK(cubes[i - 1].first < cubes[i].first);
+  // The ball's cubes and the torus's: two components.
+  CHECK(grid.comp_at(Vec3{a[0] + 3.6, a[1], a[2]}) != grid.comp_at(Vec3{b[0] + 4.1 + 1.1, b[1], b[2]}));
+}
