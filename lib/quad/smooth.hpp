@@ -65,8 +65,10 @@ struct SmoothOptions {
   double split_below = 25;
   // Beyond the thesis: rounds of a pass that raises the mean mu vertex by
   // vertex (a compass search on the sum of sin(mu) around each, the worst
-  // mu around never lowered), after the smoothing passes; 0: none.
-  int mean_rounds = 3;
+  // mu around never lowered), after the smoothing passes; 0: none. 6
+  // rather than 3: 0.15 degrees more mean mu on the brain slice and a
+  // random blob's default chain, for 13% more quadsmooth CPU.
+  int mean_rounds = 6;
   // Called after each pass with (pass, passes) for progress reports; may be empty.
   std::function<void(int, int)> progress;
 };
