@@ -38,6 +38,10 @@ struct Pair {
 // quads at the corner, each with mu at most a quarter of its angle; paired
 // across the third edge, the corner's quad can reach half of it, the bar.
 constexpr double kCosSharpCorner = 0.5;  // 60 degrees
+// Unless the pair is nearly flat (mu under 1 degree): a Steiner point on a
+// straight segment makes an angle within rounding of 180 degrees, which
+// the exact predicates may call convex but no smoothing can open.
+constexpr double kCornerPairMinMu = 1;
 
 // The plain conversion, when pairs first cannot keep a guarantee.
 Tri2QuadResult plain_conversion(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
@@ -124,7 +128,8 @@ std::vector<Pair> PairsFirst::candidate_pairs() const {
       const double mu = joe_mu(pa, px, pb, pc);
       int ju = 0;  // u's slot of the shared edge
       while (nbr[u][ju] != int(t)) ++ju;
-      const bool corner = sharp_opposite(t, j) || sharp_opposite(std::size_t(u), ju);
+      const bool corner =
+          mu >= kCornerPairMinMu && (sharp_opposite(t, j) || sharp_opposite(std::size_t(u), ju));
       if (corner || mu >= options.pair_above) cand.push_back({mu, int(t), u, q, corner});
     }
   std::stable_sort(cand.begin(), cand.end(),

@@ -170,3 +170,19 @@ TEST_CASE("pairs first keep a sharp input corner in one quad", "[tri2quad][pairs
   CHECK(std::count_if(r.quads.begin(), r.quads.end(),
                       [&](const auto& q) { return std::find(q.begin(), q.end(), c) != q.end(); }) == 1);
 }
+
+TEST_CASE("pairs first do not keep a sharp corner in a nearly flat quad", "[tri2quad][pairs]") {
+  // The wedge's corner c a hair left of x = 2: the pair's quad c, (2, 0),
+  // (2, 1), (1, 0) is convex for the exact predicates, with an angle within
+  // 1e-12 of 180 degrees at (2, 0) that no smoothing could open.
+  Tri2QuadInput in = square_grid(4);
+  in.points.push_back({2 - 1e-12, -3});
+  in.triangles.push_back({int(in.points.size()) - 1, 2, 1});
+  Tri2QuadOptions o;
+  o.pair_above = 40;
+  const auto r = tri2quad(in, o);
+  check_result(in, r, false);
+  double worst = 45;
+  for (const auto& q : r.quads) worst = std::min(worst, joe_mu(r.points[q[0]], r.points[q[1]], r.points[q[2]], r.points[q[3]]));
+  CHECK(worst > 1e-6);
+}
