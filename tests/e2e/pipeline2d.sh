@@ -84,7 +84,7 @@ case_square_lattice_pairs_first_mean_mu_30() {
 
 # default_bar NAME WHY: the README's chain with no option gave NAME.qs.ele:
 # mean mu >= 30, min mu >= 10 (or 99% of half the smallest input angle,
-# which caps the mu of a quad at that corner: the lung and the brain reach
+# which caps the mu of a quad at that corner: the lung reaches
 # 99.9% of it), 99% of the neighbouring quads' sizes
 # within a factor 2.5 (poly2tri's lattice doubles at most once a cell; the
 # quads of tri2quad's Steiner points sit inside the triangles), no quad over
