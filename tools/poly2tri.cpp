@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
                  "constrained Delaunay mesh with a minimum angle, conforming to every segment");
   std::string in, out, svg;
   TriangulateOptions opt;
+  opt.grading = 0.25;
   double max_vertices = double(opt.max_vertices);
   tool.app.add_option("IN", in, "Input PSLG: Triangle .poly (or its .node) or OFF of polygons (- for a .poly on stdin)")->required();
   tool.app.add_option("OUT", out,
@@ -41,13 +42,25 @@ int main(int argc, char** argv) {
                                       "then makes 60-degree rhombi of them); L > 0 in world units, default: none")
                       ->type_name("L")
                       ->check(CLI::PositiveNumber.description(""));
-  double square_lattice = 0;
+  double square_lattice = -1;  // < 0: default_lattice_side
   tool.app.add_option("--square-lattice", square_lattice,
-                      "The same with a square lattice of side L: its right triangles make squares "
-                      "(tri2quad --pair-above 40); default: none")
+                      "Seed the domain with a square lattice whose finest side is L, coarsening away from the "
+                      "segments (--grading); its right triangles make squares, which tri2quad merges first. "
+                      "0: no lattice, Delaunay refinement's own points")
+      ->default_str("half the median segment length, at least twice its 10th percentile")
       ->type_name("L")
-      ->check(CLI::PositiveNumber.description(""))
+      ->check(CLI::NonNegativeNumber.description(""))
       ->excludes(lattice);
+  tool.app.add_option("--grading", opt.grading,
+                      "Square lattice: at distance d from a segment of length S the side grows to about max(L, S) + G d, "
+                      "doubling at most once from one cell to the next (0 to 0.5); 0: uniform")
+      ->default_str("0.25")
+      ->type_name("G")
+      ->check(CLI::Range(0.0, 0.5).description(""));
+  tool.app.add_option("--max-side", opt.max_side, "Square lattice: the coarsest side M > 0 (world units)")
+      ->default_str("a tenth of the shorter side of the bounding box")
+      ->type_name("M")
+      ->check(CLI::PositiveNumber.description(""));
   tool.app.add_option("--max-vertices", max_vertices,
                       "Stop refining beyond this many vertices (exit status 3); a size bound that alone asks for more is refused at once")
       ->default_str(std::to_string(opt.max_vertices))
@@ -64,13 +77,16 @@ int main(int argc, char** argv) {
     if (ext != ".ele" && ext != ".off" && ext != ".vtk" && ext != ".msh" && ext != ".svg")
       throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg (or be - for OFF on stdout)", out);
     opt.max_vertices = std::size_t(max_vertices);
-    if (square_lattice > 0) {
-      opt.lattice = square_lattice;
-      opt.square_lattice = true;
-    }
     if (tool.progress())
       opt.progress = [&](std::size_t n) { tool.report_progress(std::to_string(n) + " vertices"); };
     const PlanarMesh pslg = read_pslg(in);
+    // The default: a graded square lattice from the curves' own sampling.
+    if (opt.lattice <= 0 && square_lattice != 0) {
+      opt.lattice = square_lattice > 0 ? square_lattice : default_lattice_side(pslg);
+      opt.lattice_optional = square_lattice < 0;
+      opt.square_lattice = opt.lattice > 0;
+      if (opt.max_side <= 0) opt.max_side = default_max_side(pslg);
+    }
     const auto r = naming_input(in, [&] { return triangulate_pslg(pslg, opt); });
     write_planar_mesh(out, r.mesh);  // "-": OFF on stdout
     if (!svg.empty()) {
@@ -80,6 +96,11 @@ int main(int argc, char** argv) {
     }
 
     tool.stats["input"] = in;
+    if (opt.square_lattice) {
+      tool.stats["square_lattice"] = opt.lattice;
+      tool.stats["grading"] = opt.grading;
+      tool.stats["max_side"] = opt.max_side;
+    }
     std::ostringstream msg;
     msg << r.mesh.elements.size() << " triangles, " << r.mesh.points.size() << " vertices ("
         << r.steiner_points << " Steiner), smallest angle " << r.min_angle << " degrees";

@@ -32,6 +32,12 @@ int main(int argc, char** argv) {
       ->type_name("MU")
       ->check(CLI::Range(0.0, 45.0).description(""))
       ->capture_default_str();
+  tool.app.add_option("--mean-rounds", opt.mean_rounds,
+                      "rounds of the pass that raises the mean mu vertex by vertex after the smoothing, the "
+                      "worst mu around each never lowered; 0 to 100")
+      ->type_name("N")
+      ->check(CLI::Range(0, 100).description(""))
+      ->capture_default_str();
   tool.app.add_option("--svg", svg, "also draw the result as SVG, quads coloured by Joe's mu")->type_name("FILE");
   bool svg_whole = false;
   tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole mesh in the SVG, not a frame around the foreground");

@@ -27,10 +27,15 @@ int main(int argc, char** argv) {
   tool.app.add_flag("--allow-outside", opt.allow_outside,
                     "Thesis step 5 as published: one Steiner point may lie outside the domain "
                     "(default: Joe's 5-quad split keeps every point inside)");
+  // Beyond the thesis, on by default: a square lattice's halves (poly2tri's
+  // default) become its squares, where the BFS pairing alone makes much of
+  // it 45-degree parallelograms.
+  opt.pair_above = 40;
   tool.app.add_option("--pair-above", opt.pair_above,
                       "First merge adjacent triangles whose quad has Joe's mu of at least MU degrees (best "
                       "first), then convert the rest around them; same guarantees (the plain conversion "
-                      "is used where they would not hold); 0 to 45, default: off")
+                      "is used where they would not hold); 0 to 45, 0: the thesis's conversion alone")
+      ->capture_default_str()
       ->type_name("MU")
       ->check(CLI::Range(0.0, 45.0).description(""));
   // Tests only (hidden): pairs become quads without the convexity test, so

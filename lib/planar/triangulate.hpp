@@ -29,6 +29,19 @@ struct TriangulateOptions {
   // triangles pair into squares (Joe's mu 45) across their hypotenuses,
   // which tri2quad's --pair-above merges first.
   bool square_lattice = false;
+  // With square_lattice: the lattice coarsens away from the segments, so
+  // that the size follows the geometry: the size field is the least, over
+  // the segments, of the segment's length (clamped to [lattice, max_side])
+  // plus grading times the distance to it; a node stays where it is a node
+  // of the lattice of side 2^k lattice, the largest 2^k lattice within the
+  // field (the lattices are nested: with grading <= 0.5 neighbouring cells
+  // differ by at most 2x). 0: a uniform lattice.
+  double grading = 0;
+  double max_side = 0;  // > 0: the coarsest lattice side (default: no bound)
+  // A lattice whose points alone exceed max_vertices is left out (the
+  // refinement then stops at the limit) rather than refused as a usage
+  // error: poly2tri's default lattice, which the user did not ask for.
+  bool lattice_optional = false;
   // Stop refining beyond this many vertices (the result is then reported as
   // not meeting the bounds).
   std::size_t max_vertices = 50'000'000;
@@ -62,6 +75,14 @@ struct TriangulateResult {
   // angles is below the bound.
   std::string failed_guarantee() const;
 };
+
+// The lattice side poly2tri uses by default, from the curves' own sampling:
+// half the median length of the input segments, at least twice their 10th
+// percentile and 1/2048 of the bounding box.
+double default_lattice_side(const PlanarMesh& pslg);
+// The coarsest side poly2tri allows by default: a tenth of the shorter side
+// of the input's bounding box.
+double default_max_side(const PlanarMesh& pslg);
 
 // Throws Error on a bad PSLG: intersecting or overlapping segments, a
 // zero-length segment, no enclosed area, non-finite coordinates.

@@ -18,11 +18,13 @@ Json SmoothStats::to_json() const {
   ops["rejected_moves"] = rejected;
   ops["worst_mu_climbs"] = optimized;
   ops["edge_moves"] = edge_moves;
+  ops["mean_mu_climbs"] = mean_climbs;
   ops["diagonal_swaps"] = swaps;
   ops["valence_swaps"] = valence_swaps;
   ops["pair_splits"] = splits;
   ops["pair_splits_four"] = splits_four;
   ops["doublets_removed"] = doublets;
+  ops["sharp_corners_opened"] = sharp_corners;
   ops["quad_collapses"] = collapses;
   ops["valence_collapses"] = valence_collapses;
   ops["fixed_vertices"] = fixed_vertices;
@@ -58,14 +60,14 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
     // Clean-up every third pass, once smoothing has done what it can, then
     // smoothing resumes on the new topology.
     if (opt.cleanup && it > 0 && it % 3 == 0) {
-      const std::size_t ops = st.swaps + st.splits + st.collapses + st.doublets;
+      const std::size_t ops = st.swaps + st.splits + st.collapses + st.doublets + st.sharp_corners;
       swap_pass(qm, st);
       collapse_pass(qm, st);
       doublet_pass(qm, st);
       edge_pass(qm, st);
       // New colours only where the topology changed (the operations woke
       // the vertices around them).
-      colouring.stale = st.swaps + st.splits + st.collapses + st.doublets != ops;
+      colouring.stale = st.swaps + st.splits + st.collapses + st.doublets + st.sharp_corners != ops;
     }
     smooth_pass(qm, colouring, opt.threads, st);
     qm.climb = true;
@@ -77,6 +79,7 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
     swap_pass(qm, st);
     doublet_pass(qm, st);
   }
+  for (int r = 0; passes > 0 && r < opt.mean_rounds; ++r) mean_pass(qm, st);
   qm.compact();
   st.after = quality_report(mesh);
   return st;

@@ -23,7 +23,9 @@
 //         squashed quad or two facing valence-3
 //         vertices (undone if worse)                    smooth_collapse.cpp
 //       for each free vertex of valence 2: remove the
-//         doublet (merge its two quads)                 smooth_doublet.cpp
+//         doublet (merge its two quads); of valence 3
+//         splitting a sharp fixed corner: its three
+//         quads become two (undone if not better)       smooth_doublet.cpp
 //       for each poor quad with two flat free corners:
 //         move them together (compass search)          smooth_angle.cpp
 //       colour again if the topology changed
@@ -36,6 +38,9 @@
 //       straight segment, same guard                    smooth_angle.cpp
 //   if cleanup: swaps, then doublets, once more          smooth_swap.cpp,
 //                                                       smooth_doublet.cpp
+//   mean_rounds times: each free vertex next to a quad
+//     under 40 degrees climbs on the sum of sin(mu)
+//     around it, the worst mu around never lowered       smooth_angle.cpp
 //   compact removed vertices and quads into mesh        smooth_mesh.cpp
 #pragma once
 #include "planar/triangle_io.hpp"
@@ -54,8 +59,16 @@ struct SmoothOptions {
   bool slide_boundary = false;  // boundary/constrained vertices may slide along their own straight segment
   int threads = 1;              // smoothing threads; the result does not depend on it
   // Pair splits are tried on quads with mu below this (degrees): higher
-  // values give better angles and more quads (25: about 1.5 times as many).
-  double split_below = 15;
+  // values give better angles and more quads. 25: 1.07-1.09 times the
+  // quads of 15 on the bundled images' default chain, for 0.1-0.7 degrees
+  // more mean mu (the bar of 30), at about twice the time.
+  double split_below = 25;
+  // Beyond the thesis: rounds of a pass that raises the mean mu vertex by
+  // vertex (a compass search on the sum of sin(mu) around each, the worst
+  // mu around never lowered), after the smoothing passes; 0: none. 6
+  // rather than 3: 0.15 degrees more mean mu on the brain slice and a
+  // random blob's default chain, for 13% more quadsmooth CPU.
+  int mean_rounds = 6;
   // Called after each pass with (pass, passes) for progress reports; may be empty.
   std::function<void(int, int)> progress;
 };
@@ -67,7 +80,9 @@ struct SmoothStats {
   std::size_t rejected = 0;    // moves the guard refused
   std::size_t optimized = 0;   // guarded climbs on the worst mu around a vertex
   std::size_t edge_moves = 0;  // guarded climbs moving both free, flat ends of an edge of a poor quad
+  std::size_t mean_climbs = 0; // vertices the mean pass moved
   std::size_t swaps = 0, doublets = 0, collapses = 0;
+  std::size_t sharp_corners = 0;      // valence-3 vertices removed to leave a sharp corner one quad
   std::size_t valence_swaps = 0;      // of the swaps, those taken to make valences regular
   std::size_t valence_collapses = 0;  // of the collapses, those of two valence-3 vertices
   std::size_t splits = 0;      // quad pairs split into three around a new point, or into four around two

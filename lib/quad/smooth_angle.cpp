@@ -154,6 +154,29 @@ bool guarded_energy(const QuadMesh& qm, const std::vector<int>& qs, double floor
   return true;
 }
 
+// The compass search of the climbs below, on a point s from s0 (a vertex's
+// place, or the displacement of an edge's two ends): the eight directions
+// at step h polled from the last one that gained (opportunistic);
+// place(c) puts the moving vertices at candidate c, gains() judges them
+// there (keeping its new best if so); a round without a gain halves h.
+// Returns the last s that gained, the vertices placed at it.
+template <class Place, class Gains>
+Point2 compass_search(Point2 s, double h, int rounds, Place place, Gains gains) {
+  int first = 0;
+  for (int round = 0; round < rounds; ++round) {
+    bool improved = false;
+    for (int k = 0; k < 8 && !improved; ++k) {
+      const int d = (first + k) & 7;
+      const Point2 c{s[0] + h * kCompass[d][0], s[1] + h * kCompass[d][1]};
+      place(c);
+      if (gains()) { s = c; first = d; improved = true; }
+    }
+    place(s);
+    if (!improved) h *= 0.5;
+  }
+  return s;
+}
+
 } // namespace
 
 bool optimize_star(QuadMesh& qm, int v, double h2) {
@@ -165,31 +188,64 @@ bool optimize_star(QuadMesh& qm, int v, double h2) {
   }
   if (worst0 >= kOptimizeBelow || !(worst0 > 0)) return false;
   const Point2 start = P[v];
-  Point2 p = start;
-  double best = energy0, h = 0.25 * std::sqrt(h2);
-  // Opportunistic polling: the first direction that lowers the energy is
-  // taken, and polled first again from the new point.
-  int first = 0;
-  for (int round = 0; round < kOptimizeRounds; ++round) {
-    bool improved = false;
-    for (int k = 0; k < 8 && !improved; ++k) {
-      const int d = (first + k) & 7;
-      P[v] = {p[0] + h * kCompass[d][0], p[1] + h * kCompass[d][1]};
-      double e;
-      if (guarded_energy(qm, qm.vertex_quads[v], worst0, best * (1 - 1e-12), e)) {
-        best = e;
-        p = P[v];
-        first = d;
-        improved = true;
-      }
-    }
-    P[v] = p;
-    if (!improved) h *= 0.5;
-  }
+  double best = energy0;
+  compass_search(start, 0.25 * std::sqrt(h2), kOptimizeRounds, [&](const Point2& c) { P[v] = c; }, [&] {
+    double e;
+    if (!guarded_energy(qm, qm.vertex_quads[v], worst0, best * (1 - 1e-12), e)) return false;
+    best = e;
+    return true;
+  });
   if (!(best < energy0 * (1 - 1e-9))) { P[v] = start; return false; }
-  P[v] = p;
   for (int q : qm.vertex_quads[v]) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
   return true;
+}
+
+bool raise_mean(QuadMesh& qm, int v, double h2) {
+  std::vector<Point2>& P = qm.points;
+  const std::vector<int>& qs = qm.vertex_quads[v];
+  double worst0 = 2, sum0 = 0;
+  for (int q : qs) {
+    worst0 = std::min(worst0, qm.quad_sin_mu[q]);
+    sum0 += qm.quad_sin_mu[q];
+  }
+  if (!(worst0 > 0)) return false;
+  const Point2 start = P[v];
+  double best = sum0;
+  compass_search(start, 0.125 * std::sqrt(h2), kOptimizeRounds, [&](const Point2& c) { P[v] = c; }, [&] {
+    // sin(mu) is concave on [0, 45] degrees: its sum also evens the quads out.
+    double sum = 0;
+    for (int q : qs) {
+      const double sq = qm.sin_mu_of(qm.quads[q]);
+      if (sq < worst0) return false;
+      sum += sq;
+    }
+    if (!(sum > best * (1 + 1e-12))) return false;
+    for (int q : qs)
+      if (!qm.convex(qm.quads[q])) return false;
+    best = sum;
+    return true;
+  });
+  if (!(best > sum0 * (1 + 1e-9))) { P[v] = start; return false; }
+  for (int q : qs) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
+  return true;
+}
+
+void mean_pass(QuadMesh& qm, SmoothStats& st) {
+  const std::vector<Point2>& P = qm.points;
+  // Vertex by vertex in id order (Gauss-Seidel, one thread: the result
+  // cannot depend on --threads); stars whose quads are all near squares
+  // (mu >= 40) are left alone, which keeps the pass cheap on good meshes.
+  constexpr double kGood = 0.6427876096865393;  // sin(40 deg)
+  for (int v = 0; v < int(P.size()); ++v) {
+    if (qm.fixed[v] || qm.vertex_dead[v] || qm.vertex_quads[v].size() < 3) continue;
+    double worst = 2;
+    for (int q : qm.vertex_quads[v]) worst = std::min(worst, qm.quad_sin_mu[q]);
+    if (worst >= kGood) continue;
+    const Quad& first = qm.quads[qm.vertex_quads[v][0]];
+    const Point2& x = P[first[0] == v ? first[1] : first[0]];
+    const double h2 = (x[0] - P[v][0]) * (x[0] - P[v][0]) + (x[1] - P[v][1]) * (x[1] - P[v][1]);
+    if (raise_mean(qm, v, h2)) ++st.mean_climbs;
+  }
 }
 
 bool optimize_edge(QuadMesh& qm, int u, int v, double h) {
@@ -204,23 +260,18 @@ bool optimize_edge(QuadMesh& qm, int u, int v, double h) {
   }
   if (worst0 >= kOptimizeBelow || !(worst0 > 0)) return false;
   const Point2 su = P[u], sv = P[v];
-  Point2 d{0, 0};  // the displacement so far
   double best = energy0;
-  int first = 0;
-  for (int round = 0; round < 2 * kOptimizeRounds; ++round) {
-    bool improved = false;
-    for (int k = 0; k < 8 && !improved; ++k) {
-      const int dk = (first + k) & 7;
-      const Point2 c{d[0] + h * kCompass[dk][0], d[1] + h * kCompass[dk][1]};
-      P[u] = {su[0] + c[0], su[1] + c[1]};
-      P[v] = {sv[0] + c[0], sv[1] + c[1]};
-      double e;
-      if (guarded_energy(qm, qs, worst0, best * (1 - 1e-12), e)) { best = e; d = c; first = dk; improved = true; }
-    }
-    P[u] = {su[0] + d[0], su[1] + d[1]};
-    P[v] = {sv[0] + d[0], sv[1] + d[1]};
-    if (!improved) h *= 0.5;
-  }
+  compass_search(Point2{0, 0}, h, 2 * kOptimizeRounds,
+                 [&](const Point2& d) {  // the displacement of both ends
+                   P[u] = {su[0] + d[0], su[1] + d[1]};
+                   P[v] = {sv[0] + d[0], sv[1] + d[1]};
+                 },
+                 [&] {
+                   double e;
+                   if (!guarded_energy(qm, qs, worst0, best * (1 - 1e-12), e)) return false;
+                   best = e;
+                   return true;
+                 });
   if (!(best < energy0 * (1 - 1e-9))) {
     P[u] = su;
     P[v] = sv;

@@ -189,6 +189,12 @@ bool try_move(QuadMesh& qm, int v, Point2 p, bool slide_line, const Slide* s);
 // Compass search on the energy sum 1/sin(mu) around v (a soft minimum), the
 // worst mu never dropping; h2: a squared edge length around v.
 bool optimize_star(QuadMesh& qm, int v, double h2);
+// Beyond the thesis: a compass search on the sum of sin(mu) around v (the
+// mean quality), no quad around becoming non-convex or worse than the worst
+// mu around v before; true if v moved.
+bool raise_mean(QuadMesh& qm, int v, double h2);
+// raise_mean on every free vertex next to a quad of mu below 40 degrees.
+void mean_pass(QuadMesh& qm, SmoothStats& st);
 // The same moving the two free ends u, v of an edge together, step h.
 bool optimize_edge(QuadMesh& qm, int u, int v, double h);
 // One guarded angle-based move then (once qm.climb) the compass search;
@@ -232,6 +238,13 @@ int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]);
 // Removes the free valence-2 vertex v by merging its two quads, if the
 // merged quad is strictly convex and no worse; true if done.
 bool remove_doublet(QuadMesh& qm, int v);
+// Beyond the thesis: removes the free valence-3 vertex m when two of its
+// quads share a fixed corner c whose angle wants one quad (a sharp input
+// corner split in two, each quad's mu then at most a quarter of c's angle):
+// its three quads become two, c in one, by the hexagon's diagonal beside c.
+// Taken if, once the patch is relaxed, its worst mu rose; true if done.
+bool open_sharp_corner(QuadMesh& qm, int m);
+// remove_doublet, else open_sharp_corner, on every vertex.
 void doublet_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_collapse.cpp ---------------------------------------------------

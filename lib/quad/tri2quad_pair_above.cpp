@@ -2,7 +2,8 @@
 // around them.
 //
 //   candidate_pairs()      adjacent triangles whose quad has Joe's mu >= the
-//                          threshold, best first
+//                          threshold, best first, after those that keep a
+//                          sharp input corner in one quad
 //   merge_greedily()       each triangle in at most one merged quad
 //   anchor_odd_groups()    merged quads that would take a Steiner point go
 //                          back to the triangles (parity of the groups left)
@@ -18,6 +19,7 @@
 #include "util/error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_set>
 
 namespace imgmesh::t2q {
@@ -28,7 +30,18 @@ struct Pair {
   double mu;
   int t, u;                // the two triangles
   std::array<int, 4> q;    // the quad, counter-clockwise
+  bool corner;             // keeps a sharp input corner whole
 };
+
+// A triangle alone in an input corner under this angle (both its edges
+// there constraints or boundary) that the conversion split would leave two
+// quads at the corner, each with mu at most a quarter of its angle; paired
+// across the third edge, the corner's quad can reach half of it, the bar.
+constexpr double kCosSharpCorner = 0.5;  // 60 degrees
+// Unless the pair is nearly flat (mu under 1 degree): a Steiner point on a
+// straight segment makes an angle within rounding of 180 degrees, which
+// the exact predicates may call convex but no smoothing can open.
+constexpr double kCornerPairMinMu = 1;
 
 // The plain conversion, when pairs first cannot keep a guarantee.
 Tri2QuadResult plain_conversion(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
@@ -91,6 +104,14 @@ std::vector<Pair> PairsFirst::candidate_pairs() const {
   for (std::size_t t = 0; t < nt; ++t)
     for (int j = 0; j < 3; ++j)
       if ((mesh.constrained[t] >> j & 1) && nbr[t][j] >= 0) conb[t] |= std::uint8_t(1u << j);
+  // Triangle t alone at an input corner under 60 degrees opposite its edge j.
+  const auto sharp_opposite = [&](std::size_t t, int j) {
+    const int k = (j + 1) % 3, l = (j + 2) % 3;
+    if (!(mesh.constrained[t] >> k & 1) || !(mesh.constrained[t] >> l & 1)) return false;
+    const Point2 &c = input.points[T[t][l]], &a = input.points[T[t][j]], &b = input.points[T[t][k]];
+    const double ux = a[0] - c[0], uy = a[1] - c[1], vx = b[0] - c[0], vy = b[1] - c[1];
+    return ux * vx + uy * vy > kCosSharpCorner * std::hypot(ux, uy) * std::hypot(vx, vy);
+  };
   std::vector<Pair> cand;
   for (std::size_t t = 0; t < nt; ++t)
     for (int j = 0; j < 3; ++j) {
@@ -105,9 +126,14 @@ std::vector<Pair> PairsFirst::candidate_pairs() const {
       const Point2 &pa = input.points[a], &px = input.points[x], &pb = input.points[b], &pc = input.points[c];
       if (!is_strictly_convex(pa, px, pb, pc)) continue;
       const double mu = joe_mu(pa, px, pb, pc);
-      if (mu >= options.pair_above) cand.push_back({mu, int(t), u, q});
+      int ju = 0;  // u's slot of the shared edge
+      while (nbr[u][ju] != int(t)) ++ju;
+      const bool corner =
+          mu >= kCornerPairMinMu && (sharp_opposite(t, j) || sharp_opposite(std::size_t(u), ju));
+      if (corner || mu >= options.pair_above) cand.push_back({mu, int(t), u, q, corner});
     }
-  std::stable_sort(cand.begin(), cand.end(), [](const Pair& x, const Pair& y) { return x.mu > y.mu; });
+  std::stable_sort(cand.begin(), cand.end(),
+                   [](const Pair& x, const Pair& y) { return x.corner != y.corner ? x.corner : x.mu > y.mu; });
   return cand;
 }
 

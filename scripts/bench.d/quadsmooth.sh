@@ -3,13 +3,17 @@
 # the tool's time from --stats (seconds: read, smooth, write), wall and CPU,
 # on 1 thread and on all cores; (2) quality: tri2quad + quadsmooth on a
 # jittered-grid Delaunay-like mesh of 2048 triangles and on 20000 triangles,
-# and on the real images of share/data through img2poly and poly2tri, side by
-# side with Gmsh's Blossom recombination of the very same triangles (when
-# gmsh is installed): min, median, mean mu, min scaled Jacobian, share of
-# quads with angles in [45, 135].   $1: tool folder.
+# and on the real images of share/data through img2poly and poly2tri (the
+# README's default chain, and the thesis's), side by side with Gmsh's Blossom
+# recombination of the very same triangles and Gmsh's own pipeline; (3) given
+# triangulations: Gmsh's own of a plate with holes and of a two-region
+# square, through tri2quad and quadsmooth, beside Blossom on the same
+# triangles and Gmsh's own pipeline: min, median, mean mu, min scaled
+# Jacobian, share of quads with angles in [45, 135].   $1: tool folder.
 set -euo pipefail
 BIN=${1:?usage: quadsmooth.sh TOOL_FOLDER}
 DATA=$(cd "$(dirname "$0")/../../share/data" && pwd)
+E2E=$(cd "$(dirname "$0")/../../tests/e2e" && pwd)  # before the cd below: $0 may be relative
 work=$(mktemp -d "${TMPDIR:-/tmp}/quadsmooth-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 cd "$work"
@@ -215,29 +219,65 @@ for spec in "VentricleModel:VentricleModel.png:--threshold 128" "BinaryImage:Bin
   "$BIN/img2poly" -q "$DATA/$image" r.poly $opts
   "$BIN/poly2tri" -q r.poly r.1.ele
   "$BIN/poly2tri" -q r.poly r.msh
-  echo "quality: $name ($opts) through img2poly and poly2tri, $(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' r.1.ele) triangles"
+  echo "quality: $name ($opts) through img2poly and poly2tri (defaults: graded square lattice), $(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' r.1.ele) triangles"
   "$BIN/tri2quad" -q r.1.ele q.ele
   "$BIN/tri2quad" -q r.1.ele q.msh
   msh_quality q.msh "tri2quad"
   /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q q.ele qs.msh --stats qs.json
-  msh_quality qs.msh "tri2quad+quadsmooth"
+  msh_quality qs.msh "default chain"
   echo "  (quadsmooth $(stat seconds qs.json) s in the tool, $(cat t.txt) s wall;" \
        "$(stat pair_splits qs.json) pair splits, $(stat pair_splits_four qs.json) of them into four," \
        "$(stat edge_moves qs.json) edge moves)"
   blossom r.msh
   gmsh_own r.1
+  # The thesis's chain: Delaunay refinement's own points, the BFS pairing alone.
+  "$BIN/poly2tri" -q r.poly t.1.ele --square-lattice 0
+  "$BIN/tri2quad" -q t.1.ele t.q.ele --pair-above 0
+  "$BIN/quadsmooth" -q t.q.ele ts.msh
+  msh_quality ts.msh "thesis chain"
   for side in ${QUADSMOOTH_BENCH_LATTICES:-4 2 1}; do
     "$BIN/poly2tri" -q r.poly l.1.ele --lattice "$side"
-    "$BIN/tri2quad" -q l.1.ele l.q.ele
+    "$BIN/tri2quad" -q l.1.ele l.q.ele --pair-above 0
     /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q l.q.ele ls.msh --stats ls.json
     msh_quality ls.msh "--lattice $side: +tri2quad+qs"
     echo "  ($(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' l.1.ele) triangles; quadsmooth $(stat seconds ls.json) s in the tool, $(cat t.txt) s wall)"
     # The quad chain: a square lattice, its squares merged first.
-    "$BIN/poly2tri" -q r.poly l.1.ele --square-lattice "$side"
+    "$BIN/poly2tri" -q r.poly l.1.ele --square-lattice "$side" --grading 0
     "$BIN/tri2quad" -q l.1.ele l.q.ele --pair-above 40 --stats lq.json
     /usr/bin/time -f "%e" -o t.txt "$BIN/quadsmooth" -q l.q.ele ls.msh --stats ls.json
-    msh_quality ls.msh "--square-lattice $side, --pair-above 40: +qs"
+    msh_quality ls.msh "--square-lattice $side --grading 0, --pair-above 40: +qs"
     echo "  ($(sed -n 's/^# \([0-9]*\) triangles.*/\1/p' l.1.ele) triangles, $(stat pairs_first lq.json) squares merged first;" \
          "quadsmooth $(stat seconds ls.json) s in the tool, $(cat t.txt) s wall)"
   done
 done
+
+# Given triangulations (Gmsh's own, frontal-Delaunay, of a plate with three
+# holes and of a square with a curved inclusion, two regions): tri2quad and
+# quadsmooth on them, beside Gmsh's Blossom recombination of the same
+# triangles and Gmsh's own geometry-to-quads pipeline on the same geometry.
+if command -v gmsh > /dev/null; then
+  for geo in holes inclusion; do
+    cp "$E2E/$geo.geo" .
+    for size in 0.4 0.2; do
+      gmsh -v 0 "$geo.geo" -2 -format msh22 -clmax "$size" -o gt.msh > /dev/null
+      python3 "$E2E/gmsh_triangles.py" gt.msh gt
+      echo "quality: Gmsh's triangulation of $geo.geo (-clmax $size), $(sed -n 's/^\([0-9]*\) 3 1$/\1/p' gt.ele) triangles"
+      "$BIN/tri2quad" -q gt.ele gq.ele
+      "$BIN/quadsmooth" -q gq.ele gqs.msh
+      msh_quality gqs.msh "tri2quad+quadsmooth"
+      "$BIN/tri2quad" -q gt.ele gq0.ele --pair-above 0
+      "$BIN/quadsmooth" -q gq0.ele gqs0.msh --mean-rounds 0
+      msh_quality gqs0.msh "(thesis: no pairs first, no mean pass)"
+      rm -f rec.msh
+      blossom gt.msh
+      sed -e 's/^Physical.*//' "$geo.geo" > own.geo
+      printf 'Mesh.RecombineAll = 1;\nMesh.RecombinationAlgorithm = 1;\nMesh.MeshSizeMax = %s;\nMesh.MshFileVersion = 2.2;\nMesh 2;\nSave "own.msh";\n' "$size" >> own.geo
+      rm -f own.msh
+      if timeout 600 gmsh -v 0 own.geo -0 > /dev/null 2>&1 && [ -s own.msh ]; then
+        msh_quality own.msh "gmsh own pipeline"
+      else
+        echo "  gmsh own pipeline: failed"
+      fi
+    done
+  done
+fi

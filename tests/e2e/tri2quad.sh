@@ -54,10 +54,11 @@ cat > sq.poly <<'N'
 N
 }
 
-# segments_kept IN OUT: for each marker, every output segment lies on an
-# input segment of that marker and their lengths add up to the input's.
+# segments_kept IN OUT [MARKERS]: for each marker, every output segment lies
+# on an input segment of that marker and their lengths add up to the
+# input's; the markers are MARKERS ("1 2" by default) in both.
 segments_kept() {
-  python3 - "$1.node" "$1.poly" "$2.node" "$2.poly" <<'PY' > seg.txt 2>&1 || fail "$2.poly: constraint segments or markers lost: $(cat seg.txt)"
+  python3 - "$1.node" "$1.poly" "$2.node" "$2.poly" "${3:-1 2}" <<'PY' > seg.txt 2>&1 || fail "$2.poly: constraint segments or markers lost: $(cat seg.txt)"
 import math, sys
 def rows(path):
     return [l.split('#', 1)[0].split() for l in open(path) if l.split('#', 1)[0].split()]
@@ -77,7 +78,7 @@ for m in sorted({s[2] for s in inp}):
     if off: bad.append('marker %d: %d of %d segments off its input segments' % (m, off, len(O)))
     lo, li = sum(math.dist(a, b) for a, b, _ in O), sum(math.dist(a, b) for a, b, _ in I)
     if abs(lo - li) >= 1e-9: bad.append('marker %d: length %.9g, input %.9g' % (m, lo, li))
-if not {s[2] for s in out} == {s[2] for s in inp} == {1, 2}:
+if not {s[2] for s in out} == {s[2] for s in inp} == set(map(int, sys.argv[5].split())):
     bad.append('markers %s, input %s' % (sorted({s[2] for s in out}), sorted({s[2] for s in inp})))
 sys.exit('; '.join(bad) if bad else 0)
 PY
@@ -132,6 +133,38 @@ PY
     expect 0 tri2quad g.ele g$pa.q.ele --pair-above $pa
     python3 "$QC" g$pa.q.ele g.ele --fixed > qc.txt 2>&1 || fail "--pair-above $pa: $(cat qc.txt)"
     bounds g g$pa.q 800 1
+  done
+}
+
+# Triangulations made by someone else: Gmsh's (Debian's gmsh, its default
+# frontal-Delaunay) of a plate with three holes and of a square with a
+# curved inclusion (two regions, their interface a constraint), each at two
+# sizes. tri2quad then quadsmooth, with no option: strictly convex, edge to
+# edge, each region's area, every boundary and constraint vertex kept
+# (--fixed) and every segment kept, within the size bounds; mean mu >= 30
+# and min mu >= 10 (the domains have no input angle under 90 degrees).
+case_gmsh_triangulations_quads_mean_mu_30_min_10() {
+  command -v gmsh > /dev/null || die "gmsh is not installed (scripts/install-deps installs it)"
+  local geo size name markers h
+  for geo in holes inclusion; do
+    cp "$E2E/$geo.geo" .
+    for size in 0.4 0.2; do
+      name=$geo$size
+      expect 0 gmsh -v 0 "$geo.geo" -2 -format msh22 -clmax "$size" -o "$name.msh" &&
+        expect 0 python3 "$E2E/gmsh_triangles.py" "$name.msh" "$name" &&
+        expect 0 tri2quad "$name.ele" "$name.q.ele" &&
+        expect 0 quadsmooth "$name.q.ele" "$name.qs.ele" || continue
+      markers="1 2" h=2
+      [[ $geo == holes ]] && markers=1 h=1
+      python3 "$QC" "$name.qs.ele" "$name.ele" --fixed > qc.txt 2>&1 || fail "$name: $(cat qc.txt)"
+      segments_kept "$name" "$name.qs" "$markers"
+      bounds "$name" "$name.q" "$(count "$name.ele")" "$h"
+      "$BIN/meshinfo" --json "$name.qs.ele" > mi.json
+      python3 -c "import sys; mean, mn = map(float, sys.argv[1:]); sys.exit(not (mean >= 30 and mn >= 10))" \
+        "$(json mi.json quad_quality.mean_mu)" "$(json mi.json quad_quality.min_mu)" ||
+        fail "$name ($(count "$name.ele") triangles): mean mu $(json mi.json quad_quality.mean_mu)," \
+             "min mu $(json mi.json quad_quality.min_mu)"
+    done
   done
 }
 

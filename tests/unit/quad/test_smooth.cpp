@@ -293,6 +293,48 @@ TEST_CASE("clean-up and smoothing of tri2quad outputs keep every guarantee", "[s
   CHECK(total.collapses > 0);
 }
 
+TEST_CASE("the mean pass raises the mean mu and lowers no quad below the worst around it", "[smooth]") {
+  // The same smoothing with and without the mean pass, which runs last: it
+  // moves a vertex only to raise the sum of sin(mu) of its star, no quad of
+  // the star below the star's worst, none non-convex; so the whole mesh's
+  // sum of sin(mu) rises and its worst mu stays.
+  double gain = 0;
+  std::size_t climbs = 0;
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    const int n = 4 + 2 * int(seed % 5);
+    PlanarMesh with = tri2quad_mesh(n, seed), without = with;
+    SmoothOptions opt;
+    opt.iterations = 6;
+    opt.mean_rounds = 0;
+    const SmoothStats s0 = smooth_quad_mesh(without, opt);
+    opt.mean_rounds = 3;
+    const SmoothStats s1 = smooth_quad_mesh(with, opt);
+    CAPTURE(seed, n, s0.after.min_mu, s1.after.min_mu, s0.after.mean_mu, s1.after.mean_mu);
+    REQUIRE(with.elements == without.elements);  // the pass moves vertices only
+    REQUIRE_NOTHROW(check_quad_mesh(with));
+    double sin0 = 0, sin1 = 0;
+    for (std::size_t e = 0; e < with.elements.size(); ++e) {
+      const auto& q = with.elements[e];
+      REQUIRE(is_strictly_convex(with.points[q[0]], with.points[q[1]], with.points[q[2]], with.points[q[3]]));
+      const auto mu = [&](const PlanarMesh& m) {
+        return joe_mu(m.points[q[0]], m.points[q[1]], m.points[q[2]], m.points[q[3]]);
+      };
+      sin0 += std::sin(mu(without) * M_PI / 180);
+      sin1 += std::sin(mu(with) * M_PI / 180);
+    }
+    CHECK(s1.after.min_mu >= s0.after.min_mu - 1e-9);
+    CHECK(sin1 >= sin0 - 1e-9);
+    CHECK((s1.mean_climbs > 0) == (sin1 > sin0 + 1e-9));
+    // Segment vertices stay.
+    for (const auto& sg : with.segments)
+      for (int v : sg) CHECK(with.points[v] == without.points[v]);
+    gain += s1.after.mean_mu - s0.after.mean_mu;
+    climbs += s1.mean_climbs;
+  }
+  CHECK(climbs > 0);
+  CHECK(gain / 40 >= 0.5);  // degrees of mean mu, on average
+}
+
 TEST_CASE("a strip with every corner fixed and two flat corners is split into four", "[smooth]") {
   // Two quads (u, w, a, b) and (w, u, c, d) whose six corners all lie on the
   // boundary, so nothing can move: b, u, w, d nearly on one line, a flat
@@ -580,6 +622,33 @@ TEST_CASE("doublet removal merges the two quads of a valence-2 vertex into a str
   REQUIRE_NOTHROW(check_quad_mesh(m));
   CHECK(quad_mu(m, m.elements[0]) == Approx(45));
   CHECK(total_area(m) == Approx(4));
+}
+
+TEST_CASE("a sharp corner split by a valence-3 vertex is left one quad", "[smooth]") {
+  // A convex hexagon c, h1..h5 with a 30-degree corner at c (every vertex
+  // fixed, on the boundary) around the free m, whose three quads split c's
+  // corner 17.7 / 12.3 degrees: the two quads (h5, c, h1, h2) and
+  // (h2, h3, h4, h5) keep c's whole angle in one.
+  PlanarMesh m;
+  m.points = {{0, 0}, {3, 0}, {4.5, 0.6}, {5.6, 1.8}, {5.5, 2.9}, {3.9, 2.25}, {2.5, 0.8}};
+  m.elements = {{6, 0, 1, 2}, {6, 2, 3, 4}, {6, 4, 5, 0}};
+  const double area = total_area(m);
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE_FALSE(qm.fixed[6]);
+  double worst_before = 2;
+  for (double s : qm.quad_sin_mu) worst_before = std::min(worst_before, s);
+  CHECK_FALSE(qs::open_sharp_corner(qm, 0));  // c itself is fixed
+  REQUIRE(qs::open_sharp_corner(qm, 6));
+  CHECK(qm.vertex_dead[6]);
+  CHECK(qm.vertex_quads[0].size() == 1);
+  CHECK(live_quads_strictly_convex(qm));
+  qm.compact();
+  REQUIRE(m.elements.size() == 2);
+  REQUIRE(m.points.size() == 6);
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(total_area(m) == Approx(area));
+  for (const auto& e : m.elements) CHECK(std::sin(quad_mu(m, e) * (3.14159265358979323846 / 180)) > worst_before);
 }
 
 TEST_CASE("doublet removal is refused when the merged quad would not be strictly convex", "[smooth]") {

@@ -152,3 +152,37 @@ TEST_CASE("pairs first on a square grid: every square comes back, where the BFS 
   CHECK(c["pairs_first_abandoned"] == 0);
   CHECK(c["pairs_first"] >= 70);
 }
+
+TEST_CASE("pairs first keep a sharp input corner in one quad", "[tri2quad][pairs]") {
+  // A 4 x 4 grid with a wedge below it: the triangle c, (2, 0), (1, 0),
+  // alone at its 18.9-degree corner c. Split, the corner would go to two
+  // quads, each of mu at most a quarter of it after any smoothing; paired
+  // across (1, 0)-(2, 0), to one.
+  Tri2QuadInput in = square_grid(4);
+  in.points.push_back({1.5, -3});
+  const int c = int(in.points.size()) - 1;
+  in.triangles.push_back({c, 2, 1});
+  Tri2QuadOptions o;
+  o.pair_above = 40;
+  const auto r = tri2quad(in, o);
+  check_result(in, r, false);
+  check_segments(in, r);
+  CHECK(std::count_if(r.quads.begin(), r.quads.end(),
+                      [&](const auto& q) { return std::find(q.begin(), q.end(), c) != q.end(); }) == 1);
+}
+
+TEST_CASE("pairs first do not keep a sharp corner in a nearly flat quad", "[tri2quad][pairs]") {
+  // The wedge's corner c a hair left of x = 2: the pair's quad c, (2, 0),
+  // (2, 1), (1, 0) is convex for the exact predicates, with an angle within
+  // 1e-12 of 180 degrees at (2, 0) that no smoothing could open.
+  Tri2QuadInput in = square_grid(4);
+  in.points.push_back({2 - 1e-12, -3});
+  in.triangles.push_back({int(in.points.size()) - 1, 2, 1});
+  Tri2QuadOptions o;
+  o.pair_above = 40;
+  const auto r = tri2quad(in, o);
+  check_result(in, r, false);
+  double worst = 45;
+  for (const auto& q : r.quads) worst = std::min(worst, joe_mu(r.points[q[0]], r.points[q[1]], r.points[q[2]], r.points[q[3]]));
+  CHECK(worst > 1e-6);
+}
