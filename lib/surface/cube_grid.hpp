@@ -80,12 +80,13 @@ public:
     f_.value_gradient(c, gr);
     return gr;
   }
-  // An enclosure of f on the local box [a, b] when the surface has one.
-  bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const { return f_.range(a, b, lo, hi); }
-  // An enclosure of f's derivative along the unit vector v on [a, b], when
-  // the surface has one.
+  // An enclosure of f on the local box [a, b] when the surface has one, for
+  // the callers' only question, whether it excludes 0: with until_zero (see
+  // ImplicitSurface::range).
+  bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const { return f_.range(a, b, lo, hi, true); }
+  // The same for f's derivative along the unit vector v on [a, b].
   bool slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi) const {
-    return f_.slope_range(a, b, v, lo, hi);
+    return f_.slope_range(a, b, v, lo, hi, true);
   }
   // Sign convention for zeros (8.4(1)): f == 0 counts as outside, i.e. we
   // mesh f^-1(-eps) symbolically, consistently on every edge.
