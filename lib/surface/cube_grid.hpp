@@ -66,10 +66,14 @@ public:
   SurfaceSampler(const ImplicitSurface& f, const CubeGrid& grid) : f_(f), grid_(grid) {}
   const CubeGrid& grid() const { return grid_; }
   const ImplicitSurface& surface() const { return f_; }
-  long long evaluations() const { return evaluations_.load(); }
+  long long evaluations() const {
+    long long n = 0;
+    for (const Count& c : evaluations_) n += c.n.load();
+    return n;
+  }
 
   double value(const Vec3& q) const {
-    evaluations_.fetch_add(1, std::memory_order_relaxed);
+    evaluations_[count_slot()].n.fetch_add(1, std::memory_order_relaxed);
     Vec3 c = q;
     for (int i = 0; i < 3; ++i) c[i] = std::clamp(c[i], 0.0, grid_.hi[i]);
     return f_.value(c);
@@ -99,7 +103,17 @@ public:
 private:
   const ImplicitSurface& f_;
   const CubeGrid& grid_;
-  mutable std::atomic<long long> evaluations_{0};
+  // The evaluations, counted in one slot per thread (threads beyond
+  // kSlots share, still atomically), each on its own cache line: one
+  // counter shared by every thread bounced between the cores.
+  static constexpr unsigned kSlots = 16;
+  struct alignas(64) Count { std::atomic<long long> n{0}; };
+  mutable std::array<Count, kSlots> evaluations_;
+  static unsigned count_slot() {
+    static std::atomic<unsigned> next{0};
+    thread_local const unsigned slot = next.fetch_add(1, std::memory_order_relaxed) % kSlots;
+    return slot;
+  }
 };
 
 } // namespace imgmesh::surface_detail
