@@ -42,10 +42,10 @@ bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, do
   // The box's corners in index units: t = a / s - k (or b / s - k) in cell k.
   double ta[3], tb[3];
   for (int i = 0; i < 3; ++i) ta[i] = a[i] / g.spacing[i], tb[i] = b[i] / g.spacing[i];
-  lo = HUGE_VAL;
-  hi = -HUGE_VAL;
   // min and max over the cells in any order: until_zero stops at the first
-  // cell that brings 0 into [lo, hi] (the pad below keeps it there).
+  // cell that brings 0 into [l, h] (the pad below keeps it there). Locals,
+  // not lo and hi: through references they went to memory at every step.
+  double l = HUGE_VAL, h = -HUGE_VAL;
   [&] {
     for (long z = k0[2]; z <= k1[2]; ++z)
       for (long y = k0[1]; y <= k1[1]; ++y)
@@ -63,14 +63,16 @@ bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, do
               const double c0 = c00 + s1 * (c10 - c00), c1 = c01 + s1 * (c11 - c01);
               for (double s2 : t2) {
                 const double v = c0 + s2 * (c1 - c0);
-                lo = std::min(lo, v);
-                hi = std::max(hi, v);
+                l = std::min(l, v);
+                h = std::max(h, v);
               }
             }
           }
-          if (until_zero && lo <= 0 && hi >= 0) return;
+          if (until_zero && l <= 0 && h >= 0) return;
         }
   }();
+  lo = l;
+  hi = h;
   // Rounding: f is evaluated in double from float samples; widen a little.
   const double pad = 1e-9 * (std::abs(lo) + std::abs(hi) + 1e-300) + 1e-12 * g.spacing[0];
   lo -= pad;
