@@ -348,14 +348,10 @@ bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p) {
   const Vec3 pp = vec(p->point());
   thread_local std::vector<HalfSpace> hs;
   voronoi_cell(tr, p, hs);
-  auto outside = [&](long x, long y, long z) {  // all 8 corners beyond one face of V(p)
+  auto outside = [&](long x, long y, long z) {  // all 8 corners beyond one face of V(p): the least far one (as in handle_detection)
     for (const HalfSpace& e : hs) {
-      bool all = true;
-      for (int k = 0; k < 8 && all; ++k) {
-        const Vec3 c{(x + (k & 1)) * grid.s[0], (y + ((k >> 1) & 1)) * grid.s[1], (z + ((k >> 2) & 1)) * grid.s[2]};
-        all = dot(e.d, c) > e.c;
-      }
-      if (all) return true;
+      const Vec3 c{(x + (e.d[0] < 0)) * grid.s[0], (y + (e.d[1] < 0)) * grid.s[1], (z + (e.d[2] < 0)) * grid.s[2]};
+      if (dot(e.d, c) > e.c) return true;
     }
     return false;
   };
