@@ -96,9 +96,11 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
   }
   double slo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, shi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   // [lo, hi] from the slopes' ranges so far: it only widens as they do
-  // (every step is monotone), so until_zero stops once it holds 0.
+  // (every step is monotone), so until_zero stops once it holds 0. In
+  // locals, as in range().
+  double elo = 0, ehi = 0;
   auto enclose = [&] {
-    lo = hi = 0;
+    elo = ehi = 0;
     for (int i = 0; i < 3; ++i) {
       double l = slo[i], h = shi[i];
       if (blend[i]) {
@@ -106,8 +108,8 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
         l -= w;
         h += w;
       }
-      lo += std::min(v[i] * l, v[i] * h);
-      hi += std::max(v[i] * l, v[i] * h);
+      elo += std::min(v[i] * l, v[i] * h);
+      ehi += std::max(v[i] * l, v[i] * h);
     }
   };
   [&] {
@@ -135,11 +137,13 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
           }
           if (until_zero) {
             enclose();
-            if (lo <= 0 && hi >= 0) return;
+            if (elo <= 0 && ehi >= 0) return;
           }
         }
   }();
   if (!until_zero) enclose();
+  lo = elo;
+  hi = ehi;
   // Rounding: as in range().
   const double pad = 1e-9 * (std::abs(lo) + std::abs(hi) + 1e-300);
   lo -= pad;
