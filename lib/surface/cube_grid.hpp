@@ -69,10 +69,14 @@ public:
   SurfaceSampler(const ImplicitSurface& f, const CubeGrid& grid) : f_(f), grid_(grid) {}
   const CubeGrid& grid() const { return grid_; }
   const ImplicitSurface& surface() const { return f_; }
-  long long evaluations() const { return evaluations_.load(); }
+  long long evaluations() const {
+    long long n = 0;
+    for (const Count& c : evaluations_) n += c.n.load();
+    return n;
+  }
 
   double value(const Vec3& q) const {
-    evaluations_.fetch_add(1, std::memory_order_relaxed);
+    evaluations_[count_slot()].n.fetch_add(1, std::memory_order_relaxed);
     Vec3 c = q;
     for (int i = 0; i < 3; ++i) c[i] = std::clamp(c[i], 0.0, grid_.hi[i]);
     return f_.value(c);
@@ -83,12 +87,13 @@ public:
     f_.value_gradient(c, gr);
     return gr;
   }
-  // An enclosure of f on the local box [a, b] when the surface has one.
-  bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const { return f_.range(a, b, lo, hi); }
-  // An enclosure of f's derivative along the unit vector v on [a, b], when
-  // the surface has one.
+  // An enclosure of f on the local box [a, b] when the surface has one, for
+  // the callers' only question, whether it excludes 0: with until_zero (see
+  // ImplicitSurface::range).
+  bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const { return f_.range(a, b, lo, hi, true); }
+  // The same for f's derivative along the unit vector v on [a, b].
   bool slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi) const {
-    return f_.slope_range(a, b, v, lo, hi);
+    return f_.slope_range(a, b, v, lo, hi, true);
   }
   // Sign convention for zeros (8.4(1)): f == 0 counts as outside, i.e. we
   // mesh f^-1(-eps) symbolically, consistently on every edge.
@@ -101,7 +106,17 @@ public:
 private:
   const ImplicitSurface& f_;
   const CubeGrid& grid_;
-  mutable std::atomic<long long> evaluations_{0};
+  // The evaluations, counted in one slot per thread (threads beyond
+  // kSlots share, still atomically), each on its own cache line: one
+  // counter shared by every thread bounced between the cores.
+  static constexpr unsigned kSlots = 16;
+  struct alignas(64) Count { std::atomic<long long> n{0}; };
+  mutable std::array<Count, kSlots> evaluations_;
+  static unsigned count_slot() {
+    static std::atomic<unsigned> next{0};
+    thread_local const unsigned slot = next.fetch_add(1, std::memory_order_relaxed) % kSlots;
+    return slot;
+  }
 };
 
 } // namespace imgmesh::surface_detail

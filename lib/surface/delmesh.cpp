@@ -209,7 +209,11 @@ void DelMesh::refine() {
 void DelMesh::compute_new_cells() {
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i) c->facet.clear(i);
-  thread_local std::vector<std::pair<std::array<int, 3>, Facet>> order;
+  // The sorted ids + 1 (the infinite vertex's -1 becomes 0), the first two
+  // packed in one word: the same order as the ids' triples, for less to
+  // compare and move than std::array<int, 3> (the sort was 2% of a run).
+  struct Key { std::uint64_t ab; std::uint32_t c; int i; Ch cell; };
+  thread_local std::vector<Key> order;
   order.clear();
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i) {
@@ -219,11 +223,12 @@ void DelMesh::compute_new_cells() {
         ids[m - 1] = tr_.is_infinite(w) ? -1 : w->info().id;
       }
       std::sort(ids.begin(), ids.end());
-      order.emplace_back(ids, Facet(c, i));
+      const auto u = [&](int k) { return std::uint32_t(ids[std::size_t(k)] + 1); };
+      order.push_back({std::uint64_t(u(0)) << 32 | u(1), u(2), i, c});
     }
-  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (const auto& [ids, f] : order)
-    if (!(f.first->facet[f.second].state & kComputed)) compute_facet(f.first, f.second);
+  std::sort(order.begin(), order.end(), [](const Key& a, const Key& b) { return a.ab != b.ab ? a.ab < b.ab : a.c < b.c; });
+  for (const Key& k : order)
+    if (!(k.cell->facet[k.i].state & kComputed)) compute_facet(k.cell, k.i);
 }
 
 // Remember the finite vertices of facet (c, i) if it is restricted.

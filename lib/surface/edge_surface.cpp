@@ -3,7 +3,6 @@
 #include "surface/edge_surface.hpp"
 
 #include <cmath>
-#include <functional>
 
 namespace imgmesh::surface_detail {
 
@@ -64,7 +63,7 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
   // The piece [ta, tb] of an active cube by the enclosures (halved up to
   // kSplits times); what they leave undecided joins the pieces to sample.
   constexpr int kSplits = 2;
-  std::function<void(double, double, int)> decide = [&](double ta, double tb, int depth) {
+  auto decide = [&](auto&& self, double ta, double tb, int depth) -> void {
     const Vec3 xa = at(ta), xb = at(tb);
     Vec3 lo, hi;
     for (int i = 0; i < 3; ++i) {
@@ -79,8 +78,8 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
       return;
     } else if (depth < kSplits) {
       const double tm = (ta + tb) / 2;
-      decide(ta, tm, depth + 1);
-      decide(tm, tb, depth + 1);
+      self(self, ta, tm, depth + 1);
+      self(self, tm, tb, depth + 1);
       return;
     }
     if (!pieces.empty() && !pieces.back().monotone && pieces.back().tb == ta) pieces.back().tb = tb;  // merge runs
@@ -102,7 +101,7 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
       long c[3];
       for (int i = 0; i < 3; ++i) c[i] = std::clamp(floor_long(m[i] / grid.s[i]), 0L, grid.n[i] - 2);
       if (!grid.active(c[0], c[1], c[2])) continue;
-      decide(ta, tb, 0);
+      decide(decide, ta, tb, 0);
     }
   }
   if (pieces.empty()) return out;

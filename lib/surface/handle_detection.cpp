@@ -206,12 +206,13 @@ HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3&
         for (long x = lo[0]; x + 1 < lo[0] + n[0]; ++x) {
           // Only sub-cubes of active cubes can meet S.
           if (!grid.active(x / 2, y / 2, z / 2)) continue;
-          // Sub-cubes wholly beyond one face of V(p) hold none of S n V(p).
+          // Sub-cubes wholly beyond one face of V(p) hold none of S n V(p):
+          // those whose corner least far along the face's normal is beyond
+          // (d . x, even rounded, is monotone in each coordinate).
           bool beyond = false;
           for (std::size_t e = 0; e < hs.size() && !beyond; ++e) {
-            bool all = true;
-            for (int k = 0; k < 8 && all; ++k) all = dot(hs[e].d, point(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1))) > hs[e].c;
-            beyond = all;
+            const Vec3& d = hs[e].d;
+            beyond = dot(d, point(x + (d[0] < 0), y + (d[1] < 0), z + (d[2] < 0))) > hs[e].c;
           }
           if (beyond) continue;
           long c[8][3];
@@ -347,14 +348,10 @@ bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p) {
   const Vec3 pp = vec(p->point());
   thread_local std::vector<HalfSpace> hs;
   voronoi_cell(tr, p, hs);
-  auto outside = [&](long x, long y, long z) {  // all 8 corners beyond one face of V(p)
+  auto outside = [&](long x, long y, long z) {  // all 8 corners beyond one face of V(p): the least far one (as in handle_detection)
     for (const HalfSpace& e : hs) {
-      bool all = true;
-      for (int k = 0; k < 8 && all; ++k) {
-        const Vec3 c{(x + (k & 1)) * grid.s[0], (y + ((k >> 1) & 1)) * grid.s[1], (z + ((k >> 2) & 1)) * grid.s[2]};
-        all = dot(e.d, c) > e.c;
-      }
-      if (all) return true;
+      const Vec3 c{(x + (e.d[0] < 0)) * grid.s[0], (y + (e.d[1] < 0)) * grid.s[1], (z + (e.d[2] < 0)) * grid.s[2]};
+      if (dot(e.d, c) > e.c) return true;
     }
     return false;
   };

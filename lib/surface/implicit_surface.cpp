@@ -42,8 +42,8 @@ FunctionSurface::FunctionSurface(const Geometry& grid, Function f)
         samples_(x, y, z) = float(f_(grid.world(double(x), double(y), double(z))));
 }
 
-bool ImplicitSurface::range(const Vec3&, const Vec3&, double&, double&) const { return false; }
-bool ImplicitSurface::slope_range(const Vec3&, const Vec3&, const Vec3&, double&, double&) const { return false; }
+bool ImplicitSurface::range(const Vec3&, const Vec3&, double&, double&, bool) const { return false; }
+bool ImplicitSurface::slope_range(const Vec3&, const Vec3&, const Vec3&, double&, double&, bool) const { return false; }
 
 double FunctionSurface::value(const Vec3& q) const { return f_(to_world(q)); }
 

@@ -26,11 +26,15 @@ public:
   // and f has no zero in a cube whose 8 corners share one sign (thesis F1).
   virtual const FloatImage& samples() const = 0;
   // An enclosure [lo, hi] of f on the local box [a, b] (a <= b), when the
-  // surface can give one (false: none; the default).
-  virtual bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const;
+  // surface can give one (false: none; the default). until_zero, for
+  // callers that only ask whether it excludes 0: it may stop as soon as
+  // [lo, hi] holds 0 (lo < 0 < hi, no longer an enclosure of f); an
+  // enclosure that excludes 0 is the same as without it.
+  virtual bool range(const Vec3& a, const Vec3& b, double& lo, double& hi, bool until_zero = false) const;
   // An enclosure [lo, hi] of the derivative of f along the unit vector v
-  // on the local box [a, b], when the surface can give one (false: none).
-  virtual bool slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi) const;
+  // on the local box [a, b], when the surface can give one (false: none);
+  // until_zero as in range().
+  virtual bool slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi, bool until_zero = false) const;
 
   // Local frame <-> world coordinates.
   Vec3 to_world(const Vec3& q) const;
@@ -70,7 +74,7 @@ public:
   // interpolant of g on cell j, extended): on a box, f lies within the
   // range of the f_j of the cells whose dilated box meets it, each at the
   // box's 8 corners.
-  bool range(const Vec3& a, const Vec3& b, double& lo, double& hi) const override;
+  bool range(const Vec3& a, const Vec3& b, double& lo, double& hi, bool until_zero = false) const override;
   // grad f = sum_j w_j grad f_j + sum_j f_j grad w_j. The first sum lies in
   // the range of the d f_j / d x_i of those cells (bilinear in the other two
   // coordinates: their values at the box's corners). The second is nonzero
@@ -79,7 +83,7 @@ public:
   // x (s_up - s_lo) (the two agree on the plane; x is the offset, |x| < d_i,
   // s their slopes along i), so |it| <= kBlendSlope |s_up - s_lo| with
   // kBlendSlope >= max_u |d eta / du| |1/2 - u| (u = (d - x) / 2d).
-  bool slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi) const override;
+  bool slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi, bool until_zero = false) const override;
   // max_u |d eta/du| |1/2 - u| is 0.32718 (at u = 0.2435); the unit test
   // checks the bound on a dense sample.
   static constexpr double kBlendSlope = 0.33;

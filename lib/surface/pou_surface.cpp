@@ -35,37 +35,44 @@ double PartitionOfUnitySurface::value_gradient(const Vec3& q, Vec3& gradient) co
 
 const FloatImage& PartitionOfUnitySurface::samples() const { return pu_.samples(); }
 
-bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, double& hi) const {
+bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, double& hi, bool until_zero) const {
   const FloatImage& g = pu_.samples();
   long k0[3], k1[3];
   cells_meeting(g, pu_.d(), a, b, k0, k1);
   // The box's corners in index units: t = a / s - k (or b / s - k) in cell k.
   double ta[3], tb[3];
   for (int i = 0; i < 3; ++i) ta[i] = a[i] / g.spacing[i], tb[i] = b[i] / g.spacing[i];
-  lo = HUGE_VAL;
-  hi = -HUGE_VAL;
-  for (long z = k0[2]; z <= k1[2]; ++z)
-    for (long y = k0[1]; y <= k1[1]; ++y)
-      for (long x = k0[0]; x <= k1[0]; ++x) {
-        double c[8];
-        for (int m = 0; m < 8; ++m) c[m] = g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1)));
-        // f_j at the box's 8 corners, lerp by lerp along x, y, z: the corners
-        // with the same t0 (or t0, t1) share the first lerps.
-        const double t0[2] = {ta[0] - double(x), tb[0] - double(x)}, t1[2] = {ta[1] - double(y), tb[1] - double(y)},
-                     t2[2] = {ta[2] - double(z), tb[2] - double(z)};
-        for (double s0 : t0) {
-          const double c00 = c[0] + s0 * (c[1] - c[0]), c10 = c[2] + s0 * (c[3] - c[2]);
-          const double c01 = c[4] + s0 * (c[5] - c[4]), c11 = c[6] + s0 * (c[7] - c[6]);
-          for (double s1 : t1) {
-            const double c0 = c00 + s1 * (c10 - c00), c1 = c01 + s1 * (c11 - c01);
-            for (double s2 : t2) {
-              const double v = c0 + s2 * (c1 - c0);
-              lo = std::min(lo, v);
-              hi = std::max(hi, v);
+  // min and max over the cells in any order: until_zero stops at the first
+  // cell that brings 0 into [l, h] (the pad below keeps it there). Locals,
+  // not lo and hi: through references they went to memory at every step.
+  double l = HUGE_VAL, h = -HUGE_VAL;
+  [&] {
+    for (long z = k0[2]; z <= k1[2]; ++z)
+      for (long y = k0[1]; y <= k1[1]; ++y)
+        for (long x = k0[0]; x <= k1[0]; ++x) {
+          double c[8];
+          for (int m = 0; m < 8; ++m) c[m] = g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1)));
+          // f_j at the box's 8 corners, lerp by lerp along x, y, z: the corners
+          // with the same t0 (or t0, t1) share the first lerps.
+          const double t0[2] = {ta[0] - double(x), tb[0] - double(x)}, t1[2] = {ta[1] - double(y), tb[1] - double(y)},
+                       t2[2] = {ta[2] - double(z), tb[2] - double(z)};
+          for (double s0 : t0) {
+            const double c00 = c[0] + s0 * (c[1] - c[0]), c10 = c[2] + s0 * (c[3] - c[2]);
+            const double c01 = c[4] + s0 * (c[5] - c[4]), c11 = c[6] + s0 * (c[7] - c[6]);
+            for (double s1 : t1) {
+              const double c0 = c00 + s1 * (c10 - c00), c1 = c01 + s1 * (c11 - c01);
+              for (double s2 : t2) {
+                const double v = c0 + s2 * (c1 - c0);
+                l = std::min(l, v);
+                h = std::max(h, v);
+              }
             }
           }
+          if (until_zero && l <= 0 && h >= 0) return;
         }
-      }
+  }();
+  lo = l;
+  hi = h;
   // Rounding: f is evaluated in double from float samples; widen a little.
   const double pad = 1e-9 * (std::abs(lo) + std::abs(hi) + 1e-300) + 1e-12 * g.spacing[0];
   lo -= pad;
@@ -73,50 +80,70 @@ bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, do
   return true;
 }
 
-bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi) const {
+bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi,
+                                          bool until_zero) const {
   const FloatImage& g = pu_.samples();
   const Vec3& d = pu_.d();
   long k0[3], k1[3];
   cells_meeting(g, d, a, b, k0, k1);
-  double slo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, shi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (long z = k0[2]; z <= k1[2]; ++z)
-    for (long y = k0[1]; y <= k1[1]; ++y)
-      for (long x = k0[0]; x <= k1[0]; ++x) {
-        const long k[3] = {x, y, z};
-        double c[8];
-        for (int m = 0; m < 8; ++m) c[m] = g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1)));
-        for (int m = 0; m < 8; ++m) {  // d f_j / d x_i at the box's corner m
-          double t[3];
-          for (int i = 0; i < 3; ++i) t[i] = ((m >> i) & 1 ? b[i] : a[i]) / g.spacing[i] - double(k[i]);
-          for (int i = 0; i < 3; ++i) {
-            const int j = (i + 1) % 3, l = (i + 2) % 3;
-            double e[2];  // f_j on the faces t_i = 0 and 1, bilinear in t_j, t_l
-            for (int side = 0; side < 2; ++side) {
-              auto at = [&](int bj, int bl) { return c[(side << i) | (bj << j) | (bl << l)]; };
-              const double e0 = at(0, 0) + t[j] * (at(1, 0) - at(0, 0)), e1 = at(0, 1) + t[j] * (at(1, 1) - at(0, 1));
-              e[side] = e0 + t[l] * (e1 - e0);
-            }
-            const double sl = (e[1] - e[0]) / g.spacing[i];
-            slo[i] = std::min(slo[i], sl);
-            shi[i] = std::max(shi[i], sl);
-          }
-        }
-      }
-  lo = hi = 0;
+  // An inner grid plane within d_i of the box on axis i: the blend term.
+  bool blend[3];
   for (int i = 0; i < 3; ++i) {
-    double l = slo[i], h = shi[i];
     const double s = g.spacing[i];
     const long cells = long(g.size[i]) - 1;
-    // An inner grid plane within d_i of the box on axis i: the blend term.
     const long p0 = std::max(1L, surface_detail::ceil_long((a[i] - d[i]) / s)), p1 = std::min(cells - 1, surface_detail::floor_long((b[i] + d[i]) / s));
-    if (p0 <= p1) {
-      const double w = kBlendSlope * (h - l);
-      l -= w;
-      h += w;
-    }
-    lo += std::min(v[i] * l, v[i] * h);
-    hi += std::max(v[i] * l, v[i] * h);
+    blend[i] = p0 <= p1;
   }
+  double slo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, shi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  // [lo, hi] from the slopes' ranges so far: it only widens as they do
+  // (every step is monotone), so until_zero stops once it holds 0. In
+  // locals, as in range().
+  double elo = 0, ehi = 0;
+  auto enclose = [&] {
+    elo = ehi = 0;
+    for (int i = 0; i < 3; ++i) {
+      double l = slo[i], h = shi[i];
+      if (blend[i]) {
+        const double w = kBlendSlope * (h - l);
+        l -= w;
+        h += w;
+      }
+      elo += std::min(v[i] * l, v[i] * h);
+      ehi += std::max(v[i] * l, v[i] * h);
+    }
+  };
+  [&] {
+    for (long z = k0[2]; z <= k1[2]; ++z)
+      for (long y = k0[1]; y <= k1[1]; ++y)
+        for (long x = k0[0]; x <= k1[0]; ++x) {
+          const long k[3] = {x, y, z};
+          double c[8];
+          for (int m = 0; m < 8; ++m) c[m] = g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1)));
+          for (int m = 0; m < 8; ++m) {  // d f_j / d x_i at the box's corner m
+            double t[3];
+            for (int i = 0; i < 3; ++i) t[i] = ((m >> i) & 1 ? b[i] : a[i]) / g.spacing[i] - double(k[i]);
+            for (int i = 0; i < 3; ++i) {
+              const int j = (i + 1) % 3, l = (i + 2) % 3;
+              double e[2];  // f_j on the faces t_i = 0 and 1, bilinear in t_j, t_l
+              for (int side = 0; side < 2; ++side) {
+                auto at = [&](int bj, int bl) { return c[(side << i) | (bj << j) | (bl << l)]; };
+                const double e0 = at(0, 0) + t[j] * (at(1, 0) - at(0, 0)), e1 = at(0, 1) + t[j] * (at(1, 1) - at(0, 1));
+                e[side] = e0 + t[l] * (e1 - e0);
+              }
+              const double sl = (e[1] - e[0]) / g.spacing[i];
+              slo[i] = std::min(slo[i], sl);
+              shi[i] = std::max(shi[i], sl);
+            }
+          }
+          if (until_zero) {
+            enclose();
+            if (elo <= 0 && ehi >= 0) return;
+          }
+        }
+  }();
+  if (!until_zero) enclose();
+  lo = elo;
+  hi = ehi;
   // Rounding: as in range().
   const double pad = 1e-9 * (std::abs(lo) + std::abs(hi) + 1e-300);
   lo -= pad;

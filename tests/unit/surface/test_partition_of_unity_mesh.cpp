@@ -170,6 +170,12 @@ TEST_CASE("partition of unity: the enclosure of f on a box holds f everywhere in
     REQUIRE(lo <= hi);
     ++boxes;
     excluded += lo > 0 || hi < 0;
+    {  // until_zero: the same answer, and the same enclosure where it excludes 0
+      double lz, hz;
+      REQUIRE(s.range(a, b, lz, hz, true));
+      if (lo > 0 || hi < 0) CHECK((lz == lo && hz == hi));
+      else CHECK((lz < 0 && hz > 0));
+    }
     for (int m = 0; m < 64; ++m) {  // corners, then random points
       Vec3 x;
       for (int i = 0; i < 3; ++i) x[i] = m < 8 ? ((m >> i) & 1 ? b[i] : a[i]) : a[i] + u01(rng) * (b[i] - a[i]);
@@ -212,6 +218,12 @@ TEST_CASE("partition of unity: the enclosure of f's slope on a box holds f's dir
     REQUIRE(s.slope_range(a, b, v, lo, hi));
     REQUIRE(lo <= hi);
     decided += lo > 0 || hi < 0;
+    {  // until_zero: as for range
+      double lz, hz;
+      REQUIRE(s.slope_range(a, b, v, lz, hz, true));
+      if (lo > 0 || hi < 0) CHECK((lz == lo && hz == hi));
+      else CHECK((lz < 0 && hz > 0));
+    }
     for (int m = 0; m < 64; ++m) {
       Vec3 x, gr;
       for (int i = 0; i < 3; ++i) x[i] = m < 8 ? ((m >> i) & 1 ? b[i] : a[i]) : a[i] + u01(rng) * (b[i] - a[i]);
