@@ -19,8 +19,8 @@ namespace {
 
 double d2(const Point& a, const Point& b) { return CGAL::to_double(CGAL::squared_distance(a, b)); }
 
-// One round of cell refinement, run by DELMESH each time the certificate
-// holds (DelMesh::set_after_certificate).
+// One round of cell refinement, run by DELMESH once the certificate holds,
+// round after round with REFINE between (DelMesh::set_after_certificate).
 class CellRefinement {
 public:
   CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt, const BoxRefinement* box)
