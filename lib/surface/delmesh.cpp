@@ -491,13 +491,23 @@ RestrictedDelaunayResult DelMesh::run() {
   // again. Termination: at most opt_.fallback_rounds rounds, each of which
   // inserts at least one point (else the loop stops) and ends with REFINE,
   // which terminates on its own (and at --max-points).
+  // implicit2tet (after_certificate_): once the certificate holds, its
+  // rounds, each followed by REFINE, until one inserts nothing; then the
+  // certificate once more, on that final triangulation (not after every
+  // round: measured on brain label 3, 5 certificates of 0.5 s each).
   int rounds = 0;
   Certificate cert;
+  std::uint32_t settled = 0;  // computed_ when the last round inserted nothing
   for (;;) {
     cert = certify(tr_, vertices_.size(), grid_, expected);
-    if (cert.ok && !max_hit_ && after_certificate_ && after_certificate_(*this)) {
-      refine();
-      continue;
+    if (cert.ok && !max_hit_ && after_certificate_ && computed_ != settled) {
+      bool any = false;
+      while (!max_hit_ && after_certificate_(*this)) {
+        refine();
+        any = true;
+      }
+      settled = computed_;
+      if (any) continue;
     }
     if (cert.ok || max_hit_ || rounds >= opt_.fallback_rounds || cert.bad.empty()) break;
     ++rounds;

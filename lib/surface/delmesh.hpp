@@ -66,9 +66,10 @@ public:
   // vertex already; `hint`: the facet that asked for it.
   bool insert(const Vec3& x, Origin origin, Facet hint = Facet(Ch(), 0));
 
-  // implicit2tet's entry (lib/volume): called each time the certificate
-  // holds; when it inserts points (true), REFINE and the certificate run
-  // again, so the surface guarantees hold on the final triangulation.
+  // implicit2tet's entry (lib/volume): once the certificate holds, called
+  // with REFINE after each call that inserts points (true), until one
+  // inserts none; then the certificate again if any did, so the surface
+  // guarantees hold on the final triangulation.
   void set_after_certificate(std::function<bool(DelMesh&)> step) { after_certificate_ = std::move(step); }
 
   const Tr& triangulation() const { return tr_; }

@@ -19,8 +19,8 @@ namespace {
 
 double d2(const Point& a, const Point& b) { return CGAL::to_double(CGAL::squared_distance(a, b)); }
 
-// One round of cell refinement, run by DELMESH each time the certificate
-// holds (DelMesh::set_after_certificate).
+// One round of cell refinement, run by DELMESH once the certificate holds,
+// round after round with REFINE between (DelMesh::set_after_certificate).
 class CellRefinement {
 public:
   CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt, const BoxRefinement* box)
@@ -118,6 +118,13 @@ private:
     const double bad = badness(tr, c, sliver);
     if (bad > 0) queue_.push({bad, seq_++, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, sliver});
   }
+  // The entry's cell is still in the triangulation.
+  static bool alive(const Tr& tr, const Entry& e) {
+    if (!tr.tds().cells().is_used(e.c)) return false;
+    for (int i = 0; i < 4; ++i)
+      if (e.c->vertex(i) != e.v[std::size_t(i)]) return false;
+    return true;
+  }
   void push_around(const Tr& tr, Vh v) {
     cells_.clear();
     tr.incident_cells(v, std::back_inserter(cells_));
@@ -157,19 +164,37 @@ private:
     return any;
   }
 
+  // The first round scans every cell; a later one only the cells made
+  // since the last round's queue ran dry (each at a vertex inserted since:
+  // the others were not bad then) and the cells that round passed over.
   bool refine_cells(DelMesh& dm) {
     const Tr& tr = dm.triangulation();
-    queue_ = {};
-    for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) push_if_bad(tr, c);
+    if (scanned_ == 0) {
+      for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) push_if_bad(tr, c);
+    } else {
+      const int first = int(scanned_);
+      for (std::size_t id = scanned_; id < dm.vertices().size(); ++id) {
+        if (dm.vertices()[id] == Vh()) continue;
+        cells_.clear();
+        tr.incident_cells(dm.vertices()[id], std::back_inserter(cells_));
+        for (Ch c : cells_) {  // once, from its first new vertex
+          bool first_new = true;
+          for (int i = 0; i < 4; ++i) {
+            const Vh w = c->vertex(i);
+            first_new = first_new && (tr.is_infinite(w) || w->info().id < first || w->info().id >= int(id));
+          }
+          if (first_new) push_if_bad(tr, c);
+        }
+      }
+      for (const Entry& e : passed_) queue_.push(e);
+      passed_.clear();
+    }
     const double guard2 = guard_ * guard_;
     bool any = false;
     while (!queue_.empty() && !cap_reached()) {
       const Entry e = queue_.top();
       queue_.pop();
-      if (!tr.tds().cells().is_used(e.c)) continue;
-      bool same = true;
-      for (int i = 0; i < 4; ++i) same = same && e.c->vertex(i) == e.v[std::size_t(i)];
-      if (!same) continue;
+      if (!alive(tr, e)) continue;
       const Point cc = e.c->circumcenter();
       Tr::Locate_type lt;
       int li, lj;
@@ -180,7 +205,10 @@ private:
       const Ch at = tr.locate(q, lt, li, lj, e.c);
       zone_.clear();
       if (lt == Tr::VERTEX) {
-        if (!beyond) continue;
+        if (!beyond) {
+          passed_.push_back(e);
+          continue;
+        }
         tr.incident_cells(at->vertex(li), std::back_inserter(zone_));
       } else {
         // The facets whose surface Delaunay ball holds cc are facets of
@@ -197,10 +225,12 @@ private:
         if (beyond || split.kind != BoxRefinement::kNone) {
           if (split.kind != BoxRefinement::kSegment && split.kind != BoxRefinement::kFacet) {
             ++box_refused;
+            passed_.push_back(e);
             continue;
           }
           if (!dm.insert(split.x, kBox, Facet(split.near, 0))) {
             ++refused;
+            passed_.push_back(e);
             if (tr.number_of_vertices() >= opt_.surface.max_points) break;
             continue;
           }
@@ -208,9 +238,7 @@ private:
           any = true;
           push_around(tr, dm.vertices().back());
           // A split off the cell's circumball leaves it: it asks again.
-          if (tr.tds().cells().is_used(e.c) && e.c->vertex(0) == e.v[0] && e.c->vertex(1) == e.v[1] &&
-              e.c->vertex(2) == e.v[2] && e.c->vertex(3) == e.v[3])
-            push_if_bad(tr, e.c);
+          if (alive(tr, e)) push_if_bad(tr, e.c);
           continue;
         }
       }
@@ -237,12 +265,16 @@ private:
       }
       if (!ok) {
         ++refused;
+        passed_.push_back(e);
         if (tr.number_of_vertices() >= opt_.surface.max_points) break;
         continue;
       }
       any = true;
       push_around(tr, dm.vertices().back());
+      // So does one left by its encroached facet's surface centre.
+      if (alive(tr, e)) push_if_bad(tr, e.c);
     }
+    scanned_ = dm.vertices().size();
     return any;
   }
 
@@ -260,6 +292,8 @@ private:
   const double guard_;
   std::priority_queue<Entry> queue_;
   std::uint64_t seq_ = 0;
+  std::size_t scanned_ = 0;    // vertices when the last round's queue ran dry
+  std::vector<Entry> passed_;  // cells the last round passed over (refused)
   std::vector<Ch> cells_, zone_;
 };
 

@@ -3,7 +3,7 @@
 // its tetrahedra are well shaped, with the surface kept certified:
 //
 //   DELMESH and its certificate (lib/surface, delmesh.hpp)
-//   each time the certificate holds, one round:            tet_refinement.cpp
+//   once the certificate holds, rounds until one inserts nothing:  tet_refinement.cpp
 //     restricted facets with a vertex off S: insert their surface centre
 //     cells with circumcentre c inside (f(c) < 0) and radius-edge ratio
 //     above R or circumradius above S, largest ratio first, then slivers
@@ -13,7 +13,8 @@
 //       c in a restricted facet's surface Delaunay ball: insert that
 //       facet's surface centre instead (the facet is refined)
 //       else insert c
-//   a round that inserted: REFINE and the certificate again, then a round
+//     a round that inserted: REFINE, then the next round
+//   the certificate again if any round inserted (and so on, should it fail)
 //   the output: the cells whose circumcentre lies inside; their boundary is
 //   checked to be the restricted Delaunay surface, face for face
 #pragma once

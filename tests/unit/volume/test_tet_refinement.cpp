@@ -6,6 +6,7 @@
 #include "util/error.hpp"
 #include "volume/tet_refinement.hpp"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
@@ -74,6 +75,20 @@ TetMesh region_one(const TetMesh& m) {
   return o;
 }
 
+// Triangles as their corners' coordinates, each started at its least
+// corner (the orientation kept), sorted: meshes with their own numbering
+// compared.
+std::vector<std::array<P, 3>> by_coordinates(const std::vector<P>& points, const std::vector<std::array<int, 3>>& triangles) {
+  std::vector<std::array<P, 3>> out;
+  for (const auto& t : triangles) {
+    std::array<P, 3> c{points[std::size_t(t[0])], points[std::size_t(t[1])], points[std::size_t(t[2])]};
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 double volume(const TetMesh& m) {
   double vol = 0;
   for (const auto& q : m.tets) vol += det(m.points[std::size_t(q[0])], m.points[std::size_t(q[1])], m.points[std::size_t(q[2])], m.points[std::size_t(q[3])]) / 6;
@@ -113,6 +128,12 @@ void check_tets(const ImplicitSurface& s, const TetRefinementResult& r, double r
   std::sort(sorted_b.begin(), sorted_b.end());
   std::sort(sorted_r.begin(), sorted_r.end());
   CHECK(sorted_b == sorted_r);
+  // The certified surface (the certificate's own mesh, measured on the
+  // final triangulation) is that boundary, triangle for triangle, the same
+  // way round: a certificate left over from before cell refinement
+  // inserted points would not be.
+  CHECK(r.surface.topology_ok);
+  CHECK(by_coordinates(r.surface.mesh.points, r.surface.mesh.triangles) == by_coordinates(m.points, b));
   // Boundary vertices on S; region 1's others strictly inside.
   std::vector<char> on(m.points.size(), 0), used(m.points.size(), 0);
   for (const auto& tri : b)
