@@ -11,12 +11,19 @@
 using namespace imgmesh;
 using namespace imgmesh::surface_detail;
 
-TEST_CASE("seeds: on S, on mixed grid edges, at least two per component, shuffled by the seed") {
-  const Vec3 a{6.3, 7.1, 7.4}, b{17.2, 7.6, 7.9};
-  // A ball and a thin torus beside it: two components of S.
-  FunctionSurface s(test::box(26, 16, 16), [&](const Vec3& p) {
-    return std::min(test::sphere_f(p, a, 3.6), test::torus_f(p, b, 4.1, 1.1));
+// A ball (centre kBall, radius 3.6) and a thin torus beside it (centre
+// kTorus, radii 4.1 and 1.1): two components of S.
+namespace {
+const Vec3 kBall{6.3, 7.1, 7.4}, kTorus{17.2, 7.6, 7.9};
+FunctionSurface ball_and_torus() {
+  return FunctionSurface(test::box(26, 16, 16), [](const Vec3& p) {
+    return std::min(test::sphere_f(p, kBall, 3.6), test::torus_f(p, kTorus, 4.1, 1.1));
   });
+}
+} // namespace
+
+TEST_CASE("seeds: on S, on mixed grid edges, at least two per component, shuffled by the seed") {
+  FunctionSurface s = ball_and_torus();
   CubeGrid grid(s.samples());
   grid.label();
   REQUIRE(grid.components == 2);
@@ -73,10 +80,7 @@ TEST_CASE("seeds: crossing() finds the which-th mixed edge of a cube, and next_e
 }
 
 TEST_CASE("cube grid: active cubes are the mixed ones, each in one component, listed once in key order") {
-  const Vec3 a{6.3, 7.1, 7.4}, b{17.2, 7.6, 7.9};
-  FunctionSurface s(test::box(26, 16, 16), [&](const Vec3& p) {
-    return std::min(test::sphere_f(p, a, 3.6), test::torus_f(p, b, 4.1, 1.1));
-  });
+  FunctionSurface s = ball_and_torus();
   CubeGrid grid(s.samples());
   grid.label();
   REQUIRE(grid.components == 2);
@@ -100,5 +104,6 @@ TEST_CASE("cube grid: active cubes are the mixed ones, each in one component, li
   CHECK(long(cubes.size()) == active);
   for (std::size_t i = 1; i < cubes.size(); ++i) CHECK(cubes[i - 1].first < cubes[i].first);
   // The ball's cubes and the torus's: two components.
-  CHECK(grid.comp_at(Vec3{a[0] + 3.6, a[1], a[2]}) != grid.comp_at(Vec3{b[0] + 4.1 + 1.1, b[1], b[2]}));
+  CHECK(grid.comp_at(Vec3{kBall[0] + 3.6, kBall[1], kBall[2]}) !=
+        grid.comp_at(Vec3{kTorus[0] + 4.1 + 1.1, kTorus[1], kTorus[2]}));
 }
