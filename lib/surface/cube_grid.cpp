@@ -23,8 +23,7 @@ CubeGrid::CubeGrid(const FloatImage& img) : g(img) {
         bool mixed = false;
         for (int k = 1; k < 8 && !mixed; ++k) mixed = neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) != s0;
         if (!mixed) continue;
-        const std::size_t i = cube_index(x, y, z);
-        cube_active[i >> 6] |= std::uint64_t(1) << (i & 63);
+        set_bit(cube_active, cube_index(x, y, z));
         block_active[std::size_t(x / kBlock + nb[0] * (y / kBlock + nb[1] * (z / kBlock)))] = 1;
       }
 }
@@ -34,13 +33,9 @@ CubeGrid::CubeGrid(const FloatImage& img) : g(img) {
 void CubeGrid::label() {
   std::vector<std::array<long, 3>> stack;
   std::vector<std::uint64_t> done(cube_active.size(), 0);
-  auto labelled = [&](long x, long y, long z) {
-    const std::size_t i = cube_index(x, y, z);
-    return (done[i >> 6] >> (i & 63)) & 1;
-  };
+  auto labelled = [&](long x, long y, long z) { return test_bit(done, cube_index(x, y, z)); };
   auto set = [&](long x, long y, long z, int c) {
-    const std::size_t i = cube_index(x, y, z);
-    done[i >> 6] |= std::uint64_t(1) << (i & 63);
+    set_bit(done, cube_index(x, y, z));
     comp.emplace_back(key(x, y, z), c);
   };
   std::size_t active_cubes = 0;

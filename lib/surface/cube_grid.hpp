@@ -38,10 +38,12 @@ struct CubeGrid {
   long long key(long x, long y, long z) const { return x + (long long)n[0] * (y + (long long)n[1] * z); }
   bool active(long x, long y, long z) const {
     if (x < 0 || y < 0 || z < 0 || x > n[0] - 2 || y > n[1] - 2 || z > n[2] - 2) return false;
-    const std::size_t i = cube_index(x, y, z);
-    return (cube_active[i >> 6] >> (i & 63)) & 1;
+    return test_bit(cube_active, cube_index(x, y, z));
   }
   std::size_t cube_index(long x, long y, long z) const { return std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z)); }
+  // Bit i of a bit set of one bit a cube.
+  static bool test_bit(const std::vector<std::uint64_t>& bits, std::size_t i) { return (bits[i >> 6] >> (i & 63)) & 1; }
+  static void set_bit(std::vector<std::uint64_t>& bits, std::size_t i) { bits[i >> 6] |= std::uint64_t(1) << (i & 63); }
   bool block(long x, long y, long z) const {
     return block_active[std::size_t(x + nb[0] * (y + nb[1] * z))];
   }

@@ -35,6 +35,13 @@ struct ClipVertex {
   long long support;  // of the polygon edge to the next vertex: an MT edge key (>= 0) or -1 - plane
 };
 
+// The lattice cube with low corner (x, y, z) lies wholly beyond face e of
+// V(p), corner(i, j, k) giving its lattice points: its corner least far
+// along e.d is (d . x, even rounded, is monotone in each coordinate).
+template <class Corner> bool beyond_face(const HalfSpace& e, long x, long y, long z, Corner corner) {
+  return dot(e.d, corner(x + (e.d[0] < 0), y + (e.d[1] < 0), z + (e.d[2] < 0))) > e.c;
+}
+
 } // namespace
 
 // HandleDetection (8.3): is S inside V(p) a disk? S is triangulated by
@@ -206,14 +213,9 @@ HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3&
         for (long x = lo[0]; x + 1 < lo[0] + n[0]; ++x) {
           // Only sub-cubes of active cubes can meet S.
           if (!grid.active(x / 2, y / 2, z / 2)) continue;
-          // Sub-cubes wholly beyond one face of V(p) hold none of S n V(p):
-          // those whose corner least far along the face's normal is beyond
-          // (d . x, even rounded, is monotone in each coordinate).
+          // Sub-cubes wholly beyond one face of V(p) hold none of S n V(p).
           bool beyond = false;
-          for (std::size_t e = 0; e < hs.size() && !beyond; ++e) {
-            const Vec3& d = hs[e].d;
-            beyond = dot(d, point(x + (d[0] < 0), y + (d[1] < 0), z + (d[2] < 0))) > hs[e].c;
-          }
+          for (std::size_t e = 0; e < hs.size() && !beyond; ++e) beyond = beyond_face(hs[e], x, y, z, point);
           if (beyond) continue;
           long c[8][3];
           double v[8];
@@ -348,11 +350,10 @@ bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p) {
   const Vec3 pp = vec(p->point());
   thread_local std::vector<HalfSpace> hs;
   voronoi_cell(tr, p, hs);
-  auto outside = [&](long x, long y, long z) {  // all 8 corners beyond one face of V(p): the least far one (as in handle_detection)
-    for (const HalfSpace& e : hs) {
-      const Vec3 c{(x + (e.d[0] < 0)) * grid.s[0], (y + (e.d[1] < 0)) * grid.s[1], (z + (e.d[2] < 0)) * grid.s[2]};
-      if (dot(e.d, c) > e.c) return true;
-    }
+  const auto corner = [&](long x, long y, long z) { return Vec3{x * grid.s[0], y * grid.s[1], z * grid.s[2]}; };
+  auto outside = [&](long x, long y, long z) {  // wholly beyond one face of V(p)
+    for (const HalfSpace& e : hs)
+      if (beyond_face(e, x, y, z, corner)) return true;
     return false;
   };
   long c0[3];
