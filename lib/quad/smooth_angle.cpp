@@ -283,6 +283,51 @@ bool raise_worst(QuadMesh& qm, int v, double h2) {
   return true;
 }
 
+bool raise_worst_pair(QuadMesh& qm, int u, int v, double h) {
+  std::vector<Point2>& P = qm.points;
+  std::vector<int> qs = qm.vertex_quads[u];
+  for (int q : qm.vertex_quads[v])
+    if (std::find(qs.begin(), qs.end(), q) == qs.end()) qs.push_back(q);
+  auto worst_two = [&](double& a, double& b) {
+    a = b = 2;
+    for (int q : qs) {
+      const double s = qm.sin_mu_of(qm.quads[q]);
+      if (s < a) { b = a; a = s; } else if (s < b) b = s;
+    }
+  };
+  const Point2 su = P[u], sv = P[v];
+  double ba, bb;
+  worst_two(ba, bb);
+  if (!(ba > 0)) return false;
+  // u and v together, apart, or one alone: a kite's two free corners
+  // move as one where one at a time each lowers the other's quad.
+  constexpr double kMode[4][2] = {{1, 1}, {1, -1}, {1, 0}, {0, 1}};
+  Point2 du{0, 0}, dv{0, 0};
+  bool moved = false;
+  for (int round = 0; round < kWorstRounds; ++round) {
+    bool improved = false;
+    for (int k = 0; k < 32 && !improved; ++k) {
+      const double* d = kCompass[k & 7];
+      const double mu_ = kMode[k >> 3][0], mv = kMode[k >> 3][1];
+      const Point2 cu{du[0] + h * mu_ * d[0], du[1] + h * mu_ * d[1]}, cv{dv[0] + h * mv * d[0], dv[1] + h * mv * d[1]};
+      P[u] = {su[0] + cu[0], su[1] + cu[1]};
+      P[v] = {sv[0] + cv[0], sv[1] + cv[1]};
+      double a, b;
+      worst_two(a, b);
+      if (!(a > ba * (1 + 1e-12) || (a >= ba && b > bb * (1 + 1e-12)))) continue;
+      bool convex = true;
+      for (int q : qs) convex = convex && qm.convex(qm.quads[q]);
+      if (!convex) continue;
+      ba = a; bb = b; du = cu; dv = cv; improved = moved = true;
+    }
+    P[u] = {su[0] + du[0], su[1] + du[1]};
+    P[v] = {sv[0] + dv[0], sv[1] + dv[1]};
+    if (!improved) h *= 0.5;
+  }
+  for (int q : qs) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
+  return moved;
+}
+
 void worst_pass(QuadMesh& qm, SmoothStats& st) {
   const std::vector<Point2>& P = qm.points;
   for (int v = 0; v < int(P.size()); ++v) {
@@ -294,6 +339,15 @@ void worst_pass(QuadMesh& qm, SmoothStats& st) {
     const Point2& x = P[first[0] == v ? first[1] : first[0]];
     const double h2 = (x[0] - P[v][0]) * (x[0] - P[v][0]) + (x[1] - P[v][1]) * (x[1] - P[v][1]);
     if (raise_worst(qm, v, h2)) ++st.worst_climbs;
+  }
+  for (int q = 0; q < int(qm.quads.size()); ++q) {
+    if (qm.quad_dead[q] || qm.quad_sin_mu[q] >= kWorstBelow) continue;
+    for (int k = 0; k < 4; ++k) {
+      const int u = qm.quads[q][k], v = qm.quads[q][(k + 1) & 3];
+      if (qm.fixed[u] || qm.fixed[v]) continue;
+      const double h = 0.125 * std::hypot(P[u][0] - P[v][0], P[u][1] - P[v][1]);
+      if (raise_worst_pair(qm, u, v, h)) ++st.worst_climbs;
+    }
   }
 }
 

@@ -3,7 +3,6 @@
 // strictly convex; the two merge into (a, b, c, d) and v goes. Beyond it,
 // the same for a free vertex of valence 3 that splits a sharp fixed corner
 // (open_sharp_corner).
-#include "quad/half_plane_clip.hpp"
 #include "quad/smooth_mesh.hpp"
 
 #include <algorithm>
@@ -50,31 +49,6 @@ bool remove_doublet(QuadMesh& qm, int v) {
 
 namespace {
 
-// Where every quad around x is strictly convex with the others standing
-// (the placement rule, doc/tri2quad.md section 1): x moves to the centroid
-// of that region, clipped from the box of its star; false if it is empty.
-bool place_in_star(QuadMesh& qm, int x) {
-  std::vector<Point2>& P = qm.points;
-  std::vector<t2q::HalfPlane> hp;
-  double lo[2] = {P[x][0], P[x][1]}, hi[2] = {P[x][0], P[x][1]};
-  for (int q : qm.vertex_quads[x]) {
-    const Quad& Qd = qm.quads[q];
-    int k = 0;
-    while (Qd[k] != x) ++k;
-    const int n = Qd[(k + 1) & 3], o = Qd[(k + 2) & 3], p = Qd[(k + 3) & 3];
-    // The turns at p, x and n of (x, n, o, p).
-    hp.push_back({P[o], P[p]});
-    hp.push_back({P[n], P[p]});
-    hp.push_back({P[n], P[o]});
-    for (int v : Qd)
-      for (int d = 0; d < 2; ++d) { lo[d] = std::min(lo[d], P[v][d]); hi[d] = std::max(hi[d], P[v][d]); }
-  }
-  const std::vector<Point2> region = t2q::clip({{lo[0], lo[1]}, {hi[0], lo[1]}, {hi[0], hi[1]}, {lo[0], hi[1]}}, hp);
-  if (region.empty()) return false;
-  P[x] = t2q::centroid(region);
-  return true;
-}
-
 // open_sharp_corner's other way, for when neither pair of quads keeping c
 // is strictly convex where the hexagon's corners stand: m keeps its
 // valence but is joined to the hexagon's odd corners instead of its even
@@ -102,10 +76,7 @@ bool respoke(QuadMesh& qm, int m, const int (&H)[6], const int (&Q)[3], int i) {
     for (int x : {at(2 * i + 2), at(2 * i + 4), m})
       if (!qm.fixed[x] && !qm.vertex_dead[x]) place_in_star(qm, x);
   for (int q : pt.quads)
-    if (ok && !qm.quad_dead[q]) {
-      ok = qm.convex(qm.quads[q]);
-      qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
-    }
+    if (ok && !qm.quad_dead[q]) ok = qm.convex(qm.quads[q]);
   if (ok) {
     relax(qm, pt);
     ok = lex_better(qm.patch_sines(pt), before);

@@ -173,6 +173,12 @@ private:
   int stamp_id = 0;
 };
 
+// Moves x to the centroid of the region where every quad around it is
+// strictly convex, the others standing (the placement rule of
+// doc/tri2quad.md section 1), the sines of its quads updated; false, x not
+// moved, if it is empty.
+bool place_in_star(QuadMesh& qm, int x);
+
 // True if `now` comes after `before` in lexicographic order, each entry
 // compared with a relative margin (patch_sines of after and before).
 bool lex_better(const std::vector<double>& now, const std::vector<double>& before);
@@ -198,7 +204,11 @@ void mean_pass(QuadMesh& qm, SmoothStats& st);
 // A compass search on the smallest, then the second smallest, sin(mu)
 // around v, no quad around becoming non-convex; true if v moved.
 bool raise_worst(QuadMesh& qm, int v, double h2);
-// raise_worst on every free vertex next to a quad of mu below 12 degrees.
+// The same moving two free vertices u, v (together, apart or one alone),
+// first step h; on the union of their stars.
+bool raise_worst_pair(QuadMesh& qm, int u, int v, double h);
+// raise_worst on every free vertex next to a quad of mu below 12 degrees,
+// then raise_worst_pair on the free ends of each edge of such a quad.
 void worst_pass(QuadMesh& qm, SmoothStats& st);
 // The same moving the two free ends u, v of an edge together, step h.
 bool optimize_edge(QuadMesh& qm, int u, int v, double h);
