@@ -19,6 +19,7 @@ Json SmoothStats::to_json() const {
   ops["worst_mu_climbs"] = optimized;
   ops["edge_moves"] = edge_moves;
   ops["mean_mu_climbs"] = mean_climbs;
+  ops["max_min_climbs"] = worst_climbs;
   ops["diagonal_swaps"] = swaps;
   ops["valence_swaps"] = valence_swaps;
   ops["pair_splits"] = splits;
@@ -79,6 +80,8 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
     swap_pass(qm, st);
     doublet_pass(qm, st);
   }
+  if (opt.cleanup && passes > 0) sharp_corner_pass(qm, st);
+  for (int r = 0; passes > 0 && r < 4; ++r) worst_pass(qm, st);
   for (int r = 0; passes > 0 && r < opt.mean_rounds; ++r) mean_pass(qm, st);
   qm.compact();
   st.after = quality_report(mesh);

@@ -38,6 +38,13 @@
 //       straight segment, same guard                    smooth_angle.cpp
 //   if cleanup: swaps, then doublets, once more          smooth_swap.cpp,
 //                                                       smooth_doublet.cpp
+//   if cleanup: sharp corners split by a valence-3
+//     vertex, also by joining it to the hexagon's other
+//     corners (after the passes: the clean-up's course
+//     stays as it was)                                   smooth_doublet.cpp
+//   4 times: each free vertex next to a quad under 12
+//     degrees climbs on the two worst mu around it
+//     (max-min)                                          smooth_angle.cpp
 //   mean_rounds times: each free vertex next to a quad
 //     under 40 degrees climbs on the sum of sin(mu)
 //     around it, the worst mu around never lowered       smooth_angle.cpp
@@ -81,6 +88,7 @@ struct SmoothStats {
   std::size_t optimized = 0;   // guarded climbs on the worst mu around a vertex
   std::size_t edge_moves = 0;  // guarded climbs moving both free, flat ends of an edge of a poor quad
   std::size_t mean_climbs = 0; // vertices the mean pass moved
+  std::size_t worst_climbs = 0; // vertices the max-min pass moved
   std::size_t swaps = 0, doublets = 0, collapses = 0;
   std::size_t sharp_corners = 0;      // valence-3 vertices removed to leave a sharp corner one quad
   std::size_t valence_swaps = 0;      // of the swaps, those taken to make valences regular

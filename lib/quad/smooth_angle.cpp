@@ -17,6 +17,8 @@ namespace {
 // on the soft minimum of mu around them.
 constexpr double kOptimizeBelow = 0.42261826174069944;  // sin(25 deg)
 constexpr int kOptimizeRounds = 6;
+constexpr int kWorstRounds = 24;
+constexpr double kWorstBelow = 0.20791169081775934;  // sin(12 deg)
 constexpr std::size_t kStarCache = 16;  // quads around a vertex whose sines try_move keeps aside
 // Only moves of over 3% of an edge put the neighbours back on the smoothing
 // work list: the smaller ones barely change their targets, and waking for
@@ -245,6 +247,107 @@ void mean_pass(QuadMesh& qm, SmoothStats& st) {
     const Point2& x = P[first[0] == v ? first[1] : first[0]];
     const double h2 = (x[0] - P[v][0]) * (x[0] - P[v][0]) + (x[1] - P[v][1]) * (x[1] - P[v][1]);
     if (raise_mean(qm, v, h2)) ++st.mean_climbs;
+  }
+}
+
+bool raise_worst(QuadMesh& qm, int v, double h2) {
+  std::vector<Point2>& P = qm.points;
+  const std::vector<int>& qs = qm.vertex_quads[v];
+  // The two smallest sines around v, the first compared first: a max-min
+  // on mu itself, where optimize_star's energy may trade the worst quad
+  // for the others.
+  auto worst_two = [&](double& a, double& b, bool cached) {
+    a = b = 2;
+    for (int q : qs) {
+      const double s = cached ? qm.quad_sin_mu[q] : qm.sin_mu_of(qm.quads[q]);
+      if (s < a) { b = a; a = s; } else if (s < b) b = s;
+    }
+  };
+  double a0, b0;
+  worst_two(a0, b0, true);
+  if (!(a0 > 0)) return false;
+  const Point2 start = P[v];
+  double ba = a0, bb = b0;
+  compass_search(start, 0.125 * std::sqrt(h2), kWorstRounds, [&](const Point2& c) { P[v] = c; }, [&] {
+    double a, b;
+    worst_two(a, b, false);
+    if (!(a > ba * (1 + 1e-12) || (a >= ba && b > bb * (1 + 1e-12)))) return false;
+    for (int q : qs)
+      if (!qm.convex(qm.quads[q])) return false;
+    ba = a;
+    bb = b;
+    return true;
+  });
+  if (P[v] == start) return false;
+  for (int q : qs) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
+  return true;
+}
+
+bool raise_worst_pair(QuadMesh& qm, int u, int v, double h) {
+  std::vector<Point2>& P = qm.points;
+  std::vector<int> qs = qm.vertex_quads[u];
+  for (int q : qm.vertex_quads[v])
+    if (std::find(qs.begin(), qs.end(), q) == qs.end()) qs.push_back(q);
+  auto worst_two = [&](double& a, double& b) {
+    a = b = 2;
+    for (int q : qs) {
+      const double s = qm.sin_mu_of(qm.quads[q]);
+      if (s < a) { b = a; a = s; } else if (s < b) b = s;
+    }
+  };
+  const Point2 su = P[u], sv = P[v];
+  double ba, bb;
+  worst_two(ba, bb);
+  if (!(ba > 0)) return false;
+  // u and v together, apart, or one alone: a kite's two free corners
+  // move as one where one at a time each lowers the other's quad.
+  constexpr double kMode[4][2] = {{1, 1}, {1, -1}, {1, 0}, {0, 1}};
+  Point2 du{0, 0}, dv{0, 0};
+  bool moved = false;
+  for (int round = 0; round < kWorstRounds; ++round) {
+    bool improved = false;
+    for (int k = 0; k < 32 && !improved; ++k) {
+      const double* d = kCompass[k & 7];
+      const double mu_ = kMode[k >> 3][0], mv = kMode[k >> 3][1];
+      const Point2 cu{du[0] + h * mu_ * d[0], du[1] + h * mu_ * d[1]}, cv{dv[0] + h * mv * d[0], dv[1] + h * mv * d[1]};
+      P[u] = {su[0] + cu[0], su[1] + cu[1]};
+      P[v] = {sv[0] + cv[0], sv[1] + cv[1]};
+      double a, b;
+      worst_two(a, b);
+      if (!(a > ba * (1 + 1e-12) || (a >= ba && b > bb * (1 + 1e-12)))) continue;
+      bool convex = true;
+      for (int q : qs) convex = convex && qm.convex(qm.quads[q]);
+      if (!convex) continue;
+      ba = a; bb = b; du = cu; dv = cv; improved = moved = true;
+    }
+    P[u] = {su[0] + du[0], su[1] + du[1]};
+    P[v] = {sv[0] + dv[0], sv[1] + dv[1]};
+    if (!improved) h *= 0.5;
+  }
+  for (int q : qs) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
+  return moved;
+}
+
+void worst_pass(QuadMesh& qm, SmoothStats& st) {
+  const std::vector<Point2>& P = qm.points;
+  for (int v = 0; v < int(P.size()); ++v) {
+    if (qm.fixed[v] || qm.vertex_dead[v] || qm.vertex_quads[v].size() < 3) continue;
+    double worst = 2;
+    for (int q : qm.vertex_quads[v]) worst = std::min(worst, qm.quad_sin_mu[q]);
+    if (worst >= kWorstBelow) continue;
+    const Quad& first = qm.quads[qm.vertex_quads[v][0]];
+    const Point2& x = P[first[0] == v ? first[1] : first[0]];
+    const double h2 = (x[0] - P[v][0]) * (x[0] - P[v][0]) + (x[1] - P[v][1]) * (x[1] - P[v][1]);
+    if (raise_worst(qm, v, h2)) ++st.worst_climbs;
+  }
+  for (int q = 0; q < int(qm.quads.size()); ++q) {
+    if (qm.quad_dead[q] || qm.quad_sin_mu[q] >= kWorstBelow) continue;
+    for (int k = 0; k < 4; ++k) {
+      const int u = qm.quads[q][k], v = qm.quads[q][(k + 1) & 3];
+      if (qm.fixed[u] || qm.fixed[v]) continue;
+      const double h = 0.125 * std::hypot(P[u][0] - P[v][0], P[u][1] - P[v][1]);
+      if (raise_worst_pair(qm, u, v, h)) ++st.worst_climbs;
+    }
   }
 }
 

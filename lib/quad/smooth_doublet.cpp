@@ -9,31 +9,89 @@
 
 namespace imgmesh::qs {
 
-bool remove_doublet(QuadMesh& qm, int v) {
-  if (qm.fixed[v] || qm.vertex_dead[v] || qm.vertex_quads[v].size() != 2) return false;
+namespace {
+
+// The doublet at the free valence-2 vertex v: its quads A = (v, a, b, c)
+// and B = (v, c, d, a) as the merged (a, b, c, d) (a repeated corner if
+// they are not such a pair).
+Quad doublet_merged(const QuadMesh& qm, int v) {
+  const auto rotated = [&](int q) {
+    Quad A = qm.quads[q];
+    while (A[0] != v) std::rotate(A.begin(), A.begin() + 1, A.end());
+    return A;
+  };
+  const Quad A = rotated(qm.vertex_quads[v][0]), B = rotated(qm.vertex_quads[v][1]);
+  if (B[1] != A[3] || B[3] != A[1]) return {A[1], A[1], A[1], A[1]};
+  return {A[1], A[2], A[3], B[2]};
+}
+
+// Replaces v's two quads by M (doublet_merged), v gone.
+void merge_doublet(QuadMesh& qm, int v, const Quad& M) {
   const int q1 = qm.vertex_quads[v][0], q2 = qm.vertex_quads[v][1];
-  Quad A = qm.quads[q1];
-  while (A[0] != v) std::rotate(A.begin(), A.begin() + 1, A.end());
-  Quad B = qm.quads[q2];
-  while (B[0] != v) std::rotate(B.begin(), B.begin() + 1, B.end());
-  // A = (v, a, b, c), B = (v, c, d, a).
-  if (B[1] != A[3] || B[3] != A[1]) return false;
-  const Quad M{A[1], A[2], A[3], B[2]};
-  if (M[1] == M[3] || !qm.convex(M) || qm.sin_mu_of(M) < std::min(qm.quad_sin_mu[q1], qm.quad_sin_mu[q2]))
-    return false;
-  for (int x : B) qm.remove_from(x, q2);
-  qm.remove_from(v, q1);
+  for (int x : qm.quads[q2]) qm.remove_from(x, q2);
   qm.quad_dead[q2] = 1;
   qm.vertex_dead[v] = 1;
-  qm.quads[q1] = M;
-  std::vector<int>& star_d = qm.vertex_quads[B[2]];
-  if (std::find(star_d.begin(), star_d.end(), q1) == star_d.end()) star_d.push_back(q1);
-  qm.quad_sin_mu[q1] = qm.sin_mu_of(M);
+  qm.set_quad(q1, M);
+}
+
+} // namespace
+
+bool remove_doublet(QuadMesh& qm, int v) {
+  if (qm.fixed[v] || qm.vertex_dead[v] || qm.vertex_quads[v].size() != 2) return false;
+  const Quad M = doublet_merged(qm, v);
+  if (M[1] == M[3] || !qm.convex(M) ||
+      qm.sin_mu_of(M) < std::min(qm.quad_sin_mu[qm.vertex_quads[v][0]], qm.quad_sin_mu[qm.vertex_quads[v][1]]))
+    return false;
+  merge_doublet(qm, v, M);
   for (int x : M) qm.wake(x);
   return true;
 }
 
-bool open_sharp_corner(QuadMesh& qm, int m) {
+namespace {
+
+// open_sharp_corner's other way, for when neither pair of quads keeping c
+// is strictly convex where the hexagon's corners stand: m keeps its
+// valence but is joined to the hexagon's odd corners instead of its even
+// ones (the other parity of the hexagon's one-point split, doc/tri2quad.md
+// 3.2 T1), so that c = H[2i] lies in one quad (H[2i-1], c, H[2i+1], m).
+// m and the two other even corners (if free; they were bent toward m) are
+// placed in turn where their quads are strictly convex; taken if, once the
+// patch is relaxed, its worst mu rose.
+bool respoke(QuadMesh& qm, int m, const int (&H)[6], const int (&Q)[3], int i) {
+  auto at = [&](int k) { return H[(k + 6) % 6]; };
+  Patch pt;
+  qm.save_patch({m, H[0], H[1], H[2], H[3], H[4], H[5]}, pt);
+  const std::vector<double> before = qm.patch_sines(pt);
+  for (int j = 0; j < 3; ++j) qm.set_quad(Q[j], {at(2 * i - 1 + 2 * j), at(2 * i + 2 * j), at(2 * i + 1 + 2 * j), m});
+  bool ok = true;
+  // An even corner left in two quads (it was in three) is a doublet: they merge.
+  for (int x : {at(2 * i + 2), at(2 * i + 4)})
+    if (!qm.fixed[x] && qm.vertex_quads[x].size() == 2) {
+      const Quad M = doublet_merged(qm, x);
+      if (M[1] == M[3]) ok = false;
+      else merge_doublet(qm, x, M);
+    }
+  // In turn: where one is stuck, the others' moves may open it.
+  for (int round = 0; round < 3 && ok; ++round)
+    for (int x : {at(2 * i + 2), at(2 * i + 4), m})
+      if (!qm.fixed[x] && !qm.vertex_dead[x]) place_in_star(qm, x);
+  for (int q : pt.quads)
+    if (ok && !qm.quad_dead[q]) ok = qm.convex(qm.quads[q]);
+  if (ok) {
+    relax(qm, pt);
+    ok = lex_better(qm.patch_sines(pt), before);
+  }
+  if (ok) {
+    for (int x : pt.verts) qm.wake(x);
+    return true;
+  }
+  qm.rollback(pt);
+  return false;
+}
+
+} // namespace
+
+bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too) {
   if (qm.fixed[m] || qm.vertex_dead[m] || qm.vertex_quads[m].size() != 3) return false;
   // The hexagon H around m, counter-clockwise: its quads are (m, H[2i],
   // H[2i+1], H[2i+2]), so H's even corners are m's edge neighbours.
@@ -88,6 +146,7 @@ bool open_sharp_corner(QuadMesh& qm, int m) {
       }
       qm.rollback(pt);
     }
+    if (respoke_too && respoke(qm, m, H, Q, i)) return true;
   }
   return false;
 }
@@ -97,8 +156,13 @@ void doublet_pass(QuadMesh& qm, SmoothStats& st) {
   for (int v = 0; v < n; ++v)
     if (remove_doublet(qm, v))
       ++st.doublets;
-    else if (open_sharp_corner(qm, v))
+    else if (open_sharp_corner(qm, v, false))
       ++st.sharp_corners;
+}
+
+void sharp_corner_pass(QuadMesh& qm, SmoothStats& st) {
+  for (int v = 0; v < int(qm.points.size()); ++v)
+    if (open_sharp_corner(qm, v, true)) ++st.sharp_corners;
 }
 
 } // namespace imgmesh::qs

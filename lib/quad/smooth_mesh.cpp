@@ -1,6 +1,7 @@
 // The quad-mesh state: the conformity check and stars, the set-up of fixed,
 // sliding and feature vertices, patch save/restore, new vertices and quads,
 // and the compaction back into the PlanarMesh.
+#include "quad/half_plane_clip.hpp"
 #include "quad/smooth_mesh.hpp"
 
 #include "util/error.hpp"
@@ -378,6 +379,32 @@ void QuadMesh::compact() {
   if (pattrs) mesh.point_attributes.resize(k);
   if (pmarks) mesh.point_markers.resize(k);
   for (auto& sg : mesh.segments) sg = {newid[sg[0]], newid[sg[1]]};  // segment ends never die
+}
+
+// Where every quad around x is strictly convex with the others standing
+// (the placement rule, doc/tri2quad.md section 1): x moves to the centroid
+// of that region, clipped from the box of its star; false if it is empty.
+bool place_in_star(QuadMesh& qm, int x) {
+  std::vector<Point2>& P = qm.points;
+  std::vector<t2q::HalfPlane> hp;
+  double lo[2] = {P[x][0], P[x][1]}, hi[2] = {P[x][0], P[x][1]};
+  for (int q : qm.vertex_quads[x]) {
+    const Quad& Qd = qm.quads[q];
+    int k = 0;
+    while (Qd[k] != x) ++k;
+    const int n = Qd[(k + 1) & 3], o = Qd[(k + 2) & 3], p = Qd[(k + 3) & 3];
+    // The turns at p, x and n of (x, n, o, p).
+    hp.push_back({P[o], P[p]});
+    hp.push_back({P[n], P[p]});
+    hp.push_back({P[n], P[o]});
+    for (int v : Qd)
+      for (int d = 0; d < 2; ++d) { lo[d] = std::min(lo[d], P[v][d]); hi[d] = std::max(hi[d], P[v][d]); }
+  }
+  const std::vector<Point2> region = t2q::clip({{lo[0], lo[1]}, {hi[0], lo[1]}, {hi[0], hi[1]}, {lo[0], hi[1]}}, hp);
+  if (region.empty()) return false;
+  P[x] = t2q::centroid(region);
+  for (int q : qm.vertex_quads[x]) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
+  return true;
 }
 
 } // namespace imgmesh::qs

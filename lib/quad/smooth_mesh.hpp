@@ -173,6 +173,12 @@ private:
   int stamp_id = 0;
 };
 
+// Moves x to the centroid of the region where every quad around it is
+// strictly convex, the others standing (the placement rule of
+// doc/tri2quad.md section 1), the sines of its quads updated; false, x not
+// moved, if it is empty.
+bool place_in_star(QuadMesh& qm, int x);
+
 // True if `now` comes after `before` in lexicographic order, each entry
 // compared with a relative margin (patch_sines of after and before).
 bool lex_better(const std::vector<double>& now, const std::vector<double>& before);
@@ -195,6 +201,15 @@ bool optimize_star(QuadMesh& qm, int v, double h2);
 bool raise_mean(QuadMesh& qm, int v, double h2);
 // raise_mean on every free vertex next to a quad of mu below 40 degrees.
 void mean_pass(QuadMesh& qm, SmoothStats& st);
+// A compass search on the smallest, then the second smallest, sin(mu)
+// around v, no quad around becoming non-convex; true if v moved.
+bool raise_worst(QuadMesh& qm, int v, double h2);
+// The same moving two free vertices u, v (together, apart or one alone),
+// first step h; on the union of their stars.
+bool raise_worst_pair(QuadMesh& qm, int u, int v, double h);
+// raise_worst on every free vertex next to a quad of mu below 12 degrees,
+// then raise_worst_pair on the free ends of each edge of such a quad.
+void worst_pass(QuadMesh& qm, SmoothStats& st);
 // The same moving the two free ends u, v of an edge together, step h.
 bool optimize_edge(QuadMesh& qm, int u, int v, double h);
 // One guarded angle-based move then (once qm.climb) the compass search;
@@ -243,9 +258,13 @@ bool remove_doublet(QuadMesh& qm, int v);
 // corner split in two, each quad's mu then at most a quarter of c's angle):
 // its three quads become two, c in one, by the hexagon's diagonal beside c.
 // Taken if, once the patch is relaxed, its worst mu rose; true if done.
-bool open_sharp_corner(QuadMesh& qm, int m);
+// respoke_too: else, m joined to the hexagon's other three corners instead
+// (doublets left by it merged), c then in one quad.
+bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too);
 // remove_doublet, else open_sharp_corner, on every vertex.
 void doublet_pass(QuadMesh& qm, SmoothStats& st);
+// open_sharp_corner with its re-joining way on every vertex.
+void sharp_corner_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_collapse.cpp ---------------------------------------------------
 

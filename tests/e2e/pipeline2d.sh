@@ -90,9 +90,10 @@ case_square_lattice_pairs_first_mean_mu_30() {
 # quads of tri2quad's Steiner points sit inside the triangles), no quad over
 # a fifth of the shorter side of the domain (the coarsest cell is a tenth).
 # SHORT_OF_MIN_MU: images known to miss that min mu (issue 16, open: on the
-# brain slice 7.41 of 9.13, at a triangular region split on its long side
-# and at 18-degree corners held by 160-degree neighbours); they keep the
-# thesis chain's bar of 5 degrees, and every other part of the bar.
+# brain slice 8.42 of 9.13, at two 34-degree wedge tips each held by two
+# quads, and at 18-degree corners whose fans leave them under 18 degrees a
+# quad); they keep the thesis chain's bar of 5 degrees, and every other part
+# of the bar.
 GRADING=2.5
 SHORT_OF_MIN_MU=" BrainT1Slice.png "
 default_bar() {

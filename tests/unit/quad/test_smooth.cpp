@@ -638,8 +638,8 @@ TEST_CASE("a sharp corner split by a valence-3 vertex is left one quad", "[smoot
   REQUIRE_FALSE(qm.fixed[6]);
   double worst_before = 2;
   for (double s : qm.quad_sin_mu) worst_before = std::min(worst_before, s);
-  CHECK_FALSE(qs::open_sharp_corner(qm, 0));  // c itself is fixed
-  REQUIRE(qs::open_sharp_corner(qm, 6));
+  CHECK_FALSE(qs::open_sharp_corner(qm, 0, false));  // c itself is fixed
+  REQUIRE(qs::open_sharp_corner(qm, 6, false));
   CHECK(qm.vertex_dead[6]);
   CHECK(qm.vertex_quads[0].size() == 1);
   CHECK(live_quads_strictly_convex(qm));
@@ -649,6 +649,95 @@ TEST_CASE("a sharp corner split by a valence-3 vertex is left one quad", "[smoot
   REQUIRE_NOTHROW(check_quad_mesh(m));
   CHECK(total_area(m) == Approx(area));
   for (const auto& e : m.elements) CHECK(std::sin(quad_mu(m, e) * (3.14159265358979323846 / 180)) > worst_before);
+}
+
+TEST_CASE("a sharp corner whose hexagon cannot be split in two gets m joined to the other corners", "[smooth]") {
+  // From the brain slice's default chain (BrainT1Slice.png, threshold 100):
+  // the quads within two edges of a free valence-3 vertex m (27) in a small
+  // triangular region whose 30-degree corner c (0) it splits into two quads
+  // of mu 7.4. Neither pair of quads keeping c whole is strictly convex
+  // where the corners stand (one even corner of m's hexagon is reflex, one
+  // has valence 3); joined to the odd corners, the doublet left merged and
+  // the free corners placed, c is in one quad.
+  PlanarMesh m;
+  m.points = {{39.5, 86.5}, {40.863727286595285, 86.69040542337531}, {39.5, 88.5}, {41.5, 89.5}, {39.75, 89.75}, {38.5, 82.5}, {42.422234125883769, 82.473222085610871}, {39.207106781186546, 83.207106781186553}, {43.469397439496959, 83.019020405806799}, {38.5, 89.5}, {38.5, 88.75}, {42.5, 89.5}, {37, 84.5}, {44.5, 86}, {42.5, 84.5}, {41.360521018838128, 85.25965265410791}, {40.5, 84.5}, {38.5, 84.5}, {38.5, 83.5}, {38.009480519437616, 87.465555688699666}, {42.490276384099658, 87.536182301687148}, {43.5, 85.25}, {39.825925382886261, 82.994951273174976}, {39.597162515464618, 82.015540295897296}, {40.779453087501423, 82.011730862522668}, {40.749423976768092, 84.044192325832782}, {41.317964984007745, 84.914258515836593}, {40.557322207645946, 85.304739051210078}, {40.650196132588391, 84.797128909009245}, {41.062650482128596, 84.485627069503394}, {44.343113567214417, 84.298504846214044}, {45.328259264202806, 85.071064008859423}, {40.55421366050431, 89.138347142077393}, {42.002433154297869, 85.928189053427602}, {39.166945097641317, 83.779584413789593}, {39.56901827207011, 84.38068673870454}, {37.300488481250611, 85.626979968167817}, {41.84787946443786, 83.29604018607499}, {40.834898751563578, 83.008574305675253}, {41.336648959728144, 87.79405522440689}, {40.358086259142439, 88.146690268363329}, {38.255507234186609, 85.531921867380845}, {39.131512046103204, 85.428029468775946}, {38.744497856912666, 86.957934688543475}, {41.865988338236782, 84.393521404629027}, {41.563487020375867, 83.820810182762386}, {41.019398075804311, 83.575262684902896}};
+  m.elements = {{7, 5, 23, 22}, {6, 8, 14, 37}, {16, 7, 22, 25}, {0, 16, 28, 27}, {45, 44, 26, 29}, {15, 0, 27, 26}, {27, 28, 29, 26}, {13, 21, 30, 31}, {4, 9, 10, 2}, {33, 21, 13, 20}, {20, 39, 1, 33}, {21, 33, 15, 14}, {0, 1, 39, 40}, {1, 0, 15, 33}, {7, 34, 18, 5}, {16, 35, 34, 7}, {17, 18, 34, 35}, {36, 12, 17, 41}, {17, 35, 42, 41}, {40, 2, 43, 0}, {29, 28, 16, 25}, {30, 21, 14, 8}, {37, 14, 44, 45}, {22, 23, 24, 38}, {20, 11, 3, 39}, {32, 4, 2, 40}, {35, 16, 0, 42}, {42, 0, 43, 41}, {2, 10, 19, 43}, {29, 25, 46, 45}, {14, 15, 26, 44}, {3, 32, 40, 39}, {43, 19, 36, 41}, {25, 22, 38, 46}, {38, 37, 45, 46}};
+  const int regions[] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 0, 0, 0, 0, 0, 1, 1, 0, 0, 1, 1};
+  for (int r : regions) m.element_attributes.push_back({double(r)});
+  const double area = total_area(m);
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE(qm.fixed[0]);
+  REQUIRE_FALSE(qm.fixed[27]);
+  double worst_before = 2;
+  for (double s : qm.quad_sin_mu) worst_before = std::min(worst_before, s);
+  // c's fan in the region: the quads of c and m there.
+  auto fan_of_c = [&] {
+    for (std::size_t q = 0; q < qm.quads.size(); ++q) {
+      const qs::Quad& Q = qm.quads[q];
+      if (!qm.quad_dead[q] && std::count(Q.begin(), Q.end(), 0) && std::count(Q.begin(), Q.end(), 27))
+        return qm.fan(0, int(q)).count;
+    }
+    return -1;
+  };
+  REQUIRE(fan_of_c() == 2);
+  CHECK_FALSE(qs::open_sharp_corner(qm, 27, false));
+  REQUIRE(qs::open_sharp_corner(qm, 27, true));
+  CHECK(fan_of_c() == 1);
+  CHECK(live_quads_strictly_convex(qm));
+  double worst_after = 2;
+  for (std::size_t q = 0; q < qm.quads.size(); ++q)
+    if (!qm.quad_dead[q]) worst_after = std::min(worst_after, qm.quad_sin_mu[q]);
+  CHECK(worst_after > worst_before);
+  qm.compact();
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(total_area(m) == Approx(area));
+}
+
+TEST_CASE("the max-min climb raises the worst mu around a free vertex, every quad strictly convex", "[smooth]") {
+  // Four unit squares around v = (1, 1), v pulled to (1.5, 1.3): its worst
+  // quad has mu under 20 degrees; the square's centre is the max-min.
+  PlanarMesh m;
+  m.points = {{0, 0}, {1, 0}, {2, 0}, {0, 1}, {1.5, 1.3}, {2, 1}, {0, 2}, {1, 2}, {2, 2}};
+  m.elements = {{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE_FALSE(qm.fixed[4]);
+  const double worst_before = *std::min_element(qm.quad_sin_mu.begin(), qm.quad_sin_mu.end());
+  REQUIRE(worst_before < std::sin(20 * 3.14159265358979323846 / 180));
+  REQUIRE(qs::raise_worst(qm, 4, 1.0));
+  CHECK(live_quads_strictly_convex(qm));
+  for (int q = 0; q < 4; ++q) CHECK(qm.quad_sin_mu[q] == Approx(qm.sin_mu_of(qm.quads[q])));
+  CHECK(*std::min_element(qm.quad_sin_mu.begin(), qm.quad_sin_mu.end()) > worst_before + 0.2);
+}
+
+TEST_CASE("the max-min climb of two vertices never lowers the worst mu of their stars", "[smooth]") {
+  // tri2quad's quads of random point sets: every edge with two free ends
+  // of a quad under 12 degrees climbs; the worst mu of the two stars does
+  // not drop, and every quad stays strictly convex.
+  std::size_t moved = 0;
+  for (unsigned seed = 1; seed <= 20; ++seed) {
+    PlanarMesh m = tri2quad_mesh(4 + 2 * int(seed % 5), seed);
+    const SmoothOptions opt;
+    qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+    for (int q = 0; q < int(qm.quads.size()); ++q)
+      for (int k = 0; k < 4; ++k) {
+        const int u = qm.quads[q][k], v = qm.quads[q][(k + 1) & 3];
+        if (qm.fixed[u] || qm.fixed[v] || qm.quad_sin_mu[q] >= std::sin(12 * M_PI / 180)) continue;
+        auto worst = [&] {
+          double w = 2;
+          for (int x : {u, v})
+            for (int r : qm.vertex_quads[x]) w = std::min(w, qm.sin_mu_of(qm.quads[r]));
+          return w;
+        };
+        const double before = worst();
+        CAPTURE(seed, q, k);
+        if (qs::raise_worst_pair(qm, u, v, 0.1)) ++moved;
+        CHECK(worst() >= before);
+      }
+    CHECK(live_quads_strictly_convex(qm));
+  }
+  CHECK(moved > 0);
 }
 
 TEST_CASE("doublet removal is refused when the merged quad would not be strictly convex", "[smooth]") {
