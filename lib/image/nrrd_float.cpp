@@ -127,6 +127,10 @@ FloatImage read_nrrd_float_samples(const NrrdHeader& h, std::istream& data, cons
       g.origin = vector_of(field("space origin"), "space origin", path);
       if (ras) g.origin[0] = -g.origin[0], g.origin[1] = -g.origin[1];
     }
+  } else if (!field("space origin").empty() || !field("axis mins").empty() || !field("axes mins").empty()) {
+    // A grid placed without space directions: refused rather than read at
+    // the default origin (wc2implicit writes space directions and origin).
+    throw Error("cannot read the image: an origin without space directions (an implicit function file places its grid by space directions and space origin)", path);
   } else if (!field("spacings").empty()) {
     std::istringstream in(field("spacings"));
     std::string extra;

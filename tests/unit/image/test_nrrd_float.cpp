@@ -139,6 +139,8 @@ TEST_CASE("bad float NRRDs are refused with one line naming the file") {
           "space 'scanner-xyz'");
   refused("flat.nrrd", head + "encoding: raw\nspace: LPS\nspace directions: (1,0,0) (0,0,0) (0,0,1)\n\n" + std::string(32, '\0'),
           "spacing must be positive");
+  refused("mins.nrrd", head + "encoding: raw\naxis mins: 5 5 5\n\n" + std::string(32, '\0'), "origin without space directions");
+  refused("origin.nrrd", head + "encoding: raw\nspace origin: (5,5,5)\n\n" + std::string(32, '\0'), "origin without space directions");
 }
 
 TEST_CASE("truncated gzip samples are refused, the count said") {
