@@ -1,21 +1,22 @@
 // Construction (thesis 6.3.3) and the pu-implicit file format (DESIGN.md).
 #include "implicit/implicit_file.hpp"
-#include "image/io.hpp"
+#include "image/nrrd_float.hpp"
 #include "util/cpu_time.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/well_composed.hpp"
 
 #include <chrono>
 #include <cmath>
-#include <cstdio>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <iterator>
 #include <map>
 #include <sstream>
 
 namespace imgmesh {
 namespace {
-
-constexpr const char* kKind = "pu-implicit";
-constexpr const char* kVersion = "1";
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -98,22 +99,27 @@ Json ImplicitReport::to_json() const {
   return j;
 }
 
-void write_implicit(const std::string& path, const PartitionOfUnity& f) {
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g", f.d()[0], f.d()[1], f.d()[2]);
-  write_image(path, f.samples(), {{"imgmesh_kind", kKind}, {"imgmesh_version", kVersion}, {"imgmesh_d", buf}});
-}
-
 PartitionOfUnity read_implicit(const std::string& path) {
-  std::map<std::string, std::string> fields;
-  FloatImage g = read_float(path, &fields);
+  // Read without ITK (image/nrrd_float.hpp); "-" is standard input.
+  std::ifstream file;
+  std::istringstream piped;
+  if (path == "-") {
+    piped.str(std::string(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()));
+    if (piped.str().empty()) throw Error("standard input is empty", "-");
+  } else {
+    file.open(path, std::ios::binary);
+    if (!file) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
+  }
+  std::istream& data = path == "-" ? static_cast<std::istream&>(piped) : file;
+  const NrrdHeader header = read_nrrd_header(data, path);
+  const std::map<std::string, std::string>& fields = header.keys;
   auto it = fields.find("imgmesh_kind");
-  if (it == fields.end() || it->second != kKind)
+  if (it == fields.end() || it->second != kImplicitKind)
     throw Error("not an implicit function file (no imgmesh_kind:=pu-implicit field; make one with wc2implicit)", path);
   it = fields.find("imgmesh_version");
-  if (it == fields.end() || it->second != kVersion)
+  if (it == fields.end() || it->second != kImplicitVersion)
     throw Error("unsupported pu-implicit version '" + (it == fields.end() ? std::string("none") : it->second) +
-                    "' (this build reads version " + kVersion + ")",
+                    "' (this build reads version " + kImplicitVersion + ")",
                 path);
   it = fields.find("imgmesh_d");
   Vec3 d{0, 0, 0};
@@ -126,6 +132,7 @@ PartitionOfUnity read_implicit(const std::string& path) {
     for (double x : d)
       if (!(x > 0) || !std::isfinite(x)) throw Error("bad imgmesh_d field '" + it->second + "' (must be > 0)", path);
   }
+  FloatImage g = read_nrrd_float_samples(header, data, path);
   try {
     return PartitionOfUnity(std::move(g), d, 0);
   } catch (const Error& e) {

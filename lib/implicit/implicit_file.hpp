@@ -46,6 +46,12 @@ struct ImplicitReport {
 PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitReport* report = nullptr,
                                              unsigned threads = 1);
 
+// The file's fields imgmesh_kind and imgmesh_version.
+inline constexpr const char* kImplicitKind = "pu-implicit";
+inline constexpr const char* kImplicitVersion = "1";
+
+// Written through ITK (implicit_write.cpp, library imgmesh_implicit_write);
+// read without it (image/nrrd_float.hpp), so that the meshers load no ITK.
 void write_implicit(const std::string& path, const PartitionOfUnity& f);
 // Rejects anything that is not a pu-implicit file of a known version with a
 // clear Error (wrong kind, missing or bad d, zero or NaN samples, 2D...).

@@ -116,60 +116,73 @@ MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset o
         if (corner(k) == corner(i)) throw Error("face " + std::to_string(f) + ": repeated vertex");
     }
   }
-  // Half-edges sorted by undirected edge (lo, hi), each with its corner (12
-  // bytes; the face follows from the corner).
+  // The corners at each vertex (counted, then placed): 4 bytes a corner,
+  // where half-edges sorted by edge took 12 beside the mesher's
+  // triangulation at its peak. The half-edges of edge {a, b} are found among
+  // the corners of whichever end has fewer.
   if (nc > 0x7fffffffu || nf > 0x7fffffffu) throw Error("topology: more than 2^31 corners");
-  struct HalfEdge {
-    std::uint32_t lo, hi, corner;
-    bool operator<(const HalfEdge& o) const { return lo != o.lo ? lo < o.lo : hi != o.hi ? hi < o.hi : corner < o.corner; }
-    bool same_edge(const HalfEdge& o) const { return lo == o.lo && hi == o.hi; }
+  std::vector<std::uint32_t> at_start(nv + 1, 0), at(nc);
+  for (std::size_t i = 0; i < nc; ++i) ++at_start[std::size_t(corner(i)) + 1];
+  for (std::size_t v = 0; v < nv; ++v) at_start[v + 1] += at_start[v];
+  {
+    std::vector<std::uint32_t> next(at_start.begin(), at_start.end() - 1);
+    for (std::size_t i = 0; i < nc; ++i) at[next[std::size_t(corner(i))]++] = std::uint32_t(i);
+  }
+  auto next_corner = [&](std::size_t c) {
+    const std::size_t f = face_of(c);
+    return c + 1 == offset(f + 1) ? offset(f) : c + 1;
   };
-  std::vector<HalfEdge> he;
-  he.reserve(nc);
-  for (std::size_t f = 0; f < nf; ++f)
-    for (std::size_t i = offset(f); i < offset(f + 1); ++i) {
-      const std::size_t j = i + 1 == offset(f + 1) ? offset(f) : i + 1;
-      const std::uint32_t a = std::uint32_t(corner(i)), b = std::uint32_t(corner(j));
-      he.push_back({std::min(a, b), std::max(a, b), std::uint32_t(i)});
+  auto prev_corner = [&](std::size_t c) {
+    const std::size_t f = face_of(c);
+    return c == offset(f) ? offset(f + 1) - 1 : c - 1;
+  };
+  auto forward = [&](std::size_t h) { return corner(h) < corner(next_corner(h)); };
+  // edge(lo, hi, hs) once per undirected edge, hs its half-edges (each by
+  // the corner it starts at) ascending; edges in the order of their first
+  // half-edge.
+  std::vector<std::uint32_t> hs;
+  auto for_each_edge = [&](auto edge) {
+    for (std::size_t i = 0; i < nc; ++i) {
+      const std::uint32_t a = std::uint32_t(corner(i)), b = std::uint32_t(corner(next_corner(i)));
+      const std::uint32_t s = at_start[a + 1] - at_start[a] <= at_start[b + 1] - at_start[b] ? a : b, o = a ^ b ^ s;
+      hs.clear();
+      for (std::uint32_t k = at_start[s]; k < at_start[s + 1]; ++k) {
+        const std::size_t c = at[k];
+        if (std::uint32_t(corner(next_corner(c))) == o) hs.push_back(std::uint32_t(c));
+        const std::size_t p = prev_corner(c);
+        if (std::uint32_t(corner(p)) == o) hs.push_back(std::uint32_t(p));
+      }
+      std::sort(hs.begin(), hs.end());
+      if (hs[0] == i) edge(std::min(a, b), std::max(a, b), hs);
     }
-  std::sort(he.begin(), he.end());
-  auto next_corner = [&](const HalfEdge& h) {
-    const std::size_t f = face_of(h.corner);
-    return h.corner + 1 == offset(f + 1) ? offset(f) : h.corner + 1;
   };
-  auto forward = [&](const HalfEdge& h) { return corner(h.corner) < corner(next_corner(h)); };
 
   UnionFind vuf(nv), cuf(nc), buf(nv);
   ParityUnionFind fuf(nf);
   std::vector<char> used(nv, 0), on_boundary(nv, 0), bad_vertex(nv, 0);
   for (std::size_t i = 0; i < nc; ++i) used[std::size_t(corner(i))] = 1;
   std::vector<std::size_t> nonorientable_faces;
-  for (std::size_t i = 0; i < he.size();) {
-    std::size_t j = i;
-    while (j < he.size() && he[j].same_edge(he[i])) ++j;
-    const std::uint32_t a = he[i].lo, b = he[i].hi;
+  for_each_edge([&](std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t>& h) {
     vuf.unite(a, b);
-    const std::size_t n = j - i;
+    const std::size_t n = h.size();
     if (n == 1) {
       ++t.boundary_edges;
       on_boundary[a] = on_boundary[b] = 1;
       buf.unite(a, b);
     } else if (n == 2) {
-      const HalfEdge &h1 = he[i], &h2 = he[i + 1];
-      const bool same = forward(h1) == forward(h2);
+      const bool same = forward(h[0]) == forward(h[1]);
       if (same) ++t.inconsistent_edges;
-      if (!fuf.unite(face_of(h1.corner), face_of(h2.corner), same ? 1 : 0)) nonorientable_faces.push_back(face_of(h1.corner));
+      if (!fuf.unite(face_of(h[0]), face_of(h[1]), same ? 1 : 0)) nonorientable_faces.push_back(face_of(h[0]));
       // Corners of the same vertex across the edge belong to one fan.
-      const std::size_t c1a = h1.corner, c1b = next_corner(h1);
-      const std::size_t c2a = h2.corner, c2b = next_corner(h2);
+      const std::size_t c1a = h[0], c1b = next_corner(h[0]);
+      const std::size_t c2a = h[1], c2b = next_corner(h[1]);
       if (corner(c1a) == corner(c2a)) { cuf.unite(c1a, c2a); cuf.unite(c1b, c2b); }
       else { cuf.unite(c1a, c2b); cuf.unite(c1b, c2a); }
     } else {
       ++t.nonmanifold_edges;
       bad_vertex[a] = bad_vertex[b] = 1;
     }
-    i = j;
-  }
+  });
   // A vertex whose corners form more than one fan is non-manifold (bow-tie).
   {
     std::vector<std::uint32_t> fan(nv, 0xffffffffu);  // the fan of the vertex's first corner
@@ -200,16 +213,13 @@ MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset o
   auto comp_of = [&](int v) -> ComponentTopology& { return comps[comp_id[vuf.find(std::size_t(v))]]; };
   for (std::size_t f = 0; f < nf; ++f) ++comp_of(corner(offset(f))).faces;
   for (auto& c : comps) { c.oriented = true; c.orientable = true; c.closed = true; }
-  for (std::size_t i = 0; i < he.size();) {
-    std::size_t j = i;
-    while (j < he.size() && he[j].same_edge(he[i])) ++j;
-    auto& c = comp_of(int(he[i].lo));
+  for_each_edge([&](std::uint32_t a, std::uint32_t, const std::vector<std::uint32_t>& h) {
+    auto& c = comp_of(int(a));
     ++c.edges;
-    if (j - i == 1) c.closed = false;
-    if (j - i > 2) c.manifold = false;
-    if (j - i == 2 && forward(he[i]) == forward(he[i + 1])) c.oriented = false;
-    i = j;
-  }
+    if (h.size() == 1) c.closed = false;
+    if (h.size() > 2) c.manifold = false;
+    if (h.size() == 2 && forward(h[0]) == forward(h[1])) c.oriented = false;
+  });
   for (std::size_t f : nonorientable_faces) comp_of(corner(offset(f))).orientable = false;
   for (auto& c : comps) {
     c.euler = (long long)c.vertices - (long long)c.edges + (long long)c.faces;
@@ -250,9 +260,16 @@ MeshTopology mesh_topology(std::size_t nv, const std::vector<int>& corners,
   if (offsets.empty()) throw Error("no face offsets");
   for (std::size_t f = 0; f + 1 < offsets.size(); ++f)
     if (offsets[f + 1] < offsets[f] + 3 || offsets[f + 1] > corners.size()) throw Error("face " + std::to_string(f) + " has fewer than 3 corners");
+  // Faces of one size k (the voxel boundary's quads): the face of a corner
+  // by division, not a binary search (topology_of asks it per corner met).
+  const std::size_t nf = offsets.size() - 1, k = nf ? offsets[1] - offsets[0] : 0;
+  bool uniform = offsets[0] == 0;
+  for (std::size_t f = 0; f < nf && uniform; ++f) uniform = offsets[f + 1] == k * (f + 1);
   return topology_of(
-      nv, offsets.size() - 1, [&](std::size_t i) { return corners[i]; }, [&](std::size_t f) { return offsets[f]; },
-      [&](std::size_t i) { return std::size_t(std::upper_bound(offsets.begin(), offsets.end(), i) - offsets.begin()) - 1; });
+      nv, nf, [&](std::size_t i) { return corners[i]; }, [&](std::size_t f) { return offsets[f]; },
+      [&](std::size_t i) {
+        return uniform ? i / k : std::size_t(std::upper_bound(offsets.begin(), offsets.end(), i) - offsets.begin()) - 1;
+      });
 }
 
 MeshTopology mesh_topology(std::size_t nv, const std::vector<std::vector<int>>& faces) {

@@ -98,7 +98,7 @@ case_implicit_files_refused() {
     out=out.off
     [[ $tool == implicit2tet ]] && out=out.msh
     [[ $tool == implicit-eval ]] && out=
-    refused $tool "not an image ITK can read" empty.nrrd $out
+    refused $tool "not a NRRD file" empty.nrrd $out
     refused $tool "not an implicit function file" plain.nrrd $out
     refused $tool "cannot read the image" truncated-f.nrrd $out
     refused $tool "imgmesh_d" nan-d.nrrd $out

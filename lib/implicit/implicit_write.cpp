@@ -1,0 +1,16 @@
+// write_implicit, apart from the rest of the file format: it writes through
+// ITK (image/io.hpp), which the tools that only read f do not link.
+#include "implicit/implicit_file.hpp"
+#include "image/io.hpp"
+
+#include <cstdio>
+
+namespace imgmesh {
+
+void write_implicit(const std::string& path, const PartitionOfUnity& f) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g", f.d()[0], f.d()[1], f.d()[2]);
+  write_image(path, f.samples(), {{"imgmesh_kind", kImplicitKind}, {"imgmesh_version", kImplicitVersion}, {"imgmesh_d", buf}});
+}
+
+} // namespace imgmesh
