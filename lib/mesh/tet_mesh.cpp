@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 namespace imgmesh {
 
@@ -16,15 +15,31 @@ P cross(const P& a, const P& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0]
 // The four faces of a positive tetrahedron, outward: opposite a, b, c, d.
 constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 
-struct FaceKey {
-  std::array<int, 3> v;  // sorted
-  bool operator==(const FaceKey& o) const { return v == o.v; }
+// A tetrahedron's face as it lies in it (outward), keyed by its sorted
+// vertex ids. The faces of a mesh are sorted by key rather than hashed:
+// no allocation per face (on 660,000 tetrahedra, hash maps took most of
+// the checks' time).
+struct Face {
+  std::array<int, 3> key;  // sorted
+  std::array<int, 3> tri;
+  bool operator<(const Face& o) const { return key < o.key; }
 };
-struct FaceHash {
-  std::size_t operator()(const FaceKey& k) const {
-    return std::hash<long long>()((long long)k.v[0] * 73856093LL ^ (long long)k.v[1] * 19349663LL ^ (long long)k.v[2] * 83492791LL);
+void add_faces(const std::array<int, 4>& q, std::vector<Face>& faces) {
+  for (const auto& f : kFace) {
+    Face face{{}, {q[std::size_t(f[0])], q[std::size_t(f[1])], q[std::size_t(f[2])]}};
+    face.key = face.tri;
+    std::sort(face.key.begin(), face.key.end());
+    faces.push_back(face);
   }
-};
+}
+// Calls visit(first, count) on each run of faces with one key.
+template <class Visit> void for_each_face(std::vector<Face>& faces, Visit visit) {
+  std::sort(faces.begin(), faces.end());
+  for (std::size_t i = 0, j = 0; i < faces.size(); i = j) {
+    while (j < faces.size() && faces[j].key == faces[i].key) ++j;
+    visit(&faces[i], j - i);
+  }
+}
 // The parity of a triangle's vertex order against its sorted order.
 bool even(const std::array<int, 3>& t) {
   int inversions = (t[0] > t[1]) + (t[0] > t[2]) + (t[1] > t[2]);
@@ -56,9 +71,9 @@ double tet_radius_edge_ratio(const P& a, const P& b, const P& c, const P& d) {
   return tet_circumradius(a, b, c, d) / std::sqrt(lmin2);
 }
 
-std::array<double, 6> tet_dihedral_angles(const P& a, const P& b, const P& c, const P& d) {
+std::array<double, 6> tet_dihedral_cosines(const P& a, const P& b, const P& c, const P& d) {
   const P p[4] = {a, b, c, d};
-  std::array<double, 6> angles{};
+  std::array<double, 6> cosines{};
   int n = 0;
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) {
@@ -76,8 +91,16 @@ std::array<double, 6> tet_dihedral_angles(const P& a, const P& b, const P& c, co
         v[m] -= sv * e[m];
       }
       const double nu = std::sqrt(dot(u, u)), nv = std::sqrt(dot(v, v));
-      angles[std::size_t(n++)] = nu > 0 && nv > 0 ? std::acos(std::clamp(dot(u, v) / (nu * nv), -1.0, 1.0)) * 180 / M_PI : 0;
+      cosines[std::size_t(n++)] = nu > 0 && nv > 0 ? std::clamp(dot(u, v) / (nu * nv), -1.0, 1.0) : 1;
     }
+  return cosines;
+}
+
+double dihedral_degrees(double cosine) { return std::acos(cosine) * 180 / M_PI; }
+
+std::array<double, 6> tet_dihedral_angles(const P& a, const P& b, const P& c, const P& d) {
+  std::array<double, 6> angles = tet_dihedral_cosines(a, b, c, d);
+  for (double& x : angles) x = dihedral_degrees(x);
   return angles;
 }
 
@@ -99,8 +122,9 @@ TetQualityReport tet_quality(const TetMesh& m) {
     std::size_t bin = 0;
     while (bin + 1 < 6 && ratio >= edges[bin + 1]) ++bin;
     ++r.ratio_histogram[bin];
-    const auto ang = tet_dihedral_angles(a, b, c, d);
-    const double lo = *std::min_element(ang.begin(), ang.end()), hi = *std::max_element(ang.begin(), ang.end());
+    const auto cosines = tet_dihedral_cosines(a, b, c, d);  // two acos, not six
+    const auto [cmin, cmax] = std::minmax_element(cosines.begin(), cosines.end());
+    const double lo = dihedral_degrees(*cmax), hi = dihedral_degrees(*cmin);
     r.min_dihedral = std::min(r.min_dihedral, lo);
     r.max_dihedral = std::max(r.max_dihedral, hi);
     if (lo < 10) ++r.under_10_degrees;
@@ -138,12 +162,8 @@ Json TetQualityReport::to_json() const {
 TetConformity tet_conformity(const TetMesh& m) {
   TetConformity c;
   const int n = int(m.points.size());
-  struct Side {
-    int count = 0;
-    bool parity[2] = {false, false};
-  };
-  std::unordered_map<FaceKey, Side, FaceHash> faces;
-  faces.reserve(m.tets.size() * 2);
+  std::vector<Face> faces;
+  faces.reserve(m.tets.size() * 4);
   std::vector<std::array<int, 4>> sorted;
   sorted.reserve(m.tets.size());
   for (const auto& q : m.tets) {
@@ -157,24 +177,17 @@ TetConformity tet_conformity(const TetMesh& m) {
     auto s = q;
     std::sort(s.begin(), s.end());
     sorted.push_back(s);
-    for (const auto& f : kFace) {
-      std::array<int, 3> t{q[std::size_t(f[0])], q[std::size_t(f[1])], q[std::size_t(f[2])]};
-      FaceKey k{t};
-      std::sort(k.v.begin(), k.v.end());
-      Side& side = faces[k];
-      if (side.count < 2) side.parity[side.count] = even(t);
-      ++side.count;
-    }
+    add_faces(q, faces);
   }
   std::sort(sorted.begin(), sorted.end());
   for (std::size_t i = 1; i < sorted.size(); ++i) c.duplicates += sorted[i] == sorted[i - 1];
-  for (const auto& [k, side] : faces) {
-    if (side.count == 1) ++c.boundary_faces;
-    else if (side.count == 2) {
+  for_each_face(faces, [&c](const Face* f, std::size_t count) {
+    if (count == 1) ++c.boundary_faces;
+    else if (count == 2) {
       ++c.interior_faces;
-      if (side.parity[0] == side.parity[1]) ++c.inconsistent_faces;
+      if (even(f[0].tri) == even(f[1].tri)) ++c.inconsistent_faces;
     } else ++c.overfull_faces;
-  }
+  });
   return c;
 }
 
@@ -192,22 +205,14 @@ Json TetConformity::to_json() const {
 }
 
 std::vector<std::array<int, 3>> tet_boundary(const TetMesh& m, int region) {
-  std::unordered_map<FaceKey, std::pair<int, std::array<int, 3>>, FaceHash> faces;
-  faces.reserve(m.tets.size() * 2);
-  for (std::size_t t = 0; t < m.tets.size(); ++t) {
-    if (region != 0 && (t < m.tet_region.size() ? m.tet_region[t] : 1) != region) continue;
-    const auto& q = m.tets[t];
-    for (const auto& f : kFace) {
-      std::array<int, 3> tri{q[std::size_t(f[0])], q[std::size_t(f[1])], q[std::size_t(f[2])]};
-      FaceKey k{tri};
-      std::sort(k.v.begin(), k.v.end());
-      auto& e = faces[k];
-      if (e.first++ == 0) e.second = tri;
-    }
-  }
+  std::vector<Face> faces;
+  faces.reserve(m.tets.size() * 4);
+  for (std::size_t t = 0; t < m.tets.size(); ++t)
+    if (region == 0 || (t < m.tet_region.size() ? m.tet_region[t] : 1) == region) add_faces(m.tets[t], faces);
   std::vector<std::array<int, 3>> out;
-  for (const auto& [k, e] : faces)
-    if (e.first == 1) out.push_back(e.second);
+  for_each_face(faces, [&out](const Face* f, std::size_t count) {
+    if (count == 1) out.push_back(f->tri);
+  });
   std::sort(out.begin(), out.end());
   return out;
 }

@@ -32,6 +32,12 @@ double tet_circumradius(const std::array<double, 3>& a, const std::array<double,
 // The six interior dihedral angles, in degrees (0 when degenerate).
 std::array<double, 6> tet_dihedral_angles(const std::array<double, 3>& a, const std::array<double, 3>& b,
                                           const std::array<double, 3>& c, const std::array<double, 3>& d);
+// Their cosines (1 when degenerate), in the same order: acos is monotone,
+// so the smallest angle is dihedral_degrees of the largest cosine, and a
+// test against a bound needs no acos for most tetrahedra.
+std::array<double, 6> tet_dihedral_cosines(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                                           const std::array<double, 3>& c, const std::array<double, 3>& d);
+double dihedral_degrees(double cosine);
 
 struct TetQualityReport {
   std::size_t tetrahedra = 0;

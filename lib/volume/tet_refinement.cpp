@@ -9,7 +9,6 @@
 #include <cmath>
 #include <optional>
 #include <queue>
-#include <set>
 
 namespace imgmesh {
 
@@ -18,6 +17,16 @@ using namespace surface_detail;
 namespace {
 
 double d2(const Point& a, const Point& b) { return CGAL::to_double(CGAL::squared_distance(a, b)); }
+
+// The tetrahedron's smallest dihedral angle (degrees, as tet_dihedral_angles)
+// when it is below `bound`, else some angle >= bound: acos only for the
+// cells near or under the bound (the cosine test has room for acos's
+// rounding), not for every cell of every scan.
+double smallest_dihedral(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double bound) {
+  const auto cosines = tet_dihedral_cosines(a, b, c, d);
+  const double top = *std::max_element(cosines.begin(), cosines.end());
+  return top > std::cos(bound * M_PI / 180) - 1e-9 ? dihedral_degrees(top) : bound;
+}
 
 // One round of cell refinement, run by DELMESH once the certificate holds,
 // round after round with REFINE between (DelMesh::set_after_certificate).
@@ -60,8 +69,7 @@ public:
     if (bad == 0 && opt_.sliver_angle > 0 && size >= guard_) {
       std::array<double, 3> p[4];
       for (int i = 0; i < 4; ++i) p[i] = vec(c->vertex(i)->point());
-      const auto a = tet_dihedral_angles(p[0], p[1], p[2], p[3]);
-      const double lo = *std::min_element(a.begin(), a.end());
+      const double lo = smallest_dihedral(p[0], p[1], p[2], p[3], opt_.sliver_angle);
       if (lo < opt_.sliver_angle) {
         bad = 1 - lo / opt_.sliver_angle;  // in (0, 1]: below every other
         sliver = true;
@@ -318,19 +326,24 @@ void extract(const DelMesh& dm, const CellRefinement& inside, const BoxRefinemen
   };
   // Cells by region, then in the order of their sorted vertex ids (CGAL's
   // storage order depends on addresses; the files keep regions in blocks).
-  std::vector<std::pair<std::array<int, 4>, int>> cells;  // ids, region
+  struct Cell {
+    int region;
+    std::array<int, 4> sorted, ids;  // the sort key; the ids in CGAL's (positive) order
+  };
+  std::vector<Cell> cells;
   for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) {
     const int region = inside.inside(c->circumcenter()) ? 1 : 2;
     if (region == 2 && !box) continue;
-    cells.push_back({{c->vertex(0)->info().id, c->vertex(1)->info().id, c->vertex(2)->info().id, c->vertex(3)->info().id}, region});
+    const std::array<int, 4> ids{c->vertex(0)->info().id, c->vertex(1)->info().id, c->vertex(2)->info().id, c->vertex(3)->info().id};
+    std::array<int, 4> sorted = ids;
+    std::sort(sorted.begin(), sorted.end());
+    cells.push_back({region, sorted, ids});
   }
-  std::sort(cells.begin(), cells.end(), [](auto a, auto b) {
-    std::sort(a.first.begin(), a.first.end());
-    std::sort(b.first.begin(), b.first.end());
-    return a.second != b.second ? a.second < b.second : a.first < b.first;
+  std::sort(cells.begin(), cells.end(), [](const Cell& a, const Cell& b) {
+    return a.region != b.region ? a.region < b.region : a.sorted < b.sorted;
   });
   const bool flip = surface.reflects();
-  for (const auto& [ids, region] : cells) {
+  for (const auto& [region, sorted, ids] : cells) {
     std::array<int, 4> t;
     for (int i = 0; i < 4; ++i) t[std::size_t(i)] = out(dm.vertices()[std::size_t(ids[std::size_t(i)])]);
     if (flip) std::swap(t[2], t[3]);
@@ -363,20 +376,24 @@ void extract(const DelMesh& dm, const CellRefinement& inside, const BoxRefinemen
     r.box_covered = r.box_covered && std::abs(area - 2 * (a * b + b * c + c * a)) <= 1e-9 * area;
   }
 
-  std::set<std::array<int, 3>> restricted, boundary;
+  std::vector<std::array<int, 3>> restricted, boundary;
   for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it)
     if (it->first->facet[it->second].state & kRestricted) {
       std::array<int, 3> k;
       for (int m = 1; m < 4; ++m) k[std::size_t(m - 1)] = it->first->vertex((it->second + m) & 3)->info().id;
       std::sort(k.begin(), k.end());
-      restricted.insert(k);
+      restricted.push_back(k);
     }
   for (std::size_t i = 0; i < surface_triangles; ++i) {
     const auto& t = r.mesh.triangles[i];
     std::array<int, 3> k{id_of[std::size_t(t[0])], id_of[std::size_t(t[1])], id_of[std::size_t(t[2])]};
     std::sort(k.begin(), k.end());
-    boundary.insert(k);
+    boundary.push_back(k);
   }
+  // As sets (each list is free of repeats: a facet is visited once, and
+  // tet_boundary lists a face once).
+  std::sort(restricted.begin(), restricted.end());
+  std::sort(boundary.begin(), boundary.end());
   r.boundary_is_surface = restricted == boundary;
 }
 
@@ -435,8 +452,8 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   r.ratio_ok = r.quality.max_radius_edge_ratio <= opt.cell_ratio * (1 + 1e-9);
   for (const auto& t : r.mesh.tets) {
     const auto& p = r.mesh.points;
-    const auto a = tet_dihedral_angles(p[std::size_t(t[0])], p[std::size_t(t[1])], p[std::size_t(t[2])], p[std::size_t(t[3])]);
-    r.slivers_left += *std::min_element(a.begin(), a.end()) < opt.sliver_angle;
+    r.slivers_left += smallest_dihedral(p[std::size_t(t[0])], p[std::size_t(t[1])], p[std::size_t(t[2])], p[std::size_t(t[3])],
+                                        opt.sliver_angle) < opt.sliver_angle;
   }
   r.size_ok = opt.cell_size <= 0 || r.quality.max_circumradius <= opt.cell_size * (1 + 1e-9);
   return r;
