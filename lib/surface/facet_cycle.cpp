@@ -160,12 +160,17 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   for (long j = 0; j < nb; ++j) total += std::max(0L, hi[j] - lo[j] + 1);
   if (total < 9) return kNone;
   if (total > 64000000) return FacetAnswer::kSkipped;  // the caller checks it again later
-  auto point = [&](long i, long j) {
+  // Inlined (called per sample and per cube step). cube_of multiplies by
+  // 1/s: a sample within rounding of a face may go to either cube, and
+  // takes the same sign in both (f's sign on an inactive cube's faces is
+  // its corners', F1).
+  auto point = [&](long i, long j) __attribute__((always_inline)) {
     const double a = a0 + i * step, b = b0 + j * step;
     return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
   };
-  auto cube_of = [&](const Vec3& x, long c[3]) {
-    for (int k = 0; k < 3; ++k) c[k] = std::clamp(floor_long(x[k] / grid.s[k]), 0L, grid.n[k] - 2);
+  const double inv_s[3] = {1 / grid.s[0], 1 / grid.s[1], 1 / grid.s[2]};
+  auto cube_of = [&](const Vec3& x, long c[3]) __attribute__((always_inline)) {
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(floor_long(x[k] * inv_s[k]), 0L, grid.n[k] - 2);
   };
   // Only the samples near active cubes need a walk through the cubes: the
   // others lie in inactive cubes, and consecutive samples (delta/16 apart) in
