@@ -301,7 +301,10 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     }
     for (long k = s0; k <= e0; ++k) append(k, k, SurfaceSampler::inside(f.value(k == s0 ? xs : point(k, j))));
   };
-  // Samples s0..e0 of row j, cube by cube.
+  // Samples s0..e0 of row j, cube by cube. Reciprocals, not divisions: a
+  // sample counted in the wrong cube at a face keeps its sign (see
+  // cube_of), and one counted past the exit is caught below.
+  const double inv_u[3] = {1 / u[0], 1 / u[1], 1 / u[2]}, inv_step = 1 / step;
   auto walk = [&](long s0, long e0) {
     for (long i = s0; i <= e0;) {
       const Vec3 x = point(i, j);
@@ -316,10 +319,10 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
         double a_exit = INFINITY;
         const double b = b0 + j * step;
         for (int k = 0; k < 3; ++k) {
-          if (u[k] > 1e-15) a_exit = std::min(a_exit, ((c[k] + 1) * grid.s[k] - m[k] - b * v[k]) / u[k]);
-          else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid.s[k] - m[k] - b * v[k]) / u[k]);
+          if (u[k] > 1e-15) a_exit = std::min(a_exit, ((c[k] + 1) * grid.s[k] - m[k] - b * v[k]) * inv_u[k]);
+          else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid.s[k] - m[k] - b * v[k]) * inv_u[k]);
         }
-        const double t = (a_exit - a0) / step;
+        const double t = (a_exit - a0) * inv_step;
         if (!std::isfinite(t) || t >= 1e18) last = e0;
         else last = t <= -1e18 ? i : std::clamp(floor_long(t), i, e0);
         for (long c2[3]; last > i; --last) {
