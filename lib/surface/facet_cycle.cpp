@@ -160,12 +160,17 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   for (long j = 0; j < nb; ++j) total += std::max(0L, hi[j] - lo[j] + 1);
   if (total < 9) return kNone;
   if (total > 64000000) return FacetAnswer::kSkipped;  // the caller checks it again later
-  auto point = [&](long i, long j) {
+  // Inlined (called per sample and per cube step). cube_of multiplies by
+  // 1/s: a sample within rounding of a face may go to either cube, and
+  // takes the same sign in both (f's sign on an inactive cube's faces is
+  // its corners', F1).
+  auto point = [&](long i, long j) __attribute__((always_inline)) {
     const double a = a0 + i * step, b = b0 + j * step;
     return Vec3{m[0] + a * u[0] + b * v[0], m[1] + a * u[1] + b * v[1], m[2] + a * u[2] + b * v[2]};
   };
-  auto cube_of = [&](const Vec3& x, long c[3]) {
-    for (int k = 0; k < 3; ++k) c[k] = std::clamp(floor_long(x[k] / grid.s[k]), 0L, grid.n[k] - 2);
+  const double inv_s[3] = {1 / grid.s[0], 1 / grid.s[1], 1 / grid.s[2]};
+  auto cube_of = [&](const Vec3& x, long c[3]) __attribute__((always_inline)) {
+    for (int k = 0; k < 3; ++k) c[k] = std::clamp(floor_long(x[k] * inv_s[k]), 0L, grid.n[k] - 2);
   };
   // Only the samples near active cubes need a walk through the cubes: the
   // others lie in inactive cubes, and consecutive samples (delta/16 apart) in
@@ -203,9 +208,28 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
       walk_all = false;
       // Rounding of the samples' coordinates: far below this.
       const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b1));
+      // Only the cubes of each line along x that come within the test's
+      // reach of Pi (twice eps from it, and a cube more on each side) are
+      // tested: in a facet's box most cubes lie far from its plane. Cube
+      // (x, y, z)'s corners have signed distances x s_0 n_0 + e(y, z) + an
+      // offset in [off_lo, off_hi].
+      const double sn[3] = {grid.s[0] * n[0], grid.s[1] * n[1], grid.s[2] * n[2]};
+      const double off_lo = std::min(0.0, sn[0]) + std::min(0.0, sn[1]) + std::min(0.0, sn[2]);
+      const double off_hi = std::max(0.0, sn[0]) + std::max(0.0, sn[1]) + std::max(0.0, sn[2]);
       for (long z = c0[2]; z <= c1[2]; ++z)
-        for (long y = c0[1]; y <= c1[1]; ++y)
-          for (long x = c0[0]; x <= c1[0]; ++x) {
+        for (long y = c0[1]; y <= c1[1]; ++y) {
+          const double e = -m[0] * n[0] + (double(y) * grid.s[1] - m[1]) * n[1] + (double(z) * grid.s[2] - m[2]) * n[2];
+          const double lo_d = -2 * eps - off_hi - e, hi_d = 2 * eps - off_lo - e;  // lo_d <= x sn_0 <= hi_d
+          long x0 = c0[0], x1 = c1[0];
+          if (std::abs(sn[0]) > 1e-9 * grid.delta) {
+            double t0 = lo_d / sn[0], t1 = hi_d / sn[0];
+            if (t0 > t1) std::swap(t0, t1);
+            x0 = std::max(x0, long(std::max(t0, double(x0 - 1))) - 1);
+            x1 = std::min(x1, long(std::min(t1, double(x1 + 1))) + 1);
+          } else if (lo_d > 0 || hi_d < 0) {
+            continue;
+          }
+          for (long x = x0; x <= x1; ++x) {
             if (!grid.active(x, y, z)) continue;
             double dlo = INFINITY, dhi = -INFINITY, alo = INFINITY, ahi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
             for (int k = 0; k < 8; ++k) {
@@ -221,6 +245,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
             const long s0 = floor_long((alo - eps - a0) / step) - 1, e0 = ceil_long((ahi + eps - a0) / step) + 1;
             if (j0 <= j1) cube_spans.push_back({j0, j1, s0, e0});
           }
+        }
       std::sort(cube_spans.begin(), cube_spans.end(), [](const CubeSpan& x, const CubeSpan& y) { return x.s < y.s; });
       for (const CubeSpan& c : cube_spans)
         for (long j = c.j0; j <= c.j1; ++j) ++row_span[j + 1];
@@ -276,7 +301,10 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     }
     for (long k = s0; k <= e0; ++k) append(k, k, SurfaceSampler::inside(f.value(k == s0 ? xs : point(k, j))));
   };
-  // Samples s0..e0 of row j, cube by cube.
+  // Samples s0..e0 of row j, cube by cube. Reciprocals, not divisions: a
+  // sample counted in the wrong cube at a face keeps its sign (see
+  // cube_of), and one counted past the exit is caught below.
+  const double inv_u[3] = {1 / u[0], 1 / u[1], 1 / u[2]}, inv_step = 1 / step;
   auto walk = [&](long s0, long e0) {
     for (long i = s0; i <= e0;) {
       const Vec3 x = point(i, j);
@@ -291,10 +319,10 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
         double a_exit = INFINITY;
         const double b = b0 + j * step;
         for (int k = 0; k < 3; ++k) {
-          if (u[k] > 1e-15) a_exit = std::min(a_exit, ((c[k] + 1) * grid.s[k] - m[k] - b * v[k]) / u[k]);
-          else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid.s[k] - m[k] - b * v[k]) / u[k]);
+          if (u[k] > 1e-15) a_exit = std::min(a_exit, ((c[k] + 1) * grid.s[k] - m[k] - b * v[k]) * inv_u[k]);
+          else if (u[k] < -1e-15) a_exit = std::min(a_exit, (c[k] * grid.s[k] - m[k] - b * v[k]) * inv_u[k]);
         }
-        const double t = (a_exit - a0) / step;
+        const double t = (a_exit - a0) * inv_step;
         if (!std::isfinite(t) || t >= 1e18) last = e0;
         else last = t <= -1e18 ? i : std::clamp(floor_long(t), i, e0);
         for (long c2[3]; last > i; --last) {
