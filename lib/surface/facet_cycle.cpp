@@ -90,6 +90,33 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   // Tighten b by the polygon: rows where the a-interval is empty are skipped anyway.
   const double step = grid.delta / 16;
   const long nb = long(std::ceil((b1 - b0) / step)) + 1;
+  // No active cube in any block (CubeGrid::kBlock^3 cubes) that the
+  // samples' rectangle [a0, a1] x [b0, b_last] on Pi meets: every sample
+  // lies in an inactive cube, and h (convex) passes from cube to cube
+  // through shared corners, so every sample takes one sign (F1): no cycle.
+  // Only where h has too few samples to be skipped (kSkipped below), so
+  // that the answer is kNone either way; kCompare checks it at the end.
+  bool no_active = false;
+  if (how != FacetWalk::kFull && (std::floor((a1 - a0) / step) + 1) * double(nb) <= 64000000) {
+    const double b_end = b0 + double(nb - 1) * step;
+    const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b_end));
+    long k0[3], k1[3];
+    for (int k = 0; k < 3; ++k) {
+      double xlo = INFINITY, xhi = -INFINITY;
+      for (double a : {a0, a1})
+        for (double b : {b0, b_end}) {
+          const double x = m[k] + a * u[k] + b * v[k];
+          xlo = std::min(xlo, x), xhi = std::max(xhi, x);
+        }
+      k0[k] = std::clamp(floor_long((xlo - eps) / grid.s[k]), 0L, grid.n[k] - 2) / CubeGrid::kBlock;
+      k1[k] = std::clamp(floor_long((xhi + eps) / grid.s[k]), 0L, grid.n[k] - 2) / CubeGrid::kBlock;
+    }
+    no_active = true;
+    for (long z = k0[2]; z <= k1[2] && no_active; ++z)
+      for (long y = k0[1]; y <= k1[1] && no_active; ++y)
+        for (long x = k0[0]; x <= k1[0] && no_active; ++x) no_active = !grid.block(x, y, z);
+    if (no_active && how == FacetWalk::kSpans) return kNone;
+  }
   // Rows: the a-interval where every half-plane holds.
   thread_local std::vector<long> lo, hi;
   thread_local std::vector<double> alo_row, ahi_row;  // h's exact border on each row
@@ -387,6 +414,9 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   } else {
     build_runs(walk_all ? FacetWalk::kFull : FacetWalk::kSpans);
   }
+  if (no_active && any_neg && any_pos)  // kCompare only: kSpans returned above
+    throw Error("FacetCycle: samples of both signs though no block of the facet's rectangle has an active cube (edge " +
+                std::to_string(p->info().id) + "-" + std::to_string(q->info().id) + ")");
   if (!(any_neg && any_pos)) return kNone;
   // Sign regions (4-connected): runs of one sign overlapping in adjacent rows,
   // joined by union-find. A region touching h's border is open; one that
