@@ -232,22 +232,32 @@ bool raise_mean(QuadMesh& qm, int v, double h2) {
   return true;
 }
 
-void mean_pass(QuadMesh& qm, SmoothStats& st) {
+// climb(v, h2) on each free vertex of three or more quads, one of them with
+// sin mu under `below`, vertex by vertex in id order (Gauss-Seidel, one
+// thread: the result cannot depend on --threads); h2 is the squared length
+// of v's first edge, the climb's scale. The climbs that moved v.
+template <class Climb>
+std::size_t climb_stars_below(QuadMesh& qm, double below, Climb climb) {
   const std::vector<Point2>& P = qm.points;
-  // Vertex by vertex in id order (Gauss-Seidel, one thread: the result
-  // cannot depend on --threads); stars whose quads are all near squares
-  // (mu >= 40) are left alone, which keeps the pass cheap on good meshes.
-  constexpr double kGood = 0.6427876096865393;  // sin(40 deg)
+  std::size_t moved = 0;
   for (int v = 0; v < int(P.size()); ++v) {
     if (qm.fixed[v] || qm.vertex_dead[v] || qm.vertex_quads[v].size() < 3) continue;
     double worst = 2;
     for (int q : qm.vertex_quads[v]) worst = std::min(worst, qm.quad_sin_mu[q]);
-    if (worst >= kGood) continue;
+    if (worst >= below) continue;
     const Quad& first = qm.quads[qm.vertex_quads[v][0]];
     const Point2& x = P[first[0] == v ? first[1] : first[0]];
     const double h2 = (x[0] - P[v][0]) * (x[0] - P[v][0]) + (x[1] - P[v][1]) * (x[1] - P[v][1]);
-    if (raise_mean(qm, v, h2)) ++st.mean_climbs;
+    if (climb(v, h2)) ++moved;
   }
+  return moved;
+}
+
+void mean_pass(QuadMesh& qm, SmoothStats& st) {
+  // Stars whose quads are all near squares (mu >= 40) are left alone, which
+  // keeps the pass cheap on good meshes.
+  constexpr double kGood = 0.6427876096865393;  // sin(40 deg)
+  st.mean_climbs += climb_stars_below(qm, kGood, [&](int v, double h2) { return raise_mean(qm, v, h2); });
 }
 
 bool raise_worst(QuadMesh& qm, int v, double h2) {
@@ -330,16 +340,7 @@ bool raise_worst_pair(QuadMesh& qm, int u, int v, double h) {
 
 void worst_pass(QuadMesh& qm, SmoothStats& st) {
   const std::vector<Point2>& P = qm.points;
-  for (int v = 0; v < int(P.size()); ++v) {
-    if (qm.fixed[v] || qm.vertex_dead[v] || qm.vertex_quads[v].size() < 3) continue;
-    double worst = 2;
-    for (int q : qm.vertex_quads[v]) worst = std::min(worst, qm.quad_sin_mu[q]);
-    if (worst >= kWorstBelow) continue;
-    const Quad& first = qm.quads[qm.vertex_quads[v][0]];
-    const Point2& x = P[first[0] == v ? first[1] : first[0]];
-    const double h2 = (x[0] - P[v][0]) * (x[0] - P[v][0]) + (x[1] - P[v][1]) * (x[1] - P[v][1]);
-    if (raise_worst(qm, v, h2)) ++st.worst_climbs;
-  }
+  st.worst_climbs += climb_stars_below(qm, kWorstBelow, [&](int v, double h2) { return raise_worst(qm, v, h2); });
   for (int q = 0; q < int(qm.quads.size()); ++q) {
     if (qm.quad_dead[q] || qm.quad_sin_mu[q] >= kWorstBelow) continue;
     for (int k = 0; k < 4; ++k) {
