@@ -96,10 +96,11 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   // through shared corners, so every sample takes one sign (F1): no cycle.
   // Only where h has too few samples to be skipped (kSkipped below), so
   // that the answer is kNone either way; kCompare checks it at the end.
+  const double b_end = b0 + double(nb - 1) * step;  // the last row
+  // Rounding of the samples' coordinates: far below this.
+  const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b_end));
   bool no_active = false;
   if (how != FacetWalk::kFull && (std::floor((a1 - a0) / step) + 1) * double(nb) <= 64000000) {
-    const double b_end = b0 + double(nb - 1) * step;
-    const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b_end));
     long k0[3], k1[3];
     for (int k = 0; k < 3; ++k) {
       double xlo = INFINITY, xhi = -INFINITY;
@@ -233,8 +234,6 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     const double cubes = double(c1[0] - c0[0] + 1) * double(c1[1] - c0[1] + 1) * double(c1[2] - c0[2] + 1);
     if (cubes < 16 * cost || how == FacetWalk::kCompare) {  // else walking every row is cheaper
       walk_all = false;
-      // Rounding of the samples' coordinates: far below this.
-      const double eps = 1e-9 * (grid.hi[0] + grid.hi[1] + grid.hi[2] + std::abs(a0) + std::abs(a1) + std::abs(b0) + std::abs(b1));
       // Only the cubes of each line along x that come within the test's
       // reach of Pi (twice eps from it, and a cube more on each side) are
       // tested: in a facet's box most cubes lie far from its plane. Cube
