@@ -11,16 +11,18 @@ namespace imgmesh::qs {
 
 namespace {
 
+// Quad q's corners in order, beginning at its corner v.
+Quad from_corner(const QuadMesh& qm, int q, int v) {
+  Quad A = qm.quads[q];
+  while (A[0] != v) std::rotate(A.begin(), A.begin() + 1, A.end());
+  return A;
+}
+
 // The doublet at the free valence-2 vertex v: its quads A = (v, a, b, c)
 // and B = (v, c, d, a) as the merged (a, b, c, d) (a repeated corner if
 // they are not such a pair).
 Quad doublet_merged(const QuadMesh& qm, int v) {
-  const auto rotated = [&](int q) {
-    Quad A = qm.quads[q];
-    while (A[0] != v) std::rotate(A.begin(), A.begin() + 1, A.end());
-    return A;
-  };
-  const Quad A = rotated(qm.vertex_quads[v][0]), B = rotated(qm.vertex_quads[v][1]);
+  const Quad A = from_corner(qm, qm.vertex_quads[v][0], v), B = from_corner(qm, qm.vertex_quads[v][1], v);
   if (B[1] != A[3] || B[3] != A[1]) return {A[1], A[1], A[1], A[1]};
   return {A[1], A[2], A[3], B[2]};
 }
@@ -96,14 +98,9 @@ bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too) {
   // The hexagon H around m, counter-clockwise: its quads are (m, H[2i],
   // H[2i+1], H[2i+2]), so H's even corners are m's edge neighbours.
   int H[6], Q[3];
-  const auto rotated = [&](int q) {
-    Quad A = qm.quads[q];
-    while (A[0] != m) std::rotate(A.begin(), A.begin() + 1, A.end());
-    return A;
-  };
   Q[0] = qm.vertex_quads[m][0];
   for (int i = 0; i < 3; ++i) {
-    const Quad A = rotated(Q[i]);
+    const Quad A = from_corner(qm, Q[i], m);
     H[2 * i] = A[1];
     H[2 * i + 1] = A[2];
     if (i == 2) {
@@ -111,7 +108,7 @@ bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too) {
       break;
     }
     Q[i + 1] = qm.quad_with_edge(m, A[3]);
-    if (Q[i + 1] < 0 || Q[i + 1] == Q[0] || rotated(Q[i + 1])[1] != A[3]) return false;
+    if (Q[i + 1] < 0 || Q[i + 1] == Q[0] || from_corner(qm, Q[i + 1], m)[1] != A[3]) return false;
   }
   for (int k = 0; k < 6; ++k)
     for (int l = k + 1; l < 6; ++l)
