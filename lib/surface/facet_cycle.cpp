@@ -13,15 +13,18 @@ namespace imgmesh::surface_detail {
 // FacetCycle (8.2): does S have a closed curve inside the Voronoi facet h
 // dual to the Delaunay edge pq (a piece of S that no Voronoi edge sees)?
 // h = bisector plane Pi cut by V(p)'s half-spaces and the box: convex, so
-// it is rasterised row by row on Pi at delta/16 (at delta/4, curves missed
-// there cost the brain labels' certificate fallback rounds), into runs of
-// one sign. The sign of f at a sample is the corner sign in an inactive
-// cube (F1), the enclosure's in an active cube where the enclosure of f
-// excludes 0, and f's sign elsewhere. A sign region that does not
-// reach the border of h is enclosed by a cycle of S; its point farthest from p is found on the sample pair (region,
-// neighbour) farthest from p that brackets a root, by root finding along
-// that segment, i.e. on S inside Pi. Cycles narrower than the step are
-// missed (like EdgeSurface). Facets of more than 4M samples are not
+// it is rasterised row by row on Pi at delta/4, into runs of one sign
+// (delta/16 took 59% more of the bunny's instructions for the same mesh,
+// and no benchmark image needs a certificate fallback at delta/4, even at
+// the thesis's looser bounds: doc/benchmarks.md). The sign of f at a
+// sample is the corner sign in an inactive cube (F1), the enclosure's in
+// an active cube where the enclosure of f excludes 0, and f's sign
+// elsewhere. A sign region that does not reach the border of h is
+// enclosed by a cycle of S; its point farthest from p is found on the
+// sample pair (region, neighbour) farthest from p that brackets a root, by
+// root finding along that segment, i.e. on S inside Pi. Cycles narrower
+// than the step are missed (like EdgeSurface); the final certificate
+// catches what they would change. Facets of more than 64M samples are not
 // rasterised: kSkipped, and DELMESH checks them again after later insertions.
 FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out, FacetWalk how) {
   constexpr FacetAnswer kNone = FacetAnswer::kNone;
@@ -88,7 +91,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
   a0 = std::max(a0, ba0); a1 = std::min(a1, ba1); b0 = std::max(b0, bb0); b1 = std::min(b1, bb1);
   if (!(a0 < a1 && b0 < b1)) return kNone;
   // Tighten b by the polygon: rows where the a-interval is empty are skipped anyway.
-  const double step = grid.delta / 16;
+  const double step = grid.delta / 4;
   const long nb = long(std::ceil((b1 - b0) / step)) + 1;
   // No active cube in any block (CubeGrid::kBlock^3 cubes) that the
   // samples' rectangle [a0, a1] x [b0, b_last] on Pi meets: every sample
@@ -201,7 +204,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     for (int k = 0; k < 3; ++k) c[k] = std::clamp(floor_long(x[k] * inv_s[k]), 0L, grid.n[k] - 2);
   };
   // Only the samples near active cubes need a walk through the cubes: the
-  // others lie in inactive cubes, and consecutive samples (delta/16 apart) in
+  // others lie in inactive cubes, and consecutive samples (delta/4 apart) in
   // cubes that share a corner, so a stretch of them takes one sign (F1): one
   // run. The stretches to walk, per row: each active cube among the samples'
   // cubes that Pi meets spans the rows and the samples between its corners'

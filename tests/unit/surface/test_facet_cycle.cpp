@@ -47,6 +47,29 @@ TEST_CASE("FacetCycle: a small sphere or a thin torus around the middle of pq is
   CHECK(std::abs(x[2] - kMid[2]) < 1e-6);
 }
 
+// The samples' step (delta/4) is FacetCycle's resolution: a cycle whose
+// disk holds a circle of radius more than the step / sqrt 2 holds a sample
+// wherever the raster falls. A ball of radius 0.215 voxel around the voxel
+// centre (10, 10, 10), cut 0.1 from its centre: a circle of radius 0.19
+// (> 0.177). pq's facet, a disk of radius ~0.9 (a ring of W 7 voxels out,
+// as below), and with it the raster, moved to 25 places around it.
+TEST_CASE("FacetCycle: a cycle of S wider than two samples is found wherever the raster falls") {
+  RestrictedDelaunayOptions o;
+  FunctionSurface s(test::box(21, 21, 21), [&](const Vec3& y) { return test::sphere_f(y, Vec3{10, 10, 10}, 0.215); });
+  for (int k = 0; k < 25; ++k) {
+    const Vec3 mid{10 + 0.11 * (k % 5 - 2), 10 + 0.13 * (k / 5 - 2), 10.1};
+    std::vector<Vec3> ring = kFar;
+    for (int r = 0; r < 6; ++r)
+      ring.push_back({mid[0] + 7 * std::cos(r * M_PI / 3 + 0.2), mid[1] + 7 * std::sin(r * M_PI / 3 + 0.2), mid[2] + 0.3});
+    DelMesh m(s, o);
+    const Tr::Edge pq = edge_pq(m, {mid[0], mid[1], mid[2] - 6}, {mid[0], mid[1], mid[2] + 6}, ring);
+    Vec3 x;
+    INFO("place " << k);
+    REQUIRE(facet_cycle(m.triangulation(), m.sampler(), pq, x) == FacetAnswer::kCycle);
+    CHECK(std::abs(s.value(x)) < 1e-9);
+  }
+}
+
 TEST_CASE("FacetCycle: no cycle where S crosses the facet to its border, or misses it") {
   RestrictedDelaunayOptions o;
   // Two close sheets x = 9.85 and 10.55 (a flat box): six points of W 7
