@@ -198,6 +198,10 @@ public:
       const Point3* p[4];
       for (int i = 0; i < 4; ++i) p[i] = &this->vertex(i)->point();
       std::sort(p, p + 4, [](const auto* a, const auto* b) { return *a < *b; });
+      // Positively oriented, as the robust construction requires: its check
+      // of the floating-point centre fails on the other orientation, and
+      // every such cell took the exact path (8.7% of the bunny's instructions).
+      if (gt.orientation_3_object()(*p[0], *p[1], *p[2], *p[3]) == CGAL::NEGATIVE) std::swap(p[2], p[3]);
       center_ = gt.construct_circumcenter_3_object()(*p[0], *p[1], *p[2], *p[3]);
     }
     return center_;
