@@ -275,6 +275,11 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
             if (j0 <= j1) cube_spans.push_back({j0, j1, s0, e0});
           }
         }
+      // No active cube that Pi meets among the samples' cubes: every sample
+      // lies in an inactive cube, and h (convex) passes from cube to cube
+      // through shared corners, so all take one sign (F1): no cycle.
+      no_active = no_active || cube_spans.empty();
+      if (no_active && how == FacetWalk::kSpans) return kNone;
       std::sort(cube_spans.begin(), cube_spans.end(), [](const CubeSpan& x, const CubeSpan& y) { return x.s < y.s; });
       for (const CubeSpan& c : cube_spans)
         for (long j = c.j0; j <= c.j1; ++j) ++row_span[j + 1];
@@ -417,7 +422,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     build_runs(walk_all ? FacetWalk::kFull : FacetWalk::kSpans);
   }
   if (no_active && any_neg && any_pos)  // kCompare only: kSpans returned above
-    throw Error("FacetCycle: samples of both signs though no block of the facet's rectangle has an active cube (edge " +
+    throw Error("FacetCycle: samples of both signs though no block of the facet's rectangle, or no cube, is active (edge " +
                 std::to_string(p->info().id) + "-" + std::to_string(q->info().id) + ")");
   if (!(any_neg && any_pos)) return kNone;
   // Sign regions (4-connected): runs of one sign overlapping in adjacent rows,
