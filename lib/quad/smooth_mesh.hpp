@@ -259,7 +259,11 @@ bool remove_doublet(QuadMesh& qm, int v);
 // its three quads become two, c in one, by the hexagon's diagonal beside c.
 // Taken if, once the patch is relaxed, its worst mu rose; true if done.
 // respoke_too: else, m joined to the hexagon's other three corners instead
-// (doublets left by it merged), c then in one quad.
+// (doublets left by it merged), c then in one quad; else the split keeping
+// c whole even where its quads are not strictly convex as the corners
+// stand, the free hexagon corners it leaves in two quads merged away in
+// turn and the patch's free vertices placed, relaxed and climbed on the
+// worst mu (taken if the patch's sorted sines rose).
 bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too);
 // remove_doublet, else open_sharp_corner, on every vertex.
 void doublet_pass(QuadMesh& qm, SmoothStats& st);

@@ -694,6 +694,56 @@ TEST_CASE("a sharp corner whose hexagon cannot be split in two gets m joined to 
   CHECK(total_area(m) == Approx(area));
 }
 
+TEST_CASE("a sharp corner whose hexagon splits only once its doublets merge gets one quad", "[smooth]") {
+  // From the brain slice's default chain (BrainT1Slice.png, threshold 100):
+  // the quads within three edges of a free valence-3 vertex m (3) that
+  // splits the 33.7-degree wedge tip c (0) of the curve into two quads of
+  // mu 8.4. Neither split of m's hexagon keeping c whole is strictly
+  // convex where the corners stand (the free corners sit on the wedge's
+  // sides), nor is m joined to the other corners; with the corners it
+  // leaves in two quads merged away (two doublets in turn) and the rest
+  // placed, c is in one quad and the patch's worst mu rises.
+  PlanarMesh m;
+  m.points = {{134.5, 68.5}, {133, 69.5}, {133.11321856517085, 69.157669638416536}, {133.60011083221232, 68.774311985288975}, {132.697224362268, 68.5}, {133.09012872795734, 68.710101275373773}, {132.95936462106596, 68.951106799039636}, {133.5, 67.5}, {134.5, 67.5}, {134.85638858257479, 70.205779489841206}, {134.01390577604755, 70.566962290951892}, {135.5, 69.5}, {135.5, 68.5}, {135.5, 67.5}, {133.4108875661681, 71.163436016106161}, {132.33205029433785, 69.945299803774773}, {132.30446143259911, 69.398299818132898}, {132.67077458937047, 68.926947634449718}, {130.89444872453601, 68.5}, {131.5, 66.5}, {132.5, 66.5}, {133.1270474395665, 66.577281029717426}, {130.7143982866836, 69.079770557005347}, {134, 66.5}, {134.50669090936333, 66.740660481083964}, {133.41364362656535, 65.6242127279328}, {135.04107734492885, 66.428018312398137}, {135.7439592106833, 71.824024640692343}, {134.93594737560326, 72.24960217890299}, {136.7470196573083, 71.355959778754226}, {136.38240126097443, 70.220913643214658}, {136.5, 69.5}, {133.95595042531932, 72.423854681894269}, {136.23549468501645, 67.922039727545723}, {136.4816793431593, 68.654581894710347}, {136.94321206901466, 68.962577221913875}, {136.18933161332217, 67.102253702816242}, {135.63437353793032, 66.263677340315382}, {132.5, 71.5}, {131.5, 70.5}, {132.5, 72.5}, {131.5, 69.5}, {129.89526349109425, 67.167333423731691}, {130.42765454971396, 65.914528586624556}, {127.5, 68.5}, {128.2323176743179, 67.148540497490359}, {129.35555875936876, 69.346339464519147}, {130.78754554746155, 64.794730680031719}, {131.5, 65.5}, {132.5, 65.5}, {129.43610109757353, 70.325559560970589}};
+  m.elements = {{0, 1, 2, 3}, {4, 0, 3, 5}, {3, 2, 6, 5}, {4, 7, 8, 0}, {0, 9, 10, 1}, {11, 9, 0, 12}, {0, 8, 13, 12}, {1, 10, 14, 15}, {2, 1, 15, 16}, {16, 17, 6, 2}, {18, 19, 20, 4}, {4, 5, 6, 17}, {7, 4, 20, 21}, {22, 18, 4, 17}, {8, 7, 23, 24}, {23, 7, 21, 25}, {13, 8, 24, 26}, {10, 9, 27, 28}, {29, 27, 9, 30}, {9, 11, 31, 30}, {28, 32, 14, 10}, {11, 12, 33, 34}, {35, 31, 11, 34}, {33, 12, 13, 36}, {13, 26, 37, 36}, {15, 14, 38, 39}, {14, 32, 40, 38}, {15, 39, 41, 16}, {17, 16, 41, 22}, {18, 42, 43, 19}, {44, 45, 42, 18}, {44, 18, 22, 46}, {19, 43, 47, 48}, {19, 48, 49, 20}, {20, 49, 25, 21}, {41, 50, 46, 22}};
+  const int regions[] = {0, 0, 0, 1, 1, 1, 1, 1, 0, 0, 1, 0, 1, 0, 0, 1, 0, 1, 1, 1, 1, 0, 0, 0, 0, 1, 1, 0, 0, 1, 1, 0, 1, 0, 1, 0};
+  for (int r : regions) m.element_attributes.push_back({double(r)});
+  const double area = total_area(m);
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE(qm.fixed[0]);
+  REQUIRE_FALSE(qm.fixed[3]);
+  double worst_before = 2;
+  for (double s : qm.quad_sin_mu) worst_before = std::min(worst_before, s);
+  REQUIRE(worst_before < std::sin(8.5 * M_PI / 180));
+  // c's fan in the wedge (region 0): its quads there.
+  auto fan_of_c = [&] {
+    int n = 0;
+    for (std::size_t q = 0; q < qm.quads.size(); ++q) {
+      const qs::Quad& Q = qm.quads[q];
+      if (!qm.quad_dead[q] && std::count(Q.begin(), Q.end(), 0) && m.element_attributes[qm.quad_element[q]][0] == 0) ++n;
+    }
+    return n;
+  };
+  REQUIRE(fan_of_c() == 2);
+  CHECK_FALSE(qs::open_sharp_corner(qm, 3, false));  // the in-pass way: both splits not convex
+  const std::size_t quads_before = m.elements.size();
+  REQUIRE(qs::open_sharp_corner(qm, 3, true));
+  CHECK(qm.vertex_dead[3]);
+  CHECK(fan_of_c() == 1);
+  CHECK(live_quads_strictly_convex(qm));
+  double worst_after = 2;
+  for (std::size_t q = 0; q < qm.quads.size(); ++q)
+    if (!qm.quad_dead[q]) worst_after = std::min(worst_after, qm.quad_sin_mu[q]);
+  CHECK(worst_after > std::sin(12 * M_PI / 180));
+  for (int v = 0; v < int(qm.points.size()); ++v)
+    if (qm.fixed[v]) CHECK_FALSE(qm.vertex_dead[v]);  // every fixed vertex kept
+  qm.compact();
+  CHECK(m.elements.size() == quads_before - 3);  // m's quad and the two doublets' quads
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(total_area(m) == Approx(area));
+}
+
 TEST_CASE("the max-min climb raises the worst mu around a free vertex, every quad strictly convex", "[smooth]") {
   // Four unit squares around v = (1, 1), v pulled to (1.5, 1.3): its worst
   // quad has mu under 20 degrees; the square's centre is the max-min.
