@@ -44,6 +44,9 @@
 //     convex, its doublets merged and its corners placed
 //     (after the passes: the clean-up's course stays as
 //     it was)                                            smooth_doublet.cpp
+//   if cleanup: each quad under 12 degrees collapsed
+//     along a diagonal, the doublet it leaves merged,
+//     its patch placed, relaxed and climbed              smooth_doublet.cpp
 //   4 times: each free vertex next to a quad under 12
 //     degrees climbs on the two worst mu around it
 //     (max-min)                                          smooth_angle.cpp

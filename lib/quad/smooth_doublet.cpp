@@ -221,6 +221,73 @@ bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too) {
   return false;
 }
 
+bool collapse_and_merge(QuadMesh& qm, int q, int diag) {
+  const Quad C = qm.quads[q];
+  int a = C[diag], c = C[diag + 2];
+  const int b = C[diag + 1], d = C[(diag + 3) & 3];
+  if (qm.quad_dead[q] || qm.vertex_dead[a] || qm.vertex_dead[c]) return false;
+  if (qm.fixed[c]) std::swap(a, c);
+  // c free: its edges are no feature, and every quad around it is in q's
+  // region; a keeps its place if fixed.
+  if (qm.fixed[c]) return false;
+  // Link condition (as collapse_quad): no other quad holds both a and c,
+  // and a and c share no edge neighbour besides b and d.
+  for (int o : qm.vertex_quads[c])
+    if (o != q && std::find(qm.quads[o].begin(), qm.quads[o].end(), a) != qm.quads[o].end()) return false;
+  std::vector<int> na;
+  for (int o : qm.vertex_quads[a]) {
+    if (o == q) continue;
+    const Quad E = from_corner(qm, o, a);
+    na.push_back(E[1]);
+    na.push_back(E[3]);
+  }
+  for (int o : qm.vertex_quads[c]) {
+    if (o == q) continue;
+    const Quad E = from_corner(qm, o, c);
+    for (int x : {E[1], E[3]})
+      if (x != b && x != d && std::find(na.begin(), na.end(), x) != na.end()) return false;
+  }
+  // A fixed b or d must keep a quad.
+  if ((qm.fixed[b] && qm.vertex_quads[b].size() < 2) || (qm.fixed[d] && qm.vertex_quads[d].size() < 2)) return false;
+  Patch pt;
+  qm.save_patch({a, b, c, d}, pt);
+  const std::vector<double> before = qm.patch_sines(pt);
+  if (!qm.fixed[a]) qm.points[a] = {0.5 * (qm.points[a][0] + qm.points[c][0]), 0.5 * (qm.points[a][1] + qm.points[c][1])};
+  for (int x : C) qm.remove_from(x, q);
+  qm.quad_dead[q] = 1;
+  for (int o : qm.vertex_quads[c]) {
+    for (int& x : qm.quads[o])
+      if (x == c) x = a;
+    qm.vertex_quads[a].push_back(o);
+  }
+  qm.vertex_quads[c].clear();
+  qm.vertex_dead[c] = 1;
+  for (int o : qm.vertex_quads[a]) qm.quad_sin_mu[o] = qm.sin_mu_of(qm.quads[o]);
+  // b and d lost a quad: free ones left in two merge away.
+  bool ok = true;
+  for (int x : {b, d})
+    if (!qm.fixed[x] && qm.vertex_quads[x].size() == 2) {
+      const Quad M = doublet_merged(qm, x);
+      if (M[1] == M[3]) { ok = false; break; }
+      merge_doublet(qm, x, M);
+    }
+  for (int x : {a, b, d})
+    if (ok && !qm.vertex_dead[x] && qm.vertex_quads[x].size() < (qm.fixed[x] ? 1u : 3u)) ok = false;
+  if (ok && settle(qm, pt, before)) return true;
+  qm.rollback(pt);
+  return false;
+}
+
+void final_collapse_pass(QuadMesh& qm, SmoothStats& st) {
+  constexpr double kBelow = 0.20791169081775931;  // sin(12 deg), as the max-min climb's
+  for (std::size_t q = 0; q < qm.quads.size(); ++q)
+    for (int diag = 0; diag < 2; ++diag)
+      if (!qm.quad_dead[q] && qm.quad_sin_mu[q] < kBelow && collapse_and_merge(qm, int(q), diag)) {
+        ++st.collapses;
+        break;
+      }
+}
+
 void doublet_pass(QuadMesh& qm, SmoothStats& st) {
   const int n = int(qm.points.size());
   for (int v = 0; v < n; ++v)

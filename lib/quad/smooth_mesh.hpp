@@ -265,6 +265,15 @@ bool remove_doublet(QuadMesh& qm, int v);
 // turn and the patch's free vertices placed, relaxed and climbed on the
 // worst mu (taken if the patch's sorted sines rose).
 bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too);
+// Beyond the thesis: collapses quad q along its diagonal from corner diag
+// (0 or 1), the free end merged into the other (at their midpoint if both
+// are free), where the ends it leaves in two quads would stop collapse_quad:
+// those doublets merge too; the patch's free vertices are then placed where
+// every quad is strictly convex, relaxed and climbed on the worst mu. Taken
+// if the patch's sorted sines rose; true if done.
+bool collapse_and_merge(QuadMesh& qm, int q, int diag);
+// collapse_and_merge on every quad under 12 degrees.
+void final_collapse_pass(QuadMesh& qm, SmoothStats& st);
 // remove_doublet, else open_sharp_corner, on every vertex.
 void doublet_pass(QuadMesh& qm, SmoothStats& st);
 // open_sharp_corner with its re-joining way on every vertex.
