@@ -83,6 +83,7 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
   if (opt.cleanup && passes > 0) {
     sharp_corner_pass(qm, st);
     final_collapse_pass(qm, st);
+    final_split_pass(qm, st);
   }
   for (int r = 0; passes > 0 && r < 4; ++r) worst_pass(qm, st);
   for (int r = 0; passes > 0 && r < opt.mean_rounds; ++r) mean_pass(qm, st);

@@ -47,6 +47,8 @@
 //   if cleanup: each quad under 12 degrees collapsed
 //     along a diagonal, the doublet it leaves merged,
 //     its patch placed, relaxed and climbed              smooth_doublet.cpp
+//   if cleanup: pair splits once more on each quad
+//     under 10 degrees                                   smooth_split.cpp
 //   4 times: each free vertex next to a quad under 12
 //     degrees climbs on the two worst mu around it
 //     (max-min)                                          smooth_angle.cpp

@@ -247,6 +247,10 @@ void swap_pass(QuadMesh& qm, SmoothStats& st);
 // with the quads, stars and points exactly as they were (tried marks of q1
 // and q2 cleared).
 int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]);
+// Beyond the thesis, after the clean-up, the sharp corners and the final
+// collapse: split_pair on each pair of a quad under 10 degrees, which the
+// passes' swaps no longer reach (counted with the splits).
+void final_split_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_doublet.cpp ----------------------------------------------------
 

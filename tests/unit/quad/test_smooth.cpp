@@ -825,6 +825,39 @@ TEST_CASE("the final collapse merges the doublet it leaves where that lifts the 
   CHECK(total_area(m) == Approx(area));
 }
 
+TEST_CASE("the final pair split lifts a quad under 10 degrees that the passes left", "[smooth]") {
+  // From ITK's BrainProtonDensitySlice.png (threshold 100), the default
+  // chain after the passes, the sharp-corner pass and the final collapse:
+  // the quads within three edges of quad 2 (mu 9.6, every corner fixed) in
+  // a channel between two curves, which the passes left (their last pair
+  // splits ran before those). Split once more at the end, one of its pairs
+  // becomes three or four quads and the worst mu rises over 10.
+  PlanarMesh m;
+  m.points = {{22.5, 90}, {22.5, 90.5}, {21.726959514814851, 90.275721155861902}, {21.899840596383623, 89.996690544025725}, {22.5, 89.5}, {21.869219696265745, 89.695867921651327}, {23.25, 90.75}, {23.375, 91.625}, {23.125, 89.875}, {22.826025714263022, 89.827626387334064}, {22.710910225661213, 89.534055157836605}, {24.706653082625614, 91.416966580419668}, {24.422570992690495, 90.57028557073761}, {24.172014575891101, 89.859726354943774}, {22.370768771795806, 92.134785754027988}, {23.5, 92.5}, {24.649389429980374, 92.650797587436742}, {21.499999999999996, 91}, {21.313205714935485, 90.604242362287593}, {21.614805782274626, 91.810869343401237}, {21.176776695296638, 89.469669914110085}, {20.853553390593273, 90.439339828220184}, {22.5, 89}, {23, 89}, {24.829026251635693, 89.153162869803324}, {23.919218230679036, 89.079507681202585}, {23.498549971365652, 88.815333229504077}, {26.035743028959253, 93.015039004231767}, {26.065297958474325, 90.768247892802492}, {25.74510803159626, 89.721049390515418}, {23.125, 94.375}, {22.007526268886384, 93.336212069767441}, {21.053006423598251, 92.379637261667526}, {24.555126988317223, 93.815305261748705}, {25.900954229466915, 94.577862896529837}, {20.5, 91.5}, {20.298092780217917, 88.292027139607612}, {21.5, 88.5}, {20.03416728397611, 89.844980960535679}, {20.376392972205871, 90.418570477508382}, {22.5, 88.5}, {20.181671499670617, 91.135634192195752}, {22.9375, 88.5625}, {23.483541657801474, 88.427400811894373}, {24.974206552171573, 87.822081680280704}, {26.967615074379825, 88.651886800182396}, {23.986546512471222, 88.227107213297955}, {27.237551786884808, 92.898887284618439}, {27.523374212272866, 94.899956199201398}, {27.219853222605256, 90.689440954858043}, {24.827128711585612, 97.161566394814258}, {22.75, 96.25}, {25.548471095691689, 95.785725196588174}, {20.672304948911922, 93.821153123609093}, {20.518962737549469, 92.794408638212403}, {19.842859058970468, 92.393484894807273}, {27.436840685888448, 96.814412855588813}, {19.76153186281255, 91.5321736961086}};
+  m.elements = {{0, 1, 2, 3}, {4, 0, 3, 5}, {0, 6, 7, 1}, {8, 6, 0, 9}, {0, 4, 10, 9}, {11, 7, 6, 12}, {6, 8, 13, 12}, {14, 1, 7, 15}, {15, 7, 11, 16}, {1, 17, 18, 2}, {17, 1, 14, 19}, {20, 2, 18, 21}, {3, 2, 20, 5}, {4, 22, 23, 10}, {22, 4, 5, 20}, {24, 13, 8, 25}, {8, 23, 26, 25}, {23, 8, 9, 10}, {27, 16, 11, 28}, {29, 28, 11, 12}, {12, 13, 24, 29}, {30, 31, 14, 15}, {32, 19, 14, 31}, {30, 15, 16, 33}, {34, 33, 16, 27}, {21, 18, 17, 35}, {35, 17, 19, 32}, {36, 37, 20, 38}, {38, 20, 21, 39}, {20, 37, 40, 22}, {21, 35, 41, 39}, {40, 42, 23, 22}, {26, 23, 42, 43}, {24, 44, 45, 29}, {44, 24, 25, 46}, {46, 25, 26, 43}, {47, 48, 34, 27}, {28, 49, 47, 27}, {45, 49, 28, 29}, {50, 51, 30, 52}, {53, 31, 30, 51}, {34, 52, 30, 33}, {31, 53, 54, 32}, {54, 55, 35, 32}, {52, 34, 48, 56}, {35, 55, 57, 41}};
+  const int regions[] = {1, 1, 0, 0, 0, 1, 1, 0, 1, 1, 0, 1, 1, 0, 1, 1, 1, 0, 1, 1, 1, 0, 0, 1, 1, 1, 0, 0, 0, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 0, 0, 1, 0};
+  for (int r : regions) m.element_attributes.push_back({double(r)});
+  const double area = total_area(m);
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  for (int x : qm.quads[2]) REQUIRE(qm.fixed[x]);
+  REQUIRE(qm.quad_sin_mu[2] < std::sin(10 * M_PI / 180));
+  const double worst_before = *std::min_element(qm.quad_sin_mu.begin(), qm.quad_sin_mu.end());
+  const std::size_t points_before = m.points.size();
+  SmoothStats st;
+  qs::final_split_pass(qm, st);
+  CHECK(st.splits >= 1);
+  CHECK(live_quads_strictly_convex(qm));
+  double worst_after = 2;
+  for (std::size_t q = 0; q < qm.quads.size(); ++q)
+    if (!qm.quad_dead[q]) worst_after = std::min(worst_after, qm.quad_sin_mu[q]);
+  CHECK(worst_after > std::max(worst_before, std::sin(10 * M_PI / 180)));
+  qm.compact();
+  CHECK(m.points.size() > points_before);  // every input vertex kept, new ones added
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(total_area(m) == Approx(area));
+}
+
 TEST_CASE("the max-min climb raises the worst mu around a free vertex, every quad strictly convex", "[smooth]") {
   // Four unit squares around v = (1, 1), v pulled to (1.5, 1.3): its worst
   // quad has mu under 20 degrees; the square's centre is the max-min.
