@@ -80,7 +80,11 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
     swap_pass(qm, st);
     doublet_pass(qm, st);
   }
-  if (opt.cleanup && passes > 0) sharp_corner_pass(qm, st);
+  if (opt.cleanup && passes > 0) {
+    sharp_corner_pass(qm, st);
+    final_collapse_pass(qm, st);
+    final_split_pass(qm, st);
+  }
   for (int r = 0; passes > 0 && r < 4; ++r) worst_pass(qm, st);
   for (int r = 0; passes > 0 && r < opt.mean_rounds; ++r) mean_pass(qm, st);
   qm.compact();

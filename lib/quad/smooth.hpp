@@ -40,8 +40,15 @@
 //                                                       smooth_doublet.cpp
 //   if cleanup: sharp corners split by a valence-3
 //     vertex, also by joining it to the hexagon's other
-//     corners (after the passes: the clean-up's course
-//     stays as it was)                                   smooth_doublet.cpp
+//     corners, else by the split whose quads are not yet
+//     convex, its doublets merged and its corners placed
+//     (after the passes: the clean-up's course stays as
+//     it was)                                            smooth_doublet.cpp
+//   if cleanup: each quad under 12 degrees collapsed
+//     along a diagonal, the doublet it leaves merged,
+//     its patch placed, relaxed and climbed              smooth_doublet.cpp
+//   if cleanup: pair splits once more on each quad
+//     under 10 degrees                                   smooth_split.cpp
 //   4 times: each free vertex next to a quad under 12
 //     degrees climbs on the two worst mu around it
 //     (max-min)                                          smooth_angle.cpp

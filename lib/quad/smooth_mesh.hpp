@@ -247,6 +247,10 @@ void swap_pass(QuadMesh& qm, SmoothStats& st);
 // with the quads, stars and points exactly as they were (tried marks of q1
 // and q2 cleared).
 int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]);
+// Beyond the thesis, after the clean-up, the sharp corners and the final
+// collapse: split_pair on each pair of a quad under 10 degrees, which the
+// passes' swaps no longer reach (counted with the splits).
+void final_split_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_doublet.cpp ----------------------------------------------------
 
@@ -259,8 +263,21 @@ bool remove_doublet(QuadMesh& qm, int v);
 // its three quads become two, c in one, by the hexagon's diagonal beside c.
 // Taken if, once the patch is relaxed, its worst mu rose; true if done.
 // respoke_too: else, m joined to the hexagon's other three corners instead
-// (doublets left by it merged), c then in one quad.
+// (doublets left by it merged), c then in one quad; else the split keeping
+// c whole even where its quads are not strictly convex as the corners
+// stand, the free hexagon corners it leaves in two quads merged away in
+// turn and the patch's free vertices placed, relaxed and climbed on the
+// worst mu (taken if the patch's sorted sines rose).
 bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too);
+// Beyond the thesis: collapses quad q along its diagonal from corner diag
+// (0 or 1), the free end merged into the other (at their midpoint if both
+// are free), where the ends it leaves in two quads would stop collapse_quad:
+// those doublets merge too; the patch's free vertices are then placed where
+// every quad is strictly convex, relaxed and climbed on the worst mu. Taken
+// if the patch's sorted sines rose; true if done.
+bool collapse_and_merge(QuadMesh& qm, int q, int diag);
+// collapse_and_merge on every quad under 12 degrees.
+void final_collapse_pass(QuadMesh& qm, SmoothStats& st);
 // remove_doublet, else open_sharp_corner, on every vertex.
 void doublet_pass(QuadMesh& qm, SmoothStats& st);
 // open_sharp_corner with its re-joining way on every vertex.

@@ -71,4 +71,32 @@ int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]) {
   return 0;
 }
 
+void final_split_pass(QuadMesh& qm, SmoothStats& st) {
+  // sin(10 deg), the bar: with a settled split (placed, relaxed,
+  // climbed) on quads under 12 degrees random blob 2's mean mu fell under
+  // 30 (29.90).
+  constexpr double kBelow = 0.17364817766693033;
+  const std::size_t n = qm.quads.size();  // the quads a split adds are not tried again
+  for (std::size_t q1 = 0; q1 < n; ++q1)
+    for (int i = 0; i < 4 && !qm.quad_dead[q1] && qm.quad_sin_mu[q1] < kBelow; ++i) {
+      const Quad A = qm.quads[q1];
+      const int u = A[i], w = A[(i + 1) & 3];
+      const int q2 = qm.is_feature(u, w) ? -1 : qm.quad_with_edge(w, u);
+      if (q2 < 0) continue;
+      const Quad B = qm.quads[q2];
+      int j = 0;
+      while (B[j] != w) ++j;
+      // Hexagon u, c, d, w, a, b (counter-clockwise), as swap_diagonal's.
+      const int H[6] = {u, B[(j + 2) & 3], B[(j + 3) & 3], w, A[(i + 2) & 3], A[(i + 3) & 3]};
+      bool distinct = true;
+      for (int x = 0; x < 6; ++x)
+        for (int y = x + 1; y < 6; ++y) distinct = distinct && H[x] != H[y];
+      if (!distinct) continue;
+      if (const int parts = split_pair(qm, int(q1), q2, H)) {
+        ++st.splits;
+        if (parts == 4) ++st.splits_four;
+      }
+    }
+}
+
 } // namespace imgmesh::qs
