@@ -140,7 +140,11 @@ private:
 // 32-bit numbers made it 112 (cells are most of the run's memory).
 class FacetRefs {
 public:
-  FacetRefs() { std::fill(b_, b_ + sizeof b_, std::uint8_t(0)); }  // all kUncomputed (0)
+  FacetRefs() {  // all kUncomputed (0): two 8-byte stores, not a call to memset
+    const std::uint64_t zero = 0;
+    std::memcpy(b_, &zero, 8);
+    std::memcpy(b_ + 7, &zero, 8);
+  }
   FacetRefs(const FacetRefs&) : FacetRefs() {}
   FacetRefs& operator=(const FacetRefs&) {
     for (int i = 0; i < 4; ++i) clear(i);
@@ -150,6 +154,11 @@ public:
     for (int i = 0; i < 4; ++i) FacetPool::release(ref(i));
   }
   const FacetInfo& operator[](int i) const { return FacetPool::get(ref(i)); }
+  // The state from the number alone (no record read): 0 is "not computed",
+  // 1 "computed, not restricted", and only restricted facets have records
+  // of their own (kMulti comes with kRestricted).
+  bool computed(int i) const { return ref(i) != FacetPool::kUncomputed; }
+  bool restricted(int i) const { return ref(i) > FacetPool::kComputedOnly; }
   // Facet i of `a`, which is facet j of `b`, is now fi (on both sides).
   static void set(FacetRefs& a, int i, FacetRefs& b, int j, const FacetInfo& fi) {
     FacetPool::release(a.ref(i));
@@ -178,8 +187,9 @@ public:
 
 private:
   static constexpr std::uint32_t kMask = FacetPool::kLimit - 1;
-  static int at(int i) { return i < 2 ? 0 : 7; }
-  static int shift(int i) { return FacetPool::kBits * i - 8 * at(i); }
+  static int at(int i) { return (i >> 1) * 7; }                // 0, 0, 7, 7
+  static int shift(int i) { return (i & 1) * 30 + (i >> 1) * 4; }  // 30 i - 8 at(i): 0, 30, 4, 34
+  static_assert(FacetPool::kBits == 30, "at() and shift() place four 30-bit numbers");
   std::uint8_t b_[(4 * FacetPool::kBits + 7) / 8];  // 15
 };
 

@@ -22,6 +22,11 @@ int stale_facets(const DelMesh& m) {
     const Ch n = it->first->neighbor(it->second);
     const FacetInfo& other = n->facet[n->index(it->first)];
     if (now.state != kept.state || other.state != kept.state) ++stale;
+    // The state read from the record numbers alone, on both sides.
+    else if (it->first->facet.restricted(it->second) != bool(kept.state & kRestricted) ||
+             n->facet.restricted(n->index(it->first)) != bool(kept.state & kRestricted) ||
+             !it->first->facet.computed(it->second) || !n->facet.computed(n->index(it->first)))
+      ++stale;
     else if ((now.state & kRestricted) && (now.x[0] != kept.x[0] || now.x[1] != kept.x[1] || now.x[2] != kept.x[2]))
       ++stale;
   }
