@@ -157,7 +157,7 @@ MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset o
     }
   };
 
-  UnionFind vuf(nv), cuf(nc), buf(nv);
+  UnionFind vuf(nv), buf(nv);
   ParityUnionFind fuf(nf);
   std::vector<char> used(nv, 0), on_boundary(nv, 0), bad_vertex(nv, 0);
   for (std::size_t i = 0; i < nc; ++i) used[std::size_t(corner(i))] = 1;
@@ -173,24 +173,48 @@ MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset o
       const bool same = forward(h[0]) == forward(h[1]);
       if (same) ++t.inconsistent_edges;
       if (!fuf.unite(face_of(h[0]), face_of(h[1]), same ? 1 : 0)) nonorientable_faces.push_back(face_of(h[0]));
-      // Corners of the same vertex across the edge belong to one fan.
-      const std::size_t c1a = h[0], c1b = next_corner(h[0]);
-      const std::size_t c2a = h[1], c2b = next_corner(h[1]);
-      if (corner(c1a) == corner(c2a)) { cuf.unite(c1a, c2a); cuf.unite(c1b, c2b); }
-      else { cuf.unite(c1a, c2b); cuf.unite(c1b, c2a); }
     } else {
       ++t.nonmanifold_edges;
       bad_vertex[a] = bad_vertex[b] = 1;
     }
   });
-  // A vertex whose corners form more than one fan is non-manifold (bow-tie).
+  // A vertex whose corners form more than one fan is non-manifold (bow-tie):
+  // its corners joined across the edges at it with exactly two faces. Per
+  // vertex, on its own few corners (a union-find over every corner was 4
+  // bytes a corner beside the mesher's triangulation at its peak).
   {
-    std::vector<std::uint32_t> fan(nv, 0xffffffffu);  // the fan of the vertex's first corner
-    for (std::size_t i = 0; i < nc; ++i) {
-      const std::uint32_t r = std::uint32_t(cuf.find(i));
-      std::uint32_t& first = fan[std::size_t(corner(i))];
-      if (first == 0xffffffffu) first = r;
-      else if (first != r) bad_vertex[std::size_t(corner(i))] = 1;
+    std::vector<std::uint32_t> next_of, prev_of, root;  // per corner at v: its face's neighbours of v; union-find
+    for (std::size_t v = 0; v < nv; ++v) {
+      const std::uint32_t b = at_start[v], d = at_start[v + 1] - b;
+      if (d < 2) continue;
+      next_of.resize(d);
+      prev_of.resize(d);
+      root.resize(d);
+      for (std::uint32_t k = 0; k < d; ++k) {
+        next_of[k] = std::uint32_t(corner(next_corner(at[b + k])));
+        prev_of[k] = std::uint32_t(corner(prev_corner(at[b + k])));
+        root[k] = k;
+      }
+      auto find = [&](std::uint32_t k) {
+        while (root[k] != k) k = root[k] = root[root[k]];
+        return k;
+      };
+      for (std::uint32_t k = 0; k < d; ++k)
+        for (const std::uint32_t w : {next_of[k], prev_of[k]}) {
+          // The faces at edge {v, w}: the corners of v beside w.
+          std::uint32_t faces = 0, other = k;
+          for (std::uint32_t m = 0; m < d; ++m)
+            if (next_of[m] == w || prev_of[m] == w) {
+              ++faces;
+              if (m != k) other = m;
+            }
+          if (faces == 2) {
+            const std::uint32_t x = find(k), y = find(other);
+            root[std::max(x, y)] = std::min(x, y);
+          }
+        }
+      for (std::uint32_t k = 1; k < d; ++k)
+        if (find(k) != find(0)) bad_vertex[v] = 1;
     }
   }
   // Components, keyed by the root vertex.

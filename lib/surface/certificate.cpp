@@ -11,11 +11,11 @@ std::vector<Facet> restricted_facets(const Tr& tr) {
   // by doubling would hold up to three times that at the peak.
   std::size_t count = 0;
   for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it)
-    count += (it->first->facet[it->second].state & kRestricted) != 0;
+    count += it->first->facet.restricted(it->second);
   std::vector<std::pair<std::array<int, 3>, Facet>> out;
   out.reserve(count);
   for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it) {
-    if (!(it->first->facet[it->second].state & kRestricted)) continue;
+    if (!it->first->facet.restricted(it->second)) continue;
     std::array<int, 3> ids;
     for (int m = 1; m < 4; ++m) ids[m - 1] = it->first->vertex((it->second + m) & 3)->info().id;
     std::sort(ids.begin(), ids.end());
@@ -76,8 +76,7 @@ ExpectedTopology expected_topology(const CubeGrid& grid) {
 Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid, const ExpectedTopology& expected) {
   Certificate cert;
   SurfaceMesh& mesh = cert.mesh;
-  cert.facets = restricted_facets(tr);
-  const std::vector<Facet>& fs = cert.facets;
+  std::vector<Facet> fs = restricted_facets(tr);
   // Sized exactly (the vertices counted first): growing by doubling would
   // hold up to twice the mesh at the run's peak.
   std::vector<int> index(vertex_count, -1);
@@ -109,6 +108,12 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
     if (dot(n, Vec3{fi.grad[0], fi.grad[1], fi.grad[2]}) < 0) std::swap(t[1], t[2]);
     mesh.triangles.push_back(t);
   }
+  // The check (mesh_topology) is the run's peak, beside the triangulation:
+  // the facets packed, the rest let go of first.
+  std::vector<int>().swap(index);
+  cert.facets.reserve(fs.size());
+  for (const Facet& f : fs) cert.facets.emplace_back(f);
+  std::vector<Facet>().swap(fs);
   // Make orientation consistent per mesh component (BFS), by majority.
   {
     const std::size_t nt = mesh.triangles.size();
@@ -144,11 +149,33 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
     }
     for (std::size_t t = 0; t < nt; ++t)
       if (flip[t] == 1) std::swap(mesh.triangles[t][1], mesh.triangles[t][2]);
+    // Roughness at the edges of exactly two triangles, from the first
+    // (a guarantee measured on the output), while the triangles at each
+    // vertex are at hand: built again in measure_guarantees, they made its
+    // peak beside the certificate and the triangulation.
+    auto unit_normal = [&](std::size_t k) {
+      const auto& t = mesh.triangles[k];
+      Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
+      const double nl = norm(n);
+      if (nl > 0) n = {n[0] / nl, n[1] / nl, n[2] / nl};
+      return n;
+    };
+    for (std::size_t k = 0; k < nt; ++k)
+      for (int e = 0; e < 3; ++e) {
+        int n = 0, other = -1;
+        at.at_edge(mesh.triangles[k][e], mesh.triangles[k][(e + 1) % 3], [&](int u) {
+          ++n;
+          if (u != int(k)) other = u;
+        });
+        if (n == 2 && other > int(k))
+          cert.max_roughness =
+              std::max(cert.max_roughness, std::acos(std::clamp(dot(unit_normal(k), unit_normal(std::size_t(other))), -1.0, 1.0)));
+      }
   }
   check_certificate(cert, grid, expected);
   // After the check, which is the run's peak (beside the triangulation).
-  cert.centers.reserve(fs.size());
-  for (const Facet& f : fs) cert.centers.push_back(facet_center(f));
+  cert.centers.reserve(cert.facets.size());
+  for (const PackedFacet& f : cert.facets) cert.centers.push_back(facet_center(f.facet()));
   return cert;
 }
 
@@ -195,30 +222,11 @@ std::string topology_failure(const Certificate& cert) {
 MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sampler, const Certificate& cert) {
   const SurfaceMesh& mesh = cert.mesh;
   const std::vector<Vec3>& centers = cert.centers;
-  const std::vector<Facet>& fs = cert.facets;
+  const std::vector<PackedFacet>& fs = cert.facets;
   const TriangleQualityReport q = triangle_quality_report(mesh);
-  double max_f = 0, max_rough = 0, max_dist = 0;
+  double max_f = 0, max_dist = 0;
   for (const Vec3& p : mesh.points) max_f = std::max(max_f, std::abs(sampler.value(p)));
   {
-    auto unit_normal = [&](std::size_t k) {
-      const auto& t = mesh.triangles[k];
-      Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
-      const double nl = norm(n);
-      if (nl > 0) n = {n[0] / nl, n[1] / nl, n[2] / nl};
-      return n;
-    };
-    // Roughness at the edges of exactly two triangles, from the first.
-    const VertexTriangles at(mesh.points.size(), mesh.triangles);
-    for (std::size_t k = 0; k < mesh.triangles.size(); ++k)
-      for (int e = 0; e < 3; ++e) {
-        int n = 0, other = -1;
-        at.at_edge(mesh.triangles[k][e], mesh.triangles[k][(e + 1) % 3], [&](int u) {
-          ++n;
-          if (u != int(k)) other = u;
-        });
-        if (n == 2 && other > int(k))
-          max_rough = std::max(max_rough, std::acos(std::clamp(dot(unit_normal(k), unit_normal(std::size_t(other))), -1.0, 1.0)));
-      }
     for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
       const auto& t = mesh.triangles[k];
       const Vec3 n = cross(sub(mesh.points[t[1]], mesh.points[t[0]]), sub(mesh.points[t[2]], mesh.points[t[0]]));
@@ -240,13 +248,13 @@ MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sample
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
     const Vec3& x = centers[k];
     const double r2 = dist2(x, mesh.points[mesh.triangles[k][0]]);
-    Vh nv = tr.nearest_vertex(Point(x[0], x[1], x[2]), fs[k].first);
+    Vh nv = tr.nearest_vertex(Point(x[0], x[1], x[2]), fs[k].facet().first);
     if (dist2(x, vec(nv->point())) < r2 * (1 - 1e-9)) ++rd_violations;
   }
   MeasuredGuarantees m;
   m.quality = q;
   m.max_abs_f_at_vertices = max_f;
-  m.max_roughness = max_rough;
+  m.max_roughness = cert.max_roughness;
   m.max_distance_to_plane = max_dist;
   m.max_abs_f_at_centroids = max_centroid;
   m.restricted_delaunay_violations = rd_violations;

@@ -10,6 +10,7 @@
 #include "mesh/topology.hpp"
 #include "mesh/triangle_quality.hpp"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -29,11 +30,28 @@ struct ExpectedTopology {
 };
 ExpectedTopology expected_topology(const CubeGrid& grid);
 
+// A Delaunay facet in 8 bytes, not 16: its cell's address with the facet's
+// index in the two low bits (cells are 8-byte aligned). Per triangle of the
+// certificate's mesh, which is built beside the triangulation at the run's
+// peak.
+class PackedFacet {
+public:
+  explicit PackedFacet(const Facet& f) : bits_(reinterpret_cast<std::uintptr_t>(&*f.first) | std::uintptr_t(f.second)) {}
+  Facet facet() const {
+    return Facet(Tds::Cell_range::s_iterator_to(*reinterpret_cast<Tds::Cell*>(bits_ & ~std::uintptr_t(3))), int(bits_ & 3));
+  }
+
+private:
+  static_assert(alignof(Tds::Cell) >= 4, "two low bits of a cell's address for the facet's index");
+  std::uintptr_t bits_;
+};
+
 struct Certificate {
   SurfaceMesh mesh;                 // local coordinates, outward per component
   std::vector<Vec3> centers;        // per triangle: its surface centre
-  std::vector<Facet> facets;        // per triangle: its Delaunay facet
+  std::vector<PackedFacet> facets;  // per triangle: its Delaunay facet
   std::vector<int> vertex_comp;     // per mesh vertex: the S component of its site
+  double max_roughness = 0;         // of mesh (radians), for measure_guarantees
   MeshTopology topology;            // of mesh
   ComponentCorrespondence correspondence;  // mesh components against bdCA(X)'s, by place
   std::vector<int> bad;             // S components to repair, ascending

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <mutex>
 #include <new>
 #include <stdexcept>
@@ -59,7 +60,7 @@ struct FacetInfo {
 };
 
 // The records of restricted facets, one per facet shared by its two sides,
-// numbered by 32 bits (a cell holds 4 numbers, 16 bytes, not 4 pointers)
+// numbered by 30 bits (a cell holds 4 numbers in 15 bytes, not 4 pointers)
 // and kept in chunks that never move, so threads read them while others
 // allocate; 0 and 1 are the constant records "not computed" and "computed,
 // not restricted". Shared by every mesh of the process (seg2mesh meshes
@@ -67,6 +68,8 @@ struct FacetInfo {
 class FacetPool {
 public:
   static constexpr std::uint32_t kUncomputed = 0, kComputedOnly = 1;
+  static constexpr int kBits = 30;  // a record's number (FacetRefs packs four)
+  static constexpr std::uint32_t kLimit = 1u << kBits;
   static const FacetInfo& get(std::uint32_t i) { return table_[i >> kShift][i & kMask]; }
   // A record for fi, held by two sides.
   static std::uint32_t make(const FacetInfo& fi) {
@@ -76,7 +79,7 @@ public:
     if (i != kNone) {
       st.free = table_[i >> kShift][i & kMask].link;
     } else {
-      if (st.used == kNone) throw std::length_error("FacetPool: 2^32 facet records");
+      if (st.used == kLimit) throw std::length_error("FacetPool: 2^30 facet records");
       if ((st.used & kMask) == 0) table_[st.used >> kShift] = new Shared[kMask + 1];
       i = st.used++;
     }
@@ -98,7 +101,7 @@ public:
 
 private:
   static constexpr int kShift = 14;
-  static constexpr std::uint32_t kMask = (1u << kShift) - 1, kChunks = 1u << (32 - kShift), kNone = 0xffffffffu;
+  static constexpr std::uint32_t kMask = (1u << kShift) - 1, kChunks = 1u << (kBits - kShift), kNone = 0xffffffffu;
   static_assert(sizeof(FacetInfo) == 56, "FacetInfo: 49 bytes of fields");
   // The link sits in FacetInfo's tail padding (56 bytes a record): the
   // sides holding the record, or when free the next free one.
@@ -131,32 +134,63 @@ private:
 // A cell's four facets, each the number of its FacetPool record, shared by
 // the facet's two sides; only restricted facets (a few in ten) have a
 // record of their own. Only DELMESH sets them; a copied cell starts with
-// its facets not computed.
+// its facets not computed. The four 30-bit numbers are packed in 15 bytes
+// of alignment 1, which the compiler places in the tail padding of CGAL's
+// cell base (65 bytes used of 72): the cell is 104 bytes, where four
+// 32-bit numbers made it 112 (cells are most of the run's memory).
 class FacetRefs {
 public:
-  FacetRefs() { std::fill(p_, p_ + 4, FacetPool::kUncomputed); }
+  FacetRefs() {  // all kUncomputed (0): two 8-byte stores, not a call to memset
+    const std::uint64_t zero = 0;
+    std::memcpy(b_, &zero, 8);
+    std::memcpy(b_ + 7, &zero, 8);
+  }
   FacetRefs(const FacetRefs&) : FacetRefs() {}
   FacetRefs& operator=(const FacetRefs&) {
     for (int i = 0; i < 4; ++i) clear(i);
     return *this;
   }
   ~FacetRefs() {
-    for (int i = 0; i < 4; ++i) FacetPool::release(p_[i]);
+    for (int i = 0; i < 4; ++i) FacetPool::release(ref(i));
   }
-  const FacetInfo& operator[](int i) const { return FacetPool::get(p_[i]); }
+  const FacetInfo& operator[](int i) const { return FacetPool::get(ref(i)); }
+  // The state from the number alone (no record read): 0 is "not computed",
+  // 1 "computed, not restricted", and only restricted facets have records
+  // of their own (kMulti comes with kRestricted).
+  bool computed(int i) const { return ref(i) != FacetPool::kUncomputed; }
+  bool restricted(int i) const { return ref(i) > FacetPool::kComputedOnly; }
   // Facet i of `a`, which is facet j of `b`, is now fi (on both sides).
   static void set(FacetRefs& a, int i, FacetRefs& b, int j, const FacetInfo& fi) {
-    FacetPool::release(a.p_[i]);
-    FacetPool::release(b.p_[j]);
-    a.p_[i] = b.p_[j] = fi.state == kComputed ? FacetPool::kComputedOnly : FacetPool::make(fi);
+    FacetPool::release(a.ref(i));
+    FacetPool::release(b.ref(j));
+    const std::uint32_t r = fi.state == kComputed ? FacetPool::kComputedOnly : FacetPool::make(fi);
+    a.put(i, r);
+    b.put(j, r);
   }
   void clear(int i) {
-    FacetPool::release(p_[i]);
-    p_[i] = FacetPool::kUncomputed;
+    FacetPool::release(ref(i));
+    put(i, FacetPool::kUncomputed);
+  }
+  // Number i (bits 30 i .. 30 i + 29), read from the 8 bytes at 0 (i < 2)
+  // or at 7 (i >= 2), which hold it whole.
+  std::uint32_t ref(int i) const {
+    std::uint64_t w;
+    std::memcpy(&w, b_ + at(i), 8);
+    return std::uint32_t(w >> shift(i)) & kMask;
+  }
+  void put(int i, std::uint32_t r) {
+    std::uint64_t w;
+    std::memcpy(&w, b_ + at(i), 8);
+    w = (w & ~(std::uint64_t(kMask) << shift(i))) | std::uint64_t(r) << shift(i);
+    std::memcpy(b_ + at(i), &w, 8);
   }
 
 private:
-  std::uint32_t p_[4];
+  static constexpr std::uint32_t kMask = FacetPool::kLimit - 1;
+  static int at(int i) { return (i >> 1) * 7; }                // 0, 0, 7, 7
+  static int shift(int i) { return (i & 1) * 30 + (i >> 1) * 4; }  // 30 i - 8 at(i): 0, 30, 4, 34
+  static_assert(FacetPool::kBits == 30, "at() and shift() place four 30-bit numbers");
+  std::uint8_t b_[(4 * FacetPool::kBits + 7) / 8];  // 15
 };
 
 // The circumcentre from the vertices in lexicographic order. From CGAL's
@@ -216,6 +250,8 @@ private:
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VInfo, GT>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb, CellBase<GT>>;
 using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;  // Compact_location: see doc/implicit2mesh.md
+// CGAL's 72 bytes (65 used) + FacetRefs' 15 in their tail + the circumcentre.
+static_assert(sizeof(Tds::Cell) == 104, "a cell: FacetRefs in the tail padding of CGAL's cell base");
 using Vh = Tr::Vertex_handle;
 using Ch = Tr::Cell_handle;
 using Facet = Tr::Facet;

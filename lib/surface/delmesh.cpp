@@ -228,12 +228,12 @@ void DelMesh::compute_new_cells() {
     }
   std::sort(order.begin(), order.end(), [](const Key& a, const Key& b) { return a.ab != b.ab ? a.ab < b.ab : a.c < b.c; });
   for (const Key& k : order)
-    if (!(k.cell->facet[k.i].state & kComputed)) compute_facet(k.cell, k.i);
+    if (!k.cell->facet.computed(k.i)) compute_facet(k.cell, k.i);
 }
 
 // Remember the finite vertices of facet (c, i) if it is restricted.
 void DelMesh::mark_restricted(Ch c, int i) {
-  if (!(c->facet[i].state & kRestricted)) return;
+  if (!c->facet.restricted(i)) return;
   for (int m = 1; m < 4; ++m) {
     Vh w = c->vertex((i + m) & 3);
     if (w->info().stamp != stamp_) {
@@ -499,6 +499,7 @@ RestrictedDelaunayResult DelMesh::run() {
   Certificate cert;
   std::uint32_t settled = 0;  // computed_ when the last round inserted nothing
   for (;;) {
+    cert = Certificate();  // the last round's, not held while the next is built
     cert = certify(tr_, vertices_.size(), grid_, expected);
     if (cert.ok && !max_hit_ && after_certificate_ && computed_ != settled) {
       bool any = false;

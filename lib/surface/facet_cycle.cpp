@@ -535,39 +535,44 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
 
 Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
                               std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped,
-                              FacetWalk how) {
+                              FacetWalk how, std::size_t chunk) {
+  // The edges with a new end (a vertex of `changed`), each once, in the
+  // order of their ids (lo, hi): every lower end's edges to higher ids, by
+  // id. The lower ends are the new vertices and their older neighbours of
+  // smaller id. The edges are checked a chunk at a time (of at least
+  // `chunk` edges, a lower end's edges in one chunk), not gathered first:
+  // the first pass takes every edge, and its list was the run's peak
+  // (brain label 4: 6 MB of edges beside the triangulation).
   std::vector<Ch> cells;
-  // The edges at new vertices, each once (from the smaller id when both
-  // ends are new), found from the new vertices' cells: the ids of its ends
-  // and a cell at it. Counted first, then stored at their exact size: the
-  // first pass takes every edge, and this was the run's peak (brain label
-  // 4: 25 MB of edges grown by doubling, 14 MB of cycle points).
-  struct EdgeAt { int lo, hi; Ch c; };
-  std::vector<EdgeAt> edges;
-  auto each_edge = [&](auto&& take) {
+  auto star = [&](Vh a) {
+    ++stamp;
+    cells.clear();
+    tr.incident_cells(a, std::back_inserter(cells));
+  };
+  std::vector<int> lows;
+  {
+    std::vector<char> is_low(vertices.size(), 0);
+    auto low = [&](int id) {
+      if (!is_low[std::size_t(id)]) is_low[std::size_t(id)] = 1, lows.push_back(id);
+    };
     for (int ia : changed.ids) {
       const Vh a = vertices[std::size_t(ia)];
       if (a == Vh()) continue;  // deleted
-      ++stamp;
-      cells.clear();
-      tr.incident_cells(a, std::back_inserter(cells));
+      low(ia);
+      star(a);
       for (Ch c : cells)
         for (int k = 0; k < 4; ++k) {
-          Vh b = c->vertex(k);
+          const Vh b = c->vertex(k);
           if (b == a || tr.is_infinite(b) || b->info().stamp == stamp) continue;
-          const int ib = b->info().id;
-          if (changed.has(ib) && ib < ia) continue;
           b->info().stamp = stamp;
-          take(EdgeAt{std::min(ia, ib), std::max(ia, ib), c});
+          if (b->info().id < ia && !changed.has(b->info().id)) low(b->info().id);
         }
     }
-  };
-  std::size_t count = 0;
-  each_edge([&](const EdgeAt&) { ++count; });
-  edges.reserve(count);
-  each_edge([&](const EdgeAt& e) { edges.push_back(e); });
-  std::sort(edges.begin(), edges.end(), [](const EdgeAt& x, const EdgeAt& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
-  // p (the edge's first vertex): the smaller id.
+  }
+  std::sort(lows.begin(), lows.end());
+  // An edge by the ids of its ends and a cell at it; p (its first vertex): lo.
+  struct EdgeAt { int lo, hi; Ch c; };
+  std::vector<EdgeAt> edges;
   auto edge = [&](const EdgeAt& e) {
     return Tr::Edge(e.c, e.c->index(vertices[std::size_t(e.lo)]), e.c->index(vertices[std::size_t(e.hi)]));
   };
@@ -575,26 +580,48 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
   // circumcentre is cached by then: EdgeSurface asked for it), so they run
   // on --threads threads; the points go in afterwards, in edge order. The
   // few cycle points are kept per thread, with their edge.
-  checks += static_cast<long long>(edges.size());
-  std::vector<std::uint8_t> found(edges.size(), std::uint8_t(FacetAnswer::kNone));
   const unsigned nt = implicit_detail::resolve_threads(unsigned(std::max(1, threads)));
+  std::vector<std::uint8_t> found;
   std::vector<std::vector<std::pair<std::size_t, Vec3>>> cycles(nt);
-  implicit_detail::parallel_for(long(edges.size()), nt, [&](long a, long b, unsigned t) {
-    for (long k = a; k < b; ++k) {
-      Vec3 x;
-      const FacetAnswer answer = facet_cycle(tr, f, edge(edges[std::size_t(k)]), x, how);
-      found[std::size_t(k)] = std::uint8_t(answer);
-      if (answer == FacetAnswer::kCycle) cycles[t].emplace_back(std::size_t(k), x);
-    }
-  });
-  skipped.clear();
-  for (std::size_t k = 0; k < edges.size(); ++k)
-    if (found[k] == std::uint8_t(FacetAnswer::kSkipped)) skipped.push_back(edges[k].lo);
   std::vector<std::pair<std::size_t, Vec3>> all;
-  for (const auto& c : cycles) all.insert(all.end(), c.begin(), c.end());
-  std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   Candidates pts;
-  for (const auto& [k, x] : all) pts.emplace_back(x, dist2(x, vec(vertices[std::size_t(edges[k].lo)]->point())));
+  skipped.clear();
+  for (std::size_t next = 0; next < lows.size();) {
+    edges.clear();
+    while (next < lows.size() && edges.size() < chunk) {
+      const int ia = lows[next++];
+      const Vh a = vertices[std::size_t(ia)];
+      const bool a_new = changed.has(ia);
+      const std::size_t first = edges.size();
+      star(a);
+      for (Ch c : cells)
+        for (int k = 0; k < 4; ++k) {
+          const Vh b = c->vertex(k);
+          if (b == a || tr.is_infinite(b) || b->info().stamp == stamp) continue;
+          b->info().stamp = stamp;
+          const int ib = b->info().id;
+          if (ib > ia && (a_new || changed.has(ib))) edges.push_back(EdgeAt{ia, ib, c});
+        }
+      std::sort(edges.begin() + std::ptrdiff_t(first), edges.end(), [](const EdgeAt& x, const EdgeAt& y) { return x.hi < y.hi; });
+    }
+    checks += static_cast<long long>(edges.size());
+    found.assign(edges.size(), std::uint8_t(FacetAnswer::kNone));
+    for (auto& c : cycles) c.clear();
+    implicit_detail::parallel_for(long(edges.size()), nt, [&](long a, long b, unsigned t) {
+      for (long k = a; k < b; ++k) {
+        Vec3 x;
+        const FacetAnswer answer = facet_cycle(tr, f, edge(edges[std::size_t(k)]), x, how);
+        found[std::size_t(k)] = std::uint8_t(answer);
+        if (answer == FacetAnswer::kCycle) cycles[t].emplace_back(std::size_t(k), x);
+      }
+    });
+    for (std::size_t k = 0; k < edges.size(); ++k)
+      if (found[k] == std::uint8_t(FacetAnswer::kSkipped)) skipped.push_back(edges[k].lo);
+    all.clear();
+    for (const auto& c : cycles) all.insert(all.end(), c.begin(), c.end());
+    std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& [k, x] : all) pts.emplace_back(x, dist2(x, vec(vertices[std::size_t(edges[k].lo)]->point())));
+  }
   return pts;
 }
 

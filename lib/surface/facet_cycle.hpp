@@ -5,6 +5,7 @@
 #include "surface/cube_grid.hpp"
 #include "surface/delaunay_types.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -25,11 +26,13 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
 
 // One pass: FacetCycle on every edge at a vertex of `changed` (ids into
 // `vertices`, null where deleted), each edge once, on `threads` threads.
-// Returns the cycle points found, in edge order; `checks` counts the edges.
-// Uses the vertices' stamps with `stamp` (DELMESH's counter). `skipped`:
-// the first vertex of each edge FacetCycle skipped, to check again.
+// Returns the cycle points found, in edge order (by the ends' ids, lower
+// first); `checks` counts the edges. Uses the vertices' stamps with
+// `stamp` (DELMESH's counter). `skipped`: the first vertex of each edge
+// FacetCycle skipped, to check again. The edges are found and checked
+// `chunk` at a time (about; any chunk gives the same answer).
 Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
                               std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped,
-                              FacetWalk how = FacetWalk::kSpans);
+                              FacetWalk how = FacetWalk::kSpans, std::size_t chunk = 1 << 15);
 
 } // namespace imgmesh::surface_detail

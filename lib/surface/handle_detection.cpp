@@ -70,7 +70,7 @@ HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3&
   double reach2 = 0;
   for (Ch c : cells)
     for (int i = 0; i < 4; ++i)
-      if (c->vertex(i) != p && (c->facet[i].state & kRestricted)) reach2 = std::max(reach2, dist2(facet_center(Facet(c, i)), pp));
+      if (c->vertex(i) != p && c->facet.restricted(i)) reach2 = std::max(reach2, dist2(facet_center(Facet(c, i)), pp));
   // No restricted facet at p: S inside V(p) meets no Voronoi edge (a whole
   // small component, say); start from a voxel.
   if (reach2 <= 0) reach2 = grid.delta * grid.delta;
@@ -332,7 +332,7 @@ static bool refinement_point(const Tr& tr, Vh p, Vec3& x) {
   double best = -1;
   for (Ch c : cells)
     for (int i = 0; i < 4; ++i)
-      if (c->vertex(i) != p && (c->facet[i].state & kRestricted) && dist2(facet_center(Facet(c, i)), pp) > best) {
+      if (c->vertex(i) != p && c->facet.restricted(i) && dist2(facet_center(Facet(c, i)), pp) > best) {
         best = dist2(facet_center(Facet(c, i)), pp);
         x = facet_center(Facet(c, i));
       }

@@ -11,7 +11,7 @@ void restricted_around(const Tr& tr, Vh v, std::vector<Facet>& facets, std::vect
   for (Ch c : cells) {
     const int iv = c->index(v);
     for (int i = 0; i < 4; ++i) {
-      if (i == iv || !(c->facet[i].state & kRestricted)) continue;
+      if (i == iv || !c->facet.restricted(i)) continue;
       // Also around v: the facet is taken from the side whose opposite
       // vertex has the smaller id (the infinite one: -1), not by address.
       // The side is the insertion's hint, and the hint decides the layout

@@ -114,8 +114,13 @@ TEST_CASE("certificate: refuses DELMESH's seeds alone on a ball and a torus, acc
   CHECK(cert.topology.sorted_euler() == std::vector<long long>{0, 2});
   REQUIRE(cert.facets.size() == cert.mesh.triangles.size());
   // Restricted facets in vertex-id order, each restricted.
-  for (std::size_t k = 0; k < cert.facets.size(); ++k)
-    CHECK((cert.facets[k].first->facet[cert.facets[k].second].state & kRestricted));
+  const std::vector<Facet> restricted = restricted_facets(m.triangulation());
+  REQUIRE(restricted.size() == cert.facets.size());
+  for (std::size_t k = 0; k < cert.facets.size(); ++k) {
+    const Facet f = cert.facets[k].facet();  // packed in 8 bytes and back
+    CHECK(f == restricted[k]);
+    CHECK((f.first->facet[f.second].state & kRestricted));
+  }
   // Outward: the winding number is 1 inside S and 0 outside.
   CHECK(test::winding_number(cert.mesh, a) == Approx(1).margin(1e-6));
   CHECK(test::winding_number(cert.mesh, Vec3{c[0] + 5.2, c[1], c[2]}) == Approx(1).margin(1e-6));

@@ -22,6 +22,11 @@ int stale_facets(const DelMesh& m) {
     const Ch n = it->first->neighbor(it->second);
     const FacetInfo& other = n->facet[n->index(it->first)];
     if (now.state != kept.state || other.state != kept.state) ++stale;
+    // The state read from the record numbers alone, on both sides.
+    else if (it->first->facet.restricted(it->second) != bool(kept.state & kRestricted) ||
+             n->facet.restricted(n->index(it->first)) != bool(kept.state & kRestricted) ||
+             !it->first->facet.computed(it->second) || !n->facet.computed(n->index(it->first)))
+      ++stale;
     else if ((now.state & kRestricted) && (now.x[0] != kept.x[0] || now.x[1] != kept.x[1] || now.x[2] != kept.x[2]))
       ++stale;
   }
@@ -95,4 +100,28 @@ TEST_CASE("DELMESH's input checks: empty S, S touching the grid's border, non-fi
   CHECK_THROWS_AS(DelMesh(touching, o).prepare(), Error);
   FunctionSurface nan(test::box(8, 8, 8), [](const Vec3& p) { return p[0] > 6 ? NAN : 1.0; });
   CHECK_THROWS_AS(DelMesh(nan, o).prepare(), Error);
+}
+
+TEST_CASE("FacetRefs: four 30-bit record numbers in 15 bytes, each read back as written, its neighbours untouched") {
+  // Only put/ref (no FacetPool records are taken or released).
+  const std::uint32_t top = FacetPool::kLimit - 1;
+  const std::uint32_t values[] = {0, 1, 2, top, top - 1, 0x2aaaaaaau, 0x15555555u, 12345678};
+  for (std::uint32_t a : values)
+    for (std::uint32_t b : values) {
+      std::uint32_t want[4];
+      for (int k = 0; k < 4; ++k) want[k] = (k & 1) ? b : a;
+      for (int shifted = 0; shifted < 4; ++shifted) {
+        FacetRefs r;
+        for (int k = 0; k < 4; ++k) r.put(k, want[(k + shifted) & 3]);
+        for (int k = 0; k < 4; ++k) CHECK(r.ref(k) == want[(k + shifted) & 3]);
+        // Rewrite one number: the others keep theirs.
+        for (int k = 0; k < 4; ++k) {
+          r.put(k, top ^ want[(k + shifted) & 3]);
+          for (int m = 0; m < 4; ++m) CHECK(r.ref(m) == (m <= k ? top ^ want[(m + shifted) & 3] : want[(m + shifted) & 3]));
+        }
+        for (int k = 0; k < 4; ++k) r.put(k, FacetPool::kUncomputed);  // nothing to release at destruction
+      }
+    }
+  // The cell stays 104 bytes (static_assert in delaunay_types.hpp).
+  CHECK(sizeof(Tds::Cell) == 104);
 }

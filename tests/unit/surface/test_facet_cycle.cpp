@@ -127,3 +127,49 @@ TEST_CASE("FacetCycle's pass: on a thin torus after the seeds it finds cycle poi
     CHECK(dist2(x, vec(n->point())) == Approx(clearance2).epsilon(1e-6));
   }
 }
+
+TEST_CASE("FacetCycle's pass in chunks: every edge with a new end checked once, the same points in the same order for any chunk") {
+  const Vec3 c{11.6, 11.3, 4.6};
+  FunctionSurface s(test::box(24, 24, 10), [&](const Vec3& p) { return test::torus_f(p, c, 8.1, 1.1); });
+  RestrictedDelaunayOptions o;
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  const Tr& tr = m.triangulation();
+  // The new vertices: every third id, and the edges with a new end.
+  IdSet changed;
+  for (Vh v : m.vertices())
+    if (v->info().id % 3 == 1) changed.add(v->info().id);
+  // The reference: those edges by (lower id, higher id), one check each.
+  std::vector<std::pair<std::pair<int, int>, Tr::Edge>> edges;
+  for (auto e = tr.finite_edges_begin(); e != tr.finite_edges_end(); ++e) {
+    int a = e->first->vertex(e->second)->info().id, b = e->first->vertex(e->third)->info().id;
+    if (a > b) std::swap(a, b);
+    if (!changed.has(a) && !changed.has(b)) continue;
+    const Tr::Edge pq(e->first, e->first->index(m.vertices()[std::size_t(a)]), e->first->index(m.vertices()[std::size_t(b)]));
+    edges.push_back({{a, b}, pq});
+  }
+  std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  Candidates reference;
+  for (const auto& [ids, pq] : edges) {
+    Vec3 x;
+    if (facet_cycle(tr, m.sampler(), pq, x) == FacetAnswer::kCycle)
+      reference.emplace_back(x, dist2(x, vec(m.vertices()[std::size_t(ids.first)]->point())));
+  }
+  const long long want = static_cast<long long>(edges.size());
+  REQUIRE(want > 0);
+  REQUIRE(want < long(tr.number_of_finite_edges()));
+  std::uint32_t stamp = 1000;
+  std::vector<Candidates> runs;
+  for (std::size_t chunk : {std::size_t(1), std::size_t(7), std::size_t(1) << 20}) {
+    long long checks = 0;
+    std::vector<int> skipped;
+    runs.push_back(facet_cycle_points(tr, m.sampler(), m.vertices(), changed, stamp, 2, checks, skipped, FacetWalk::kSpans, chunk));
+    CHECK(checks == want);
+    CHECK(skipped.empty());
+  }
+  REQUIRE(!reference.empty());
+  CHECK(runs[0] == reference);
+  CHECK(runs[1] == runs[0]);
+  CHECK(runs[2] == runs[0]);
+}
