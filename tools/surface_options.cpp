@@ -50,7 +50,7 @@ SurfaceOptions::SurfaceOptions(cli::Tool& tool, RestrictedDelaunayOptions& opt, 
       ->capture_default_str();
   tool.app.add_option("--max-distance", max_distance_,
                       "Refine while a " + what + "'s surface Delaunay ball centre (a point of the surface) is farther "
-                      "than E (world units) from the " + what + "'s plane; 0: off")
+                      "than E (world units) from the " + what + "'s plane, or |f| at its centroid is more than 2E; 0: off")
       ->type_name("E")
       ->capture_default_str();
   tool.app.add_option("--fallback-rounds", opt_.fallback_rounds,

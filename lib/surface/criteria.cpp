@@ -30,6 +30,11 @@ bool distance_refines(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& x
   return nl > 0 && std::abs(dot(nrm, sub(x, a))) / nl > max_distance;
 }
 
+bool centroid_refines(const SurfaceSampler& f, const Vec3& a, const Vec3& b, const Vec3& c, double max_distance) {
+  const Vec3 g{(a[0] + b[0] + c[0]) / 3, (a[1] + b[1] + c[1]) / 3, (a[2] + b[2] + c[2]) / 3};
+  return std::abs(f.value(g)) > 2 * max_distance;
+}
+
 bool roughness_within(std::vector<std::pair<int, Vec3>>& normals, double g) {
   std::sort(normals.begin(), normals.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
   for (std::size_t i = 0; i + 1 < normals.size();) {

@@ -32,7 +32,8 @@ void DelMesh::enqueue_facet(Ch c, int i) {
   const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
   if (topology_only_) return;
   if (quality_refines(pa, pb, pd, opt_.ratio)) queue_.push({kQQuality, fi.r2, seq_++, a, b, d, c, i, fi.computed});
-  if (opt_.max_distance > 0 && distance_refines(pa, pb, pd, Vec3{fi.x[0], fi.x[1], fi.x[2]}, opt_.max_distance))
+  if (opt_.max_distance > 0 && (distance_refines(pa, pb, pd, Vec3{fi.x[0], fi.x[1], fi.x[2]}, opt_.max_distance) ||
+                                centroid_refines(sampler_, pa, pb, pd, opt_.max_distance)))
     queue_.push({kQDistance, fi.r2, seq_++, a, b, d, c, i, fi.computed});
 }
 
@@ -539,6 +540,7 @@ RestrictedDelaunayResult DelMesh::run() {
   res.restricted_delaunay_violations = m.restricted_delaunay_violations;
   res.ratio_bound = opt_.ratio;
   res.roughness_bound = opt_.roughness;
+  res.max_distance_bound = opt_.max_distance;
   res.max_points = opt_.max_points;
 
   // World coordinates; a reflecting direction matrix flips orientation.

@@ -60,6 +60,7 @@ Json RestrictedDelaunayResult::to_json() const {
   st["max_roughness_degrees"] = max_roughness * 180 / M_PI;
   st["roughness_bound_degrees"] = roughness_bound * 180 / M_PI;
   st["max_distance_to_plane"] = max_distance_to_plane;
+  st["max_distance_bound"] = max_distance_bound;
   st["max_abs_f_at_vertices"] = max_abs_f_at_vertices;
   st["max_abs_f_at_centroids"] = max_abs_f_at_centroids;
   st["restricted_delaunay_violations"] = restricted_delaunay_violations;

@@ -29,7 +29,7 @@ double min_roughness_bound();
 struct RestrictedDelaunayOptions {
   double ratio = 2.0;           // rho_0: radius-edge ratio bound
   double roughness = 1.0471975511965976;  // g (radians), pi/3
-  double max_distance = 0;      // E > 0: surface Delaunay ball centre within E of the facet's plane
+  double max_distance = 0;      // E > 0: surface Delaunay ball centre within E of the facet's plane, |f| at its centroid within 2E
   std::size_t max_points = 2000000;
   std::uint64_t seed = 0;       // order of seed insertion
   int threads = 1;
@@ -82,7 +82,7 @@ struct RestrictedDelaunayResult {
   double max_abs_f_at_vertices = 0, max_abs_f_at_centroids = 0;
   long long restricted_delaunay_violations = 0;  // surface centres whose ball holds a vertex
   // The bounds asked.
-  double ratio_bound = 0, roughness_bound = 0;
+  double ratio_bound = 0, roughness_bound = 0, max_distance_bound = 0;
   std::size_t max_points = 0;
   double seconds_seeds = 0, seconds_refinement = 0, seconds_verification = 0;
 

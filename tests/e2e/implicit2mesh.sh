@@ -81,8 +81,19 @@ assert s['min_angle_degrees'] >= 24.6, s['min_angle_degrees']
 PY
   # The distance bound measured, not read from --stats: E = 0.3 of the
   # smallest spacing (the README's default).
-  python3 "$DIST" bunny.ply "$f" "$(spacing "$f" 0.3)" "$BIN/implicit-eval" > dist.txt 2>&1 ||
+  python3 "$DIST" bunny.ply "$f" "$(spacing "$f" 0.3)" "$BIN/implicit-eval" --centroids > dist.txt 2>&1 ||
     fail "bunny at the defaults: $(cat dist.txt)"
+}
+
+# The distance bound's centroid half on brain tissue at the defaults: with
+# the surface centres alone within E = 0.3 voxel of their planes, a
+# triangle of brain label 1 had |f| = 0.63 voxel at its centroid.
+case_brain_label1_centroids_within_twice_the_bound() {
+  expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 1 b1-wc.nrrd -q
+  expect 0 wc2implicit b1-wc.nrrd b1-f.nrrd -q
+  expect 0 implicit2mesh b1-f.nrrd b1.off
+  python3 "$DIST" b1.off b1-f.nrrd "$(spacing b1-f.nrrd 0.3)" "$BIN/implicit-eval" --centroids > dist.txt 2>&1 ||
+    fail "brain label 1 at the defaults: $(cat dist.txt)"
 }
 
 # The thesis's bounds (rho_0 = 2, 60 degrees, no distance bound) give a

@@ -32,6 +32,19 @@ TEST_CASE("--max-distance: refines a facet whose surface centre is farther than 
   CHECK_FALSE(distance_refines(a, b, Vec3{2, 0, 0}, x, 0.01));  // no plane: never
 }
 
+TEST_CASE("--max-distance: refines a facet whose centroid has |f| above 2E") {
+  // A sphere of radius 6 and a triangle with its vertices on it: the
+  // centroid lies 6 - |centroid - centre| = 2.54 inside.
+  FunctionSurface s(test::box(21, 21, 21), [](const Vec3& y) { return test::sphere_f(y, Vec3{10, 10, 10}, 6); });
+  RestrictedDelaunayOptions o;
+  DelMesh m(s, o);
+  m.prepare();
+  const Vec3 a{16, 10, 10}, b{10, 16, 10}, c{10, 10, 16};
+  const double depth = 6 - std::sqrt(3 * 4.0);  // centroid (12, 12, 12)
+  CHECK(centroid_refines(m.sampler(), a, b, c, depth / 2 * 0.99));
+  CHECK_FALSE(centroid_refines(m.sampler(), a, b, c, depth / 2 * 1.01));
+}
+
 TEST_CASE("SMOOTH: an edge's two normals within g pass, beyond g fail; edges not in two facets are ignored") {
   const double g = M_PI / 3;
   auto at = [](double deg) { return Vec3{std::sin(deg * M_PI / 180), 0, std::cos(deg * M_PI / 180)}; };
