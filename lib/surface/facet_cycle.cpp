@@ -544,10 +544,18 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
   // the first pass takes every edge, and its list was the run's peak
   // (brain label 4: 6 MB of edges beside the triangulation).
   std::vector<Ch> cells;
-  auto star = [&](Vh a) {
+  // take(b, c) for each finite neighbour b of a, once, with a cell c at ab.
+  auto neighbours = [&](Vh a, auto&& take) {
     ++stamp;
     cells.clear();
     tr.incident_cells(a, std::back_inserter(cells));
+    for (Ch c : cells)
+      for (int k = 0; k < 4; ++k) {
+        const Vh b = c->vertex(k);
+        if (b == a || tr.is_infinite(b) || b->info().stamp == stamp) continue;
+        b->info().stamp = stamp;
+        take(b, c);
+      }
   };
   std::vector<int> lows;
   {
@@ -559,14 +567,9 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
       const Vh a = vertices[std::size_t(ia)];
       if (a == Vh()) continue;  // deleted
       low(ia);
-      star(a);
-      for (Ch c : cells)
-        for (int k = 0; k < 4; ++k) {
-          const Vh b = c->vertex(k);
-          if (b == a || tr.is_infinite(b) || b->info().stamp == stamp) continue;
-          b->info().stamp = stamp;
-          if (b->info().id < ia && !changed.has(b->info().id)) low(b->info().id);
-        }
+      neighbours(a, [&](Vh b, Ch) {
+        if (b->info().id < ia && !changed.has(b->info().id)) low(b->info().id);
+      });
     }
   }
   std::sort(lows.begin(), lows.end());
@@ -593,15 +596,10 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
       const Vh a = vertices[std::size_t(ia)];
       const bool a_new = changed.has(ia);
       const std::size_t first = edges.size();
-      star(a);
-      for (Ch c : cells)
-        for (int k = 0; k < 4; ++k) {
-          const Vh b = c->vertex(k);
-          if (b == a || tr.is_infinite(b) || b->info().stamp == stamp) continue;
-          b->info().stamp = stamp;
-          const int ib = b->info().id;
-          if (ib > ia && (a_new || changed.has(ib))) edges.push_back(EdgeAt{ia, ib, c});
-        }
+      neighbours(a, [&](Vh b, Ch c) {
+        const int ib = b->info().id;
+        if (ib > ia && (a_new || changed.has(ib))) edges.push_back(EdgeAt{ia, ib, c});
+      });
       std::sort(edges.begin() + std::ptrdiff_t(first), edges.end(), [](const EdgeAt& x, const EdgeAt& y) { return x.hi < y.hi; });
     }
     checks += static_cast<long long>(edges.size());
