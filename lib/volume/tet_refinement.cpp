@@ -378,7 +378,7 @@ void extract(const DelMesh& dm, const CellRefinement& inside, const BoxRefinemen
 
   std::vector<std::array<int, 3>> restricted, boundary;
   for (auto it = tr.finite_facets_begin(); it != tr.finite_facets_end(); ++it)
-    if (it->first->facet[it->second].state & kRestricted) {
+    if (it->first->facet.restricted(it->second)) {
       std::array<int, 3> k;
       for (int m = 1; m < 4; ++m) k[std::size_t(m - 1)] = it->first->vertex((it->second + m) & 3)->info().id;
       std::sort(k.begin(), k.end());
