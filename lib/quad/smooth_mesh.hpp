@@ -242,6 +242,12 @@ void swap_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_split.cpp ------------------------------------------------------
 
+// The pair across edge i of quad q1 (u = its corner i, w = corner i + 1):
+// q2, the quad holding w -> u, and their union H = u, c, d, w, a, b
+// (counter-clockwise). False where the edge is a feature, has no quad
+// beyond it, or the six corners are not distinct.
+bool pair_hexagon(const QuadMesh& qm, int q1, int i, int& q2, int (&H)[6]);
+
 // Splits the pair q1, q2 (their union the hexagon H, counter-clockwise) into
 // three quads around a new point or four around two; returns 3 or 4, or 0
 // with the quads, stars and points exactly as they were (tried marks of q1

@@ -71,6 +71,23 @@ int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]) {
   return 0;
 }
 
+bool pair_hexagon(const QuadMesh& qm, int q1, int i, int& q2, int (&H)[6]) {
+  const Quad A = qm.quads[q1];
+  const int u = A[i], w = A[(i + 1) & 3];
+  q2 = qm.is_feature(u, w) ? -1 : qm.quad_with_edge(w, u);
+  if (q2 < 0) return false;
+  const Quad B = qm.quads[q2];
+  int j = 0;
+  while (B[j] != w) ++j;
+  const int h[6] = {u, B[(j + 2) & 3], B[(j + 3) & 3], w, A[(i + 2) & 3], A[(i + 3) & 3]};
+  for (int x = 0; x < 6; ++x) {
+    H[x] = h[x];
+    for (int y = 0; y < x; ++y)
+      if (h[x] == h[y]) return false;
+  }
+  return true;
+}
+
 void final_split_pass(QuadMesh& qm, SmoothStats& st) {
   // sin(10 deg), the bar: with a settled split (placed, relaxed,
   // climbed) on quads under 12 degrees random blob 2's mean mu fell under
@@ -79,19 +96,8 @@ void final_split_pass(QuadMesh& qm, SmoothStats& st) {
   const std::size_t n = qm.quads.size();  // the quads a split adds are not tried again
   for (std::size_t q1 = 0; q1 < n; ++q1)
     for (int i = 0; i < 4 && !qm.quad_dead[q1] && qm.quad_sin_mu[q1] < kBelow; ++i) {
-      const Quad A = qm.quads[q1];
-      const int u = A[i], w = A[(i + 1) & 3];
-      const int q2 = qm.is_feature(u, w) ? -1 : qm.quad_with_edge(w, u);
-      if (q2 < 0) continue;
-      const Quad B = qm.quads[q2];
-      int j = 0;
-      while (B[j] != w) ++j;
-      // Hexagon u, c, d, w, a, b (counter-clockwise), as swap_diagonal's.
-      const int H[6] = {u, B[(j + 2) & 3], B[(j + 3) & 3], w, A[(i + 2) & 3], A[(i + 3) & 3]};
-      bool distinct = true;
-      for (int x = 0; x < 6; ++x)
-        for (int y = x + 1; y < 6; ++y) distinct = distinct && H[x] != H[y];
-      if (!distinct) continue;
+      int q2, H[6];
+      if (!pair_hexagon(qm, int(q1), i, q2, H)) continue;
       if (const int parts = split_pair(qm, int(q1), q2, H)) {
         ++st.splits;
         if (parts == 4) ++st.splits_four;

@@ -27,24 +27,12 @@ bool is_plain(const QuadMesh& qm, int q) {
 } // namespace
 
 bool swap_diagonal(QuadMesh& qm, int q1, int i, SmoothStats& st) {
-  const Quad A = qm.quads[q1];
-  const int u = A[i], w = A[(i + 1) & 3];
-  if (qm.is_feature(u, w)) return false;
-  // The other quad, holding w -> u. A pair is tried from its first
-  // non-plain quad (a pass reaching q1 has tried q2 already if it was).
-  const int q2 = qm.quad_with_edge(w, u);
-  if (q2 < 0 || (q2 < q1 && !is_plain(qm, q2))) return false;
-  const Quad B = qm.quads[q2];
-  int j = 0;
-  while (B[j] != w) ++j;
-  // Hexagon u, c, d, w, a, b (counter-clockwise).
-  const int a = A[(i + 2) & 3], b = A[(i + 3) & 3];
-  const int c = B[(j + 2) & 3], d = B[(j + 3) & 3];
-  const int H[6] = {u, c, d, w, a, b};
-  bool distinct = true;
-  for (int x = 0; x < 6; ++x)
-    for (int y = x + 1; y < 6; ++y) distinct = distinct && H[x] != H[y];
-  if (!distinct) return false;
+  // The other quad q2 and the hexagon u, c, d, w, a, b. A pair is tried
+  // from its first non-plain quad (a pass reaching q1 has tried q2 already
+  // if it was).
+  int q2, H[6];
+  if (!pair_hexagon(qm, q1, i, q2, H) || (q2 < q1 && !is_plain(qm, q2))) return false;
+  const int u = H[0], c = H[1], d = H[2], w = H[3], a = H[4], b = H[5];
   // Valence excess of u and w (they lose a quad) and of the ends of
   // either new diagonal (they gain one).
   const Fan fu = qm.fan(u, q1), fw = qm.fan(w, q1);
