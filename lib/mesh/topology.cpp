@@ -162,16 +162,24 @@ MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset o
   std::vector<char> used(nv, 0), on_boundary(nv, 0), bad_vertex(nv, 0);
   for (std::size_t i = 0; i < nc; ++i) used[std::size_t(corner(i))] = 1;
   std::vector<std::size_t> nonorientable_faces;
+  // Per edge, counted at its lower end a for a's component (known once
+  // every edge is seen): one walk over the edges, not two.
+  // (An edge in more than two faces makes its ends bad vertices.)
+  enum : std::uint8_t { kOpen = 1, kMisoriented = 2 };
+  std::vector<std::uint32_t> edges_at(nv, 0);
+  std::vector<std::uint8_t> edge_flags(nv, 0);
   for_each_edge([&](std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t>& h) {
     vuf.unite(a, b);
+    ++edges_at[a];
     const std::size_t n = h.size();
     if (n == 1) {
       ++t.boundary_edges;
       on_boundary[a] = on_boundary[b] = 1;
       buf.unite(a, b);
+      edge_flags[a] |= kOpen;
     } else if (n == 2) {
       const bool same = forward(h[0]) == forward(h[1]);
-      if (same) ++t.inconsistent_edges;
+      if (same) ++t.inconsistent_edges, edge_flags[a] |= kMisoriented;
       if (!fuf.unite(face_of(h[0]), face_of(h[1]), same ? 1 : 0)) nonorientable_faces.push_back(face_of(h[0]));
     } else {
       ++t.nonmanifold_edges;
@@ -237,13 +245,13 @@ MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset o
   auto comp_of = [&](int v) -> ComponentTopology& { return comps[comp_id[vuf.find(std::size_t(v))]]; };
   for (std::size_t f = 0; f < nf; ++f) ++comp_of(corner(offset(f))).faces;
   for (auto& c : comps) { c.oriented = true; c.orientable = true; c.closed = true; }
-  for_each_edge([&](std::uint32_t a, std::uint32_t, const std::vector<std::uint32_t>& h) {
-    auto& c = comp_of(int(a));
-    ++c.edges;
-    if (h.size() == 1) c.closed = false;
-    if (h.size() > 2) c.manifold = false;
-    if (h.size() == 2 && forward(h[0]) == forward(h[1])) c.oriented = false;
-  });
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!edges_at[v]) continue;
+    auto& c = comp_of(int(v));
+    c.edges += edges_at[v];
+    if (edge_flags[v] & kOpen) c.closed = false;
+    if (edge_flags[v] & kMisoriented) c.oriented = false;
+  }
   for (std::size_t f : nonorientable_faces) comp_of(corner(offset(f))).orientable = false;
   for (auto& c : comps) {
     c.euler = (long long)c.vertices - (long long)c.edges + (long long)c.faces;

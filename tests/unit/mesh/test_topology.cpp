@@ -196,6 +196,37 @@ TEST_CASE("closed and open surfaces: Euler characteristic, genus, loops", "[topo
     CHECK(t.boundary_loops == 1);
     CHECK(sorted(t.euler_list()) == independent_euler(s));
   }
+  SECTION("each component its own closed, oriented and edge count") {
+    Faces flipped = cube_sphere(2);
+    std::reverse(flipped.f[3].begin(), flipped.f[3].end());
+    Faces s;
+    s.add(grid(3, 2, false, false));  // disk: open, oriented
+    s.add(flipped);                   // closed, one face the wrong way
+    s.add(grid(5, 5, true, true));    // torus: closed, oriented
+    const auto t = mesh_topology(s.nv, s.f);
+    REQUIRE(t.components.size() == 3);
+    int seen = 0;
+    for (const auto& c : t.components) {
+      CHECK(c.euler == (long long)c.vertices - (long long)c.edges + (long long)c.faces);
+      if (c.euler == 1) {
+        ++seen;
+        CHECK_FALSE(c.closed);
+        CHECK(c.oriented);
+        CHECK(c.edges == 9 + 8 + 6);  // 3 x 2 quads: rows, columns, diagonals
+      } else if (c.euler == 2) {
+        ++seen;
+        CHECK(c.closed);
+        CHECK_FALSE(c.oriented);
+        CHECK(c.orientable);
+      } else {
+        ++seen;
+        CHECK(c.euler == 0);
+        CHECK(c.closed);
+        CHECK(c.oriented);
+      }
+    }
+    CHECK(seen == 3);
+  }
   SECTION("Moebius strip: manifold, not orientable") {
     // A strip of n quads whose ends are glued with a half twist.
     const int n = 8;
