@@ -136,8 +136,8 @@ private:
 // record of their own. Only DELMESH sets them; a copied cell starts with
 // its facets not computed. The four 30-bit numbers are packed in 15 bytes
 // of alignment 1, which the compiler places in the tail padding of CGAL's
-// cell base (65 bytes used of 72): the cell is 104 bytes, where four
-// 32-bit numbers made it 112 (cells are most of the run's memory).
+// cell base (65 bytes used of 72): the cell is 80 bytes, where four
+// 32-bit numbers made it 88 (cells are most of the run's memory).
 class FacetRefs {
 public:
   FacetRefs() {  // all kUncomputed (0): two 8-byte stores, not a call to memset
@@ -195,10 +195,9 @@ private:
 
 // The circumcentre from the vertices in lexicographic order. From CGAL's
 // vertex order, which vertex removal makes depend on addresses, it would
-// differ in its last bits from run to run. Cached in the cell (NaN: not
-// yet), not on the heap as CGAL's cell base with circumcenter does: 16
-// bytes and an allocation less a cell. Every finite cell's is computed by
-// EdgeSurface before FacetCycle reads them on threads.
+// differ in its last bits from run to run. Computed on each call, not kept
+// in the cell (24 of the cell's bytes): about 500 instructions since the
+// robust construction no longer takes its exact path.
 template <class Gt, class Cb = CGAL::Delaunay_triangulation_cell_base_3<Gt>>
 class CellBase : public Cb {
 public:
@@ -209,49 +208,30 @@ public:
     using Cb2 = typename Cb::template Rebind_TDS<TDS2>::Other;
     using Other = CellBase<Gt, Cb2>;
   };
-  CellBase() = default;
-  CellBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3) : Cb(v0, v1, v2, v3) {}
-  CellBase(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3, Cell_handle n0, Cell_handle n1,
-           Cell_handle n2, Cell_handle n3)
-      : Cb(v0, v1, v2, v3, n0, n1, n2, n3) {}
-  // Changing a vertex forgets the circumcentre.
-  void set_vertex(int i, Vertex_handle v) {
-    forget();
-    Cb::set_vertex(i, v);
-  }
-  void set_vertices() {
-    forget();
-    Cb::set_vertices();
-  }
-  void set_vertices(Vertex_handle v0, Vertex_handle v1, Vertex_handle v2, Vertex_handle v3) {
-    forget();
-    Cb::set_vertices(v0, v1, v2, v3);
-  }
-  const Point3& circumcenter(const Gt& gt = Gt()) const {
-    if (std::isnan(center_.x())) {
-      const Point3* p[4];
-      for (int i = 0; i < 4; ++i) p[i] = &this->vertex(i)->point();
-      std::sort(p, p + 4, [](const auto* a, const auto* b) { return *a < *b; });
-      // Positively oriented, as the robust construction requires: its check
-      // of the floating-point centre fails on the other orientation, and
-      // every such cell took the exact path (8.7% of the bunny's instructions).
-      if (gt.orientation_3_object()(*p[0], *p[1], *p[2], *p[3]) == CGAL::NEGATIVE) std::swap(p[2], p[3]);
-      center_ = gt.construct_circumcenter_3_object()(*p[0], *p[1], *p[2], *p[3]);
-    }
-    return center_;
+  using Cb::Cb;
+  Point3 circumcenter(const Gt& gt = Gt()) const {
+    const Point3* p[4];
+    for (int i = 0; i < 4; ++i) p[i] = &this->vertex(i)->point();
+    // Sorted by a network of five compare-exchanges (std::sort's call and
+    // loop were a sixth of the cost).
+    const auto order = [&p](int a, int b) {
+      if (*p[b] < *p[a]) std::swap(p[a], p[b]);
+    };
+    order(0, 1), order(2, 3), order(0, 2), order(1, 3), order(1, 2);
+    // Positively oriented, as the robust construction requires: its check
+    // of the floating-point centre fails on the other orientation, and
+    // every such cell took the exact path (8.7% of the bunny's instructions).
+    if (gt.orientation_3_object()(*p[0], *p[1], *p[2], *p[3]) == CGAL::NEGATIVE) std::swap(p[2], p[3]);
+    return gt.construct_circumcenter_3_object()(*p[0], *p[1], *p[2], *p[3]);
   }
   FacetRefs facet;
-
-private:
-  void forget() { center_ = Point3(NAN, NAN, NAN); }
-  mutable Point3 center_{NAN, NAN, NAN};
 };
 
 using Vb = CGAL::Triangulation_vertex_base_with_info_3<VInfo, GT>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb, CellBase<GT>>;
 using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;  // Compact_location: see doc/implicit2mesh.md
-// CGAL's 72 bytes (65 used) + FacetRefs' 15 in their tail + the circumcentre.
-static_assert(sizeof(Tds::Cell) == 104, "a cell: FacetRefs in the tail padding of CGAL's cell base");
+// CGAL's 72 bytes (65 used) + FacetRefs' 15 in their tail.
+static_assert(sizeof(Tds::Cell) == 80, "a cell: FacetRefs in the tail padding of CGAL's cell base");
 using Vh = Tr::Vertex_handle;
 using Ch = Tr::Cell_handle;
 using Facet = Tr::Facet;

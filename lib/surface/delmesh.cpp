@@ -15,7 +15,7 @@ DelMesh::DelMesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions
     : f_(surface), opt_(opt), grid_(surface.samples()), sampler_(surface, grid_), topology_only_(opt.seed_deletion) {}
 
 void DelMesh::compute_facet(Ch c, int i) {
-  FacetInfo fi = edge_surface_of(tr_, sampler_, c, i);
+  FacetInfo fi = edge_surface_of(tr_, sampler_, c, i, centres_);
   fi.computed = ++computed_;
   Ch n = c->neighbor(i);
   FacetRefs::set(c->facet, i, n->facet, n->index(c), fi);
@@ -228,6 +228,7 @@ void DelMesh::compute_new_cells() {
       order.push_back({std::uint64_t(u(0)) << 32 | u(1), u(2), i, c});
     }
   std::sort(order.begin(), order.end(), [](const Key& a, const Key& b) { return a.ab != b.ab ? a.ab < b.ab : a.c < b.c; });
+  centres_.assign(tr_, cells_buf_);
   for (const Key& k : order)
     if (!k.cell->facet.computed(k.i)) compute_facet(k.cell, k.i);
 }
@@ -467,7 +468,7 @@ RestrictedDelaunayResult DelMesh::run() {
   const auto t_start = Clock::now();
   auto secs = [](Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); };
   prepare();
-  const ExpectedTopology expected = expected_topology(grid_);
+  ExpectedTopology expected = expected_topology(grid_);
   res.expected = expected.topology;
 
   seeds();
@@ -522,6 +523,7 @@ RestrictedDelaunayResult DelMesh::run() {
   }
   const double t_refine_s = secs(t_refine);
   const auto t_final = Clock::now();
+  res.expected_boundary = std::move(expected.boundary);
 
   // Guarantees, measured on the output.
   const MeasuredGuarantees m = measure_guarantees(tr_, sampler_, cert);

@@ -34,6 +34,7 @@
 #include "surface/criteria.hpp"
 #include "surface/cube_grid.hpp"
 #include "surface/delaunay_types.hpp"
+#include "surface/edge_surface.hpp"
 #include "surface/handle_detection.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "surface/topo_disk.hpp"
@@ -73,6 +74,9 @@ public:
   void set_after_certificate(std::function<bool(DelMesh&)> step) { after_certificate_ = std::move(step); }
 
   const Tr& triangulation() const { return tr_; }
+  // A finite cell's circumcentre, kept for the cells the last insertion or
+  // removal made (implicit2tet's quality test on them), else computed.
+  Vec3 new_cell_centre(Ch c) const { return centres_(tr_, c); }
   const CubeGrid& grid() const { return grid_; }
   const SurfaceSampler& sampler() const { return sampler_; }
   const std::vector<Vh>& vertices() const { return vertices_; }  // by id; null where deleted
@@ -169,6 +173,7 @@ private:
   // Insertion scratch: the conflict zone and the vertices around it.
   std::vector<Facet> zone_facets_;
   std::vector<Ch> zone_cells_, cells_buf_;
+  CellCentres centres_;  // of the cells the last insertion or removal made
   std::vector<Vh> touched_;
   std::uint32_t stamp_ = 0;
   std::function<bool(DelMesh&)> after_certificate_;

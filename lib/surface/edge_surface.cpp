@@ -2,6 +2,7 @@
 // a Delaunay facet meets S, found on the cube grid.
 #include "surface/edge_surface.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace imgmesh::surface_detail {
@@ -209,7 +210,27 @@ EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b,
   return out;
 }
 
-FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i) {
+void CellCentres::assign(const Tr& tr, const std::vector<Ch>& cells) {
+  std::size_t size = 16;
+  while (size < 2 * cells.size()) size *= 2;
+  shift_ = 64 - __builtin_ctzll(size);
+  table_.assign(size, {nullptr, Vec3{}});
+  for (Ch c : cells) {
+    if (tr.is_infinite(c)) continue;
+    std::size_t k = slot(&*c);
+    while (table_[k].first) k = (k + 1) & (size - 1);
+    table_[k] = {&*c, vec(tr.dual(c))};
+  }
+}
+
+Vec3 CellCentres::operator()(const Tr& tr, Ch c) const {
+  if (!table_.empty())
+    for (std::size_t k = slot(&*c); table_[k].first; k = (k + 1) & (table_.size() - 1))
+      if (table_[k].first == &*c) return table_[k].second;
+  return vec(tr.dual(c));
+}
+
+FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i, const CellCentres& centres) {
   const CubeGrid& grid = f.grid();
   Ch n = c->neighbor(i);
   const int j = n->index(c);
@@ -222,8 +243,8 @@ FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i) {
     Vec3 a, b;
     bool ok = true;
     if (!ci && !ni) {
-      a = vec(tr.dual(c));
-      b = vec(tr.dual(n));
+      a = centres(tr, c);
+      b = centres(tr, n);
       if (b < a) std::swap(a, b);  // lexicographic: both sides agree bit for bit
       ok = a != b;                 // zero-length Voronoi edge: not restricted
     } else {
@@ -236,7 +257,7 @@ FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i) {
       const double nl = norm(nrm);
       ok = nl > 0;
       if (ok) {
-        a = vec(tr.dual(fc));
+        a = centres(tr, fc);
         double reach = 0;  // far enough to leave the box
         for (int k = 0; k < 3; ++k) reach += std::abs(a[k]) + grid.hi[k];
         b = {a[0] + nrm[0] / nl * reach, a[1] + nrm[1] / nl * reach, a[2] + nrm[2] / nl * reach};

@@ -5,6 +5,11 @@
 #include "surface/cube_grid.hpp"
 #include "surface/delaunay_types.hpp"
 
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
 namespace imgmesh::surface_detail {
 
 struct EdgeCrossing {
@@ -18,9 +23,24 @@ struct EdgeCrossing {
 // Safe to call from several threads.
 EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b, const Vec3& site);
 
+// The circumcentres of the cells one insertion made, each computed once
+// for its four facets: a cell keeps no centre of its own (24 bytes a cell).
+// Other cells' centres are computed when asked.
+class CellCentres {
+public:
+  void assign(const Tr& tr, const std::vector<Ch>& cells);
+  Vec3 operator()(const Tr& tr, Ch c) const;
+
+private:
+  // Open addressing on the cell's address, at most half full.
+  std::size_t slot(const void* c) const { return (reinterpret_cast<std::uintptr_t>(c) >> 3) * 0x9E3779B97F4A7C15ull >> shift_; }
+  std::vector<std::pair<const void*, Vec3>> table_;
+  int shift_ = 64;
+};
+
 // EdgeSurface on the Voronoi edge dual to facet (c, i): its state
 // (kComputed, kRestricted, kMulti), surface centre x_t, ball radius and
 // grad f there. `computed` is left 0 for the caller to stamp.
-FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i);
+FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i, const CellCentres& centres = {});
 
 } // namespace imgmesh::surface_detail

@@ -26,7 +26,16 @@ namespace imgmesh::surface_detail {
 // than the step are missed (like EdgeSurface); the final certificate
 // catches what they would change. Facets of more than 64M samples are not
 // rasterised: kSkipped, and DELMESH checks them again after later insertions.
-FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out, FacetWalk how) {
+// A cell has six edges, three at p: each centre once for p's edges (a
+// cell keeps no centre of its own).
+Vec3 CentreMemo::operator()(const Tr& tr, Ch c) {
+  for (const auto& [d, x] : kept)
+    if (d == c) return x;
+  kept.emplace_back(c, vec(tr.dual(c)));
+  return kept.back().second;
+}
+
+FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& out, FacetWalk how, CentreMemo* memo) {
   constexpr FacetAnswer kNone = FacetAnswer::kNone;
   const CubeGrid& grid = f.grid();
   const Vh p = e.first->vertex(e.second), q = e.first->vertex(e.third);
@@ -65,7 +74,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
         bounded = false;
         continue;
       }
-      const Vec3 c = vec(tr.dual(cc));
+      const Vec3 c = memo ? (*memo)(tr, cc) : vec(tr.dual(cc));
       const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
       a0 = std::min(a0, a); a1 = std::max(a1, a); b0 = std::min(b0, b); b1 = std::max(b1, b);
     } while (++cc != done);
@@ -579,10 +588,9 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
   auto edge = [&](const EdgeAt& e) {
     return Tr::Edge(e.c, e.c->index(vertices[std::size_t(e.lo)]), e.c->index(vertices[std::size_t(e.hi)]));
   };
-  // The checks only read the triangulation (every finite cell's
-  // circumcentre is cached by then: EdgeSurface asked for it), so they run
-  // on --threads threads; the points go in afterwards, in edge order. The
-  // few cycle points are kept per thread, with their edge.
+  // The checks only read the triangulation, so they run on --threads
+  // threads; the points go in afterwards, in edge order. The few cycle
+  // points are kept per thread, with their edge.
   const unsigned nt = implicit_detail::resolve_threads(unsigned(std::max(1, threads)));
   std::vector<std::uint8_t> found;
   std::vector<std::vector<std::pair<std::size_t, Vec3>>> cycles(nt);
@@ -606,9 +614,11 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
     found.assign(edges.size(), std::uint8_t(FacetAnswer::kNone));
     for (auto& c : cycles) c.clear();
     implicit_detail::parallel_for(long(edges.size()), nt, [&](long a, long b, unsigned t) {
+      CentreMemo memo;  // of the cells around edges[k].lo
       for (long k = a; k < b; ++k) {
+        if (k == a || edges[std::size_t(k)].lo != edges[std::size_t(k - 1)].lo) memo.kept.clear();
         Vec3 x;
-        const FacetAnswer answer = facet_cycle(tr, f, edge(edges[std::size_t(k)]), x, how);
+        const FacetAnswer answer = facet_cycle(tr, f, edge(edges[std::size_t(k)]), x, how, &memo);
         found[std::size_t(k)] = std::uint8_t(answer);
         if (answer == FacetAnswer::kCycle) cycles[t].emplace_back(std::size_t(k), x);
       }

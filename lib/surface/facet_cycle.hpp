@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace imgmesh::surface_detail {
@@ -14,7 +15,8 @@ namespace imgmesh::surface_detail {
 // Does S have a closed curve inside the Voronoi facet dual to edge e = pq?
 // kCycle: x is a point of it (on S) far from p, e's first vertex; kSkipped:
 // the facet is too large to rasterise now (not an answer).
-// Thread-safe once every finite cell's circumcentre is cached.
+// Thread-safe. `memo` (optional) keeps the circumcentres of cells around p
+// for the next edge at p; the caller clears it when p changes.
 enum class FacetAnswer { kNone, kCycle, kSkipped };
 // How the rows are walked: only the stretches near active cubes (where the
 // cost says so, else every row cube by cube), every row cube by cube, or
@@ -22,7 +24,12 @@ enum class FacetAnswer { kNone, kCycle, kSkipped };
 // cube's corner sign if inactive, else f's), throwing Error unless their
 // runs agree: the walks are optimisations that must change no sign.
 enum class FacetWalk { kSpans, kFull, kCompare };
-FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& x, FacetWalk how = FacetWalk::kSpans);
+struct CentreMemo {
+  std::vector<std::pair<Ch, Vec3>> kept;
+  Vec3 operator()(const Tr& tr, Ch c);
+};
+FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& x, FacetWalk how = FacetWalk::kSpans,
+                        CentreMemo* memo = nullptr);
 
 // One pass: FacetCycle on every edge at a vertex of `changed` (ids into
 // `vertices`, null where deleted), each edge once, on `threads` threads.

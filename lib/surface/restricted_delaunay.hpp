@@ -53,6 +53,7 @@ struct RestrictedDelaunayResult {
   std::vector<Vec3> centers;        // per triangle: its surface Delaunay ball centre (world)
   MeshTopology topology;            // of mesh
   MeshTopology expected;            // of bdCA(X)
+  VoxelBoundary expected_boundary;  // bdCA(X)'s corners (its quads dropped), for match_components
   bool topology_ok = false;         // closed oriented manifold, components matched by place one to one, same chi
   std::string topology_failure;     // when not: each failing component and why
   bool ratio_ok = false, roughness_ok = false, distance_ok = false;

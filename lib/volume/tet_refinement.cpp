@@ -52,10 +52,8 @@ public:
 
   // How far a finite cell is beyond the bounds (0: within them); slivers
   // (only a small dihedral angle) come after every other bad cell.
-  double badness(const Tr& tr, Ch c, bool& sliver) const {
+  double badness(Ch c, const Point& cc, bool& sliver) const {
     sliver = false;
-    if (tr.is_infinite(c)) return 0;
-    const Point& cc = c->circumcenter();
     const double r2 = d2(cc, c->vertex(0)->point());
     double lmin2 = std::numeric_limits<double>::infinity();
     for (int i = 0; i < 4; ++i)
@@ -117,14 +115,18 @@ private:
     std::uint64_t seq;
     Ch c;
     std::array<Vh, 4> v;
+    Point cc;  // c's circumcentre (a cell keeps none)
     bool sliver;
     bool operator<(const Entry& o) const { return bad != o.bad ? bad < o.bad : seq > o.seq; }
   };
 
   void push_if_bad(const Tr& tr, Ch c) {
+    if (!tr.is_infinite(c)) push_if_bad(c, c->circumcenter());
+  }
+  void push_if_bad(Ch c, const Point& cc) {
     bool sliver;
-    const double bad = badness(tr, c, sliver);
-    if (bad > 0) queue_.push({bad, seq_++, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, sliver});
+    const double bad = badness(c, cc, sliver);
+    if (bad > 0) queue_.push({bad, seq_++, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, cc, sliver});
   }
   // The entry's cell is still in the triangulation.
   static bool alive(const Tr& tr, const Entry& e) {
@@ -133,10 +135,15 @@ private:
       if (e.c->vertex(i) != e.v[std::size_t(i)]) return false;
     return true;
   }
-  void push_around(const Tr& tr, Vh v) {
+  // The cells at v, just inserted: their centres are DELMESH's.
+  void push_around(const DelMesh& dm, Vh v) {
     cells_.clear();
-    tr.incident_cells(v, std::back_inserter(cells_));
-    for (Ch c : cells_) push_if_bad(tr, c);
+    dm.triangulation().incident_cells(v, std::back_inserter(cells_));
+    for (Ch c : cells_)
+      if (!dm.triangulation().is_infinite(c)) {
+        const Vec3 x = dm.new_cell_centre(c);
+        push_if_bad(c, Point(x[0], x[1], x[2]));
+      }
   }
 
   // A restricted facet with a vertex inserted off S (a cell or box point
@@ -203,7 +210,7 @@ private:
       const Entry e = queue_.top();
       queue_.pop();
       if (!alive(tr, e)) continue;
-      const Point cc = e.c->circumcenter();
+      const Point cc = e.cc;
       Tr::Locate_type lt;
       int li, lj;
       // --outside, c beyond B: the box is split near c's projection onto B
@@ -244,9 +251,9 @@ private:
           }
           ++box_points;
           any = true;
-          push_around(tr, dm.vertices().back());
+          push_around(dm, dm.vertices().back());
           // A split off the cell's circumball leaves it: it asks again.
-          if (alive(tr, e)) push_if_bad(tr, e.c);
+          if (alive(tr, e)) push_if_bad(e.c, e.cc);
           continue;
         }
       }
@@ -278,9 +285,9 @@ private:
         continue;
       }
       any = true;
-      push_around(tr, dm.vertices().back());
+      push_around(dm, dm.vertices().back());
       // So does one left by its encroached facet's surface centre.
-      if (alive(tr, e)) push_if_bad(tr, e.c);
+      if (alive(tr, e)) push_if_bad(e.c, e.cc);
     }
     scanned_ = dm.vertices().size();
     return any;
@@ -431,8 +438,8 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   r.quality = tet_quality(r.mesh);
   r.conformity = tet_conformity(r.mesh);
   r.boundary_topology = mesh_topology(r.mesh.points.size(), region1);
-  const VoxelBoundary vb = voxel_boundary(surface.samples());
-  r.boundary_match = match_components(r.boundary_topology, r.mesh.points, surface.samples(), vb, mesh_topology(vb));
+  r.boundary_match = match_components(r.boundary_topology, r.mesh.points, surface.samples(), r.surface.expected_boundary,
+                                      r.surface.expected);
   r.volume_points = cells.volume_points;
   r.facet_points = cells.facet_points;
   r.off_surface_facet_points = cells.off_surface_points;

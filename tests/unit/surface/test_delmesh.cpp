@@ -7,6 +7,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
+#include <map>
+#include <random>
+#include <vector>
+
 using namespace imgmesh;
 using namespace imgmesh::surface_detail;
 
@@ -122,6 +128,49 @@ TEST_CASE("FacetRefs: four 30-bit record numbers in 15 bytes, each read back as 
         for (int k = 0; k < 4; ++k) r.put(k, FacetPool::kUncomputed);  // nothing to release at destruction
       }
     }
-  // The cell stays 104 bytes (static_assert in delaunay_types.hpp).
-  CHECK(sizeof(Tds::Cell) == 104);
+  // The cell stays 80 bytes (static_assert in delaunay_types.hpp).
+  CHECK(sizeof(Tds::Cell) == 80);
+}
+
+TEST_CASE("circumcentres: the same bits from any insertion order; CellCentres gives them for kept and other cells") {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 10);
+  std::vector<Point> pts;
+  for (int k = 0; k < 300; ++k) pts.emplace_back(u(rng), u(rng), u(rng));
+  Tr a(pts.begin(), pts.end());
+  std::shuffle(pts.begin(), pts.end(), rng);
+  Tr b;
+  for (const Point& p : pts) b.insert(p);  // other cells' vertex orders
+  using Key = std::array<Point, 4>;
+  auto key = [](Ch c) {
+    Key k{c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point()};
+    std::sort(k.begin(), k.end());
+    return k;
+  };
+  std::map<Key, Point> centre_a;
+  for (auto c = a.finite_cells_begin(); c != a.finite_cells_end(); ++c) centre_a[key(c)] = c->circumcenter();
+  int same = 0, cells = 0, reordered = 0;
+  for (auto c = b.finite_cells_begin(); c != b.finite_cells_end(); ++c) {
+    ++cells;
+    const auto it = centre_a.find(key(c));
+    REQUIRE(it != centre_a.end());
+    const Point x = c->circumcenter();
+    same += x.x() == it->second.x() && x.y() == it->second.y() && x.z() == it->second.z();
+    reordered += key(c)[0] != c->vertex(0)->point();
+  }
+  CHECK(same == cells);
+  CHECK(reordered > 0);
+  // Kept: the cells at one vertex (more than the table's first 16 slots);
+  // every finite cell, kept or not, gets tr.dual's bits.
+  std::vector<Ch> kept;
+  b.incident_cells(b.finite_vertices_begin(), std::back_inserter(kept));
+  for (int k = 0; k < 3; ++k) b.incident_cells(std::next(b.finite_vertices_begin(), 5 * k + 1), std::back_inserter(kept));
+  std::sort(kept.begin(), kept.end());
+  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  CHECK(kept.size() > 16);
+  CellCentres centres;
+  centres.assign(b, kept);
+  int agree = 0;
+  for (auto c = b.finite_cells_begin(); c != b.finite_cells_end(); ++c) agree += centres(b, c) == vec(b.dual(c));
+  CHECK(agree == cells);
 }
