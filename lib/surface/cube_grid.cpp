@@ -76,6 +76,26 @@ void CubeGrid::label() {
   std::sort(comp.begin(), comp.end());
 }
 
+bool CubeGrid::inactive_box(const Vec3& lo, const Vec3& hi) const {
+  long c0[3], c1[3];
+  for (int i = 0; i < 3; ++i) {
+    if (!(lo[i] >= 0 && hi[i] <= this->hi[i] && lo[i] <= hi[i])) return false;  // NaN too
+    c0[i] = std::max(floor_long((lo[i] - 1e-9 * delta) / s[i]), 0L);
+    c1[i] = std::min(floor_long((hi[i] + 1e-9 * delta) / s[i]), n[i] - 2);
+  }
+  // Whole blocks of inactive cubes first, then the cubes of active blocks.
+  for (long bz = c0[2] / kBlock; bz <= c1[2] / kBlock; ++bz)
+    for (long by = c0[1] / kBlock; by <= c1[1] / kBlock; ++by)
+      for (long bx = c0[0] / kBlock; bx <= c1[0] / kBlock; ++bx) {
+        if (!block(bx, by, bz)) continue;
+        for (long z = std::max(c0[2], bz * kBlock); z <= std::min(c1[2], bz * kBlock + kBlock - 1); ++z)
+          for (long y = std::max(c0[1], by * kBlock); y <= std::min(c1[1], by * kBlock + kBlock - 1); ++y)
+            for (long x = std::max(c0[0], bx * kBlock); x <= std::min(c1[0], bx * kBlock + kBlock - 1); ++x)
+              if (active(x, y, z)) return false;
+      }
+  return true;
+}
+
 int CubeGrid::comp_at(const Vec3& q) const {
   long c[3];
   for (int i = 0; i < 3; ++i) c[i] = std::clamp(floor_long(q[i] / s[i]), 0L, n[i] - 2);

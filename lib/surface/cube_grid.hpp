@@ -52,6 +52,10 @@ struct CubeGrid {
     auto it = std::lower_bound(comp.begin(), comp.end(), k, [](const auto& e, long long v) { return e.first < v; });
     return it == comp.end() || it->first != k ? -1 : it->second;
   }
+  // f has no zero on the local box [lo, hi] (F1): the box lies inside the
+  // grid's box and every closed cube it meets is inactive (the box widened
+  // by 1e-9 delta, for rounding in the caller's corners and in q / s).
+  bool inactive_box(const Vec3& lo, const Vec3& hi) const;
   // Label active cubes by components joined through mixed faces (F4).
   void label();
   // Component of the active cube containing a local point (or a neighbour).

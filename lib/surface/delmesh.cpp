@@ -130,6 +130,7 @@ bool DelMesh::remove_vertex(Vh v) {
     --inserted_[origin];
     return false;
   }
+  centres_.assign(tr_, cells_buf_);
   compute_new_cells();
   for (Vh w : adj)
     if (!tr_.is_infinite(w)) {
@@ -203,11 +204,12 @@ void DelMesh::refine() {
   }
 }
 
-// The facets of the new cells cells_buf_, computed (and so queued) in the
-// order of their vertex ids, not CGAL's storage order: vertex removal makes
-// that depend on addresses, and the queue's ties would then differ from run
-// to run.
-void DelMesh::compute_new_cells() {
+// The facets of the new cells cells_buf_ (their centres in centres_),
+// computed (and so queued) in the order of their vertex ids, not CGAL's
+// storage order: vertex removal makes that depend on addresses, and the
+// queue's ties would then differ from run to run. `missed`: a new vertex
+// whose Voronoi cell misses S (cell_misses_surface).
+void DelMesh::compute_new_cells(Vh missed) {
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i) c->facet.clear(i);
   // The sorted ids + 1 (the infinite vertex's -1 becomes 0), the first two
@@ -228,9 +230,76 @@ void DelMesh::compute_new_cells() {
       order.push_back({std::uint64_t(u(0)) << 32 | u(1), u(2), i, c});
     }
   std::sort(order.begin(), order.end(), [](const Key& a, const Key& b) { return a.ab != b.ab ? a.ab < b.ab : a.c < b.c; });
-  centres_.assign(tr_, cells_buf_);
-  for (const Key& k : order)
-    if (!k.cell->facet.computed(k.i)) compute_facet(k.cell, k.i);
+  // The facets at `missed` (its id, the largest, is their third): their
+  // Voronoi edges are edges of its cell, which misses S.
+  const std::uint32_t at_missed = missed == Vh() ? 0 : std::uint32_t(missed->info().id + 1);
+  for (const Key& k : order) {
+    if (k.cell->facet.computed(k.i)) continue;
+    if (k.c != at_missed) {
+      compute_facet(k.cell, k.i);
+      continue;
+    }
+    FacetInfo fi;
+    fi.state = kComputed;
+    if (opt_.compare_missed_cells && (edge_surface_of(tr_, sampler_, k.cell, k.i, centres_).state & kRestricted))
+      throw Error("a point's Voronoi cell proved to miss S has a restricted facet");
+    fi.computed = ++computed_;
+    const Ch n = k.cell->neighbor(k.i);
+    FacetRefs::set(k.cell->facet, k.i, n->facet, n->index(k.cell), fi);
+  }
+}
+
+// implicit2tet's point v off S (thesis 9.1): does its Voronoi cell
+// provably miss S? Yes when f has no zero on the box of the cell's
+// vertices (the circumcentres of the cells at v, all finite), inside the
+// grid's box: each part of it lies beyond a face of the cell, meets only
+// inactive cubes (F1) or has an enclosure of f that excludes 0, the box
+// halved across its longest side where none holds (at most kHalvings deep,
+// kEnclosures in all). Then
+// every Voronoi edge and facet of the cell misses S: v's facets are not
+// restricted (EdgeSurface would find no sign change), its edges' facets
+// hold no FacetCycle (every sample takes f's one sign there), and the
+// parts its neighbours' cells lost to it held no piece of S, so their
+// HandleDetection answers stand.
+bool DelMesh::cell_misses_surface(Vh v) {
+  if (on_surface(v->info().origin) || !opt_.prove_missed_cells) return false;
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (Ch c : cells_buf_) {
+    if (tr_.is_infinite(c)) return false;
+    const Vec3 x = centres_(tr_, c);
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], x[i]);
+      hi[i] = std::max(hi[i], x[i]);
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+    if (!(lo[i] >= 0 && hi[i] <= grid_.hi[i])) return false;
+  voronoi_cell(tr_, v, cell_faces_);
+  // [a, b] lies beyond face e (clear of rounding): the corner least far along e.d.
+  auto beyond = [&](const Vec3& a, const Vec3& b) {
+    for (const HalfSpace& e : cell_faces_) {
+      double m = 0;
+      for (int i = 0; i < 3; ++i) m += e.d[i] * (e.d[i] >= 0 ? a[i] : b[i]);
+      if (m - e.c > 1e-9 * grid_.delta * norm(e.d)) return true;
+    }
+    return false;
+  };
+  constexpr int kHalvings = 9, kEnclosures = 1024;
+  int enclosures = 0;
+  auto no_zero = [&](auto&& self, const Vec3& a, const Vec3& b, int depth) -> bool {
+    if (depth > 0 && beyond(a, b)) return true;
+    if (grid_.inactive_box(a, b)) return true;
+    double flo, fhi;
+    if (++enclosures > kEnclosures || !sampler_.range(a, b, flo, fhi)) return false;
+    if (flo > 0 || fhi < 0) return true;
+    if (depth == kHalvings) return false;
+    const Vec3 d = sub(b, a);
+    const int k = d[0] >= d[1] && d[0] >= d[2] ? 0 : d[1] >= d[2] ? 1 : 2;
+    Vec3 m1 = b, m0 = a;
+    m1[k] = m0[k] = (a[k] + b[k]) / 2;
+    return self(self, a, m1, depth + 1) && self(self, m0, b, depth + 1);
+  };
+  return no_zero(no_zero, lo, hi, 0);
 }
 
 // Remember the finite vertices of facet (c, i) if it is restricted.
@@ -251,12 +320,18 @@ void DelMesh::mark_restricted(Ch c, int i) {
 void DelMesh::after_insertion(Vh v) {
   cells_buf_.clear();
   tr_.incident_cells(v, std::back_inserter(cells_buf_));
-  compute_new_cells();
+  centres_.assign(tr_, cells_buf_);
+  const bool missed = cell_misses_surface(v);
+  compute_new_cells(missed ? v : Vh());
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i) mark_restricted(c, i);
   enqueue_vertex(v);
   std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info().id < b->info().id; });
   for (Vh w : touched_) enqueue_vertex(w);
+  if (missed) {
+    ++cells_missed_;
+    return;
+  }
   dirty_.add(v->info().id);
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i)

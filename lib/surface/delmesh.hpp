@@ -81,6 +81,8 @@ public:
   const SurfaceSampler& sampler() const { return sampler_; }
   const std::vector<Vh>& vertices() const { return vertices_; }  // by id; null where deleted
   long long inserted(Origin origin) const { return inserted_[origin]; }
+  // Points off S whose Voronoi cell was proved to miss S when inserted.
+  long long cells_missed() const { return cells_missed_; }
 
 private:
   using Clock = std::chrono::steady_clock;
@@ -104,7 +106,8 @@ private:
   void enqueue_facet(Ch c, int i);
   void enqueue_vertex(Vh v);
   void after_insertion(Vh v);
-  void compute_new_cells();
+  void compute_new_cells(Vh missed = Vh());
+  bool cell_misses_surface(Vh v);
   void add_vertex(Vh v, Origin origin, const Vec3& x);
   bool remove_vertex(Vh v);
   bool delete_and_restore(Vh v);
@@ -161,6 +164,7 @@ private:
   // be deleted with no QUALITY/SMOOTH entry pointing at them.
   bool topology_only_ = false;
   long long seeds_deleted_ = 0;
+  long long cells_missed_ = 0;
   std::vector<int> comp_vertices_;  // vertices per S component
   long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
   long long facet_cycle_skipped_ = 0;  // edges the last FacetCycle pass could not rasterise
@@ -174,6 +178,7 @@ private:
   std::vector<Facet> zone_facets_;
   std::vector<Ch> zone_cells_, cells_buf_;
   CellCentres centres_;  // of the cells the last insertion or removal made
+  std::vector<HalfSpace> cell_faces_;  // cell_misses_surface's scratch
   std::vector<Vh> touched_;
   std::uint32_t stamp_ = 0;
   std::function<bool(DelMesh&)> after_certificate_;

@@ -37,6 +37,13 @@ struct RestrictedDelaunayOptions {
   // Tests only: FacetCycle walks every facet both by spans and in full and
   // throws Error where their runs differ (the same mesh otherwise).
   bool compare_facet_walks = false;
+  // false (tests only): implicit2tet's points off S go through EdgeSurface,
+  // FacetCycle and HandleDetection even where their Voronoi cell provably
+  // misses S (the same mesh either way). compare_missed_cells (tests only):
+  // EdgeSurface runs on the facets of a point so proved all the same, and
+  // throws Error if one is restricted.
+  bool prove_missed_cells = true;
+  bool compare_missed_cells = false;
   bool seed_deletion = false;   // SAMPLETOPOLOGY as published: TOPOLOGY alone, then delete the seeds (7.6.2)
   // The certificate's repairs: at most this many rounds of HandleDetection
   // or the fallback (a counted last resort: TOPOLOGY should leave nothing).

@@ -445,6 +445,7 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   r.off_surface_facet_points = cells.off_surface_points;
   r.refused = cells.refused;
   r.sliver_points = cells.sliver_points;
+  r.proved_off_surface = dm.cells_missed();
   r.sliver_angle = opt.sliver_angle;
   r.box_points = cells.box_points;
   r.box_refused = cells.box_refused;
@@ -497,6 +498,7 @@ Json TetRefinementResult::to_json() const {
   pts["off_surface_facet"] = off_surface_facet_points;
   pts["sliver"] = sliver_points;
   pts["refused"] = refused;
+  pts["proved_off_surface"] = proved_off_surface;
   j["sliver_angle_bound"] = sliver_angle;
   j["slivers_left"] = slivers_left;
   pts["box"] = box_points;

@@ -57,6 +57,9 @@ struct TetRefinementResult {
   bool boundary_is_surface = false;       // boundary faces = restricted facets
   long long volume_points = 0, facet_points = 0, off_surface_facet_points = 0, refused = 0;
   long long sliver_points = 0;  // circumcentres of slivers inserted
+  // Points off S whose Voronoi cell was proved to miss S when they went in:
+  // the surface steps skipped them (DelMesh::cell_misses_surface).
+  long long proved_off_surface = 0;
   long long slivers_left = 0;   // output tetrahedra with a dihedral angle below sliver_angle
   bool outside = false;
   long long box_points = 0, box_refused = 0;  // box splits inserted, refused (insertion floor)

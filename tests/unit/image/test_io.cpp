@@ -1,6 +1,8 @@
 #include "image/io.hpp"
 #include "util/error.hpp"
 
+#include "scratch_dir.hpp"
+
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <fstream>
@@ -11,13 +13,7 @@
 using namespace imgmesh;
 
 namespace {
-std::string temp_dir() {
-  static std::string dir = [] {
-    char templ[] = "imgmesh-io-XXXXXX";  // in the test's working folder
-    return std::string(mkdtemp(templ));
-  }();
-  return dir;
-}
+std::string temp_dir() { return test::scratch_dir(); }
 
 BinaryImage sample(int dimension) {
   Geometry g;

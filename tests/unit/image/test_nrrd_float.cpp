@@ -4,6 +4,8 @@
 #include "image/nrrd_float.hpp"
 #include "util/error.hpp"
 
+#include "scratch_dir.hpp"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
@@ -17,13 +19,7 @@
 using namespace imgmesh;
 
 namespace {
-std::string temp_path(const std::string& name) {
-  static std::string dir = [] {
-    char templ[] = "imgmesh-nrrd-XXXXXX";  // in the test's working folder
-    return std::string(mkdtemp(templ));
-  }();
-  return dir + "/" + name;
-}
+std::string temp_path(const std::string& name) { return test::scratch_dir() + "/" + name; }
 
 FloatImage read_without_itk(const std::string& path, std::map<std::string, std::string>* keys = nullptr) {
   std::ifstream in(path, std::ios::binary);

@@ -1,6 +1,8 @@
 #include "mesh/surface_io.hpp"
 #include "util/error.hpp"
 
+#include "scratch_dir.hpp"
+
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <array>
@@ -15,13 +17,7 @@
 using namespace imgmesh;
 
 namespace {
-std::string temp_dir() {
-  static std::string dir = [] {
-    char templ[] = "imgmesh-mesh-XXXXXX";  // in the test's working folder
-    return std::string(mkdtemp(templ));
-  }();
-  return dir;
-}
+std::string temp_dir() { return test::scratch_dir(); }
 // A tetrahedron, outward oriented, with non-round coordinates.
 SurfaceMesh tetra() {
   SurfaceMesh m;

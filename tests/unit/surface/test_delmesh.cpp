@@ -174,3 +174,26 @@ TEST_CASE("circumcentres: the same bits from any insertion order; CellCentres gi
   for (auto c = b.finite_cells_begin(); c != b.finite_cells_end(); ++c) agree += centres(b, c) == vec(b.dual(c));
   CHECK(agree == cells);
 }
+
+TEST_CASE("points off S: a Voronoi cell proved to miss S skips EdgeSurface, every facet still current") {
+  const Vec3 c{12.3, 12.1, 11.7};
+  const double R = 8.2;
+  FunctionSurface s(test::box(25, 25, 25), [&](const Vec3& p) { return test::sphere_f(p, c, R); });
+  DelMesh m(s, RestrictedDelaunayOptions{});
+  m.prepare();
+  m.seeds();
+  m.refine();
+  // Volume points on a lattice inside S, from its centre to near S, as
+  // implicit2tet inserts its circumcentres (no REFINE between them).
+  int inserted = 0;
+  for (double z = -R + 0.35; z < R; z += 1.3)
+    for (double y = -R + 0.35; y < R; y += 1.3)
+      for (double x = -R + 0.35; x < R; x += 1.3)
+        if (std::sqrt(x * x + y * y + z * z) < R - 0.1) inserted += m.insert(Vec3{c[0] + x, c[1] + y, c[2] + z}, kVolume);
+  CHECK(inserted > 500);
+  // Cells deep inside are proved (the inner fifth of the ball's volume
+  // lies over 3.4 voxels from S); those reaching S are not.
+  CHECK(m.cells_missed() > inserted / 10);
+  CHECK(m.cells_missed() < inserted);
+  CHECK(stale_facets(m) == 0);  // (break: every cell "proved" -> restricted facets missed)
+}

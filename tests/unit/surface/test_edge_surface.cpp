@@ -103,3 +103,31 @@ TEST_CASE("SurfaceSampler::bisect: a root between ends of opposite signs; a pair
   CHECK(x == keep);
   CHECK_FALSE(f.bisect(in, in, f.value(in), x));
 }
+
+TEST_CASE("inactive_box: true only for boxes inside the grid that meet no active cube") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  FunctionSurface s(test::box(21, 21, 21), [&](const Vec3& p) { return test::sphere_f(p, c, 6.3); });
+  CubeGrid grid(s.samples());
+  CHECK(grid.inactive_box(Vec3{9, 9, 9}, Vec3{11.5, 10.5, 11}));  // deep inside
+  CHECK(grid.inactive_box(Vec3{0, 0, 0}, Vec3{2.5, 2.5, 2.5}));   // outside S, in a corner of the grid
+  CHECK(!grid.inactive_box(Vec3{9, 9, 9}, Vec3{16.9, 10, 10}));    // reaches S (x = 16.6)
+  CHECK(!grid.inactive_box(Vec3{-0.5, 1, 1}, Vec3{2, 2, 2}));       // beyond the grid
+  CHECK(!grid.inactive_box(Vec3{1, 1, 1}, Vec3{2, 2, 20.5}));
+  // Every cube met by the box counts, down to one touched at a corner: the
+  // first active cube along the x axis through the centre, and a box ending
+  // on its low face (to rounding) or 1e-6 short of it.
+  long x0 = 11;
+  while (!grid.active(x0, 9, 10)) ++x0;
+  const double face = double(x0);
+  CHECK(!grid.inactive_box(Vec3{11, 9.2, 10.2}, Vec3{face, 9.8, 10.8}));
+  CHECK(!grid.inactive_box(Vec3{11, 9.2, 10.2}, Vec3{face - 1e-12, 9.8, 10.8}));
+  CHECK(grid.inactive_box(Vec3{11, 9.2, 10.2}, Vec3{face - 1e-6, 9.8, 10.8}));
+  // Each active cube, as a point box at its centre: refused.
+  for (long z = 0; z < 20; ++z)
+    for (long y = 0; y < 20; ++y)
+      for (long x = 0; x < 20; ++x)
+        if (grid.active(x, y, z)) {
+          const Vec3 m{x + 0.5, y + 0.5, z + 0.5};
+          REQUIRE(!grid.inactive_box(m, m));
+        }
+}

@@ -1,6 +1,8 @@
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
+#include "scratch_dir.hpp"
+
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -12,9 +14,9 @@
 
 using namespace imgmesh;
 
-static std::string make_dir() {  // in the test's working folder
-  char templ[] = "imgmesh-test-XXXXXX";
-  REQUIRE(mkdtemp(templ) != nullptr);
+static std::string make_dir() {  // a folder of its own in the scratch folder
+  std::string templ = test::scratch_dir() + "/d-XXXXXX";
+  REQUIRE(mkdtemp(templ.data()) != nullptr);
   return templ;
 }
 TEST_CASE("AtomicOutput leaves nothing behind unless committed") {

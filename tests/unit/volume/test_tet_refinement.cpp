@@ -399,3 +399,23 @@ TEST_CASE("--max-cell-points stops cell refinement as a failed guarantee") {
   o.max_cell_points = 0;
   CHECK_THROWS_AS(tetrahedral_mesh(s, o), UsageError);
 }
+
+TEST_CASE("points off S whose Voronoi cell misses S skip the surface steps: the same tetrahedra without the proof") {
+  // A ball large enough for cells far from S, refined to a size bound.
+  const Vec3 c{14.3, 13.7, 14.1};
+  FunctionSurface s(grid(29, 29, 29), [&](const Vec3& p) { return sphere(p, c, 10.2); });
+  TetRefinementOptions o;
+  o.cell_size = 2.0;
+  o.surface.compare_missed_cells = true;  // each proof checked by EdgeSurface
+  const auto proved = tetrahedral_mesh(s, o);
+  o.surface.prove_missed_cells = false;
+  const auto plain = tetrahedral_mesh(s, o);
+  check_tets(s, proved, o.cell_ratio);
+  CHECK(plain.proved_off_surface == 0);
+  // Most of the inside's points are proved (not all: cells near S).
+  CHECK(proved.proved_off_surface > proved.volume_points / 4);
+  CHECK(proved.proved_off_surface < proved.volume_points + proved.box_points);
+  CHECK(proved.mesh.points == plain.mesh.points);
+  CHECK(proved.mesh.tets == plain.mesh.tets);
+  CHECK(proved.mesh.triangles == plain.mesh.triangles);
+}
