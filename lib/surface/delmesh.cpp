@@ -325,7 +325,9 @@ void DelMesh::after_insertion(Vh v) {
   compute_new_cells(missed ? v : Vh());
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i) mark_restricted(c, i);
-  enqueue_vertex(v);
+  // A vertex whose cell misses S never has a restricted facet (the cell
+  // only shrinks): TopoDisk and SMOOTH would pass it, now and later.
+  if (!missed) enqueue_vertex(v);
   std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info().id < b->info().id; });
   for (Vh w : touched_) enqueue_vertex(w);
   if (missed) {

@@ -77,6 +77,8 @@ public:
   // A finite cell's circumcentre, kept for the cells the last insertion or
   // removal made (implicit2tet's quality test on them), else computed.
   Vec3 new_cell_centre(Ch c) const { return centres_(tr_, c); }
+  // The cells at the vertex the last insertion made (incident_cells' order).
+  const std::vector<Ch>& new_cells() const { return cells_buf_; }
   const CubeGrid& grid() const { return grid_; }
   const SurfaceSampler& sampler() const { return sampler_; }
   const std::vector<Vh>& vertices() const { return vertices_; }  // by id; null where deleted

@@ -135,11 +135,9 @@ private:
       if (e.c->vertex(i) != e.v[std::size_t(i)]) return false;
     return true;
   }
-  // The cells at v, just inserted: their centres are DELMESH's.
-  void push_around(const DelMesh& dm, Vh v) {
-    cells_.clear();
-    dm.triangulation().incident_cells(v, std::back_inserter(cells_));
-    for (Ch c : cells_)
+  // The cells at the vertex just inserted, and their centres: DELMESH's.
+  void push_around(const DelMesh& dm) {
+    for (Ch c : dm.new_cells())
       if (!dm.triangulation().is_infinite(c)) {
         const Vec3 x = dm.new_cell_centre(c);
         push_if_bad(c, Point(x[0], x[1], x[2]));
@@ -251,7 +249,7 @@ private:
           }
           ++box_points;
           any = true;
-          push_around(dm, dm.vertices().back());
+          push_around(dm);
           // A split off the cell's circumball leaves it: it asks again.
           if (alive(tr, e)) push_if_bad(e.c, e.cc);
           continue;
@@ -285,7 +283,7 @@ private:
         continue;
       }
       any = true;
-      push_around(dm, dm.vertices().back());
+      push_around(dm);
       // So does one left by its encroached facet's surface centre.
       if (alive(tr, e)) push_if_bad(e.c, e.cc);
     }
