@@ -255,12 +255,11 @@ void DelMesh::compute_new_cells(Vh missed) {
 // grid's box: each part of it lies beyond a face of the cell, meets only
 // inactive cubes (F1) or has an enclosure of f that excludes 0, the box
 // halved across its longest side where none holds (at most kHalvings deep,
-// kEnclosures in all). Then
-// every Voronoi edge and facet of the cell misses S: v's facets are not
-// restricted (EdgeSurface would find no sign change), its edges' facets
-// hold no FacetCycle (every sample takes f's one sign there), and the
-// parts its neighbours' cells lost to it held no piece of S, so their
-// HandleDetection answers stand.
+// kEnclosures in all). Then every Voronoi edge and facet of the cell misses
+// S: v's facets are not restricted (EdgeSurface would find no sign
+// change), its edges' facets hold no FacetCycle (every sample takes f's one
+// sign there), and the parts its neighbours' cells lost to it held no
+// piece of S, so their HandleDetection answers stand.
 bool DelMesh::cell_misses_surface(Vh v) {
   if (on_surface(v->info().origin) || !opt_.prove_missed_cells) return false;
   Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
@@ -326,7 +325,8 @@ void DelMesh::after_insertion(Vh v) {
   for (Ch c : cells_buf_)
     for (int i = 0; i < 4; ++i) mark_restricted(c, i);
   // A vertex whose cell misses S never has a restricted facet (the cell
-  // only shrinks): TopoDisk and SMOOTH would pass it, now and later.
+  // only shrinks; a deleted neighbour re-queues it, requeue_grown): TopoDisk
+  // and SMOOTH would pass it.
   if (!missed) enqueue_vertex(v);
   std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info().id < b->info().id; });
   for (Vh w : touched_) enqueue_vertex(w);
