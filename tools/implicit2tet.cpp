@@ -72,10 +72,13 @@ int main(int argc, char** argv) {
     if (tool.progress()) so.progress = [&](const std::string& msg) { tool.report_progress(msg); };
 
     tool.report_progress("reading " + in);
-    const PartitionOfUnity pu = read_implicit(in);
+    // f on g clamped far from S: the same S and signs, a fraction of the memory.
+    const PartitionOfUnity pu = read_implicit(in, [&](const Geometry& grid) {
+      const Vec3& h = grid.spacing;
+      surface_options.resolve(std::min({h[0], h[1], h[2]}));
+      return PartitionOfUnity::clamp_for(grid, so.max_distance);
+    });
     const PartitionOfUnitySurface surface(pu);
-    const Vec3& h = surface.samples().spacing;
-    surface_options.resolve(std::min({h[0], h[1], h[2]}));
     const TetRefinementResult res = tetrahedral_mesh(surface, opt);
     write_tet_mesh(out, res.mesh, wopt);
 

@@ -82,7 +82,7 @@ Json PointEvaluation::to_json() const {
 // thread that gets less CPU does fewer blocks instead of holding up the end.
 RandomEvaluation evaluate_random(const PartitionOfUnity& f, std::uint64_t n, std::uint64_t seed, bool gradient,
                                  unsigned threads) {
-  const FloatImage& g = f.samples();
+  const Geometry& g = f.samples();
   const double ext[3] = {double(g.size[0] - 1), double(g.size[1] - 1), double(g.size[2] - 1)};
   constexpr std::uint64_t kBlock = 1 << 16;
   const std::uint64_t blocks = (n + kBlock - 1) / kBlock;

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -99,7 +100,7 @@ Json ImplicitReport::to_json() const {
   return j;
 }
 
-PartitionOfUnity read_implicit(const std::string& path) {
+PartitionOfUnity read_implicit(const std::string& path, const std::function<float(const Geometry&)>& clamp) {
   // Read without ITK (image/nrrd_float.hpp); "-" is standard input.
   std::ifstream file;
   std::istringstream piped;
@@ -134,7 +135,8 @@ PartitionOfUnity read_implicit(const std::string& path) {
   }
   FloatImage g = read_nrrd_float_samples(header, data, path);
   try {
-    return PartitionOfUnity(std::move(g), d, 0);
+    const float t = clamp ? clamp(g.geometry()) : std::numeric_limits<float>::infinity();
+    return PartitionOfUnity(std::move(g), d, 0, t);
   } catch (const Error& e) {
     throw Error(e.what(), path);
   }

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <string>
 
 namespace imgmesh {
@@ -55,6 +56,8 @@ inline constexpr const char* kImplicitVersion = "1";
 void write_implicit(const std::string& path, const PartitionOfUnity& f);
 // Rejects anything that is not a pu-implicit file of a known version with a
 // clear Error (wrong kind, missing or bad d, zero or NaN samples, 2D...).
-PartitionOfUnity read_implicit(const std::string& path);
+// clamp: given the file's grid, the clamp of g's samples (the meshers:
+// PartitionOfUnity::clamp_for); none: f itself.
+PartitionOfUnity read_implicit(const std::string& path, const std::function<float(const Geometry&)>& clamp = {});
 
 } // namespace imgmesh

@@ -51,10 +51,6 @@
 #include <string>
 #include <vector>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 namespace imgmesh {
 
 double pu_h(double t, double* dh) {
@@ -142,46 +138,22 @@ Vec3 PartitionOfUnity::weight_constant(const FloatImage& g, double* g_min, doubl
   return d;
 }
 
-namespace {
-
-// Random evaluations touch the sample array all over; with 4 KiB pages
-// nearly every one misses the TLB. Move large arrays into memory that the
-// kernel may back with transparent huge pages (a hint; no effect elsewhere).
-void prefer_huge_pages(std::vector<float>& data) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  const std::size_t bytes = data.size() * sizeof(float);
-  if (bytes < (std::size_t(8) << 20)) return;
-  std::vector<float> fresh;
-  fresh.reserve(data.size());  // untouched pages: the hint applies when they fault in
-  const std::uintptr_t huge = std::uintptr_t(2) << 20;
-  const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(fresh.data()) + huge - 1) & ~(huge - 1);
-  const std::uintptr_t end = (reinterpret_cast<std::uintptr_t>(fresh.data()) + bytes) & ~(huge - 1);
-  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-  fresh.assign(data.begin(), data.end());
-  data.swap(fresh);
-#else
-  (void)data;
-#endif
-}
-
-} // namespace
-
-PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads) : g_(std::move(g)), d_(d) {
-  if (g_.dimension != 3) throw Error("the implicit function needs a 3D image");
+PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads, float clamp, SampleGrid::Storage storage)
+    : d_(d) {
+  if (g.dimension != 3) throw Error("the implicit function needs a 3D image");
   for (int i = 0; i < 3; ++i) {
-    if (g_.size[i] < 2)
+    if (g.size[i] < 2)
       throw Error("the implicit function needs at least 2 voxels on every axis (axis " + std::to_string(i) +
-                  " has " + std::to_string(g_.size[i]) + ")");
-    if (!(g_.spacing[i] > 0) || !std::isfinite(g_.spacing[i]))
+                  " has " + std::to_string(g.size[i]) + ")");
+    if (!(g.spacing[i] > 0) || !std::isfinite(g.spacing[i]))
       throw Error("voxel spacing must be positive and finite");
   }
-  if (g_.data.size() != g_.count()) throw Error("internal: sample data does not match the grid size");
-  if (g_.count() > (std::size_t(1) << 40)) throw Error("grid too large");
-  prefer_huge_pages(g_.data);
-  for (float x : g_.data)
+  if (g.data.size() != g.count()) throw Error("internal: sample data does not match the grid size");
+  if (g.count() > (std::size_t(1) << 40)) throw Error("grid too large");
+  for (float x : g.data)
     if (!std::isfinite(x) || x == 0)
       throw Error("the samples of g must be finite and nonzero (g is a signed distance from voxel centres)");
-  const Vec3 bound = weight_constant(g_, &g_min_, &l_max_, threads);
+  const Vec3 bound = weight_constant(g, &g_min_, &l_max_, threads);
   const bool given = d_[0] > 0 || d_[1] > 0 || d_[2] > 0;
   if (!given) d_ = bound;
   for (int i = 0; i < 3; ++i) {
@@ -190,6 +162,13 @@ PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads) : g_(
     if (d_[i] > bound[i] * (1 + 1e-6))
       throw Error("the weight constant d (" + std::to_string(d_[i]) + " on axis " + std::to_string(i) +
                   ") exceeds min(delta/5, g_min/(2 L_max)) = " + std::to_string(bound[i]));
+  }
+  if (clamp < clamp_for(g, 0)) throw Error("internal: the samples' clamp is under the stencil's diameter");
+  g_ = SampleGrid(std::move(g), clamp, storage);
+  stride_[0] = 1;
+  stride_[1] = long(g_.size[0]);
+  stride_[2] = long(g_.size[0]) * long(g_.size[1]);
+  for (int i = 0; i < 3; ++i) {
     delta_[i] = g_.spacing[i];
     inv_delta_[i] = 1 / delta_[i];
     inv_2d_[i] = 1 / (2 * d_[i]);
@@ -198,9 +177,13 @@ PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads) : g_(
   // continuous index = diag(1/spacing) D^T (p - origin) (D orthonormal)
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) to_index_[i * 3 + j] = g_.direction[j * 3 + i] / g_.spacing[i];
-  stride_[0] = 1;
-  stride_[1] = long(g_.size[0]);
-  stride_[2] = long(g_.size[0]) * long(g_.size[1]);
+}
+
+float PartitionOfUnity::clamp_for(const Geometry& grid, double e) {
+  const Vec3& h = grid.spacing;
+  const double diameter = 2 * std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+  const double t = (diameter + 2 * std::max(e, 0.0)) * (1 + 1e-6);
+  return t < double(std::numeric_limits<float>::max()) ? float(t) : std::numeric_limits<float>::infinity();
 }
 
 bool PartitionOfUnity::in_domain(const Vec3& p) const {
@@ -216,7 +199,7 @@ template <bool Gradient> void PartitionOfUnity::locate(const Vec3& p, Stencil& s
                        to_index_[3] * u0 + to_index_[4] * u1 + to_index_[5] * u2,
                        to_index_[6] * u0 + to_index_[7] * u1 + to_index_[8] * u2};
   if (std::isnan(q[0]) || std::isnan(q[1]) || std::isnan(q[2])) {
-    s.base = nullptr;
+    s.n[0] = s.n[1] = s.n[2] = 0;
     return;
   }
   long first[3];
@@ -268,15 +251,55 @@ template <bool Gradient> void PartitionOfUnity::locate(const Vec3& p, Stencil& s
       }
     }
   }
-  s.base = g_.data.data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
+  if (g_.dense()) {  // row[0] only: rows at strides from it
+    s.row[0] = g_.dense_data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
+    return;
+  }
+  // Blocks: the rows of samples: per axis y, z each sample's block offset and local
+  // part, then one table lookup a row; a row that straddles two blocks
+  // along x is copied.
+  constexpr long kB = SampleGrid::kB, kMask = SampleGrid::kMask;
+  constexpr int kShift = SampleGrid::kShift;
+  const long x0 = first[0], lx = x0 & kMask, bx = x0 >> kShift;
+  const long nb0 = g_.nb(0), nb01 = g_.nb(0) * g_.nb(1);
+  const long ly = first[1] & kMask, lz = first[2] & kMask;
+  if (lx + s.n[0] <= kB && ly + s.n[1] <= kB && lz + s.n[2] <= kB) {  // one block
+    const float* base = g_.block_at(bx + nb0 * (first[1] >> kShift) + nb01 * (first[2] >> kShift)) + lx + kB * ly + kB * kB * lz;
+    for (int l = 0; l < s.n[2]; ++l)
+      for (int j = 0; j < s.n[1]; ++j) s.row[l * 3 + j] = base + kB * j + kB * kB * l;
+    return;
+  }
+  long yo[3], yl[3], zo[3], zl[3];
+  for (int j = 0; j < s.n[1]; ++j) {
+    const long y = first[1] + j;
+    yo[j] = nb0 * (y >> kShift);
+    yl[j] = kB * (y & kMask);
+  }
+  for (int l = 0; l < s.n[2]; ++l) {
+    const long z = first[2] + l;
+    zo[l] = nb01 * (z >> kShift);
+    zl[l] = kB * kB * (z & kMask);
+  }
+  if (lx + s.n[0] <= kB) {
+    for (int l = 0; l < s.n[2]; ++l)
+      for (int j = 0; j < s.n[1]; ++j) s.row[l * 3 + j] = g_.block_at(bx + yo[j] + zo[l]) + lx + yl[j] + zl[l];
+    return;
+  }
+  for (int l = 0; l < s.n[2]; ++l)
+    for (int j = 0; j < s.n[1]; ++j) {
+      const float* lo = g_.block_at(bx + yo[j] + zo[l]) + yl[j] + zl[l];
+      const float* hi = g_.block_at(bx + 1 + yo[j] + zo[l]) + yl[j] + zl[l];
+      float* r = s.buf[l * 3 + j];
+      for (int i = 0; i < s.n[0]; ++i) r[i] = lx + i < kB ? lo[lx + i] : hi[lx + i - kB];
+      s.row[l * 3 + j] = r;
+    }
 }
 
 // Start loading the rows of samples the stencil uses.
 void PartitionOfUnity::prefetch(const Stencil& s) const {
-  if (!s.base) return;
   for (int l = 0; l < s.n[2]; ++l)
     for (int j = 0; j < s.n[1]; ++j) {
-      const float* row = s.base + j * stride_[1] + l * stride_[2];
+      const float* row = g_.dense() ? s.row[0] + j * stride_[1] + l * stride_[2] : s.row[l * 3 + j];
       __builtin_prefetch(row);
       __builtin_prefetch(row + s.n[0] - 1);
     }
@@ -287,14 +310,14 @@ namespace {
 // f = sum_{i,j,l} g c[0][i] c[1][j] c[2][l] over N0 x N1 x N2 samples,
 // contracted axis by axis; each gradient component (grid axes) swaps one
 // axis's c for dc. Fixed sizes: fully unrolled.
-template <bool Gradient, int N0, int N1, int N2>
-double contract(const float* base, long s1, long s2, const double (*c)[3], const double (*dc)[3], double* gs) {
+template <bool Gradient, int N0, int N1, int N2, class Rows>
+double contract(Rows rows, const double (*c)[3], const double (*dc)[3], double* gs) {
   double f = 0;
   if (Gradient) gs[0] = gs[1] = gs[2] = 0;
   for (int l = 0; l < N2; ++l) {
     double fy = 0, fyx = 0, fyy = 0;
     for (int j = 0; j < N1; ++j) {
-      const float* row = base + j * s1 + l * s2;
+      const float* row = rows(j, l);
       double fx = 0, fxx = 0;
       for (int i = 0; i < N0; ++i) {
         fx += c[0][i] * double(row[i]);
@@ -319,22 +342,30 @@ double contract(const float* base, long s1, long s2, const double (*c)[3], const
 } // namespace
 
 template <bool Gradient> double PartitionOfUnity::combine(const Stencil& s, Vec3* gradient) const {
-  if (!s.base) {
+  if (s.n[0] == 0) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     if (Gradient) *gradient = {nan, nan, nan};
     return nan;
   }
-  const long s1 = stride_[1], s2 = stride_[2];
   double f, gs[3];
-  switch ((s.n[0] - 2) | (s.n[1] - 2) << 1 | (s.n[2] - 2) << 2) {
-    case 0: f = contract<Gradient, 2, 2, 2>(s.base, s1, s2, s.c, s.dc, gs); break;
-    case 1: f = contract<Gradient, 3, 2, 2>(s.base, s1, s2, s.c, s.dc, gs); break;
-    case 2: f = contract<Gradient, 2, 3, 2>(s.base, s1, s2, s.c, s.dc, gs); break;
-    case 3: f = contract<Gradient, 3, 3, 2>(s.base, s1, s2, s.c, s.dc, gs); break;
-    case 4: f = contract<Gradient, 2, 2, 3>(s.base, s1, s2, s.c, s.dc, gs); break;
-    case 5: f = contract<Gradient, 3, 2, 3>(s.base, s1, s2, s.c, s.dc, gs); break;
-    case 6: f = contract<Gradient, 2, 3, 3>(s.base, s1, s2, s.c, s.dc, gs); break;
-    default: f = contract<Gradient, 3, 3, 3>(s.base, s1, s2, s.c, s.dc, gs); break;
+  auto shape = [&](auto rows) {
+    switch ((s.n[0] - 2) | (s.n[1] - 2) << 1 | (s.n[2] - 2) << 2) {
+      case 0: return contract<Gradient, 2, 2, 2>(rows, s.c, s.dc, gs);
+      case 1: return contract<Gradient, 3, 2, 2>(rows, s.c, s.dc, gs);
+      case 2: return contract<Gradient, 2, 3, 2>(rows, s.c, s.dc, gs);
+      case 3: return contract<Gradient, 3, 3, 2>(rows, s.c, s.dc, gs);
+      case 4: return contract<Gradient, 2, 2, 3>(rows, s.c, s.dc, gs);
+      case 5: return contract<Gradient, 3, 2, 3>(rows, s.c, s.dc, gs);
+      case 6: return contract<Gradient, 2, 3, 3>(rows, s.c, s.dc, gs);
+      default: return contract<Gradient, 3, 3, 3>(rows, s.c, s.dc, gs);
+    }
+  };
+  if (g_.dense()) {
+    const float* base = s.row[0];
+    const long s1 = stride_[1], s2 = stride_[2];
+    f = shape([=](int j, int l) { return base + j * s1 + l * s2; });
+  } else {
+    f = shape([&](int j, int l) { return s.row[l * 3 + j]; });
   }
   if (Gradient) {
     // Grid-axis derivatives to world: p = origin + D s, so df/dp = D df/ds.

@@ -9,6 +9,9 @@
 // argument of thesis 6.4 still holds axis by axis.
 #pragma once
 #include "image/grid.hpp"
+#include "image/sample_grid.hpp"
+
+#include <limits>
 
 namespace imgmesh {
 
@@ -19,8 +22,25 @@ public:
   // axis, finite and nonzero values: throws Error otherwise). d: the
   // weight-function constant per axis; computed from g (thesis 6.3.2,
   // Prop. 6.4.1) when all components are <= 0. threads: for the O(|D|)
-  // computation of d (0 = all cores).
-  explicit PartitionOfUnity(FloatImage g, Vec3 d = {0, 0, 0}, unsigned threads = 1);
+  // computation of d (0 = all cores). clamp: f is then built on g clamped
+  // to [-clamp, clamp] (see clamp_for; d and the checks are g's own); the
+  // samples far from S take no memory.
+  explicit PartitionOfUnity(FloatImage g, Vec3 d = {0, 0, 0}, unsigned threads = 1,
+                            float clamp = std::numeric_limits<float>::infinity(),
+                            SampleGrid::Storage storage = SampleGrid::Storage::automatic);
+
+  // The clamp T for a mesher that compares |f| with bounds up to 2 e (its
+  // --max-distance e): the stencil of a point (its 2-3 samples per axis) has
+  // diameter D = 2 |delta|, and T = (D + 2 e)(1 + 1e-6). Where f' (on
+  // clamped g) differs from f, a sample v of the stencil has |g(v)| > T, so
+  // every sample of it lies within D < |g(v)| of v, on v's side of
+  // bdCA(X) (g is the distance to it), with |g| > T - D > 2 e; f and f',
+  // convex combinations of those samples (clamped or not), both have v's
+  // sign and exceed 2 e in absolute value. Hence f'^-1(0) = f^-1(0), f' has
+  // f's sign everywhere, f' = f within T - D of S, and every test |f| <= 2 e
+  // gives the same answer on f'. Clamping is 1-Lipschitz: g' keeps g_min,
+  // and its L_max is at most g's, so d stays within the thesis's bound.
+  static float clamp_for(const Geometry& grid, double e);
 
   // f at a world point inside the domain (the box of voxel centres). Outside
   // the domain, f (and its gradient) at the nearest point of the domain.
@@ -35,7 +55,8 @@ public:
   // relative rounding tolerance of 1e-9 of a voxel.
   bool in_domain(const Vec3& p) const;
 
-  const FloatImage& samples() const { return g_; }
+  // g's samples (clamped when a clamp was given): what f is built on.
+  const SampleGrid& samples() const { return g_; }
   const Vec3& d() const { return d_; }
 
   // The quantities of thesis 6.3.2 (computed from g even when d was given):
@@ -53,19 +74,21 @@ private:
   // trilinear, f = sum_{i,j,l} g(first + (i, j, l)) c[0][i] c[1][j] c[2][l]
   // over the n[0] x n[1] x n[2] samples (n = 2 in a cell's centre region on
   // that axis, 3 where two cells blend); c[a] are the per-axis coefficients,
-  // dc[a] their derivatives along axis a (physical units). base points to
-  // the first sample; null for a NaN point.
+  // dc[a] their derivatives along axis a (physical units). row[l * 3 + j]:
+  // the n[0] samples (i = 0.., j, l), contiguous in a block, or copied into
+  // buf where they straddle two blocks. n[0] = 0 for a NaN point.
   struct Stencil {
-    const float* base;
+    const float* row[9];
     int n[3];
     double c[3][3], dc[3][3];
+    float buf[9][3];
   };
   template <bool Gradient> void locate(const Vec3& p, Stencil& s) const;
   void prefetch(const Stencil& s) const;
   template <bool Gradient> double combine(const Stencil& s, Vec3* gradient) const;
   template <bool Gradient> void evaluate_many(const Vec3* points, std::size_t n, double* f, Vec3* gradients) const;
 
-  FloatImage g_;
+  SampleGrid g_;
   Vec3 d_;
   double g_min_ = 0, l_max_ = 0;
   // Per axis: voxel spacing delta_i, 1/delta_i, 1/(2 d_i), and the number of
@@ -73,7 +96,7 @@ private:
   double delta_[3], inv_delta_[3], inv_2d_[3];
   double to_index_[9];  // world offset -> continuous index
   long cells_[3];
-  long stride_[3];
+  long stride_[3];  // dense storage
 };
 
 // The C-infinity step of (6.8): h(t) = exp(2 e^{-1/t} / (t - 1)) on (0, 1),

@@ -442,10 +442,17 @@ VoxelBoundary voxel_boundary(const BinaryImage& img) {
   });
 }
 
-VoxelBoundary voxel_boundary(const FloatImage& g) {
-  return voxel_boundary_of(g.size, [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
-    return g.inside(x, y, z) && g(std::size_t(x), std::size_t(y), std::size_t(z)) < 0;
-  });
+VoxelBoundary voxel_boundary(const SampleGrid& g) {
+  if (g.dense())
+    return voxel_boundary_of(g.size, [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
+      return g.inside(x, y, z) && g.dense_data()[g.index(std::size_t(x), std::size_t(y), std::size_t(z))] < 0;
+    });
+  // Blocks: the signs first, a byte a voxel (read 7 times each).
+  BinaryImage x(g.geometry(), 0);
+  for (std::size_t k = 0; k < g.size[2]; ++k)
+    for (std::size_t j = 0; j < g.size[1]; ++j)
+      for (std::size_t i = 0; i < g.size[0]; ++i) x(i, j, k) = g(i, j, k) < 0;
+  return voxel_boundary(x);
 }
 
 MeshTopology mesh_topology(const VoxelBoundary& b) {
@@ -464,7 +471,7 @@ bool same_topology(const MeshTopology& a, const MeshTopology& b) { return a.sort
 
 MeshTopology mesh_topology(const SurfaceMesh& mesh) { return mesh_topology(mesh.points.size(), mesh.triangles); }
 
-MeshTopology voxel_boundary_topology(const FloatImage& g) { return mesh_topology(voxel_boundary(g)); }
+MeshTopology voxel_boundary_topology(const SampleGrid& g) { return mesh_topology(voxel_boundary(g)); }
 
 } // namespace imgmesh
 

@@ -7,6 +7,7 @@
 // Plain data, no OpenMesh.
 #pragma once
 #include "image/grid.hpp"
+#include "image/sample_grid.hpp"
 #include "mesh/surface_io.hpp"
 #include "util/json.hpp"
 
@@ -72,12 +73,12 @@ struct VoxelBoundary {
 // X = the foreground; a single slice gives the two faces of a slab.
 VoxelBoundary voxel_boundary(const BinaryImage& img);
 // X = {g < 0} (the mesher's samples); X may be empty (no quad).
-VoxelBoundary voxel_boundary(const FloatImage& g);
+VoxelBoundary voxel_boundary(const SampleGrid& g);
 // Components, Euler characteristics, manifoldness (false exactly when X is
 // not well-composed), orientation of bdCA(X).
 MeshTopology mesh_topology(const VoxelBoundary& boundary);
 // The same for X = {g < 0}.
-MeshTopology voxel_boundary_topology(const FloatImage& g);
+MeshTopology voxel_boundary_topology(const SampleGrid& g);
 
 // The topology of bdCA(X), X the foreground, for a 3D image. For a 2D image,
 // the pixel boundary curves: each loop is a component of Euler characteristic

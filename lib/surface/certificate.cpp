@@ -274,14 +274,12 @@ Candidates fallback_points(const Tr& tr, const SurfaceSampler& sampler, int comp
   double far = -1;
   Vec3 fa{}, fb{};
   std::size_t count = 0, stride = 1;
-  for (auto& kc : grid.comp) count += kc.second == comp;
+  for (const ActiveCube& kc : grid.comp) count += kc.comp() == comp;
   stride = std::max<std::size_t>(1, count / 4000);
   std::size_t k = 0;
-  const std::vector<std::pair<long long, int>>& cubes = grid.sorted_cubes();
-  for (auto& kc : cubes) {
-    if (kc.second != comp || (k++ % stride)) continue;
-    const long x = long(kc.first % grid.n[0]), y = long((kc.first / grid.n[0]) % grid.n[1]),
-               z = long(kc.first / grid.n[0] / grid.n[1]);
+  for (const ActiveCube& kc : grid.sorted_cubes()) {
+    if (kc.comp() != comp || (k++ % stride)) continue;
+    const auto [x, y, z] = grid.cube_of_key(kc.key());
     for (int a = 0; a < 3; ++a) {
       long p[3] = {x, y, z}, q[3] = {x, y, z};
       q[a] += 1;

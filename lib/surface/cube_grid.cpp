@@ -1,11 +1,12 @@
 #include "surface/cube_grid.hpp"
+#include "util/error.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace imgmesh::surface_detail {
 
-CubeGrid::CubeGrid(const FloatImage& img) : g(img) {
+CubeGrid::CubeGrid(const SampleGrid& img) : g(img) {
   for (int i = 0; i < 3; ++i) {
     n[i] = long(img.size[i]);
     s[i] = img.spacing[i];
@@ -19,9 +20,10 @@ CubeGrid::CubeGrid(const FloatImage& img) : g(img) {
   for (long z = 0; z + 1 < n[2]; ++z)
     for (long y = 0; y + 1 < n[1]; ++y)
       for (long x = 0; x + 1 < n[0]; ++x) {
-        const bool s0 = neg(x, y, z);
+        double c[8];
+        g.cube(x, y, z, c);
         bool mixed = false;
-        for (int k = 1; k < 8 && !mixed; ++k) mixed = neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) != s0;
+        for (int k = 1; k < 8; ++k) mixed = mixed || ((c[k] < 0) != (c[0] < 0));
         if (!mixed) continue;
         set_bit(cube_active, cube_index(x, y, z));
         block_active[std::size_t(x / kBlock + nb[0] * (y / kBlock + nb[1] * (z / kBlock)))] = 1;
@@ -45,6 +47,8 @@ void CubeGrid::label() {
     for (long y = 0; y + 1 < n[1]; ++y)
       for (long x = 0; x + 1 < n[0]; ++x) {
         if (!active(x, y, z) || labelled(x, y, z)) continue;
+        if (components == (1 << ActiveCube::kCompBits) - 1)
+          throw Error("the surface has more than " + std::to_string(components) + " components");
         const int c = components++;
         set(x, y, z, c);
         stack.push_back({x, y, z});

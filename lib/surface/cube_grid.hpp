@@ -14,15 +14,26 @@
 
 namespace imgmesh::surface_detail {
 
+// An active cube as key << 24 | its S component: 8 bytes, where a pair
+// took 16 (keys < 2^40: PartitionOfUnity's grid limit).
+struct ActiveCube {
+  std::uint64_t bits;
+  static constexpr int kCompBits = 24;
+  ActiveCube(long long key, int comp) : bits(std::uint64_t(key) << kCompBits | std::uint64_t(comp)) {}
+  long long key() const { return (long long)(bits >> kCompBits); }
+  int comp() const { return int(bits & ((std::uint64_t(1) << kCompBits) - 1)); }
+  bool operator<(const ActiveCube& o) const { return bits < o.bits; }
+};
+
 struct CubeGrid {
-  const FloatImage& g;
+  const SampleGrid& g;
   long n[3];
   double s[3];
   double hi[3];
   double delta;
-  // The active cubes (key, S component) in key order: 16 bytes a cube,
-  // where a hash map took about 40 (liver: MB of them beside f's samples).
-  std::vector<std::pair<long long, int>> comp;
+  // The active cubes in key order, with their S components (a hash map
+  // took about 40 bytes a cube; liver: MB of them beside f's samples).
+  std::vector<ActiveCube> comp;
   int components = 0;
 
   // Activity of every cube (one bit each: the liver's 13 million cubes took
@@ -33,7 +44,7 @@ struct CubeGrid {
   std::vector<std::uint8_t> block_active;
   long nb[3];
 
-  explicit CubeGrid(const FloatImage& img);
+  explicit CubeGrid(const SampleGrid& img);
   bool neg(long x, long y, long z) const { return g(std::size_t(x), std::size_t(y), std::size_t(z)) < 0; }
   long long key(long x, long y, long z) const { return x + (long long)n[0] * (y + (long long)n[1] * z); }
   bool active(long x, long y, long z) const {
@@ -49,8 +60,8 @@ struct CubeGrid {
   }
   int comp_of(long x, long y, long z) const {
     const long long k = key(x, y, z);
-    auto it = std::lower_bound(comp.begin(), comp.end(), k, [](const auto& e, long long v) { return e.first < v; });
-    return it == comp.end() || it->first != k ? -1 : it->second;
+    auto it = std::lower_bound(comp.begin(), comp.end(), k, [](const ActiveCube& e, long long v) { return e.key() < v; });
+    return it == comp.end() || it->key() != k ? -1 : it->comp();
   }
   // f has no zero on the local box [lo, hi] (F1): the box lies inside the
   // grid's box and every closed cube it meets is inactive (the box widened
@@ -61,7 +72,7 @@ struct CubeGrid {
   // Component of the active cube containing a local point (or a neighbour).
   int comp_at(const Vec3& q) const;
   // The active cubes (key, component) in key order (deterministic).
-  const std::vector<std::pair<long long, int>>& sorted_cubes() const { return comp; }
+  const std::vector<ActiveCube>& sorted_cubes() const { return comp; }
   // Cube (x, y, z) of a key.
   std::array<long, 3> cube_of_key(long long k) const {
     return {long(k % n[0]), long((k / n[0]) % n[1]), long(k / n[0] / n[1])};

@@ -40,12 +40,12 @@ inline constexpr const char* kOriginName[kOrigins] = {"seed", "vor_edge", "topo_
 // A vertex placed on S (by the surface mesher), not by implicit2tet off S.
 inline bool on_surface(std::uint8_t origin) { return origin < kVolume; }
 
-struct VInfo {
+struct VInfo {  // 16 bytes: the two bytes last (a vertex of 56 bytes, not 64)
   int id = -1;
-  std::uint8_t origin = kSeed;
   int comp = -1;  // S component (active-cube component) the vertex lies on
-  std::uint8_t queued = 0;  // 1: TopoDisk check queued, 2: SMOOTH check queued
   std::uint32_t stamp = 0;  // last insertion that collected this vertex
+  std::uint8_t origin = kSeed;
+  std::uint8_t queued = 0;  // 1: TopoDisk check queued, 2: SMOOTH check queued
 };
 
 enum : std::uint8_t { kComputed = 1, kRestricted = 2, kMulti = 4 };
@@ -232,6 +232,7 @@ using Tds = CGAL::Triangulation_data_structure_3<Vb, CellBase<GT>>;
 using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;  // Compact_location: see doc/implicit2mesh.md
 // CGAL's 72 bytes (65 used) + FacetRefs' 15 in their tail.
 static_assert(sizeof(Tds::Cell) == 80, "a cell: FacetRefs in the tail padding of CGAL's cell base");
+static_assert(sizeof(Tds::Vertex) == 56, "a vertex: CGAL's 40 bytes and VInfo's 16");
 using Vh = Tr::Vertex_handle;
 using Ch = Tr::Cell_handle;
 using Facet = Tr::Facet;
@@ -274,6 +275,12 @@ struct IdSet {
   void clear() {
     for (int id : ids) in[std::size_t(id)] = 0;
     ids.clear();
+  }
+  // An empty set's memory (clear() keeps it for reuse) back to the heap.
+  void release() {
+    if (!ids.empty()) return;
+    std::vector<int>().swap(ids);
+    std::vector<char>().swap(in);
   }
 };
 

@@ -105,7 +105,10 @@ bool DelMesh::insert(const Vec3& x, Origin origin, Facet hint) {
 }
 
 void DelMesh::add_vertex(Vh v, Origin origin, const Vec3& x) {
-  v->info() = {int(vertices_.size()), std::uint8_t(origin), grid_.comp_at(x)};
+  v->info() = VInfo();
+  v->info().id = int(vertices_.size());
+  v->info().origin = std::uint8_t(origin);
+  v->info().comp = grid_.comp_at(x);
   vertices_.push_back(v);
   walk_start_ = v;
   ++inserted_[origin];
@@ -521,11 +524,10 @@ void DelMesh::refuse_topology(const char* step, const Vec3& x) {
 }
 
 void DelMesh::prepare() {
-  const FloatImage& g = f_.samples();
+  const SampleGrid& g = f_.samples();
   if (g.dimension != 3 || g.size[0] < 2 || g.size[1] < 2 || g.size[2] < 2)
     throw Error("the implicit function must be sampled on a 3D grid of at least 2x2x2 voxels");
-  for (float v : g.data)
-    if (!std::isfinite(v)) throw Error("the implicit function has non-finite samples");
+  if (!g.finite()) throw Error("the implicit function has non-finite samples");
   // S must be closed inside the grid: no inside sample on the border.
   for (long z = 0; z < grid_.n[2]; ++z)
     for (long y = 0; y < grid_.n[1]; ++y)
@@ -546,7 +548,6 @@ RestrictedDelaunayResult DelMesh::run() {
   auto secs = [](Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); };
   prepare();
   ExpectedTopology expected = expected_topology(grid_);
-  res.expected = expected.topology;
 
   seeds();
   const double t_seeds = secs(t_start);
@@ -579,6 +580,8 @@ RestrictedDelaunayResult DelMesh::run() {
   std::uint32_t settled = 0;  // computed_ when the last round inserted nothing
   for (;;) {
     cert = Certificate();  // the last round's, not held while the next is built
+    dirty_.release();      // the certificate is the run's peak
+    cell_changed_.release();
     cert = certify(tr_, vertices_.size(), grid_, expected);
     if (cert.ok && !max_hit_ && after_certificate_ && computed_ != settled) {
       bool any = false;
@@ -600,6 +603,7 @@ RestrictedDelaunayResult DelMesh::run() {
   }
   const double t_refine_s = secs(t_refine);
   const auto t_final = Clock::now();
+  res.expected = std::move(expected.topology);  // moved, not copied at the start: held through the run's peak
   res.expected_boundary = std::move(expected.boundary);
 
   // Guarantees, measured on the output.

@@ -34,12 +34,12 @@ bool ImplicitSurface::reflects() const {
   return det < 0;
 }
 
-FunctionSurface::FunctionSurface(const Geometry& grid, Function f)
-    : f_(std::move(f)), samples_(grid) {
+FunctionSurface::FunctionSurface(const Geometry& grid, Function f) : f_(std::move(f)) {
+  FloatImage g(grid);
   for (std::size_t z = 0; z < grid.size[2]; ++z)
     for (std::size_t y = 0; y < grid.size[1]; ++y)
-      for (std::size_t x = 0; x < grid.size[0]; ++x)
-        samples_(x, y, z) = float(f_(grid.world(double(x), double(y), double(z))));
+      for (std::size_t x = 0; x < grid.size[0]; ++x) g(x, y, z) = float(f_(grid.world(double(x), double(y), double(z))));
+  samples_ = SampleGrid(std::move(g));
 }
 
 bool ImplicitSurface::range(const Vec3&, const Vec3&, double&, double&, bool) const { return false; }

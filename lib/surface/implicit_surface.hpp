@@ -8,6 +8,7 @@
 // a rigid motion, so Delaunay triangulations and distances are preserved.
 #pragma once
 #include "image/grid.hpp"
+#include "image/sample_grid.hpp"
 
 #include <functional>
 
@@ -24,7 +25,7 @@ public:
   virtual double value_gradient(const Vec3& q, Vec3& gradient) const = 0;
   // g at the voxel centres with the world geometry: f has g's sign there,
   // and f has no zero in a cube whose 8 corners share one sign (thesis F1).
-  virtual const FloatImage& samples() const = 0;
+  virtual const SampleGrid& samples() const = 0;
   // An enclosure [lo, hi] of f on the local box [a, b] (a <= b), when the
   // surface can give one (false: none; the default). until_zero, for
   // callers that only ask whether it excludes 0: it may stop as soon as
@@ -54,11 +55,11 @@ public:
   FunctionSurface(const Geometry& grid, Function f);
   double value(const Vec3& q) const override;
   double value_gradient(const Vec3& q, Vec3& gradient) const override;
-  const FloatImage& samples() const override { return samples_; }
+  const SampleGrid& samples() const override { return samples_; }
 
 private:
   Function f_;
-  FloatImage samples_;
+  SampleGrid samples_;
 };
 
 // Chapter 6's partition of unity (world coordinates) seen in the local frame.
@@ -68,7 +69,7 @@ public:
   explicit PartitionOfUnitySurface(const PartitionOfUnity& pu);
   double value(const Vec3& q) const override;
   double value_gradient(const Vec3& q, Vec3& gradient) const override;
-  const FloatImage& samples() const override;
+  const SampleGrid& samples() const override;
   // f = sum_j w_j f_j with weights w_j >= 0 summing to 1, w_j = 0 beyond
   // cell j dilated by d, and each f_j multilinear (the trilinear
   // interpolant of g on cell j, extended): on a box, f lies within the

@@ -12,7 +12,7 @@ namespace imgmesh {
 namespace {
 // The sample cells [k s, (k+1) s], dilated by the support d_i, that meet the
 // box [a, b]: k0[i]..k1[i] on each axis.
-void cells_meeting(const FloatImage& g, const Vec3& d, const Vec3& a, const Vec3& b, long k0[3], long k1[3]) {
+void cells_meeting(const Geometry& g, const Vec3& d, const Vec3& a, const Vec3& b, long k0[3], long k1[3]) {
   for (int i = 0; i < 3; ++i) {
     const double s = g.spacing[i];
     const long cells = long(g.size[i]) - 1;
@@ -33,10 +33,10 @@ double PartitionOfUnitySurface::value_gradient(const Vec3& q, Vec3& gradient) co
   return v;
 }
 
-const FloatImage& PartitionOfUnitySurface::samples() const { return pu_.samples(); }
+const SampleGrid& PartitionOfUnitySurface::samples() const { return pu_.samples(); }
 
 bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, double& hi, bool until_zero) const {
-  const FloatImage& g = pu_.samples();
+  const SampleGrid& g = pu_.samples();
   long k0[3], k1[3];
   cells_meeting(g, pu_.d(), a, b, k0, k1);
   // The box's corners in index units: t = a / s - k (or b / s - k) in cell k.
@@ -51,7 +51,7 @@ bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, do
       for (long y = k0[1]; y <= k1[1]; ++y)
         for (long x = k0[0]; x <= k1[0]; ++x) {
           double c[8];
-          for (int m = 0; m < 8; ++m) c[m] = g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1)));
+          g.cube(x, y, z, c);
           // f_j at the box's 8 corners, lerp by lerp along x, y, z: the corners
           // with the same t0 (or t0, t1) share the first lerps.
           const double t0[2] = {ta[0] - double(x), tb[0] - double(x)}, t1[2] = {ta[1] - double(y), tb[1] - double(y)},
@@ -82,7 +82,7 @@ bool PartitionOfUnitySurface::range(const Vec3& a, const Vec3& b, double& lo, do
 
 bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Vec3& v, double& lo, double& hi,
                                           bool until_zero) const {
-  const FloatImage& g = pu_.samples();
+  const SampleGrid& g = pu_.samples();
   const Vec3& d = pu_.d();
   long k0[3], k1[3];
   cells_meeting(g, d, a, b, k0, k1);
@@ -118,7 +118,7 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
         for (long x = k0[0]; x <= k1[0]; ++x) {
           const long k[3] = {x, y, z};
           double c[8];
-          for (int m = 0; m < 8; ++m) c[m] = g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1)));
+          g.cube(x, y, z, c);
           for (int m = 0; m < 8; ++m) {  // d f_j / d x_i at the box's corner m
             double t[3];
             for (int i = 0; i < 3; ++i) t[i] = ((m >> i) & 1 ? b[i] : a[i]) / g.spacing[i] - double(k[i]);

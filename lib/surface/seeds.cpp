@@ -10,12 +10,12 @@ Seeds::Seeds(const SurfaceSampler& f) : f_(f), grid_(f.grid()), cubes_(grid_.sor
 
 std::vector<Vec3> Seeds::points(std::uint64_t seed) const {
   std::vector<std::array<long, 4>> extreme(std::size_t(grid_.components) * 6, {-1, 0, 0, 0});
-  for (auto& kc : cubes_) {
-    const auto [x, y, z] = grid_.cube_of_key(kc.first);
+  for (const ActiveCube& kc : cubes_) {
+    const auto [x, y, z] = grid_.cube_of_key(kc.key());
     const long c[3] = {x, y, z};
     for (int a = 0; a < 3; ++a)
       for (int s = 0; s < 2; ++s) {
-        auto& e = extreme[std::size_t(kc.second) * 6 + a * 2 + s];
+        auto& e = extreme[std::size_t(kc.comp()) * 6 + a * 2 + s];
         if (e[0] < 0 || (s == 0 ? c[a] < e[1 + a] : c[a] > e[1 + a])) e = {1, x, y, z};
       }
   }
@@ -34,7 +34,7 @@ std::vector<Vec3> Seeds::points(std::uint64_t seed) const {
 bool Seeds::next_extra(Vec3& x) {
   const std::size_t stride = std::max<std::size_t>(1, cubes_.size() / 64);
   for (; next_cube_ < cubes_.size(); next_cube_ += stride, next_edge_ = 0) {
-    const auto [cx, cy, cz] = grid_.cube_of_key(cubes_[next_cube_].first);
+    const auto [cx, cy, cz] = grid_.cube_of_key(cubes_[next_cube_].key());
     while (next_edge_ < 12)
       if (crossing(cx, cy, cz, x, next_edge_++)) return true;
   }

@@ -28,7 +28,7 @@ public:
 private:
   const SurfaceSampler& f_;
   const CubeGrid& grid_;
-  std::vector<std::pair<long long, int>> cubes_;  // active cubes in key order
+  const std::vector<ActiveCube>& cubes_;  // active cubes in key order
   std::size_t next_cube_ = 0;
   int next_edge_ = 0;
 };

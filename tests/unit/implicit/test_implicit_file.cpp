@@ -36,11 +36,11 @@ TEST_CASE("write_implicit / read_implicit round trip keeps g, d and the world ge
     REQUIRE(a.origin[i] == Approx(b.origin[i]).epsilon(1e-12).margin(1e-12));
   }
   for (int i = 0; i < 9; ++i) REQUIRE(a.direction[i] == Approx(b.direction[i]).margin(1e-12));
-  REQUIRE(h.samples().data == f.samples().data);
+  REQUIRE(h.samples().to_image().data == f.samples().to_image().data);
   for (int i = 0; i < 3; ++i) REQUIRE(h.d()[i] == f.d()[i]);  // %.17g: exact
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0, 1);
-  const FloatImage& g = f.samples();
+  const Geometry& g = f.samples();
   for (int i = 0; i < 1000; ++i) {
     const Vec3 p = g.world(u(rng) * (g.size[0] - 1), u(rng) * (g.size[1] - 1), u(rng) * (g.size[2] - 1));
     REQUIRE(h.value(p) == Approx(f.value(p)).epsilon(1e-9).margin(1e-9));  // world geometry travels through NRRD text

@@ -36,7 +36,7 @@ Vec3 centre_world(const Geometry& g, long x, long y, long z) { return g.world(do
 
 // Every voxel centre: f = g (so f has the image's sign).
 void check_sign_at_centres(const PartitionOfUnity& f) {
-  const FloatImage& g = f.samples();
+  const SampleGrid& g = f.samples();
   for (long z = 0; z < long(g.size[2]); ++z)
     for (long y = 0; y < long(g.size[1]); ++y)
       for (long x = 0; x < long(g.size[0]); ++x) {
@@ -51,7 +51,7 @@ void check_sign_at_centres(const PartitionOfUnity& f) {
 
 double max_abs_g(const PartitionOfUnity& f) {
   double m = 0;
-  for (float v : f.samples().data) m = std::max(m, double(std::abs(v)));
+  for (float v : f.samples().to_image().data) m = std::max(m, double(std::abs(v)));
   return m;
 }
 
@@ -104,7 +104,7 @@ TEST_CASE("f has the sign of the image at every voxel centre", "[pu]") {
     const PartitionOfUnity f = implicit_from_well_composed(im, &rep, 2);
     check_sign_at_centres(f);
     // The sign of g is the image (padded where the foreground touched the border).
-    const FloatImage& g = f.samples();
+    const SampleGrid& g = f.samples();
     for (std::size_t z = 0; z < im.size[2]; ++z)
       for (std::size_t y = 0; y < im.size[1]; ++y)
         for (std::size_t x = 0; x < im.size[0]; ++x)
@@ -118,7 +118,7 @@ TEST_CASE("f and grad f are continuous across cell faces, edges, corners and wei
     BinaryImage im = random_wc(12, 11, 10, seed, seed == 2 ? Vec3{0.6, 1.0, 1.5} : Vec3{1, 1, 1});
     if (seed == 3) rotate(im);
     const PartitionOfUnity f = implicit_from_well_composed(im);
-    const FloatImage& g = f.samples();
+    const SampleGrid& g = f.samples();
     const double scale = max_abs_g(f);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
@@ -156,7 +156,7 @@ TEST_CASE("analytic gradient matches central differences", "[pu]") {
     BinaryImage im = random_wc(12, 12, 12, seed + 10, seed == 1 ? Vec3{1, 1, 1} : Vec3{0.6, 1.1, 1.5});
     if (seed == 3) rotate(im);
     const PartitionOfUnity f = implicit_from_well_composed(im);
-    const FloatImage& g = f.samples();
+    const SampleGrid& g = f.samples();
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     for (int trial = 0; trial < 3000; ++trial) {
@@ -188,7 +188,7 @@ TEST_CASE("Lemmas 6.4.1, 6.4.2, 6.4.5: vertex boxes keep the sign; edge regions 
   for (unsigned seed = 1; seed <= 4; ++seed) {
     BinaryImage im = random_wc(12, 11, 12, seed + 20, seed % 2 ? Vec3{1, 1, 1} : Vec3{1.3, 0.7, 1.0});
     const PartitionOfUnity f = implicit_from_well_composed(im);
-    const FloatImage& g = f.samples();
+    const SampleGrid& g = f.samples();
     const Vec3 d = f.d();
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
@@ -247,7 +247,7 @@ TEST_CASE("Lemmas 6.4.1-6.4.4: no zero of f in a region whose feature's corners 
     BinaryImage im = random_wc(13, 12, 11, seed + 40, seed % 2 ? Vec3{1, 1, 1} : Vec3{0.6, 1.4, 0.9});
     if (seed == 4) rotate(im);
     const PartitionOfUnity f = implicit_from_well_composed(im);
-    const FloatImage& g = f.samples();
+    const SampleGrid& g = f.samples();
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
     int agreeing = 0;
@@ -324,7 +324,7 @@ TEST_CASE("d, g_min and L_max as the thesis defines them (brute force)", "[pu]")
     const Vec3 sp = seed % 2 ? Vec3{1, 1, 1} : Vec3{0.5, 1.0, 1.75};
     BinaryImage im = random_wc(9, 8, 10, seed + 30, sp, 4);
     const PartitionOfUnity f = implicit_from_well_composed(im);
-    const FloatImage& g = f.samples();
+    const FloatImage g = f.samples().to_image();
     // g_min from brute-force distances of the (possibly padded) grid.
     BinaryImage sign(g.geometry(), 0);
     for (std::size_t i = 0; i < g.data.size(); ++i) sign.data[i] = g.data[i] < 0;
@@ -348,7 +348,7 @@ TEST_CASE("copies evaluate identically; concurrent evaluation is consistent", "[
   const PartitionOfUnity f = implicit_from_well_composed(torus(16, {0.8, 1.0, 1.2}));
   PartitionOfUnity copy = f;
   PartitionOfUnity moved = std::move(copy);
-  const FloatImage& g = f.samples();
+  const SampleGrid& g = f.samples();
   std::vector<Vec3> pts;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(0, 1);
@@ -370,7 +370,7 @@ TEST_CASE("copies evaluate identically; concurrent evaluation is consistent", "[
 // offset from the cell's centre, f_k the trilinear interpolant (extrapolated
 // outside C_k).
 double reference_f(const PartitionOfUnity& f, const Vec3& q) {
-  const FloatImage& g = f.samples();
+  const SampleGrid& g = f.samples();
   long lo[3];
   for (int i = 0; i < 3; ++i) lo[i] = std::max(0L, std::min(long(q[i]), long(g.size[i]) - 2) - 1);
   double sum_w = 0, sum_wf = 0;
@@ -403,7 +403,7 @@ TEST_CASE("f equals the thesis's sum of phi_k f_k over the neighbouring cells", 
     BinaryImage im = random_wc(11, 12, 10, seed + 30, seed == 2 ? Vec3{0.6, 1.0, 1.5} : Vec3{1, 1, 1});
     if (seed == 3) rotate(im);
     const PartitionOfUnity f = implicit_from_well_composed(im);
-    const FloatImage& g = f.samples();
+    const SampleGrid& g = f.samples();
     const double scale = max_abs_g(f);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1);
@@ -428,7 +428,7 @@ TEST_CASE("values() at many points equals value() and value_gradient() point by 
   BinaryImage im = random_wc(14, 12, 13, 7, Vec3{0.7, 1.0, 1.6});
   rotate(im);
   const PartitionOfUnity f = implicit_from_well_composed(im);
-  const FloatImage& g = f.samples();
+  const SampleGrid& g = f.samples();
   std::mt19937 rng(9);
   std::uniform_real_distribution<double> u(-0.2, 1.2);  // some points outside the domain
   std::vector<Vec3> pts;
@@ -473,4 +473,49 @@ TEST_CASE("constructor rejects bad samples and a d beyond the bound", "[pu]") {
   FloatImage thin(grid(4, 1, 4), 1.0f);
   REQUIRE_THROWS_AS(PartitionOfUnity(thin), Error);
   REQUIRE_THROWS_AS(PartitionOfUnity(g, Vec3{0.3, 0.3, 0.3}), Error);  // > delta/5
+}
+
+// The meshers' f' (on g clamped at clamp_for's T, far samples not stored):
+// its zero set and signs are f's, it is f wherever |f| <= 2e, and wherever
+// the two differ both exceed 2e (PartitionOfUnity::clamp_for's argument).
+TEST_CASE("f on clamped samples: f's signs everywhere, f itself wherever |f| <= 2e", "[pu]") {
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    const Vec3 sp = seed % 2 ? Vec3{1, 1, 1} : Vec3{0.6, 0.6, 1.3};
+    BinaryImage im = random_wc(34, 30, 28, seed + 40, sp, 3);
+    if (seed == 3) rotate(im);
+    const PartitionOfUnity f = implicit_from_well_composed(im);
+    const double e = seed == 4 ? 0.0 : 0.3 * sp[0];
+    const FloatImage g = f.samples().to_image();
+    const float t = PartitionOfUnity::clamp_for(g, e);
+    // Blocks (what the meshers get on large grids), or dense on odd seeds.
+    const auto storage = seed % 2 ? SampleGrid::Storage::dense : SampleGrid::Storage::blocks;
+    const PartitionOfUnity fc(g, f.d(), 1, t, storage);
+    INFO("seed " << seed << ", T " << t);
+    if (!fc.samples().dense()) REQUIRE(fc.samples().stored_blocks() < fc.samples().blocks());
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    long differ = 0, near = 0;
+    for (int i = 0; i < 200000; ++i) {
+      const Vec3 p = g.world(u(rng) * double(g.size[0] - 1), u(rng) * double(g.size[1] - 1), u(rng) * double(g.size[2] - 1));
+      Vec3 gr, grc;
+      const double a = f.value_gradient(p, gr), b = fc.value_gradient(p, grc);
+      REQUIRE((a < 0) == (b < 0));
+      REQUIRE(b != 0);
+      if (std::abs(a) <= 2 * e || std::abs(b) <= 2 * e) {
+        ++near;
+        REQUIRE(a == b);
+        REQUIRE(gr == grc);
+      }
+      if (a != b) {
+        ++differ;
+        REQUIRE(std::abs(a) > 2 * e);
+        REQUIRE(std::abs(b) > 2 * e);
+      }
+    }
+    CHECK(differ > 0);  // the clamp changed f somewhere: the test saw both kinds of points
+    if (e > 0) CHECK(near > 100);
+  }
+  // Under the stencil's diameter the argument fails: refused.
+  const PartitionOfUnity f = implicit_from_well_composed(random_wc(12, 12, 12, 7));
+  CHECK_THROWS_AS(PartitionOfUnity(f.samples().to_image(), f.d(), 1, 0.5f * PartitionOfUnity::clamp_for(f.samples(), 0)), Error);
 }

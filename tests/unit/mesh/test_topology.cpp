@@ -138,7 +138,7 @@ void block(FloatImage& img, int x0, int x1, int y0, int y1, int z0, int z1, floa
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) img(x, y, z) = v;
 }
-MeshTopology samples_topology(const FloatImage& g) { return mesh_topology(voxel_boundary(g)); }
+MeshTopology samples_topology(const FloatImage& g) { return mesh_topology(voxel_boundary(SampleGrid(g))); }
 
 } // namespace
 
@@ -469,7 +469,7 @@ TEST_CASE("bdCA(X) of the mesher's samples X = {g < 0}: blocks, rings, shells", 
   // Zero is not inside (X = {g < 0}), and no sample below zero is no quad.
   auto zero = samples3(5);
   block(zero, 1, 4, 1, 4, 1, 4, 0);
-  CHECK(voxel_boundary(zero).offsets.size() == 1);
+  CHECK(voxel_boundary(SampleGrid(zero)).offsets.size() == 1);
   CHECK(samples_topology(zero).components.empty());
 }
 
@@ -501,7 +501,7 @@ TEST_CASE("two balls: two components of Euler characteristic 2, each found by pl
         const double b = (x - 14) * (x - 14) + (y - 13) * (y - 13) + (z - 12) * (z - 12);
         g(x, y, z) = float(std::min(a - 16, b - 6.25));
       }
-  const VoxelBoundary b = voxel_boundary(g);
+  const VoxelBoundary b = voxel_boundary(SampleGrid(g));
   const auto t = mesh_topology(b);
   REQUIRE(t.components.size() == 2);
   CHECK(t.euler_list() == std::vector<long long>{2, 2});
@@ -545,10 +545,10 @@ TEST_CASE("bdCA(X) from samples agrees with bdCA(X) from the binary image", "[to
       x.data[i] = g.data[i] < 0;
     }
     if (std::find(x.data.begin(), x.data.end(), 1) == x.data.end()) continue;
-    const auto from_samples = mesh_topology(voxel_boundary(g));
+    const auto from_samples = mesh_topology(voxel_boundary(SampleGrid(g)));
     const auto from_image = voxel_boundary_topology(x);
     CHECK(from_samples.to_json().dump(-1) == from_image.to_json().dump(-1));
-    CHECK(voxel_boundary(g).corners == voxel_boundary(x).corners);
+    CHECK(voxel_boundary(SampleGrid(g)).corners == voxel_boundary(x).corners);
   }
 }
 

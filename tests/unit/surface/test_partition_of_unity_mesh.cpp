@@ -69,7 +69,7 @@ Run mesh(const BinaryImage& raw, double ratio = 2, bool seed_deletion = false) {
   // Foreground voxel centres inside, background outside (winding number),
   // for centres farther from S than the mesh deviates from it.
   const double margin = std::max(0.5, 2 * r.result.to_json().at("max_distance_to_plane").number());
-  const FloatImage& g = pu.samples();
+  const SampleGrid& g = pu.samples();
   int wrong = 0, tested = 0;
   for (std::size_t z = 0; z < g.size[2]; ++z)
     for (std::size_t y = 0; y < g.size[1]; ++y)

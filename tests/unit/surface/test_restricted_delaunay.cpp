@@ -51,7 +51,7 @@ void check_guarantees(const ImplicitSurface& s, const RestrictedDelaunayResult& 
   CHECK(r.to_json().at("topology_fallback_rounds").number() == 0);
   // Voxel centres: inside the mesh exactly when inside S (away from S by
   // more than the mesh's deviation, i.e. |g| > half a voxel).
-  const FloatImage& g = s.samples();
+  const SampleGrid& g = s.samples();
   // The mesh deviates from S by about its facets' distance to their surface
   // Delaunay ball centres: test the voxel centres farther than that.
   const double margin = std::max(0.5, 2 * r.to_json().at("max_distance_to_plane").number());

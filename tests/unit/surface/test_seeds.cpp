@@ -102,7 +102,7 @@ TEST_CASE("cube grid: active cubes are the mixed ones, each in one component, li
       }
   const auto& cubes = grid.sorted_cubes();
   CHECK(long(cubes.size()) == active);
-  for (std::size_t i = 1; i < cubes.size(); ++i) CHECK(cubes[i - 1].first < cubes[i].first);
+  for (std::size_t i = 1; i < cubes.size(); ++i) CHECK(cubes[i - 1].key() < cubes[i].key());
   // The ball's cubes and the torus's: two components.
   CHECK(grid.comp_at(Vec3{kBall[0] + 3.6, kBall[1], kBall[2]}) !=
         grid.comp_at(Vec3{kTorus[0] + 4.1 + 1.1, kTorus[1], kTorus[2]}));

@@ -1,0 +1,82 @@
+// g's samples in blocks (image/sample_grid.hpp), clamped or not.
+#include "image/sample_grid.hpp"
+#include "util/error.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace imgmesh;
+
+namespace {
+
+// Distance-like samples: |g| grows away from a sphere, sizes not multiples
+// of the block side.
+FloatImage sphere_samples(std::size_t nx, std::size_t ny, std::size_t nz) {
+  Geometry geo;
+  geo.size = {nx, ny, nz};
+  geo.spacing = {0.7, 1.0, 1.3};
+  FloatImage g(geo);
+  const double c[3] = {nx / 3.0, ny / 2.0, nz / 2.0};
+  for (std::size_t z = 0; z < nz; ++z)
+    for (std::size_t y = 0; y < ny; ++y)
+      for (std::size_t x = 0; x < nx; ++x) {
+        const double d = std::hypot((x - c[0]) * 0.7, (y - c[1]) * 1.0, (z - c[2]) * 1.3) - 4.1;
+        g(x, y, z) = float(d);
+      }
+  return g;
+}
+
+} // namespace
+
+TEST_CASE("SampleGrid without a clamp holds every sample, dense or in blocks", "[samples]") {
+  const FloatImage g = sphere_samples(13, 10, 7);
+  const auto storage = GENERATE(SampleGrid::Storage::dense, SampleGrid::Storage::blocks, SampleGrid::Storage::automatic);
+  const SampleGrid s(g, std::numeric_limits<float>::infinity(), storage);
+  REQUIRE(s.same_grid(g));
+  CHECK(s.dense() == (storage != SampleGrid::Storage::blocks));  // automatic: small grids stay dense
+  if (!s.dense()) CHECK(s.stored_blocks() == s.blocks());
+  CHECK(s.to_image().data == g.data);
+  // cube(): the 8 corners, also across block faces, edges and corners.
+  for (long z = 0; z + 1 < 7; ++z)
+    for (long y = 0; y + 1 < 10; ++y)
+      for (long x = 0; x + 1 < 13; ++x) {
+        double c[8];
+        s.cube(x, y, z, c);
+        for (int m = 0; m < 8; ++m)
+          REQUIRE(c[m] == g(std::size_t(x + (m & 1)), std::size_t(y + ((m >> 1) & 1)), std::size_t(z + ((m >> 2) & 1))));
+      }
+}
+
+TEST_CASE("SampleGrid with a clamp T holds g clamped to [-T, T] and stores only blocks with |g| < T", "[samples]") {
+  const FloatImage g = sphere_samples(40, 30, 21);
+  const float t = 2.5f;
+  const SampleGrid s(g, t, SampleGrid::Storage::blocks), d(g, t, SampleGrid::Storage::dense);
+  CHECK(s.stored_blocks() < s.blocks() / 2);
+  CHECK(d.to_image().data == s.to_image().data);
+  for (std::size_t z = 0; z < g.size[2]; ++z)
+    for (std::size_t y = 0; y < g.size[1]; ++y)
+      for (std::size_t x = 0; x < g.size[0]; ++x)
+        REQUIRE(s(x, y, z) == std::clamp(g(x, y, z), -t, t));
+  // Every block with a sample under T in absolute value is stored: count them.
+  std::size_t near = 0;
+  const long b = SampleGrid::kB;
+  for (long bz = 0; bz * b < 21; ++bz)
+    for (long by = 0; by * b < 30; ++by)
+      for (long bx = 0; bx * b < 40; ++bx) {
+        bool any = false;
+        for (long z = bz * b; z < std::min(21L, (bz + 1) * b); ++z)
+          for (long y = by * b; y < std::min(30L, (by + 1) * b); ++y)
+            for (long x = bx * b; x < std::min(40L, (bx + 1) * b); ++x) any = any || std::fabs(g(x, y, z)) < t;
+        near += any;
+      }
+  CHECK(s.stored_blocks() == near);
+  CHECK(s.finite());
+  FloatImage bad = g;
+  bad(3, 4, 5) = std::nanf("");
+  CHECK_FALSE(SampleGrid(bad).finite());
+  CHECK_THROWS_AS(SampleGrid(g, 0.0f), Error);
+}
