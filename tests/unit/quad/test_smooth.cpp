@@ -744,6 +744,60 @@ TEST_CASE("a sharp corner whose hexagon splits only once its doublets merge gets
   CHECK(total_area(m) == Approx(area));
 }
 
+TEST_CASE("a wedge tip held by two quads is re-quadded around it into one quad", "[smooth]") {
+  // From BrainMidSagittalSlice.png (ITK's example data, threshold 100),
+  // the README's chain as quadsmooth left it before the tip pass: the quads
+  // within three rings of the 33.7-degree wedge tip c (0) of a thin
+  // triangular region, which two quads of mu 8.42 hold (at most a quarter
+  // of the tip's angle). No hexagon split can keep c whole there (the
+  // corner left beside c's quad would be reflex): the wedge is re-quadded
+  // from new inner points, c in one quad, every quad strictly convex.
+  PlanarMesh m;
+  m.points = {{111.5, 145.5}, {112.5, 147.5}, {112.5, 146.5}, {113.0, 146.5}, {112.98184630677157, 147.0037019875712}, {113.5, 146.5}, {113.33744045569131, 147.08757891345996}, {111.5, 143.697224362268}, {111.5, 142.5}, {113.5, 142.5}, {112.5, 144.0}, {112.0, 144.75}, {111.9209391247781, 144.60733769918207}, {111.93445100839702, 144.27002500474163}, {111.71220759053922, 144.79850510764297}, {111.6979603339515, 144.1619180744348}, {110.2608765754579, 144.14220552941643}, {110.31000821940917, 142.6969205682013}, {111.70491237502478, 145.80932275396012}, {111.35519633389336, 145.9855703777254}, {110.77587471012431, 145.56810055852785}, {111.5, 141.5}, {113.49761647132884, 141.4985122885908}, {115.01204682809062, 141.73448015138058}, {114.35896492523612, 143.0256745943553}, {112.07529143573558, 145.9384065883816}, {111.5, 146.5}, {111.54815603450737, 146.20855303919694}, {110.5, 146.5}, {113.05083456797908, 144.98678214175095}, {114.022796345197, 145.91177210009943}, {115.90967689156257, 144.60241327680896}, {109.61564930708457, 147.9678507262786}, {109.46637285880479, 146.3221403333244}, {110.5, 147.5}, {107.69475777401881, 147.99054885642732}, {108.28898074039476, 149.38600500096433}, {111.5, 147.5}, {110.5, 141.5}, {108.74041681079144, 144.4264715350496}, {108.46366279018274, 142.7211596182835}, {106.63909149406928, 145.57211416607487}, {106.82511977505763, 142.79729031171485}, {108.56756391861848, 141.0545876609398}, {106.96993719379546, 140.56785694051501}};
+  m.elements = {{1, 2, 3, 4}, {3, 5, 6, 4}, {7, 8, 9, 10}, {10, 11, 12, 13}, {11, 0, 14, 12}, {0, 7, 15, 14}, {15, 13, 12, 14}, {7, 16, 17, 8}, {0, 18, 19, 20}, {21, 22, 9, 8}, {23, 24, 9, 22}, {25, 2, 26, 27}, {11, 25, 18, 0}, {26, 28, 19, 27}, {29, 30, 5, 3}, {31, 30, 29, 24}, {10, 9, 24, 29}, {29, 25, 11, 10}, {3, 2, 25, 29}, {32, 33, 28, 34}, {35, 33, 32, 36}, {10, 13, 15, 7}, {34, 28, 26, 37}, {17, 38, 21, 8}, {20, 19, 28, 33}, {17, 16, 39, 40}, {39, 33, 35, 41}, {2, 1, 37, 26}, {41, 42, 40, 39}, {43, 40, 42, 44}, {38, 17, 40, 43}, {33, 39, 16, 20}, {18, 25, 27, 19}, {16, 7, 0, 20}};
+  const int regions[] = {0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+  for (int r : regions) m.element_attributes.push_back({double(r)});
+  const double area = total_area(m);
+  const SmoothOptions opt;
+  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  REQUIRE(qm.fixed[0]);
+  auto worst = [&] {
+    double w = 2;
+    for (std::size_t q = 0; q < qm.quads.size(); ++q)
+      if (!qm.quad_dead[q]) w = std::min(w, qm.quad_sin_mu[q]);
+    return w;
+  };
+  REQUIRE(worst() < std::sin(8.5 * M_PI / 180));
+  // c's quads in the wedge (region 0).
+  auto fan_of_c = [&] {
+    std::vector<int> f;
+    for (int q : qm.vertex_quads[0])
+      if (m.element_attributes[qm.quad_element[q]][0] == 0) f.push_back(q);
+    return f;
+  };
+  const std::vector<int> fan = fan_of_c();
+  REQUIRE(fan.size() == 2);
+  std::vector<char> fixed_before(qm.fixed.begin(), qm.fixed.end());
+  REQUIRE(qs::open_wedge_tip(qm, 0, fan[0], 3));
+  CHECK(fan_of_c().size() == 1);
+  CHECK(live_quads_strictly_convex(qm));
+  CHECK(worst() > std::sin(10 * M_PI / 180));
+  for (std::size_t v = 0; v < fixed_before.size(); ++v)
+    if (fixed_before[v]) {
+      CHECK_FALSE(qm.vertex_dead[v]);  // every fixed vertex kept, in place
+      CHECK(qm.points[v] == m.points[v]);
+    }
+  qm.compact();
+  REQUIRE_NOTHROW(check_quad_mesh(m));
+  CHECK(total_area(m) == Approx(area));
+  // The pass finds it too, and a tip already in one quad is left alone.
+  PlanarMesh m2 = m;
+  qs::QuadMesh qm2(m2, opt, qs::conforming_stars(m2, {}));
+  SmoothStats st;
+  qs::tip_pass(qm2, st);
+  CHECK(st.wedge_tips == 0);
+}
+
 TEST_CASE("a collapse refused as the corners stand is taken once its patch is placed and climbed", "[smooth]") {
   // From the brain slice's default chain (BrainT1Slice.png, threshold 100),
   // after the smoothing passes: the quads within three edges of quad 0, in
