@@ -300,20 +300,20 @@ void sharp_corner_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_tip.cpp ---------------------------------------------------------
 
-// Beyond the thesis: the fixed vertex c whose fan holding quad q is two
-// quads where its angle wants one (a wedge tip of the curve split in two,
-// each quad's mu then at most a quarter of the tip's angle): the quads of
-// that fan and those around their vertices within the region (`rings`
-// times over) make a patch, a topological disk; its free inner vertices
-// go and the patch is re-quadded with c in one quad, from one or two new
-// inner points (a fan of quads around one; or two joined by an edge, each
-// with its fan, a strip following the wedge's two sides), every layout
-// tried placed, relaxed and climbed (settle). The best one whose quads are
-// all strictly convex and whose sorted sines beat the patch's (lex) is
-// taken; true if one was.
-bool open_wedge_tip(QuadMesh& qm, int c, int q, int rings);
-// open_wedge_tip, one ring then two, on each fixed vertex with such a fan
-// holding a quad under 12 degrees.
+// Beyond the thesis: the fixed vertex c whose fan holding quad q is two or
+// three quads where its angle wants one (a wedge tip of the curve split in
+// two, each quad's mu then at most a quarter of the tip's angle): the quads
+// of that fan and those around their vertices within the region (1 to
+// max_rings times over) make patches, topological disks; a patch's free
+// inner vertices go and it is re-quadded around new inner points (a fan
+// around one; a chain of two to four, the strip that follows a wedge's two
+// sides to its tip; a ring of four around a quad), every layout of every
+// patch placed, relaxed and climbed (settle). Of those whose quads are all
+// strictly convex and whose sorted sines beat their patch's (lex), the best
+// (lex, on the quads around the largest patch) is taken; true if one was.
+bool open_wedge_tip(QuadMesh& qm, int c, int q, int max_rings);
+// open_wedge_tip, up to three rings, on each fixed vertex with such a fan
+// holding a quad under 12 degrees (counted in st.wedge_tips).
 void tip_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_collapse.cpp ---------------------------------------------------

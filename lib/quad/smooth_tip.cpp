@@ -1,28 +1,34 @@
-// Beyond the thesis: a wedge tip of the curve held by two quads (each then
-// of mu at most a quarter of the tip's angle: 8.5 degrees at a 34-degree
-// tip) re-meshed with the tip in one quad. The pair's hexagon cannot do it
-// where the tip's wedge is thin (open_sharp_corner: the one quad keeping
-// the tip wants a corner beyond the line between the tip's two side
-// neighbours, and what is left of the wedge then has a reflex corner
-// there): it needs a vertex more, not fewer. So the quads around the tip's
-// two, within its region, are taken as a patch (a topological disk whose
-// inner vertices are free), and the patch is re-quadded from its boundary
-// polygon P = (c = p0, p1, ..., p(n-1)), counter-clockwise:
+// Beyond the thesis: a sharp corner of the curve held by two or three quads
+// where its angle wants one (a 34-degree wedge tip in two quads: each of mu
+// at most 8.5 degrees), re-meshed around. The pair's hexagon cannot do it
+// where the wedge is thin (open_sharp_corner: the one quad keeping the tip
+// wants a corner beyond the line between the tip's two side neighbours,
+// and what is left of the wedge then has a reflex corner there): it needs
+// a vertex more, not fewer. So the quads of the corner's fan and of the
+// region's fans around their vertices (1 to 3 rings) are taken as patches
+// (topological disks whose inner vertices are free), and a patch is
+// re-quadded from its boundary polygon P = (c = p0, p1, ..., p(n-1)),
+// counter-clockwise, around new inner points:
 //
-//   one new point m, a fan: (p(n-1), c, p1, m), then (p(2s-1), p(2s),
-//     p(2s+1), m); m of valence n / 2 (n >= 6);
-//   two new points m1, m2 joined by an edge, a strip: P cut at two of its
-//     edges (pi, pi+1) and (pj, pj+1) into two arcs of even length, m1 the
-//     fan of the arc holding c (c in the middle of one of its quads), m2
-//     the fan of the other, and the bridges (pi, pi+1, m2, m1) and
-//     (pj, pj+1, m1, m2): the strip of quads that follows the wedge's two
-//     sides to the tip (doc/benchmarks.md, issue 16);
+//   one point m, a fan: (p(2s-1), p(2s), p(2s+1), m) for s = 0 .. n/2 - 1,
+//     or the same one vertex on; m of valence n / 2 (n >= 6);
+//   a chain of k = 2 .. 4 points, a strip: P cut at 2(k-1) of its edges
+//     into arcs of even length, two opposite arcs (of at least two edges)
+//     the fans of the chain's ends, the others of its middle points (left
+//     side, then right side, possibly empty), each cut edge (pe, pe+1) a
+//     bridge quad (pe, pe+1, y, x) between the points x and y of the arcs
+//     before and after it: with c in the middle of an end's fan quad, the
+//     strip of quads that follows a wedge's two sides to its tip
+//     (doc/benchmarks.md, issue 16);
+//   a ring of four points around their quad (m1, m2, m3, m4): P cut at four
+//     edges, the bridges joining consecutive points;
 //   no new point where P is a quad.
 //
-// Each layout is placed, relaxed and climbed (settle); the best whose quads
-// are all strictly convex and whose sorted sines beat the patch's (lex) is
-// taken. Fixed vertices never move nor go; only the patch's free inner
-// vertices are removed.
+// Every layout is placed, relaxed and climbed (settle), whether c ends in
+// one quad or not; the best whose quads are all strictly convex and whose
+// patch's sorted sines rose (lex) is taken, judged on the quads around the
+// largest patch. Fixed vertices never move nor go; only the patch's free
+// inner vertices are removed.
 #include "quad/smooth_mesh.hpp"
 
 #include <algorithm>
@@ -32,7 +38,7 @@ namespace imgmesh::qs {
 
 namespace {
 
-// A layout's quads: ids >= 0 are mesh vertices, -1 and -2 the new points.
+// A layout's quads: ids >= 0 are mesh vertices, -1 - k the k-th new point.
 using Layout = std::vector<Quad>;
 // The most new points a layout has (a chain of them, or a ring of four).
 constexpr int kMaxChain = 4;
@@ -65,17 +71,18 @@ void add_fan(const QuadMesh& qm, int v, int q0, std::vector<int>& out) {
   }
 }
 
-// The layouts of the patch bounded by P (P[0] = the tip), see the top.
+// The layouts of the patch bounded by P, see the top.
 std::vector<std::pair<Layout, int>> layouts(const std::vector<int>& P) {
   const int n = int(P.size());
   auto at = [&](int i) { return P[((i % n) + n) % n]; };
   std::vector<std::pair<Layout, int>> out;
   if (n == 4) out.push_back({{Quad{P[0], P[1], P[2], P[3]}}, 0});
-  if (n >= 6) {
-    Layout L;
-    for (int s = 0; s < n / 2; ++s) L.push_back({at(2 * s - 1), at(2 * s), at(2 * s + 1), -1});
-    out.push_back({L, 1});
-  }
+  if (n >= 6)
+    for (int parity = 0; parity < 2; ++parity) {
+      Layout L;
+      for (int s = 0; s < n / 2; ++s) L.push_back({at(2 * s - 1 + parity), at(2 * s + parity), at(2 * s + 1 + parity), -1});
+      out.push_back({L, 1});
+    }
   // A chain of k = K + 1 points: 2K bridge edges e[0] < ... < e[2K-1] of
   // P, the arcs between them of even length; the arc before e[s] is m1's
   // and the one K further is mk's (each at least two edges), the others
@@ -91,13 +98,6 @@ std::vector<std::pair<Layout, int>> layouts(const std::vector<int>& P) {
         len[r] = ((e[r] - start[r]) % n + n) % n;
         if (len[r] % 2) return;
       }
-      // c in the middle of a fan quad: inside an arc, at an odd place.
-      bool tip = false;
-      for (int r = 0; r < 2 * K && !tip; ++r) {
-        const int off = ((0 - start[r]) % n + n) % n;
-        tip = off < len[r] && off % 2 == 1;
-      }
-      if (!tip) return;
       for (int s0 = 0; s0 < K; ++s0) {
         auto point = [&](int r) {  // -1 - (index of the arc's point in the chain)
           const int d = ((r - s0) % (2 * K) + 2 * K) % (2 * K);
@@ -129,15 +129,13 @@ std::vector<std::pair<Layout, int>> layouts(const std::vector<int>& P) {
         for (e[2] = e[1] + 1; e[2] < n; ++e[2])
           for (e[3] = e[2] + 1; e[3] < n; ++e[3]) {
             int len[4], start[4];
-            bool even = true, tip = false;
+            bool even = true;
             for (int r = 0; r < 4; ++r) {
               start[r] = (e[(r + 3) % 4] + 1) % n;
               len[r] = ((e[r] - start[r]) % n + n) % n;
               even = even && len[r] % 2 == 0;
-              const int off = ((0 - start[r]) % n + n) % n;
-              tip = tip || (off < len[r] && off % 2 == 1);
             }
-            if (!even || !tip) continue;
+            if (!even) continue;
             Layout L{{-1, -2, -3, -4}};
             for (int r = 0; r < 4; ++r) {
               for (int t = 0; t < len[r]; t += 2) L.push_back({at(start[r] + t), at(start[r] + t + 1), at(start[r] + t + 2), -1 - r});
@@ -160,14 +158,14 @@ struct TipPatch {
   std::vector<int> quads, P, inner, in_patch;
 };
 
-// c's fan holding q, then the region's fans of the patch's vertices, rings
-// times; false if that is no disk with c on its boundary and free inner
-// vertices, or too large.
+// c's fan holding q (two or three quads), then the region's fans of the
+// patch's vertices, rings times; false if that is no disk with c on its
+// boundary and free inner vertices, or too large.
 bool tip_patch(const QuadMesh& qm, int c, int q, int rings, TipPatch& tp) {
   std::vector<int>& patch = tp.quads;
   patch.clear();
   add_fan(qm, c, q, patch);
-  if (patch.size() != 2) return false;
+  if (patch.size() < 2 || patch.size() > 3) return false;
   for (int r = 0; r < rings; ++r) {
     const std::vector<int> now = patch;
     for (int p : now)
@@ -263,7 +261,7 @@ bool apply_layout(QuadMesh& qm, const TipPatch& tp, const Layout& L, int points,
 bool open_wedge_tip(QuadMesh& qm, int c, int q, int max_rings) {
   if (!qm.fixed[c] || qm.vertex_dead[c] || qm.quad_dead[q]) return false;
   const Fan f = qm.fan(c, q);
-  if (f.closed || f.count != 2 || f.ideal != 1) return false;
+  if (f.closed || f.count < 2 || f.count > 3 || f.ideal != 1) return false;
   // The patches of 1 .. max_rings rings (the valid, distinct ones).
   std::vector<TipPatch> patches;
   for (int r = 1; r <= max_rings; ++r) {
