@@ -171,7 +171,7 @@ bool tip_patch(const QuadMesh& qm, int c, int q, int rings, TipPatch& tp) {
     for (int p : now)
       for (int v : qm.quads[p]) add_fan(qm, v, p, patch);
   }
-  constexpr std::size_t kMaxQuads = 32, kMaxBoundary = 18;
+  constexpr std::size_t kMaxQuads = 32, kMaxBoundary = 14;
   if (patch.size() > kMaxQuads) return false;
   // Its boundary, counter-clockwise: the directed edges of its quads whose
   // twin is not in it; one simple loop through c, else it is no disk.
