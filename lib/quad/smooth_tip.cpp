@@ -120,8 +120,9 @@ std::vector<std::pair<Layout, int>> layouts(const std::vector<int>& P) {
     pick(0, 0);
   }
   // A ring of four points, their quad (m1, m2, m3, m4) inside: four bridge
-  // edges e[0] < ... < e[3], the arcs between them of even length (none
-  // may be empty), the arc before e[r] the (r+1)-th point's.
+  // edges e[0] < ... < e[3], the arcs between them of even length (an
+  // empty one leaves its point in three quads), the arc before e[r] the
+  // (r+1)-th point's.
   {
     int e[4];
     for (e[0] = 0; e[0] < n; ++e[0])
