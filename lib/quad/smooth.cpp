@@ -26,6 +26,7 @@ Json SmoothStats::to_json() const {
   ops["pair_splits_four"] = splits_four;
   ops["doublets_removed"] = doublets;
   ops["sharp_corners_opened"] = sharp_corners;
+  ops["wedge_tips_opened"] = wedge_tips;
   ops["quad_collapses"] = collapses;
   ops["valence_collapses"] = valence_collapses;
   ops["fixed_vertices"] = fixed_vertices;
@@ -84,6 +85,7 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
     sharp_corner_pass(qm, st);
     final_collapse_pass(qm, st);
     final_split_pass(qm, st);
+    tip_pass(qm, st);
   }
   for (int r = 0; passes > 0 && r < 4; ++r) worst_pass(qm, st);
   for (int r = 0; passes > 0 && r < opt.mean_rounds; ++r) mean_pass(qm, st);

@@ -49,6 +49,12 @@
 //     its patch placed, relaxed and climbed              smooth_doublet.cpp
 //   if cleanup: pair splits once more on each quad
 //     under 10 degrees                                   smooth_split.cpp
+//   if cleanup: each sharp corner held by two or three
+//     quads where it wants one, one under 12 degrees:
+//     the quads around re-quadded around new points
+//     (a fan, a chain: the strip along a wedge's two
+//     sides, a ring), placed, relaxed and climbed,
+//     the best taken if the sorted mu rose             smooth_tip.cpp
 //   4 times: each free vertex next to a quad under 12
 //     degrees climbs on the two worst mu around it
 //     (max-min)                                          smooth_angle.cpp
@@ -98,6 +104,7 @@ struct SmoothStats {
   std::size_t worst_climbs = 0; // vertices the max-min pass moved
   std::size_t swaps = 0, doublets = 0, collapses = 0;
   std::size_t sharp_corners = 0;      // valence-3 vertices removed to leave a sharp corner one quad
+  std::size_t wedge_tips = 0;         // sharp corners in two or three quads whose patch was re-quadded (open_wedge_tip)
   std::size_t valence_swaps = 0;      // of the swaps, those taken to make valences regular
   std::size_t valence_collapses = 0;  // of the collapses, those of two valence-3 vertices
   std::size_t splits = 0;      // quad pairs split into three around a new point, or into four around two

@@ -91,6 +91,8 @@ bool respoke(QuadMesh& qm, int m, const int (&H)[6], const int (&Q)[3], int i) {
   return false;
 }
 
+} // namespace
+
 // After a re-meshing of the patch pt (its sines were `before`): the free
 // corners of each quad not strictly convex are placed where their quads are
 // (in turn, rounds: one placement may open the next; their stars are in the
@@ -124,6 +126,8 @@ bool settle(QuadMesh& qm, const Patch& pt, const std::vector<double>& before) {
     if (!qm.vertex_dead[x]) qm.wake(x);
   return true;
 }
+
+namespace {
 
 // open_sharp_corner's split of the hexagon into N1 (c in it) and N2 where
 // they are not strictly convex as the corners stand (a wedge tip whose

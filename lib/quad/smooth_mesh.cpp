@@ -218,7 +218,11 @@ Fan QuadMesh::fixed_fan(int v, int q0) const {
   return f;
 }
 
-void QuadMesh::save_patch(std::initializer_list<int> core, Patch& pt) {
+void QuadMesh::save_patch(std::initializer_list<int> core, Patch& pt) { save_patch(core.begin(), core.size(), pt); }
+
+void QuadMesh::save_patch(const std::vector<int>& core, Patch& pt) { save_patch(core.data(), core.size(), pt); }
+
+void QuadMesh::save_patch(const int* core, std::size_t ncore, Patch& pt) {
   if (++stamp_id == 1) {
     vertex_stamp.assign(points.size(), 0);
     quad_stamp.assign(quads.size(), 0);
@@ -228,7 +232,7 @@ void QuadMesh::save_patch(std::initializer_list<int> core, Patch& pt) {
   auto addv = [&](int v) {
     if (vertex_stamp[v] != stamp_id) { vertex_stamp[v] = stamp_id; pt.verts.push_back(v); }
   };
-  for (int c : core) addv(c);
+  for (std::size_t i = 0; i < ncore; ++i) addv(core[i]);
   pt.ncore = pt.verts.size();
   for (std::size_t i = 0; i < pt.ncore; ++i)
     for (int q : vertex_quads[pt.verts[i]])

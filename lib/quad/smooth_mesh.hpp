@@ -147,6 +147,7 @@ struct QuadMesh {
   }
 
   void save_patch(std::initializer_list<int> core, Patch& pt);
+  void save_patch(const std::vector<int>& core, Patch& pt);
   // Puts the patch back as saved; the vertices and quads appended to it
   // since must be the latest added (they are dropped).
   void rollback(Patch& pt);
@@ -169,6 +170,7 @@ struct QuadMesh {
   void compact();
 
 private:
+  void save_patch(const int* core, std::size_t ncore, Patch& pt);
   std::vector<int> vertex_stamp, quad_stamp;  // save_patch's marks
   int stamp_id = 0;
 };
@@ -284,10 +286,35 @@ bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too);
 bool collapse_and_merge(QuadMesh& qm, int q, int diag);
 // collapse_and_merge on every quad under 12 degrees.
 void final_collapse_pass(QuadMesh& qm, SmoothStats& st);
+// After a re-meshing of the patch pt (its sorted sines were `before`):
+// the free corners of each quad not strictly convex placed where their
+// quads are, the patch relaxed, its free vertices climbed on the worst mu.
+// True, the patch's vertices woken, if every quad of the patch is strictly
+// convex and its sorted sines rose (lex_better); the caller rolls back
+// otherwise.
+bool settle(QuadMesh& qm, const Patch& pt, const std::vector<double>& before);
 // remove_doublet, else open_sharp_corner, on every vertex.
 void doublet_pass(QuadMesh& qm, SmoothStats& st);
 // open_sharp_corner with its re-joining way on every vertex.
 void sharp_corner_pass(QuadMesh& qm, SmoothStats& st);
+
+// ---- smooth_tip.cpp ---------------------------------------------------------
+
+// Beyond the thesis: the fixed vertex c whose fan holding quad q is two or
+// three quads where its angle wants one (a wedge tip of the curve split in
+// two, each quad's mu then at most a quarter of the tip's angle): the quads
+// of that fan and those around their vertices within the region (1 to
+// max_rings times over) make patches, topological disks; a patch's free
+// inner vertices go and it is re-quadded around new inner points (a fan
+// around one; a chain of two to four, the strip that follows a wedge's two
+// sides to its tip; a ring of four around a quad), every layout of every
+// patch placed, relaxed and climbed (settle). Of those whose quads are all
+// strictly convex and whose sorted sines beat their patch's (lex), the best
+// (lex, on the quads around the largest patch) is taken; true if one was.
+bool open_wedge_tip(QuadMesh& qm, int c, int q, int max_rings);
+// open_wedge_tip, up to three rings, on each fixed vertex with such a fan
+// holding a quad under 12 degrees (counted in st.wedge_tips).
+void tip_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_collapse.cpp ---------------------------------------------------
 
