@@ -35,14 +35,15 @@ int main(int argc, char** argv) {
   }
   try {
     const imgmesh::PartitionOfUnity pu = imgmesh::read_implicit(argv[1]);
-    const imgmesh::FloatImage& g = pu.samples();
+    const imgmesh::SampleGrid& g = pu.samples();
     const double h = std::min({g.spacing[0], g.spacing[1], g.spacing[2]});
     const double radius = argc == 5 ? std::atof(argv[3]) : 2.0, distance = argc == 5 ? std::atof(argv[4]) : 0.1;
     // The bounding sphere's centre must be inside: the deepest voxel centre.
-    std::size_t best = 0;
-    for (std::size_t k = 0; k < g.data.size(); ++k)
-      if (g.data[k] < g.data[best]) best = k;
-    const std::size_t bx = best % g.size[0], by = (best / g.size[0]) % g.size[1], bz = best / g.size[0] / g.size[1];
+    std::size_t bx = 0, by = 0, bz = 0;
+    for (std::size_t z = 0; z < g.size[2]; ++z)
+      for (std::size_t y = 0; y < g.size[1]; ++y)
+        for (std::size_t x = 0; x < g.size[0]; ++x)
+          if (g(x, y, z) < g(bx, by, bz)) bx = x, by = y, bz = z;
     const imgmesh::Vec3 c = g.world(double(bx), double(by), double(bz));
     double r2 = 0;  // to the farthest corner of the grid
     for (int k = 0; k < 8; ++k) {
