@@ -96,7 +96,8 @@ bool respoke(QuadMesh& qm, int m, const int (&H)[6], const int (&Q)[3], int i) {
 // After a re-meshing of the patch pt (its sines were `before`): the free
 // corners of each quad not strictly convex are placed where their quads are
 // (in turn, rounds: one placement may open the next; their stars are in the
-// patch, which holds every quad around its vertices), the patch relaxed,
+// patch, which holds every quad around its vertices; a corner beyond them,
+// of a ring vertex's quad, stays: rollback would not put it back), the patch relaxed,
 // then its free vertices climb on the worst mu around them (the
 // relaxation's energy may leave a new corner quad thin). True, the patch's
 // vertices woken, if every quad is strictly convex and the patch's sines
@@ -107,11 +108,12 @@ bool settle(QuadMesh& qm, const Patch& pt, const std::vector<double>& before) {
       if (!qm.quad_dead[q] && !qm.convex(qm.quads[q])) return false;
     return true;
   };
+  const auto in_patch = [&](int x) { return std::find(pt.verts.begin(), pt.verts.end(), x) != pt.verts.end(); };
   for (int round = 0; round < 4 && !all_convex(); ++round)
     for (int q : pt.quads)
       if (!qm.quad_dead[q] && !qm.convex(qm.quads[q]))
         for (int x : qm.quads[q])
-          if (!qm.fixed[x]) place_in_star(qm, x);
+          if (!qm.fixed[x] && in_patch(x)) place_in_star(qm, x);
   if (!all_convex()) return false;
   relax(qm, pt);
   for (int round = 0; round < 3; ++round)
