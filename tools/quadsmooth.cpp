@@ -38,11 +38,20 @@ int main(int argc, char** argv) {
       ->type_name("N")
       ->check(CLI::Range(0, 100).description(""))
       ->capture_default_str();
+  tool.app.add_option("--grading", opt.grading,
+                      "last, bring neighbouring quads whose sizes (square roots of the areas) differ by more than "
+                      "R down to R where no quad falls under 10 degrees: vertex moves, collapses, pair splits; "
+                      "0: off, else at least 1")
+      ->type_name("R")
+      ->check(CLI::NonNegativeNumber.description(""))
+      ->default_str("2.449 (sqrt 6)");
   tool.app.add_option("--svg", svg, "also draw the result as SVG, quads coloured by Joe's mu")->type_name("FILE");
   bool svg_whole = false;
   tool.app.add_flag("--svg-whole", svg_whole, "Draw the whole mesh in the SVG, not a frame around the foreground");
   tool.add_threads();
   return tool.run(argc, argv, [&] {
+    // Under 1 no pair could ever be within R.
+    if (opt.grading > 0 && opt.grading < 1) throw imgmesh::UsageError("--grading must be 0 or at least 1");
     opt.cleanup = !no_cleanup;
     opt.threads = tool.threads();
     if (tool.progress())

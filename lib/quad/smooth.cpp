@@ -29,6 +29,9 @@ Json SmoothStats::to_json() const {
   ops["wedge_tips_opened"] = wedge_tips;
   ops["quad_collapses"] = collapses;
   ops["valence_collapses"] = valence_collapses;
+  ops["grading_moves"] = grading_moves;
+  ops["grading_collapses"] = grading_collapses;
+  ops["grading_splits"] = grading_splits;
   ops["fixed_vertices"] = fixed_vertices;
   j["operations"] = ops;
   // Checked, not assumed: every quad that came in strictly convex stays so.
@@ -89,6 +92,9 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
   }
   for (int r = 0; passes > 0 && r < 4; ++r) worst_pass(qm, st);
   for (int r = 0; passes > 0 && r < opt.mean_rounds; ++r) mean_pass(qm, st);
+  // Last: the mean and max-min climbs before it, blind to size, undid most
+  // of its gains when it ran before them.
+  if (opt.cleanup && passes > 0 && opt.grading > 0) grading_pass(qm, st, opt.grading);
   qm.compact();
   st.after = quality_report(mesh);
   return st;

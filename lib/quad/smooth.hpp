@@ -61,6 +61,11 @@
 //   mean_rounds times: each free vertex next to a quad
 //     under 40 degrees climbs on the sum of sin(mu)
 //     around it, the worst mu around never lowered       smooth_angle.cpp
+//   if cleanup and grading: pairs of neighbouring quads
+//     whose sizes differ by over `grading`: their free
+//     corners climb on the ratio, else the smaller quad
+//     collapses or the larger splits with a neighbour,
+//     no quad going under 10 degrees (4 rounds)          smooth_grade.cpp
 //   compact removed vertices and quads into mesh        smooth_mesh.cpp
 #pragma once
 #include "planar/triangle_io.hpp"
@@ -89,6 +94,13 @@ struct SmoothOptions {
   // rather than 3: 0.15 degrees more mean mu on the brain slice and a
   // random blob's default chain, for 13% more quadsmooth CPU.
   int mean_rounds = 6;
+  // Beyond the thesis: the neighbour size ratio (larger over smaller
+  // quad, sizes the square roots of the areas) the grading pass brings the
+  // pairs above it down to, where it can without a quad under 10 degrees;
+  // 0: no pass. sqrt(6): a triangle's three quads beside two triangles of
+  // its size paired into one, which tri2quad makes in every mesh (a lower
+  // aim fights the conversion everywhere).
+  double grading = 2.449489742783178;
   // Called after each pass with (pass, passes) for progress reports; may be empty.
   std::function<void(int, int)> progress;
 };
@@ -109,6 +121,9 @@ struct SmoothStats {
   std::size_t valence_collapses = 0;  // of the collapses, those of two valence-3 vertices
   std::size_t splits = 0;      // quad pairs split into three around a new point, or into four around two
   std::size_t splits_four = 0; // of the splits, those into four
+  // The grading pass: vertex moves, small quads collapsed, large ones split
+  // with a neighbour (not counted with the collapses and splits above).
+  std::size_t grading_moves = 0, grading_collapses = 0, grading_splits = 0;
   int passes = 0;
   std::size_t fixed_vertices = 0;  // boundary, constrained or region-boundary vertices
   Json to_json() const;

@@ -535,4 +535,36 @@ void relax(QuadMesh& qm, const Patch& pt) {
   for (std::size_t i = pt.ncore; i < pt.p.size(); ++i) smooth(i);
 }
 
+bool raise_grading(QuadMesh& qm, int v, double h2, double target, double floor) {
+  std::vector<Point2>& P = qm.points;
+  const std::vector<int>& qs = qm.vertex_quads[v];
+  auto worst = [&] {
+    double w = 1;
+    for (int q : qs) w = std::max(w, grading_ratio(qm, q));
+    return w;
+  };
+  const double r0 = worst();
+  if (!(r0 > target)) return false;
+  // Each quad around keeps its mu, or the floor if that is lower.
+  std::vector<double> keep;
+  for (int q : qs) keep.push_back(std::min(qm.quad_sin_mu[q], floor));
+  const Point2 start = P[v];
+  double best = r0;
+  compass_search(start, 0.125 * std::sqrt(h2), kWorstRounds, [&](const Point2& c) { P[v] = c; }, [&] {
+    // Within the target: no further step (each costs mu).
+    if (best <= target) return false;
+    for (std::size_t i = 0; i < qs.size(); ++i)
+      if (qm.sin_mu_of(qm.quads[qs[i]]) < keep[i]) return false;
+    const double r = worst();
+    if (!(r < best * (1 - 1e-9))) return false;
+    for (int q : qs)
+      if (!qm.convex(qm.quads[q])) return false;
+    best = r;
+    return true;
+  });
+  if (P[v] == start) return false;
+  for (int q : qs) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
+  return true;
+}
+
 } // namespace imgmesh::qs

@@ -102,7 +102,7 @@ bool respoke(QuadMesh& qm, int m, const int (&H)[6], const int (&Q)[3], int i) {
 // relaxation's energy may leave a new corner quad thin). True, the patch's
 // vertices woken, if every quad is strictly convex and the patch's sines
 // rose (lex); the caller rolls back otherwise.
-bool settle(QuadMesh& qm, const Patch& pt, const std::vector<double>& before) {
+bool settle(QuadMesh& qm, const Patch& pt, const std::vector<double>& before, const Accept& accept) {
   auto all_convex = [&] {
     for (int q : pt.quads)
       if (!qm.quad_dead[q] && !qm.convex(qm.quads[q])) return false;
@@ -123,7 +123,7 @@ bool settle(QuadMesh& qm, const Patch& pt, const std::vector<double>& before) {
         const Point2 &p = qm.points[x], &y = qm.points[A[0] == x ? A[1] : A[0]];
         raise_worst(qm, x, (y[0] - p[0]) * (y[0] - p[0]) + (y[1] - p[1]) * (y[1] - p[1]));
       }
-  if (!lex_better(qm.patch_sines(pt), before)) return false;
+  if (accept ? !accept(pt, before) : !lex_better(qm.patch_sines(pt), before)) return false;
   for (int x : pt.verts)
     if (!qm.vertex_dead[x]) qm.wake(x);
   return true;
@@ -227,7 +227,7 @@ bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too) {
   return false;
 }
 
-bool collapse_and_merge(QuadMesh& qm, int q, int diag) {
+bool collapse_and_merge(QuadMesh& qm, int q, int diag, const Accept& accept) {
   const Quad C = qm.quads[q];
   int a = C[diag], c = C[diag + 2];
   const int b = C[diag + 1], d = C[(diag + 3) & 3];
@@ -279,7 +279,7 @@ bool collapse_and_merge(QuadMesh& qm, int q, int diag) {
     }
   for (int x : {a, b, d})
     if (ok && !qm.vertex_dead[x] && qm.vertex_quads[x].size() < (qm.fixed[x] ? 1u : 3u)) ok = false;
-  if (ok && settle(qm, pt, before)) return true;
+  if (ok && settle(qm, pt, before, accept)) return true;
   qm.rollback(pt);
   return false;
 }

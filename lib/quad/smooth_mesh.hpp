@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <string>
 #include <unordered_set>
@@ -219,6 +220,11 @@ bool optimize_edge(QuadMesh& qm, int u, int v, double h);
 // sqrt(kWakeFar) of an edge.
 enum { kMoved = 1, kRejected = 2, kOptimized = 4, kFar = 8 };
 int smooth_vertex(QuadMesh& qm, int v);
+// A compass search on the largest size ratio between the quads around v
+// and their neighbours (grading_ratio), stopping once within target; no
+// quad around becoming non-convex or going under its own sin(mu) or floor,
+// whichever is lower; true if v moved.
+bool raise_grading(QuadMesh& qm, int v, double h2, double target, double floor);
 // Smooths the vertices of a patch after a topological operation.
 void relax(QuadMesh& qm, const Patch& pt);
 
@@ -244,6 +250,10 @@ void swap_pass(QuadMesh& qm, SmoothStats& st);
 
 // ---- smooth_split.cpp ------------------------------------------------------
 
+// A re-meshed, settled patch is taken when accept(patch, its sorted sines
+// before) says so; empty: when its sorted sines rose (lex_better).
+using Accept = std::function<bool(const Patch&, const std::vector<double>&)>;
+
 // The pair across edge i of quad q1 (u = its corner i, w = corner i + 1):
 // q2, the quad holding w -> u, and their union H = u, c, d, w, a, b
 // (counter-clockwise). False where the edge is a feature, has no quad
@@ -254,7 +264,7 @@ bool pair_hexagon(const QuadMesh& qm, int q1, int i, int& q2, int (&H)[6]);
 // three quads around a new point or four around two; returns 3 or 4, or 0
 // with the quads, stars and points exactly as they were (tried marks of q1
 // and q2 cleared).
-int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]);
+int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6], const Accept& accept = {});
 // Beyond the thesis, after the clean-up, the sharp corners and the final
 // collapse: split_pair on each pair of a quad under 10 degrees, which the
 // passes' swaps no longer reach (counted with the splits).
@@ -283,7 +293,7 @@ bool open_sharp_corner(QuadMesh& qm, int m, bool respoke_too);
 // those doublets merge too; the patch's free vertices are then placed where
 // every quad is strictly convex, relaxed and climbed on the worst mu. Taken
 // if the patch's sorted sines rose; true if done.
-bool collapse_and_merge(QuadMesh& qm, int q, int diag);
+bool collapse_and_merge(QuadMesh& qm, int q, int diag, const Accept& accept = {});
 // collapse_and_merge on every quad under 12 degrees.
 void final_collapse_pass(QuadMesh& qm, SmoothStats& st);
 // After a re-meshing of the patch pt (its sorted sines were `before`):
@@ -292,7 +302,7 @@ void final_collapse_pass(QuadMesh& qm, SmoothStats& st);
 // True, the patch's vertices woken, if every quad of the patch is strictly
 // convex and its sorted sines rose (lex_better); the caller rolls back
 // otherwise.
-bool settle(QuadMesh& qm, const Patch& pt, const std::vector<double>& before);
+bool settle(QuadMesh& qm, const Patch& pt, const std::vector<double>& before, const Accept& accept = {});
 // remove_doublet, else open_sharp_corner, on every vertex.
 void doublet_pass(QuadMesh& qm, SmoothStats& st);
 // open_sharp_corner with its re-joining way on every vertex.
@@ -315,6 +325,21 @@ bool open_wedge_tip(QuadMesh& qm, int c, int q, int max_rings);
 // open_wedge_tip, up to three rings, on each fixed vertex with such a fan
 // holding a quad under 12 degrees (counted in st.wedge_tips).
 void tip_pass(QuadMesh& qm, SmoothStats& st);
+
+// ---- smooth_grade.cpp --------------------------------------------------------
+
+// The size of quad q over that of its neighbour across an edge, or the
+// inverse, whichever is larger (sizes: the square roots of the areas); the
+// largest over q's edges, 1 with no neighbour.
+double grading_ratio(const QuadMesh& qm, int q);
+// Beyond the thesis: the pairs of neighbouring quads whose sizes differ by
+// more than `target` (a small quad of tri2quad's Steiner constructions
+// beside a large one, which the passes aiming at mu leave as they are):
+// rounds of raise_grading on the free corners of their quads, collapse_and_
+// merge of the smaller quad, split_pair of the larger with a neighbour; no
+// quad going under 10 degrees (or its own mu if lower), an operation taken
+// if every quad of its patch ends under the pair's ratio.
+void grading_pass(QuadMesh& qm, SmoothStats& st, double target);
 
 // ---- smooth_collapse.cpp ---------------------------------------------------
 

@@ -8,7 +8,7 @@
 
 namespace imgmesh::qs {
 
-int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]) {
+int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6], const Accept& accept) {
   const std::vector<Point2>& P = qm.points;
   // Hexagon H (the pair's union) split around new points. With one point e
   // joined to alternate corners H[s], H[s+2], H[s+4]: three quads, each of
@@ -60,7 +60,8 @@ int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6]) {
       qm.climb = climb;
       double worst_new = std::min(std::min(qm.quad_sin_mu[q1], qm.quad_sin_mu[q2]), qm.quad_sin_mu[q3]);
       if (!three) worst_new = std::min(worst_new, qm.quad_sin_mu[q4]);
-      ok = worst_new > worst_pair * (1 + 1e-9) + 1e-15 && lex_better(qm.patch_sines(pt), before);
+      ok = accept ? accept(pt, before)
+                  : worst_new > worst_pair * (1 + 1e-9) + 1e-15 && lex_better(qm.patch_sines(pt), before);
     }
     if (ok) {
       for (int x : pt.verts) qm.wake(x);
