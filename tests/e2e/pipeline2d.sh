@@ -87,16 +87,23 @@ case_square_lattice_pairs_first_mean_mu_30() {
 # which caps the mu of a quad at that corner: the lung reaches
 # 99.9% of it, the brain slice 100.0%), 99% of the neighbouring quads' sizes
 # within a factor 2.5 (poly2tri's lattice doubles at most once a cell; the
-# quads of tri2quad's Steiner points sit inside the triangles), no quad over
-# a fifth of the shorter side of the domain (the coarsest cell is a tenth).
+# quads of tri2quad's Steiner points sit inside the triangles), every pair
+# within 2 sqrt 2 (quadsmooth's grading pass brings the pairs over sqrt 6,
+# a triangle's three quads beside two of its size paired, down to it where
+# no quad falls under 10 degrees; on a constraint edge halved by tri2quad's
+# repair point a quad can meet one of the whole edge across it, 2 times
+# its size at its shape, sqrt 2 more for a pair of triangles: without the
+# pass the bundled images had 2.4-4.2), no quad over a fifth of the shorter
+# side of the domain (the coarsest cell is a tenth).
 GRADING=2.5
+GRADING_MAX=$(python3 -c 'print(2 * 2 ** 0.5)')
 default_bar() {
   local name=$1 why=$2 small
   small=$(json "$name.p.json" smallest_input_angle)
   python3 -c "import sys; mean, mn, a = map(float, sys.argv[1:]); sys.exit(not (mean >= 30 and mn >= min(10, 0.99 * a / 2)))" \
     "$(q "$name.qs.ele" mean_mu)" "$(q "$name.qs.ele" min_mu)" "$small" ||
     fail "$why: mean mu $(q "$name.qs.ele" mean_mu), min mu $(q "$name.qs.ele" min_mu) (smallest input angle $small)"
-  python3 "$E2E/quad_grading.py" "$name.qs.ele" "$GRADING" 0.2 > grading.txt ||
+  python3 "$E2E/quad_grading.py" "$name.qs.ele" "$GRADING" 0.2 "$GRADING_MAX" > grading.txt ||
     fail "$why: neighbours' sizes or the largest quad: $(cat grading.txt)"
 }
 

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""quad_grading.py MESH.ele [MAX_RATIO [MAX_SHARE]] (python3 stdlib only)
+"""quad_grading.py MESH.ele [MAX_RATIO [MAX_SHARE [MAX_TOP]]] (python3 stdlib only)
 
 The size grading of a planar quad mesh (Triangle .ele + .node): for every
 edge two quads share, the ratio of their sizes (the square roots of their
 areas, larger over smaller). Prints "max R p99 R largest S" (S: the largest
 quad's size over the shorter side of the mesh's bounding box). Exit 1 when
-the 99th percentile of the ratios is over MAX_RATIO, or the largest quad
-over MAX_SHARE of the shorter side.
+the 99th percentile of the ratios is over MAX_RATIO, the largest quad over
+MAX_SHARE of the shorter side, or the largest ratio over MAX_TOP.
 """
 import math, sys
 
@@ -41,6 +41,7 @@ def main():
     print("max %.3f p99 %.3f largest %.4f" % (top, p99, largest))
     ok = len(sys.argv) < 3 or p99 <= float(sys.argv[2])
     ok = ok and (len(sys.argv) < 4 or largest <= float(sys.argv[3]))
+    ok = ok and (len(sys.argv) < 5 or top <= float(sys.argv[4]))
     return 0 if ok else 1
 
 
