@@ -92,9 +92,14 @@ SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
   }
   for (int r = 0; passes > 0 && r < 4; ++r) worst_pass(qm, st);
   for (int r = 0; passes > 0 && r < opt.mean_rounds; ++r) mean_pass(qm, st);
-  // Last: the mean and max-min climbs before it, blind to size, undid most
-  // of its gains when it ran before them.
-  if (opt.cleanup && passes > 0 && opt.grading > 0) grading_pass(qm, st, opt.grading);
+  // The grading pass last: the max-min and mean climbs, blind to size,
+  // undid most of its gains when they ran after it. Half the mean rounds
+  // again, no ratio around a vertex raised past the aim, win back the mean
+  // its moves cost.
+  if (opt.cleanup && passes > 0 && opt.grading > 0) {
+    grading_pass(qm, st, opt.grading);
+    for (int r = 0; r < (opt.mean_rounds + 1) / 2; ++r) mean_pass(qm, st, opt.grading);
+  }
   qm.compact();
   st.after = quality_report(mesh);
   return st;

@@ -66,6 +66,8 @@
 //     corners climb on the ratio, else the smaller quad
 //     collapses or the larger splits with a neighbour,
 //     no quad going under 10 degrees (4 rounds)          smooth_grade.cpp
+//     then half the mean rounds again, no size ratio
+//     around a vertex raised past `grading`              smooth_angle.cpp
 //   compact removed vertices and quads into mesh        smooth_mesh.cpp
 #pragma once
 #include "planar/triangle_io.hpp"

@@ -202,9 +202,15 @@ bool optimize_star(QuadMesh& qm, int v, double h2) {
   return true;
 }
 
-bool raise_mean(QuadMesh& qm, int v, double h2) {
+bool raise_mean(QuadMesh& qm, int v, double h2, double grading) {
   std::vector<Point2>& P = qm.points;
   const std::vector<int>& qs = qm.vertex_quads[v];
+  const auto ratio = [&] {
+    double r = 1;
+    for (int q : qs) r = std::max(r, grading_ratio(qm, q));
+    return r;
+  };
+  const double ratio_cap = grading > 0 ? std::max(grading, ratio()) : 0;  // 0: no cap
   double worst0 = 2, sum0 = 0;
   for (int q : qs) {
     worst0 = std::min(worst0, qm.quad_sin_mu[q]);
@@ -224,6 +230,7 @@ bool raise_mean(QuadMesh& qm, int v, double h2) {
     if (!(sum > best * (1 + 1e-12))) return false;
     for (int q : qs)
       if (!qm.convex(qm.quads[q])) return false;
+    if (ratio_cap > 0 && ratio() > ratio_cap) return false;
     best = sum;
     return true;
   });
@@ -253,11 +260,11 @@ std::size_t climb_stars_below(QuadMesh& qm, double below, Climb climb) {
   return moved;
 }
 
-void mean_pass(QuadMesh& qm, SmoothStats& st) {
+void mean_pass(QuadMesh& qm, SmoothStats& st, double grading) {
   // Stars whose quads are all near squares (mu >= 40) are left alone, which
   // keeps the pass cheap on good meshes.
   constexpr double kGood = 0.6427876096865393;  // sin(40 deg)
-  st.mean_climbs += climb_stars_below(qm, kGood, [&](int v, double h2) { return raise_mean(qm, v, h2); });
+  st.mean_climbs += climb_stars_below(qm, kGood, [&](int v, double h2) { return raise_mean(qm, v, h2, grading); });
 }
 
 bool raise_worst(QuadMesh& qm, int v, double h2) {

@@ -200,10 +200,12 @@ bool try_move(QuadMesh& qm, int v, Point2 p, bool slide_line, const Slide* s);
 bool optimize_star(QuadMesh& qm, int v, double h2);
 // Beyond the thesis: a compass search on the sum of sin(mu) around v (the
 // mean quality), no quad around becoming non-convex or worse than the worst
-// mu around v before; true if v moved.
-bool raise_mean(QuadMesh& qm, int v, double h2);
+// mu around v before; with grading > 0, nor the largest size ratio between
+// v's quads and their neighbours (grading_ratio) past grading or its value
+// before, whichever is larger; true if v moved.
+bool raise_mean(QuadMesh& qm, int v, double h2, double grading = 0);
 // raise_mean on every free vertex next to a quad of mu below 40 degrees.
-void mean_pass(QuadMesh& qm, SmoothStats& st);
+void mean_pass(QuadMesh& qm, SmoothStats& st, double grading = 0);
 // A compass search on the smallest, then the second smallest, sin(mu)
 // around v, no quad around becoming non-convex; true if v moved.
 bool raise_worst(QuadMesh& qm, int v, double h2);

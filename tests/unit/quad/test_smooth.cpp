@@ -306,6 +306,7 @@ TEST_CASE("the mean pass raises the mean mu and lowers no quad below the worst a
     SmoothOptions opt;
     opt.iterations = 6;
     opt.mean_rounds = 0;
+    opt.grading = 0;  // its collapses and splits would follow the mean pass's moves
     const SmoothStats s0 = smooth_quad_mesh(without, opt);
     opt.mean_rounds = 3;
     const SmoothStats s1 = smooth_quad_mesh(with, opt);
@@ -1241,8 +1242,8 @@ TEST_CASE("the grading pass grows a small quad ringed by four large ones to sqrt
 
 TEST_CASE("the grading pass takes no quad under 10 degrees nor under its own mu", "[smooth]") {
   // tri2quad's outputs of jittered grids through quadsmooth with and
-  // without the pass (which runs last): the worst mu is the one without it,
-  // or 10 degrees if that is lower, and the largest size ratio only falls.
+  // without the pass (which runs last, but for guarded mean rounds): the
+  // worst mu is the one without it, or 10 degrees if that is lower.
   for (unsigned seed = 1; seed <= 20; ++seed) {
     const int n = 4 + 2 * int(seed % 5);
     PlanarMesh with = tri2quad_mesh(n, seed), without = with;
@@ -1255,6 +1256,7 @@ TEST_CASE("the grading pass takes no quad under 10 degrees nor under its own mu"
     for (const auto& e : with.elements)
       REQUIRE(is_strictly_convex(with.points[e[0]], with.points[e[1]], with.points[e[2]], with.points[e[3]]));
     CHECK(s1.after.min_mu >= std::min(10.0, s0.after.min_mu) - 1e-9);
-    CHECK(max_neighbour_ratio(with) <= max_neighbour_ratio(without) * (1 + 1e-9));  // the largest ratio only falls
+    // The largest ratio only falls, or the mean rounds after raise it to sqrt 6.
+    CHECK(max_neighbour_ratio(with) <= std::max(std::sqrt(6.0), max_neighbour_ratio(without)) * (1 + 1e-9));
   }
 }
