@@ -12,6 +12,9 @@
 //
 //   one point m, a fan: (p(2s-1), p(2s), p(2s+1), m) for s = 0 .. n/2 - 1,
 //     or the same one vertex on; m of valence n / 2 (n >= 6);
+//   a quad of four consecutive corners cut off by a diagonal, the rest a
+//     fan around one point (n >= 8): the tip of a wedge too thin for a
+//     free corner, in one quad of its own corners;
 //   a chain of k = 2 .. 4 points, a strip: P cut at 2(k-1) of its edges
 //     into arcs of even length, two opposite arcs (of at least two edges)
 //     the fans of the chain's ends, the others of its middle points (left
@@ -83,6 +86,18 @@ std::vector<std::pair<Layout, int>> layouts(const std::vector<int>& P) {
       for (int s = 0; s < n / 2; ++s) L.push_back({at(2 * s - 1 + parity), at(2 * s + parity), at(2 * s + 1 + parity), -1});
       out.push_back({L, 1});
     }
+  // (p(i), .., p(i+3)) cut off, the rest (p(i+3), .., p(i)) a fan.
+  if (n >= 8)
+    for (int i = 0; i < n; ++i)
+      for (int parity = 0; parity < 2; ++parity) {
+        Layout L{{at(i), at(i + 1), at(i + 2), at(i + 3)}};
+        std::vector<int> R{at(i + 3)};
+        for (int k = 4; k <= n; ++k) R.push_back(at(i + k));  // p(i+3), .., p(i+n) = p(i)
+        const int m = int(R.size());
+        for (int s = 0; s < m / 2; ++s)
+          L.push_back({R[((2 * s - 1 + parity) % m + m) % m], R[(2 * s + parity) % m], R[(2 * s + 1 + parity) % m], -1});
+        out.push_back({L, 1});
+      }
   // A chain of k = K + 1 points: 2K bridge edges e[0] < ... < e[2K-1] of
   // P, the arcs between them of even length; the arc before e[s] is m1's
   // and the one K further is mk's (each at least two edges), the others
