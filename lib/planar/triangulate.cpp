@@ -167,9 +167,9 @@ std::vector<K::Point_2> lattice_in_domain(const PlanarMesh& in, const CDT& cdt, 
 // side h / 2 too, and where the domain is narrower than the field asks for
 // (a node between two sides of it, 2 d across, d its distance to the
 // nearer) the field is at most that width: the lattice then fits a row of
-// nodes wherever the finer side does, where it left the band between
-// close curves to Delaunay refinement (quads there about twice as deep as
-// the curve's pixel-long edges, Joe's mu at most 26.6).
+// nodes wherever the finer side does, where it left the space between
+// close curves to Delaunay refinement (on 128 x 128 label slices through
+// the default chain: mean Joe's mu 27.8-27.9 -> 30.1-30.5, 1.6 x quads).
 // The distances come from a vector distance transform on the nodes
 // (Danielsson: each node takes the nearest of the segments its neighbours
 // are nearest to, seeded exactly within a cell of every segment), the size
