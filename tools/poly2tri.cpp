@@ -44,8 +44,9 @@ int main(int argc, char** argv) {
                       ->check(CLI::PositiveNumber.description(""));
   double square_lattice = -1;  // < 0: default_lattice_side
   tool.app.add_option("--square-lattice", square_lattice,
-                      "Seed the domain with a square lattice whose finest side is L, coarsening away from the "
-                      "segments (--grading); its right triangles make squares, which tri2quad merges first. "
+                      "Seed the domain with a square lattice of side L along the segments, coarsening away from "
+                      "them (--grading) and down to L/2 where the domain is narrow (--no-narrow); its right "
+                      "triangles make squares, which tri2quad merges first. "
                       "0: no lattice, Delaunay refinement's own points")
       ->default_str("half the median segment length, at least twice its 10th percentile")
       ->type_name("L")
@@ -57,6 +58,10 @@ int main(int argc, char** argv) {
       ->default_str("0.25")
       ->type_name("G")
       ->check(CLI::Range(0.0, 0.5).description(""));
+  bool wide_only = false;
+  tool.app.add_flag("--no-narrow", wide_only,
+                    "Square lattice: no side under L (by default the lattice goes down to L/2 where the domain is "
+                    "narrower than the size field asks for)");
   tool.app.add_option("--max-side", opt.max_side, "Square lattice: the coarsest side M > 0 (world units)")
       ->default_str("a tenth of the shorter side of the bounding box")
       ->type_name("M")
@@ -86,6 +91,7 @@ int main(int argc, char** argv) {
       opt.lattice_optional = square_lattice < 0;
       opt.square_lattice = opt.lattice > 0;
       if (opt.max_side <= 0) opt.max_side = default_max_side(pslg);
+      opt.narrow = !wide_only;
     }
     const auto r = naming_input(in, [&] { return triangulate_pslg(pslg, opt); });
     write_planar_mesh(out, r.mesh);  // "-": OFF on stdout
@@ -100,6 +106,7 @@ int main(int argc, char** argv) {
       tool.stats["square_lattice"] = opt.lattice;
       tool.stats["grading"] = opt.grading;
       tool.stats["max_side"] = opt.max_side;
+      tool.stats["narrow"] = opt.narrow;
     }
     std::ostringstream msg;
     msg << r.mesh.elements.size() << " triangles, " << r.mesh.points.size() << " vertices ("

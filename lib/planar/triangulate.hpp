@@ -38,6 +38,10 @@ struct TriangulateOptions {
   // differ by at most 2x). 0: a uniform lattice.
   double grading = 0;
   double max_side = 0;  // > 0: the coarsest lattice side (default: no bound)
+  // With square_lattice and grading > 0: where the domain is narrower than
+  // the field asks for, between two of its sides, the field is at most that
+  // width, down to half the lattice side (one level finer there).
+  bool narrow = false;
   // A lattice whose points alone exceed max_vertices is left out (the
   // refinement then stops at the limit) rather than refused as a usage
   // error: poly2tri's default lattice, which the user did not ask for.

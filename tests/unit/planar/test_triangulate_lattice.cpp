@@ -112,3 +112,34 @@ TEST_CASE("triangulate: a graded square lattice follows the distance to the curv
     CHECK(largest >= 4 * std::sqrt(2.0));
   }
 }
+
+TEST_CASE("triangulate: with narrow, the square lattice fits a row of half-side cells into a slot narrower than its side", "[lattice]") {
+  // The box [0, 40]^2 and a slot [5, 35] x [19, 20.6] inside it, 0.8 of
+  // the lattice side 2 across: no node of side 2 is half a side from both
+  // of its long sides, a node of side 1 is (at y = 20). No refinement, so
+  // the Steiner points are the lattice's.
+  PlanarMesh p;
+  p.points = {{0, 0}, {40, 0}, {40, 40}, {0, 40}, {5, 19}, {35, 19}, {35, 20.6}, {5, 20.6}};
+  p.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}};
+  TriangulateOptions opt;
+  opt.min_angle = 0;
+  opt.lattice = 2;
+  opt.square_lattice = true;
+  opt.grading = 0.25;
+  opt.max_side = 8;
+  const auto in_slot = [&](const TriangulateResult& r) {
+    int n = 0;
+    for (const auto& q : r.mesh.points) {
+      if (!(q[0] > 5 && q[0] < 35 && q[1] > 19 && q[1] < 20.6)) continue;
+      ++n;
+      // Half the finer side from every segment, as any lattice node.
+      for (const auto& s : p.segments) CHECK(distance_to_segment(q, p.points[s[0]], p.points[s[1]]) >= 0.5 - 1e-9);
+    }
+    return n;
+  };
+  const TriangulateResult wide = triangulate_pslg(p, opt);
+  opt.narrow = true;
+  const TriangulateResult narrow = triangulate_pslg(p, opt);
+  CHECK(in_slot(wide) == 0);
+  CHECK(in_slot(narrow) >= 25);  // a node every 1 along the slot's 30
+}
