@@ -6,6 +6,7 @@
 #include "quad/smooth.hpp"
 #include "util/error.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -43,7 +44,6 @@ int main(int argc, char** argv) {
                       "R down to R where no quad falls under 10 degrees: vertex moves, collapses, pair splits; "
                       "0: off, else at least 1")
       ->type_name("R")
-      ->check(CLI::NonNegativeNumber.description(""))
       ->default_str("2.449 (sqrt 6)");
   tool.app.add_option("--svg", svg, "also draw the result as SVG, quads coloured by Joe's mu")->type_name("FILE");
   bool svg_whole = false;
@@ -51,7 +51,8 @@ int main(int argc, char** argv) {
   tool.add_threads();
   return tool.run(argc, argv, [&] {
     // Under 1 no pair could ever be within R.
-    if (opt.grading > 0 && opt.grading < 1) throw imgmesh::UsageError("--grading must be 0 or at least 1");
+    if (!(opt.grading == 0 || (opt.grading >= 1 && std::isfinite(opt.grading))))
+      throw imgmesh::UsageError("--grading must be 0 or a finite number at least 1");
     opt.cleanup = !no_cleanup;
     opt.threads = tool.threads();
     if (tool.progress())

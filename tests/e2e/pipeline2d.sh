@@ -109,6 +109,20 @@ default_bar() {
     fail "$why: neighbours' sizes or the largest quad: $(cat grading.txt)"
 }
 
+# default_chain_bar IMAGE WHY [IMG2POLY OPTIONS]: the README's four commands
+# with no option on IMAGE (d.*), quad_check.py, then default_bar.
+default_chain_bar() {
+  local image=$1 why=$2
+  shift 2
+  expect 0 img2poly "$image" d.poly "$@" &&
+    expect 0 poly2tri d.poly d.1.ele --stats d.p.json &&
+    expect 0 tri2quad d.1.ele d.q.ele &&
+    expect 0 quadsmooth d.q.ele d.qs.ele || return 1
+  python3 "$QC" d.qs.ele d.1.ele > qc.txt 2>&1 || fail "$why: $(cat qc.txt)"
+  rm -f d.qs.ele.json  # q's report of the previous input
+  default_bar d "$why"
+}
+
 # The README's four commands with no option on the bundled images.
 case_default_chain_mean_mu_30_min_10_graded() {
   local spec image opts
@@ -142,13 +156,7 @@ data = bytes(200 if inside(i, j) else 20 for j in range(ny) for i in range(nx))
 hdr = ("NRRD0004\ntype: uint8\ndimension: 2\nsizes: %d %d\nspacings: %r %r\nencoding: raw\n\n" % (nx, ny, sx, sy))
 open("blob.nrrd", "wb").write(hdr.encode() + data)
 PY
-    expect 0 img2poly blob.nrrd b.poly --threshold 100 &&
-      expect 0 poly2tri b.poly b.1.ele --stats b.p.json &&
-      expect 0 tri2quad b.1.ele b.q.ele &&
-      expect 0 quadsmooth b.q.ele b.qs.ele || continue
-    python3 "$QC" b.qs.ele b.1.ele > qc.txt 2>&1 || fail "blob $seed: $(cat qc.txt)"
-    rm -f b.qs.ele.json  # q's report of the previous blob
-    default_bar b "blob $seed"
+    default_chain_bar blob.nrrd "blob $seed" --threshold 100
   done
 }
 
@@ -177,13 +185,7 @@ case_default_chain_on_brain_kmeans_slices() {
     IFS=: read -r z opts <<< "$spec"
     kmeans_slice "$z" km.nrrd || { fail "slice z = $z"; continue; }
     # shellcheck disable=SC2086  # opts: an option and its value
-    expect 0 img2poly km.nrrd k.poly $opts &&
-      expect 0 poly2tri k.poly k.1.ele --stats k.p.json &&
-      expect 0 tri2quad k.1.ele k.q.ele &&
-      expect 0 quadsmooth k.q.ele k.qs.ele || continue
-    python3 "$QC" k.qs.ele k.1.ele > qc.txt 2>&1 || fail "z = $z $opts: $(cat qc.txt)"
-    rm -f k.qs.ele.json  # q's report of the previous slice
-    default_bar k "brain-kmeans z = $z ${opts:-all labels}"
+    default_chain_bar km.nrrd "brain-kmeans z = $z ${opts:-all labels}" $opts
   done
 }
 

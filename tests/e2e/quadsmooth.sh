@@ -178,6 +178,8 @@ case_bad_input_exit_1_2_without_output() {
   expect 2 quadsmooth in.ele x.ele --iterations -1
   expect 2 quadsmooth in.ele
   expect 2 quadsmooth in.ele x.ele --bogus
+  local g
+  for g in nan inf -1 0.5; do expect 2 quadsmooth in.ele x.ele --grading "$g"; done
   [[ -z $(ls | grep -v -e '^in\.' -e '^trunc\.' -e '^cw\.' -e '^err.txt$' -e '^out.txt$') ]] || fail "left: $(ls)"
 }
 
