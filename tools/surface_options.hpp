@@ -1,6 +1,6 @@
 // The surface mesher's options, one definition for every tool that meshes a
 // surface (implicit2mesh, implicit2tet, seg2mesh): the same names, units,
-// defaults and checks. The defaults are the tools' (doc/benchmarks-log.md,
+// defaults and checks. The defaults are the tools' (doc/benchmarks.md,
 // issue 17): --ratio 1.2 (smallest angle about 24.6 degrees), --roughness
 // 120 degrees (one-voxel features of noisy labels left unresolved), and
 // --max-distance 0.3 of the smallest voxel spacing; the library's
