@@ -3,7 +3,8 @@
 # run, beside the same labels (those seg2mesh meshed, read from its --stats)
 # one after the other through the pipeline
 # (img2wc --label L | wc2implicit | implicit2mesh, each stage on all cores),
-# at --roughness 90 (degrees; the default). Wall time,
+# at --roughness 90 (degrees; the default before 2026-12-03 was 90, now 120:
+# kept at 90 so the figures compare with the earlier runs). Wall time,
 # CPU time, peak memory, triangles, and whether every label is certified.
 # On a shared machine compare the CPU seconds too: the wall time of either
 # run grows with the other processes' load.
