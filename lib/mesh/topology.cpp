@@ -12,7 +12,7 @@
 
 namespace imgmesh {
 
-using detail::UnionFind;
+using mesh_detail::UnionFind;
 
 namespace {
 
@@ -531,11 +531,11 @@ ComponentCorrespondence match_components(const MeshTopology& mesh, const std::ve
     const int c = boundary_component_at(points[v], grid, boundary, bt);
     if (c >= 0) votes.push_back({m, c});
   }
-  detail::tally_votes(r, votes);
+  mesh_detail::tally_votes(r, votes);
   return r;
 }
 
-void detail::tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes) {
+void mesh_detail::tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes) {
   std::sort(votes.begin(), votes.end());
   for (std::size_t i = 0; i < votes.size();) {
     std::size_t j = i;
