@@ -12,44 +12,7 @@
 
 namespace imgmesh {
 
-using detail::UnionFind;
-
-namespace {
-
-// Union-find that also tracks the parity (flip or not) of each face relative
-// to its root, to tell orientable components from non-orientable ones.
-struct ParityUnionFind {
-  std::vector<std::uint32_t> p;  // fewer than 2^31 faces (checked by the caller)
-  std::vector<std::uint8_t> par;  // parity to parent
-  explicit ParityUnionFind(std::size_t n) : p(n), par(n, 0) { std::iota(p.begin(), p.end(), std::uint32_t(0)); }
-  std::size_t find(std::size_t x, std::uint8_t& parity) {
-    parity = 0;
-    std::size_t r = x;
-    while (p[r] != r) { parity ^= par[r]; r = p[r]; }
-    // Path compression with parities.
-    std::uint8_t acc = parity;
-    while (p[x] != r) {
-      const std::size_t next = p[x];
-      const std::uint8_t px = par[x];
-      p[x] = std::uint32_t(r);
-      par[x] = acc;
-      acc ^= px;
-      x = next;
-    }
-    return r;
-  }
-  // Returns false on a contradiction.
-  bool unite(std::size_t a, std::size_t b, std::uint8_t rel) {
-    std::uint8_t pa, pb;
-    const std::size_t ra = find(a, pa), rb = find(b, pb);
-    if (ra == rb) return (pa ^ pb) == rel;
-    p[rb] = std::uint32_t(ra);
-    par[rb] = pa ^ pb ^ rel;
-    return true;
-  }
-};
-
-} // namespace
+using mesh_detail::UnionFind;
 
 std::vector<long long> MeshTopology::euler_list() const {
   std::vector<long long> e;
@@ -98,190 +61,289 @@ Json MeshTopology::to_json() const {
 
 namespace {
 
-// The topology of nf faces whose corners are numbered face by face:
-// corner(i) its vertex, offset(f) the first corner of face f (offset(nf)
-// the number of corners), face_of(i) the face of corner i. Accessors, not
-// arrays, so that a triangle mesh is read in place: this runs beside the
-// mesher's triangulation, at its peak.
-template <class Corner, class Offset, class FaceOf>
-MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset offset, FaceOf face_of) {
-  MeshTopology t;
-  const std::size_t nc = offset(nf);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::size_t b = offset(f), e = offset(f + 1);  // e >= b + 3: checked by the caller
-    for (std::size_t i = b; i < e; ++i) {
-      if (corner(i) < 0 || std::size_t(corner(i)) >= nv)
-        throw Error("face " + std::to_string(f) + ": vertex id out of range");
-      for (std::size_t k = b; k < i; ++k)
-        if (corner(k) == corner(i)) throw Error("face " + std::to_string(f) + ": repeated vertex");
+// Union-find that also tracks the parity (flip or not) of each face relative
+// to its root, to tell orientable components from non-orientable ones.
+struct ParityUnionFind {
+  std::vector<std::uint32_t> p;  // fewer than 2^31 faces (checked by the caller)
+  std::vector<std::uint8_t> par;  // parity to parent
+  explicit ParityUnionFind(std::size_t n) : p(n), par(n, 0) { std::iota(p.begin(), p.end(), std::uint32_t(0)); }
+  std::size_t find(std::size_t x, std::uint8_t& parity) {
+    parity = 0;
+    std::size_t r = x;
+    while (p[r] != r) { parity ^= par[r]; r = p[r]; }
+    // Path compression with parities.
+    std::uint8_t acc = parity;
+    while (p[x] != r) {
+      const std::size_t next = p[x];
+      const std::uint8_t px = par[x];
+      p[x] = std::uint32_t(r);
+      par[x] = acc;
+      acc ^= px;
+      x = next;
     }
+    return r;
   }
-  // The corners at each vertex (counted, then placed): 4 bytes a corner,
-  // where half-edges sorted by edge took 12 beside the mesher's
-  // triangulation at its peak. The half-edges of edge {a, b} are found among
-  // the corners of whichever end has fewer.
-  if (nc > 0x7fffffffu || nf > 0x7fffffffu) throw Error("topology: more than 2^31 corners");
-  std::vector<std::uint32_t> at_start(nv + 1, 0), at(nc);
-  for (std::size_t i = 0; i < nc; ++i) ++at_start[std::size_t(corner(i)) + 1];
-  for (std::size_t v = 0; v < nv; ++v) at_start[v + 1] += at_start[v];
-  {
-    std::vector<std::uint32_t> next(at_start.begin(), at_start.end() - 1);
-    for (std::size_t i = 0; i < nc; ++i) at[next[std::size_t(corner(i))]++] = std::uint32_t(i);
+  // Returns false on a contradiction.
+  bool unite(std::size_t a, std::size_t b, std::uint8_t rel) {
+    std::uint8_t pa, pb;
+    const std::size_t ra = find(a, pa), rb = find(b, pb);
+    if (ra == rb) return (pa ^ pb) == rel;
+    p[rb] = std::uint32_t(ra);
+    par[rb] = pa ^ pb ^ rel;
+    return true;
   }
-  auto next_corner = [&](std::size_t c) {
+};
+
+// nf faces whose corners are numbered face by face: corner(i) its vertex,
+// offset(f) the first corner of face f (offset(nf) the number of corners),
+// face_of(i) the face of corner i. Accessors, not arrays, so that a triangle
+// mesh is read in place: this runs beside the mesher's triangulation, at its
+// peak.
+template <class Corner, class Offset, class FaceOf> struct Faces {
+  std::size_t nv, nf;
+  Corner corner;
+  Offset offset;
+  FaceOf face_of;
+
+  std::size_t corners() const { return offset(nf); }
+  std::size_t next(std::size_t c) const {
     const std::size_t f = face_of(c);
     return c + 1 == offset(f + 1) ? offset(f) : c + 1;
-  };
-  auto prev_corner = [&](std::size_t c) {
+  }
+  std::size_t prev(std::size_t c) const {
     const std::size_t f = face_of(c);
     return c == offset(f) ? offset(f + 1) - 1 : c - 1;
-  };
-  auto forward = [&](std::size_t h) { return corner(h) < corner(next_corner(h)); };
-  // edge(lo, hi, hs) once per undirected edge, hs its half-edges (each by
-  // the corner it starts at) ascending; edges in the order of their first
-  // half-edge.
-  std::vector<std::uint32_t> hs;
-  auto for_each_edge = [&](auto edge) {
-    for (std::size_t i = 0; i < nc; ++i) {
-      const std::uint32_t a = std::uint32_t(corner(i)), b = std::uint32_t(corner(next_corner(i)));
-      const std::uint32_t s = at_start[a + 1] - at_start[a] <= at_start[b + 1] - at_start[b] ? a : b, o = a ^ b ^ s;
-      hs.clear();
-      for (std::uint32_t k = at_start[s]; k < at_start[s + 1]; ++k) {
-        const std::size_t c = at[k];
-        if (std::uint32_t(corner(next_corner(c))) == o) hs.push_back(std::uint32_t(c));
-        const std::size_t p = prev_corner(c);
-        if (std::uint32_t(corner(p)) == o) hs.push_back(std::uint32_t(p));
-      }
-      std::sort(hs.begin(), hs.end());
-      if (hs[0] == i) edge(std::min(a, b), std::max(a, b), hs);
-    }
-  };
+  }
+  // Whether half-edge h (by the corner it starts at) runs from the lower vertex.
+  bool forward(std::size_t h) const { return corner(h) < corner(next(h)); }
+};
 
-  UnionFind vuf(nv), buf(nv);
-  ParityUnionFind fuf(nf);
-  std::vector<char> used(nv, 0), on_boundary(nv, 0), bad_vertex(nv, 0);
-  for (std::size_t i = 0; i < nc; ++i) used[std::size_t(corner(i))] = 1;
-  std::vector<std::size_t> nonorientable_faces;
-  // Per edge, counted at its lower end a for a's component (known once
-  // every edge is seen): one walk over the edges, not two.
-  // (An edge in more than two faces makes its ends bad vertices.)
+// Vertex ids in range, none twice in a face.
+template <class F> void check_faces(const F& fs) {
+  for (std::size_t f = 0; f < fs.nf; ++f) {
+    const std::size_t b = fs.offset(f), e = fs.offset(f + 1);  // e >= b + 3: checked by the caller
+    for (std::size_t i = b; i < e; ++i) {
+      if (fs.corner(i) < 0 || std::size_t(fs.corner(i)) >= fs.nv)
+        throw Error("face " + std::to_string(f) + ": vertex id out of range");
+      for (std::size_t k = b; k < i; ++k)
+        if (fs.corner(k) == fs.corner(i)) throw Error("face " + std::to_string(f) + ": repeated vertex");
+    }
+  }
+}
+
+// The corners at each vertex (counted, then placed): 4 bytes a corner, where
+// half-edges sorted by edge took 12 beside the mesher's triangulation at its
+// peak. The half-edges of edge {a, b} are found among the corners of
+// whichever end has fewer.
+struct CornerIndex {
+  std::vector<std::uint32_t> start;  // per vertex, then the end
+  std::vector<std::uint32_t> at;     // the corners of vertex v: at[start[v]] .. at[start[v + 1] - 1]
+  std::uint32_t count(std::uint32_t v) const { return start[v + 1] - start[v]; }
+};
+
+template <class F> CornerIndex index_corners(const F& fs) {
+  const std::size_t nc = fs.corners();
+  if (nc > 0x7fffffffu || fs.nf > 0x7fffffffu) throw Error("topology: more than 2^31 corners");
+  CornerIndex x{std::vector<std::uint32_t>(fs.nv + 1, 0), std::vector<std::uint32_t>(nc)};
+  for (std::size_t i = 0; i < nc; ++i) ++x.start[std::size_t(fs.corner(i)) + 1];
+  for (std::size_t v = 0; v < fs.nv; ++v) x.start[v + 1] += x.start[v];
+  std::vector<std::uint32_t> next(x.start.begin(), x.start.end() - 1);
+  for (std::size_t i = 0; i < nc; ++i) x.at[next[std::size_t(fs.corner(i))]++] = std::uint32_t(i);
+  return x;
+}
+
+// edge(lo, hi, hs) once per undirected edge, hs its half-edges (each by the
+// corner it starts at) ascending; edges in the order of their first
+// half-edge.
+template <class F, class Edge> void for_each_edge(const F& fs, const CornerIndex& x, Edge edge) {
+  std::vector<std::uint32_t> hs;
+  for (std::size_t i = 0; i < fs.corners(); ++i) {
+    const std::uint32_t a = std::uint32_t(fs.corner(i)), b = std::uint32_t(fs.corner(fs.next(i)));
+    const std::uint32_t s = x.count(a) <= x.count(b) ? a : b, o = a ^ b ^ s;
+    hs.clear();
+    for (std::uint32_t k = x.start[s]; k < x.start[s + 1]; ++k) {
+      const std::size_t c = x.at[k];
+      if (std::uint32_t(fs.corner(fs.next(c))) == o) hs.push_back(std::uint32_t(c));
+      const std::size_t p = fs.prev(c);
+      if (std::uint32_t(fs.corner(p)) == o) hs.push_back(std::uint32_t(p));
+    }
+    std::sort(hs.begin(), hs.end());
+    if (hs[0] == i) edge(std::min(a, b), std::max(a, b), hs);
+  }
+}
+
+// What the walk over the edges finds, per vertex and face. Per edge, counted
+// at its lower end for that end's component (known once every edge is seen):
+// one walk over the edges, not two.
+struct EdgeWalk {
   enum : std::uint8_t { kOpen = 1, kMisoriented = 2 };
-  std::vector<std::uint32_t> edges_at(nv, 0);
-  std::vector<std::uint8_t> edge_flags(nv, 0);
-  for_each_edge([&](std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t>& h) {
-    vuf.unite(a, b);
-    ++edges_at[a];
+  EdgeWalk(std::size_t nv, std::size_t nf)
+      : vertices(nv), boundary(nv), faces(nf), used(nv, 0), on_boundary(nv, 0), bad_vertex(nv, 0), edges_at(nv, 0),
+        edge_flags(nv, 0) {}
+  UnionFind vertices, boundary;  // joined across the edges, across the boundary edges
+  ParityUnionFind faces;         // joined across the edges in two faces, flipped or not
+  std::vector<char> used, on_boundary, bad_vertex;  // in a face; on a boundary edge; non-manifold
+  std::vector<std::size_t> nonorientable_faces;     // a face per contradiction of the flips
+  std::vector<std::uint32_t> edges_at;              // edges at their lower end
+  std::vector<std::uint8_t> edge_flags;             // kOpen, kMisoriented at their lower end
+};
+
+// Every edge once: boundary (one face), shared by two faces (consistently
+// oriented or not), or non-manifold (more; its ends are bad vertices).
+template <class F> void walk_edges(const F& fs, const CornerIndex& x, EdgeWalk& w, MeshTopology& t) {
+  for (std::size_t i = 0; i < fs.corners(); ++i) w.used[std::size_t(fs.corner(i))] = 1;
+  for_each_edge(fs, x, [&](std::uint32_t a, std::uint32_t b, const std::vector<std::uint32_t>& h) {
+    w.vertices.unite(a, b);
+    ++w.edges_at[a];
     const std::size_t n = h.size();
     if (n == 1) {
       ++t.boundary_edges;
-      on_boundary[a] = on_boundary[b] = 1;
-      buf.unite(a, b);
-      edge_flags[a] |= kOpen;
+      w.on_boundary[a] = w.on_boundary[b] = 1;
+      w.boundary.unite(a, b);
+      w.edge_flags[a] |= EdgeWalk::kOpen;
     } else if (n == 2) {
-      const bool same = forward(h[0]) == forward(h[1]);
-      if (same) ++t.inconsistent_edges, edge_flags[a] |= kMisoriented;
-      if (!fuf.unite(face_of(h[0]), face_of(h[1]), same ? 1 : 0)) nonorientable_faces.push_back(face_of(h[0]));
+      const bool same = fs.forward(h[0]) == fs.forward(h[1]);
+      if (same) ++t.inconsistent_edges, w.edge_flags[a] |= EdgeWalk::kMisoriented;
+      if (!w.faces.unite(fs.face_of(h[0]), fs.face_of(h[1]), same ? 1 : 0))
+        w.nonorientable_faces.push_back(fs.face_of(h[0]));
     } else {
       ++t.nonmanifold_edges;
-      bad_vertex[a] = bad_vertex[b] = 1;
+      w.bad_vertex[a] = w.bad_vertex[b] = 1;
     }
   });
-  // A vertex whose corners form more than one fan is non-manifold (bow-tie):
-  // its corners joined across the edges at it with exactly two faces. Per
-  // vertex, on its own few corners (a union-find over every corner was 4
-  // bytes a corner beside the mesher's triangulation at its peak).
-  {
-    std::vector<std::uint32_t> next_of, prev_of, root;  // per corner at v: its face's neighbours of v; union-find
-    for (std::size_t v = 0; v < nv; ++v) {
-      const std::uint32_t b = at_start[v], d = at_start[v + 1] - b;
-      if (d < 2) continue;
-      next_of.resize(d);
-      prev_of.resize(d);
-      root.resize(d);
-      for (std::uint32_t k = 0; k < d; ++k) {
-        next_of[k] = std::uint32_t(corner(next_corner(at[b + k])));
-        prev_of[k] = std::uint32_t(corner(prev_corner(at[b + k])));
-        root[k] = k;
-      }
-      auto find = [&](std::uint32_t k) {
-        while (root[k] != k) k = root[k] = root[root[k]];
-        return k;
-      };
-      for (std::uint32_t k = 0; k < d; ++k)
-        for (const std::uint32_t w : {next_of[k], prev_of[k]}) {
-          // The faces at edge {v, w}: the corners of v beside w.
-          std::uint32_t faces = 0, other = k;
-          for (std::uint32_t m = 0; m < d; ++m)
-            if (next_of[m] == w || prev_of[m] == w) {
-              ++faces;
-              if (m != k) other = m;
-            }
-          if (faces == 2) {
-            const std::uint32_t x = find(k), y = find(other);
-            root[std::max(x, y)] = std::min(x, y);
+}
+
+// A vertex whose corners form more than one fan is non-manifold (bow-tie):
+// its corners joined across the edges at it with exactly two faces. Per
+// vertex, on its own few corners (a union-find over every corner was 4 bytes
+// a corner beside the mesher's triangulation at its peak).
+template <class F> void mark_bowties(const F& fs, const CornerIndex& x, std::vector<char>& bad_vertex) {
+  std::vector<std::uint32_t> next_of, prev_of, root;  // per corner at v: its face's neighbours of v; union-find
+  for (std::size_t v = 0; v < fs.nv; ++v) {
+    const std::uint32_t b = x.start[v], d = x.start[v + 1] - b;
+    if (d < 2) continue;
+    next_of.resize(d);
+    prev_of.resize(d);
+    root.resize(d);
+    for (std::uint32_t k = 0; k < d; ++k) {
+      next_of[k] = std::uint32_t(fs.corner(fs.next(x.at[b + k])));
+      prev_of[k] = std::uint32_t(fs.corner(fs.prev(x.at[b + k])));
+      root[k] = k;
+    }
+    auto find = [&](std::uint32_t k) {
+      while (root[k] != k) k = root[k] = root[root[k]];
+      return k;
+    };
+    for (std::uint32_t k = 0; k < d; ++k)
+      for (const std::uint32_t u : {next_of[k], prev_of[k]}) {
+        // The faces at edge {v, u}: the corners of v beside u.
+        std::uint32_t faces = 0, other = k;
+        for (std::uint32_t m = 0; m < d; ++m)
+          if (next_of[m] == u || prev_of[m] == u) {
+            ++faces;
+            if (m != k) other = m;
           }
+        if (faces == 2) {
+          const std::uint32_t p = find(k), q = find(other);
+          root[std::max(p, q)] = std::min(p, q);
         }
-      for (std::uint32_t k = 1; k < d; ++k)
-        if (find(k) != find(0)) bad_vertex[v] = 1;
-    }
+      }
+    for (std::uint32_t k = 1; k < d; ++k)
+      if (find(k) != find(0)) bad_vertex[v] = 1;
   }
-  // Components, keyed by the root vertex.
-  std::vector<long long> comp_id(nv, -1);
-  std::vector<ComponentTopology> comps;
+}
+
+// The components, keyed by the root vertex of the edge walk's union-find.
+struct Components {
+  std::vector<long long> id;  // per root vertex, else -1
+  std::vector<ComponentTopology> list;
+  ComponentTopology& of(EdgeWalk& w, std::size_t v) { return list[std::size_t(id[w.vertices.find(v)])]; }
+};
+
+// Each component's vertices (first one, non-manifold ones) and boundary loops
+// (one root of the boundary union-find each); the isolated vertices.
+Components components_by_vertex(EdgeWalk& w, MeshTopology& t) {
+  const std::size_t nv = w.used.size();
+  Components c{std::vector<long long>(nv, -1), {}};
   for (std::size_t v = 0; v < nv; ++v) {
-    if (!used[v]) { ++t.isolated_vertices; continue; }
-    const std::size_t r = vuf.find(v);
-    if (comp_id[r] < 0) {
-      comp_id[r] = (long long)comps.size();
-      comps.emplace_back();
-      comps.back().manifold = true;
-      comps.back().first_vertex = v;
+    if (!w.used[v]) { ++t.isolated_vertices; continue; }
+    const std::size_t r = w.vertices.find(v);
+    if (c.id[r] < 0) {
+      c.id[r] = (long long)c.list.size();
+      c.list.emplace_back();
+      c.list.back().manifold = true;
+      c.list.back().first_vertex = v;
     }
-    auto& c = comps[comp_id[r]];
-    ++c.vertices;
-    if (bad_vertex[v]) { c.manifold = false; ++t.nonmanifold_vertices; }
-    if (on_boundary[v] && buf.find(v) == v) ++c.boundary_loops;
+    auto& k = c.list[std::size_t(c.id[r])];
+    ++k.vertices;
+    if (w.bad_vertex[v]) { k.manifold = false; ++t.nonmanifold_vertices; }
+    if (w.on_boundary[v] && w.boundary.find(v) == v) ++k.boundary_loops;
   }
-  auto comp_of = [&](int v) -> ComponentTopology& { return comps[comp_id[vuf.find(std::size_t(v))]]; };
-  for (std::size_t f = 0; f < nf; ++f) ++comp_of(corner(offset(f))).faces;
-  for (auto& c : comps) { c.oriented = true; c.orientable = true; c.closed = true; }
-  for (std::size_t v = 0; v < nv; ++v) {
-    if (!edges_at[v]) continue;
-    auto& c = comp_of(int(v));
-    c.edges += edges_at[v];
-    if (edge_flags[v] & kOpen) c.closed = false;
-    if (edge_flags[v] & kMisoriented) c.oriented = false;
+  return c;
+}
+
+// Each component's faces, edges and flags; then its Euler characteristic and
+// genus.
+template <class F> void complete_components(const F& fs, EdgeWalk& w, Components& c) {
+  for (std::size_t f = 0; f < fs.nf; ++f) ++c.of(w, std::size_t(fs.corner(fs.offset(f)))).faces;
+  for (auto& k : c.list) { k.oriented = true; k.orientable = true; k.closed = true; }
+  for (std::size_t v = 0; v < fs.nv; ++v) {
+    if (!w.edges_at[v]) continue;
+    auto& k = c.of(w, v);
+    k.edges += w.edges_at[v];
+    if (w.edge_flags[v] & EdgeWalk::kOpen) k.closed = false;
+    if (w.edge_flags[v] & EdgeWalk::kMisoriented) k.oriented = false;
   }
-  for (std::size_t f : nonorientable_faces) comp_of(corner(offset(f))).orientable = false;
-  for (auto& c : comps) {
-    c.euler = (long long)c.vertices - (long long)c.edges + (long long)c.faces;
-    if (!c.manifold) c.oriented = c.orientable = false;
-    if (c.manifold) {
-      const long long x = 2 - c.euler - (long long)c.boundary_loops;
-      c.genus = c.orientable ? (x % 2 == 0 && x >= 0 ? x / 2 : -1) : x;
+  for (std::size_t f : w.nonorientable_faces) c.of(w, std::size_t(fs.corner(fs.offset(f)))).orientable = false;
+  for (auto& k : c.list) {
+    k.euler = (long long)k.vertices - (long long)k.edges + (long long)k.faces;
+    if (!k.manifold) k.oriented = k.orientable = false;
+    if (k.manifold) {
+      const long long x = 2 - k.euler - (long long)k.boundary_loops;
+      k.genus = k.orientable ? (x % 2 == 0 && x >= 0 ? x / 2 : -1) : x;
     }
   }
-  // Largest first; component_of follows the new order.
-  std::vector<std::size_t> order(comps.size());
+}
+
+// The components largest first (component_of follows the new order), and the
+// mesh's totals.
+void order_components(EdgeWalk& w, Components& c, MeshTopology& t) {
+  std::vector<std::size_t> order(c.list.size());
   std::iota(order.begin(), order.end(), std::size_t(0));
   std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return comps[a].faces > comps[b].faces; });
-  std::vector<int> rank(comps.size());
+                   [&](std::size_t a, std::size_t b) { return c.list[a].faces > c.list[b].faces; });
+  std::vector<int> rank(c.list.size());
   for (std::size_t i = 0; i < order.size(); ++i) {
     rank[order[i]] = int(i);
-    t.components.push_back(comps[order[i]]);
+    t.components.push_back(c.list[order[i]]);
   }
+  const std::size_t nv = w.used.size();
   t.component_of.assign(nv, -1);
   for (std::size_t v = 0; v < nv; ++v)
-    if (used[v]) t.component_of[v] = rank[std::size_t(comp_id[vuf.find(v)])];
+    if (w.used[v]) t.component_of[v] = rank[std::size_t(c.id[w.vertices.find(v)])];
   t.closed = t.manifold = t.oriented = !t.components.empty();
-  for (const auto& c : t.components) {
-    t.euler += c.euler;
-    t.boundary_loops += c.boundary_loops;
-    t.closed = t.closed && c.closed;
-    t.manifold = t.manifold && c.manifold;
-    t.oriented = t.oriented && c.oriented;
+  for (const auto& k : t.components) {
+    t.euler += k.euler;
+    t.boundary_loops += k.boundary_loops;
+    t.closed = t.closed && k.closed;
+    t.manifold = t.manifold && k.manifold;
+    t.oriented = t.oriented && k.oriented;
   }
+}
+
+// The topology of the faces (see Faces).
+template <class Corner, class Offset, class FaceOf>
+MeshTopology topology_of(std::size_t nv, std::size_t nf, Corner corner, Offset offset, FaceOf face_of) {
+  const Faces<Corner, Offset, FaceOf> fs{nv, nf, corner, offset, face_of};
+  check_faces(fs);
+  const CornerIndex x = index_corners(fs);
+  MeshTopology t;
+  EdgeWalk w(nv, nf);
+  walk_edges(fs, x, w, t);
+  mark_bowties(fs, x, w.bad_vertex);
+  Components c = components_by_vertex(w, t);
+  complete_components(fs, w, c);
+  order_components(w, c, t);
   return t;
 }
 
@@ -382,10 +444,6 @@ MeshTopology pixel_boundary_topology(const BinaryImage& img) {
   return t;
 }
 
-} // namespace
-
-namespace {
-
 // bdCA(X) for X = {in(x, y, z)} on a grid of the given size (in is false
 // outside it).
 template <class In> VoxelBoundary voxel_boundary_of(const std::array<std::size_t, 3>& size, In in) {
@@ -473,10 +531,6 @@ MeshTopology mesh_topology(const SurfaceMesh& mesh) { return mesh_topology(mesh.
 
 MeshTopology voxel_boundary_topology(const SampleGrid& g) { return mesh_topology(voxel_boundary(g)); }
 
-} // namespace imgmesh
-
-namespace imgmesh {
-
 namespace {
 
 // The bdCA(X) component a world point lies on, -1 when no boundary corner is
@@ -531,11 +585,11 @@ ComponentCorrespondence match_components(const MeshTopology& mesh, const std::ve
     const int c = boundary_component_at(points[v], grid, boundary, bt);
     if (c >= 0) votes.push_back({m, c});
   }
-  detail::tally_votes(r, votes);
+  mesh_detail::tally_votes(r, votes);
   return r;
 }
 
-void detail::tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes) {
+void mesh_detail::tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes) {
   std::sort(votes.begin(), votes.end());
   for (std::size_t i = 0; i < votes.size();) {
     std::size_t j = i;

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace imgmesh::detail {
+namespace imgmesh::mesh_detail {
 
 // 32-bit parents: half the memory (a surface mesh's corners, an image's
 // pixels); more than 2^32 elements is refused.
@@ -38,4 +38,4 @@ struct UnionFind {
 // lower index), then one to one and equal Euler characteristics are checked.
 void tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes);
 
-} // namespace imgmesh::detail
+} // namespace imgmesh::mesh_detail

@@ -32,6 +32,7 @@
 #include "planar/image_pslg.hpp"
 
 #include "planar/curve_simplification.hpp"
+#include "planar/image_pslg_detail.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/well_composed.hpp"
 
@@ -42,11 +43,6 @@
 
 namespace imgmesh {
 namespace {
-
-struct Grid2 {
-  std::size_t W, H;
-  std::size_t at(std::size_t x, std::size_t y) const { return x + W * y; }
-};
 
 bool two_label_diagonal(const LabelImage& L, std::size_t x, std::size_t y) {
   const auto p = L(x, y), q = L(x + 1, y);
@@ -119,142 +115,116 @@ LabelImage well_composed_labels(const LabelImage& img, std::uint64_t seed, std::
   return L;
 }
 
-ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt) {
-  if (img.dimension == 3 && img.size[2] != 1)
-    throw Error("a 3D image with " + std::to_string(img.size[2]) + " slices: img2poly needs a 2D image");
-  if (img.size[0] == 0 || img.size[1] == 0 || img.data.size() != img.count()) throw Error("empty image");
-  if (img.size[0] > 65536 || img.size[1] > 65536 || img.count() > (std::size_t(1) << 28))
-    throw Error("image too large for img2poly (at most 65536 pixels a side and 2^28 pixels)");
-  if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance)) throw UsageError("the tolerance must be >= 0");
-  if (!(opt.min_angle >= 0 && opt.min_angle <= 60)) throw UsageError("the minimum angle must be in [0, 60] degrees");
-  {
-    // The PSLG lives in the world x-y plane: the image's in-plane axes must
-    // map onto it (2D images; axial slices of 3D files).
-    const Vec3 o = img.world(0, 0, 0), a = img.world(1, 0, 0), b = img.world(0, 1, 0);
-    const double det = (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-    if (!(std::abs(det) > 1e-9 * img.spacing[0] * img.spacing[1]) || std::abs(a[2] - o[2]) > 1e-9 ||
-        std::abs(b[2] - o[2]) > 1e-9)
-      throw Error("the slice is not in the world x-y plane (not an axial slice)");
+namespace planar_detail {
+
+std::optional<PixelBoundary::Edge> PixelBoundary::edge(std::size_t i, std::size_t j, int d) const {
+  Edge e{};
+  switch (d) {
+    case 0: if (i >= W) return std::nullopt; e = {i, j, 1}; break;
+    case 1: if (j >= H) return std::nullopt; e = {i, j, 2}; break;
+    case 2: if (i == 0) return std::nullopt; e = {i - 1, j, 1}; break;
+    default: if (j == 0) return std::nullopt; e = {i, j - 1, 2}; break;
   }
+  if (!(edges[at(e.i, e.j)] & e.bit)) return std::nullopt;
+  return e;
+}
 
-  ImagePslgResult res;
-  res.tolerance = opt.tolerance;
-  res.min_angle_bound = opt.min_angle;
-  LabelImage L = well_composed_labels(img, opt.seed, &res.critical_configurations, &res.changed_pixels);
-  const std::size_t W = L.size[0], H = L.size[1];
-  const Grid2 px{W, H}, cn{W + 1, H + 1};
+int PixelBoundary::degree(std::size_t i, std::size_t j) const {
+  int d = 0;
+  const std::uint8_t e = edges[at(i, j)];
+  d += (e & 1) + ((e >> 1) & 1);
+  if (i > 0) d += edges[at(i - 1, j)] & 1;
+  if (j > 0) d += (edges[at(i, j - 1)] >> 1) & 1;
+  return d;
+}
 
-  // bdCA: edge bits per corner (i, j) at index point (i - 0.5, j - 0.5):
-  // bit 0 the edge to (i + 1, j), bit 1 the edge to (i, j + 1).
-  std::vector<std::uint8_t> edges(cn.W * cn.H, 0);
+bool PixelBoundary::fixed(std::size_t i, std::size_t j) const {
+  const int d = degree(i, j);
+  const bool on_border = i == 0 || j == 0 || i == W || j == H;
+  return d >= 3 || (d >= 1 && on_border);
+}
+
+PixelBoundary pixel_boundary(const LabelImage& L) {
+  PixelBoundary bd;
+  bd.W = L.size[0];
+  bd.H = L.size[1];
+  const std::size_t W = bd.W, H = bd.H;
+  bd.edges.assign((W + 1) * (H + 1), 0);
   for (std::size_t j = 1; j < H; ++j)
     for (std::size_t i = 0; i < W; ++i)
-      if (L(i, j - 1) != L(i, j)) edges[cn.at(i, j)] |= 1;
+      if (L(i, j - 1) != L(i, j)) bd.edges[bd.at(i, j)] |= 1;
   for (std::size_t j = 0; j < H; ++j)
     for (std::size_t i = 1; i < W; ++i)
-      if (L(i - 1, j) != L(i, j)) edges[cn.at(i, j)] |= 2;
-  auto degree = [&](std::size_t i, std::size_t j) {
-    int d = 0;
-    const std::uint8_t e = edges[cn.at(i, j)];
-    d += (e & 1) + ((e >> 1) & 1);
-    if (i > 0) d += edges[cn.at(i - 1, j)] & 1;
-    if (j > 0) d += (edges[cn.at(i, j - 1)] >> 1) & 1;
-    return d;
-  };
-  // Curve ends: junctions, and the points where a curve meets the rectangle.
-  auto on_border = [&](std::size_t i, std::size_t j) { return i == 0 || j == 0 || i == W || j == H; };
-  auto fixed = [&](std::size_t i, std::size_t j) {
-    const int d = degree(i, j);
-    return d >= 3 || (d >= 1 && on_border(i, j));
-  };
-  for (std::size_t j = 0; j <= H; ++j)
-    for (std::size_t i = 0; i <= W; ++i) {
-      const int d = degree(i, j);
-      if (d) ++res.boundary_vertices;
-      if (fixed(i, j)) ++res.junctions;
-      if (d == 4) {
-        const std::int32_t a = L(i - 1, j - 1), b = L(i, j - 1), c = L(i - 1, j), e = L(i, j);
-        if (a == e && b == c) throw Error("internal: a two-label diagonal configuration survived the repair");
-      }
-    }
+      if (L(i - 1, j) != L(i, j)) bd.edges[bd.at(i, j)] |= 2;
+  return bd;
+}
 
-  // Trace the curves: from every junction along each of its edges, then the
-  // closed curves that are left.
-  std::vector<std::uint8_t> seen(edges.size(), 0);
-  std::map<std::pair<std::int32_t, std::int32_t>, int> pair_marker;
-  struct Curve { std::vector<Point2> pts; bool closed; std::pair<std::int32_t, std::int32_t> labels; };
-  std::vector<Curve> curves;
-  // Direction 0: +x, 1: +y, 2: -x, 3: -y. Returns false if that edge is absent or seen.
-  auto edge_bit = [&](std::size_t i, std::size_t j, int d, std::size_t& ci, std::size_t& cj, int& bit) {
-    switch (d) {
-      case 0: if (i >= W) return false; ci = i; cj = j; bit = 1; break;
-      case 1: if (j >= H) return false; ci = i; cj = j; bit = 2; break;
-      case 2: if (i == 0) return false; ci = i - 1; cj = j; bit = 1; break;
-      default: if (j == 0) return false; ci = i; cj = j - 1; bit = 2; break;
-    }
-    return (edges[cn.at(ci, cj)] & bit) != 0;
-  };
-  auto trace = [&](std::size_t i0, std::size_t j0, int d0) {
-    Curve c;
+namespace {
+
+// Walks bdCA's curves, each edge once.
+struct CurveTracer {
+  const PixelBoundary& bd;
+  const LabelImage& L;
+  std::vector<std::uint8_t> seen;  // bdCA's bits, set once walked
+  std::vector<PixelCurve> curves;
+
+  bool unseen(std::size_t i, std::size_t j, int d) const {
+    const auto e = bd.edge(i, j, d);
+    return e && !(seen[bd.at(e->i, e->j)] & e->bit);
+  }
+  // The curve from corner (i0, j0) along direction d0, to a curve end or
+  // back to (i0, j0).
+  void trace(std::size_t i0, std::size_t j0, int d0) {
+    PixelCurve c;
     // Labels on both sides of the first edge.
-    std::size_t ci, cj;
-    int bit;
-    edge_bit(i0, j0, d0, ci, cj, bit);
+    const auto first = *bd.edge(i0, j0, d0);
+    const std::size_t ci = first.i, cj = first.j;
     std::int32_t a, b;
-    if (bit == 1) { a = L(ci, cj - 1); b = L(ci, cj); } else { a = L(ci - 1, cj); b = L(ci, cj); }
+    if (first.bit == 1) { a = L(ci, cj - 1); b = L(ci, cj); } else { a = L(ci - 1, cj); b = L(ci, cj); }
     c.labels = {std::min(a, b), std::max(a, b)};
     std::size_t i = i0, j = j0;
     int d = d0;
-    c.pts.push_back({double(i) - 0.5, double(j) - 0.5});
+    c.points.push_back({double(i) - 0.5, double(j) - 0.5});
     for (;;) {
-      edge_bit(i, j, d, ci, cj, bit);
-      seen[cn.at(ci, cj)] |= bit;
+      const auto e = *bd.edge(i, j, d);
+      seen[bd.at(e.i, e.j)] |= e.bit;
       switch (d) { case 0: ++i; break; case 1: ++j; break; case 2: --i; break; default: --j; }
       if (i == i0 && j == j0) { c.closed = true; break; }
-      c.pts.push_back({double(i) - 0.5, double(j) - 0.5});
-      if (fixed(i, j)) { c.closed = false; break; }
+      c.points.push_back({double(i) - 0.5, double(j) - 0.5});
+      if (bd.fixed(i, j)) { c.closed = false; break; }
       int next = -1;
-      for (int nd = 0; nd < 4; ++nd) {
-        if (nd == (d + 2) % 4) continue;
-        if (edge_bit(i, j, nd, ci, cj, bit) && !(seen[cn.at(ci, cj)] & bit)) next = nd;
-      }
+      for (int nd = 0; nd < 4; ++nd)
+        if (nd != (d + 2) % 4 && unseen(i, j, nd)) next = nd;
       if (next < 0) throw Error("internal: broken pixel-boundary curve");
       d = next;
     }
-    pair_marker.emplace(c.labels, 0);
     curves.push_back(std::move(c));
-  };
-  for (std::size_t j = 0; j <= H; ++j)
-    for (std::size_t i = 0; i <= W; ++i) {
-      if (!fixed(i, j)) continue;
-      for (int d = 0; d < 4; ++d) {
-        std::size_t ci, cj;
-        int bit;
-        if (edge_bit(i, j, d, ci, cj, bit) && !(seen[cn.at(ci, cj)] & bit)) trace(i, j, d);
-      }
-    }
-  for (std::size_t j = 0; j <= H; ++j)
-    for (std::size_t i = 0; i <= W; ++i)
-      for (int d = 0; d < 2; ++d) {
-        std::size_t ci, cj;
-        int bit;
-        if (edge_bit(i, j, d, ci, cj, bit) && !(seen[cn.at(ci, cj)] & bit)) trace(i, j, d);
-      }
-  {
-    int m = 2;
-    for (auto& [pair, marker] : pair_marker) {
-      marker = m++;
-      res.interfaces.push_back({marker, pair.first, pair.second});
-    }
   }
-  res.curves = curves.size();
-  for (const auto& c : curves) res.closed_curves += c.closed;
+};
 
-  std::vector<PlanarMesh::Region> regions;
-  // The regional points are the obstacles of the simplification: no curve
-  // may sweep over one, so each region keeps its point.
-  std::vector<Point2> obstacles;
-  // Regions: 4-connected components of equal label; the deepest pixel of each.
+} // namespace
+
+std::vector<PixelCurve> trace_curves(const PixelBoundary& bd, const LabelImage& L) {
+  CurveTracer t{bd, L, std::vector<std::uint8_t>(bd.edges.size(), 0), {}};
+  for (std::size_t j = 0; j <= bd.H; ++j)
+    for (std::size_t i = 0; i <= bd.W; ++i) {
+      if (!bd.fixed(i, j)) continue;
+      for (int d = 0; d < 4; ++d)
+        if (t.unseen(i, j, d)) t.trace(i, j, d);
+    }
+  for (std::size_t j = 0; j <= bd.H; ++j)
+    for (std::size_t i = 0; i <= bd.W; ++i)
+      for (int d = 0; d < 2; ++d)
+        if (t.unseen(i, j, d)) t.trace(i, j, d);
+  return std::move(t.curves);
+}
+
+namespace {
+
+// Per pixel, 1 + its 4-connected distance to a pixel of another label or on
+// the image's border (a breadth-first search from those).
+std::vector<std::int32_t> boundary_depth(const LabelImage& L) {
+  const std::size_t W = L.size[0], H = L.size[1];
   std::vector<std::int32_t> depth(W * H, -1);
   std::deque<std::size_t> queue;
   for (std::size_t y = 0; y < H; ++y)
@@ -263,8 +233,8 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
       const bool edge = x == 0 || y == 0 || x + 1 == W || y + 1 == H || L(x - 1, y) != v ||
                         L(x + 1, y) != v || L(x, y - 1) != v || L(x, y + 1) != v;
       if (edge) {
-        depth[px.at(x, y)] = 1;
-        queue.push_back(px.at(x, y));
+        depth[x + W * y] = 1;
+        queue.push_back(x + W * y);
       }
     }
   while (!queue.empty()) {
@@ -278,10 +248,19 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
         queue.push_back(q);
       }
   }
+  return depth;
+}
+
+} // namespace
+
+RegionPoints region_points(const LabelImage& L) {
+  const std::size_t W = L.size[0], H = L.size[1];
+  const std::vector<std::int32_t> depth = boundary_depth(L);
+  RegionPoints out;
   std::vector<std::int32_t> comp(W * H, -1);
   for (std::size_t s = 0; s < W * H; ++s) {
     if (comp[s] >= 0) continue;
-    const std::int32_t c = std::int32_t(regions.size());
+    const std::int32_t c = std::int32_t(out.regions.size());
     const std::int32_t label = L.data[s];
     std::size_t best = s;
     std::vector<std::size_t> stack{s};
@@ -299,42 +278,114 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
         }
     }
     const Vec3 w = L.world(double(best % W), double(best / W), 0);
-    regions.push_back({{w[0], w[1]}, double(label), -1});
-    obstacles.push_back({double(best % W), double(best / W)});
+    out.regions.push_back({{w[0], w[1]}, double(label), -1});
+    out.pixels.push_back({double(best % W), double(best / W)});
   }
-  // Simplify the curves together with the four sides of Omega.
-  PolylineSet set;
-  for (const auto& c : curves) {
-    set.lines.push_back(c.pts);
-    set.closed.push_back(c.closed);
-  }
-  // The rectangle, cut where curves end on it (counter-clockwise in index space).
-  {
-    std::vector<std::array<std::size_t, 2>> perimeter;
-    for (std::size_t i = 0; i < W; ++i) perimeter.push_back({i, 0});
-    for (std::size_t j = 0; j < H; ++j) perimeter.push_back({W, j});
-    for (std::size_t i = W; i > 0; --i) perimeter.push_back({i, H});
-    for (std::size_t j = H; j > 0; --j) perimeter.push_back({0, j});
-    auto corner = [&](const std::array<std::size_t, 2>& c) {
-      return (c[0] == 0 || c[0] == W) && (c[1] == 0 || c[1] == H);
-    };
-    std::vector<Point2> piece;
-    for (std::size_t k = 0; k <= perimeter.size(); ++k) {
-      const auto c = perimeter[k % perimeter.size()];
-      const Point2 p{double(c[0]) - 0.5, double(c[1]) - 0.5};
-      if (k > 0 && (corner(c) || fixed(c[0], c[1]))) {
-        set.lines.push_back({piece.back(), p});
-        set.closed.push_back(0);
-        piece.clear();
-      }
-      if (piece.empty()) piece.push_back(p);
-    }
-  }
-  const SimplifyReport rep = simplify_polylines(set, obstacles, opt.tolerance_stop ? opt.tolerance : 1e12, opt.min_angle);
-  res.hausdorff = rep.hausdorff;
+  return out;
+}
 
-  // The PSLG in world coordinates.
-  PlanarMesh& m = res.pslg;
+double smallest_segment_angle(const PlanarMesh& m) {
+  double smallest = 180;
+  std::vector<std::vector<int>> nb(m.points.size());
+  for (const auto& sg : m.segments) {
+    nb[sg[0]].push_back(sg[1]);
+    nb[sg[1]].push_back(sg[0]);
+  }
+  for (std::size_t v = 0; v < nb.size(); ++v)
+    for (std::size_t a = 0; a < nb[v].size(); ++a)
+      for (std::size_t b = a + 1; b < nb[v].size(); ++b) {
+        const Point2 &o = m.points[v], &p = m.points[nb[v][a]], &q = m.points[nb[v][b]];
+        const double ux = p[0] - o[0], uy = p[1] - o[1], vx = q[0] - o[0], vy = q[1] - o[1];
+        smallest = std::min(smallest, std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI);
+      }
+  return smallest;
+}
+
+} // namespace planar_detail
+
+namespace {
+
+using planar_detail::PixelBoundary;
+using planar_detail::PixelCurve;
+using InterfaceMarkers = std::map<std::pair<std::int32_t, std::int32_t>, int>;
+
+void check_image(const LabelImage& img, const ImagePslgOptions& opt) {
+  if (img.dimension == 3 && img.size[2] != 1)
+    throw Error("a 3D image with " + std::to_string(img.size[2]) + " slices: img2poly needs a 2D image");
+  if (img.size[0] == 0 || img.size[1] == 0 || img.data.size() != img.count()) throw Error("empty image");
+  if (img.size[0] > 65536 || img.size[1] > 65536 || img.count() > (std::size_t(1) << 28))
+    throw Error("image too large for img2poly (at most 65536 pixels a side and 2^28 pixels)");
+  if (!(opt.tolerance >= 0) || !std::isfinite(opt.tolerance)) throw UsageError("the tolerance must be >= 0");
+  if (!(opt.min_angle >= 0 && opt.min_angle <= 60)) throw UsageError("the minimum angle must be in [0, 60] degrees");
+  // The PSLG lives in the world x-y plane: the image's in-plane axes must
+  // map onto it (2D images; axial slices of 3D files).
+  const Vec3 o = img.world(0, 0, 0), a = img.world(1, 0, 0), b = img.world(0, 1, 0);
+  const double det = (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  if (!(std::abs(det) > 1e-9 * img.spacing[0] * img.spacing[1]) || std::abs(a[2] - o[2]) > 1e-9 ||
+      std::abs(b[2] - o[2]) > 1e-9)
+    throw Error("the slice is not in the world x-y plane (not an axial slice)");
+}
+
+// bdCA's vertices and curve ends; a two-label diagonal left by the repair
+// would be a vertex of degree 4 between two regions.
+void count_vertices(const PixelBoundary& bd, const LabelImage& L, ImagePslgResult& res) {
+  for (std::size_t j = 0; j <= bd.H; ++j)
+    for (std::size_t i = 0; i <= bd.W; ++i) {
+      const int d = bd.degree(i, j);
+      if (d) ++res.boundary_vertices;
+      if (bd.fixed(i, j)) ++res.junctions;
+      if (d == 4) {
+        const std::int32_t a = L(i - 1, j - 1), b = L(i, j - 1), c = L(i - 1, j), e = L(i, j);
+        if (a == e && b == c) throw Error("internal: a two-label diagonal configuration survived the repair");
+      }
+    }
+}
+
+// Markers 2, 3, ... for the label pairs the curves separate, in increasing
+// order (1 is the rectangle's).
+InterfaceMarkers number_interfaces(const std::vector<PixelCurve>& curves, ImagePslgResult& res) {
+  InterfaceMarkers markers;
+  for (const auto& c : curves) markers.emplace(c.labels, 0);
+  int m = 2;
+  for (auto& [pair, marker] : markers) {
+    marker = m++;
+    res.interfaces.push_back({marker, pair.first, pair.second});
+  }
+  res.curves = curves.size();
+  for (const auto& c : curves) res.closed_curves += c.closed;
+  return markers;
+}
+
+// The rectangle's sides, cut where curves end on it (counter-clockwise in
+// index space), as open lines after the curves.
+void add_rectangle(const PixelBoundary& bd, PolylineSet& set) {
+  const std::size_t W = bd.W, H = bd.H;
+  std::vector<std::array<std::size_t, 2>> perimeter;
+  for (std::size_t i = 0; i < W; ++i) perimeter.push_back({i, 0});
+  for (std::size_t j = 0; j < H; ++j) perimeter.push_back({W, j});
+  for (std::size_t i = W; i > 0; --i) perimeter.push_back({i, H});
+  for (std::size_t j = H; j > 0; --j) perimeter.push_back({0, j});
+  auto corner = [&](const std::array<std::size_t, 2>& c) {
+    return (c[0] == 0 || c[0] == W) && (c[1] == 0 || c[1] == H);
+  };
+  std::vector<Point2> piece;
+  for (std::size_t k = 0; k <= perimeter.size(); ++k) {
+    const auto c = perimeter[k % perimeter.size()];
+    const Point2 p{double(c[0]) - 0.5, double(c[1]) - 0.5};
+    if (k > 0 && (corner(c) || bd.fixed(c[0], c[1]))) {
+      set.lines.push_back({piece.back(), p});
+      set.closed.push_back(0);
+      piece.clear();
+    }
+    if (piece.empty()) piece.push_back(p);
+  }
+}
+
+// The simplified lines as a PSLG in world coordinates: the curves with their
+// interfaces' markers, then the rectangle's sides with marker 1.
+PlanarMesh pslg_of(const PolylineSet& set, const std::vector<PixelCurve>& curves, const InterfaceMarkers& markers,
+                   const LabelImage& L) {
+  PlanarMesh m;
   std::map<Point2, int> id;
   auto vertex = [&](const Point2& p) {
     auto [it, fresh] = id.emplace(p, int(m.points.size()));
@@ -346,7 +397,7 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
   };
   for (std::size_t k = 0; k < set.lines.size(); ++k) {
     const auto& line = set.lines[k];
-    const int marker = k < curves.size() ? pair_marker[curves[k].labels] : 1;
+    const int marker = k < curves.size() ? markers.at(curves[k].labels) : 1;
     const std::size_t n = line.size();
     if (n < 2) throw Error("internal: a curve lost its segments");
     const std::size_t segs = set.closed[k] ? n : n - 1;
@@ -355,25 +406,39 @@ ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt
       m.segment_markers.push_back(marker);
     }
   }
-  res.simplified_vertices = m.points.size() - 4;
-  {
-    std::vector<std::vector<int>> nb(m.points.size());
-    for (const auto& sg : m.segments) {
-      nb[sg[0]].push_back(sg[1]);
-      nb[sg[1]].push_back(sg[0]);
-    }
-    for (std::size_t v = 0; v < nb.size(); ++v)
-      for (std::size_t a = 0; a < nb[v].size(); ++a)
-        for (std::size_t b = a + 1; b < nb[v].size(); ++b) {
-          const Point2 &o = m.points[v], &p = m.points[nb[v][a]], &q = m.points[nb[v][b]];
-          const double ux = p[0] - o[0], uy = p[1] - o[1], vx = q[0] - o[0], vy = q[1] - o[1];
-          res.smallest_angle = std::min(
-              res.smallest_angle, std::atan2(std::abs(ux * vy - uy * vx), ux * vx + uy * vy) * 180 / M_PI);
-        }
-  }
+  return m;
+}
 
-  m.regions = std::move(regions);
-  res.regions = m.regions.size();
+} // namespace
+
+ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt) {
+  check_image(img, opt);
+  ImagePslgResult res;
+  res.tolerance = opt.tolerance;
+  res.min_angle_bound = opt.min_angle;
+  LabelImage L = well_composed_labels(img, opt.seed, &res.critical_configurations, &res.changed_pixels);
+  const PixelBoundary bd = planar_detail::pixel_boundary(L);
+  count_vertices(bd, L, res);
+  std::vector<PixelCurve> curves = planar_detail::trace_curves(bd, L);
+  const InterfaceMarkers markers = number_interfaces(curves, res);
+  // The regional points are the obstacles of the simplification: no curve
+  // may sweep over one, so each region keeps its point.
+  planar_detail::RegionPoints regions = planar_detail::region_points(L);
+  // Simplify the curves together with the four sides of Omega.
+  PolylineSet set;
+  for (const auto& c : curves) {
+    set.lines.push_back(c.points);
+    set.closed.push_back(c.closed);
+  }
+  add_rectangle(bd, set);
+  const SimplifyReport rep =
+      simplify_polylines(set, regions.pixels, opt.tolerance_stop ? opt.tolerance : 1e12, opt.min_angle);
+  res.hausdorff = rep.hausdorff;
+  res.pslg = pslg_of(set, curves, markers, L);
+  res.simplified_vertices = res.pslg.points.size() - 4;
+  res.smallest_angle = planar_detail::smallest_segment_angle(res.pslg);
+  res.pslg.regions = std::move(regions.regions);
+  res.regions = res.pslg.regions.size();
   res.labels = std::move(L);
   return res;
 }

@@ -6,11 +6,13 @@
 // rectangle's, marker 1) unless the whole picture is asked for.
 #include "planar/planar_formats.hpp"
 
+#include "planar/svg_detail.hpp"
 #include "util/atomic_file.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <set>
 #include <sstream>
 
@@ -146,7 +148,208 @@ std::string xml(const std::string& s) {
   return out;
 }
 
+// The labels of the elements' regions and of the regional points.
+std::set<long> labels_of(const PlanarMesh& m) {
+  std::set<long> regions;
+  for (std::size_t i = 0; i < m.elements.size(); ++i) regions.insert(std::lround(region_of(m, i)));
+  for (const auto& r : m.regions) regions.insert(std::lround(r.attribute));
+  return regions;
+}
+
+bool has_scalar(const PlanarMesh& m, const PlanarWriteOptions& opt) {
+  return opt.element_scalar.size() == m.elements.size() && !m.elements.empty();
+}
+
+// The page: the world box (x0, y0)-(x1, y1) scaled to the picture's width,
+// with room for the title above it and the legend below.
+struct Page {
+  static constexpr double margin = 10, top = 30, bottom = 46;
+  double x0, y0, x1, y1;
+  double w, h;  // the box's size
+  double s;     // pixels a world unit
+  double W, H;  // the page's size
+  // World y points up, SVG y down.
+  double X(double x) const { return (x - x0) * s + margin; }
+  double Y(double y) const { return (y1 - y) * s + top; }
+};
+
+Page page_of(const std::array<double, 4>& box, double width_px) {
+  Page p{box[0], box[1], box[2], box[3], 0, 0, 0, 0, 0};
+  p.w = std::max(p.x1 - p.x0, 1e-300);
+  p.h = std::max(p.y1 - p.y0, 1e-300);
+  p.s = width_px / p.w;
+  p.W = width_px + 2 * Page::margin;
+  p.H = p.h * p.s + Page::top + Page::margin + Page::bottom;
+  return p;
+}
+
+// The counts (or the title asked for) and the scalar's min and mean.
+std::string title_of(const PlanarMesh& m, const PlanarWriteOptions& opt) {
+  std::string title = opt.svg_title.empty() ? svg_counts(m) : opt.svg_title;
+  if (opt.svg_title.empty() && has_scalar(m, opt)) {
+    double sum = 0;
+    for (double v : opt.element_scalar) sum += v;
+    title += "; " + opt.scalar_name + " min " +
+             number(*std::min_element(opt.element_scalar.begin(), opt.element_scalar.end())) + ", mean " +
+             number(sum / double(opt.element_scalar.size()));
+  }
+  return title;
+}
+
+void write_background(std::ostream& o, const Page& page, const SvgBackground& bg) {
+  // Pixel (c, r) covers [c, c+1] x [r, r+1] in image units; map to the page.
+  const double ox = bg.origin[0] - 0.5 * bg.column[0] - 0.5 * bg.row[0];
+  const double oy = bg.origin[1] - 0.5 * bg.column[1] - 0.5 * bg.row[1];
+  char buf[320];
+  std::snprintf(buf, sizeof buf, "<image transform=\"matrix(%.9g %.9g %.9g %.9g %.9g %.9g)\" ",
+                bg.column[0] * page.s, -bg.column[1] * page.s, bg.row[0] * page.s, -bg.row[1] * page.s,
+                page.X(ox), page.Y(oy));
+  o << buf << "width=\"" << bg.width << "\" height=\"" << bg.height
+    << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" xlink:href=\"data:image/png;base64,"
+    << base64(background_png(bg)) << "\"/>\n";
+}
+
+// How elements are filled: by the scalar over [lo, hi] (the options' ends,
+// else its range), or by their regions' tints.
+struct Fill {
+  bool scalar = false;
+  double lo = 0, hi = 0;
+  std::set<long> regions;
+  // Regions told apart by their edges' dark tints in a scalar picture.
+  bool tinted_edges() const { return scalar && regions.size() > 1; }
+};
+
+Fill fill_of(const PlanarMesh& m, const PlanarWriteOptions& opt) {
+  Fill f;
+  f.scalar = has_scalar(m, opt);
+  f.lo = opt.scalar_min;
+  f.hi = opt.scalar_max;
+  if (f.scalar && !(std::isfinite(f.lo) && std::isfinite(f.hi) && f.hi > f.lo)) {
+    f.lo = *std::min_element(opt.element_scalar.begin(), opt.element_scalar.end());
+    f.hi = *std::max_element(opt.element_scalar.begin(), opt.element_scalar.end());
+    if (!(f.hi > f.lo)) f.hi = f.lo + 1;
+  }
+  f.regions = labels_of(m);
+  return f;
+}
+
+void write_elements(std::ostream& o, const Page& page, const PlanarMesh& m, const PlanarWriteOptions& opt,
+                    const Fill& fill) {
+  char buf[320];
+  o << "<g stroke-width=\"" << (fill.tinted_edges() ? "1" : "0.5") << "\" stroke-linejoin=\"round\">\n";
+  for (std::size_t i = 0; i < m.elements.size(); ++i) {
+    o << "<polygon points=\"";
+    for (int v : m.elements[i]) {
+      std::snprintf(buf, sizeof buf, "%.2f,%.2f ", page.X(m.points[std::size_t(v)][0]), page.Y(m.points[std::size_t(v)][1]));
+      o << buf;
+    }
+    const auto tint = region_tint(std::lround(region_of(m, i)));
+    const std::string colour =
+        fill.scalar ? hex(ramp((opt.element_scalar[i] - fill.lo) / (fill.hi - fill.lo))) : hex(tint);
+    o << "\" fill=\"" << colour << "\" stroke=\"" << (fill.tinted_edges() ? hex(darker(tint, 0.8)) : "#333333")
+      << "\"/>\n";
+  }
+  o << "</g>\n";
+}
+
+// The segments, the image rectangle's (marker 1) blue, the others red.
+void write_segments(std::ostream& o, const Page& page, const PlanarMesh& m) {
+  char buf[320];
+  o << "<g stroke-width=\"1.5\" stroke-linecap=\"round\">\n";
+  for (std::size_t i = 0; i < m.segments.size(); ++i) {
+    const auto& a = m.points[std::size_t(m.segments[i][0])];
+    const auto& b = m.points[std::size_t(m.segments[i][1])];
+    const int mk = m.segment_markers.empty() ? 0 : m.segment_markers[i];
+    std::snprintf(buf, sizeof buf, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\"/>\n",
+                  page.X(a[0]), page.Y(a[1]), page.X(b[0]), page.Y(b[1]), mk == 1 ? "#0000cc" : "#dd0000");
+    o << buf;
+  }
+  o << "</g>\n";
+}
+
+// The colour scale's width in the legend.
+double scale_width(const Page& page) { return std::min(300.0, page.W - 2 * Page::margin - 160); }
+
+// The colour scale with five ticks, at height ly.
+void write_scale_legend(std::ostream& o, const Page& page, double ly, const std::string& name, const Fill& fill) {
+  char buf[320];
+  o << "<defs><linearGradient id=\"scale\">";
+  for (int k = 0; k <= 8; ++k) o << "<stop offset=\"" << k / 8.0 << "\" stop-color=\"" << hex(ramp(k / 8.0)) << "\"/>";
+  o << "</linearGradient></defs>\n";
+  const double bw = scale_width(page), margin = Page::margin;
+  std::snprintf(buf, sizeof buf,
+                "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">%s</text>\n"
+                "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"12\" fill=\"url(#scale)\" stroke=\"#333333\" "
+                "stroke-width=\"0.5\"/>\n",
+                margin, ly + 10, xml(name).c_str(), margin + 120, ly, bw);
+  o << buf;
+  for (int k = 0; k <= 4; ++k) {
+    std::snprintf(buf, sizeof buf, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"11\" text-anchor=\"middle\">%s</text>\n",
+                  margin + 120 + bw * k / 4, ly + 26, number(fill.lo + (fill.hi - fill.lo) * k / 4).c_str());
+    o << buf;
+  }
+}
+
+// The regions' tints (in a scalar picture, the tints of their edges), after
+// the colour scale if any, as many as fit (at most 12).
+void write_region_legend(std::ostream& o, const Page& page, double ly, const Fill& fill) {
+  char buf[320];
+  double x = fill.scalar ? Page::margin + 120 + scale_width(page) + 30 : Page::margin;
+  int shown = 0;
+  for (long r : fill.regions) {
+    if (++shown > 12 || x + 90 > page.W) {
+      std::snprintf(buf, sizeof buf, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">...</text>\n", x, ly + 10);
+      o << buf;
+      break;
+    }
+    std::snprintf(buf, sizeof buf,
+                  "<rect x=\"%.2f\" y=\"%.2f\" width=\"12\" height=\"12\" fill=\"%s\" stroke=\"%s\"/>"
+                  "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">label %ld</text>\n",
+                  x, ly, hex(fill.scalar ? darker(region_tint(r), 0.8) : region_tint(r)).c_str(),
+                  hex(darker(region_tint(r))).c_str(), x + 16, ly + 10, r);
+    o << buf;
+    x += 90;
+  }
+}
+
 } // namespace
+
+namespace planar_detail {
+
+std::array<double, 4> svg_frame(const PlanarMesh& m, const PlanarWriteOptions& opt) {
+  struct Box {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    void grow(const Point2& p) {
+      x0 = std::min(x0, p[0]); x1 = std::max(x1, p[0]);
+      y0 = std::min(y0, p[1]); y1 = std::max(y1, p[1]);
+    }
+  } all, fg;  // the whole picture, the foreground
+  for (const auto& p : m.points) all.grow(p);
+  for (std::size_t i = 0; i < m.elements.size(); ++i)
+    if (region_of(m, i) != 0)
+      for (int v : m.elements[i]) fg.grow(m.points[std::size_t(v)]);
+  for (std::size_t i = 0; i < m.segments.size(); ++i)
+    if (m.segment_markers.empty() || m.segment_markers[i] != 1)
+      for (int v : m.segments[i]) fg.grow(m.points[std::size_t(v)]);
+  const SvgBackground* bg = opt.background;
+  if (bg && bg->width && bg->height) {
+    for (double c : {-0.5, bg->width - 0.5})
+      for (double r : {-0.5, bg->height - 0.5})
+        all.grow({bg->origin[0] + c * bg->column[0] + r * bg->row[0], bg->origin[1] + c * bg->column[1] + r * bg->row[1]});
+  }
+  double x0 = all.x0, y0 = all.y0, x1 = all.x1, y1 = all.y1;
+  if (x0 > x1) { x0 = y0 = 0; x1 = y1 = 1; }
+  // The frame: the foreground with a margin of a tenth of its size (at least
+  // 2% of the whole), within the whole picture.
+  if (opt.svg_frame_foreground && fg.x0 <= fg.x1 && (fg.x0 > x0 || fg.x1 < x1 || fg.y0 > y0 || fg.y1 < y1)) {
+    const double pad = std::max(0.1 * std::max(fg.x1 - fg.x0, fg.y1 - fg.y0), 0.02 * std::max(x1 - x0, y1 - y0));
+    x0 = std::max(x0, fg.x0 - pad); x1 = std::min(x1, fg.x1 + pad);
+    y0 = std::max(y0, fg.y0 - pad); y1 = std::min(y1, fg.y1 + pad);
+  }
+  return {x0, y0, x1, y1};
+}
+
+} // namespace planar_detail
 
 std::array<std::uint8_t, 3> region_tint(long label) {
   // Label 0 (background) light grey; others ten tints apart in hue and
@@ -161,12 +364,8 @@ std::array<std::uint8_t, 3> region_tint(long label) {
 
 std::string svg_counts(const PlanarMesh& m) {
   std::size_t tri = 0, quad = 0;
-  std::set<long> regions;
-  for (std::size_t i = 0; i < m.elements.size(); ++i) {
-    (m.elements[i].size() == 3 ? tri : quad) += 1;
-    regions.insert(std::lround(region_of(m, i)));
-  }
-  for (const auto& r : m.regions) regions.insert(std::lround(r.attribute));
+  for (const auto& e : m.elements) (e.size() == 3 ? tri : quad) += 1;
+  const std::set<long> regions = labels_of(m);
   std::ostringstream s;
   s << m.points.size() << " vertices";
   if (tri) s << ", " << tri << " triangles";
@@ -178,158 +377,38 @@ std::string svg_counts(const PlanarMesh& m) {
 }
 
 void write_svg(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt) {
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  double f0 = 1e300, g0 = 1e300, f1 = -1e300, g1 = -1e300;  // the foreground's box
-  auto grow = [&](const Point2& p) {
-    x0 = std::min(x0, p[0]); x1 = std::max(x1, p[0]);
-    y0 = std::min(y0, p[1]); y1 = std::max(y1, p[1]);
-  };
-  auto grow_fg = [&](const Point2& p) {
-    f0 = std::min(f0, p[0]); f1 = std::max(f1, p[0]);
-    g0 = std::min(g0, p[1]); g1 = std::max(g1, p[1]);
-  };
-  for (const auto& p : m.points) grow(p);
-  for (std::size_t i = 0; i < m.elements.size(); ++i)
-    if (region_of(m, i) != 0)
-      for (int v : m.elements[i]) grow_fg(m.points[std::size_t(v)]);
-  for (std::size_t i = 0; i < m.segments.size(); ++i)
-    if (m.segment_markers.empty() || m.segment_markers[i] != 1)
-      for (int v : m.segments[i]) grow_fg(m.points[std::size_t(v)]);
-  const SvgBackground* bg = opt.background;
-  if (bg && bg->width && bg->height) {
-    for (double c : {-0.5, bg->width - 0.5})
-      for (double r : {-0.5, bg->height - 0.5})
-        grow({bg->origin[0] + c * bg->column[0] + r * bg->row[0], bg->origin[1] + c * bg->column[1] + r * bg->row[1]});
-  }
-  if (x0 > x1) { x0 = y0 = 0; x1 = y1 = 1; }
-  // The frame: the foreground with a margin of a tenth of its size (at least
-  // 2% of the whole), within the whole picture.
-  if (opt.svg_frame_foreground && f0 <= f1 && (f0 > x0 || f1 < x1 || g0 > y0 || g1 < y1)) {
-    const double pad = std::max(0.1 * std::max(f1 - f0, g1 - g0), 0.02 * std::max(x1 - x0, y1 - y0));
-    x0 = std::max(x0, f0 - pad); x1 = std::min(x1, f1 + pad);
-    y0 = std::max(y0, g0 - pad); y1 = std::min(y1, g1 + pad);
-  }
-  const double w = std::max(x1 - x0, 1e-300), h = std::max(y1 - y0, 1e-300);
-  const double s = opt.svg_width_px / w, margin = 10, top = 30, bottom = 46;
-  const double W = opt.svg_width_px + 2 * margin, H = h * s + top + margin + bottom;
-  // World y points up, SVG y down.
-  auto X = [&](double x) { return (x - x0) * s + margin; };
-  auto Y = [&](double y) { return (y1 - y) * s + top; };
+  const Page page = page_of(planar_detail::svg_frame(m, opt), opt.svg_width_px);
+  const double margin = Page::margin, top = Page::top;
   AtomicOutput out(path);
   auto& o = out.stream();
   char buf[320];
   std::snprintf(buf, sizeof buf,
                 "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" "
                 "width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.3f %.3f\" font-family=\"sans-serif\">\n",
-                W, H, W, H);
+                page.W, page.H, page.W, page.H);
   o << buf << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  std::string title = opt.svg_title.empty() ? svg_counts(m) : opt.svg_title;
-  if (opt.svg_title.empty() && opt.element_scalar.size() == m.elements.size() && !m.elements.empty()) {
-    double sum = 0;
-    for (double v : opt.element_scalar) sum += v;
-    title += "; " + opt.scalar_name + " min " +
-             number(*std::min_element(opt.element_scalar.begin(), opt.element_scalar.end())) + ", mean " +
-             number(sum / double(opt.element_scalar.size()));
-  }
-  o << "<text x=\"" << margin << "\" y=\"20\" font-size=\"14\">" << xml(title) << "</text>\n";
+  o << "<text x=\"" << margin << "\" y=\"20\" font-size=\"14\">" << xml(title_of(m, opt)) << "</text>\n";
   // The drawing, clipped to its frame.
   std::snprintf(buf, sizeof buf,
                 "<clipPath id=\"frame\"><rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\"/></clipPath>\n"
                 "<g clip-path=\"url(#frame)\">\n",
-                margin, top, w * s, h * s);
+                margin, top, page.w * page.s, page.h * page.s);
   o << buf;
+  const SvgBackground* bg = opt.background;
   if (bg && bg->width && bg->height &&
-      (bg->grey.size() == bg->width * bg->height || bg->rgb.size() == 3 * bg->width * bg->height)) {
-    // Pixel (c, r) covers [c, c+1] x [r, r+1] in image units; map to the page.
-    const double ox = bg->origin[0] - 0.5 * bg->column[0] - 0.5 * bg->row[0];
-    const double oy = bg->origin[1] - 0.5 * bg->column[1] - 0.5 * bg->row[1];
-    std::snprintf(buf, sizeof buf, "<image transform=\"matrix(%.9g %.9g %.9g %.9g %.9g %.9g)\" ",
-                  bg->column[0] * s, -bg->column[1] * s, bg->row[0] * s, -bg->row[1] * s, X(ox), Y(oy));
-    o << buf << "width=\"" << bg->width << "\" height=\"" << bg->height
-      << "\" preserveAspectRatio=\"none\" style=\"image-rendering:pixelated\" xlink:href=\"data:image/png;base64,"
-      << base64(background_png(*bg)) << "\"/>\n";
-  }
-  const bool scalar = opt.element_scalar.size() == m.elements.size() && !m.elements.empty();
-  double lo = opt.scalar_min, hi = opt.scalar_max;
-  if (scalar && !(std::isfinite(lo) && std::isfinite(hi) && hi > lo)) {
-    lo = *std::min_element(opt.element_scalar.begin(), opt.element_scalar.end());
-    hi = *std::max_element(opt.element_scalar.begin(), opt.element_scalar.end());
-    if (!(hi > lo)) hi = lo + 1;
-  }
-  std::set<long> regions;
-  for (std::size_t i = 0; i < m.elements.size(); ++i) regions.insert(std::lround(region_of(m, i)));
-  for (const auto& r : m.regions) regions.insert(std::lround(r.attribute));
-  if (!m.elements.empty()) {
-    // Filled by the scalar, the regions told apart by their edges (dark
-    // tints); without a scalar, filled by the regions' tints.
-    o << "<g stroke-width=\"" << (scalar && regions.size() > 1 ? "1" : "0.5") << "\" stroke-linejoin=\"round\">\n";
-    for (std::size_t i = 0; i < m.elements.size(); ++i) {
-      o << "<polygon points=\"";
-      for (int v : m.elements[i]) {
-        std::snprintf(buf, sizeof buf, "%.2f,%.2f ", X(m.points[std::size_t(v)][0]), Y(m.points[std::size_t(v)][1]));
-        o << buf;
-      }
-      const auto tint = region_tint(std::lround(region_of(m, i)));
-      const std::string fill = scalar ? hex(ramp((opt.element_scalar[i] - lo) / (hi - lo))) : hex(tint);
-      o << "\" fill=\"" << fill << "\" stroke=\"" << (scalar && regions.size() > 1 ? hex(darker(tint, 0.8)) : "#333333")
-        << "\"/>\n";
-    }
-    o << "</g>\n";
-  }
-  if (!m.segments.empty()) {
-    o << "<g stroke-width=\"1.5\" stroke-linecap=\"round\">\n";
-    for (std::size_t i = 0; i < m.segments.size(); ++i) {
-      const auto& a = m.points[std::size_t(m.segments[i][0])];
-      const auto& b = m.points[std::size_t(m.segments[i][1])];
-      const int mk = m.segment_markers.empty() ? 0 : m.segment_markers[i];
-      std::snprintf(buf, sizeof buf, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\"/>\n",
-                    X(a[0]), Y(a[1]), X(b[0]), Y(b[1]), mk == 1 ? "#0000cc" : "#dd0000");
-      o << buf;
-    }
-    o << "</g>\n";
-  }
+      (bg->grey.size() == bg->width * bg->height || bg->rgb.size() == 3 * bg->width * bg->height))
+    write_background(o, page, *bg);
+  const Fill fill = fill_of(m, opt);
+  if (!m.elements.empty()) write_elements(o, page, m, opt, fill);
+  if (!m.segments.empty()) write_segments(o, page, m);
   o << "</g>\n";
   std::snprintf(buf, sizeof buf, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"none\" "
-                "stroke=\"#888888\"/>\n", margin, top, w * s, h * s);
+                "stroke=\"#888888\"/>\n", margin, top, page.w * page.s, page.h * page.s);
   o << buf;
   // The legend, under the drawing.
-  const double ly = top + h * s + 12;
-  if (scalar) {
-    o << "<defs><linearGradient id=\"scale\">";
-    for (int k = 0; k <= 8; ++k) o << "<stop offset=\"" << k / 8.0 << "\" stop-color=\"" << hex(ramp(k / 8.0)) << "\"/>";
-    o << "</linearGradient></defs>\n";
-    const double bw = std::min(300.0, W - 2 * margin - 160);
-    std::snprintf(buf, sizeof buf,
-                  "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">%s</text>\n"
-                  "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"12\" fill=\"url(#scale)\" stroke=\"#333333\" "
-                  "stroke-width=\"0.5\"/>\n",
-                  margin, ly + 10, xml(opt.scalar_name).c_str(), margin + 120, ly, bw);
-    o << buf;
-    for (int k = 0; k <= 4; ++k) {
-      std::snprintf(buf, sizeof buf, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"11\" text-anchor=\"middle\">%s</text>\n",
-                    margin + 120 + bw * k / 4, ly + 26, number(lo + (hi - lo) * k / 4).c_str());
-      o << buf;
-    }
-  }
-  // The regions' tints (in a scalar picture, the tints of their edges).
-  if (!regions.empty() && (!scalar || regions.size() > 1)) {
-    double x = scalar ? margin + 120 + std::min(300.0, W - 2 * margin - 160) + 30 : margin;
-    int shown = 0;
-    for (long r : regions) {
-      if (++shown > 12 || x + 90 > W) {
-        std::snprintf(buf, sizeof buf, "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">...</text>\n", x, ly + 10);
-        o << buf;
-        break;
-      }
-      std::snprintf(buf, sizeof buf,
-                    "<rect x=\"%.2f\" y=\"%.2f\" width=\"12\" height=\"12\" fill=\"%s\" stroke=\"%s\"/>"
-                    "<text x=\"%.2f\" y=\"%.2f\" font-size=\"12\">label %ld</text>\n",
-                    x, ly, hex(scalar ? darker(region_tint(r), 0.8) : region_tint(r)).c_str(),
-                    hex(darker(region_tint(r))).c_str(), x + 16, ly + 10, r);
-      o << buf;
-      x += 90;
-    }
-  }
+  const double ly = top + page.h * page.s + 12;
+  if (fill.scalar) write_scale_legend(o, page, ly, opt.scalar_name, fill);
+  if (!fill.regions.empty() && (!fill.scalar || fill.regions.size() > 1)) write_region_legend(o, page, ly, fill);
   o << "</svg>\n";
   out.commit();
 }

@@ -1,6 +1,6 @@
 #include "wellcomposed/critical_configuration.hpp"
 
-namespace imgmesh::wc {
+namespace imgmesh::wellcomposed_detail {
 namespace {
 
 bool bit(unsigned code, int k) { return (code >> k) & 1u; }
@@ -84,4 +84,4 @@ const Tables& tables() {
 std::uint8_t critical_configurations(std::uint8_t code) { return tables().flags[code]; }
 const CandidateSets& candidate_sets(std::uint8_t code) { return tables().sets[code]; }
 
-} // namespace imgmesh::wc
+} // namespace imgmesh::wellcomposed_detail

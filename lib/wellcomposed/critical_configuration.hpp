@@ -9,7 +9,7 @@
 #include <array>
 #include <cstdint>
 
-namespace imgmesh::wc {
+namespace imgmesh::wellcomposed_detail {
 
 // CriticalConfiguration flags of one block: which of N_x(r), N_y(r), N_z(r)
 // is an instance of (C1), and whether N(r) is an instance of (C2).
@@ -32,4 +32,4 @@ struct CandidateSets {
 };
 const CandidateSets& candidate_sets(std::uint8_t code);
 
-} // namespace imgmesh::wc
+} // namespace imgmesh::wellcomposed_detail

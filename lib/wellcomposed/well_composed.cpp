@@ -20,7 +20,12 @@
 namespace imgmesh {
 namespace {
 
-using wc::candidate_sets;
+using wellcomposed_detail::candidate_sets;
+using wellcomposed_detail::CandidateSets;
+using wellcomposed_detail::kC1x;
+using wellcomposed_detail::kC1y;
+using wellcomposed_detail::kC1z;
+using wellcomposed_detail::kC2;
 
 // Local copies of the block tables, so that lookups inline (and popcount
 // needs no CPU extension).
@@ -28,18 +33,18 @@ struct LocalTables {
   std::uint8_t flags[256], ones[256];
   LocalTables() {
     for (unsigned c = 0; c < 256; ++c) {
-      flags[c] = wc::critical_configurations(std::uint8_t(c));
+      flags[c] = wellcomposed_detail::critical_configurations(std::uint8_t(c));
       ones[c] = std::uint8_t(__builtin_popcount(c));
     }
   }
 };
-const LocalTables kTables;  // built at start-up (the wc tables build on first use)
+const LocalTables kTables;  // built at start-up (critical_configuration.cpp's build on first use)
 inline std::uint8_t critical_configurations(std::uint8_t code) { return kTables.flags[code]; }
 inline int popcount(unsigned v) { return kTables.ones[v & 0xffu]; }
 
 void add_counts(CriticalCounts& c, std::uint8_t flags) {
-  c.c1 += popcount(flags & (wc::kC1x | wc::kC1y | wc::kC1z));
-  c.c2 += (flags & wc::kC2) ? 1 : 0;
+  c.c1 += popcount(flags & (kC1x | kC1y | kC1z));
+  c.c2 += (flags & kC2) ? 1 : 0;
 }
 
 void check_size(const Geometry& g, const char* what) {
@@ -229,7 +234,7 @@ private:
   Outcome eliminate(std::size_t r, int gate) {
     const std::uint8_t code = g_.code(r);
     if (!critical_configurations(code)) return kDone;  // already eliminated by an earlier choice
-    const wc::CandidateSets& b = candidate_sets(code);
+    const CandidateSets& b = candidate_sets(code);
     std::uint8_t before[kG], after[kG];
     std::uint32_t valid;
     const std::uint64_t grid = load_grid(r, valid);

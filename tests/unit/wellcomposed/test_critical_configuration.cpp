@@ -5,7 +5,7 @@
 
 #include <set>
 
-using namespace imgmesh::wc;
+using namespace imgmesh::wellcomposed_detail;
 
 namespace {
 // Block bit of the point r + (dx, dy, dz).
