@@ -4,11 +4,11 @@
 // split into three quads through its centroid and edge midpoints (strictly
 // convex for any non-degenerate triangle), with two regions and constraint
 // segments.
-#include "quad/smooth.hpp"
+#include "quadsmooth/smooth.hpp"
 
 #include "quad/quality.hpp"
-#include "quad/smooth_mesh.hpp"
-#include "quad/tri2quad.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
+#include "tri2quad/tri2quad.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>

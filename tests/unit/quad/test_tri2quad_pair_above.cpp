@@ -2,8 +2,8 @@
 #include "tri2quad_test_support.hpp"
 
 #include "quad/quality.hpp"
-#include "quad/tri2quad.hpp"
-#include "quad/tri2quad_polygons.hpp"
+#include "tri2quad/polygons.hpp"
+#include "tri2quad/tri2quad.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,8 +1,8 @@
 // Helpers shared by the tri2quad unit tests: random polygons and
 // constrained Delaunay meshes, and the check of every guarantee of a result.
 #pragma once
-#include "quad/tri2quad.hpp"
-#include "quad/tri2quad_polygons.hpp"
+#include "tri2quad/polygons.hpp"
+#include "tri2quad/tri2quad.hpp"
 
 #include <random>
 #include <vector>

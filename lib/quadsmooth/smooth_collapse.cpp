@@ -3,7 +3,7 @@
 // fixed, else at their midpoint; also, where two free valence-3 vertices
 // face each other, the valence-driven collapse (on a Patch, undone unless
 // the relaxed patch's worst mu holds).
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include <algorithm>
 

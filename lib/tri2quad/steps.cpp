@@ -1,9 +1,9 @@
 // Steps 1-5 of thesis 3.2.1 at one node of a component's spanning tree: the
 // node's triangle with what its children left forms a small polygon, which
-// the lemmas of appendix B (tri2quad_polygons.cpp) quadrangulate, leaving
+// the lemmas of appendix B (polygons.cpp) quadrangulate, leaving
 // at most a triangle (or a point, a dent) on the node's outgoing edge; at
 // the root, step 5 closes what is left.
-#include "quad/tri2quad_conversion.hpp"
+#include "tri2quad/conversion.hpp"
 
 #include "quad/quality.hpp"
 #include "util/error.hpp"

@@ -2,7 +2,7 @@
 // quads share is replaced by one of the other two diagonals of their
 // hexagon, for the pair's worst mu or for more regular valences; a poor
 // pair no swap helps is split instead (smooth_split.cpp).
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 // Quadrangulations of the small polygons of the thesis's appendix B and the
 // triangle splits of section 3.2 (de Berg's 3-quad split, Joe's 5-quad
-// split), as used by tri2quad. Internal to the quad module (and its tests).
+// split), as used by tri2quad. Internal to lib/tri2quad (and its tests).
 //
 // Every construction works on a LocalPatch: known vertices (with their ids in
 // the output mesh) and new Steiner points (id -1). Steiner points are placed

@@ -41,7 +41,7 @@
 // corners where two quads across it from side to side hold 20-27 degrees
 // (brain-kmeans z 30, 0.4 pixel wide at (93.7, 8): two quads of 9.33 and
 // two of 9.4 -> 24.0 and 26.6).
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include <algorithm>
 #include <functional>

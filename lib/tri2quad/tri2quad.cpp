@@ -1,9 +1,9 @@
 // tri2quad: the entry points (see the header for the outline, and
-// tri2quad_conversion.hpp for the files that do the parts).
-#include "quad/tri2quad.hpp"
+// conversion.hpp for the files that do the parts).
+#include "tri2quad/tri2quad.hpp"
 
 #include "quad/quality.hpp"
-#include "quad/tri2quad_conversion.hpp"
+#include "tri2quad/conversion.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // The repair of Fig. 3.23 (thesis 3.3): a point a component puts on the
 // constraint edge it shares with its parent component splits the parent's
 // triangle there, and the constraint segment with it.
-#include "quad/tri2quad_conversion.hpp"
+#include "tri2quad/conversion.hpp"
 
 
 namespace imgmesh::t2q {

@@ -3,7 +3,7 @@
 // strictly convex; the two merge into (a, b, c, d) and v goes. Beyond it,
 // the same for a free vertex of valence 3 that splits a sharp fixed corner
 // (open_sharp_corner).
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include <algorithm>
 

@@ -5,7 +5,7 @@
 // and quad collapse. Nothing ever makes a quad non-convex: every move and
 // every operation is checked with exact orientation predicates first.
 //
-// smooth_quad_mesh(mesh, opt), in the files of lib/quad that do each step
+// smooth_quad_mesh(mesh, opt), in the files of lib/quadsmooth that do each step
 // (the state and the operations are declared in smooth_mesh.hpp):
 //
 //   check the input, build the stars                    smooth_mesh.cpp

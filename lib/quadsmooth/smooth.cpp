@@ -1,7 +1,7 @@
 // quadsmooth's loop (see smooth.hpp) and its result.
-#include "quad/smooth.hpp"
+#include "quadsmooth/smooth.hpp"
 
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include <algorithm>
 

@@ -1,5 +1,5 @@
 // quadsmooth's grading pass (see grading_pass in smooth_mesh.hpp).
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -2,7 +2,7 @@
 // search on the worst mu around a vertex or an edge, and the colouring that
 // lets one pass run on several threads with a result that does not depend
 // on their number (thesis 3.2.3).
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // The quad-mesh state quadsmooth works on, and the rooms that work on it
-// (thesis 3.2.3; the loop that calls them is in smooth.hpp). Internal to the
-// quad module (and its tests).
+// (thesis 3.2.3; the loop that calls them is in smooth.hpp). Internal to
+// lib/quadsmooth (and its tests).
 //
 // QuadMesh holds the quads, the stars (vertex -> incident quads), which
 // vertices are fixed, the feature edges and the cached sin(mu) of every
@@ -12,7 +12,7 @@
 // compacted away.
 #pragma once
 #include "quad/predicates.hpp"
-#include "quad/smooth.hpp"
+#include "quadsmooth/smooth.hpp"
 
 #include <algorithm>
 #include <array>

@@ -2,7 +2,7 @@
 // dents (each child closed alone), then the safe split of the node's region
 // (an odd-degree edge subset on its dual tree; de Berg's and Joe's splits).
 // Both can cost more than the per-step budget; each use is counted.
-#include "quad/tri2quad_conversion.hpp"
+#include "tri2quad/conversion.hpp"
 
 #include "util/error.hpp"
 

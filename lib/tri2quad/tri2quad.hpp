@@ -22,7 +22,7 @@
 // ran (make_dents, the safe split) could a result exceed them, and then it
 // is redone from other root edges and the smallest kept (a safety net,
 // counted as size_bound_retry; never used on the random test meshes).
-// tri2quad_conversion.hpp names the file of each part.
+// conversion.hpp names the file of each part.
 #pragma once
 #include "planar/triangle_io.hpp"
 #include "util/json.hpp"

@@ -4,7 +4,7 @@
 // bottom-up (levels V_d .. V_0, 3.2.1). No recursion: BFS orders are
 // explicit arrays, so meshes of 10^7 triangles run in linear time and
 // bounded stack.
-#include "quad/tri2quad_conversion.hpp"
+#include "tri2quad/conversion.hpp"
 
 #include "util/error.hpp"
 

@@ -2,7 +2,7 @@
 // sliding and feature vertices, patch save/restore, new vertices and quads,
 // and the compaction back into the PlanarMesh.
 #include "quad/half_plane_clip.hpp"
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include "util/error.hpp"
 

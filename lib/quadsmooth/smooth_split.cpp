@@ -2,7 +2,7 @@
 // new point, or four around two (the clean-up of thesis 3.2.3; tried by
 // smooth_swap.cpp where no diagonal swap helps). Each try is a Patch, put
 // back exactly when it fails.
-#include "quad/smooth_mesh.hpp"
+#include "quadsmooth/smooth_mesh.hpp"
 
 #include <algorithm>
 

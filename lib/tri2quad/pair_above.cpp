@@ -13,7 +13,7 @@
 //
 // Whenever a step cannot keep a guarantee, the plain conversion's result is
 // returned instead.
-#include "quad/tri2quad_conversion.hpp"
+#include "tri2quad/conversion.hpp"
 
 #include "quad/quality.hpp"
 #include "util/error.hpp"

@@ -1,22 +1,22 @@
 // The state of one run of the thesis's conversion (3.2.1, 3.3), shared by
-// the files that do its parts. Internal to the quad module (and its tests).
+// the files that do its parts. Internal to lib/tri2quad (and its tests).
 //
-//   build_mesh()              tri2quad_dual_tree.cpp  triangles made CCW, neighbours,
-//                                                     constrained edges, the input
-//                                                     restriction of 3.3
-//   build_component_tree()    tri2quad_dual_tree.cpp  the components of the dual graph
-//                                                     cut at constraints, and T^c
-//   convert_components()      tri2quad_dual_tree.cpp  T^c bottom-up; in each component
-//                                                     a BFS spanning tree of the dual
-//                                                     graph, pruned bottom-up:
-//     process_node()          tri2quad_steps.cpp      steps 1-4 at a node, step 5
-//                                                     (finish_root) at the root
-//     make_dents(), safe_split()  tri2quad_fallback.cpp  when no construction passes
-//     repair()                tri2quad_repair.cpp     Fig. 3.23: a point a component
-//                                                     puts on its parent's edge
+//   build_mesh()              dual_tree.cpp  triangles made CCW, neighbours,
+//                                            constrained edges, the input
+//                                            restriction of 3.3
+//   build_component_tree()    dual_tree.cpp  the components of the dual graph
+//                                            cut at constraints, and T^c
+//   convert_components()      dual_tree.cpp  T^c bottom-up; in each component
+//                                            a BFS spanning tree of the dual
+//                                            graph, pruned bottom-up:
+//     process_node()          steps.cpp      steps 1-4 at a node, step 5
+//                                            (finish_root) at the root
+//     make_dents(), safe_split()  fallback.cpp  when no construction passes
+//     repair()                repair.cpp     Fig. 3.23: a point a component
+//                                            puts on its parent's edge
 #pragma once
-#include "quad/tri2quad.hpp"
-#include "quad/tri2quad_polygons.hpp"
+#include "tri2quad/polygons.hpp"
+#include "tri2quad/tri2quad.hpp"
 
 #include <array>
 #include <cstddef>
@@ -127,7 +127,7 @@ struct Conversion {
   std::string vid(int v) const { return std::to_string(v + input.index_base); }
   std::string edge_name(int a, int b) const { return "(" + vid(a) + ", " + vid(b) + ")"; }
 
-  // tri2quad_dual_tree.cpp
+  // dual_tree.cpp
   struct VertexTriangles {
     std::vector<std::uint32_t> start, around;  // the triangles at v: around[start[v] .. start[v + 1])
   };
@@ -141,7 +141,7 @@ struct Conversion {
   void build_component_tree();
   void convert_components();
 
-  // tri2quad_steps.cpp
+  // steps.cpp
   enum class Closing { kClosed, kOpen, kPassedUp };
   void process_node(int u, bool is_root);
   void node_polygon(int u, int s0, Child* child);
@@ -166,11 +166,11 @@ struct Conversion {
                     int& split_m);
   void finish_root(int u, int a, int b, Leftover r, double at, int split_m);
 
-  // tri2quad_fallback.cpp
+  // fallback.cpp
   bool make_dents(int u, int s0);
   Leftover safe_split(LocalPatch& lp, const std::vector<std::array<int, 3>>& tris, bool root, int* split_m);
 
-  // tri2quad_repair.cpp
+  // repair.cpp
   void split_segment(int a, int b, int m);
   void repair(int from, int a, int b, int m);
 };
@@ -178,7 +178,7 @@ struct Conversion {
 // The thesis's conversion alone, with the size-bound retry (tri2quad.cpp).
 Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
                        const std::unordered_set<std::uint64_t>* avoid_edges = nullptr);
-// --pair-above (tri2quad_pair_above.cpp).
+// --pair-above (pair_above.cpp).
 Tri2QuadResult pairs_first(const Tri2QuadInput& in, const Tri2QuadOptions& opt);
 
 } // namespace imgmesh::t2q

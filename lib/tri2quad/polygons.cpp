@@ -1,7 +1,7 @@
 // Appendix B of the thesis and the triangle splits, as constructions that
 // place Steiner points in floating point and verify every quad exactly.
 // The reconstructions follow doc/tri2quad.md (sections 1, 3.2-3.4, 3.8).
-#include "quad/tri2quad_polygons.hpp"
+#include "tri2quad/polygons.hpp"
 
 #include "quad/quality.hpp"
 
