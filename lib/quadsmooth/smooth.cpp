@@ -50,10 +50,10 @@ std::string SmoothStats::failed_guarantee() const {
   return std::to_string(after.non_convex) + " quad(s) are not strictly convex (they came in that way)";
 }
 
-void check_quad_mesh(const PlanarMesh& m, const std::string& path) { qs::conforming_stars(m, path); }
+void check_quad_mesh(const PlanarMesh& m, const std::string& path) { quadsmooth_detail::conforming_stars(m, path); }
 
 SmoothStats smooth_quad_mesh(PlanarMesh& mesh, const SmoothOptions& opt) {
-  using namespace qs;
+  using namespace quadsmooth_detail;
   const Stars stars = conforming_stars(mesh, {});
   SmoothStats st;
   st.before = quality_report(mesh);

@@ -9,7 +9,7 @@
 #include <functional>
 #include <thread>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 namespace {
 
@@ -574,4 +574,4 @@ bool raise_grading(QuadMesh& qm, int v, double h2, double target, double floor) 
   return true;
 }
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

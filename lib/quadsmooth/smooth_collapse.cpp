@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 namespace {
 
@@ -119,4 +119,4 @@ void collapse_pass(QuadMesh& qm, SmoothStats& st) {
   }
 }
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 namespace {
 
@@ -308,4 +308,4 @@ void sharp_corner_pass(QuadMesh& qm, SmoothStats& st) {
     if (open_sharp_corner(qm, v, true)) ++st.sharp_corners;
 }
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

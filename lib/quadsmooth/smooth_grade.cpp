@@ -5,7 +5,7 @@
 #include <cmath>
 #include <utility>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 namespace {
 
@@ -109,4 +109,4 @@ void grading_pass(QuadMesh& qm, SmoothStats& st, double target) {
   }
 }
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

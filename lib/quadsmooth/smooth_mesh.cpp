@@ -10,7 +10,7 @@
 #include <cmath>
 #include <unordered_map>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 // Checks the input contract (see check_quad_mesh) and returns the stars.
 Stars conforming_stars(const PlanarMesh& m, const std::string& path) {
@@ -390,7 +390,7 @@ void QuadMesh::compact() {
 // of that region, clipped from the box of its star; false if it is empty.
 bool place_in_star(QuadMesh& qm, int x) {
   std::vector<Point2>& P = qm.points;
-  std::vector<t2q::HalfPlane> hp;
+  std::vector<HalfPlane> hp;
   double lo[2] = {P[x][0], P[x][1]}, hi[2] = {P[x][0], P[x][1]};
   for (int q : qm.vertex_quads[x]) {
     const Quad& Qd = qm.quads[q];
@@ -404,11 +404,11 @@ bool place_in_star(QuadMesh& qm, int x) {
     for (int v : Qd)
       for (int d = 0; d < 2; ++d) { lo[d] = std::min(lo[d], P[v][d]); hi[d] = std::max(hi[d], P[v][d]); }
   }
-  const std::vector<Point2> region = t2q::clip({{lo[0], lo[1]}, {hi[0], lo[1]}, {hi[0], hi[1]}, {lo[0], hi[1]}}, hp);
+  const std::vector<Point2> region = clip({{lo[0], lo[1]}, {hi[0], lo[1]}, {hi[0], hi[1]}, {lo[0], hi[1]}}, hp);
   if (region.empty()) return false;
-  P[x] = t2q::centroid(region);
+  P[x] = centroid(region);
   for (int q : qm.vertex_quads[x]) qm.quad_sin_mu[q] = qm.sin_mu_of(qm.quads[q]);
   return true;
 }
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

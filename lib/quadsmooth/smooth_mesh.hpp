@@ -24,7 +24,7 @@
 #include <unordered_set>
 #include <vector>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 using Quad = std::array<int, 4>;  // corners, counter-clockwise
 
@@ -350,4 +350,4 @@ void grading_pass(QuadMesh& qm, SmoothStats& st, double target);
 bool collapse_quad(QuadMesh& qm, int q, int diag, SmoothStats& st);
 void collapse_pass(QuadMesh& qm, SmoothStats& st);
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 int split_pair(QuadMesh& qm, int q1, int q2, const int (&H)[6], const Accept& accept) {
   const std::vector<Point2>& P = qm.points;
@@ -106,4 +106,4 @@ void final_split_pass(QuadMesh& qm, SmoothStats& st) {
     }
 }
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

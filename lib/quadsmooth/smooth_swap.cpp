@@ -6,7 +6,7 @@
 
 #include <algorithm>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 namespace {
 
@@ -95,4 +95,4 @@ void swap_pass(QuadMesh& qm, SmoothStats& st) {
   }
 }
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

@@ -46,7 +46,7 @@
 #include <algorithm>
 #include <functional>
 
-namespace imgmesh::qs {
+namespace imgmesh::quadsmooth_detail {
 
 namespace {
 
@@ -438,4 +438,4 @@ void tip_pass(QuadMesh& qm, SmoothStats& st) {
   }
 }
 
-} // namespace imgmesh::qs
+} // namespace imgmesh::quadsmooth_detail

@@ -26,7 +26,7 @@
 #include <unordered_set>
 #include <vector>
 
-namespace imgmesh::t2q {
+namespace imgmesh::tri2quad_detail {
 
 // How often each step / case ran (Tri2QuadResult::cases, in this order).
 enum Case : int {
@@ -181,4 +181,4 @@ Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
 // --pair-above (pair_above.cpp).
 Tri2QuadResult pairs_first(const Tri2QuadInput& in, const Tri2QuadOptions& opt);
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh::tri2quad_detail

@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace imgmesh::t2q {
+namespace imgmesh::tri2quad_detail {
 
 // The input's checks and its mesh: counter-clockwise triangles, their
 // neighbours, the constraint and boundary edges with their markers, and the
@@ -279,4 +279,4 @@ void Conversion::convert_components() {
   }
 }
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh::tri2quad_detail

@@ -6,7 +6,7 @@
 
 #include "util/error.hpp"
 
-namespace imgmesh::t2q {
+namespace imgmesh::tri2quad_detail {
 
 // Fallback when no construction for this node's polygon passes its
 // checks (on random meshes: a few extreme heptagons and regions that
@@ -194,4 +194,4 @@ Leftover Conversion::safe_split(LocalPatch& lp, const std::vector<std::array<int
   throw Error("internal error: tri2quad could not quadrangulate a region near vertex " + vid(tris[0][0]), input.path);
 }
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh::tri2quad_detail

@@ -22,7 +22,7 @@
 #include <cmath>
 #include <unordered_set>
 
-namespace imgmesh::t2q {
+namespace imgmesh::tri2quad_detail {
 
 namespace {
 
@@ -357,4 +357,4 @@ Tri2QuadResult pairs_first(const Tri2QuadInput& in, const Tri2QuadOptions& opt) 
   return out;
 }
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh::tri2quad_detail

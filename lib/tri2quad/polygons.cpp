@@ -10,7 +10,7 @@
 #include <functional>
 #include <limits>
 
-namespace imgmesh::t2q {
+namespace imgmesh::tri2quad_detail {
 
 namespace {
 double cross2(double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; }
@@ -658,4 +658,4 @@ bool deberg_split(LocalPatch& lp, int a, int b, int c, int mab, int mbc, int mca
   return false;
 }
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh::tri2quad_detail

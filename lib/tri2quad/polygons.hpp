@@ -19,8 +19,9 @@
 #include <array>
 #include <vector>
 
-namespace imgmesh::t2q {
+namespace imgmesh::tri2quad_detail {
 
+using P2 = Point2;
 using Quad = std::array<int, 4>;  // local indices, counter-clockwise
 
 struct LocalPatch {
@@ -75,4 +76,4 @@ bool joe_split(LocalPatch& lp, int a, int b, int m, int c);
 // de Berg's split: m_ab, m_bc, m_ca on the edges, one new centre point.
 bool deberg_split(LocalPatch& lp, int a, int b, int c, int mab, int mbc, int mca);
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh::tri2quad_detail

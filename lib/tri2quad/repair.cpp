@@ -4,7 +4,7 @@
 #include "tri2quad/conversion.hpp"
 
 
-namespace imgmesh::t2q {
+namespace imgmesh::tri2quad_detail {
 
 void Conversion::split_segment(int a, int b, int m) {
   auto it = segments.find(edge_key(a, b));
@@ -48,4 +48,4 @@ void Conversion::repair(int from, int a, int b, int m) {
   ++result.repairs;
 }
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh::tri2quad_detail

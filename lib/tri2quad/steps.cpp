@@ -10,7 +10,7 @@
 
 #include <algorithm>
 
-namespace imgmesh::t2q {
+namespace imgmesh::tri2quad_detail {
 
 // Node u with outgoing edge (a, b): its triangle and its children's
 // leftovers form a polygon, closed by steps 1-4 (step 5 at the root), on a
@@ -588,4 +588,4 @@ void Conversion::finish_root(int u, int a, int b, Leftover r, double at, int spl
   repair(u, a, b, m);
 }
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh::tri2quad_detail

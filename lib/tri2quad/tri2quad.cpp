@@ -11,7 +11,7 @@
 
 namespace imgmesh {
 
-namespace t2q {
+namespace tri2quad_detail {
 namespace {
 // How far a result is over the thesis's size bounds (quads and Steiner
 // points together; 0 within both).
@@ -64,10 +64,10 @@ Tri2QuadResult convert(const Tri2QuadInput& in, const Tri2QuadOptions& opt,
   return out;
 }
 
-} // namespace t2q
+} // namespace tri2quad_detail
 
 Tri2QuadResult tri2quad(const Tri2QuadInput& in, const Tri2QuadOptions& opt) {
-  return opt.pair_above > 0 ? t2q::pairs_first(in, opt) : t2q::convert(in, opt);
+  return opt.pair_above > 0 ? tri2quad_detail::pairs_first(in, opt) : tri2quad_detail::convert(in, opt);
 }
 
 Json Tri2QuadResult::to_json() const {

@@ -543,7 +543,7 @@ namespace {
 // Everything an operation may change, to check that a refused one changed
 // nothing.
 struct State {
-  std::vector<qs::Quad> quads;
+  std::vector<quadsmooth_detail::Quad> quads;
   std::vector<std::vector<int>> stars;
   std::vector<Point2> points;
   std::vector<double> sines;
@@ -551,7 +551,7 @@ struct State {
   std::size_t elements;
 };
 
-State snapshot(const qs::QuadMesh& qm) {
+State snapshot(const quadsmooth_detail::QuadMesh& qm) {
   return {qm.quads,       qm.vertex_quads, qm.points, qm.quad_sin_mu,
           qm.quad_dead,   qm.vertex_dead,  qm.mesh.elements.size()};
 }
@@ -566,7 +566,7 @@ void check_same(const State& a, const State& b) {
   CHECK(a.elements == b.elements);
 }
 
-bool live_quads_strictly_convex(const qs::QuadMesh& qm) {
+bool live_quads_strictly_convex(const quadsmooth_detail::QuadMesh& qm) {
   for (std::size_t q = 0; q < qm.quads.size(); ++q) {
     const auto& c = qm.quads[q];
     if (!qm.quad_dead[q] && !is_strictly_convex(qm.points[c[0]], qm.points[c[1]], qm.points[c[2]], qm.points[c[3]]))
@@ -596,7 +596,7 @@ std::set<std::pair<int, int>> boundary_edges(const PlanarMesh& m) {
   return s;
 }
 
-bool shares_edge(const qs::QuadMesh& qm, int a, int b) {
+bool shares_edge(const quadsmooth_detail::QuadMesh& qm, int a, int b) {
   return qm.quad_with_edge(a, b) >= 0 && qm.quad_with_edge(b, a) >= 0;
 }
 
@@ -609,10 +609,10 @@ TEST_CASE("doublet removal merges the two quads of a valence-2 vertex into a str
   m.points = {{0, 0}, {2, 0}, {2, 2}, {0, 2}, {1, 1}};
   m.elements = {{4, 0, 1, 2}, {4, 2, 3, 0}};
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE_FALSE(qm.fixed[4]);
-  CHECK_FALSE(qs::remove_doublet(qm, 0));  // a corner of the square is fixed
-  REQUIRE(qs::remove_doublet(qm, 4));
+  CHECK_FALSE(quadsmooth_detail::remove_doublet(qm, 0));  // a corner of the square is fixed
+  REQUIRE(quadsmooth_detail::remove_doublet(qm, 4));
   CHECK(qm.vertex_dead[4]);
   CHECK(qm.vertex_quads[4].empty());
   CHECK(live_quads_strictly_convex(qm));
@@ -635,12 +635,12 @@ TEST_CASE("a sharp corner split by a valence-3 vertex is left one quad", "[smoot
   m.elements = {{6, 0, 1, 2}, {6, 2, 3, 4}, {6, 4, 5, 0}};
   const double area = total_area(m);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE_FALSE(qm.fixed[6]);
   double worst_before = 2;
   for (double s : qm.quad_sin_mu) worst_before = std::min(worst_before, s);
-  CHECK_FALSE(qs::open_sharp_corner(qm, 0, false));  // c itself is fixed
-  REQUIRE(qs::open_sharp_corner(qm, 6, false));
+  CHECK_FALSE(quadsmooth_detail::open_sharp_corner(qm, 0, false));  // c itself is fixed
+  REQUIRE(quadsmooth_detail::open_sharp_corner(qm, 6, false));
   CHECK(qm.vertex_dead[6]);
   CHECK(qm.vertex_quads[0].size() == 1);
   CHECK(live_quads_strictly_convex(qm));
@@ -667,7 +667,7 @@ TEST_CASE("a sharp corner whose hexagon cannot be split in two gets m joined to 
   for (int r : regions) m.element_attributes.push_back({double(r)});
   const double area = total_area(m);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE(qm.fixed[0]);
   REQUIRE_FALSE(qm.fixed[27]);
   double worst_before = 2;
@@ -675,15 +675,15 @@ TEST_CASE("a sharp corner whose hexagon cannot be split in two gets m joined to 
   // c's fan in the region: the quads of c and m there.
   auto fan_of_c = [&] {
     for (std::size_t q = 0; q < qm.quads.size(); ++q) {
-      const qs::Quad& Q = qm.quads[q];
+      const quadsmooth_detail::Quad& Q = qm.quads[q];
       if (!qm.quad_dead[q] && std::count(Q.begin(), Q.end(), 0) && std::count(Q.begin(), Q.end(), 27))
         return qm.fan(0, int(q)).count;
     }
     return -1;
   };
   REQUIRE(fan_of_c() == 2);
-  CHECK_FALSE(qs::open_sharp_corner(qm, 27, false));
-  REQUIRE(qs::open_sharp_corner(qm, 27, true));
+  CHECK_FALSE(quadsmooth_detail::open_sharp_corner(qm, 27, false));
+  REQUIRE(quadsmooth_detail::open_sharp_corner(qm, 27, true));
   CHECK(fan_of_c() == 1);
   CHECK(live_quads_strictly_convex(qm));
   double worst_after = 2;
@@ -711,7 +711,7 @@ TEST_CASE("a sharp corner whose hexagon splits only once its doublets merge gets
   for (int r : regions) m.element_attributes.push_back({double(r)});
   const double area = total_area(m);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE(qm.fixed[0]);
   REQUIRE_FALSE(qm.fixed[3]);
   double worst_before = 2;
@@ -721,15 +721,15 @@ TEST_CASE("a sharp corner whose hexagon splits only once its doublets merge gets
   auto fan_of_c = [&] {
     int n = 0;
     for (std::size_t q = 0; q < qm.quads.size(); ++q) {
-      const qs::Quad& Q = qm.quads[q];
+      const quadsmooth_detail::Quad& Q = qm.quads[q];
       if (!qm.quad_dead[q] && std::count(Q.begin(), Q.end(), 0) && m.element_attributes[qm.quad_element[q]][0] == 0) ++n;
     }
     return n;
   };
   REQUIRE(fan_of_c() == 2);
-  CHECK_FALSE(qs::open_sharp_corner(qm, 3, false));  // the in-pass way: both splits not convex
+  CHECK_FALSE(quadsmooth_detail::open_sharp_corner(qm, 3, false));  // the in-pass way: both splits not convex
   const std::size_t quads_before = m.elements.size();
-  REQUIRE(qs::open_sharp_corner(qm, 3, true));
+  REQUIRE(quadsmooth_detail::open_sharp_corner(qm, 3, true));
   CHECK(qm.vertex_dead[3]);
   CHECK(fan_of_c() == 1);
   CHECK(live_quads_strictly_convex(qm));
@@ -760,7 +760,7 @@ TEST_CASE("a wedge tip held by two quads is re-quadded around it into one quad",
   for (int r : regions) m.element_attributes.push_back({double(r)});
   const double area = total_area(m);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE(qm.fixed[0]);
   auto worst = [&] {
     double w = 2;
@@ -779,7 +779,7 @@ TEST_CASE("a wedge tip held by two quads is re-quadded around it into one quad",
   const std::vector<int> fan = fan_of_c();
   REQUIRE(fan.size() == 2);
   std::vector<char> fixed_before(qm.fixed.begin(), qm.fixed.end());
-  REQUIRE(qs::open_wedge_tip(qm, 0, fan[0], 3));
+  REQUIRE(quadsmooth_detail::open_wedge_tip(qm, 0, fan[0], 3));
   CHECK(fan_of_c().size() == 1);
   CHECK(live_quads_strictly_convex(qm));
   CHECK(worst() > std::sin(10 * M_PI / 180));
@@ -793,9 +793,9 @@ TEST_CASE("a wedge tip held by two quads is re-quadded around it into one quad",
   CHECK(total_area(m) == Approx(area));
   // The pass finds it too, and a tip already in one quad is left alone.
   PlanarMesh m2 = m;
-  qs::QuadMesh qm2(m2, opt, qs::conforming_stars(m2, {}));
+  quadsmooth_detail::QuadMesh qm2(m2, opt, quadsmooth_detail::conforming_stars(m2, {}));
   SmoothStats st;
-  qs::tip_pass(qm2, st);
+  quadsmooth_detail::tip_pass(qm2, st);
   CHECK(st.wedge_tips == 0);
 }
 
@@ -815,7 +815,7 @@ TEST_CASE("the tip pass leaves a corner exactly as it was where no layout settle
   for (int r : regions) m.element_attributes.push_back({double(r)});
   const double area = total_area(m);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE(live_quads_strictly_convex(qm));
   std::vector<char> fixed_before(qm.fixed.begin(), qm.fixed.end());
   std::vector<Point2> points_before = m.points;
@@ -830,12 +830,12 @@ TEST_CASE("the tip pass leaves a corner exactly as it was where no layout settle
   int fan_count = 0;
   for (int q : qm.vertex_quads[c])
     if (qm.quad_sin_mu[q] < std::sin(12 * M_PI / 180)) {
-      const qs::Fan f = qm.fan(c, q);
+      const quadsmooth_detail::Fan f = qm.fan(c, q);
       if (!f.closed && f.ideal == 1) fan_count = f.count;
     }
   REQUIRE(fan_count == 2);
   const std::vector<std::vector<int>> elements_before = m.elements;
-  qs::tip_pass(qm, st);
+  quadsmooth_detail::tip_pass(qm, st);
   CHECK(live_quads_strictly_convex(qm));
   for (std::size_t v = 0; v < fixed_before.size(); ++v)
     if (fixed_before[v]) {
@@ -866,16 +866,16 @@ TEST_CASE("a collapse refused as the corners stand is taken once its patch is pl
   for (int r : regions) m.element_attributes.push_back({double(r)});
   const double area = total_area(m);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE_FALSE(qm.fixed[2]);
   REQUIRE_FALSE(qm.fixed[3]);
   const double worst_before = *std::min_element(qm.quad_sin_mu.begin(), qm.quad_sin_mu.end());
   REQUIRE(worst_before < std::sin(9 * M_PI / 180));
   SmoothStats st;
-  CHECK_FALSE(qs::collapse_quad(qm, 0, 0, st));
-  CHECK_FALSE(qs::collapse_quad(qm, 0, 1, st));
+  CHECK_FALSE(quadsmooth_detail::collapse_quad(qm, 0, 0, st));
+  CHECK_FALSE(quadsmooth_detail::collapse_quad(qm, 0, 1, st));
   const std::size_t quads_before = m.elements.size();
-  REQUIRE((qs::collapse_and_merge(qm, 0, 0) || qs::collapse_and_merge(qm, 0, 1)));
+  REQUIRE((quadsmooth_detail::collapse_and_merge(qm, 0, 0) || quadsmooth_detail::collapse_and_merge(qm, 0, 1)));
   CHECK(live_quads_strictly_convex(qm));
   double worst_after = 2;
   for (std::size_t q = 0; q < qm.quads.size(); ++q)
@@ -906,7 +906,7 @@ TEST_CASE("the final collapse merges the doublet it leaves where that lifts the 
   for (int r : regions) m.element_attributes.push_back({double(r)});
   const double area = total_area(m);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   auto worst_near = [&] {  // the worst mu of the quads within an edge of quad 0's corners
     double w = 2;
     for (std::size_t q = 0; q < qm.quads.size(); ++q)
@@ -918,7 +918,7 @@ TEST_CASE("the final collapse merges the doublet it leaves where that lifts the 
   REQUIRE(worst_before < std::sin(9 * M_PI / 180));
   const std::size_t quads_before = m.elements.size(), points_before = m.points.size();
   SmoothStats st;
-  qs::final_collapse_pass(qm, st);
+  quadsmooth_detail::final_collapse_pass(qm, st);
   CHECK(st.collapses >= 1);
   CHECK(live_quads_strictly_convex(qm));
   CHECK(worst_near() > std::sin(10 * M_PI / 180));
@@ -945,13 +945,13 @@ TEST_CASE("the final pair split lifts a quad under 10 degrees that the passes le
   for (int r : regions) m.element_attributes.push_back({double(r)});
   const double area = total_area(m);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   for (int x : qm.quads[2]) REQUIRE(qm.fixed[x]);
   REQUIRE(qm.quad_sin_mu[2] < std::sin(10 * M_PI / 180));
   const double worst_before = *std::min_element(qm.quad_sin_mu.begin(), qm.quad_sin_mu.end());
   const std::size_t points_before = m.points.size();
   SmoothStats st;
-  qs::final_split_pass(qm, st);
+  quadsmooth_detail::final_split_pass(qm, st);
   CHECK(st.splits >= 1);
   CHECK(live_quads_strictly_convex(qm));
   double worst_after = 2;
@@ -971,11 +971,11 @@ TEST_CASE("the max-min climb raises the worst mu around a free vertex, every qua
   m.points = {{0, 0}, {1, 0}, {2, 0}, {0, 1}, {1.5, 1.3}, {2, 1}, {0, 2}, {1, 2}, {2, 2}};
   m.elements = {{0, 1, 4, 3}, {1, 2, 5, 4}, {3, 4, 7, 6}, {4, 5, 8, 7}};
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE_FALSE(qm.fixed[4]);
   const double worst_before = *std::min_element(qm.quad_sin_mu.begin(), qm.quad_sin_mu.end());
   REQUIRE(worst_before < std::sin(20 * 3.14159265358979323846 / 180));
-  REQUIRE(qs::raise_worst(qm, 4, 1.0));
+  REQUIRE(quadsmooth_detail::raise_worst(qm, 4, 1.0));
   CHECK(live_quads_strictly_convex(qm));
   for (int q = 0; q < 4; ++q) CHECK(qm.quad_sin_mu[q] == Approx(qm.sin_mu_of(qm.quads[q])));
   CHECK(*std::min_element(qm.quad_sin_mu.begin(), qm.quad_sin_mu.end()) > worst_before + 0.2);
@@ -989,7 +989,7 @@ TEST_CASE("the max-min climb of two vertices never lowers the worst mu of their 
   for (unsigned seed = 1; seed <= 20; ++seed) {
     PlanarMesh m = tri2quad_mesh(4 + 2 * int(seed % 5), seed);
     const SmoothOptions opt;
-    qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+    quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
     for (int q = 0; q < int(qm.quads.size()); ++q)
       for (int k = 0; k < 4; ++k) {
         const int u = qm.quads[q][k], v = qm.quads[q][(k + 1) & 3];
@@ -1002,7 +1002,7 @@ TEST_CASE("the max-min climb of two vertices never lowers the worst mu of their 
         };
         const double before = worst();
         CAPTURE(seed, q, k);
-        if (qs::raise_worst_pair(qm, u, v, 0.1)) ++moved;
+        if (quadsmooth_detail::raise_worst_pair(qm, u, v, 0.1)) ++moved;
         CHECK(worst() >= before);
       }
     CHECK(live_quads_strictly_convex(qm));
@@ -1017,9 +1017,9 @@ TEST_CASE("doublet removal is refused when the merged quad would not be strictly
   m.elements = {{4, 0, 1, 2}, {4, 2, 3, 0}};
   REQUIRE_FALSE(is_strictly_convex(m.points[0], m.points[1], m.points[2], m.points[3]));
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   const State before = snapshot(qm);
-  CHECK_FALSE(qs::remove_doublet(qm, 4));
+  CHECK_FALSE(quadsmooth_detail::remove_doublet(qm, 4));
   check_same(snapshot(qm), before);
 }
 
@@ -1034,9 +1034,9 @@ TEST_CASE("a diagonal swap for the worst mu takes the better diagonal of the hex
   const std::vector<Point2> points0 = m.points;
   SmoothOptions opt;
   opt.split_below = 0;  // swaps only
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   SmoothStats st;
-  REQUIRE(qs::swap_diagonal(qm, 0, 3, st));  // edge 3 of quad 0 is p3 -> p0
+  REQUIRE(quadsmooth_detail::swap_diagonal(qm, 0, 3, st));  // edge 3 of quad 0 is p3 -> p0
   CHECK(st.swaps == 1);
   CHECK(shares_edge(qm, 1, 4));
   CHECK_FALSE(shares_edge(qm, 0, 3));
@@ -1064,11 +1064,11 @@ TEST_CASE("a diagonal swap that would make a quad non-convex is refused and noth
   }
   SmoothOptions opt;
   opt.split_below = 0;  // no pair split in its place
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE(qm.quad_sin_mu[0] < 0.5);  // poor: a swap is looked for
   const State before = snapshot(qm);
   SmoothStats st;
-  for (int i = 0; i < 4; ++i) CHECK_FALSE(qs::swap_diagonal(qm, 0, i, st));
+  for (int i = 0; i < 4; ++i) CHECK_FALSE(quadsmooth_detail::swap_diagonal(qm, 0, i, st));
   CHECK(st.swaps + st.valence_swaps + st.splits == 0);
   check_same(snapshot(qm), before);
 }
@@ -1080,9 +1080,9 @@ TEST_CASE("a pair split turns the fixed strip into four strictly convex quads ar
   m.element_attributes = {{7}, {7}};
   const PlanarMesh orig = m;
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   const int H[6] = {0, 4, 5, 1, 2, 3};  // the pair's hexagon, counter-clockwise
-  REQUIRE(qs::split_pair(qm, 0, 1, H) == 4);
+  REQUIRE(quadsmooth_detail::split_pair(qm, 0, 1, H) == 4);
   CHECK(live_quads_strictly_convex(qm));
   qm.compact();
   REQUIRE_NOTHROW(check_quad_mesh(m));
@@ -1103,10 +1103,10 @@ TEST_CASE("a pair split that would not improve is undone exactly", "[smooth]") {
   m.points = {{0, 0}, {1, 0}, {2, 0}, {2, 1}, {1, 1}, {0, 1}};
   m.elements = {{0, 1, 4, 5}, {1, 2, 3, 4}};
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   const State before = snapshot(qm);
   const int H[6] = {1, 2, 3, 4, 5, 0};  // around the shared edge 1-4
-  CHECK(qs::split_pair(qm, 0, 1, H) == 0);
+  CHECK(quadsmooth_detail::split_pair(qm, 0, 1, H) == 0);
   check_same(snapshot(qm), before);
   CHECK(m.points.size() == 6);
 }
@@ -1114,22 +1114,22 @@ TEST_CASE("a pair split that would not improve is undone exactly", "[smooth]") {
 TEST_CASE("a patch rolls back the stars, points and quads it saved and drops what was added", "[smooth]") {
   PlanarMesh m = jittered_grid(4, 3);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   const State before = snapshot(qm);
   const int v = 6;  // an interior grid node
   REQUIRE_FALSE(qm.fixed[v]);
-  qs::Patch pt;
+  quadsmooth_detail::Patch pt;
   qm.save_patch({v}, pt);
   qm.points[v][0] += 0.01;
   const int q0 = qm.vertex_quads[v][0];
-  const qs::Quad old = qm.quads[q0];
+  const quadsmooth_detail::Quad old = qm.quads[q0];
   const int e = qm.add_vertex({0.5, 0.5});
   pt.verts.push_back(e);
   const int q = qm.add_quad(q0);
   pt.quads.push_back(q);
   qm.set_quad(q0, {old[0], old[1], old[2], e});
   qm.set_quad(q, {old[2], old[3], old[0], e});
-  qs::relax(qm, pt);
+  quadsmooth_detail::relax(qm, pt);
   qm.rollback(pt);
   check_same(snapshot(qm), before);
   CHECK(m.points.size() == before.points.size());
@@ -1148,12 +1148,12 @@ TEST_CASE("a quad collapse at a boundary vertex keeps it where it was, on the bo
   const PlanarMesh orig = m;
   REQUIRE(quad_mu(m, m.elements[2]) < 15);
   const SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   REQUIRE(qm.fixed[a]);
   REQUIRE_FALSE(qm.fixed[c]);
   SmoothStats st;
-  CHECK_FALSE(qs::collapse_quad(qm, 2, 1, st));  // b and d: both fixed
-  REQUIRE(qs::collapse_quad(qm, 2, 0, st));
+  CHECK_FALSE(quadsmooth_detail::collapse_quad(qm, 2, 1, st));  // b and d: both fixed
+  REQUIRE(quadsmooth_detail::collapse_quad(qm, 2, 0, st));
   CHECK(st.collapses == 1);
   CHECK(qm.quad_dead[2]);
   CHECK(qm.vertex_dead[c]);
@@ -1222,10 +1222,10 @@ TEST_CASE("the grading pass grows a small quad ringed by four large ones to sqrt
   m.element_attributes.assign(5, {1.0});
   REQUIRE(max_neighbour_ratio(m) > 4.9);
   SmoothOptions opt;
-  qs::QuadMesh qm(m, opt, qs::conforming_stars(m, {}));
+  quadsmooth_detail::QuadMesh qm(m, opt, quadsmooth_detail::conforming_stars(m, {}));
   SmoothStats st;
   st.before = quality_report(m);
-  qs::grading_pass(qm, st, opt.grading);
+  quadsmooth_detail::grading_pass(qm, st, opt.grading);
   qm.compact();
   const QualityReport after = quality_report(m);
   CAPTURE(max_neighbour_ratio(m), st.grading_moves, after.min_mu);

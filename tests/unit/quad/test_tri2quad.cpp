@@ -17,7 +17,7 @@
 
 using namespace imgmesh;
 using namespace tri2quad_test;
-using t2q::LocalPatch;
+using tri2quad_detail::LocalPatch;
 
 TEST_CASE("Random constrained Delaunay triangulations: all guarantees", "[tri2quad][property]") {
   std::mt19937 g(2006);

@@ -17,7 +17,7 @@
 
 using namespace imgmesh;
 using namespace tri2quad_test;
-using t2q::LocalPatch;
+using tri2quad_detail::LocalPatch;
 
 namespace {
 

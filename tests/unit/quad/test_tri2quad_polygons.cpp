@@ -17,7 +17,7 @@
 
 using namespace imgmesh;
 using namespace tri2quad_test;
-using t2q::LocalPatch;
+using tri2quad_detail::LocalPatch;
 
 namespace {
 
@@ -46,8 +46,8 @@ LocalPatch patch_of(const std::vector<P2>& v) {
   return lp;
 }
 
-t2q::Ring ring(int n) {
-  t2q::Ring r;
+tri2quad_detail::Ring ring(int n) {
+  tri2quad_detail::Ring r;
   for (int i = 0; i < n; ++i) r.push_back(i);
   return r;
 }
@@ -65,7 +65,7 @@ TEST_CASE("B.1.1: random hexagons get at most 5 strictly convex quads and 3 poin
     reflex3 += reflex == 3;
     ++tried;
     LocalPatch lp = patch_of(v);
-    if (t2q::hexagon(lp, ring(6))) {
+    if (tri2quad_detail::hexagon(lp, ring(6))) {
       ++done;
       check_patch(lp, poly_area(v), 5, 3);
       // Euler: a hexagon with k interior points has 2 + k quads.
@@ -107,7 +107,7 @@ TEST_CASE("B.1.2: quadrilateral with an interior point, convex, kernel and arm c
     (is_convex ? convex : reflex)++;
     LocalPatch lp = patch_of(v);
     const int qi = lp.add_known(q, 4);
-    if (t2q::quad_with_point(lp, ring(4), qi)) {
+    if (tri2quad_detail::quad_with_point(lp, ring(4), qi)) {
       (is_convex ? ok_convex : ok_reflex)++;
       check_patch(lp, poly_area(v), 5, 3);
       CHECK(lp.quads.size() == 5);  // forced by Euler
@@ -157,7 +157,7 @@ TEST_CASE("B.1.2 on extreme darts from random meshes", "[tri2quad][B12]") {
     for (int i = 0; i < 4; ++i) v.push_back({d[2 * i], d[2 * i + 1]});
     LocalPatch lp = patch_of(v);
     const int qi = lp.add_known({d[8], d[9]}, 4);
-    REQUIRE(t2q::quad_with_point(lp, ring(4), qi));
+    REQUIRE(tri2quad_detail::quad_with_point(lp, ring(4), qi));
     check_patch(lp, poly_area(v), 5, 3);
   }
 }
@@ -170,7 +170,7 @@ TEST_CASE("B.2.1: pentagon edge types leave a triangle on the outgoing edge", "[
     for (int i = 0; i < 5; ++i) v.push_back({std::cos(2 * kPi * i / 5 - kPi / 2), std::sin(2 * kPi * i / 5 - kPi / 2)});
     LocalPatch lp = patch_of(v);
     int kind = -1;
-    const int apex = t2q::pentagon(lp, ring(5), &kind);
+    const int apex = tri2quad_detail::pentagon(lp, ring(5), &kind);
     REQUIRE(apex >= 0);
     CHECK(kind == 0);
     const double tri = poly_area({lp.p[0], lp.p[1], lp.p[apex]});
@@ -186,7 +186,7 @@ TEST_CASE("B.2.1: pentagon edge types leave a triangle on the outgoing edge", "[
       ++total;
       LocalPatch lp = patch_of(v);
       int kind = -1;
-      const int apex = t2q::pentagon(lp, ring(5), &kind);
+      const int apex = tri2quad_detail::pentagon(lp, ring(5), &kind);
       if (apex < 0) { ++fails; continue; }
       ++seen[kind];
       const double tri = poly_area({lp.p[0], lp.p[1], lp.p[apex]});
@@ -216,7 +216,7 @@ TEST_CASE("B.2.1 within budget: leftover forms or type 3 with an edge point", "[
     auto v = random_star(g, 5, 0.1, 1.0);
     if (!simple_ccw(v)) continue;
     LocalPatch lp = patch_of(v);
-    const int apex = t2q::pentagon(lp, ring(5), nullptr, 1);
+    const int apex = tri2quad_detail::pentagon(lp, ring(5), nullptr, 1);
     if (apex >= 0) {
       ++leftover;
       check_patch(lp, poly_area(v) - poly_area({lp.p[0], lp.p[1], lp.p[apex]}), 3, 2);
@@ -224,7 +224,7 @@ TEST_CASE("B.2.1 within budget: leftover forms or type 3 with an edge point", "[
     }
     LocalPatch le = patch_of(v);
     const int m = le.add_new({0.5 * (v[0][0] + v[1][0]), 0.5 * (v[0][1] + v[1][1])});
-    if (t2q::hexagon(le, {0, m, 1, 2, 3, 4}, 2)) {
+    if (tri2quad_detail::hexagon(le, {0, m, 1, 2, 3, 4}, 2)) {
       ++type3;
       check_patch(le, poly_area(v), 4, 3);
     } else {
@@ -246,7 +246,7 @@ TEST_CASE("B.3.1: heptagons, both forms (ear and the p1-p3 path)", "[tri2quad][B
     ++total;
     LocalPatch lp = patch_of(v);
     int kind = -1;
-    const int apex = t2q::heptagon(lp, ring(7), &kind);
+    const int apex = tri2quad_detail::heptagon(lp, ring(7), &kind);
     if (apex < 0) { ++fails; continue; }
     ++seen[kind];
     CHECK(orientation(lp.p[0], lp.p[1], lp.p[apex]) > 0);
@@ -312,7 +312,7 @@ TEST_CASE("B.3.1 on heptagons from the algorithm: the four triangulations", "[tr
     for (int i = 0; i < 7; ++i) reflex += orientation(v[(i + 6) % 7], v[i], v[(i + 1) % 7]) <= 0;
     ++reflex_count[reflex];
     LocalPatch lp = patch_of(v);
-    const int apex = t2q::heptagon(lp, ring(7));
+    const int apex = tri2quad_detail::heptagon(lp, ring(7));
     if (apex >= 0) {
       ++leftover;
       CHECK(orientation(lp.p[0], lp.p[1], lp.p[apex]) > 0);
@@ -321,7 +321,7 @@ TEST_CASE("B.3.1 on heptagons from the algorithm: the four triangulations", "[tr
     }
     LocalPatch lc = patch_of(v);
     const int m = lc.add_new({0.5, 0});
-    if (t2q::heptagon_closed(lc, ring(7), m)) {
+    if (tri2quad_detail::heptagon_closed(lc, ring(7), m)) {
       ++closed;
       check_patch(lc, poly_area(v), 7, 5);
     } else {
@@ -385,7 +385,7 @@ TEST_CASE("B.3.1 on extreme heptagons from random meshes", "[tri2quad][B31]") {
     std::vector<P2> v;
     for (int i = 0; i < 7; ++i) v.push_back({h[2 * i], h[2 * i + 1]});
     LocalPatch lp = patch_of(v);
-    const int apex = t2q::heptagon(lp, ring(7));
+    const int apex = tri2quad_detail::heptagon(lp, ring(7));
     if (apex >= 0) {
       ++leftover;
       check_patch(lp, poly_area(v) - poly_area({lp.p[0], lp.p[1], lp.p[apex]}), 6, 4);
@@ -393,7 +393,7 @@ TEST_CASE("B.3.1 on extreme heptagons from random meshes", "[tri2quad][B31]") {
     }
     LocalPatch lc = patch_of(v);
     const int m = lc.add_new({0.5 * (v[0][0] + v[1][0]), 0.5 * (v[0][1] + v[1][1])});
-    const bool ok = t2q::heptagon_closed(lc, ring(7), m);
+    const bool ok = tri2quad_detail::heptagon_closed(lc, ring(7), m);
     closed += ok;
     if (ok) check_patch(lc, poly_area(v), 7, 5);
   }
@@ -416,7 +416,7 @@ TEST_CASE("Joe's and de Berg's triangle splits", "[tri2quad][splits]") {
       LocalPatch lp;
       const int ia = lp.add_known(a, 0), ib = lp.add_known(b, 1), ic = lp.add_known(c, 2);
       const int m = lp.add_new({(b[0] + c[0]) / 2, (b[1] + c[1]) / 2});
-      REQUIRE(t2q::joe_split(lp, ia, ib, m, ic));
+      REQUIRE(tri2quad_detail::joe_split(lp, ia, ib, m, ic));
       check_patch(lp, poly_area({a, b, c}), 5, 5);
     }
     {
@@ -425,7 +425,7 @@ TEST_CASE("Joe's and de Berg's triangle splits", "[tri2quad][splits]") {
       const int mab = lp.add_new({(a[0] + b[0]) / 2, (a[1] + b[1]) / 2});
       const int mbc = lp.add_new({(b[0] + c[0]) / 2, (b[1] + c[1]) / 2});
       const int mca = lp.add_new({(c[0] + a[0]) / 2, (c[1] + a[1]) / 2});
-      REQUIRE(t2q::deberg_split(lp, ia, ib, ic, mab, mbc, mca));
+      REQUIRE(tri2quad_detail::deberg_split(lp, ia, ib, ic, mab, mbc, mca));
       check_patch(lp, poly_area({a, b, c}), 3, 4);
     }
   }
@@ -442,7 +442,7 @@ TEST_CASE("B.1.1 success rate on spiky hexagons", "[.hexrate]") {
     for (int i = 0; i < 6; ++i) reflex += orientation(v[(i + 5) % 6], v[i], v[(i + 1) % 6]) <= 0;
     ++tried;
     LocalPatch lp = patch_of(v);
-    const bool ok = t2q::hexagon(lp, ring(6));
+    const bool ok = tri2quad_detail::hexagon(lp, ring(6));
     done += ok;
     if (reflex == 3) { ++r3; r3done += ok; }
   }

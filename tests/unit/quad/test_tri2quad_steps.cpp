@@ -18,7 +18,7 @@
 
 using namespace imgmesh;
 using namespace tri2quad_test;
-using t2q::LocalPatch;
+using tri2quad_detail::LocalPatch;
 
 namespace {
 
@@ -704,11 +704,11 @@ TEST_CASE("safe split: fans close with strictly convex quads and at most a lefto
       ++runs;
       Tri2QuadResult out;
       const Tri2QuadOptions opt;
-      t2q::Conversion cv(in, opt, out);
+      tri2quad_detail::Conversion cv(in, opt, out);
       cv.build_mesh();
       LocalPatch lp;
       int split_m = -1;
-      t2q::Leftover r;
+      tri2quad_detail::Leftover r;
       try {
         r = cv.safe_split(lp, in.triangles, root, &split_m);
       } catch (const Error&) {
@@ -724,7 +724,7 @@ TEST_CASE("safe split: fans close with strictly convex quads and at most a lefto
       }
       double fan = 0;
       for (const auto& t : in.triangles) fan += poly_area({in.points[t[0]], in.points[t[1]], in.points[t[2]]});
-      if (r.type == t2q::kLeftoverTriangle) {
+      if (r.type == tri2quad_detail::kLeftoverTriangle) {
         ++with_leftover;
         CHECK(!root);
         // The leftover is the triangle (a, b, x) on the outgoing edge (a, b).
@@ -732,7 +732,7 @@ TEST_CASE("safe split: fans close with strictly convex quads and at most a lefto
         CHECK(good_triangle(a, b, x));
         area += poly_area({a, b, x});
       } else {
-        CHECK(r.type == t2q::kNoLeftover);
+        CHECK(r.type == tri2quad_detail::kNoLeftover);
       }
       CHECK(area == Approx(fan).epsilon(1e-9));
       if (split_m >= 0) CHECK(root);

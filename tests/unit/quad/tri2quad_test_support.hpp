@@ -11,7 +11,7 @@ namespace tri2quad_test {
 
 using imgmesh::Tri2QuadInput;
 using imgmesh::Tri2QuadResult;
-using imgmesh::t2q::P2;
+using imgmesh::tri2quad_detail::P2;
 
 constexpr double kPi = 3.14159265358979323846;
 
