@@ -1,4 +1,4 @@
-// --pair-above (lib/quad/tri2quad_pair_above.cpp).
+// --pair-above (lib/tri2quad/pair_above.cpp).
 #include "tri2quad_test_support.hpp"
 
 #include "quad/quality.hpp"

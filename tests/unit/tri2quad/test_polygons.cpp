@@ -1,4 +1,4 @@
-// The constructions of appendix B and the triangle splits (lib/quad/tri2quad_polygons.cpp).
+// The constructions of appendix B and the triangle splits (lib/tri2quad/polygons.cpp).
 #include "tri2quad_test_support.hpp"
 
 #include "quad/quality.hpp"
