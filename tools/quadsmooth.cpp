@@ -3,7 +3,7 @@
 #include "cli/cli.hpp"
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
-#include "quad/smooth.hpp"
+#include "quadsmooth/smooth.hpp"
 #include "util/error.hpp"
 
 #include <cmath>

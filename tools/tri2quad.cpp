@@ -3,7 +3,7 @@
 #include "cli/cli.hpp"
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
-#include "quad/tri2quad.hpp"
+#include "tri2quad/tri2quad.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
 

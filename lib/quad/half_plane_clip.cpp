@@ -4,24 +4,24 @@
 
 #include <cmath>
 
-namespace imgmesh::t2q {
+namespace imgmesh {
 
 namespace {
-double cross(const P2& o, const P2& a, const P2& b) {
+double cross(const Point2& o, const Point2& a, const Point2& b) {
   return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
 }
 double cross2(double ux, double uy, double vx, double vy) { return ux * vy - uy * vx; }
-P2 lerp(const P2& a, const P2& b, double t) { return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])}; }
+Point2 lerp(const Point2& a, const Point2& b, double t) { return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])}; }
 } // namespace
 
-std::vector<P2> clip(const std::vector<P2>& poly, const std::vector<HalfPlane>& hps) {
-  std::vector<P2> cur = poly, next;
+std::vector<Point2> clip(const std::vector<Point2>& poly, const std::vector<HalfPlane>& hps) {
+  std::vector<Point2> cur = poly, next;
   for (const auto& h : hps) {
     next.clear();
     const std::size_t n = cur.size();
     for (std::size_t i = 0; i < n; ++i) {
-      const P2& s = cur[i];
-      const P2& e = cur[(i + 1) % n];
+      const Point2& s = cur[i];
+      const Point2& e = cur[(i + 1) % n];
       const double ds = cross(h.a, h.b, s), de = cross(h.a, h.b, e);
       // Closed half-planes (points on a line kept), so regions touching a
       // clip line survive; the candidates are interior points anyway.
@@ -34,7 +34,7 @@ std::vector<P2> clip(const std::vector<P2>& poly, const std::vector<HalfPlane>& 
   return cur;
 }
 
-P2 centroid(const std::vector<P2>& v) {
+Point2 centroid(const std::vector<Point2>& v) {
   double a = 0, cx = 0, cy = 0;
   const std::size_t n = v.size();
   for (std::size_t i = 0; i < n; ++i) {
@@ -46,10 +46,10 @@ P2 centroid(const std::vector<P2>& v) {
   }
   if (!(std::fabs(a) > 0)) {
     double sx = 0, sy = 0;
-    for (const P2& p : v) { sx += p[0]; sy += p[1]; }
+    for (const Point2& p : v) { sx += p[0]; sy += p[1]; }
     return {sx / double(n), sy / double(n)};
   }
   return {v[0][0] + cx / (3 * a), v[0][1] + cy / (3 * a)};
 }
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh

@@ -6,15 +6,13 @@
 
 #include <vector>
 
-namespace imgmesh::t2q {
+namespace imgmesh {
 
-using P2 = Point2;
-
-struct HalfPlane { P2 a, b; };
+struct HalfPlane { Point2 a, b; };
 // poly (counter-clockwise) clipped by every half-plane; empty when fewer
 // than 3 vertices are left.
-std::vector<P2> clip(const std::vector<P2>& poly, const std::vector<HalfPlane>& hp);
+std::vector<Point2> clip(const std::vector<Point2>& poly, const std::vector<HalfPlane>& hp);
 // The area centroid of a polygon (the vertex mean when its area is zero).
-P2 centroid(const std::vector<P2>& poly);
+Point2 centroid(const std::vector<Point2>& poly);
 
-} // namespace imgmesh::t2q
+} // namespace imgmesh

@@ -1,6 +1,7 @@
-// The planar predicates of lib/quad, in one place: exact orientation, strict
-// convexity and the undirected edge key. Quads are corners a, b, c, d in
-// counter-clockwise order. CGAL stays inside predicates.cpp.
+// The planar predicates of tri2quad and quadsmooth, in one place: exact
+// orientation, strict convexity and the undirected edge key. Quads are
+// corners a, b, c, d in counter-clockwise order. CGAL stays inside
+// predicates.cpp.
 #pragma once
 #include "planar/triangle_io.hpp"
 

@@ -2,7 +2,7 @@
 // input checks of smooth_quad_mesh and two passes (up to 48 elements).
 #include "fuzz.hpp"
 #include "planar/planar_formats.hpp"
-#include "quad/smooth.hpp"
+#include "quadsmooth/smooth.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;

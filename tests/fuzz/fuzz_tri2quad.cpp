@@ -2,7 +2,7 @@
 // in tri2quad_input and the conversion (up to 48 triangles: the work budget).
 #include "fuzz.hpp"
 #include "planar/planar_formats.hpp"
-#include "quad/tri2quad.hpp"
+#include "tri2quad/tri2quad.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;

@@ -1,4 +1,4 @@
-// Quad quality measures: known values, invariances and exact convexity.
+// Quad quality measures (lib/quad/quality.cpp): known values and invariances.
 #include "quad/quality.hpp"
 
 #include <catch2/catch.hpp>
@@ -38,28 +38,6 @@ TEST_CASE("Joe's mu, scaled Jacobian and angles of known quads", "[quality]") {
   // Triangle angles.
   CHECK(min_triangle_angle({0, 0}, {1, 0}, {0.5, h}) == Approx(60));
   CHECK(min_triangle_angle({0, 0}, {1, 0}, {2, 0}) == 0);
-}
-
-TEST_CASE("strict convexity is exact and rejects every bad shape", "[quality]") {
-  CHECK(is_strictly_convex({0, 0}, {1, 0}, {1, 1}, {0, 1}));
-  CHECK_FALSE(is_strictly_convex({0, 0}, {0, 1}, {1, 1}, {1, 0}));     // clockwise
-  CHECK_FALSE(is_strictly_convex({0, 0}, {1, 1}, {1, 0}, {0, 1}));     // bow-tie
-  CHECK_FALSE(is_strictly_convex({0, 0}, {2, 0}, {0.5, 0.5}, {0, 2})); // dart (reflex at c)
-  CHECK_FALSE(is_strictly_convex({0, 0}, {1, 0}, {2, 0}, {1, 1}));     // straight angle at b
-  CHECK_FALSE(is_strictly_convex({0, 0}, {0, 0}, {1, 1}, {0, 1}));     // repeated vertex
-  CHECK(scaled_jacobian({0, 0}, {2, 0}, {0.5, 0.5}, {0, 2}) < 0);
-  // Points one ulp off the line y = x: the exact predicate gets the side right.
-  const Point2 pa{0, 0}, pc{1, 1};
-  CHECK(orientation(pa, pc, {0.1, std::nextafter(0.1, 1.0)}) == 1);
-  CHECK(orientation(pa, pc, {0.1, std::nextafter(0.1, 0.0)}) == -1);
-  CHECK(orientation(pa, pc, {0.1, 0.1}) == 0);
-  CHECK(orientation(pc, pa, {0.1, std::nextafter(0.1, 1.0)}) == -1);
-  // Far from the origin, where products lose the last bits.
-  const double big = 1e15;
-  CHECK(orientation({big, big}, {big + 2, big + 2}, {big + 1, big + 1}) == 0);
-  CHECK(orientation({big, big}, {big + 2, big + 2}, {big + 1, std::nextafter(big + 1, 2 * big)}) == 1);
-  CHECK(orientation({0, 0}, {1, 1}, {2, 2}) == 0);
-  CHECK(orientation({0, 0}, {1, 0}, {0, 1}) == 1);
 }
 
 TEST_CASE("mu is invariant under similarity and relabelling and at most 45", "[quality]") {
