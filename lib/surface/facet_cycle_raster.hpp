@@ -31,17 +31,17 @@ struct FacetCubeSpan {
 
 // Scratch reused across checks, one per thread (no allocation per edge).
 struct FacetScratch {
-  std::vector<FacetHalfPlane> hp;                // h's edges, then the box's six
+  std::vector<FacetHalfPlane> hp;                     // h's edges, then the box's six
   std::vector<FacetHalfPlane> hp_hi, hp_lo, hp_flat;  // by the sign of A, for the rows
-  std::vector<long> lo, hi;                      // each row's first and last sample
-  std::vector<double> alo_row, ahi_row;          // h's exact border on each row
+  std::vector<long> lo, hi;                           // each row's first and last sample
+  std::vector<double> alo_row, ahi_row;               // h's exact border on each row
   std::vector<FacetCubeSpan> cube_spans;
-  std::vector<std::pair<long, long>> spans;      // row j's: [row_span[j], row_span[j + 1]), by s
+  std::vector<std::pair<long, long>> spans;           // row j's: [row_span[j], row_span[j + 1]), by s
   std::vector<long> row_span, fill_at;
   std::vector<FacetRun> runs, reference;
-  std::vector<long> row_run;                     // row j's runs: [row_run[j], row_run[j + 1])
-  std::vector<long> parent;                      // the runs' union-find
-  std::vector<char> open;                        // a region (at its root) reaches h's border
+  std::vector<long> row_run;                          // row j's runs: [row_run[j], row_run[j + 1])
+  std::vector<long> parent;                           // the runs' union-find
+  std::vector<char> open;                             // a region (at its root) reaches h's border
   std::vector<std::pair<double, std::array<Vec3, 2>>> cands;  // (-distance^2 to p, sample pair)
 };
 
@@ -64,13 +64,14 @@ struct FacetRaster {
 
   // Pi, the bisector plane of pq, and its frame; false if p == q.
   bool frame(const Vec3& p, const Vec3& q);
-  // h's half-planes: one per Delaunay neighbour w of pq's ring (V(p) against
-  // V(w)), then the box's (extent): h's extent from its Voronoi vertices,
-  // cut to the box's; false if empty. Sets the samples' step and rows.
+  // h's half-planes, one per neighbour w in pq's ring (V(p) against V(w));
+  // then extent() adds the box's and cuts h's extent (its Voronoi
+  // vertices', or the box's when unbounded) to the box's: false if empty.
+  // It sets the samples' step and rows.
   void add_neighbour(const Vec3& w);
   bool extent(bool bounded, double va0, double va1, double vb0, double vb1);
-  // No active block meets the samples' rectangle (and it has few enough
-  // samples to be skipped rather than kSkipped).
+  // No active block meets the samples' rectangle (false beyond 64M
+  // samples, where the answer must stay kSkipped).
   bool no_active_block() const;
   // Each row's samples in h (lo..hi) and exact border; with `compare`,
   // false unless the rows without the box's loose half-planes agree with all.
