@@ -209,7 +209,8 @@ void FacetRaster::enclosed_pairs() {
       else add(point(x.s, j), at(s.alo_row[j], b));
       if (x.e < s.hi[j]) add(point(x.e, j), point(x.e + 1, j));
       else add(point(x.e, j), at(s.ahi_row[j], b));
-      for (long j2 : {j - 1, j + 1})
+      for (long j2 : {j - 1, j + 1}) {
+        if (j2 < 0 || j2 >= nb) continue;  // no row there (row_run has nb + 1 entries)
         for (long r2 = s.row_run[j2]; r2 < s.row_run[j2 + 1]; ++r2) {
           const FacetRun& y = s.runs[std::size_t(r2)];
           if (y.e < x.s) continue;
@@ -219,6 +220,7 @@ void FacetRaster::enclosed_pairs() {
           add(point(s0, j), point(s0, j2));
           add(point(e0, j), point(e0, j2));
         }
+      }
     }
 }
 
