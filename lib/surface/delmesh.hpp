@@ -18,7 +18,8 @@
 //         SMOOTH: an edge's roughness > g                          criteria.cpp (7.6.4)
 //         --max-distance: a surface centre far from its facet      criteria.cpp
 //       then, over what changed since the last pass:
-//         FacetCycle: S closed inside a Voronoi facet              facet_cycle.cpp (8.2)
+//         FacetCycle: S closed inside a Voronoi facet              facet_cycle.cpp (8.2),
+//           its raster of the facet                                facet_cycle_raster.cpp
 //         HandleDetection: S inside a Voronoi cell not a disk      handle_detection.cpp (8.3)
 //     certificate: components and Euler characteristics against
 //       bdCA(X), per component and by place                        certificate.cpp

@@ -22,6 +22,12 @@ struct EdgeCrossing {
 // one, whichever is farther from `site` (a vertex of the dual facet).
 // Safe to call from several threads.
 EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b, const Vec3& site);
+// Its stages on the segment a + t d, t in [0, 1]: the part inside the box
+// of voxel centres, [t0, t1] (false: none), and the t in (ta, tb) where it
+// crosses the planes x_i = k step[i] (Amanatides-Woo's events), sorted,
+// after ta and tb.
+bool clip_to_box(const CubeGrid& grid, const Vec3& a, const Vec3& d, double& t0, double& t1);
+void plane_crossings(const Vec3& a, const Vec3& d, double ta, double tb, const double step[3], std::vector<double>& ts);
 
 // The circumcentres of the cells one insertion made, each computed once
 // for its four facets: a cell keeps no centre of its own (24 bytes a cell).

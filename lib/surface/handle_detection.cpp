@@ -25,22 +25,64 @@ void voronoi_cell(const Tr& tr, Vh p, std::vector<HalfSpace>& hs) {
 
 namespace {
 
-// A vertex of S n V(p) clipped by marching tetrahedra: an MT vertex {0, i},
-// the point where MT edge i-j meets plane h {1, edge_key(i, j), h}, or where
-// planes h1 < h2 meet inside MT triangle t {2, t, h1 * H + h2}.
-using ClipKey = std::array<long long, 3>;
-struct ClipVertex {
-  Vec3 x;
-  ClipKey key;
-  long long support;  // of the polygon edge to the next vertex: an MT edge key (>= 0) or -1 - plane
-};
-
 // The lattice cube with low corner (x, y, z) lies wholly beyond face e of
 // V(p), corner(i, j, k) giving its lattice points: its corner least far
 // along e.d is (d . x, even rounded, is monotone in each coordinate).
 template <class Corner> bool beyond_face(const HalfSpace& e, long x, long y, long z, Corner corner) {
   return dot(e.d, corner(x + (e.d[0] < 0), y + (e.d[1] < 0), z + (e.d[2] < 0))) > e.c;
 }
+
+// An MT vertex: its point on the sub-grid edge between keys a < b.
+struct MtVertex {
+  Vec3 x;
+  long long a, b;
+};
+
+// HandleDetection's state for one vertex p: V(p), the box of the sub-grid
+// (spacing s/2, indices x, y, z) that marching tetrahedra (MT) run on, and
+// the triangles they made, clipped to V(p). Scratch reused across checks,
+// one per thread (this runs on several threads).
+struct CellMarch {
+  struct Scratch {
+    std::vector<Ch> cells;
+    std::vector<HalfSpace> hs;
+    std::vector<double> fv;  // f at the box's sub-grid points (NaN: not evaluated)
+    std::unordered_map<long long, int> vid;
+    std::vector<MtVertex> pv;
+    std::vector<std::array<int, 3>> tris;
+    std::vector<char> tri_border;
+    std::vector<std::vector<ClipVertex>> polys;
+    std::vector<ClipVertex> next;
+  };
+  CellMarch(const SurfaceSampler& f, Vh p, Scratch& s)
+      : f(f), grid(f.grid()), s(s), pp(vec(p->point())), h{grid.s[0] / 2, grid.s[1] / 2, grid.s[2] / 2},
+        NX(2 * grid.n[0]), NY(2 * grid.n[1]) {}
+  const SurfaceSampler& f;
+  const CubeGrid& grid;
+  Scratch& s;
+  const Vec3 pp;
+  const double h[3];
+  const long long NX, NY;  // sub-grid keys: x + NX (y + NY z)
+  double reach2 = 0;       // p's surface Delaunay balls' reach, squared
+  Vec3 vlo{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, vhi{HUGE_VAL, HUGE_VAL, HUGE_VAL};  // V(p)'s bounding box
+  long lo[3] = {0, 0, 0}, n[3] = {0, 0, 0};  // the box: n[i] points from lo[i]
+  bool grid_face_lo[3] = {}, grid_face_hi[3] = {}, whole = true;  // its sides on the grid or V(p)'s box
+
+  Vec3 point(long x, long y, long z) const { return Vec3{x * h[0], y * h[1], z * h[2]}; }
+  void cell(const Tr& tr, Vh p);
+  bool set_box(double reach);
+  void march();
+  bool clip_all();
+  bool far_point(const ClippedComplex& k, Vec3& q) const;
+
+private:
+  std::size_t idx(long x, long y, long z) const { return std::size_t((x - lo[0]) + n[0] * ((y - lo[1]) + n[1] * (z - lo[2]))); }
+  double f_at(long x, long y, long z);
+  int vertex(long long ka, long long kb, const long (&ca)[3], const long (&cb)[3]);
+  void sub_cube(long x, long y, long z);
+  void clip(int t, std::vector<ClipVertex>& out);
+  bool interior(const Vec3& x) const;
+};
 
 } // namespace
 
@@ -61,228 +103,239 @@ template <class Corner> bool beyond_face(const HalfSpace& e, long x, long y, lon
 // V(p) is below the MT resolution, or no such q is found: the caller
 // refines (or counts), never passes.
 HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
-  const CubeGrid& grid = f.grid();
-  // Runs on several threads: thread-safe adjacency, thread-local scratch.
-  thread_local std::vector<Ch> cells;
-  cells.clear();
-  tr.incident_cells_threadsafe(p, std::back_inserter(cells));
-  const Vec3 pp = vec(p->point());
-  double reach2 = 0;
-  for (Ch c : cells)
+  thread_local CellMarch::Scratch scratch;
+  CellMarch c(f, p, scratch);
+  c.cell(tr, p);
+  for (double scale = 2;; scale *= 2) {
+    if (!c.set_box(scale * std::sqrt(c.reach2))) return HandleAnswer::kUndecided;
+    c.march();
+    if (!c.clip_all() || c.whole) break;
+  }
+  ClippedComplex k;
+  glue_pieces(scratch.polys, scratch.tris.size(), k);
+  if (k.faces == 0) return HandleAnswer::kUndecided;  // S n V(p) below the MT resolution
+  if (k.components == 1 && k.chi == 1) return HandleAnswer::kDisk;
+  return c.far_point(k, q) ? HandleAnswer::kNotDisk : HandleAnswer::kUndecided;
+}
+
+// V(p), the reach of p's surface Delaunay balls and V(p)'s bounding box.
+void CellMarch::cell(const Tr& tr, Vh p) {
+  s.cells.clear();
+  tr.incident_cells_threadsafe(p, std::back_inserter(s.cells));
+  for (Ch c : s.cells)
     for (int i = 0; i < 4; ++i)
       if (c->vertex(i) != p && c->facet.restricted(i)) reach2 = std::max(reach2, dist2(facet_center(Facet(c, i)), pp));
   // No restricted facet at p: S inside V(p) meets no Voronoi edge (a whole
   // small component, say); start from a voxel.
   if (reach2 <= 0) reach2 = grid.delta * grid.delta;
-  thread_local std::vector<HalfSpace> hs;
-  voronoi_cell(tr, p, hs);
-  // V(p)'s bounding box (its vertices: the circumcentres of the cells at p,
-  // computed here, not from CGAL's lazy cache, as this runs on threads);
+  voronoi_cell(tr, p, s.hs);
+  // V(p)'s bounding box: its vertices, the circumcentres of the cells at p
+  // (computed here, not from CGAL's lazy cache, as this runs on threads);
   // unbounded at a hull vertex.
-  Vec3 vlo{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, vhi{HUGE_VAL, HUGE_VAL, HUGE_VAL};
   bool bounded = true;
-  for (Ch c : cells) bounded = bounded && !tr.is_infinite(c);
-  if (bounded) {
-    vlo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
-    vhi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-    for (Ch c : cells) {
-      const Vec3 v = vec(CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point()));
-      for (int i = 0; i < 3; ++i) {
-        vlo[i] = std::min(vlo[i], v[i]);
-        vhi[i] = std::max(vhi[i], v[i]);
-      }
-    }
-  }
-  const long long H = static_cast<long long>(hs.size());
-  const long long NX = 2 * grid.n[0], NY = 2 * grid.n[1];
-  thread_local std::vector<double> fv;
-  thread_local std::unordered_map<long long, int> vid;
-  struct PV { Vec3 x; long long a, b; };
-  thread_local std::vector<PV> pv;
-  thread_local std::vector<std::array<int, 3>> tris;
-  thread_local std::vector<char> tri_border;
-  thread_local std::vector<std::vector<ClipVertex>> polys;
-  thread_local std::vector<ClipVertex> poly, next;
-  const double h[3] = {grid.s[0] / 2, grid.s[1] / 2, grid.s[2] / 2};
-  auto point = [&](long x, long y, long z) { return Vec3{x * h[0], y * h[1], z * h[2]}; };
-  // The part of MT triangle t inside V(p), as a convex polygon (empty if none).
-  auto clip = [&](int t, std::vector<ClipVertex>& out) {
-    const auto& tv = tris[std::size_t(t)];
-    out.clear();
-    for (int k = 0; k < 3; ++k)
-      out.push_back({pv[std::size_t(tv[k])].x, ClipKey{0, tv[k], 0}, edge_key(tv[k], tv[(k + 1) % 3])});
-    for (long long hi = 0; hi < H && !out.empty(); ++hi) {
-      const HalfSpace& e = hs[std::size_t(hi)];
-      bool any_out = false;
-      for (const ClipVertex& v : out) any_out = any_out || dot(e.d, v.x) > e.c;
-      if (!any_out) continue;
-      next.clear();
-      for (std::size_t m = 0; m < out.size(); ++m) {
-        const ClipVertex& P = out[m];
-        const ClipVertex& Q = out[(m + 1) % out.size()];
-        const bool pin = dot(e.d, P.x) <= e.c, qin = dot(e.d, Q.x) <= e.c;
-        if (pin == qin) {
-          if (pin) next.push_back(P);
-          continue;
-        }
-        // The crossing, from the edge's own ends in a fixed order so that
-        // both triangles at an MT edge compute the same point.
-        Vec3 A = P.x, B = Q.x;
-        ClipKey key;
-        if (P.support >= 0) {
-          const int i = int(P.support >> 32), j = int(P.support & 0xffffffff);
-          A = pv[std::size_t(i)].x;
-          B = pv[std::size_t(j)].x;
-          key = {1, P.support, hi};
-        } else {
-          const long long h0 = -1 - P.support;
-          if (!pin) std::swap(A, B);
-          key = {2, t, std::min(h0, hi) * H + std::max(h0, hi)};
-        }
-        const double sa = dot(e.d, A) - e.c, sb = dot(e.d, B) - e.c;
-        const double u = sa / (sa - sb);
-        const Vec3 X{A[0] + u * (B[0] - A[0]), A[1] + u * (B[1] - A[1]), A[2] + u * (B[2] - A[2])};
-        if (pin) {
-          next.push_back(P);
-          next.push_back({X, key, -1 - hi});  // leaves along the plane
-        } else {
-          next.push_back({X, key, P.support});
-        }
-      }
-      out.swap(next);
-    }
-  };
-  for (double scale = 2;; scale *= 2) {
-    const double reach = scale * std::sqrt(reach2);
-    // Box in sub-grid indices (spacing s_i / 2), inside the grid and V(p)'s
-    // bounding box; sides on those do not ask for growth.
-    long lo[3], n[3];
-    bool grid_face_lo[3], grid_face_hi[3], whole = true;
+  for (Ch c : s.cells) bounded = bounded && !tr.is_infinite(c);
+  if (!bounded) return;
+  vlo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  vhi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (Ch c : s.cells) {
+    const Vec3 v = vec(CGAL::circumcenter(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point()));
     for (int i = 0; i < 3; ++i) {
-      const long top = 2 * (grid.n[i] - 1);
-      const long cell_lo = std::clamp(long(std::floor(std::max(vlo[i] / h[i], -1.0))), 0L, top - 1);
-      const long cell_hi = std::clamp(long(std::ceil(std::min(vhi[i] / h[i], double(top) + 1))), cell_lo + 1, top);
-      lo[i] = std::clamp(long(std::floor((pp[i] - reach) / h[i])), cell_lo, cell_hi - 1);
-      const long hi = std::clamp(long(std::ceil((pp[i] + reach) / h[i])), lo[i] + 1, cell_hi);
-      n[i] = hi - lo[i] + 1;
-      grid_face_lo[i] = lo[i] == cell_lo;
-      grid_face_hi[i] = hi == cell_hi;
-      whole = whole && grid_face_lo[i] && grid_face_hi[i];
+      vlo[i] = std::min(vlo[i], v[i]);
+      vhi[i] = std::max(vhi[i], v[i]);
     }
-    if (n[0] * n[1] * n[2] > 300000) return HandleAnswer::kUndecided;
-    // Signs and values at the sub-grid points (NaN: not evaluated).
-    fv.assign(std::size_t(n[0] * n[1] * n[2]), NAN);
-    auto idx = [&](long x, long y, long z) { return std::size_t((x - lo[0]) + n[0] * ((y - lo[1]) + n[1] * (z - lo[2]))); };
-    auto f_at = [&](long x, long y, long z) {
-      double& v = fv[idx(x, y, z)];
-      if (std::isnan(v)) {
-        // An active cube containing the point: f; else the cube's corner sign.
-        bool act = false;
-        for (int k = 0; k < 8 && !act; ++k) {
-          const long c[3] = {(x - (k & 1)) / 2, (y - ((k >> 1) & 1)) / 2, (z - ((k >> 2) & 1)) / 2};
-          act = grid.active(c[0], c[1], c[2]);
-        }
-        if (act) v = f.value(point(x, y, z));
-        else v = grid.neg(std::min(x / 2, grid.n[0] - 1), std::min(y / 2, grid.n[1] - 1), std::min(z / 2, grid.n[2] - 1)) ? -1.0 : 1.0;
-      }
-      return v;
-    };
-    // Marching tetrahedra (6 tetrahedra around each sub-cube's main diagonal:
-    // the same split in every sub-cube, so the pieces fit). Vertices are keyed
-    // by their sub-grid edge.
-    static const int tets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
-    vid.clear();
-    pv.clear();
-    tris.clear();
-    tri_border.clear();
-    auto vertex = [&](long long ka, long long kb, const long (&ca)[3], const long (&cb)[3]) {
-      // The edge: its first end and the step to the other (27 directions).
-      const long long key = ka * 27 + (cb[0] - ca[0] + 1) + 3 * (cb[1] - ca[1] + 1) + 9 * (cb[2] - ca[2] + 1);
-      auto it = vid.find(key);
-      if (it != vid.end()) return it->second;
-      const double fa = f_at(ca[0], ca[1], ca[2]), fb = f_at(cb[0], cb[1], cb[2]);
-      const double t = fa / (fa - fb);
-      const Vec3 xa = point(ca[0], ca[1], ca[2]), xb = point(cb[0], cb[1], cb[2]);
-      const Vec3 x{xa[0] + t * (xb[0] - xa[0]), xa[1] + t * (xb[1] - xa[1]), xa[2] + t * (xb[2] - xa[2])};
-      pv.push_back({x, ka, kb});
-      vid.emplace(key, int(pv.size()) - 1);
-      return int(pv.size()) - 1;
-    };
-    for (long z = lo[2]; z + 1 < lo[2] + n[2]; ++z)
-      for (long y = lo[1]; y + 1 < lo[1] + n[1]; ++y)
-        for (long x = lo[0]; x + 1 < lo[0] + n[0]; ++x) {
-          // Only sub-cubes of active cubes can meet S.
-          if (!grid.active(x / 2, y / 2, z / 2)) continue;
-          // Sub-cubes wholly beyond one face of V(p) hold none of S n V(p).
-          bool beyond = false;
-          for (std::size_t e = 0; e < hs.size() && !beyond; ++e) beyond = beyond_face(hs[e], x, y, z, point);
-          if (beyond) continue;
-          long c[8][3];
-          double v[8];
-          long long key[8];
-          for (int k = 0; k < 8; ++k) {
-            c[k][0] = x + (k & 1);
-            c[k][1] = y + ((k >> 1) & 1);
-            c[k][2] = z + ((k >> 2) & 1);
-            v[k] = f_at(c[k][0], c[k][1], c[k][2]);
-            key[k] = c[k][0] + NX * (c[k][1] + NY * c[k][2]);
-          }
-          const bool side = (x == lo[0] && !grid_face_lo[0]) || (y == lo[1] && !grid_face_lo[1]) ||
-                            (z == lo[2] && !grid_face_lo[2]) || (x + 2 == lo[0] + n[0] && !grid_face_hi[0]) ||
-                            (y + 2 == lo[1] + n[1] && !grid_face_hi[1]) || (z + 2 == lo[2] + n[2] && !grid_face_hi[2]);
-          for (const auto& t : tets) {
-            int ins[4], outs[4], ni = 0, no = 0;
-            for (int m = 0; m < 4; ++m) (SurfaceSampler::inside(v[t[m]]) ? ins[ni++] : outs[no++]) = t[m];
-            if (ni == 0 || no == 0) continue;
-            auto vx = [&](int a, int b) {
-              if (key[a] > key[b]) std::swap(a, b);
-              return vertex(key[a], key[b], c[a], c[b]);
-            };
-            auto add = [&](const std::array<int, 3>& tr) {
-              tris.push_back(tr);
-              tri_border.push_back(side);
-            };
-            if (ni == 1 || no == 1) {
-              const int a = ni == 1 ? ins[0] : outs[0];
-              const int* o = ni == 1 ? outs : ins;
-              add({vx(a, o[0]), vx(a, o[1]), vx(a, o[2])});
-            } else {
-              const int q0 = vx(ins[0], outs[0]), q1 = vx(ins[0], outs[1]), q2 = vx(ins[1], outs[1]), q3 = vx(ins[1], outs[0]);
-              add({q0, q1, q2});
-              add({q0, q2, q3});
-            }
-          }
-        }
-    // Clip every triangle to V(p); grow the box while a clipped piece lies
-    // in a sub-cube on a side of the box that could still move.
-    polys.resize(std::max(polys.size(), tris.size()));
-    bool border = false;
-    for (std::size_t t = 0; t < tris.size(); ++t) {
-      clip(int(t), polys[t]);
-      border = border || (tri_border[t] && !polys[t].empty());
-    }
-    if (!border || whole) break;
   }
-  // The clipped complex: vertices by key, edges by their ends' keys,
-  // components by union-find, Euler characteristic V - E + F.
-  std::map<ClipKey, int> vkey;
+}
+
+// The box within `reach` of p, in sub-grid indices, inside the grid and
+// V(p)'s bounding box (sides on those do not ask for growth); false if it
+// would exceed 300,000 points.
+bool CellMarch::set_box(double reach) {
+  whole = true;
+  for (int i = 0; i < 3; ++i) {
+    const long top = 2 * (grid.n[i] - 1);
+    const long cell_lo = std::clamp(long(std::floor(std::max(vlo[i] / h[i], -1.0))), 0L, top - 1);
+    const long cell_hi = std::clamp(long(std::ceil(std::min(vhi[i] / h[i], double(top) + 1))), cell_lo + 1, top);
+    lo[i] = std::clamp(long(std::floor((pp[i] - reach) / h[i])), cell_lo, cell_hi - 1);
+    const long hi = std::clamp(long(std::ceil((pp[i] + reach) / h[i])), lo[i] + 1, cell_hi);
+    n[i] = hi - lo[i] + 1;
+    grid_face_lo[i] = lo[i] == cell_lo;
+    grid_face_hi[i] = hi == cell_hi;
+    whole = whole && grid_face_lo[i] && grid_face_hi[i];
+  }
+  return n[0] * n[1] * n[2] <= 300000;
+}
+
+// f at a sub-grid point of the box, once: f in an active cube containing
+// the point, else the cube's corner sign.
+double CellMarch::f_at(long x, long y, long z) {
+  double& v = s.fv[idx(x, y, z)];
+  if (std::isnan(v)) {
+    bool act = false;
+    for (int k = 0; k < 8 && !act; ++k) {
+      const long c[3] = {(x - (k & 1)) / 2, (y - ((k >> 1) & 1)) / 2, (z - ((k >> 2) & 1)) / 2};
+      act = grid.active(c[0], c[1], c[2]);
+    }
+    if (act) v = f.value(point(x, y, z));
+    else v = grid.neg(std::min(x / 2, grid.n[0] - 1), std::min(y / 2, grid.n[1] - 1), std::min(z / 2, grid.n[2] - 1)) ? -1.0 : 1.0;
+  }
+  return v;
+}
+
+// The MT vertex on the sub-grid edge from point ca (key ka) to cb, once:
+// the edge is keyed by its first end and the step to the other (27
+// directions).
+int CellMarch::vertex(long long ka, long long kb, const long (&ca)[3], const long (&cb)[3]) {
+  const long long key = ka * 27 + (cb[0] - ca[0] + 1) + 3 * (cb[1] - ca[1] + 1) + 9 * (cb[2] - ca[2] + 1);
+  auto it = s.vid.find(key);
+  if (it != s.vid.end()) return it->second;
+  const double fa = f_at(ca[0], ca[1], ca[2]), fb = f_at(cb[0], cb[1], cb[2]);
+  const double t = fa / (fa - fb);
+  const Vec3 xa = point(ca[0], ca[1], ca[2]), xb = point(cb[0], cb[1], cb[2]);
+  const Vec3 x{xa[0] + t * (xb[0] - xa[0]), xa[1] + t * (xb[1] - xa[1]), xa[2] + t * (xb[2] - xa[2])};
+  s.pv.push_back({x, ka, kb});
+  s.vid.emplace(key, int(s.pv.size()) - 1);
+  return int(s.pv.size()) - 1;
+}
+
+// Marching tetrahedra over the box's sub-cubes (6 tetrahedra around each
+// sub-cube's main diagonal: the same split in every sub-cube, so the pieces
+// fit); only sub-cubes of active cubes can meet S, and those wholly beyond
+// one face of V(p) hold none of S n V(p).
+void CellMarch::march() {
+  s.fv.assign(std::size_t(n[0] * n[1] * n[2]), NAN);
+  s.vid.clear();
+  s.pv.clear();
+  s.tris.clear();
+  s.tri_border.clear();
+  for (long z = lo[2]; z + 1 < lo[2] + n[2]; ++z)
+    for (long y = lo[1]; y + 1 < lo[1] + n[1]; ++y)
+      for (long x = lo[0]; x + 1 < lo[0] + n[0]; ++x) {
+        if (!grid.active(x / 2, y / 2, z / 2)) continue;
+        bool beyond = false;
+        for (std::size_t e = 0; e < s.hs.size() && !beyond; ++e)
+          beyond = beyond_face(s.hs[e], x, y, z, [&](long i, long j, long k) { return point(i, j, k); });
+        if (!beyond) sub_cube(x, y, z);
+      }
+}
+
+// The MT triangles of sub-cube (x, y, z), marked when it lies on a side
+// of the box that could still move.
+void CellMarch::sub_cube(long x, long y, long z) {
+  static const int tets[6][4] = {{0, 1, 3, 7}, {0, 3, 2, 7}, {0, 2, 6, 7}, {0, 6, 4, 7}, {0, 4, 5, 7}, {0, 5, 1, 7}};
+  long c[8][3];
+  double v[8];
+  long long key[8];
+  for (int k = 0; k < 8; ++k) {
+    c[k][0] = x + (k & 1);
+    c[k][1] = y + ((k >> 1) & 1);
+    c[k][2] = z + ((k >> 2) & 1);
+    v[k] = f_at(c[k][0], c[k][1], c[k][2]);
+    key[k] = c[k][0] + NX * (c[k][1] + NY * c[k][2]);
+  }
+  const bool side = (x == lo[0] && !grid_face_lo[0]) || (y == lo[1] && !grid_face_lo[1]) ||
+                    (z == lo[2] && !grid_face_lo[2]) || (x + 2 == lo[0] + n[0] && !grid_face_hi[0]) ||
+                    (y + 2 == lo[1] + n[1] && !grid_face_hi[1]) || (z + 2 == lo[2] + n[2] && !grid_face_hi[2]);
+  for (const auto& t : tets) {
+    int ins[4], outs[4], ni = 0, no = 0;
+    for (int m = 0; m < 4; ++m) (SurfaceSampler::inside(v[t[m]]) ? ins[ni++] : outs[no++]) = t[m];
+    if (ni == 0 || no == 0) continue;
+    auto vx = [&](int a, int b) {
+      if (key[a] > key[b]) std::swap(a, b);
+      return vertex(key[a], key[b], c[a], c[b]);
+    };
+    auto add = [&](const std::array<int, 3>& tr) {
+      s.tris.push_back(tr);
+      s.tri_border.push_back(side);
+    };
+    if (ni == 1 || no == 1) {
+      const int a = ni == 1 ? ins[0] : outs[0];
+      const int* o = ni == 1 ? outs : ins;
+      add({vx(a, o[0]), vx(a, o[1]), vx(a, o[2])});
+    } else {
+      const int q0 = vx(ins[0], outs[0]), q1 = vx(ins[0], outs[1]), q2 = vx(ins[1], outs[1]), q3 = vx(ins[1], outs[0]);
+      add({q0, q1, q2});
+      add({q0, q2, q3});
+    }
+  }
+}
+
+// The part of MT triangle t inside V(p), as a convex polygon (empty if none).
+void CellMarch::clip(int t, std::vector<ClipVertex>& out) {
+  const auto& tv = s.tris[std::size_t(t)];
+  const long long H = static_cast<long long>(s.hs.size());
+  out.clear();
+  for (int k = 0; k < 3; ++k)
+    out.push_back({s.pv[std::size_t(tv[k])].x, ClipKey{0, tv[k], 0}, edge_key(tv[k], tv[(k + 1) % 3])});
+  for (long long hi = 0; hi < H && !out.empty(); ++hi) {
+    const HalfSpace& e = s.hs[std::size_t(hi)];
+    bool any_out = false;
+    for (const ClipVertex& v : out) any_out = any_out || dot(e.d, v.x) > e.c;
+    if (!any_out) continue;
+    s.next.clear();
+    for (std::size_t m = 0; m < out.size(); ++m) {
+      const ClipVertex& P = out[m];
+      const ClipVertex& Q = out[(m + 1) % out.size()];
+      const bool pin = dot(e.d, P.x) <= e.c, qin = dot(e.d, Q.x) <= e.c;
+      if (pin == qin) {
+        if (pin) s.next.push_back(P);
+        continue;
+      }
+      // The crossing, from the edge's own ends in a fixed order so that
+      // both triangles at an MT edge compute the same point.
+      Vec3 A = P.x, B = Q.x;
+      ClipKey key;
+      if (P.support >= 0) {
+        const int i = int(P.support >> 32), j = int(P.support & 0xffffffff);
+        A = s.pv[std::size_t(i)].x;
+        B = s.pv[std::size_t(j)].x;
+        key = {1, P.support, hi};
+      } else {
+        const long long h0 = -1 - P.support;
+        if (!pin) std::swap(A, B);
+        key = {2, t, std::min(h0, hi) * H + std::max(h0, hi)};
+      }
+      const double sa = dot(e.d, A) - e.c, sb = dot(e.d, B) - e.c;
+      const double u = sa / (sa - sb);
+      const Vec3 X{A[0] + u * (B[0] - A[0]), A[1] + u * (B[1] - A[1]), A[2] + u * (B[2] - A[2])};
+      if (pin) {
+        s.next.push_back(P);
+        s.next.push_back({X, key, -1 - hi});  // leaves along the plane
+      } else {
+        s.next.push_back({X, key, P.support});
+      }
+    }
+    out.swap(s.next);
+  }
+}
+
+// Every triangle clipped to V(p); true (grow the box) if a clipped piece
+// lies in a sub-cube on a side of the box that could still move.
+bool CellMarch::clip_all() {
+  s.polys.resize(std::max(s.polys.size(), s.tris.size()));
+  bool border = false;
+  for (std::size_t t = 0; t < s.tris.size(); ++t) {
+    clip(int(t), s.polys[t]);
+    border = border || (s.tri_border[t] && !s.polys[t].empty());
+  }
+  return border;
+}
+
+void glue_pieces(const std::vector<std::vector<ClipVertex>>& polys, std::size_t count, ClippedComplex& k) {
   std::vector<int> parent;
-  std::vector<Vec3> vx;
   auto find = [&](int x) {
     while (parent[std::size_t(x)] != x) x = parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
     return x;
   };
   std::vector<std::pair<int, int>> edges;
-  long long faces = 0;
-  for (std::size_t t = 0; t < tris.size(); ++t) {
+  for (std::size_t t = 0; t < count; ++t) {
     const std::vector<ClipVertex>& pg = polys[t];
     if (pg.size() < 3) continue;
-    ++faces;
+    ++k.faces;
     int first = -1, prev = -1;
     for (const ClipVertex& cv : pg) {
-      auto [it, fresh] = vkey.emplace(cv.key, int(vx.size()));
+      auto [it, fresh] = k.vkey.emplace(cv.key, int(k.vx.size()));
       if (fresh) {
-        vx.push_back(cv.x);
+        k.vx.push_back(cv.x);
         parent.push_back(it->second);
       }
       const int id = it->second;
@@ -292,34 +345,38 @@ HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3&
     }
     edges.emplace_back(std::min(prev, first), std::max(prev, first));
   }
-  if (faces == 0) return HandleAnswer::kUndecided;  // S n V(p) below the MT resolution
+  if (k.faces == 0) return;
   std::sort(edges.begin(), edges.end());
   edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
   for (const auto& [a, b] : edges) parent[std::size_t(find(a))] = find(b);
-  long long components = 0;
-  for (std::size_t v = 0; v < vx.size(); ++v) components += find(int(v)) == int(v);
-  const long long chi = static_cast<long long>(vx.size()) - static_cast<long long>(edges.size()) + faces;
-  if (components == 1 && chi == 1) return HandleAnswer::kDisk;
-  // The MT vertex strictly inside V(p) farthest from p whose point of S
-  // (moved along its sub-grid edge) is still strictly inside and not p
-  // itself (10^-3 delta away); none of the first 64: undecided (the caller refines at p's farthest surface centre).
-  auto interior = [&](const Vec3& x) {  // a point on a face is also the neighbour's
-    for (const HalfSpace& e : hs)
-      if (dot(e.d, x) >= e.c - 1e-9 * grid.delta * norm(e.d)) return false;
-    return true;
-  };
+  for (std::size_t v = 0; v < k.vx.size(); ++v) k.components += find(int(v)) == int(v);
+  k.chi = static_cast<long long>(k.vx.size()) - static_cast<long long>(edges.size()) + k.faces;
+}
+
+// Strictly inside V(p): a point on a face is also the neighbour's.
+bool CellMarch::interior(const Vec3& x) const {
+  for (const HalfSpace& e : s.hs)
+    if (dot(e.d, x) >= e.c - 1e-9 * grid.delta * norm(e.d)) return false;
+  return true;
+}
+
+// The MT vertex strictly inside V(p) farthest from p whose point of S
+// (moved along its sub-grid edge) is still strictly inside and not p
+// itself (10^-3 delta away); none of the first 64: false (the caller
+// refines at p's farthest surface centre).
+bool CellMarch::far_point(const ClippedComplex& k, Vec3& q) const {
   std::vector<std::pair<double, int>> order;  // (-distance^2, MT vertex)
-  for (const auto& [key, id] : vkey)
-    if (key[0] == 0 && interior(vx[std::size_t(id)])) order.emplace_back(-dist2(vx[std::size_t(id)], pp), int(key[1]));
+  for (const auto& [key, id] : k.vkey)
+    if (key[0] == 0 && interior(k.vx[std::size_t(id)])) order.emplace_back(-dist2(k.vx[std::size_t(id)], pp), int(key[1]));
   std::sort(order.begin(), order.end());
   auto coords = [&](long long key) { return point(long(key % NX), long((key / NX) % NY), long(key / NX / NY)); };
-  for (std::size_t k = 0; k < order.size() && k < 64; ++k) {
-    const PV& b = pv[std::size_t(order[k].second)];
+  for (std::size_t i = 0; i < order.size() && i < 64; ++i) {
+    const MtVertex& b = s.pv[std::size_t(order[i].second)];
     const Vec3 xa = coords(b.a), xb = coords(b.b);
     if (!f.bisect(xa, xb, f.value(xa), q)) continue;  // no root between them: not a point of S
-    if (interior(q) && dist2(q, pp) > 1e-6 * grid.delta * grid.delta) return HandleAnswer::kNotDisk;
+    if (interior(q) && dist2(q, pp) > 1e-6 * grid.delta * grid.delta) return true;
   }
-  return HandleAnswer::kUndecided;
+  return false;
 }
 
 // Where HandleDetection cannot decide: the surface centre of p's restricted

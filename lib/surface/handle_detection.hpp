@@ -5,7 +5,9 @@
 #include "surface/cube_grid.hpp"
 #include "surface/delaunay_types.hpp"
 
+#include <array>
 #include <cstddef>
+#include <map>
 #include <vector>
 
 namespace imgmesh::surface_detail {
@@ -24,6 +26,26 @@ void voronoi_cell(const Tr& tr, Vh p, std::vector<HalfSpace>& hs);
 // for its resolution. Thread-safe.
 enum class HandleAnswer { kDisk, kNotDisk, kUndecided };
 HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q);
+
+// A vertex of S n V(p) clipped by marching tetrahedra (MT): an MT vertex
+// {0, i}, the point where MT edge i-j meets plane h {1, edge_key(i, j), h},
+// or where planes h1 < h2 meet inside MT triangle t {2, t, h1 * H + h2}.
+using ClipKey = std::array<long long, 3>;
+struct ClipVertex {
+  Vec3 x;
+  ClipKey key;
+  long long support;  // of the polygon edge to the next vertex: an MT edge key (>= 0) or -1 - plane
+};
+// The first `count` clipped pieces glued where their vertices' keys agree:
+// vertices by key, edges by their ends, components by union-find, Euler
+// characteristic V - E + F (pieces of fewer than 3 vertices are no face).
+// S n V(p) is a disk iff faces > 0, components == 1 and chi == 1.
+struct ClippedComplex {
+  std::map<ClipKey, int> vkey;  // the vertices' ids, by key
+  std::vector<Vec3> vx;         // their points
+  long long faces = 0, components = 0, chi = 0;
+};
+void glue_pieces(const std::vector<std::vector<ClipVertex>>& polys, std::size_t count, ClippedComplex& k);
 
 // The cheap certificate from the cube grid alone: true if S inside V(p) is
 // certainly a disk (false: not settled). Thread-safe.

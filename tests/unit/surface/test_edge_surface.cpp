@@ -131,3 +131,34 @@ TEST_CASE("inactive_box: true only for boxes inside the grid that meet no active
           REQUIRE(!grid.inactive_box(m, m));
         }
 }
+
+TEST_CASE("edge_surface's stages: the segment clipped to the box of voxel centres; its lattice plane crossings, in order") {
+  FunctionSurface s(test::box(21, 21, 21), [](const Vec3& p) { return p[0] - 10.5; });
+  CubeGrid grid(s.samples());  // the box [0, 20]^3
+  double t0 = -1, t1 = -1;
+  REQUIRE(clip_to_box(grid, Vec3{-10, 5, 5}, Vec3{40, 0, 0}, t0, t1));
+  CHECK(t0 == 0.25);
+  CHECK(t1 == 0.75);
+  REQUIRE(clip_to_box(grid, Vec3{-5, 25, 1}, Vec3{30, -30, 2}, t0, t1));  // in at x = 0 and y = 20, out at x = 20 and y = 0
+  CHECK(t0 == Approx(1.0 / 6));
+  CHECK(t1 == Approx(5.0 / 6));
+  REQUIRE(clip_to_box(grid, Vec3{1, 2, 3}, Vec3{1, 1, 1}, t0, t1));  // inside: whole
+  CHECK((t0 == 0 && t1 == 1));
+  CHECK_FALSE(clip_to_box(grid, Vec3{5, -1, 5}, Vec3{10, 0, 0}, t0, t1));    // beside the box, parallel to its face
+  CHECK_FALSE(clip_to_box(grid, Vec3{-10, -10, 5}, Vec3{5, 40, 0}, t0, t1));  // x < 0 wherever 0 <= y <= 20
+  CHECK_FALSE(clip_to_box(grid, Vec3{20, 5, 5}, Vec3{5, 0, 0}, t0, t1));      // on the face at one end only
+  // x = 1, 2, 3 and y = 1 (twice 1/2: a cube's corner edge), z constant;
+  // backwards along x, and from the middle.
+  const double unit[3] = {1, 1, 1}, two[3] = {2, 2, 2};
+  std::vector<double> ts;
+  plane_crossings(Vec3{0.5, 0.5, 0.5}, Vec3{3, 1, 0}, 0, 1, unit, ts);
+  REQUIRE(ts.size() == 6);
+  const double want[6] = {0, 1.0 / 6, 0.5, 0.5, 5.0 / 6, 1};
+  for (int k = 0; k < 6; ++k) CHECK(ts[std::size_t(k)] == Approx(want[k]));
+  plane_crossings(Vec3{3.5, 0.5, 0.5}, Vec3{-3, 0, 0}, 0, 1, unit, ts);
+  CHECK(ts == std::vector<double>{0, (3.5 - 3) / 3, (3.5 - 2) / 3, (3.5 - 1) / 3, 1});
+  plane_crossings(Vec3{0.5, 0.5, 0.5}, Vec3{3, 1, 0}, 0.25, 0.75, unit, ts);
+  CHECK(ts == std::vector<double>{0.25, 0.5, 0.5, 0.75});
+  plane_crossings(Vec3{0.5, 0.5, 0.5}, Vec3{3, 1, 0}, 0, 1, two, ts);  // x = 2 only
+  CHECK(ts == std::vector<double>{0, 0.5, 1});
+}

@@ -3,6 +3,7 @@
 #include "shapes.hpp"
 #include "surface/delmesh.hpp"
 #include "surface/facet_cycle.hpp"
+#include "surface/facet_cycle_raster.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -172,4 +173,48 @@ TEST_CASE("FacetCycle's pass in chunks: every edge with a new end checked once, 
   CHECK(runs[0] == reference);
   CHECK(runs[1] == runs[0]);
   CHECK(runs[2] == runs[0]);
+}
+
+// The rows alone (facet_cycle_raster.hpp): a sample of Pi is in its row's
+// range iff it is in h, i.e. no farther from p than from any neighbour w
+// given and inside the box, judged here by the distances themselves.
+TEST_CASE("FacetCycle's rows: a row's samples are exactly those nearer p than every neighbour, inside the box") {
+  FunctionSurface s(test::box(21, 21, 21), [](const Vec3& y) { return test::sphere_f(y, Vec3{10, 10, 10}, 3); });
+  CubeGrid grid(s.samples());
+  SurfaceSampler f(s, grid);
+  struct Case {
+    Vec3 p, q;
+    std::vector<Vec3> ring;
+  };
+  // A hexagon inside the box on a tilted plane; a strip the box cuts
+  // (two neighbours, pq near a corner of the box).
+  std::vector<Vec3> hexagon;
+  for (int k = 0; k < 6; ++k) hexagon.push_back({10 + 7 * std::cos(k * M_PI / 3 + 0.3), 10 + 7 * std::sin(k * M_PI / 3 + 0.3), 10.4 + 0.3 * (k % 2)});
+  const std::vector<Case> cases{{{10.3, 9.1, 6.2}, {9.9, 10.8, 14.1}, hexagon},
+                                {{2.1, 1.7, 0.4}, {1.3, 2.2, 3.9}, {{5.5, 1.1, 2.0}, {-1.9, 2.4, 2.1}}}};
+  for (const Case& c : cases) {
+    FacetScratch scratch;
+    FacetRaster h(f, scratch);
+    REQUIRE(h.frame(c.p, c.q));
+    for (const Vec3& w : c.ring) h.add_neighbour(w);
+    REQUIRE(h.extent(false, 0, 0, 0, 0));  // unbounded: the box's extent
+    REQUIRE(h.find_rows(true));            // the box's loose half-planes change no row
+    long inside = 0, rows = 0;
+    for (long j = 0; j < h.nb; ++j) {
+      rows += scratch.hi[std::size_t(j)] >= scratch.lo[std::size_t(j)];
+      for (long i = -2; i <= long((h.a1 - h.a0) / h.step) + 2; ++i) {
+        const Vec3 x = h.point(i, j);
+        double margin = INFINITY;  // > 0 inside h, < 0 outside
+        for (const Vec3& w : c.ring) margin = std::min(margin, dist2(x, w) - dist2(x, c.p));
+        for (int k = 0; k < 3; ++k) margin = std::min({margin, x[k], grid.hi[k] - x[k]});
+        if (std::abs(margin) < 1e-9) continue;  // on h's border: either way
+        INFO("row " << j << " sample " << i << " margin " << margin);
+        CHECK((scratch.lo[std::size_t(j)] <= i && i <= scratch.hi[std::size_t(j)]) == (margin > 0));
+        inside += margin > 0;
+      }
+    }
+    CHECK(inside > 100);
+    CHECK(h.rows_used == rows);
+    CHECK(h.sample_count() >= inside);
+  }
 }

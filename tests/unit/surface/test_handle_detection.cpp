@@ -140,3 +140,46 @@ TEST_CASE("HandleDetection: the box stops growing at the grid's faces (tissue on
   CHECK(std::abs(s.value(q)) < 1e-9);
   CHECK(q[2] < c[2] - 3);
 }
+
+namespace {
+// A clipped piece through MT vertices `ids` (keys {0, id, 0}).
+std::vector<ClipVertex> mt_piece(std::initializer_list<int> ids) {
+  std::vector<ClipVertex> pg;
+  for (int i : ids) pg.push_back({Vec3{double(i), 0, 0}, ClipKey{0, i, 0}, -1});
+  return pg;
+}
+ClippedComplex glued(const std::vector<std::vector<ClipVertex>>& polys, std::size_t count) {
+  ClippedComplex k;
+  glue_pieces(polys, count, k);
+  return k;
+}
+} // namespace
+
+TEST_CASE("HandleDetection's glue: the clipped pieces' components and Euler characteristic") {
+  // A disk: a quad and a triangle on edge 1-2 (V 5, E 6, F 2).
+  ClippedComplex k = glued({mt_piece({0, 1, 2, 3}), mt_piece({1, 4, 2})}, 2);
+  CHECK((k.faces == 2 && k.components == 1 && k.chi == 1));
+  CHECK(k.vx.size() == 5);
+  // An annulus: four quads around a hole (V 8, E 12, F 4).
+  k = glued({mt_piece({0, 1, 5, 4}), mt_piece({1, 2, 6, 5}), mt_piece({2, 3, 7, 6}), mt_piece({3, 0, 4, 7})}, 4);
+  CHECK((k.components == 1 && k.chi == 0));
+  // Two disks apart, and a closed surface (a tetrahedron's faces).
+  k = glued({mt_piece({0, 1, 2}), mt_piece({3, 4, 5})}, 2);
+  CHECK((k.components == 2 && k.chi == 2));
+  k = glued({mt_piece({0, 1, 2}), mt_piece({0, 3, 1}), mt_piece({1, 3, 2}), mt_piece({2, 3, 0})}, 4);
+  CHECK((k.components == 1 && k.chi == 2));
+  // Clipping points glue where their keys agree (MT edge 0-1 cut by plane
+  // 3): V 4, E 5, F 2. Cut by plane 4 in one piece, they do not: V 5, E 6.
+  const ClipVertex mt0{Vec3{0, 0, 0}, ClipKey{0, 0, 0}, -1};
+  const auto cut = [](int edge, long long plane) { return ClipVertex{Vec3{0.5, double(edge), 0}, ClipKey{1, edge, plane}, -1}; };
+  k = glued({{mt0, cut(1, 3), cut(2, 3)}, {mt0, cut(3, 3), cut(1, 3)}}, 2);
+  CHECK((k.vx.size() == 4 && k.chi == 1));
+  k = glued({{mt0, cut(1, 3), cut(2, 3)}, {mt0, cut(3, 3), cut(1, 4)}}, 2);
+  CHECK(k.vx.size() == 5);
+  // Pieces of fewer than three vertices are no faces; only the first
+  // `count` pieces count (the scratch beyond them is stale).
+  k = glued({mt_piece({0, 1}), mt_piece({})}, 2);
+  CHECK(k.faces == 0);
+  k = glued({mt_piece({0, 1, 2}), mt_piece({3, 4, 5})}, 1);
+  CHECK((k.faces == 1 && k.components == 1 && k.chi == 1));
+}
