@@ -4,8 +4,8 @@
 #include "image/io.hpp"
 #include "planar/image_pslg.hpp"
 #include "planar/planar_formats.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <sstream>
 #include <unordered_set>

@@ -8,7 +8,6 @@
 #include "mesh/volume_io.hpp"
 #include "surface_options.hpp"
 #include "surface/restricted_delaunay.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 #include "volume/tet_refinement.hpp"
 

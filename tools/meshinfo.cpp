@@ -5,7 +5,7 @@
 #include "mesh/volume_io.hpp"
 #include "planar/image_pslg.hpp"
 #include "util/error.hpp"
-#include "util/atomic_file.hpp"
+#include "util/path.hpp"
 
 #include <iostream>
 #include <optional>

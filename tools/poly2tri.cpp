@@ -3,8 +3,8 @@
 #include "cli/cli.hpp"
 #include "planar/planar_formats.hpp"
 #include "planar/triangulate.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <sstream>
 

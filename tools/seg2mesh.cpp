@@ -6,8 +6,8 @@
 #include "mesh/surface_io.hpp"
 #include "segmentation/label_surfaces.hpp"
 #include "surface_options.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <algorithm>
 #include <cmath>

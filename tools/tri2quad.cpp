@@ -4,8 +4,8 @@
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
 #include "tri2quad/tri2quad.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 using namespace imgmesh;
 

@@ -7,6 +7,7 @@
 #include "quad/quality.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <algorithm>
 #include <cmath>
