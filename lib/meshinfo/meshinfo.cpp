@@ -1,4 +1,4 @@
-#include "mesh/meshinfo.hpp"
+#include "meshinfo/meshinfo.hpp"
 
 #include "mesh/surface_io.hpp"
 #include "mesh/triangle_quality.hpp"
