@@ -10,7 +10,6 @@
 #include "util/path.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <sstream>
 #include <thread>
 
@@ -63,7 +62,7 @@ int main(int argc, char** argv) {
   tool.app.add_option("--mode", mode, "img2wc's --mode for each label: add, remove or min")
       ->check(CLI::IsMember({"add", "remove", "min"}))
       ->capture_default_str();
-  SurfaceOptions surface_options(tool, opt.mesher);
+  SurfaceOptions surface_options(tool);
   tool.add_seed();
   tool.app.add_flag("--normals", opt.normals, "Write per-vertex normals from grad f (PLY, OBJ, VTP, VTK, msh)");
   tool.app.add_option("--msh-version", write_opt.msh_version, "Gmsh format version of a .msh OUT")
@@ -82,14 +81,13 @@ int main(int argc, char** argv) {
     opt.labels = parse_labels(labels_text);
     surface_options.check();
     opt.mode = mode == "remove" ? RepairMode::Remove : mode == "min" ? RepairMode::Min : RepairMode::Add;
-    opt.mesher.seed = tool.seed();
     opt.threads = opt.jobs;
     if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
 
     tool.report_progress("reading " + in);
     const LabelImage image = read_labels(in);
-    const auto& h = image.spacing;
-    surface_options.resolve(std::min({h[0], h[1], h[2]}));
+    opt.mesher = surface_options.resolve(image.spacing);
+    opt.mesher.seed = tool.seed();
     const LabelSurfacesResult res = naming_input(in, [&] { return mesh_label_surfaces(image, opt); });
     write_surface(out, res.mesh, write_opt);
 
