@@ -4,10 +4,10 @@
 #include "cli/cli.hpp"
 #include "implicit_input.hpp"
 #include "mesh/surface_io.hpp"
+#include "shared_options.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "surface_options.hpp"
 #include "util/error.hpp"
-#include "util/path.hpp"
 
 #include <sstream>
 
@@ -30,10 +30,8 @@ int main(int argc, char** argv) {
   SurfaceOptions surface_options(tool);
   tool.add_seed();
   tool.add_threads();
-  tool.app.add_flag("--normals", normals, "Write per-vertex normals from grad f (PLY, OBJ, VTP, VTK, msh)");
-  tool.app.add_option("--msh-version", write_opt.msh_version, "Gmsh format version of a .msh OUT")
-      ->check(CLI::IsMember({"4.1", "2.2"}))
-      ->capture_default_str();
+  add_normals_option(tool, normals);
+  add_msh_version_option(tool, write_opt.msh_version, "Gmsh format version of a .msh OUT");
   // Tests only (hidden): no VorEdge, TopoDisk, FacetCycle or HandleDetection,
   // so that the certificate fails and its repairs must act.
   bool skip_topology = false;
@@ -45,9 +43,7 @@ int main(int argc, char** argv) {
   return tool.run(argc, argv, [&] {
     if (!is_surface_output(out))
       throw UsageError(std::string("output format is chosen by extension: ") + kSurfaceExtensions, out);
-    if (normals && !surface_output_holds_normals(out))
-      tool.info("warning: --normals ignored: " + std::string(out == "-" ? "OFF" : extension_of(out)) +
-                " holds no normals (use .ply, .obj, .vtp, .vtk or .msh)");
+    warn_normals_ignored(tool, normals, out, " (use .ply, .obj, .vtp, .vtk or .msh)");
     MesherInput input = read_mesher_input(tool, in, surface_options);
     RestrictedDelaunayOptions& opt = input.options;
     opt.seed_deletion = seed_deletion;

@@ -6,6 +6,7 @@
 #include "cli/cli.hpp"
 #include "implicit_input.hpp"
 #include "mesh/volume_io.hpp"
+#include "shared_options.hpp"
 #include "surface_options.hpp"
 #include "util/error.hpp"
 #include "volume/tet_refinement.hpp"
@@ -47,10 +48,7 @@ int main(int argc, char** argv) {
                       "Stop cell refinement after inserting N points (exit 3, the mesh written)")
       ->type_name("N")
       ->capture_default_str();
-  tool.app.add_option("--msh-version", wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")
-      ->type_name("V")
-      ->check(CLI::IsMember({"4.1", "2.2"}))
-      ->capture_default_str();
+  add_msh_version_option(tool, wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")->type_name("V");
   SurfaceOptions surface_options(tool, "boundary triangle");
   tool.add_seed();
   tool.add_threads();

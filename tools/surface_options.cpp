@@ -1,5 +1,8 @@
 #include "surface_options.hpp"
 
+#include "mesh/surface_io.hpp"
+#include "util/path.hpp"
+
 namespace imgmesh {
 
 SurfaceOptions::SurfaceOptions(cli::Tool& tool, const std::string& what) {
@@ -32,5 +35,16 @@ SurfaceOptions::SurfaceOptions(cli::Tool& tool, const std::string& what) {
       ->type_name("N")
       ->capture_default_str();
 }
+
+void add_normals_option(cli::Tool& tool, bool& normals) {
+  tool.app.add_flag("--normals", normals, "Write per-vertex normals from grad f (PLY, OBJ, VTP, VTK, msh)");
+}
+
+void warn_normals_ignored(const cli::Tool& tool, bool normals, const std::string& out, const std::string& advice) {
+  if (normals && !surface_output_holds_normals(out))
+    tool.info("warning: --normals ignored: " + surface_format_name(out) + " holds no normals" + advice);
+}
+
+std::string surface_format_name(const std::string& out) { return out == "-" ? "OFF" : extension_of(out); }
 
 } // namespace imgmesh

@@ -30,4 +30,12 @@ private:
   MesherBounds bounds_;
 };
 
+// --normals: per-vertex normals from grad f.
+void add_normals_option(cli::Tool& tool, bool& normals);
+// After parsing: a warning when --normals was given for an OUT that holds
+// none, `advice` appended.
+void warn_normals_ignored(const cli::Tool& tool, bool normals, const std::string& out, const std::string& advice = "");
+// How the warnings name OUT's format: its extension, "OFF" for "-".
+std::string surface_format_name(const std::string& out);
+
 } // namespace imgmesh
