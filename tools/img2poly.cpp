@@ -4,8 +4,9 @@
 #include "image/io.hpp"
 #include "planar/image_pslg.hpp"
 #include "planar/planar_formats.hpp"
-#include "util/atomic_file.hpp"
+#include "shared_options.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <sstream>
 #include <unordered_set>
@@ -57,7 +58,7 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     if (extension_of(out) != ".poly" && out != "-") throw UsageError("OUT must end in .poly", out);
-    if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
+    check_svg_path(svg);
     opt.seed = tool.seed();
     opt.tolerance_stop = !skip_stop;
     if (in != "-") {

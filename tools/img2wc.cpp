@@ -1,6 +1,7 @@
 // img2wc: make a 2D or 3D binary image well-composed (thesis chapter 5).
 #include "cli/cli.hpp"
 #include "image/io.hpp"
+#include "shared_options.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/well_composed.hpp"
 
@@ -12,8 +13,9 @@ using namespace imgmesh;
 int main(int argc, char** argv) {
   cli::Tool tool("img2wc", "Make a binary image well-composed: no critical configuration (C1)/(C2) "
                            "remains, changing as few voxels as the repair of Siqueira (2006), ch. 5, finds.");
-  std::string in, out, mode = "add";
+  std::string in, out;
   Selection sel;
+  WellComposedOptions opt;
   bool check = false, thesis_rules = false;
   tool.app.add_option("IN", in, "Input image (NRRD, MetaImage, NIfTI, PNG; - for stdin)")->required();
   tool.app.add_option("OUT", out, "Output 0/1 uint8 image, format by extension (- for NRRD on stdout)");
@@ -23,11 +25,9 @@ int main(int argc, char** argv) {
   label->type_name("L")->allow_extra_args(false);
   auto* thr = tool.app.add_option("--threshold", sel.threshold, "Foreground is value >= T")->type_name("T");
   thr->excludes(label);
-  tool.app.add_option("--mode", mode,
-                      "add: only background becomes foreground (the thesis); remove: the dual; "
-                      "min: both, keep the one changing fewer voxels")
-      ->check(CLI::IsMember({"add", "remove", "min"}))
-      ->capture_default_str();
+  add_repair_mode_option(tool, opt.mode,
+                         "add: only background becomes foreground (the thesis); remove: the dual; "
+                         "min: both, keep the one changing fewer voxels");
   tool.add_seed();
   tool.app.add_flag("--thesis-rules", thesis_rules,
                     "Draw at random among all of B1(r) (rule 2) or B2(r) (rule 3), as the thesis does, "
@@ -55,8 +55,6 @@ int main(int argc, char** argv) {
       return c.counts.total() ? cli::kFailure : code;
     }
 
-    WellComposedOptions opt;
-    opt.mode = mode == "remove" ? RepairMode::Remove : mode == "min" ? RepairMode::Min : RepairMode::Add;
     opt.seed = tool.seed();
     opt.greedy = !thesis_rules;
     opt.repair = !skip_repair;

@@ -4,15 +4,13 @@
 // refined until every tetrahedron's radius-edge ratio is within
 // --cell-ratio, the surface certificate holding at the end.
 #include "cli/cli.hpp"
-#include "implicit/implicit_file.hpp"
+#include "implicit_input.hpp"
 #include "mesh/volume_io.hpp"
+#include "shared_options.hpp"
 #include "surface_options.hpp"
-#include "surface/restricted_delaunay.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 #include "volume/tet_refinement.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -26,7 +24,6 @@ int main(int argc, char** argv) {
                  "tetrahedron's radius-edge ratio is within --cell-ratio (Siqueira 2006, 9.1; Oudot-Rineau-Yvinec 2005).");
   std::string in, out;
   TetRefinementOptions opt;
-  RestrictedDelaunayOptions& so = opt.surface;
   TetWriteOptions wopt;
   tool.app.add_option("IN", in, "Implicit function file written by wc2implicit (- for stdin)")->required();
   tool.app.add_option("OUT", out, "Output tetrahedral mesh: .msh (Gmsh), .mesh (MEDIT), .vtu (VTK) or .inp (Abaqus)")
@@ -51,11 +48,8 @@ int main(int argc, char** argv) {
                       "Stop cell refinement after inserting N points (exit 3, the mesh written)")
       ->type_name("N")
       ->capture_default_str();
-  tool.app.add_option("--msh-version", wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")
-      ->type_name("V")
-      ->check(CLI::IsMember({"4.1", "2.2"}))
-      ->capture_default_str();
-  SurfaceOptions surface_options(tool, so, "boundary triangle");
+  add_msh_version_option(tool, wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")->type_name("V");
+  SurfaceOptions surface_options(tool, "boundary triangle");
   tool.add_seed();
   tool.add_threads();
 
@@ -66,19 +60,12 @@ int main(int argc, char** argv) {
     if (!(opt.cell_ratio >= 2) || !std::isfinite(opt.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
     if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be a finite number >= 0");
     if (opt.max_cell_points < 1) throw UsageError("--max-cell-points must be at least 1");
-    surface_options.check();
-    so.seed = tool.seed();
-    so.threads = tool.threads();
-    if (tool.progress()) so.progress = [&](const std::string& msg) { tool.report_progress(msg); };
-
-    tool.report_progress("reading " + in);
-    // f on g clamped far from S: the same S and signs, a fraction of the memory.
-    const PartitionOfUnity pu = read_implicit(in, [&](const Geometry& grid) {
-      const Vec3& h = grid.spacing;
-      surface_options.resolve(std::min({h[0], h[1], h[2]}));
-      return PartitionOfUnity::clamp_for(grid, so.max_distance);
-    });
-    const PartitionOfUnitySurface surface(pu);
+    const MesherInput input = read_mesher_input(tool, in, surface_options);
+    opt.surface = input.options;
+    opt.surface.seed = tool.seed();
+    opt.surface.threads = tool.threads();
+    if (tool.progress()) opt.surface.progress = [&](const std::string& msg) { tool.report_progress(msg); };
+    const PartitionOfUnitySurface surface(input.f);
     const TetRefinementResult res = tetrahedral_mesh(surface, opt);
     write_tet_mesh(out, res.mesh, wopt);
 

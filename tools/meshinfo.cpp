@@ -1,11 +1,11 @@
 // meshinfo: what a mesh is (topology and quality), as text or one JSON object.
 #include "cli/cli.hpp"
 #include "image/io.hpp"
-#include "mesh/meshinfo.hpp"
 #include "mesh/volume_io.hpp"
+#include "meshinfo/meshinfo.hpp"
 #include "planar/image_pslg.hpp"
 #include "util/error.hpp"
-#include "util/atomic_file.hpp"
+#include "util/path.hpp"
 
 #include <iostream>
 #include <optional>

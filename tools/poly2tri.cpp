@@ -3,7 +3,7 @@
 #include "cli/cli.hpp"
 #include "planar/planar_formats.hpp"
 #include "planar/triangulate.hpp"
-#include "util/atomic_file.hpp"
+#include "shared_options.hpp"
 #include "util/error.hpp"
 
 #include <sstream>
@@ -77,10 +77,8 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
 
   return tool.run(argc, argv, [&] {
-    // "-": OFF on standard output (the one single-file format for triangles).
-    const std::string ext = out == "-" ? std::string(".off") : extension_of(out);
-    if (ext != ".ele" && ext != ".off" && ext != ".vtk" && ext != ".msh" && ext != ".svg")
-      throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg (or be - for OFF on stdout)", out);
+    // Before any work; "-": OFF on standard output (the one single-file format for triangles).
+    planar_output_extension(out);
     opt.max_vertices = std::size_t(max_vertices);
     if (tool.progress())
       opt.progress = [&](std::size_t n) { tool.report_progress(std::to_string(n) + " vertices"); };

@@ -5,12 +5,11 @@
 #include "image/io.hpp"
 #include "mesh/surface_io.hpp"
 #include "segmentation/label_surfaces.hpp"
+#include "shared_options.hpp"
 #include "surface_options.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <sstream>
 #include <thread>
 
@@ -44,7 +43,7 @@ int main(int argc, char** argv) {
                  "Mesh every label of a 3D segmentation (or those of --labels) into one surface file with a label per "
                  "face: each label's surface is what img2wc (that label) | wc2implicit | implicit2mesh makes, certified "
                  "alike (closed, oriented, the topology of the label's voxel boundary); labels run in parallel.");
-  std::string in, out, labels_text = "all", mode = "add";
+  std::string in, out, labels_text = "all";
   LabelSurfacesOptions opt;
   SurfaceWriteOptions write_opt;
   opt.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
@@ -60,36 +59,28 @@ int main(int argc, char** argv) {
   tool.app.add_option("--jobs", opt.jobs, "Labels meshed at once, one thread each, 1 to 1024 (default: all cores)")
       ->type_name("N")
       ->check(CLI::Range(1, 1024).description(""));
-  tool.app.add_option("--mode", mode, "img2wc's --mode for each label: add, remove or min")
-      ->check(CLI::IsMember({"add", "remove", "min"}))
-      ->capture_default_str();
-  SurfaceOptions surface_options(tool, opt.mesher);
+  add_repair_mode_option(tool, opt.mode, "img2wc's --mode for each label: add, remove or min");
+  SurfaceOptions surface_options(tool);
   tool.add_seed();
-  tool.app.add_flag("--normals", opt.normals, "Write per-vertex normals from grad f (PLY, OBJ, VTP, VTK, msh)");
-  tool.app.add_option("--msh-version", write_opt.msh_version, "Gmsh format version of a .msh OUT")
-      ->check(CLI::IsMember({"4.1", "2.2"}))
-      ->capture_default_str();
+  add_normals_option(tool, opt.normals);
+  add_msh_version_option(tool, write_opt.msh_version, "Gmsh format version of a .msh OUT");
 
   return tool.run(argc, argv, [&] {
     if (!is_surface_output(out))
       throw UsageError(std::string("output format is chosen by extension: ") + kSurfaceExtensions, out);
     if (!surface_output_holds_labels(out))
-      tool.info("warning: " + std::string(out == "-" ? "OFF" : extension_of(out)) +
+      tool.info("warning: " + surface_format_name(out) +
                 " holds no labels: use .ply, .vtp, .vtk or .msh to tell the labels' surfaces apart");
-    if (opt.normals && !surface_output_holds_normals(out))
-      tool.info("warning: --normals ignored: " + std::string(out == "-" ? "OFF" : extension_of(out)) +
-                " holds no normals");
+    warn_normals_ignored(tool, opt.normals, out);
     opt.labels = parse_labels(labels_text);
     surface_options.check();
-    opt.mode = mode == "remove" ? RepairMode::Remove : mode == "min" ? RepairMode::Min : RepairMode::Add;
-    opt.mesher.seed = tool.seed();
     opt.threads = opt.jobs;
     if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
 
     tool.report_progress("reading " + in);
     const LabelImage image = read_labels(in);
-    const auto& h = image.spacing;
-    surface_options.resolve(std::min({h[0], h[1], h[2]}));
+    opt.mesher = surface_options.resolve(image.spacing);
+    opt.mesher.seed = tool.seed();
     const LabelSurfacesResult res = naming_input(in, [&] { return mesh_label_surfaces(image, opt); });
     write_surface(out, res.mesh, write_opt);
 

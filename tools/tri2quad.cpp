@@ -3,8 +3,8 @@
 #include "cli/cli.hpp"
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
+#include "shared_options.hpp"
 #include "tri2quad/tri2quad.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 
 using namespace imgmesh;
@@ -49,10 +49,8 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     // "-": OFF on standard output (the one single-file format for quads).
-    const std::string ext = out == "-" ? std::string(".off") : extension_of(out);
-    if (ext != ".ele" && ext != ".off" && ext != ".vtk" && ext != ".msh" && ext != ".svg")
-      throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg (or be - for OFF on stdout)", out);
-    if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
+    const std::string ext = planar_output_extension(out);
+    check_svg_path(svg);
     opt.convexity_test = !skip_convexity;
     PlanarMesh m = read_planar_mesh(in);
     if (!constraints.empty())

@@ -3,8 +3,8 @@
 #include "cli/cli.hpp"
 #include "image/io.hpp"
 #include "implicit/implicit_file.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <chrono>
 #include <string>

@@ -3,8 +3,8 @@
 // mistakes ITK's readers (MetaIO, niftilib, libpng) crash on, hang on or
 // read as zeros. No ITK here: the files are read as bytes.
 #include "image/file_checks.hpp"
-#include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <png.h>
 #include <unistd.h>

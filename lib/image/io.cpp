@@ -6,6 +6,7 @@
 
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <itkImage.h>
 #include <itkImageFileWriter.h>

@@ -9,6 +9,7 @@
 
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>

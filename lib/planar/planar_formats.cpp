@@ -4,6 +4,7 @@
 #include "planar/text_io.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <algorithm>
 #include <cmath>

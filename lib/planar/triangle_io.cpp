@@ -9,6 +9,7 @@
 
 #include "planar/text_io.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <cmath>
 #include <string_view>

@@ -1,11 +1,11 @@
-// implicit2mesh's entry point: the options checked, DELMESH run
-// (delmesh.hpp gives its steps and the file of each), the result reported.
-// No CGAL here; doc/implicit2mesh.md describes the CGAL calls the mesher
-// follows.
+// implicit2mesh's entry point: the options checked (mesher_options.cpp),
+// DELMESH run (delmesh.hpp gives its steps and the file of each), the
+// result reported. No CGAL here; doc/implicit2mesh.md describes the CGAL
+// calls the mesher follows.
 #include "surface/restricted_delaunay.hpp"
 
+#include "surface/mesher_options.hpp"
 #include "surface/vec3.hpp"
-#include "util/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -90,15 +90,6 @@ std::string RestrictedDelaunayResult::failed_guarantee() const {
   if (restricted_delaunay_violations) failure += "restricted Delaunay property violated; ";
   if (!failure.empty()) failure.resize(failure.size() - 2);
   return failure;
-}
-
-void check_options(const RestrictedDelaunayOptions& options) {
-  if (!(options.ratio >= min_ratio_bound()))
-    throw UsageError("--ratio must be at least (1+k)^2 = " + std::to_string(min_ratio_bound()) + " (k = 0.06)");
-  if (!(options.roughness >= min_roughness_bound()))
-    throw UsageError("--roughness must be at least 2(arcsin k + arcsin(2k/sqrt 3)) = " + std::to_string(min_roughness_bound()) + " rad");
-  if (!(options.max_distance >= 0) || !std::isfinite(options.max_distance)) throw UsageError("--max-distance must be >= 0");
-  if (options.max_points < 4) throw UsageError("--max-points must be at least 4");
 }
 
 RestrictedDelaunayResult restricted_delaunay_mesh(const ImplicitSurface& surface, const RestrictedDelaunayOptions& options) {

@@ -100,11 +100,8 @@ struct RestrictedDelaunayResult {
   std::string failed_guarantee() const;
 };
 
-// UsageError naming the option when a bound is outside what the proofs
-// (and termination) allow; restricted_delaunay_mesh checks it first.
-void check_options(const RestrictedDelaunayOptions& options);
-
-// Throws Error when S is empty or the options are out of range.
+// Throws Error when S is empty, UsageError when the options are out of
+// range (check_options, mesher_options.hpp).
 RestrictedDelaunayResult restricted_delaunay_mesh(const ImplicitSurface& surface,
                                                   const RestrictedDelaunayOptions& options);
 

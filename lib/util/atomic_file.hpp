@@ -66,12 +66,6 @@ extern const char* const kBinaryOnTerminal;
 // not exist ("no such folder") or is not a folder.
 void check_output_folder(const std::string& target);
 
-// The extension of a path in lower case, with a leading dot, counting ".gz"
-// compound extensions (".nii.gz"); "" if none.
-std::string extension_of(const std::string& path);
-// Replace the extension (as extension_of sees it) by ext ("." included).
-std::string replace_extension(const std::string& path, const std::string& ext);
-
 // Read all of a file (or "-" for stdin) into memory. Throws Error.
 std::string read_all(const std::string& path);
 

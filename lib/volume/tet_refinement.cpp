@@ -1,6 +1,7 @@
 #include "volume/tet_refinement.hpp"
 
 #include "surface/delmesh.hpp"
+#include "surface/mesher_options.hpp"
 #include "volume/box_refinement.hpp"
 #include "util/error.hpp"
 

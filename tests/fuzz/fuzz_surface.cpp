@@ -3,8 +3,8 @@
 // what it read (up to 200 faces): the first byte picks OFF, PLY, OBJ, STL or
 // OFF on standard input.
 #include "fuzz.hpp"
-#include "mesh/meshinfo.hpp"
 #include "mesh/surface_io.hpp"
+#include "meshinfo/meshinfo.hpp"
 
 #include <iostream>
 

@@ -4,75 +4,15 @@
 // the active cubes) must pass, and meshes with the right sorted Euler list
 // but the components in each other's places, a torus meshed as a sphere, a
 // missing or a doubled component must be refused, naming the component.
-#include "mesh/meshinfo.hpp"
 #include "mesh/topology.hpp"
+#include "shapes.hpp"
 
 #include <catch2/catch.hpp>
 
-#include <random>
-#include <set>
-
 using namespace imgmesh;
+using namespace imgmesh::test;
 
 namespace {
-
-constexpr int kNx = 40, kNy = 16, kNz = 16;
-
-// A box "ball" at x 4..13 and a box ring "solid torus" at x 26..35 with the
-// same outer box, so that mirroring x -> 39 - x puts each on the other's
-// outer surface. Spacing and direction are not the identity.
-BinaryImage two_solids(bool fill_hole) {
-  Geometry g;
-  g.dimension = 3;
-  g.size = {kNx, kNy, kNz};
-  g.origin = {-5, 3, 7};
-  g.spacing = {0.8, 1.2, 2.0};
-  g.direction = {0, -1, 0, 1, 0, 0, 0, 0, 1};  // a quarter turn about z
-  BinaryImage img(g, 0);
-  for (int z = 3; z <= 12; ++z)
-    for (int y = 3; y <= 12; ++y)
-      for (int x = 0; x < kNx; ++x) {
-        const bool ball = x >= 4 && x <= 13;
-        const bool ring = x >= 26 && x <= 35 && (fill_hole || !(x >= 29 && x <= 32 && y >= 6 && y <= 9));
-        img(x, y, z) = ball || ring;
-      }
-  return img;
-}
-
-struct Tri {
-  std::vector<Vec3> points;
-  std::vector<std::array<int, 3>> tris;
-  void add(const Tri& o) {
-    const int n = int(points.size());
-    points.insert(points.end(), o.points.begin(), o.points.end());
-    for (auto t : o.tris) tris.push_back({t[0] + n, t[1] + n, t[2] + n});
-  }
-};
-
-// bdCA(X)'s quads as triangles in world coordinates, the components in
-// `keep` only; mirrored in x about the grid's centre (faces flipped to stay
-// outward) and each vertex moved by up to `jitter` lattice steps per axis.
-Tri triangulate(const BinaryImage& img, const std::set<int>& keep, bool mirror, double jitter = 0,
-                unsigned seed = 1) {
-  const VoxelBoundary b = voxel_boundary(img);
-  const MeshTopology bt = mesh_topology(b);
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-jitter, jitter);
-  Tri t;
-  for (std::size_t v = 0; v < b.lattice_ids.size(); ++v) {
-    const auto c = b.corner(v);
-    double i = double(c[0]) - 0.5, j = double(c[1]) - 0.5, k = double(c[2]) - 0.5;
-    if (mirror) i = double(kNx - 1) - i;
-    t.points.push_back(img.world(i + u(rng), j + u(rng), k + u(rng)));
-  }
-  for (std::size_t f = 0; f + 1 < b.offsets.size(); ++f) {
-    const int* q = &b.corners[b.offsets[f]];
-    if (!keep.count(bt.component_of[std::size_t(q[0])])) continue;
-    if (mirror) { t.tris.push_back({q[0], q[2], q[1]}); t.tris.push_back({q[0], q[3], q[2]}); }
-    else { t.tris.push_back({q[0], q[1], q[2]}); t.tris.push_back({q[0], q[2], q[3]}); }
-  }
-  return t;
-}
 
 ComponentCorrespondence check(const Tri& m, const BinaryImage& img) {
   const VoxelBoundary b = voxel_boundary(img);
@@ -157,24 +97,4 @@ TEST_CASE("certificate by correspondence refuses wrong meshes", "[topology][corr
     CHECK(r.boundary[std::size_t(ball)].matched_by.size() == 2);
     CHECK(r.boundary[std::size_t(torus)].verdict == "ok");
   }
-}
-
-TEST_CASE("meshinfo --image: the swapped mesh fails with a per-component verdict", "[meshinfo][correspondence]") {
-  const BinaryImage img = two_solids(false);
-  auto poly = [](const Tri& t) {
-    PolyMesh m;
-    m.points = t.points;
-    for (const auto& f : t.tris) m.faces.push_back({f[0], f[1], f[2]});
-    return m;
-  };
-  const MeshInfo right = mesh_info(poly(triangulate(img, {0, 1}, false)), "m.off", &img, "wc.nrrd");
-  CHECK(right.failed_guarantee().empty());
-  CHECK(right.report.at("image").at("correspondence").at("matches").boolean());
-  const MeshInfo swapped = mesh_info(poly(triangulate(img, {0, 1}, true)), "s.off", &img, "wc.nrrd");
-  CHECK_FALSE(swapped.to_json().at("matches_image").boolean());
-  CHECK_FALSE(swapped.report.at("image").at("matches").boolean());
-  CHECK(swapped.failed_guarantee().find("mesh component 0: euler") != std::string::npos);
-  const std::string text = format_report(swapped.report);
-  CHECK(text.find("DOES NOT MATCH") != std::string::npos);
-  CHECK(text.find("mesh #0: euler differs") != std::string::npos);
 }

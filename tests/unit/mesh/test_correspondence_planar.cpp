@@ -6,70 +6,17 @@
 // the mirrored mesh, a mesh missing the hole, one with the disk doubled or
 // the annulus dropped, and one with labels swapped must be refused, naming
 // the region and why.
-#include "mesh/meshinfo.hpp"
 #include "mesh/topology.hpp"
+#include "shapes.hpp"
 
 #include <catch2/catch.hpp>
 
-#include <random>
-
 using namespace imgmesh;
+using namespace imgmesh::test;
 
 namespace {
 
-constexpr int kNx = 36, kNy = 16;
-
-// Disk: x 3..12; annulus: x 23..32 with the hole x 26..29, y 6..9; both y 3..12.
-LabelImage disk_and_annulus(bool fill_hole, std::int32_t annulus_label = 1) {
-  Geometry g;
-  g.dimension = 2;
-  g.size = {kNx, kNy, 1};
-  g.origin = {-5, 3, 0};
-  g.spacing = {0.8, 1.5, 1};
-  LabelImage img(g, 0);
-  for (int y = 3; y <= 12; ++y)
-    for (int x = 0; x < kNx; ++x) {
-      if (x >= 3 && x <= 12) img(x, y) = 1;
-      const bool hole = x >= 26 && x <= 29 && y >= 6 && y <= 9;
-      if (x >= 23 && x <= 32 && (fill_hole || !hole)) img(x, y) = annulus_label;
-    }
-  return img;
-}
-
-// One counter-clockwise quad per pixel of `img` split into two triangles,
-// labelled as the pixel; background faces too unless foreground_only. Points
-// in world coordinates, mirrored in x about the grid's centre when asked,
-// each moved by up to `jitter` pixels per axis.
-PolyMesh pixel_mesh(const LabelImage& img, bool mirror = false, double jitter = 0, bool foreground_only = false,
-                    unsigned seed = 1) {
-  PolyMesh m;
-  m.planar = true;
-  m.format = "ele";
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-jitter, jitter);
-  const std::size_t W = img.size[0] + 1;
-  for (std::size_t j = 0; j <= img.size[1]; ++j)
-    for (std::size_t i = 0; i < W; ++i) {
-      double x = double(i) - 0.5 + u(rng), y = double(j) - 0.5 + u(rng);
-      if (mirror) x = double(img.size[0] - 1) - x;
-      const Vec3 p = img.world(0, 0, 0);
-      m.points.push_back({p[0] + x * img.spacing[0], p[1] + y * img.spacing[1], 0.0});
-    }
-  for (std::size_t y = 0; y < img.size[1]; ++y)
-    for (std::size_t x = 0; x < img.size[0]; ++x) {
-      const std::int32_t l = img(x, y);
-      if (foreground_only && !l) continue;
-      const int a = int(x + W * y), b = a + 1, c = b + int(W), d = a + int(W);
-      m.faces.push_back({a, b, c});
-      m.faces.push_back({a, c, d});
-      m.region.push_back(l);
-      m.region.push_back(l);
-    }
-  if (foreground_only) m.region.clear();
-  return m;
-}
-
-ComponentCorrespondence certify(const PolyMesh& m, const LabelImage& img) {
+ComponentCorrespondence certify(const PixelMesh& m, const LabelImage& img) {
   LabelImage fg = img;
   if (m.region.empty())
     for (auto& v : fg.data) v = v != 0;
@@ -97,7 +44,7 @@ TEST_CASE("pixel regions: 4-connected components of one nonzero label, euler V -
 }
 
 TEST_CASE("mesh regions: faces of one nonzero label joined by edges", "[correspondence2d]") {
-  const PolyMesh m = pixel_mesh(disk_and_annulus(false));
+  const PixelMesh m = pixel_mesh(disk_and_annulus(false));
   const MeshRegions r = mesh_regions(m.points.size(), m.faces, m.region);
   CHECK(r.label == std::vector<std::int32_t>{1, 1});
   CHECK(r.euler == std::vector<long long>{1, 0});
@@ -125,7 +72,7 @@ TEST_CASE("the right planar mesh passes, exact and jittered, with and without la
 TEST_CASE("a mirrored planar mesh (the disk where the annulus is) is refused", "[correspondence2d]") {
   const LabelImage img = disk_and_annulus(false);
   for (const bool labelled : {true, false}) {
-    const PolyMesh m = pixel_mesh(img, true, 0, !labelled);
+    const PixelMesh m = pixel_mesh(img, true, 0, !labelled);
     // Same sorted Euler list as the right mesh: only places tell them apart.
     const ComponentCorrespondence r = certify(m, img);
     INFO(r.failed_guarantee());
@@ -146,8 +93,8 @@ TEST_CASE("a planar mesh missing the hole, doubling or dropping a region, or wit
     CHECK(has(r.failed_guarantee(), "euler 1, its pixel region 1 (label 1) has 0"));
   }
   {  // the disk's faces twice, on vertices of their own
-    PolyMesh m = pixel_mesh(img);
-    const PolyMesh d = pixel_mesh(img, false, 0.2, false, 7);
+    PixelMesh m = pixel_mesh(img);
+    const PixelMesh d = pixel_mesh(img, false, 0.2, false, 7);
     const int n = int(m.points.size());
     m.points.insert(m.points.end(), d.points.begin(), d.points.end());
     for (std::size_t f = 0; f < d.faces.size(); ++f)
@@ -163,7 +110,7 @@ TEST_CASE("a planar mesh missing the hole, doubling or dropping a region, or wit
     CHECK(has(r.failed_guarantee(), "pixel region 0 (label 1): matched by mesh regions 0, 2"));
   }
   {  // the annulus's faces become background
-    PolyMesh m = pixel_mesh(img);
+    PixelMesh m = pixel_mesh(img);
     for (std::size_t f = 0; f < m.faces.size(); ++f)
       if (m.points[std::size_t(m.faces[f][0])][0] > 9) m.region[f] = 0;
     const ComponentCorrespondence r = certify(m, img);
@@ -173,22 +120,11 @@ TEST_CASE("a planar mesh missing the hole, doubling or dropping a region, or wit
   }
   {  // labels 1 and 2 swapped: no face lies on a pixel of its label
     const LabelImage two = disk_and_annulus(false, 2);
-    PolyMesh m = pixel_mesh(two);
+    PixelMesh m = pixel_mesh(two);
     for (auto& l : m.region) l = l ? 3 - l : 0;
     const ComponentCorrespondence r = certify(m, two);
     CHECK_FALSE(r.matches());
     CHECK(r.mesh[0].verdict == "unplaced");
     CHECK(has(r.failed_guarantee(), "mesh region 0 (label 2): no face lies on a pixel of its label"));
   }
-}
-
-TEST_CASE("planar_mesh_info reports the regions and names the failure", "[correspondence2d]") {
-  const LabelImage img = disk_and_annulus(false);
-  const MeshInfo ok = planar_mesh_info(pixel_mesh(img, false, 0.3), "right.ele", img, "img.png");
-  CHECK(ok.matches);
-  CHECK(ok.report.at("image").at("euler").items().size() == 2);
-  const MeshInfo bad = planar_mesh_info(pixel_mesh(img, true), "mirrored.ele", img, "img.png");
-  CHECK_FALSE(bad.matches);
-  CHECK(has(bad.failed_guarantee(), "the mesh's regions do not match the pixel regions of img.png"));
-  CHECK(has(format_report(bad.report), "euler differs"));
 }

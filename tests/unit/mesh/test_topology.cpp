@@ -1,77 +1,25 @@
-// meshinfo's topology against an independent count made here (sets of
-// edges, breadth-first components) and against known surfaces; bdCA(X) of
-// small images against known values, from binary images and from the
-// mesher's samples; triangle quality against closed forms.
-#include "mesh/meshinfo.hpp"
+// mesh_topology (what meshinfo reports) against an independent count made
+// here (sets of edges, breadth-first components) and against known
+// surfaces; bdCA(X) of small images against known values, from binary
+// images and from the mesher's samples; triangle quality against closed
+// forms.
 #include "mesh/topology.hpp"
 #include "mesh/triangle_quality.hpp"
+#include "shapes.hpp"
 #include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <queue>
 #include <random>
 #include <set>
 
 using namespace imgmesh;
+using namespace imgmesh::test;
 
 namespace {
-
-struct Faces {
-  std::size_t nv = 0;
-  std::vector<std::vector<int>> f;
-  void add(const Faces& o) {
-    for (auto face : o.f) {
-      for (int& v : face) v += int(nv);
-      f.push_back(face);
-    }
-    nv += o.nv;
-  }
-};
-
-// An (n x m) grid of quads, split into triangles; wrap_u / wrap_v glue
-// opposite sides (torus when both, cylinder when one).
-Faces grid(int n, int m, bool wrap_u, bool wrap_v) {
-  Faces s;
-  const int cu = wrap_u ? n : n + 1, cv = wrap_v ? m : m + 1;
-  s.nv = std::size_t(cu * cv);
-  auto id = [&](int i, int j) { return (j % cv) * cu + (i % cu); };
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      s.f.push_back({a, b, c});
-      s.f.push_back({a, c, d});
-    }
-  return s;
-}
-
-// A closed sphere: the boundary of an (n x n x n) cube of quads.
-Faces cube_sphere(int n) {
-  Faces s;
-  std::map<std::array<int, 3>, int> id;
-  auto v = [&](int x, int y, int z) {
-    auto it = id.find({x, y, z});
-    if (it != id.end()) return it->second;
-    const int k = int(id.size());
-    id[{x, y, z}] = k;
-    return k;
-  };
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b) {
-      // Outward orientation on each of the six sides.
-      s.f.push_back({v(a, b, 0), v(a, b + 1, 0), v(a + 1, b + 1, 0), v(a + 1, b, 0)});
-      s.f.push_back({v(a, b, n), v(a + 1, b, n), v(a + 1, b + 1, n), v(a, b + 1, n)});
-      s.f.push_back({v(a, 0, b), v(a + 1, 0, b), v(a + 1, 0, b + 1), v(a, 0, b + 1)});
-      s.f.push_back({v(a, n, b), v(a, n, b + 1), v(a + 1, n, b + 1), v(a + 1, n, b)});
-      s.f.push_back({v(0, a, b), v(0, a, b + 1), v(0, a + 1, b + 1), v(0, a + 1, b)});
-      s.f.push_back({v(n, a, b), v(n, a + 1, b), v(n, a + 1, b + 1), v(n, a, b + 1)});
-    }
-  s.nv = id.size();
-  return s;
-}
 
 // Independent count: components by breadth-first search over face-sharing
 // vertices, V - E + F per component from sets.
@@ -118,13 +66,6 @@ std::vector<long long> independent_euler(const Faces& s) {
 std::vector<long long> sorted(std::vector<long long> v) {
   std::sort(v.begin(), v.end());
   return v;
-}
-
-BinaryImage image3(int n) {
-  Geometry g;
-  g.dimension = 3;
-  g.size = {std::size_t(n), std::size_t(n), std::size_t(n)};
-  return BinaryImage(g, 0);
 }
 
 // Samples of the mesher: positive outside X, negative in X.
@@ -388,57 +329,9 @@ TEST_CASE("the voxel-boundary mesh of a ball matches bdCA(X)", "[topology][bdca]
   const auto mt = mesh_topology(s.nv, s.f);
   const auto it = voxel_boundary_topology(img);
   CHECK(same_topology(mt, it));
-  const Json j = image_comparison(mt, it);
-  CHECK(j.at("matches").boolean());
   Faces two = cube_sphere(2);
   two.add(cube_sphere(1));
   CHECK_FALSE(same_topology(mesh_topology(two.nv, two.f), it));
-}
-
-TEST_CASE("mesh_info: the --image guarantee and its report", "[meshinfo]") {
-  auto poly = [](const Faces& s) {
-    PolyMesh m;
-    for (std::size_t i = 0; i < s.nv; ++i) m.points.push_back({double(i % 3), double(i % 5), double(i % 7)});
-    m.faces = s.f;
-    return m;
-  };
-  BinaryImage img = image3(5);
-  img(2, 2, 2) = 1;
-  const MeshInfo same = mesh_info(poly(cube_sphere(2)), "m.off", &img, "x.nrrd");
-  CHECK(same.failed_guarantee().empty());
-  CHECK(same.to_json().at("matches_image").boolean());
-  CHECK(same.report.at("image").at("matches").boolean());
-  Faces two = cube_sphere(2);
-  two.add(cube_sphere(1));
-  const MeshInfo differ = mesh_info(poly(two), "m.off", &img, "x.nrrd");
-  CHECK(differ.failed_guarantee().find("x.nrrd") != std::string::npos);
-  CHECK_FALSE(differ.to_json().at("matches_image").boolean());
-  CHECK(differ.to_json().at("components").integer() == 2);
-  // Without an image there is nothing to fail and no matches_image.
-  const MeshInfo alone = mesh_info(poly(two), "m.off");
-  CHECK(alone.failed_guarantee().empty());
-  CHECK_FALSE(alone.to_json().contains("matches_image"));
-  // A non-well-composed image and a mesh without faces are refused.
-  img(3, 3, 2) = 1;
-  CHECK_THROWS_AS(mesh_info(poly(cube_sphere(2)), "m.off", &img, "x.nrrd"), Error);
-  CHECK_THROWS_AS(mesh_info(PolyMesh{}, "m.off"), Error);
-}
-
-TEST_CASE("mesh_report puts components and euler first", "[meshinfo]") {
-  PolyMesh m;
-  const Faces s = grid(3, 3, true, true);
-  for (std::size_t i = 0; i < s.nv; ++i) m.points.push_back({double(i), double(i * i % 7), 1.0});
-  m.faces = s.f;
-  m.format = "off";
-  const Json j = mesh_report(m);
-  CHECK(j.at("components").integer() == 1);
-  REQUIRE(j.at("euler").items().size() == 1);
-  CHECK(j.at("euler").items()[0].integer() == 0);
-  const std::string text = format_report(j);
-  CHECK(text.find("components  1") != std::string::npos);
-  // Round trip through the JSON parser.
-  const Json back = Json::parse(j.dump(-1));
-  CHECK(back.at("faces").integer() == long(s.f.size()));
 }
 
 TEST_CASE("bdCA(X) of the mesher's samples X = {g < 0}: blocks, rings, shells", "[topology][bdca]") {

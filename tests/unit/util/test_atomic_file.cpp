@@ -1,4 +1,5 @@
 #include "util/atomic_file.hpp"
+#include "util/path.hpp"
 #include "util/error.hpp"
 
 #include "scratch_dir.hpp"
@@ -124,12 +125,4 @@ TEST_CASE("OutputGroup lands its files together or not at all") {
 
 TEST_CASE("AtomicOutput fails clearly on a missing folder") {
   CHECK_THROWS_AS(AtomicOutput("/nonexistent-folder/x.txt"), Error);
-}
-
-TEST_CASE("extension_of knows compound extensions") {
-  CHECK(extension_of("a/b.NII.gz") == ".nii.gz");
-  CHECK(extension_of("scan.nrrd") == ".nrrd");
-  CHECK(extension_of("dir.d/noext") == "");
-  CHECK(extension_of(".hidden") == "");
-  CHECK(replace_extension("a/x.1.ele", ".node") == "a/x.1.node");
 }

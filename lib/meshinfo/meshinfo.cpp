@@ -1,4 +1,4 @@
-#include "mesh/meshinfo.hpp"
+#include "meshinfo/meshinfo.hpp"
 
 #include "mesh/surface_io.hpp"
 #include "mesh/triangle_quality.hpp"
@@ -7,6 +7,7 @@
 #include "quad/quality.hpp"
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
+#include "util/path.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,49 @@
+#include "shared_options.hpp"
+
+#include "util/error.hpp"
+#include "util/path.hpp"
+
+#include <utility>
+#include <vector>
+
+namespace imgmesh {
+
+CLI::Option* add_msh_version_option(cli::Tool& tool, std::string& version, const std::string& description) {
+  return tool.app.add_option("--msh-version", version, description)
+      ->check(CLI::IsMember({"4.1", "2.2"}))
+      ->capture_default_str();
+}
+
+void add_repair_mode_option(cli::Tool& tool, RepairMode& mode, const std::string& description) {
+  static const std::vector<std::pair<std::string, RepairMode>> modes{
+      {"add", RepairMode::Add}, {"remove", RepairMode::Remove}, {"min", RepairMode::Min}};
+  std::vector<std::string> names;
+  std::string current;
+  for (const auto& [name, m] : modes) {
+    names.push_back(name);
+    if (m == mode) current = name;
+  }
+  tool.app
+      .add_option_function<std::string>(
+          "--mode",
+          [&mode](const std::string& given) {
+            for (const auto& [name, m] : modes)
+              if (name == given) mode = m;
+          },
+          description)
+      ->check(CLI::IsMember(names))
+      ->default_str(current);
+}
+
+std::string planar_output_extension(const std::string& out) {
+  const std::string ext = out == "-" ? std::string(".off") : extension_of(out);
+  if (ext != ".ele" && ext != ".off" && ext != ".vtk" && ext != ".msh" && ext != ".svg")
+    throw UsageError("OUT must end in .ele, .off, .vtk, .msh or .svg (or be - for OFF on stdout)", out);
+  return ext;
+}
+
+void check_svg_path(const std::string& svg) {
+  if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
+}
+
+} // namespace imgmesh

@@ -1,0 +1,25 @@
+// Options and checks that several tools share, declared once: --msh-version
+// (implicit2mesh, implicit2tet, seg2mesh), --mode (img2wc, seg2mesh), the
+// planar OUT of poly2tri and tri2quad and the --svg of img2poly and
+// tri2quad. The surface mesher's own are in surface_options.hpp.
+#pragma once
+#include "cli/cli.hpp"
+#include "wellcomposed/well_composed.hpp"
+
+#include <string>
+
+namespace imgmesh {
+
+// --msh-version: the Gmsh format version of a .msh output, 4.1 or 2.2.
+CLI::Option* add_msh_version_option(cli::Tool& tool, std::string& version, const std::string& description);
+
+// --mode: img2wc's repair, add, remove or min; its default is mode's value.
+void add_repair_mode_option(cli::Tool& tool, RepairMode& mode, const std::string& description);
+
+// The extension of a planar mesh OUT (".off" for "-", OFF on stdout);
+// UsageError unless it is .ele, .off, .vtk, .msh or .svg.
+std::string planar_output_extension(const std::string& out);
+// UsageError unless --svg FILE, when given, ends in .svg.
+void check_svg_path(const std::string& svg);
+
+} // namespace imgmesh
