@@ -1,4 +1,4 @@
-// The command-line plumbing every tool shares (DESIGN.md "Command-line
+// The command-line plumbing every tool shares (doc/design.md "Command-line
 // conventions"): CLI11 set-up with the common flags, exit codes, one-line
 // errors, --stats JSON and terminal progress. A tool is:
 //

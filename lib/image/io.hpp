@@ -11,7 +11,7 @@
 
 namespace imgmesh {
 
-// Which voxels are foreground (DESIGN.md): nonzero by default, the union of
+// Which voxels are foreground (doc/design.md "Data contracts"): nonzero by default, the union of
 // `labels` if any, or value >= threshold.
 struct Selection {
   std::vector<long long> labels;

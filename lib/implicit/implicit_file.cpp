@@ -1,4 +1,4 @@
-// Construction (thesis 6.3.3) and the pu-implicit file format (DESIGN.md).
+// Construction (thesis 6.3.3) and the pu-implicit file format (doc/design.md "Data contracts").
 #include "implicit/implicit_file.hpp"
 #include "image/nrrd_float.hpp"
 #include "util/cpu_time.hpp"

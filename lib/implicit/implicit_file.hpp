@@ -1,4 +1,4 @@
-// The implicit function file of DESIGN.md and its construction from a
+// The implicit function file of doc/design.md and its construction from a
 // well-composed image (thesis 6.3): a float NRRD of g at the voxel centres
 // (negative inside, physical units, world geometry of the image) with the
 // key/value fields imgmesh_kind:=pu-implicit, imgmesh_version:=1 and

@@ -1,4 +1,4 @@
-// Planar meshes in and out by file extension (DESIGN.md "Data contracts"):
+// Planar meshes in and out by file extension (doc/design.md "Data contracts"):
 // Triangle's .ele/.node/.poly, OFF (z = 0), legacy VTK, Gmsh 2.2 and SVG.
 #pragma once
 #include "planar/triangle_io.hpp"

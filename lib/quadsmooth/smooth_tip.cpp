@@ -22,7 +22,7 @@
 //     bridge quad (pe, pe+1, y, x) between the points x and y of the arcs
 //     before and after it: with c in the middle of an end's fan quad, the
 //     strip of quads that follows a wedge's two sides to its tip
-//     (doc/benchmarks.md, issue 16);
+//     (doc/benchmarks-log.md, issue 16);
 //   a ring of four points around their quad (m1, m2, m3, m4): P cut at four
 //     edges, the bridges joining consecutive points;
 //   no new point where P is a quad.

@@ -58,7 +58,7 @@ static bool facet_polygon(const Tr& tr, const Tr::Edge& e, CentreMemo* memo, Fac
 // it is rasterised row by row on Pi at delta/4, into runs of one sign
 // (delta/16 took 59% more of the bunny's instructions for the same mesh,
 // and no benchmark image needs a certificate fallback at delta/4, even at
-// the thesis's looser bounds: doc/benchmarks.md). The sign of f at a
+// the thesis's looser bounds: doc/benchmarks-log.md). The sign of f at a
 // sample is the corner sign in an inactive cube (F1), the enclosure's in
 // an active cube where the enclosure of f excludes 0, and f's sign
 // elsewhere. A sign region that does not reach the border of h is

@@ -2,7 +2,7 @@
 // (MesherBounds: an angle with its unit, a distance that defaults to a
 // fraction of the voxel size), their one check, and the finished
 // RestrictedDelaunayOptions they resolve to. The defaults are the tools'
-// (doc/benchmarks.md, issue 17): --ratio 1.2 (smallest angle about 24.6
+// (doc/benchmarks-log.md, issue 17): --ratio 1.2 (smallest angle about 24.6
 // degrees), --roughness 120 degrees (one-voxel features of noisy labels left
 // unresolved) and --max-distance 0.3 of the smallest voxel spacing;
 // RestrictedDelaunayOptions keep the thesis's values.

@@ -1,6 +1,6 @@
 // Errors the library reports to the tools. The library never prints and never
 // exits: it throws, and the tool turns the exception into one line on stderr
-// ("tool: path: what is wrong") and an exit status (DESIGN.md).
+// ("tool: path: what is wrong") and an exit status (doc/design.md "Code rules").
 #pragma once
 #include <stdexcept>
 #include <string>
