@@ -439,7 +439,7 @@ LabelImage read_labels(const std::string& path) {
   Opened o = open_image(path, spool.file());
   LabelImage out(o.info.geometry, 0);
   visit_values(path, o, [&](std::size_t i, double v) {
-    if (v != std::floor(v) || std::abs(v) > 2147483647.0)
+    if (v != std::floor(v) || v < -2147483648.0 || v > 2147483647.0)
       throw Error("not a label image: value " + std::to_string(v) + " is not a 32-bit integer", path);
     out.data[i] = std::int32_t(v);
   });
