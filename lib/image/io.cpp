@@ -24,6 +24,7 @@
 #include <png.h>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -127,12 +128,35 @@ private:
   int saved_ = -1;
 };
 
-// stdin is spooled to a temporary file whose extension comes from the content,
-// since ITK reads only from paths and picks readers by name and content.
+// The file ITK is given for a path. stdin is spooled to a temporary file
+// whose extension comes from the content, since ITK reads only from paths
+// and picks readers by name and content. niftilib reads the voxels of
+// X.nii.gz from X.nii when that file exists beside it (nifti_findimgname
+// tries .nii first), so such a file is given through a link of another
+// name in a temporary folder.
 class Spool {
 public:
   explicit Spool(const std::string& path) : path_(path) {
-    if (path != "-") return;
+    if (path == "-") {
+      spool_stdin();
+    } else if (extension_of(path) == ".nii.gz" && std::ifstream(path.substr(0, path.size() - 3))) {
+      link_alone();
+    }
+  }
+  ~Spool() {
+    if (!tmp_.empty()) std::remove(tmp_.c_str());
+    if (!dir_.empty()) rmdir(dir_.c_str());
+  }
+  Spool(const Spool&) = delete;
+  Spool& operator=(const Spool&) = delete;
+  const std::string& file() const { return tmp_.empty() ? path_ : tmp_; }
+
+private:
+  static std::string tmpdir() {
+    const char* t = std::getenv("TMPDIR");
+    return t && *t ? t : "/tmp";
+  }
+  void spool_stdin() {
     std::string data((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());
     if (data.empty()) throw Error("standard input is empty", "-");
     std::string ext;
@@ -143,8 +167,7 @@ public:
     else if (starts("ObjectType") || starts("NDims")) ext = ".mha";
     else if (data.size() > 348 && data.compare(344, 3, "n+1") == 0) ext = ".nii";
     else throw Error("cannot tell the image format of standard input (NRRD, MetaImage, NIfTI or PNG expected)", "-");
-    const char* tmpdir = std::getenv("TMPDIR");
-    std::string templ = std::string(tmpdir && *tmpdir ? tmpdir : "/tmp") + "/stdin-XXXXXX" + ext;
+    std::string templ = tmpdir() + "/stdin-XXXXXX" + ext;
     std::vector<char> buf(templ.begin(), templ.end());
     buf.push_back('\0');
     int fd = mkstemps(buf.data(), int(ext.size()));
@@ -155,11 +178,22 @@ public:
     out.write(data.data(), std::streamsize(data.size()));
     if (!out) throw Error("cannot spool standard input", "-");
   }
-  ~Spool() { if (!tmp_.empty()) std::remove(tmp_.c_str()); }
-  const std::string& file() const { return tmp_.empty() ? path_ : tmp_; }
-
-private:
-  std::string path_, tmp_;
+  void link_alone() {
+    std::string templ = tmpdir() + "/nii-XXXXXX";
+    std::vector<char> buf(templ.begin(), templ.end());
+    buf.push_back('\0');
+    if (!mkdtemp(buf.data())) throw Error("cannot make a temporary folder to read the image alone", path_);
+    dir_ = buf.data();
+    const std::string link = dir_ + "/image.nii.gz";
+    std::error_code ec;
+    const std::filesystem::path target = std::filesystem::absolute(path_, ec);
+    if (ec || symlink(target.c_str(), link.c_str()) != 0) {
+      rmdir(dir_.c_str());
+      throw Error("cannot link the image alone into a temporary folder", path_);
+    }
+    tmp_ = link;
+  }
+  std::string path_, tmp_, dir_;
 };
 
 struct Opened {
