@@ -3,6 +3,7 @@
 // through itk::Image + ImageFileWriter.
 #include "image/io.hpp"
 #include "image/file_checks.hpp"
+#include "image/slicer_segmentation.hpp"
 
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
@@ -199,7 +200,18 @@ private:
 struct Opened {
   itk::ImageIOBase::Pointer io;
   ImageInfo info;
+  LabelNames names;  // 3D Slicer's segment names
 };
+
+// The key/value fields of a file that are strings (NRRD's "key:=value").
+std::map<std::string, std::string> string_fields(const itk::MetaDataDictionary& dict) {
+  std::map<std::string, std::string> fields;
+  for (const auto& key : dict.GetKeys()) {
+    std::string value;
+    if (itk::ExposeMetaData<std::string>(dict, key, value)) fields[key] = value;
+  }
+  return fields;
+}
 
 Opened open_image_itk(const std::string& path, const std::string& file) {
   register_factories();
@@ -234,6 +246,11 @@ Opened open_image_itk(const std::string& path, const std::string& file) {
   } catch (const itk::ExceptionObject& e) {
     throw said.error(e, path);
   }
+  // A 3D Slicer segmentation's layers are pixel components: checked (and
+  // its names kept) before components are taken for colours.
+  o.names = naming_input(path, [&] {
+    return slicer_label_names(string_fields(o.io->GetMetaDataDictionary()), o.io->GetNumberOfComponents());
+  });
   const unsigned n = o.io->GetNumberOfDimensions();
   // Trailing axes of size 1 do not count (a 3D file holding one slice is 2D
   // data, a "4D" file with one time point is 3D).
@@ -468,9 +485,10 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel) {
   return out;
 }
 
-LabelImage read_labels(const std::string& path) {
+LabelImage read_labels(const std::string& path, LabelNames* names) {
   Spool spool(path);
   Opened o = open_image(path, spool.file());
+  if (names) *names = o.names;
   LabelImage out(o.info.geometry, 0);
   visit_values(path, o, [&](std::size_t i, double v) {
     if (v != std::floor(v) || v < -2147483648.0 || v > 2147483647.0)
@@ -504,14 +522,7 @@ FloatImage read_float(const std::string& path, std::map<std::string, std::string
   Opened o = open_image(path, spool.file());
   FloatImage out(o.info.geometry, 0.f);
   visit_values(path, o, [&](std::size_t i, double v) { out.data[i] = float(v); });
-  if (fields) {
-    fields->clear();
-    const auto& dict = o.io->GetMetaDataDictionary();
-    for (const auto& key : dict.GetKeys()) {
-      std::string value;
-      if (itk::ExposeMetaData<std::string>(dict, key, value)) (*fields)[key] = value;
-    }
-  }
+  if (fields) *fields = string_fields(o.io->GetMetaDataDictionary());
   return out;
 }
 
