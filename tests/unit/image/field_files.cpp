@@ -252,7 +252,7 @@ void write_nifti(const std::string& path, const Volume& v, const NiftiOptions& o
   h.big = o.big_endian;
   h.i32(0, 348);
   h.b[38] = 'r';
-  const std::int16_t dims[8] = {3, std::int16_t(v.size[0]), std::int16_t(v.size[1]), std::int16_t(v.size[2]), 1, 1, 1, 1};
+  const std::int16_t dims[8] = {std::int16_t(o.time_axis ? 4 : 3), std::int16_t(v.size[0]), std::int16_t(v.size[1]), std::int16_t(v.size[2]), 1, 1, 1, 1};
   for (int i = 0; i < 8; ++i) h.i16(40 + 2 * i, dims[i]);
   h.i16(70, std::int16_t(v.type.nifti));
   h.i16(72, std::int16_t(8 * v.type.bytes));
@@ -262,7 +262,8 @@ void write_nifti(const std::string& path, const Volume& v, const NiftiOptions& o
   const double pixdim[8] = {o.qform ? q[3] : 1.0, v.spacing[0], v.spacing[1], v.spacing[2], 1, 1, 1, 1};
   for (int i = 0; i < 8; ++i) h.f32(76 + 4 * i, pixdim[i]);
   h.f32(108, 352);  // vox_offset
-  h.f32(112, 1);    // scl_slope
+  h.f32(112, o.nibabel ? std::nan("") : 1.0);  // scl_slope
+  if (o.nibabel) h.f32(116, std::nan(""));      // scl_inter
   h.b[123] = 2;     // xyzt_units: mm
   const double origin[3] = {-v.origin[0], -v.origin[1], v.origin[2]};
   if (o.qform) {
@@ -271,7 +272,7 @@ void write_nifti(const std::string& path, const Volume& v, const NiftiOptions& o
     for (int i = 0; i < 3; ++i) h.f32(268 + 4 * i, origin[i]);
   }
   if (o.sform) {
-    h.i16(254, 1);
+    h.i16(254, o.nibabel ? 2 : 1);  // NIFTI_XFORM_ALIGNED_ANAT, NIFTI_XFORM_SCANNER_ANAT
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) h.f32(280 + 16 * r + 4 * c, ras[std::size_t(3 * r + c)] * v.spacing[std::size_t(c)]);
       h.f32(280 + 16 * r + 12, origin[r]);

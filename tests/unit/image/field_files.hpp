@@ -71,6 +71,8 @@ struct NiftiOptions {
   bool sform = true, qform = true;
   bool big_endian = false;
   bool gzip = false;            // .nii.gz
+  bool nibabel = false;         // as nibabel writes a new image: scl_slope and scl_inter NaN, sform_code 2
+  bool time_axis = false;       // dim[0] 4 with one time point, as some converters write 3D data
 };
 void write_nifti(const std::string& path, const Volume& v, const NiftiOptions& o);
 

@@ -138,6 +138,17 @@ TEST_CASE("NIfTI as niftilib and nibabel write it: sform, qform only, rotated, .
     write_nifti(in_scratch("qs.nii.gz"), v, {true, true, false, true});
     reads_as(in_scratch("qs.nii.gz"), v, tol);
   }
+  SECTION("as nibabel writes it (scaling NaN, an aligned sform); 3D data with dim[0] 4 and one time point") {
+    const Volume v = rotated(kIntegerTypes[3]);
+    NiftiOptions nib{true, false};
+    nib.nibabel = true;
+    write_nifti(in_scratch("nib.nii.gz"), v, nib);
+    reads_as(in_scratch("nib.nii.gz"), v, tol);
+    NiftiOptions t;
+    t.time_axis = true;
+    write_nifti(in_scratch("t4.nii"), v, t);
+    reads_as(in_scratch("t4.nii"), v, tol);
+  }
   SECTION("a .nii.gz beside a .nii of the same name (niftilib would take the .nii's voxels)") {
     const Volume gz = rotated(kIntegerTypes[2]);
     Volume other = gz;
