@@ -140,7 +140,21 @@ OUT=swapped.txt expect 3 meshinfo swapped.off --image two-wc.nrrd || fail "the s
 cp err.txt swapped.err
 grep -q "DOES NOT MATCH" swapped.txt || fail "swapped: no mismatch line"
 grep -q "euler differs" swapped.txt || fail "swapped: no per-component verdict"
-grep -q "mesh component .: euler 2, its bdCA(X) component . has 0" swapped.err || fail "swapped: message $(cat swapped.err)"
+# The torus where the ball is: its hole's walls lie inside the ball, farther
+# than a voxel diagonal from its faces; the sphere lies on the torus's outer
+# faces with the wrong Euler characteristic.
+grep -q "first failure: placed" swapped.txt || fail "swapped: no first failure line"
+grep -q "not certified against bdCA(X) of two-wc.nrrd: placed: mesh component .: vertex [0-9]* at (.*) is farther than 1.732 (the place tolerance) from" swapped.err ||
+  fail "swapped: message $(cat swapped.err)"
+# Shifted by 5 voxels: refused at the default tolerance (one voxel
+# diagonal), accepted with --place-tolerance 6 (the components are 19 voxels
+# apart); the option needs --image and a positive distance.
+awk 'NR > 2 && NF == 3 { $1 = sprintf("%.17g", $1 + 5) } { print }' two.off > shifted.off
+expect 3 meshinfo shifted.off --image two-wc.nrrd || fail "shifted by 5 voxels"
+grep -q ": placed: " err.txt || fail "shifted: $(cat err.txt)"
+expect 0 meshinfo shifted.off --image two-wc.nrrd --place-tolerance 6 || fail "shifted, --place-tolerance 6"
+expect 2 meshinfo shifted.off --place-tolerance 6
+expect 2 meshinfo shifted.off --image two-wc.nrrd --place-tolerance 0
 }
 
 # 2D: a disk around x = 16 and an annulus around x = 47 in a 64 x 32 NRRD

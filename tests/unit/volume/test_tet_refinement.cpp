@@ -123,7 +123,9 @@ void check_tets(const ImplicitSurface& s, const TetRefinementResult& r, double r
   const VoxelBoundary vb = voxel_boundary(s.samples());
   const MeshTopology expected = mesh_topology(vb);
   CHECK(t.sorted_euler() == expected.sorted_euler());
-  CHECK(match_components(t, m.points, s.samples(), vb, expected).matches());
+  const SurfaceCertificate cert = certify_surface(m.points, b, s.samples(), vb, expected);
+  INFO(cert.failure());
+  CHECK(cert.ok());
   auto sorted_b = b, sorted_r = m.triangles;
   std::sort(sorted_b.begin(), sorted_b.end());
   std::sort(sorted_r.begin(), sorted_r.end());
