@@ -272,10 +272,7 @@ Json ComponentCorrespondence::to_json() const {
     Json o = Json::object();
     if (planar) o["label"] = b.label;
     o["euler"] = b.euler;
-    if (!planar) {
-      o["volume_voxels"] = b.volume;
-      if (b.verdict == "uncovered") o["far_corner_distance"] = b.distance;
-    }
+    if (!planar) o["volume_voxels"] = b.volume;
     o["matched_by"] = b.matched_by;
     o["verdict"] = b.verdict;
     bs.push_back(o);
@@ -357,16 +354,11 @@ std::string ComponentCorrespondence::failed_guarantee(const std::vector<std::str
     if (!wanted(b.verdict)) continue;
     if (b.verdict == "unmatched")
       add(name + " (euler " + std::to_string(b.euler) + (planar ? "): no mesh region" : "): no mesh component"));
-    else if (b.verdict == "matched twice")
-    {
+    else if (b.verdict == "matched twice") {
       std::string who;
       for (int m : b.matched_by) who += (who.empty() ? "" : ", ") + std::to_string(m);
       add(name + (planar ? ": matched by mesh regions " : ": matched by mesh components ") + who);
     }
-    else if (b.verdict == "uncovered")
-      add(name + ": its corner at " + point_text(b.far_point) + " is " + number_text(b.distance) + " from mesh component " +
-          std::to_string(b.matched_by.at(0)) + ", farther than " + number_text(2 * tolerance) +
-          " (twice the place tolerance)");
   }
   if (failures > kNamed) s += "; and " + std::to_string(failures - kNamed) + " more";
   return s;

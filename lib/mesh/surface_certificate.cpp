@@ -8,10 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <memory>
-#include <utility>
 
 namespace imgmesh {
 
@@ -127,80 +125,8 @@ void check_nesting(C& c) {
   }
 }
 
-// The mesh's vertices by cell of a grid of side h (world): the vertices of
-// a cell are within h sqrt 3 of each other.
-class VertexCells {
-public:
-  VertexCells(const std::vector<Vec3>& points, const std::vector<int>& component_of, double h) : h_(h) {
-    for (std::size_t v = 0; v < points.size(); ++v) {
-      std::uint64_t k;
-      if (component_of[v] >= 0 && key(points[v], 0, 0, 0, k)) cells_.push_back({k, std::uint32_t(v)});
-    }
-    std::sort(cells_.begin(), cells_.end());
-  }
-  // f(vertex) for the vertices in the cell of p moved by (dx, dy, dz) cells;
-  // stops when f returns true, and says whether it did.
-  template <class F> bool any(const Vec3& p, int dx, int dy, int dz, F f) const {
-    std::uint64_t k;
-    if (!key(p, dx, dy, dz, k)) return false;
-    for (auto it = std::lower_bound(cells_.begin(), cells_.end(), std::make_pair(k, std::uint32_t(0)));
-         it != cells_.end() && it->first == k; ++it)
-      if (f(it->second)) return true;
-    return false;
-  }
-
-private:
-  bool key(const Vec3& p, int dx, int dy, int dz, std::uint64_t& k) const {
-    constexpr double kHalf = 1 << 20;  // 21 bits a coordinate; farther cells have no fast path
-    const int d[3] = {dx, dy, dz};
-    k = 0;
-    for (int a = 0; a < 3; ++a) {
-      const double c = std::floor(p[std::size_t(a)] / h_) + d[a];
-      if (!(std::abs(c) < kHalf - 2)) return false;
-      k = (k << 21) | std::uint64_t(c + kHalf);
-    }
-    return true;
-  }
-  double h_;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;
-};
-
-// Every corner of a matched bdCA(X) component within twice the place
-// tolerance T of its mesh component: first a vertex of it in the corner's
-// cell (side T / sqrt 3) or a neighbouring one, else the exact distance to
-// its triangles (SurfaceGeometry's AABB tree, built only then).
-void check_coverage(C& c, const std::vector<Vec3>& points, const SurfaceGeometry& g, const Geometry& grid,
-                    const VoxelBoundary& b, const MeshTopology& bt) {
-  auto& r = c.correspondence;
-  const double T = 2 * r.tolerance;
-  const VertexCells cells(points, c.topology.component_of, T / std::sqrt(3.0));
-  for (std::size_t v = 0; v < b.lattice_ids.size(); ++v) {
-    const int k = bt.component_of[v];
-    if (k < 0) continue;
-    auto& bs = r.boundary[std::size_t(k)];
-    if (bs.matched_by.size() != 1) continue;
-    const int m = bs.matched_by[0];
-    const Vec3 p = corner_position(grid, b, v);
-    const auto near = [&](std::uint32_t u) {
-      if (c.topology.component_of[u] != m) return false;
-      const Vec3& q = points[u];
-      return (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]) <= T * T;
-    };
-    if (cells.any(p, 0, 0, 0, near)) continue;
-    bool found = false;
-    for (int dz = -1; dz <= 1 && !found; ++dz)
-      for (int dy = -1; dy <= 1 && !found; ++dy)
-        for (int dx = -1; dx <= 1 && !found; ++dx) found = cells.any(p, dx, dy, dz, near);
-    if (found) continue;
-    const double d = g.distance(p, m);
-    if (d > T && d > bs.distance) bs.distance = d, bs.far_corner = v, bs.far_point = p;
-  }
-  for (auto& bs : r.boundary)
-    if (bs.verdict == "ok" && bs.distance > T) bs.verdict = "uncovered";
-}
-
-// placed, matched, covered and topology from the verdicts; per component ok.
-void settle(C& c, bool geometry) {
+// placed, matched and topology from the verdicts; per component ok.
+void settle(C& c) {
   const auto& r = c.correspondence;
   auto any = [&](std::initializer_list<const char*> mesh, std::initializer_list<const char*> image) {
     for (const auto& m : r.mesh)
@@ -212,7 +138,6 @@ void settle(C& c, bool geometry) {
   set(c, C::kPlaced, !any({"unplaced"}, {}), r.failed_guarantee({"unplaced"}));
   set(c, C::kMatched, !any({"tie", "matched twice", "nesting differs"}, {"unmatched", "matched twice"}),
       r.failed_guarantee({"tie", "nesting differs", "unmatched", "matched twice"}));
-  if (geometry) set(c, C::kCovered, !any({}, {"uncovered"}), r.failed_guarantee({"uncovered"}));
   bool same = true;
   for (const auto& m : r.mesh) same = same && (m.boundary < 0 || m.euler == r.boundary[std::size_t(m.boundary)].euler);
   set(c, C::kTopology, same, r.failed_guarantee({"euler differs"}));
@@ -224,8 +149,6 @@ void settle(C& c, bool geometry) {
     const bool outward = c.volume.empty() || (c.depth[m] % 2 == 0 ? c.volume[m] > 0 : c.volume[m] < 0);
     c.component_ok[m] = k.closed && k.manifold && k.oriented && outward && r.mesh[m].verdict == "ok";
   }
-  for (const auto& b : r.boundary)
-    if (b.verdict == "uncovered") c.component_ok[std::size_t(b.matched_by[0])] = 0;
 }
 
 } // namespace
@@ -236,7 +159,7 @@ double default_place_tolerance(const Geometry& grid) {
 
 const char* SurfaceCertificate::name(int check) {
   static const char* const names[kChecks] = {"closed", "manifold", "oriented", "intersections",
-                                             "placed", "matched", "covered", "topology"};
+                                             "placed", "matched", "topology"};
   return check >= 0 && check < kChecks ? names[check] : "none";
 }
 
@@ -295,9 +218,8 @@ SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::v
     check_outward(c, points, triangles, g);
     check_intersections(c, triangles, g, options.intersections_cap);
     check_nesting(c);
-    check_coverage(c, points, g, grid, boundary, bt);
   }
-  settle(c, geometry);
+  settle(c);
   return c;
 }
 

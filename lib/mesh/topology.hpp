@@ -133,15 +133,8 @@ struct ComponentCorrespondence {
     long long euler = 0;
     std::int32_t label = 0;       // planar: the pixel region's label
     std::vector<int> matched_by;  // mesh components
-    // 3D: signed volume in voxels (> 0 an outer surface, < 0 a cavity's);
-    // when uncovered, its farthest corner beyond twice the tolerance from its
-    // mesh component (a vertex of the VoxelBoundary), its place and distance
-    // (world; -1 when every corner is within).
-    long long volume = 0;
-    double distance = -1;
-    std::size_t far_corner = 0;
-    Vec3 far_point{0, 0, 0};
-    std::string verdict;          // "ok", "unmatched", "matched twice"; 3D also "uncovered" (certify_surface)
+    long long volume = 0;         // 3D: signed volume in voxels (> 0 an outer surface, < 0 a cavity's)
+    std::string verdict;          // "ok", "unmatched", "matched twice"
   };
   std::vector<MeshSide> mesh;          // as MeshTopology::components (planar: as mesh_regions)
   std::vector<BoundarySide> boundary;  // as bdCA(X)'s components (planar: as PixelRegions)
