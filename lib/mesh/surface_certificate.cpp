@@ -208,6 +208,11 @@ SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::v
   c.state.fill(-1);
   const double tol = options.place_tolerance > 0 ? options.place_tolerance : default_place_tolerance(grid);
   c.topology = mesh_topology(points.size(), triangles);
+  // CGAL's boxes and predicates need numbers (the readers refuse NaN already).
+  for (std::size_t v = 0; v < points.size(); ++v)
+    if (c.topology.component_of[v] >= 0 &&
+        !(std::isfinite(points[v][0]) && std::isfinite(points[v][1]) && std::isfinite(points[v][2])))
+      throw Error("vertex " + std::to_string(v) + " has a coordinate that is not a finite number");
   check_combinatorics(c);
   c.correspondence = match_components(c.topology, points, grid, boundary, bt, tol);
   const bool geometry = c.state[C::kClosed] == 1 && c.state[C::kManifold] == 1 && c.state[C::kOriented] == 1;

@@ -71,7 +71,8 @@ struct SurfaceCertificate {
 // points and triangles: the surface in the world coordinates of `grid`,
 // whose voxel corners are the lattice of `boundary` (its faces are read; its
 // quads may have been dropped); boundary_topology = mesh_topology(boundary).
-// Throws Error on a triangle with an id out of range or a repeated corner.
+// Throws Error on a triangle with an id out of range or a repeated corner,
+// and on a vertex of a triangle with a coordinate that is not finite.
 SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                                    const Geometry& grid, const VoxelBoundary& boundary,
                                    const MeshTopology& boundary_topology, const CertificateOptions& options = {});

@@ -6,8 +6,11 @@
 // check it breaks; random images and edits with fixed seeds.
 #include "meshinfo/meshinfo.hpp"
 #include "surfaces.hpp"
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
 
 using namespace imgmesh;
 using namespace imgmesh::test;
@@ -456,4 +459,12 @@ TEST_CASE("meshinfo --image: voxel centres on the wrong side of the mesh (issue 
   Surface open = marching_tetrahedra(ball());
   open.tris.pop_back();
   CHECK_FALSE(mesh_info(poly(open), "m.off", &ball(), "x.nrrd").report.at("image").contains("voxel_sides"));
+}
+
+TEST_CASE("certificate: a vertex that is not a number is an error, not a verdict", "[certificate]") {
+  Surface s = ball_sphere(ball(), 7);
+  s.points[3][1] = std::nan("");
+  CHECK_THROWS_AS(certify(s, ball()), Error);
+  s.points[3][1] = std::numeric_limits<double>::infinity();
+  CHECK_THROWS_AS(certify(s, ball()), Error);
 }
