@@ -274,11 +274,13 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
   const std::size_t count = o.info.geometry.count();
   const std::size_t c = o.io->GetNumberOfComponents();
   check_nifti_complete(path, o.io->GetFileName(), o.io->GetImageSizeInBytes());
-  std::vector<char> raw(o.io->GetImageSizeInBytes());
+  // Not zero-filled first: ITK writes every byte (a whole scan is read for
+  // one small label).
+  const std::unique_ptr<char[]> raw(new char[o.io->GetImageSizeInBytes()]);
   {
     const CerrCapture said;
     try {
-      o.io->Read(raw.data());
+      o.io->Read(raw.get());
     } catch (const itk::ExceptionObject& e) {
       throw said.error(e, path);
     }
@@ -286,7 +288,7 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
   }
   auto convert = [&](auto tag) {
     using T = decltype(tag);
-    const T* p = reinterpret_cast<const T*>(raw.data());
+    const T* p = reinterpret_cast<const T*>(raw.get());
     for (std::size_t i = 0; i < count; ++i) {
       const T* px = p + i * c;
       if (c > 1 && (px[0] != px[1] || px[0] != px[2]))
@@ -388,6 +390,17 @@ template <class Values> std::string labels_present(const Values& values) {
   return out.str();
 }
 
+// The string fields of ITK's metadata dictionary: a NRRD's key:=value pairs.
+std::map<std::string, std::string> key_fields(const Opened& o) {
+  std::map<std::string, std::string> fields;
+  const auto& dict = o.io->GetMetaDataDictionary();
+  for (const auto& key : dict.GetKeys()) {
+    std::string value;
+    if (itk::ExposeMetaData<std::string>(dict, key, value)) fields[key] = value;
+  }
+  return fields;
+}
+
 [[noreturn]] void absent_label(long long label, const std::string& labels, const std::string& path) {
   throw Error("label " + std::to_string(label) + " does not occur in the image (" + labels + ")", path);
 }
@@ -399,7 +412,7 @@ ImageInfo read_image_info(const std::string& path) {
   return open_image(path, spool.file()).info;
 }
 
-BinaryImage read_foreground(const std::string& path, const Selection& sel) {
+BinaryImage read_foreground(const std::string& path, const Selection& sel, std::map<std::string, std::string>* fields) {
   Spool spool(path);
   Opened o = open_image(path, spool.file());
   if (!sel.labels.empty() && sel.has_threshold)
@@ -411,12 +424,22 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel) {
   BinaryImage out(o.info.geometry, 0);
   std::size_t count = 0;
   if (!sel.labels.empty()) {
-    std::set<double> wanted(sel.labels.begin(), sel.labels.end()), seen;
+    // Sorted, and a flag each: a voxel costs a comparison or two, not a
+    // set lookup (a whole scan is read for one small label).
+    std::vector<double> wanted(sel.labels.begin(), sel.labels.end());
+    std::sort(wanted.begin(), wanted.end());
+    wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+    std::vector<char> seen(wanted.size(), 0);
     visit_values(path, o, [&](std::size_t i, double v) {
-      if (wanted.count(v)) { out.data[i] = 1; seen.insert(v); ++count; }
+      if (v < wanted.front() || v > wanted.back()) return;
+      const auto it = std::lower_bound(wanted.begin(), wanted.end(), v);
+      if (it == wanted.end() || *it != v) return;
+      out.data[i] = 1;
+      seen[std::size_t(it - wanted.begin())] = 1;
+      ++count;
     });
     for (long long l : sel.labels) {
-      if (seen.count(double(l))) continue;
+      if (seen[std::size_t(std::lower_bound(wanted.begin(), wanted.end(), double(l)) - wanted.begin())]) continue;
       std::set<long long> present;  // a second pass: only on this error
       visit_values(path, o, [&](std::size_t, double v) { present.insert((long long)v); });
       absent_label(l, labels_present(present), path);
@@ -431,6 +454,7 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel) {
     });
   }
   if (count == 0) throw Error("the foreground is empty (check --label/--threshold)", path);
+  if (fields) *fields = key_fields(o);
   return out;
 }
 
@@ -470,18 +494,13 @@ FloatImage read_float(const std::string& path, std::map<std::string, std::string
   Opened o = open_image(path, spool.file());
   FloatImage out(o.info.geometry, 0.f);
   visit_values(path, o, [&](std::size_t i, double v) { out.data[i] = float(v); });
-  if (fields) {
-    fields->clear();
-    const auto& dict = o.io->GetMetaDataDictionary();
-    for (const auto& key : dict.GetKeys()) {
-      std::string value;
-      if (itk::ExposeMetaData<std::string>(dict, key, value)) (*fields)[key] = value;
-    }
-  }
+  if (fields) *fields = key_fields(o);
   return out;
 }
 
-void write_image(const std::string& path, const BinaryImage& img) { write_any(path, img, {}); }
+void write_image(const std::string& path, const BinaryImage& img, const std::map<std::string, std::string>& fields) {
+  write_any(path, img, fields);
+}
 
 void write_image(const std::string& path, const FloatImage& img, const std::map<std::string, std::string>& fields) {
   write_any(path, img, fields);
