@@ -259,7 +259,7 @@ Opened open_image(const std::string& path, const std::string& file) {
   }
 }
 
-// Calls f(i, value) for every voxel i, value as double (exact for every
+// Calls f(i, value) for every voxel i in order, value as double (exact for every
 // integer type up to 2^53), straight from ITK's buffer: no per-voxel copy
 // wider than the file's own type. Grey images stored as RGB(A) or palette
 // PNG (R = G = B) read as their grey value; real colour is refused.
@@ -421,22 +421,28 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel, std::
     throw UsageError("--label needs an integer image, this one holds " + o.info.component +
                          " values (use --threshold)",
                      path);
-  BinaryImage out(o.info.geometry, 0);
+  // Filled in voxel order (visit_values' order), not zero-filled first: a
+  // whole scan is read for one small label.
+  BinaryImage out;
+  static_cast<Geometry&>(out) = o.info.geometry;
+  out.data.reserve(out.count());
   std::size_t count = 0;
+  auto put = [&](bool in) {
+    out.data.push_back(in);
+    count += in;
+  };
   if (!sel.labels.empty()) {
     // Sorted, and a flag each: a voxel costs a comparison or two, not a
-    // set lookup (a whole scan is read for one small label).
+    // set lookup.
     std::vector<double> wanted(sel.labels.begin(), sel.labels.end());
     std::sort(wanted.begin(), wanted.end());
     wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
     std::vector<char> seen(wanted.size(), 0);
-    visit_values(path, o, [&](std::size_t i, double v) {
-      if (v < wanted.front() || v > wanted.back()) return;
-      const auto it = std::lower_bound(wanted.begin(), wanted.end(), v);
-      if (it == wanted.end() || *it != v) return;
-      out.data[i] = 1;
-      seen[std::size_t(it - wanted.begin())] = 1;
-      ++count;
+    visit_values(path, o, [&](std::size_t, double v) {
+      const auto it = v < wanted.front() || v > wanted.back() ? wanted.end() : std::lower_bound(wanted.begin(), wanted.end(), v);
+      const bool in = it != wanted.end() && *it == v;
+      if (in) seen[std::size_t(it - wanted.begin())] = 1;
+      put(in);
     });
     for (long long l : sel.labels) {
       if (seen[std::size_t(std::lower_bound(wanted.begin(), wanted.end(), double(l)) - wanted.begin())]) continue;
@@ -445,13 +451,9 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel, std::
       absent_label(l, labels_present(present), path);
     }
   } else if (sel.has_threshold) {
-    visit_values(path, o, [&](std::size_t i, double v) {
-      if (v >= sel.threshold) { out.data[i] = 1; ++count; }
-    });
+    visit_values(path, o, [&](std::size_t, double v) { put(v >= sel.threshold); });
   } else {
-    visit_values(path, o, [&](std::size_t i, double v) {
-      if (v != 0) { out.data[i] = 1; ++count; }
-    });
+    visit_values(path, o, [&](std::size_t, double v) { put(v != 0); });
   }
   if (count == 0) throw Error("the foreground is empty (check --label/--threshold)", path);
   if (fields) *fields = key_fields(o);
