@@ -264,7 +264,11 @@ WellComposedCrop well_composed_crop(const Geometry& scan, const VoxelBox& box, c
 
 PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, Vec3 d, float clamp,
                                   const SampleGrid::SliceReader& next_slice, bool* placed) {
-  bool in_scan = frame.present() && std::isfinite(clamp);
+  // A scan beyond 2^31 voxels would cost the crop more than its box (the
+  // block table and the mesher's cube bits cover the scan: 3/16 byte a
+  // voxel): the crop alone then.
+  bool in_scan = frame.present() && std::isfinite(clamp) &&
+                 frame.size[0] * frame.size[1] * frame.size[2] <= (std::size_t(1) << 31);
   if (in_scan) {
     const std::array<std::size_t, 3> m = crop_margin(crop.spacing, clamp);
     for (int a = 0; a < 3; ++a) {

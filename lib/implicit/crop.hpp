@@ -98,10 +98,10 @@ WellComposedCrop well_composed_crop(const Geometry& scan, const VoxelBox& box, c
                                     const WellComposedOptions& options);
 
 // f on g's samples clamped at T (infinite: not clamped), placed back in the
-// scan's grid when the frame is present and its foreground's box keeps
-// crop_margin(spacing, T) from every side of the crop inside the scan (the
-// scan's samples then, only the crop's stored: *placed = true); else on the
-// crop's own grid. The samples come a z-slice of the crop at a time (see
+// scan's grid when the frame is present, the scan has at most 2^31 voxels
+// and the frame's foreground box keeps crop_margin(spacing, T) from every
+// side of the crop inside the scan (the scan's samples then, only the
+// crop's stored: *placed = true); else on the crop's own grid. The samples come a z-slice of the crop at a time (see
 // PartitionOfUnity::streamed; d as there); Error when a negative one lies
 // outside the frame's foreground box.
 PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, Vec3 d, float clamp,

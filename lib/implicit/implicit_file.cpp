@@ -2,6 +2,7 @@
 #include "implicit/implicit_file.hpp"
 #include "image/nrrd_float.hpp"
 #include "util/cpu_time.hpp"
+#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/well_composed.hpp"
 
@@ -14,6 +15,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 
 namespace imgmesh {
@@ -102,15 +104,13 @@ Json ImplicitReport::to_json() const {
 
 PartitionOfUnity read_implicit(const std::string& path, const std::function<float(const Geometry&)>& clamp,
                                ScanFrame* frame_out, bool* placed) {
-  // Read without ITK (image/nrrd_float.hpp), as it streams; "-" is standard input.
-  std::ifstream file;
-  if (path == "-") {
-    if (std::cin.peek() == std::char_traits<char>::eof()) throw Error("standard input is empty", "-");
-  } else {
-    file.open(path, std::ios::binary);
-    if (!file) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
-  }
-  std::istream& data = path == "-" ? std::cin : file;
+  // Read without ITK (image/nrrd_float.hpp), as it streams; "-" is standard
+  // input, spooled to a file first so that its header is checked against
+  // its data before anything is allocated.
+  std::unique_ptr<StdinSpool> spool;
+  if (path == "-") spool = std::make_unique<StdinSpool>();
+  std::ifstream data(spool ? spool->path() : path, std::ios::binary);
+  if (!data) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
   const NrrdHeader header = read_nrrd_header(data, path);
   const std::map<std::string, std::string>& fields = header.keys;
   auto it = fields.find("imgmesh_kind");
