@@ -1,11 +1,14 @@
 // img2wc: make a 2D or 3D binary image well-composed (thesis chapter 5).
 #include "cli/cli.hpp"
 #include "image/io.hpp"
+#include "implicit/crop.hpp"
 #include "shared_options.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/well_composed.hpp"
 
+#include <algorithm>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 using namespace imgmesh;
@@ -25,6 +28,11 @@ int main(int argc, char** argv) {
   label->type_name("L")->allow_extra_args(false);
   auto* thr = tool.app.add_option("--threshold", sel.threshold, "Foreground is value >= T")->type_name("T");
   thr->excludes(label);
+  bool full_grid = false;
+  tool.app.add_flag("--full-grid", full_grid,
+                    "With --label: write the whole grid, not the label's box plus the background margin the next "
+                    "stages need (the same meshes either way)")
+      ->needs(label);
   add_repair_mode_option(tool, opt.mode,
                          "add: only background becomes foreground (the thesis); remove: the dual; "
                          "min: both, keep the one changing fewer voxels");
@@ -59,19 +67,38 @@ int main(int argc, char** argv) {
     opt.greedy = !thesis_rules;
     opt.repair = !skip_repair;
     tool.report_progress("repairing " + std::to_string(img.count()) + " voxels");
-    const WellComposedResult res = make_well_composed(img, opt);
+    // A label: its box plus the margin, placed in the scan by its frame.
+    const bool crop = !sel.labels.empty() && !full_grid && img.dimension == 3;
+    ScanFrame frame;
+    WellComposedResult res;
+    if (crop) {
+      WellComposedCrop c = well_composed_crop(
+          img, foreground_box(img),
+          [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
+            std::copy_n(&img(x0, y, z), n, row);
+          },
+          opt);
+      res = std::move(c.result);
+      frame = c.frame;
+    } else {
+      res = make_well_composed(img, opt);
+    }
     std::vector<std::uint8_t>().swap(img.data);  // the input is no longer needed: less memory while writing
 
     if (res.padded_before != std::array<std::size_t, 3>{0, 0, 0} ||
         res.padded_after != std::array<std::size_t, 3>{0, 0, 0}) {
+      const std::array<std::size_t, 3>& grown = crop ? frame.size : res.image.size;
       std::ostringstream msg;
-      msg << "foreground touches the image border: grid grown to " << res.image.size[0] << "x"
-          << res.image.size[1];
-      if (res.image.dimension == 3) msg << "x" << res.image.size[2];
+      msg << "foreground touches the image border: grid grown to " << grown[0] << "x" << grown[1];
+      if (res.image.dimension == 3) msg << "x" << grown[2];
       msg << " (one background voxel added on those sides; origin moved, world coordinates unchanged)";
       tool.info(msg.str());
     }
-    write_image(out, res.image);
+    if (crop) {
+      tool.stats["scan_size"] = std::vector<std::size_t>{frame.size[0], frame.size[1], frame.size[2]};
+      tool.stats["crop_index"] = std::vector<std::ptrdiff_t>{frame.index[0], frame.index[1], frame.index[2]};
+    }
+    write_image(out, res.image, crop ? frame.keys() : std::map<std::string, std::string>{});
     tool.debug("C1 " + std::to_string(res.input.c1) + ", C2 " + std::to_string(res.input.c2) + ", changed " +
                std::to_string(res.changed) + ", created " + std::to_string(res.created));
     return tool.finish(res);

@@ -7,6 +7,7 @@
 #include "util/path.hpp"
 
 #include <chrono>
+#include <map>
 #include <string>
 
 using namespace imgmesh;
@@ -24,19 +25,28 @@ int main(int argc, char** argv) {
     if (out != "-" && extension_of(out) != ".nrrd")
       throw UsageError("the implicit function file is NRRD: give OUT a .nrrd extension (or - for stdout)", out);
     auto t0 = std::chrono::steady_clock::now();
-    const BinaryImage im = read_foreground(in, Selection{});
+    std::map<std::string, std::string> fields;
+    const BinaryImage im = read_foreground(in, Selection{}, &fields);
+    // img2wc --label's crop: where it lies in its scan travels on.
+    ScanFrame frame = ScanFrame::from_keys(fields, im, in);
     const double read_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     tool.report_progress("signed distance and weights");
     ImplicitReport rep;
     const PartitionOfUnity f =
         naming_input(in, [&] { return implicit_from_well_composed(im, &rep, unsigned(tool.threads())); });
+    if (frame.present()) frame.foreground = foreground_box(im);
     if (rep.padded_before != std::array<std::size_t, 3>{0, 0, 0} ||
-        rep.padded_after != std::array<std::size_t, 3>{0, 0, 0})
+        rep.padded_after != std::array<std::size_t, 3>{0, 0, 0}) {
       tool.info("the foreground touches the image border: the grid grows by one background voxel there "
                 "(world coordinates unchanged) so that f^-1(0) is closed");
+      if (frame.present() && !frame.grow(rep.padded_before, rep.padded_after, im)) {
+        tool.info("the crop's foreground touches a side inside its scan: written without its scan frame");
+        frame = ScanFrame();
+      }
+    }
     tool.report_progress("writing");
     t0 = std::chrono::steady_clock::now();
-    write_implicit(out, f);
+    write_implicit(out, f, frame);
     tool.stats["input"] = in;
     tool.stats["output"] = out;
     tool.stats["read_seconds"] = read_s;

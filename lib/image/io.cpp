@@ -310,7 +310,7 @@ Opened open_image(const std::string& path, const std::string& file) {
   }
 }
 
-// Calls f(i, value) for every voxel i, value as double (exact for every
+// Calls f(i, value) for every voxel i in order, value as double (exact for every
 // integer type up to 2^53), straight from ITK's buffer: no per-voxel copy
 // wider than the file's own type. Grey images stored as RGB(A) or palette
 // PNG (R = G = B) read as their grey value; real colour is refused.
@@ -325,11 +325,13 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
   const std::size_t count = o.info.geometry.count();
   const std::size_t c = o.io->GetNumberOfComponents();
   check_nifti_complete(path, o.io->GetFileName(), o.io->GetImageSizeInBytes());
-  std::vector<char> raw(o.io->GetImageSizeInBytes());
+  // Not zero-filled first: ITK writes every byte (a whole scan is read for
+  // one small label).
+  const std::unique_ptr<char[]> raw(new char[o.io->GetImageSizeInBytes()]);
   {
     const CerrCapture said;
     try {
-      o.io->Read(raw.data());
+      o.io->Read(raw.get());
     } catch (const itk::ExceptionObject& e) {
       throw said.error(e, path);
     }
@@ -337,7 +339,7 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
   }
   auto convert = [&](auto tag) {
     using T = decltype(tag);
-    const T* p = reinterpret_cast<const T*>(raw.data());
+    const T* p = reinterpret_cast<const T*>(raw.get());
     for (std::size_t i = 0; i < count; ++i) {
       const T* px = p + i * c;
       if (c > 1 && (px[0] != px[1] || px[0] != px[2]))
@@ -450,7 +452,7 @@ ImageInfo read_image_info(const std::string& path) {
   return open_image(path, spool.file()).info;
 }
 
-BinaryImage read_foreground(const std::string& path, const Selection& sel) {
+BinaryImage read_foreground(const std::string& path, const Selection& sel, std::map<std::string, std::string>* fields) {
   Spool spool(path);
   Opened o = open_image(path, spool.file());
   if (!sel.labels.empty() && sel.has_threshold)
@@ -459,29 +461,42 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel) {
     throw UsageError("--label needs an integer image, this one holds " + o.info.component +
                          " values (use --threshold)",
                      path);
-  BinaryImage out(o.info.geometry, 0);
+  // Filled in voxel order (visit_values' order), not zero-filled first: a
+  // whole scan is read for one small label.
+  BinaryImage out;
+  static_cast<Geometry&>(out) = o.info.geometry;
+  out.data.reserve(out.count());
   std::size_t count = 0;
+  auto put = [&](bool in) {
+    out.data.push_back(in);
+    count += in;
+  };
   if (!sel.labels.empty()) {
-    std::set<double> wanted(sel.labels.begin(), sel.labels.end()), seen;
-    visit_values(path, o, [&](std::size_t i, double v) {
-      if (wanted.count(v)) { out.data[i] = 1; seen.insert(v); ++count; }
+    // Sorted, and a flag each: a voxel costs a comparison or two, not a
+    // set lookup.
+    std::vector<double> wanted(sel.labels.begin(), sel.labels.end());
+    std::sort(wanted.begin(), wanted.end());
+    wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+    std::vector<char> seen(wanted.size(), 0);
+    visit_values(path, o, [&](std::size_t, double v) {
+      const auto it = v < wanted.front() || v > wanted.back() ? wanted.end() : std::lower_bound(wanted.begin(), wanted.end(), v);
+      const bool in = it != wanted.end() && *it == v;
+      if (in) seen[std::size_t(it - wanted.begin())] = 1;
+      put(in);
     });
     for (long long l : sel.labels) {
-      if (seen.count(double(l))) continue;
+      if (seen[std::size_t(std::lower_bound(wanted.begin(), wanted.end(), double(l)) - wanted.begin())]) continue;
       std::set<long long> present;  // a second pass: only on this error
       visit_values(path, o, [&](std::size_t, double v) { present.insert((long long)v); });
       absent_label(l, labels_present(present), path);
     }
   } else if (sel.has_threshold) {
-    visit_values(path, o, [&](std::size_t i, double v) {
-      if (v >= sel.threshold) { out.data[i] = 1; ++count; }
-    });
+    visit_values(path, o, [&](std::size_t, double v) { put(v >= sel.threshold); });
   } else {
-    visit_values(path, o, [&](std::size_t i, double v) {
-      if (v != 0) { out.data[i] = 1; ++count; }
-    });
+    visit_values(path, o, [&](std::size_t, double v) { put(v != 0); });
   }
   if (count == 0) throw Error("the foreground is empty (check --label/--threshold)", path);
+  if (fields) *fields = string_fields(o.io->GetMetaDataDictionary());
   return out;
 }
 
@@ -526,7 +541,9 @@ FloatImage read_float(const std::string& path, std::map<std::string, std::string
   return out;
 }
 
-void write_image(const std::string& path, const BinaryImage& img) { write_any(path, img, {}); }
+void write_image(const std::string& path, const BinaryImage& img, const std::map<std::string, std::string>& fields) {
+  write_any(path, img, fields);
+}
 
 void write_image(const std::string& path, const FloatImage& img, const std::map<std::string, std::string>& fields) {
   write_any(path, img, fields);

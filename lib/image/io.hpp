@@ -33,8 +33,10 @@ ImageInfo read_image_info(const std::string& path);
 
 // Read a scalar 2D/3D image and select its foreground (0/1). Throws Error on
 // a label absent from the image, --label on a non-integer image, an empty
-// foreground, NaNs, or any unreadable input.
-BinaryImage read_foreground(const std::string& path, const Selection& sel);
+// foreground, NaNs, or any unreadable input. fields: its NRRD key/value
+// fields ("key:=value"; none in other formats).
+BinaryImage read_foreground(const std::string& path, const Selection& sel,
+                            std::map<std::string, std::string>* fields = nullptr);
 
 // Read an integer label image (2D or 3D) and, when `names` is given, the
 // names its file gives its labels (3D Slicer's segment names, empty when
@@ -52,7 +54,7 @@ FloatImage read_float(const std::string& path, std::map<std::string, std::string
 
 // Write; the format comes from the extension ("-": NRRD on stdout).
 // 2D images (dimension == 2) are written as 2D images.
-void write_image(const std::string& path, const BinaryImage& img);
+void write_image(const std::string& path, const BinaryImage& img, const std::map<std::string, std::string>& fields = {});
 void write_image(const std::string& path, const FloatImage& img,
                  const std::map<std::string, std::string>& fields = {});
 

@@ -79,7 +79,16 @@ NrrdHeader read_nrrd_header(std::istream& data, const std::string& path) {
   return h;
 }
 
-FloatImage read_nrrd_float_samples(const NrrdHeader& h, std::istream& data, const std::string& path) {
+// zlib's state and 64 KiB of packed input.
+struct NrrdFloatStream::Inflater {
+  z_stream zs{};
+  std::vector<char> packed = std::vector<char>(std::size_t(1) << 16);
+  bool ended = false;
+  ~Inflater() { inflateEnd(&zs); }
+};
+
+NrrdFloatStream::NrrdFloatStream(const NrrdHeader& h, std::istream& data, const std::string& path)
+    : data_(data), path_(path) {
   auto field = [&](const char* name) {
     const auto it = h.fields.find(name);
     return it == h.fields.end() ? std::string() : it->second;
@@ -91,7 +100,7 @@ FloatImage read_nrrd_float_samples(const NrrdHeader& h, std::istream& data, cons
     throw Error("cannot read the image: samples of type " + quoted(field("type")) + " (an implicit function file holds float)", path);
   if (field("dimension") != "3")
     throw Error("cannot read the image: dimension " + quoted(field("dimension")) + " (an implicit function file is 3D)", path);
-  FloatImage g;
+  Geometry& g = grid_;
   {
     std::istringstream in(field("sizes"));
     long long s[3];
@@ -145,70 +154,82 @@ FloatImage read_nrrd_float_samples(const NrrdHeader& h, std::istream& data, cons
   const bool little = *reinterpret_cast<unsigned char*>(&probe) == 1;
   if (endian != "little" && endian != "big")
     throw Error("cannot read the image: endian " + quoted(endian) + " (float samples need little or big, as NRRD says)", path);
-  const bool swap = (endian == "little") != little;
+  swap_ = (endian == "little") != little;
 
-  const std::size_t bytes = g.count() * sizeof(float);
+  total_ = g.count() * sizeof(float);
   const std::string encoding = field("encoding");
-  // What is left after the header bounds what the header may declare, before
-  // anything is allocated (deflate packs at most 1032 bytes into one).
-  const std::streampos start = data.tellg();
-  data.seekg(0, std::ios::end);
-  const std::size_t left = start < 0 ? 0 : std::size_t(data.tellg() - start);
-  data.seekg(start);
-  auto too_large = [&](const char* what) {
-    return Error("cannot read the image: the header declares " + std::to_string(bytes) + " bytes of samples, more than the " +
-                     std::to_string(left) + what + " after it can hold",
-                 path);
-  };
-  if (encoding == "raw") {
-    if (bytes > left) throw too_large(" bytes");
-    g.data.resize(g.count());
-    data.read(reinterpret_cast<char*>(g.data.data()), std::streamsize(bytes));
-    if (std::size_t(data.gcount()) != bytes) throw Error("cannot read the image: truncated data", path);
-  } else if (encoding == "gzip" || encoding == "gz") {
-    constexpr std::size_t deflate = 1032, slack = 4096;
-    if (bytes > (left + slack) * deflate) throw too_large(" compressed bytes");
-    std::string packed(left, '\0');
-    data.read(packed.data(), std::streamsize(left));
-    g.data.resize(g.count());
-    z_stream zs{};
-    if (inflateInit2(&zs, 32 + MAX_WBITS) != Z_OK) throw Error("cannot read the image: zlib cannot start", path);
-    zs.next_in = reinterpret_cast<Bytef*>(packed.data());
-    zs.avail_in = uInt(std::min<std::size_t>(packed.size(), 1u << 30));
-    std::size_t in = 0, out = 0;
-    int rc = Z_OK;
-    while (rc == Z_OK && out < bytes) {
-      const std::size_t room = std::min<std::size_t>(bytes - out, 1u << 30);
-      zs.next_out = reinterpret_cast<Bytef*>(g.data.data()) + out;
-      zs.avail_out = uInt(room);
-      const uInt had = zs.avail_in;
-      rc = inflate(&zs, Z_NO_FLUSH);
-      out += room - zs.avail_out;
-      in += had - zs.avail_in;
-      if (zs.avail_in == 0 && in < packed.size()) {
-        zs.next_in = reinterpret_cast<Bytef*>(packed.data()) + in;
-        zs.avail_in = uInt(std::min<std::size_t>(packed.size() - in, 1u << 30));
-      }
-    }
-    const std::string why = zs.msg ? zs.msg : "";
-    inflateEnd(&zs);
-    if (rc != Z_OK && rc != Z_STREAM_END && rc != Z_BUF_ERROR)
-      throw Error("cannot read the image: corrupt gzip data" + (why.empty() ? std::string() : " (" + why + ")"), path);
-    if (out != bytes)
-      throw Error("cannot read the image: truncated gzip data (expected " + std::to_string(bytes) + " bytes but received " +
-                      std::to_string(out) + ")",
-                  path);
-  } else {
+  const bool gzip = encoding == "gzip" || encoding == "gz";
+  if (encoding != "raw" && !gzip)
     throw Error("cannot read the image: encoding " + quoted(encoding) + " (an implicit function file is raw or gzip)", path);
+  // What is left after the header bounds what the header may declare, when
+  // the input can tell (a file; not a pipe), before anything is allocated
+  // (deflate packs at most 1032 bytes into one).
+  const std::streampos start = data.tellg();
+  if (start >= 0 && data.seekg(0, std::ios::end)) {
+    const std::streampos end = data.tellg();
+    data.seekg(start);
+    const std::size_t left = end < start ? 0 : std::size_t(end - start);
+    constexpr std::size_t deflate = 1032, slack = 4096;
+    if (gzip ? total_ > (left + slack) * deflate : total_ > left)
+      throw Error("cannot read the image: the header declares " + std::to_string(total_) + " bytes of samples, more than the " +
+                      std::to_string(left) + (gzip ? " compressed bytes" : " bytes") + " after it can hold",
+                  path);
   }
-  if (swap)
-    for (float& v : g.data) {
+  data.clear();
+  if (gzip) {
+    gzip_ = std::make_unique<Inflater>();
+    if (inflateInit2(&gzip_->zs, 32 + MAX_WBITS) != Z_OK) throw Error("cannot read the image: zlib cannot start", path);
+  }
+}
+
+NrrdFloatStream::~NrrdFloatStream() = default;
+
+void NrrdFloatStream::read(float* out, std::size_t n) {
+  const std::size_t bytes = n * sizeof(float);
+  if (bytes > total_ - done_) throw Error("internal: more samples asked for than the header declares", path_);
+  if (!gzip_) {
+    data_.read(reinterpret_cast<char*>(out), std::streamsize(bytes));
+    if (std::size_t(data_.gcount()) != bytes) throw Error("cannot read the image: truncated data", path_);
+  } else {
+    z_stream& zs = gzip_->zs;
+    std::size_t got = 0;
+    while (got < bytes) {
+      if (gzip_->ended) break;
+      if (zs.avail_in == 0) {
+        data_.read(gzip_->packed.data(), std::streamsize(gzip_->packed.size()));
+        zs.next_in = reinterpret_cast<Bytef*>(gzip_->packed.data());
+        zs.avail_in = uInt(data_.gcount());
+        if (zs.avail_in == 0) break;  // the input ended
+      }
+      const std::size_t room = std::min<std::size_t>(bytes - got, 1u << 30);
+      zs.next_out = reinterpret_cast<Bytef*>(out) + got;
+      zs.avail_out = uInt(room);
+      const int rc = inflate(&zs, Z_NO_FLUSH);
+      got += room - zs.avail_out;
+      if (rc == Z_STREAM_END) gzip_->ended = true;
+      else if (rc != Z_OK && rc != Z_BUF_ERROR)
+        throw Error("cannot read the image: corrupt gzip data" + (zs.msg ? " (" + std::string(zs.msg) + ")" : std::string()), path_);
+    }
+    if (got != bytes)
+      throw Error("cannot read the image: truncated gzip data (expected " + std::to_string(total_) + " bytes but received " +
+                      std::to_string(done_ + got) + ")",
+                  path_);
+  }
+  done_ += bytes;
+  if (swap_)
+    for (std::size_t i = 0; i < n; ++i) {
       unsigned char b[4];
-      std::memcpy(b, &v, 4);
+      std::memcpy(b, &out[i], 4);
       std::swap(b[0], b[3]);
       std::swap(b[1], b[2]);
-      std::memcpy(&v, b, 4);
+      std::memcpy(&out[i], b, 4);
     }
+}
+
+FloatImage read_nrrd_float_samples(const NrrdHeader& header, std::istream& data, const std::string& path) {
+  NrrdFloatStream in(header, data, path);
+  FloatImage g(in.geometry());
+  in.read(g.data.data(), g.data.size());
   return g;
 }
 

@@ -10,10 +10,16 @@
 // Blocks cost each evaluation of f about 7% more instructions (bunny,
 // callgrind), so by default they are used only where they save at least
 // kBlocksWorth bytes. Plain data, no ITK.
+//
+// The samples may come streamed, a z-slice at a time (the implicit function
+// file as it is read: never the dense grid when blocks are used), and may
+// cover only a box of the grid (a crop placed in the scan it was cut from):
+// every sample outside that box then reads +T.
 #pragma once
 #include "image/grid.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -27,10 +33,20 @@ public:
   static constexpr std::size_t kBlocksWorth = std::size_t(32) << 20;
   enum class Storage { automatic, dense, blocks };
 
+  // Fills `slice` with the next z-slice of the samples given (x fastest, then y).
+  using SliceReader = std::function<void(float* slice)>;
+
   SampleGrid() = default;
   // From the dense samples (3D, or an empty grid; freed once held). clamp > 0.
   explicit SampleGrid(FloatImage g, float clamp = std::numeric_limits<float>::infinity(),
                       Storage storage = Storage::automatic);
+  // Streamed: the samples of the box of `box_size` voxels from index `lo` of
+  // `grid`, its z-slices in order from next_slice (box_size[0] box_size[1]
+  // samples each), clamped as they come; every sample of the grid outside
+  // the box reads +clamp (the caller knows that g >= clamp there; clamp
+  // finite unless the box is the whole grid). clamp > 0.
+  SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
+             Storage storage, const SliceReader& next_slice);
 
   float operator()(std::size_t x, std::size_t y, std::size_t z) const {
     if (dense()) return dense_[std::size_t(long(x) + s1_ * long(y) + s2_ * long(z))];
@@ -74,6 +90,10 @@ public:
 
   const Geometry& geometry() const { return *this; }
   float clamp() const { return clamp_; }
+  // The box whose samples were given, inclusive corners: every sample
+  // outside it reads +clamp (loops over the grid may stop at it).
+  const Index3& box_lo() const { return box_lo_; }
+  const Index3& box_hi() const { return box_hi_; }
   // Blocks: how many, how many stored (dense: 0 and 0).
   std::size_t blocks() const { return table_.size(); }
   std::size_t stored_blocks() const { return pool_.empty() ? 0 : pool_.size() / kBlockSamples - 2; }
@@ -90,6 +110,11 @@ private:
   std::vector<std::uint32_t> table_;
   long nb_[3] = {0, 0, 0};
   float clamp_ = std::numeric_limits<float>::infinity();
+  Index3 box_lo_{0, 0, 0}, box_hi_{-1, -1, -1};
+
+  void stream_dense(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice);
+  void stream_blocks(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice);
+  void blocks_to_dense();
 };
 
 } // namespace imgmesh

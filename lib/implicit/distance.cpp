@@ -57,6 +57,10 @@ struct LineWork {
 
 // One pass on one line for the targets of class `cls` (1 foreground, 0
 // background). val: running squared distances; lab: the class of each voxel.
+// Positions enter only as differences of sites (integers, exact): the
+// breakpoint between parabolas q and j is kept as its offset from c_q, so a
+// line gives the same values, to the last bit, wherever it starts (a crop
+// of a grid gives the grid's samples).
 void pass_line(double* val, const std::uint8_t* lab, long n, double delta2, std::uint8_t cls,
                LineWork& w) {
   bool any_target = false;
@@ -70,37 +74,37 @@ void pass_line(double* val, const std::uint8_t* lab, long n, double delta2, std:
   };
   // Parabola heights in units of delta^2 at sites c_j = j - 1/2.
   for (long j = 0; j <= n; ++j) w.h[j] = std::min(site(j - 1), site(j)) / delta2;
+  // Envelope: parabolas v[0..k]; z[m] (m >= 1): where v[m] takes over from
+  // v[m - 1], as an offset from c_{v[m - 1]}; z[k + 1] = inf.
   long k = -1;
   for (long j = 0; j <= n; ++j) {
     if (!(w.h[j] < kInf)) continue;
-    const double cj = j - 0.5;
     if (k < 0) {
       k = 0;
       w.v[0] = j;
-      w.z[0] = -kInf;
       w.z[1] = kInf;
       continue;
     }
-    double s;
+    double t;
     for (;;) {
       const long q = w.v[k];
-      const double cq = q - 0.5;
-      s = ((w.h[j] + cj * cj) - (w.h[q] + cq * cq)) / (2 * (cj - cq));
-      if (s <= w.z[k]) --k;  // z[0] = -inf stops this at k = 0
+      const double step = double(j - q);
+      t = ((w.h[j] - w.h[q]) + step * step) / (2 * step);  // from c_q
+      if (k > 0 && double(q - w.v[k - 1]) + t <= w.z[k]) --k;
       else break;
     }
     ++k;
     w.v[k] = j;
-    w.z[k] = s;
+    w.z[k] = t;
     w.z[k + 1] = kInf;
   }
   if (k < 0) return;  // no site: everything stays inf
   long e = 0;
   for (long y = 0; y < n; ++y) {
     if (lab[y] != cls) continue;
-    while (w.z[e + 1] < y) ++e;
-    const double c = w.v[e] - 0.5;
-    const double env = (w.h[w.v[e]] + (y - c) * (y - c)) * delta2;
+    while (w.z[e + 1] < double(y - w.v[e]) + 0.5) ++e;
+    const double u = double(y - w.v[e]) + 0.5;  // y - c
+    const double env = (w.h[w.v[e]] + u * u) * delta2;
     val[y] = std::min(val[y], env);
   }
 }

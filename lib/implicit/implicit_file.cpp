@@ -2,6 +2,7 @@
 #include "implicit/implicit_file.hpp"
 #include "image/nrrd_float.hpp"
 #include "util/cpu_time.hpp"
+#include "util/atomic_file.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/well_composed.hpp"
 
@@ -14,6 +15,7 @@
 #include <iterator>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 
 namespace imgmesh {
@@ -100,18 +102,15 @@ Json ImplicitReport::to_json() const {
   return j;
 }
 
-PartitionOfUnity read_implicit(const std::string& path, const std::function<float(const Geometry&)>& clamp) {
-  // Read without ITK (image/nrrd_float.hpp); "-" is standard input.
-  std::ifstream file;
-  std::istringstream piped;
-  if (path == "-") {
-    piped.str(std::string(std::istreambuf_iterator<char>(std::cin), std::istreambuf_iterator<char>()));
-    if (piped.str().empty()) throw Error("standard input is empty", "-");
-  } else {
-    file.open(path, std::ios::binary);
-    if (!file) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
-  }
-  std::istream& data = path == "-" ? static_cast<std::istream&>(piped) : file;
+PartitionOfUnity read_implicit(const std::string& path, const std::function<float(const Geometry&)>& clamp,
+                               ScanFrame* frame_out, bool* placed) {
+  // Read without ITK (image/nrrd_float.hpp), as it streams; "-" is standard
+  // input, spooled to a file first so that its header is checked against
+  // its data before anything is allocated.
+  std::unique_ptr<StdinSpool> spool;
+  if (path == "-") spool = std::make_unique<StdinSpool>();
+  std::ifstream data(spool ? spool->path() : path, std::ios::binary);
+  if (!data) throw Error(std::string("cannot open: ") + std::strerror(errno), path);
   const NrrdHeader header = read_nrrd_header(data, path);
   const std::map<std::string, std::string>& fields = header.keys;
   auto it = fields.find("imgmesh_kind");
@@ -133,12 +132,18 @@ PartitionOfUnity read_implicit(const std::string& path, const std::function<floa
     for (double x : d)
       if (!(x > 0) || !std::isfinite(x)) throw Error("bad imgmesh_d field '" + it->second + "' (must be > 0)", path);
   }
-  FloatImage g = read_nrrd_float_samples(header, data, path);
+  NrrdFloatStream samples(header, data, path);
+  const Geometry& grid = samples.geometry();
+  const ScanFrame frame = ScanFrame::from_keys(fields, grid, path);
+  if (frame_out) *frame_out = frame;
+  const std::size_t slice = grid.size[0] * grid.size[1];
   try {
-    const float t = clamp ? clamp(g.geometry()) : std::numeric_limits<float>::infinity();
-    return PartitionOfUnity(std::move(g), d, 0, t);
+    const float t = clamp ? clamp(grid) : std::numeric_limits<float>::infinity();
+    return function_in_scan(grid, frame, d, t, [&](float* out) { samples.read(out, slice); }, placed);
+  } catch (const UsageError&) {
+    throw;
   } catch (const Error& e) {
-    throw Error(e.what(), path);
+    throw Error(e.what(), e.path().empty() ? path : e.path());
   }
 }
 

@@ -5,6 +5,7 @@
 // imgmesh_d:=d_0 d_1 d_2. Everything needed to evaluate f travels in it.
 #pragma once
 #include "image/grid.hpp"
+#include "implicit/crop.hpp"
 #include "implicit/partition_of_unity.hpp"
 #include "util/json.hpp"
 
@@ -53,11 +54,17 @@ inline constexpr const char* kImplicitVersion = "1";
 
 // Written through ITK (implicit_write.cpp, library imgmesh_implicit_write);
 // read without it (image/nrrd_float.hpp), so that the meshers load no ITK.
-void write_implicit(const std::string& path, const PartitionOfUnity& f);
+// A crop's file carries its scan frame (crop.hpp).
+void write_implicit(const std::string& path, const PartitionOfUnity& f, const ScanFrame& frame = {});
 // Rejects anything that is not a pu-implicit file of a known version with a
 // clear Error (wrong kind, missing or bad d, zero or NaN samples, 2D...).
 // clamp: given the file's grid, the clamp of g's samples (the meshers:
-// PartitionOfUnity::clamp_for); none: f itself.
-PartitionOfUnity read_implicit(const std::string& path, const std::function<float(const Geometry&)>& clamp = {});
+// PartitionOfUnity::clamp_for); none: f itself. The samples are read as
+// they stream (gzip too), into f's blocks: never the dense grid unless f
+// keeps it. A crop's f with a clamp is placed back in its scan's grid when
+// its margin allows (function_in_scan): *frame is the file's, *placed says
+// whether it was.
+PartitionOfUnity read_implicit(const std::string& path, const std::function<float(const Geometry&)>& clamp = {},
+                               ScanFrame* frame = nullptr, bool* placed = nullptr);
 
 } // namespace imgmesh

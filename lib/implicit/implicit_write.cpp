@@ -7,10 +7,12 @@
 
 namespace imgmesh {
 
-void write_implicit(const std::string& path, const PartitionOfUnity& f) {
+void write_implicit(const std::string& path, const PartitionOfUnity& f, const ScanFrame& frame) {
   char buf[128];
   std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g", f.d()[0], f.d()[1], f.d()[2]);
-  write_image(path, f.samples().to_image(), {{"imgmesh_kind", kImplicitKind}, {"imgmesh_version", kImplicitVersion}, {"imgmesh_d", buf}});
+  std::map<std::string, std::string> keys{{"imgmesh_kind", kImplicitKind}, {"imgmesh_version", kImplicitVersion}, {"imgmesh_d", buf}};
+  if (frame.present()) keys.merge(frame.keys());
+  write_image(path, f.samples().to_image(), keys);
 }
 
 } // namespace imgmesh

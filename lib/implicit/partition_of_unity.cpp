@@ -40,6 +40,23 @@
 // are "far", eta = 1 for the one cell index there) and that f_k is linear
 // along axis-parallel lines: both are per-axis facts. So with
 // d_i = min(delta_i / 5, g_min / (2 L_max)) every step goes through.
+//
+// Which cells bound d. Step (2) needs sum_i M_i d_i < |g(v)| for each vertex
+// v of each cell. g is 1-Lipschitz (a signed distance), so each edge
+// difference along axis i is at most delta_i and |d f_k / d x_i| is at most
+// 1.8^2 = 3.24 on C'_k (a bilinear extrapolation to -0.4 and 1.4 in two
+// unit coordinates): with d_i <= delta_i / 5, sum_i M_i d_i <=
+// 0.648 (delta_0 + delta_1 + delta_2) (float rounding: 1e-6 more), under
+// R = 0.65 (delta_0 + delta_1 + delta_2). A cell whose 8 vertices all have
+// |g| >= R therefore holds step (2) whatever its L_k, and only the cells
+// "near S" (a vertex with |g| < R) need L_k <= L_max. They all lie within
+// weight_margin voxels of the foreground's box (a vertex k voxels beyond
+// it along axis i is at least (k - 1/2) delta_i from bdCA(X)), so L_max is
+// taken over the cells of that grown box: d is then the same on every crop
+// of the grid that holds it (crop.hpp), and, the box holding nearly every
+// cell, as the thesis's whole-grid L_max on every image we have seen. A d
+// given with f (the file's) is checked against the cells near S alone,
+// what step (2) asks.
 #include "implicit/partition_of_unity.hpp"
 #include "implicit/parallel.hpp"
 #include "util/error.hpp"
@@ -82,64 +99,152 @@ double pu_eta(double u, double* deta) {
   return eta;
 }
 
+namespace {
+
+// L_k of the cell whose lowest sample is c (strides 1, s1, s2; inv: 1 /
+// spacing).
+double cell_lipschitz(const float* c, long s1, long s2, const double inv[3]) {
+  double F[2][2][2];  // F[a][b][c], a: x offset
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      for (int cz = 0; cz < 2; ++cz) F[a][b][cz] = c[a + b * s1 + cz * s2];
+  double m = 0;
+  // d u / d x_i is bilinear in the two other unit coordinates: its
+  // values at the vertices of C'_k (unit coordinates -0.4 and 1.4)
+  // are extrapolations of the four edge differences along axis i.
+  for (int axis = 0; axis < 3; ++axis) {
+    double e[2][2];
+    for (int p = 0; p < 2; ++p)
+      for (int q = 0; q < 2; ++q) {
+        if (axis == 0) e[p][q] = F[1][p][q] - F[0][p][q];
+        else if (axis == 1) e[p][q] = F[p][1][q] - F[p][0][q];
+        else e[p][q] = F[p][q][1] - F[p][q][0];
+      }
+    for (double t : {-0.4, 1.4})
+      for (double u : {-0.4, 1.4}) {
+        const double lo = (1 - u) * e[0][0] + u * e[0][1], hi = (1 - u) * e[1][0] + u * e[1][1];
+        m = std::max(m, std::fabs((1 - t) * lo + t * hi) * inv[axis]);
+      }
+  }
+  return std::sqrt(3.0) * m;
+}
+
+// A vertex of the cell has |g| < r.
+bool cell_near(const float* c, long s1, long s2, double r) {
+  for (int m = 0; m < 8; ++m)
+    if (std::fabs(c[(m & 1) + ((m >> 1) & 1) * s1 + ((m >> 2) & 1) * s2]) < r) return true;
+  return false;
+}
+
+Vec3 bound_of(const Vec3& spacing, double gm, double lm) {
+  Vec3 d;
+  for (int i = 0; i < 3; ++i) {
+    d[i] = spacing[i] / 5;
+    if (lm > 0) d[i] = std::min(d[i], gm / (2 * lm));
+  }
+  return d;
+}
+
+const char* const kBadSamples = "the samples of g must be finite and nonzero (g is a signed distance from voxel centres)";
+
+// g_min and the largest L_k of the cells near S, of g streamed a z-slice at
+// a time: the last two slices held, the cells between them measured as each
+// slice comes.
+class StreamedBound {
+public:
+  explicit StreamedBound(const Geometry& box)
+      : nx_(long(box.size[0])), ny_(long(box.size[1])), n_(std::size_t(nx_ * ny_)), two_(2 * n_),
+        inv_{1 / box.spacing[0], 1 / box.spacing[1], 1 / box.spacing[2]},
+        r_(PartitionOfUnity::near_radius(box.spacing)) {}
+  void add(const float* slice) {
+    for (std::size_t i = 0; i < n_; ++i) {
+      const float v = slice[i];
+      if (!std::isfinite(v) || v == 0) throw Error(kBadSamples);
+      g_min = std::min(g_min, double(std::fabs(v)));
+    }
+    float* cur = two_.data() + (z_ & 1) * n_;
+    std::copy_n(slice, n_, cur);
+    if (z_ > 0) {
+      const float* prev = two_.data() + ((z_ - 1) & 1) * n_;
+      const long s2 = long(cur - prev);
+      for (long y = 0; y + 1 < ny_; ++y)
+        for (long x = 0; x + 1 < nx_; ++x)
+          if (cell_near(prev + x + y * nx_, nx_, s2, r_))
+            l_near = std::max(l_near, cell_lipschitz(prev + x + y * nx_, nx_, s2, inv_));
+    }
+    ++z_;
+  }
+  double g_min = std::numeric_limits<double>::infinity(), l_near = 0;
+
+private:
+  long nx_, ny_;
+  std::size_t n_;
+  std::vector<float> two_;
+  double inv_[3], r_;
+  std::size_t z_ = 0;
+};
+
+} // namespace
+
+double PartitionOfUnity::near_radius(const Vec3& spacing) { return 0.65 * (spacing[0] + spacing[1] + spacing[2]); }
+
+std::array<std::size_t, 3> PartitionOfUnity::weight_margin(const Vec3& spacing) {
+  const double r = near_radius(spacing);
+  std::array<std::size_t, 3> m;
+  for (int i = 0; i < 3; ++i) m[i] = std::size_t(std::floor(r / spacing[i] + 0.5)) + 1;
+  return m;
+}
+
 Vec3 PartitionOfUnity::weight_constant(const FloatImage& g, double* g_min, double* l_max, unsigned threads) {
-  const long n0 = long(g.size[0]), n1 = long(g.size[1]), n2 = long(g.size[2]);
-  const long s1 = n0, s2 = n0 * n1;
+  const long n[3] = {long(g.size[0]), long(g.size[1]), long(g.size[2])};
+  const long s1 = n[0], s2 = n[0] * n[1];
   const float* v = g.data.data();
   const unsigned nt = implicit_detail::resolve_threads(threads);
-  std::vector<double> gmin(nt, std::numeric_limits<double>::infinity()), lmax(nt, 0.0);
   const double inv[3] = {1 / g.spacing[0], 1 / g.spacing[1], 1 / g.spacing[2]};
-  // Per slab of cells along z: min |g| over its voxels, max L_k over its cells.
-  implicit_detail::parallel_for(n2, nt, [&](long z0, long z1, unsigned t) {
-    double gm = gmin[t], lm = lmax[t];
+  // Per slab along z: min |g| and the foreground's (g < 0) box.
+  std::vector<double> gmin(nt, std::numeric_limits<double>::infinity()), lmax(nt, 0.0);
+  std::vector<std::array<long, 6>> box(nt, {n[0], n[1], n[2], -1, -1, -1});
+  implicit_detail::parallel_for(n[2], nt, [&](long z0, long z1, unsigned t) {
+    double gm = gmin[t];
+    std::array<long, 6>& b = box[t];
     for (long z = z0; z < z1; ++z)
-      for (long y = 0; y < n1; ++y)
-        for (long x = 0; x < n0; ++x) gm = std::min(gm, double(std::fabs(v[x + y * s1 + z * s2])));
-    for (long z = z0; z < std::min(z1, n2 - 1); ++z)
-      for (long y = 0; y + 1 < n1; ++y)
-        for (long x = 0; x + 1 < n0; ++x) {
-          const float* c = v + x + y * s1 + z * s2;
-          double F[2][2][2];  // F[a][b][c], a: x offset
-          for (int a = 0; a < 2; ++a)
-            for (int b = 0; b < 2; ++b)
-              for (int cz = 0; cz < 2; ++cz) F[a][b][cz] = c[a + b * s1 + cz * s2];
-          double m = 0;
-          // d u / d x_i is bilinear in the two other unit coordinates: its
-          // values at the vertices of C'_k (unit coordinates -0.4 and 1.4)
-          // are extrapolations of the four edge differences along axis i.
-          for (int axis = 0; axis < 3; ++axis) {
-            double e[2][2];
-            for (int p = 0; p < 2; ++p)
-              for (int q = 0; q < 2; ++q) {
-                if (axis == 0) e[p][q] = F[1][p][q] - F[0][p][q];
-                else if (axis == 1) e[p][q] = F[p][1][q] - F[p][0][q];
-                else e[p][q] = F[p][q][1] - F[p][q][0];
-              }
-            for (double s : {-0.4, 1.4})
-              for (double r : {-0.4, 1.4}) {
-                const double lo = (1 - r) * e[0][0] + r * e[0][1], hi = (1 - r) * e[1][0] + r * e[1][1];
-                m = std::max(m, std::fabs((1 - s) * lo + s * hi) * inv[axis]);
-              }
+      for (long y = 0; y < n[1]; ++y)
+        for (long x = 0; x < n[0]; ++x) {
+          const float w = v[x + y * s1 + z * s2];
+          gm = std::min(gm, double(std::fabs(w)));
+          if (w < 0) {
+            const long c[3] = {x, y, z};
+            for (int a = 0; a < 3; ++a) b[a] = std::min(b[a], c[a]), b[a + 3] = std::max(b[a + 3], c[a]);
           }
-          lm = std::max(lm, std::sqrt(3.0) * m);
         }
     gmin[t] = gm;
+  });
+  // The cells of that box grown by weight_margin (all of them when g has
+  // no foreground sample: then no cell is near S).
+  const std::array<std::size_t, 3> m = weight_margin(g.spacing);
+  long c0[3], c1[3];
+  for (int a = 0; a < 3; ++a) {
+    long lo = n[a], hi = -1;
+    for (const auto& b : box) lo = std::min(lo, b[a]), hi = std::max(hi, b[a + 3]);
+    if (hi < lo) lo = 0, hi = n[a] - 1;
+    c0[a] = std::max(0L, lo - long(m[a]));
+    c1[a] = std::min(n[a] - 2, hi + long(m[a]) - 1);
+  }
+  implicit_detail::parallel_for(std::max(0L, c1[2] - c0[2] + 1), nt, [&](long z0, long z1, unsigned t) {
+    double lm = lmax[t];
+    for (long z = c0[2] + z0; z < c0[2] + z1; ++z)
+      for (long y = c0[1]; y <= c1[1]; ++y)
+        for (long x = c0[0]; x <= c1[0]; ++x) lm = std::max(lm, cell_lipschitz(v + x + y * s1 + z * s2, s1, s2, inv));
     lmax[t] = lm;
   });
   const double gm = *std::min_element(gmin.begin(), gmin.end());
   const double lm = *std::max_element(lmax.begin(), lmax.end());
   if (g_min) *g_min = gm;
   if (l_max) *l_max = lm;
-  Vec3 d;
-  for (int i = 0; i < 3; ++i) {
-    d[i] = g.spacing[i] / 5;
-    if (lm > 0) d[i] = std::min(d[i], gm / (2 * lm));
-  }
-  return d;
+  return bound_of(g.spacing, gm, lm);
 }
 
-PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads, float clamp, SampleGrid::Storage storage)
-    : d_(d) {
+void PartitionOfUnity::check_grid(const Geometry& g) {
   if (g.dimension != 3) throw Error("the implicit function needs a 3D image");
   for (int i = 0; i < 3; ++i) {
     if (g.size[i] < 2)
@@ -148,12 +253,44 @@ PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads, float
     if (!(g.spacing[i] > 0) || !std::isfinite(g.spacing[i]))
       throw Error("voxel spacing must be positive and finite");
   }
-  if (g.data.size() != g.count()) throw Error("internal: sample data does not match the grid size");
   if (g.count() > (std::size_t(1) << 40)) throw Error("grid too large");
+}
+
+PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads, float clamp, SampleGrid::Storage storage)
+    : d_(d) {
+  check_grid(g);
+  if (g.data.size() != g.count()) throw Error("internal: sample data does not match the grid size");
   for (float x : g.data)
-    if (!std::isfinite(x) || x == 0)
-      throw Error("the samples of g must be finite and nonzero (g is a signed distance from voxel centres)");
+    if (!std::isfinite(x) || x == 0) throw Error(kBadSamples);
   const Vec3 bound = weight_constant(g, &g_min_, &l_max_, threads);
+  if (clamp < clamp_for(g, 0)) throw Error("internal: the samples' clamp is under the stencil's diameter");
+  g_ = SampleGrid(std::move(g), clamp, storage);
+  finish(bound);
+}
+
+PartitionOfUnity PartitionOfUnity::streamed(const Geometry& grid, const Index3& lo, const Geometry& box, Vec3 d,
+                                            float clamp, const SampleGrid::SliceReader& next_slice,
+                                            SampleGrid::Storage storage) {
+  check_grid(box);
+  check_grid(grid);
+  if (grid.spacing != box.spacing || grid.direction != box.direction)
+    throw Error("internal: a box placed in a grid of another spacing or direction");
+  if (clamp < clamp_for(box, 0)) throw Error("internal: the samples' clamp is under the stencil's diameter");
+  if (!(d[0] > 0 || d[1] > 0 || d[2] > 0)) throw Error("internal: a streamed f takes its d given");
+  PartitionOfUnity f;
+  f.d_ = d;
+  StreamedBound bound(box);
+  f.g_ = SampleGrid(grid, lo, box.size, clamp, storage, [&](float* slice) {
+    next_slice(slice);
+    bound.add(slice);
+  });
+  f.g_min_ = bound.g_min;
+  f.l_max_ = bound.l_near;
+  f.finish(bound_of(box.spacing, bound.g_min, bound.l_near));
+  return f;
+}
+
+void PartitionOfUnity::finish(const Vec3& bound) {
   const bool given = d_[0] > 0 || d_[1] > 0 || d_[2] > 0;
   if (!given) d_ = bound;
   for (int i = 0; i < 3; ++i) {
@@ -163,8 +300,6 @@ PartitionOfUnity::PartitionOfUnity(FloatImage g, Vec3 d, unsigned threads, float
       throw Error("the weight constant d (" + std::to_string(d_[i]) + " on axis " + std::to_string(i) +
                   ") exceeds min(delta/5, g_min/(2 L_max)) = " + std::to_string(bound[i]));
   }
-  if (clamp < clamp_for(g, 0)) throw Error("internal: the samples' clamp is under the stencil's diameter");
-  g_ = SampleGrid(std::move(g), clamp, storage);
   stride_[0] = 1;
   stride_[1] = long(g_.size[0]);
   stride_[2] = long(g_.size[0]) * long(g_.size[1]);

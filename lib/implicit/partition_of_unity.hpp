@@ -11,6 +11,8 @@
 #include "image/grid.hpp"
 #include "image/sample_grid.hpp"
 
+#include <array>
+#include <cstddef>
 #include <limits>
 
 namespace imgmesh {
@@ -28,6 +30,17 @@ public:
   explicit PartitionOfUnity(FloatImage g, Vec3 d = {0, 0, 0}, unsigned threads = 1,
                             float clamp = std::numeric_limits<float>::infinity(),
                             SampleGrid::Storage storage = SampleGrid::Storage::automatic);
+  // The same from g's samples streamed a z-slice at a time (the implicit
+  // function file as it is read, never whole): those of `box` placed from
+  // index lo in `grid` (box's spacing and direction), every sample of grid
+  // outside the box having g >= clamp (a crop's margin: crop_margin); box ==
+  // grid and lo = 0 for a whole grid. d is given (the file's); the
+  // constructor's checks, on the slices as they come, d's against the cells
+  // near S (what the thesis's argument needs: see weight_constant), whose
+  // largest L_k l_max() then gives.
+  static PartitionOfUnity streamed(const Geometry& grid, const Index3& lo, const Geometry& box, Vec3 d, float clamp,
+                                   const SampleGrid::SliceReader& next_slice,
+                                   SampleGrid::Storage storage = SampleGrid::Storage::automatic);
 
   // The clamp T for a mesher that compares |f| with bounds up to 2 e (its
   // --max-distance e): the stencil of a point (its 2-3 samples per axis) has
@@ -62,12 +75,19 @@ public:
   // The quantities of thesis 6.3.2 (computed from g even when d was given):
   // g_min = min |g| over D, L_max = max_k L_k with
   // L_k = sqrt(3) * max_i max over the 8 vertices v of the 1.8-delta box C'_k
-  // of |d f_k / d x_i (v)| (physical units).
+  // of |d f_k / d x_i (v)| (physical units), over the cells C_k of the
+  // foreground's box grown by weight_margin voxels: they hold every cell
+  // near S (a vertex v with |g(v)| < R = 0.65 (delta_0 + delta_1 +
+  // delta_2)), the only ones that can bound d (partition_of_unity.cpp), so
+  // d is the same on a crop of the grid that holds that box (crop_margin).
   double g_min() const { return g_min_; }
   double l_max() const { return l_max_; }
   // The bound d_i = min(delta_i / 5, g_min / (2 L_max)) itself.
   static Vec3 weight_constant(const FloatImage& g, double* g_min = nullptr, double* l_max = nullptr,
                               unsigned threads = 1);
+  // R and the margin above.
+  static double near_radius(const Vec3& spacing);
+  static std::array<std::size_t, 3> weight_margin(const Vec3& spacing);
 
 private:
   // What f needs at a point. Because phi_k factors per axis and f_k is
@@ -83,20 +103,25 @@ private:
     double c[3][3], dc[3][3];
     float buf[9][3];
   };
+  PartitionOfUnity() = default;
+  static void check_grid(const Geometry& g);
+  // d checked against its bound (or set to it when not given), then the
+  // evaluation's constants from g_.
+  void finish(const Vec3& bound);
   template <bool Gradient> void locate(const Vec3& p, Stencil& s) const;
   void prefetch(const Stencil& s) const;
   template <bool Gradient> double combine(const Stencil& s, Vec3* gradient) const;
   template <bool Gradient> void evaluate_many(const Vec3* points, std::size_t n, double* f, Vec3* gradients) const;
 
   SampleGrid g_;
-  Vec3 d_;
+  Vec3 d_{0, 0, 0};
   double g_min_ = 0, l_max_ = 0;
   // Per axis: voxel spacing delta_i, 1/delta_i, 1/(2 d_i), and the number of
   // cells (size_i - 1).
-  double delta_[3], inv_delta_[3], inv_2d_[3];
-  double to_index_[9];  // world offset -> continuous index
-  long cells_[3];
-  long stride_[3];  // dense storage
+  double delta_[3] = {}, inv_delta_[3] = {}, inv_2d_[3] = {};
+  double to_index_[9] = {};  // world offset -> continuous index
+  long cells_[3] = {};
+  long stride_[3] = {};  // dense storage
 };
 
 // The C-infinity step of (6.8): h(t) = exp(2 e^{-1/t} / (t - 1)) on (0, 1),

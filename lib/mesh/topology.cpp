@@ -445,19 +445,21 @@ MeshTopology pixel_boundary_topology(const BinaryImage& img) {
 }
 
 // bdCA(X) for X = {in(x, y, z)} on a grid of the given size (in is false
-// outside it).
-template <class In> VoxelBoundary voxel_boundary_of(const std::array<std::size_t, 3>& size, In in) {
-  const std::size_t nx = size[0], ny = size[1], nz = size[2];
+// outside it), X within the box [lo, hi].
+template <class In>
+VoxelBoundary voxel_boundary_of(const std::array<std::size_t, 3>& size, const std::array<std::size_t, 3>& lo,
+                                const std::array<std::size_t, 3>& hi, In in) {
+  const std::size_t nx = size[0], ny = size[1];
   VoxelBoundary vb;
-  vb.lattice = {nx + 1, ny + 1, nz + 1};
+  vb.lattice = {nx + 1, ny + 1, size[2] + 1};
   const std::uint64_t W = nx + 1, H = ny + 1;
   auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return (std::uint64_t(k) * H + j) * W + i; };
   // Outward-oriented unit squares; corners as lattice ids, compacted below.
   std::vector<std::uint64_t> lat;
   std::vector<std::uint8_t> bits;  // per quad: VoxelBoundary::faces' bits for its first (lowest) corner
-  for (std::size_t z = 0; z < nz; ++z)
-    for (std::size_t y = 0; y < ny; ++y)
-      for (std::size_t x = 0; x < nx; ++x) {
+  for (std::size_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::size_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::size_t x = lo[0]; x <= hi[0]; ++x) {
         const std::ptrdiff_t X = std::ptrdiff_t(x), Y = std::ptrdiff_t(y), Z = std::ptrdiff_t(z);
         if (!in(X, Y, Z)) continue;
         auto quad = [&](int axis, bool plus, std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {
@@ -500,22 +502,35 @@ std::array<std::size_t, 3> VoxelBoundary::corner(std::size_t v) const {
 }
 
 VoxelBoundary voxel_boundary(const BinaryImage& img) {
-  return voxel_boundary_of(img.size, [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
-    return img.at(x, y, z, 0) != 0;
-  });
+  if (img.count() == 0) return voxel_boundary_of(img.size, {1, 1, 1}, {0, 0, 0}, [](auto...) { return false; });
+  return voxel_boundary_of(img.size, {0, 0, 0}, {img.size[0] - 1, img.size[1] - 1, img.size[2] - 1},
+                           [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) { return img.at(x, y, z, 0) != 0; });
 }
 
+// Only the box of samples given can be inside (beyond it g reads +T).
 VoxelBoundary voxel_boundary(const SampleGrid& g) {
+  for (int a = 0; a < 3; ++a)
+    if (g.box_hi()[a] < g.box_lo()[a]) return voxel_boundary_of(g.size, {1, 1, 1}, {0, 0, 0}, [](auto...) { return false; });
+  std::array<std::size_t, 3> lo, hi, n;
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = std::size_t(g.box_lo()[a]);
+    hi[a] = std::size_t(g.box_hi()[a]);
+    n[a] = hi[a] - lo[a] + 1;
+  }
   if (g.dense())
-    return voxel_boundary_of(g.size, [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
+    return voxel_boundary_of(g.size, lo, hi, [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
       return g.inside(x, y, z) && g.dense_data()[g.index(std::size_t(x), std::size_t(y), std::size_t(z))] < 0;
     });
-  // Blocks: the signs first, a byte a voxel (read 7 times each).
-  BinaryImage x(g.geometry(), 0);
-  for (std::size_t k = 0; k < g.size[2]; ++k)
-    for (std::size_t j = 0; j < g.size[1]; ++j)
-      for (std::size_t i = 0; i < g.size[0]; ++i) x(i, j, k) = g(i, j, k) < 0;
-  return voxel_boundary(x);
+  // Blocks: the signs of the box first, a byte a voxel (read 7 times each).
+  std::vector<std::uint8_t> in(n[0] * n[1] * n[2]);
+  for (std::size_t k = 0; k < n[2]; ++k)
+    for (std::size_t j = 0; j < n[1]; ++j)
+      for (std::size_t i = 0; i < n[0]; ++i) in[i + n[0] * (j + n[1] * k)] = g(lo[0] + i, lo[1] + j, lo[2] + k) < 0;
+  return voxel_boundary_of(g.size, lo, hi, [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
+    const std::ptrdiff_t i = x - std::ptrdiff_t(lo[0]), j = y - std::ptrdiff_t(lo[1]), k = z - std::ptrdiff_t(lo[2]);
+    if (i < 0 || j < 0 || k < 0 || std::size_t(i) >= n[0] || std::size_t(j) >= n[1] || std::size_t(k) >= n[2]) return false;
+    return in[std::size_t(i) + n[0] * (std::size_t(j) + n[1] * std::size_t(k))] != 0;
+  });
 }
 
 MeshTopology mesh_topology(const VoxelBoundary& b) {

@@ -1,9 +1,11 @@
 // mesh_label_surfaces: a pool of `jobs` threads takes the labels, largest
-// first (the longest runs start early, so the pool ends together), each
-// running the three chapters' library calls on its own data; nothing is
-// shared between labels but the read-only label image.
+// box first (the longest runs start early, so the pool ends together), each
+// running the three chapters' library calls on its own crop of the label
+// image (its box plus a margin, crop.hpp); nothing is shared between labels
+// but the read-only label image.
 #include "segmentation/label_surfaces.hpp"
 
+#include "implicit/crop.hpp"
 #include "implicit/implicit_file.hpp"
 #include "surface/implicit_surface.hpp"
 #include "util/error.hpp"
@@ -21,25 +23,39 @@
 namespace imgmesh {
 namespace {
 
-LabelSurface mesh_one_label(const LabelImage& image, long long label, std::size_t voxels,
+// img2wc --label L (the label's box plus the margin), wc2implicit and
+// implicit2mesh's reading (f clamped, placed back in the scan's grid), in
+// memory: the pipeline's mesh, at the cost of the label's box.
+LabelSurface mesh_one_label(const LabelImage& image, long long label, std::size_t voxels, const VoxelBox& box,
                             const LabelSurfacesOptions& opt, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   LabelSurface out;
   out.label = label;
   if (const auto it = opt.names.find(label); it != opt.names.end()) out.name = it->second;
   out.voxels = voxels;
-  BinaryImage fg(image, 0);
-  for (std::size_t i = 0; i < image.data.size(); ++i) fg.data[i] = image.data[i] == label ? 1 : 0;
   WellComposedOptions wco;
   wco.mode = opt.mode;
   wco.seed = opt.mesher.seed;
-  WellComposedResult wc = make_well_composed(fg, wco);
-  std::vector<std::uint8_t>().swap(fg.data);
-  out.changed = wc.changed;
-  out.well_composed_failure = wc.failed_guarantee();
-  const PartitionOfUnity pu = implicit_from_well_composed(wc.image, nullptr, unsigned(threads));
-  std::vector<std::uint8_t>().swap(wc.image.data);
-  const PartitionOfUnitySurface surface(pu);
+  WellComposedCrop wc = well_composed_crop(
+      image, box,
+      [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
+        const std::int32_t* v = &image(x0, y, z);
+        for (std::size_t i = 0; i < n; ++i) row[i] = v[i] == label;
+      },
+      wco);
+  out.changed = wc.result.changed;
+  out.crop = wc.result.image.size;
+  out.well_composed_failure = wc.result.failed_guarantee();
+  const PartitionOfUnity f = [&] {
+    ImplicitReport rep;
+    const PartitionOfUnity whole = implicit_from_well_composed(wc.result.image, &rep, unsigned(threads));
+    ScanFrame frame = wc.frame;
+    frame.foreground = foreground_box(wc.result.image);
+    if (!frame.grow(rep.padded_before, rep.padded_after, wc.result.image)) frame = ScanFrame();
+    std::vector<std::uint8_t>().swap(wc.result.image.data);
+    return function_in_scan(whole, frame, PartitionOfUnity::clamp_for(whole.samples(), opt.mesher.max_distance));
+  }();
+  const PartitionOfUnitySurface surface(f);
   RestrictedDelaunayOptions mo = opt.mesher;
   mo.threads = threads;
   mo.progress = nullptr;
@@ -76,14 +92,36 @@ LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurf
     if (!std::binary_search(present.begin(), present.end(), l))
       throw Error("label " + std::to_string(l) + " does not occur (labels present: " + list(present) + ")");
 
+  // One pass: each label's voxels and box (a run of one value looked up once).
   std::vector<std::size_t> voxels(labels.size(), 0);
-  for (std::int32_t v : image.data) {
-    auto it = std::lower_bound(labels.begin(), labels.end(), (long long)v);
-    if (it != labels.end() && *it == v) ++voxels[std::size_t(it - labels.begin())];
-  }
+  std::vector<VoxelBox> boxes(labels.size());
+  for (std::size_t z = 0; z < image.size[2]; ++z)
+    for (std::size_t y = 0; y < image.size[1]; ++y) {
+      const std::int32_t* row = &image(0, y, z);
+      for (std::size_t x = 0; x < image.size[0];) {
+        std::size_t end = x + 1;
+        while (end < image.size[0] && row[end] == row[x]) ++end;
+        const auto it = std::lower_bound(labels.begin(), labels.end(), (long long)row[x]);
+        if (it != labels.end() && *it == row[x]) {
+          const std::size_t i = std::size_t(it - labels.begin());
+          voxels[i] += end - x;
+          boxes[i].add(std::ptrdiff_t(x), std::ptrdiff_t(y), std::ptrdiff_t(z));
+          boxes[i].add(std::ptrdiff_t(end - 1), std::ptrdiff_t(y), std::ptrdiff_t(z));
+        }
+        x = end;
+      }
+    }
+  // Largest first, by the box a label's work is proportional to (the
+  // longest job must not start last); then by voxels.
+  auto box_voxels = [&](std::size_t i) {
+    const auto n = boxes[i].size();
+    return n[0] * n[1] * n[2];
+  };
   std::vector<std::size_t> order(labels.size());
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return voxels[a] > voxels[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return box_voxels(a) != box_voxels(b) ? box_voxels(a) > box_voxels(b) : voxels[a] > voxels[b];
+  });
 
   LabelSurfacesResult res;
   res.jobs = std::max(1, std::min<int>(opt.jobs, int(labels.size())));
@@ -101,7 +139,7 @@ LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurf
                      std::to_string(labels.size()) + ")");
       }
       try {
-        res.labels[i] = mesh_one_label(image, labels[i], voxels[i], opt, threads);
+        res.labels[i] = mesh_one_label(image, labels[i], voxels[i], boxes[i], opt, threads);
       } catch (...) {
         errors[i] = std::current_exception();
       }
@@ -146,6 +184,7 @@ Json LabelSurfacesResult::to_json() const {
     j["label"] = l.label;
     if (!l.name.empty()) j["name"] = l.name;
     j["voxels"] = l.voxels;
+    j["crop_size"] = std::vector<std::size_t>{l.crop[0], l.crop[1], l.crop[2]};
     j["well_composed_changed"] = l.changed;
     j["seconds"] = l.seconds;
     j["certified"] = l.mesh.failed_guarantee().empty() && l.well_composed_failure.empty();

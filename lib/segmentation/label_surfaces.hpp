@@ -14,6 +14,7 @@
 #include "util/json.hpp"
 #include "wellcomposed/well_composed.hpp"
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -36,6 +37,7 @@ struct LabelSurface {
   long long label = 0;
   std::string name;                    // from LabelSurfacesOptions::names, or empty
   std::size_t voxels = 0;              // of the label in the input
+  std::array<std::size_t, 3> crop{0, 0, 0};  // the grid it was meshed on: its box plus the margin
   std::size_t changed = 0;             // voxels the well-composed repair changed
   std::string well_composed_failure;   // make_well_composed's failed guarantee, or empty
   RestrictedDelaunayResult mesh;       // the certified surface of this label

@@ -17,9 +17,11 @@ CubeGrid::CubeGrid(const SampleGrid& img) : g(img) {
   if (n[0] < 2 || n[1] < 2 || n[2] < 2) return;
   cube_active.assign((std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)) + 63) / 64, 0);
   block_active.assign(std::size_t(nb[0] * nb[1] * nb[2]), 0);
-  for (long z = 0; z + 1 < n[2]; ++z)
-    for (long y = 0; y + 1 < n[1]; ++y)
-      for (long x = 0; x + 1 < n[0]; ++x) {
+  long c0[3], c1[3];
+  sampled_cubes(c0, c1);
+  for (long z = c0[2]; z <= c1[2]; ++z)
+    for (long y = c0[1]; y <= c1[1]; ++y)
+      for (long x = c0[0]; x <= c1[0]; ++x) {
         double c[8];
         g.cube(x, y, z, c);
         bool mixed = false;
@@ -43,9 +45,11 @@ void CubeGrid::label() {
   std::size_t active_cubes = 0;
   for (std::uint64_t w : cube_active) active_cubes += std::size_t(__builtin_popcountll(w));
   comp.reserve(active_cubes);
-  for (long z = 0; z + 1 < n[2]; ++z)
-    for (long y = 0; y + 1 < n[1]; ++y)
-      for (long x = 0; x + 1 < n[0]; ++x) {
+  long c0[3], c1[3];
+  sampled_cubes(c0, c1);
+  for (long z = c0[2]; z <= c1[2]; ++z)
+    for (long y = c0[1]; y <= c1[1]; ++y)
+      for (long x = c0[0]; x <= c1[0]; ++x) {
         if (!active(x, y, z) || labelled(x, y, z)) continue;
         if (components == (1 << ActiveCube::kCompBits) - 1)
           throw Error("the surface has more than " + std::to_string(components) + " components");
@@ -78,6 +82,13 @@ void CubeGrid::label() {
         }
       }
   std::sort(comp.begin(), comp.end());
+}
+
+void CubeGrid::sampled_cubes(long c0[3], long c1[3]) const {
+  for (int i = 0; i < 3; ++i) {
+    c0[i] = std::max(0L, long(g.box_lo()[i]) - 1);
+    c1[i] = std::min(n[i] - 2, long(g.box_hi()[i]));
+  }
 }
 
 bool CubeGrid::inactive_box(const Vec3& lo, const Vec3& hi) const {

@@ -69,6 +69,9 @@ struct CubeGrid {
   bool inactive_box(const Vec3& lo, const Vec3& hi) const;
   // Label active cubes by components joined through mixed faces (F4).
   void label();
+  // The cubes that meet the box of samples given (SampleGrid::box_lo/hi):
+  // c0[i]..c1[i] per axis; the others have 8 corners at +T, inactive.
+  void sampled_cubes(long c0[3], long c1[3]) const;
   // Component of the active cube containing a local point (or a neighbour).
   int comp_at(const Vec3& q) const;
   // The active cubes (key, component) in key order (deterministic).

@@ -58,6 +58,12 @@ bool FacetRaster::no_active_block() const {
     k0[k] = std::clamp(floor_long((xlo - eps) / grid.s[k]), 0L, grid.n[k] - 2) / CubeGrid::kBlock;
     k1[k] = std::clamp(floor_long((xhi + eps) / grid.s[k]), 0L, grid.n[k] - 2) / CubeGrid::kBlock;
   }
+  long b0[3], b1[3];  // blocks beyond the box of samples given are inactive
+  grid.sampled_cubes(b0, b1);
+  for (int k = 0; k < 3; ++k) {
+    k0[k] = std::max(k0[k], b0[k] / CubeGrid::kBlock);
+    k1[k] = std::min(k1[k], b1[k] / CubeGrid::kBlock);
+  }
   for (long z = k0[2]; z <= k1[2]; ++z)
     for (long y = k0[1]; y <= k1[1]; ++y)
       for (long x = k0[0]; x <= k1[0]; ++x)
@@ -152,10 +158,18 @@ void FacetRaster::find_spans(FacetWalk how) {
       for (int k = 0; k < 3; ++k) xlo[k] = std::min(xlo[k], x[k]), xhi[k] = std::max(xhi[k], x[k]);
     cost += double(s.hi[j] - s.lo[j]) / 16 + 1;
   }
-  long c0[3], c1[3];
+  // Only cubes that meet the box of samples given can be active (a crop in
+  // its scan: the facets of a small surface span the scan's box).
+  long c0[3], c1[3], b0[3], b1[3];
   cube_of(xlo, c0);
   cube_of(xhi, c1);
-  const double cubes = double(c1[0] - c0[0] + 1) * double(c1[1] - c0[1] + 1) * double(c1[2] - c0[2] + 1);
+  grid.sampled_cubes(b0, b1);
+  double cubes = 1;
+  for (int k = 0; k < 3; ++k) {
+    c0[k] = std::max(c0[k], b0[k]);
+    c1[k] = std::min(c1[k], b1[k]);
+    cubes *= double(std::max(0L, c1[k] - c0[k] + 1));
+  }
   if (!(cubes < 16 * cost || how == FacetWalk::kCompare)) return;  // walking every row is cheaper
   walk_all = false;
   collect_cube_spans(c0, c1);

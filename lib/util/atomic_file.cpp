@@ -121,6 +121,29 @@ void OutputGroup::commit() {
   finished_.clear();
 }
 
+StdinSpool::StdinSpool() {
+  const char* tmpdir = std::getenv("TMPDIR");
+  tmp_ = make_temp(std::string((tmpdir && *tmpdir) ? tmpdir : "/tmp") + "/stdin", "", "-");
+  std::ofstream out(tmp_, std::ios::binary);
+  std::vector<char> buf(std::size_t(1) << 20);
+  std::size_t total = 0;
+  while (std::cin.read(buf.data(), std::streamsize(buf.size())) || std::cin.gcount() > 0) {
+    out.write(buf.data(), std::cin.gcount());
+    total += std::size_t(std::cin.gcount());
+  }
+  out.close();
+  if (!out) {
+    std::remove(tmp_.c_str());
+    throw Error("cannot spool standard input to " + tmp_, "-");
+  }
+  if (total == 0) {
+    std::remove(tmp_.c_str());
+    throw Error("standard input is empty", "-");
+  }
+}
+
+StdinSpool::~StdinSpool() { std::remove(tmp_.c_str()); }
+
 AtomicOutput::AtomicOutput(std::string target, bool binary, const std::string& stdout_extension)
     : target_(std::move(target)) {
   if (target_.empty()) throw Error("empty output path");

@@ -37,6 +37,23 @@ private:
   bool committed_ = false;
 };
 
+// Standard input copied, a chunk at a time, to a temporary file in $TMPDIR
+// (removed with the object): a reader then sees a file it can measure (a
+// header's declared size checked against the data that follows, before
+// anything is allocated) and still read as it streams. Error when standard
+// input is empty.
+class StdinSpool {
+public:
+  StdinSpool();
+  ~StdinSpool();
+  StdinSpool(const StdinSpool&) = delete;
+  StdinSpool& operator=(const StdinSpool&) = delete;
+  const std::string& path() const { return tmp_; }
+
+private:
+  std::string tmp_;
+};
+
 // All or nothing for the outputs of one run (an .ele with its .node, OUT
 // and --svg): while a group lives, AtomicOutput::commit() only finishes the
 // temporary file; the group's commit() moves them all into place (or copies

@@ -115,6 +115,7 @@ public:
   }
 
   std::size_t changed = 0, created = 0;
+  Index3 touched_lo{0, 0, 0}, touched_hi{-1, -1, -1};
 
 private:
   static constexpr int kG = 27;  // blocks N(p), p in [r-1, r+1]^3: all that G(r) holds
@@ -219,7 +220,15 @@ private:
   }
   void set(std::size_t r, unsigned mask, std::uint8_t colour) {
     for (int k = 0; k < 8; ++k)
-      if (mask & (1u << k)) g_.v[r + g_.off[k]] = colour;
+      if (mask & (1u << k)) {
+        const std::size_t i = r + g_.off[k];
+        g_.v[i] = colour;
+        const std::ptrdiff_t c[3] = {std::ptrdiff_t(i % g_.sy), std::ptrdiff_t((i / g_.sy) % g_.n[1]), std::ptrdiff_t(i / g_.sz)};
+        for (int a = 0; a < 3; ++a) {
+          touched_lo[a] = touched_hi[a] < touched_lo[a] ? c[a] : std::min(touched_lo[a], c[a]);
+          touched_hi[a] = std::max(touched_hi[a], c[a]);
+        }
+      }
   }
   // Rows whose blocks may have changed: those of N(p), p in [r-1, r+1]^3.
   void touch(std::size_t r) {
@@ -379,6 +388,8 @@ WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode 
     for (std::size_t i = 0; i < nx * ny; ++i) out.data[i] = remove ? w[i] ^ 1 : w[i];
     res.changed = rep.changed;
     res.created = rep.created;
+    res.touched_lo = rep.touched_lo;
+    res.touched_hi = rep.touched_hi;
     return res;
   }
   if (remove)
@@ -389,6 +400,8 @@ WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode 
     for (auto& v : out.data) v ^= 1;
   res.changed = rep.changed;
   res.created = rep.created;
+  res.touched_lo = rep.touched_lo;
+  res.touched_hi = rep.touched_hi;
   return res;
 }
 
@@ -445,7 +458,16 @@ WellComposedResult make_well_composed(const BinaryImage& in, const WellComposedO
       res = std::move(add);
     } else {
       WellComposedResult rem = repair(in, pad, RepairMode::Remove, opt.seed, opt.greedy, opt.repair);
+      // Both repairs' reach: the choice depends on both (add set voxels).
+      Index3 lo = add.touched_lo, hi = add.touched_hi;
+      if (rem.touched_lo[0] <= rem.touched_hi[0])
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = std::min(lo[a], rem.touched_lo[a]);
+          hi[a] = std::max(hi[a], rem.touched_hi[a]);
+        }
       res = rem.changed < add.changed ? std::move(rem) : std::move(add);
+      res.touched_lo = lo;
+      res.touched_hi = hi;
     }
   } else {
     res = repair(in, pad, opt.mode, opt.seed, opt.greedy, opt.repair);

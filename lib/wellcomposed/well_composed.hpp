@@ -56,6 +56,10 @@ struct WellComposedResult {
   WellComposedOptions options;             // as asked
   std::size_t input_voxels = 0;            // of the input grid
   CriticalCounts output;                   // counted on image: the guarantee, checked rather than assumed
+  // The box of every voxel the repair set, in image's indices, those it
+  // later took back too (a crop holding it with room around repairs as the
+  // whole grid does); empty (lo > hi) when it set none.
+  Index3 touched_lo{0, 0, 0}, touched_hi{-1, -1, -1};
 
   Json to_json() const;
   std::string failed_guarantee() const;  // when output has critical configurations left

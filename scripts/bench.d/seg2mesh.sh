@@ -28,6 +28,15 @@ printf "  %-44s %8.1f s wall %10d triangles   all certified: %s   (%.0f CPU s, %
   "seg2mesh --jobs $jobs" "$wall" "$triangles" "$ok" "$(echo "$user + $sys" | bc)" "$(echo "$mem / 1024" | bc)"
 labels=$(python3 -c 'import json, sys; print(*(l["label"] for l in json.load(open(sys.argv[1]))["labels"]))' "$work/all.json")
 echo "  labels: $labels"
+# Per label: its voxels, the crop it was meshed on (its box plus the margin),
+# its seconds (a label costs its crop, not the scan).
+python3 - "$work/all.json" <<'P'
+import json, sys
+print("  %6s %10s %14s %10s %10s" % ("label", "voxels", "crop voxels", "triangles", "seconds"))
+for l in json.load(open(sys.argv[1]))["labels"]:
+    c = l.get("crop_size", [0, 0, 0])
+    print("  %6d %10d %14d %10d %10.2f" % (l["label"], l["voxels"], c[0] * c[1] * c[2], l["triangles"], l["seconds"]))
+P
 start=$(date +%s.%N)
 ok=yes
 triangles=0

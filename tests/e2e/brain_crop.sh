@@ -31,9 +31,10 @@ hdr = re.sub(r'encoding: *\w+', 'encoding: raw', hdr)
 open(sys.argv[2], 'wb').write(hdr.encode() + b'\n\n' + bytes(out))
 P
 }
-# crop-wc.nrrd and crop-f.nrrd: the crop made well-composed, and its f.
+# crop-wc.nrrd and crop-f.nrrd: the crop made well-composed, and its f
+# (crop_py cuts at the scan's indices: img2wc's whole grid).
 crop_f() {
-  expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 5 full.nrrd -q &&
+  expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 5 --full-grid full.nrrd -q &&
     expect 0 crop_py full.nrrd crop.nrrd &&
     expect 0 img2wc crop.nrrd --threshold 1 crop-wc.nrrd -q &&
     expect 0 wc2implicit crop-wc.nrrd crop-f.nrrd -q && rm -f full.nrrd crop.nrrd

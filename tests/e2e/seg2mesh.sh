@@ -98,6 +98,15 @@ PY
   done
 }
 
+# Labels start largest box first (the ball's 11^3, the torus's 13x13x5, the
+# box's 7x9x9), not most voxels first (box 567, ball 515, torus 268).
+case_labels_start_largest_box_first() {
+  local l; l=$(labels) || return
+  expect 0 seg2mesh "$l" order.ply --jobs 1 --progress || return
+  local order; order=$(grep -o 'label [0-9]* (' err.txt | awk '{printf "%s ", $2}')
+  [[ $order == "1 5 2 " ]] || fail "labels started in the order $order, want 1 5 2"
+}
+
 case_stats_every_label_certified() {
   local f; f=$(shared all.ply all_ply) || return
   python3 - "$(dirname "$f")/s.json" > stats.txt 2>&1 <<'PY' || fail "stats: $(cat stats.txt)"

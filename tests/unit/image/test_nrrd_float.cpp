@@ -7,14 +7,17 @@
 #include "scratch_dir.hpp"
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <streambuf>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 using namespace imgmesh;
 
@@ -158,4 +161,50 @@ TEST_CASE("truncated gzip samples are refused, the count said") {
     out.write(bytes.data(), std::streamsize(bytes.size() - 200));
   }
   REQUIRE_THROWS_WITH(read_without_itk(path), Catch::Contains("truncated gzip data (expected 16384 bytes but received"));
+}
+
+namespace {
+// A stream that cannot seek (a pipe).
+struct PipeBuf : std::streambuf {
+  explicit PipeBuf(const std::string& s) : data(s) { setg(data.data(), data.data(), data.data() + data.size()); }
+  std::string data;
+};
+} // namespace
+
+TEST_CASE("samples stream in any chunks, from a pipe too, as they read whole") {
+  Geometry g;
+  g.size = {13, 9, 7};
+  g.spacing = {0.5, 0.25, 2};
+  FloatImage f(g);
+  std::mt19937 rng(8);
+  for (float& v : f.data) v = float(int(rng() % 2001) - 1000) / 8.f;
+  for (bool raw : {false, true}) {
+    const std::string path = temp_path(raw ? "stream-raw.nrrd" : "stream-gz.nrrd");
+    write_image(path, f);
+    std::string bytes;
+    {
+      std::ifstream in(path, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    if (raw) {  // ITK compresses: a raw copy of the same samples
+      const std::size_t body = bytes.find("\n\n") + 2;
+      std::string head = bytes.substr(0, body);
+      head.replace(head.find("encoding: gzip"), 14, "encoding: raw");
+      bytes = head + std::string(reinterpret_cast<const char*>(f.data.data()), f.data.size() * sizeof(float));
+    }
+    PipeBuf buf(bytes);
+    std::istream pipe(&buf);
+    REQUIRE(pipe.tellg() == std::streampos(-1));
+    const NrrdHeader h = read_nrrd_header(pipe, path);
+    NrrdFloatStream s(h, pipe, path);
+    CHECK(s.geometry().size == g.size);
+    std::vector<float> got(f.data.size());
+    for (std::size_t at = 0, n = 1; at < got.size(); n = 3 * n + 1) {  // chunks of 1, 4, 13... samples
+      const std::size_t k = std::min(n, got.size() - at);
+      s.read(got.data() + at, k);
+      at += k;
+    }
+    CHECK(got == f.data);
+    CHECK_THROWS_AS(s.read(got.data(), 1), Error);  // beyond what the header declares
+  }
 }

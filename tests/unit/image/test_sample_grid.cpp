@@ -80,3 +80,53 @@ TEST_CASE("SampleGrid with a clamp T holds g clamped to [-T, T] and stores only 
   CHECK_FALSE(SampleGrid(bad).finite());
   CHECK_THROWS_AS(SampleGrid(g, 0.0f), Error);
 }
+
+TEST_CASE("SampleGrid streamed a slice at a time from a box of the grid: the box's samples, +T beyond", "[samples]") {
+  Geometry geo;
+  geo.size = {41, 30, 22};
+  geo.spacing = {0.7, 1.0, 1.3};
+  const Index3 lo{9, 6, 5};
+  const std::array<std::size_t, 3> box{19, 14, 11};
+  const float t = 3.5f;
+  // Distance-like samples of a sphere inside the box: beyond it g >= T.
+  auto g = [&](long x, long y, long z) {
+    return float(std::hypot((x - 18.5) * 0.7, (y - 13.0) * 1.0, (z - 10.5) * 1.3) - 3.1);
+  };
+  for (const auto storage : {SampleGrid::Storage::dense, SampleGrid::Storage::blocks}) {
+    long z = lo[2];
+    const SampleGrid s(geo, lo, box, t, storage, [&](float* slice) {
+      for (std::size_t y = 0; y < box[1]; ++y)
+        for (std::size_t x = 0; x < box[0]; ++x) *slice++ = g(lo[0] + long(x), lo[1] + long(y), z);
+      ++z;
+    });
+    REQUIRE(z == lo[2] + long(box[2]));
+    REQUIRE(s.same_grid(geo));
+    CHECK(s.dense() == (storage == SampleGrid::Storage::dense));
+    CHECK(s.box_lo() == lo);
+    CHECK(s.box_hi() == Index3{lo[0] + 18, lo[1] + 13, lo[2] + 10});
+    std::size_t near = 0;
+    for (long bz = 0; bz < s.nb(2) && !s.dense(); ++bz)
+      for (long by = 0; by < s.nb(1); ++by)
+        for (long bx = 0; bx < s.nb(0); ++bx) {
+          bool any = false;
+          for (long k = bz * 4; k < std::min(22L, bz * 4 + 4); ++k)
+            for (long j = by * 4; j < std::min(30L, by * 4 + 4); ++j)
+              for (long i = bx * 4; i < std::min(41L, bx * 4 + 4); ++i) {
+                const bool in = i >= lo[0] && i < lo[0] + 19 && j >= lo[1] && j < lo[1] + 14 && k >= lo[2] && k < lo[2] + 11;
+                any = any || (in && std::fabs(g(i, j, k)) < t);
+              }
+          near += any;
+        }
+    if (!s.dense()) CHECK(s.stored_blocks() == near);
+    for (long k = 0; k < 22; ++k)
+      for (long j = 0; j < 30; ++j)
+        for (long i = 0; i < 41; ++i) {
+          const bool in = i >= lo[0] && i < lo[0] + 19 && j >= lo[1] && j < lo[1] + 14 && k >= lo[2] && k < lo[2] + 11;
+          REQUIRE(s(i, j, k) == (in ? std::clamp(g(i, j, k), -t, t) : t));
+        }
+  }
+  // An unclamped box smaller than the grid would leave its outside unknown.
+  CHECK_THROWS_AS(SampleGrid(geo, lo, box, std::numeric_limits<float>::infinity(), SampleGrid::Storage::automatic,
+                             [](float*) {}),
+                  Error);
+}

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 using namespace imgmesh;
 using namespace imgmesh::test;
@@ -77,6 +78,31 @@ TEST_CASE("distance on random images equals brute force, foreground touching the
           INFO(seed << ": " << x << " " << y << " " << z);
           REQUIRE(g(x, y, z) == Approx(brute_distance(im, x, y, z)).margin(1e-5));
           REQUIRE((g(x, y, z) < 0) == (im(x, y, z) != 0));
+        }
+  }
+}
+
+TEST_CASE("distance on a crop with background around the foreground is the whole grid's, bit for bit", "[distance]") {
+  // Far from the grid's origin, spacings that do not round alike: a crop's
+  // lines start elsewhere, and must give the same values (crop.hpp).
+  for (unsigned seed = 1; seed <= 4; ++seed) {
+    const Vec3 sp = seed % 2 ? Vec3{0.617188, 0.617188, 1.33333} : Vec3{0.1, 0.3, 0.7};
+    BinaryImage crop(grid(14, 13, 12, sp), 0);
+    std::mt19937 rng(seed);
+    for (std::size_t z = 2; z + 2 < 12; ++z)
+      for (std::size_t y = 2; y + 2 < 13; ++y)
+        for (std::size_t x = 2; x + 2 < 14; ++x) crop(x, y, z) = rng() % 3 == 0;
+    const std::array<std::size_t, 3> at{700 + seed, 40 + 3 * seed, 50};
+    BinaryImage whole(grid(at[0] + 14 + 9, at[1] + 13 + 5, at[2] + 12 + 3, sp), 0);
+    for (std::size_t z = 0; z < 12; ++z)
+      for (std::size_t y = 0; y < 13; ++y)
+        for (std::size_t x = 0; x < 14; ++x) whole(at[0] + x, at[1] + y, at[2] + z) = crop(x, y, z);
+    const FloatImage gc = signed_distance_to_boundary(crop), gw = signed_distance_to_boundary(whole, 2);
+    for (std::size_t z = 0; z < 12; ++z)
+      for (std::size_t y = 0; y < 13; ++y)
+        for (std::size_t x = 0; x < 14; ++x) {
+          const float a = gc(x, y, z), b = gw(at[0] + x, at[1] + y, at[2] + z);
+          if (std::memcmp(&a, &b, sizeof a) != 0) FAIL(seed << ": " << x << " " << y << " " << z << ": " << a << " " << b);
         }
   }
 }

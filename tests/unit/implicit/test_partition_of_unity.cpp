@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <thread>
 #include <vector>
@@ -289,30 +290,57 @@ namespace {
 
 // Brute force L_max: sample |d f_k / d x_i| on a dense lattice of the
 // 1.8-delta box C'_k (thesis 6.3.2), from the thesis's polynomial form.
-double brute_lmax(const FloatImage& g) {
+// L_max over the cells of the foreground's box grown by the margin m (those
+// whose 8 vertices lie in it); with `beyond`, what the cells far from S (no
+// vertex with |g| < R) need instead of L_max (6.4.2 at their vertices): max
+// over them of sum_i M_i d_i / min |g(v)|, which must be < 1, and their
+// largest M_i, at most 1.8^2 (g is 1-Lipschitz); `near_inside`: every cell
+// with a vertex under R lies in the grown box.
+double brute_lmax(const FloatImage& g, const std::array<std::size_t, 3>& margin, const Vec3& d = {0, 0, 0},
+                  double* beyond = nullptr, double* m_beyond = nullptr, bool* near_inside = nullptr) {
   double best = 0;
+  const double r = 0.65 * (g.spacing[0] + g.spacing[1] + g.spacing[2]);
+  long lo[3] = {1L << 40, 1L << 40, 1L << 40}, hi[3] = {-(1L << 40), -(1L << 40), -(1L << 40)};
+  for (long z = 0; z < long(g.size[2]); ++z)
+    for (long y = 0; y < long(g.size[1]); ++y)
+      for (long x = 0; x < long(g.size[0]); ++x)
+        if (g(x, y, z) < 0) {
+          const long c[3] = {x, y, z};
+          for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a] - long(margin[a])), hi[a] = std::max(hi[a], c[a] + long(margin[a]));
+        }
+  if (near_inside) *near_inside = true;
   for (std::size_t z = 0; z + 1 < g.size[2]; ++z)
     for (std::size_t y = 0; y + 1 < g.size[1]; ++y)
       for (std::size_t x = 0; x + 1 < g.size[0]; ++x) {
+        const long k[3] = {long(x), long(y), long(z)};
+        bool in_box = true;
+        for (int a = 0; a < 3; ++a) in_box = in_box && k[a] >= lo[a] && k[a] + 1 <= hi[a];
         auto F = [&](int m, int n, int l) { return double(g(x + m, y + n, z + l)); };
+        double least = HUGE_VAL;
+        for (int k = 0; k < 8; ++k) least = std::min(least, std::abs(F(k & 1, (k >> 1) & 1, k >> 2)));
         // u = a + b z + c y + d yz + e x + f xz + g xy + h xyz (proof of Prop. 6.4.1)
         const double b = F(0, 0, 1) - F(0, 0, 0), c = F(0, 1, 0) - F(0, 0, 0);
-        const double d = F(0, 0, 0) + F(0, 1, 1) - F(0, 0, 1) - F(0, 1, 0);
+        const double dd = F(0, 0, 0) + F(0, 1, 1) - F(0, 0, 1) - F(0, 1, 0);
         const double e = F(1, 0, 0) - F(0, 0, 0);
         const double f = F(0, 0, 0) + F(1, 0, 1) - F(0, 0, 1) - F(1, 0, 0);
         const double gg = F(0, 0, 0) + F(1, 1, 0) - F(0, 1, 0) - F(1, 0, 0);
         const double h = F(1, 1, 1) - F(1, 1, 0) - F(1, 0, 1) + F(1, 0, 0) - F(0, 1, 1) + F(0, 1, 0) + F(0, 0, 1) - F(0, 0, 0);
-        double m = 0;
+        double M[3] = {0, 0, 0};
         const int N = 6;
         for (int i = 0; i <= N; ++i)
           for (int j = 0; j <= N; ++j)
             for (int k = 0; k <= N; ++k) {
               const double X = -0.4 + 1.8 * i / N, Y = -0.4 + 1.8 * j / N, Z = -0.4 + 1.8 * k / N;
-              m = std::max({m, std::abs(e + f * Z + gg * Y + h * Y * Z) / g.spacing[0],
-                            std::abs(c + d * Z + gg * X + h * X * Z) / g.spacing[1],
-                            std::abs(b + d * Y + f * X + h * X * Y) / g.spacing[2]});
+              M[0] = std::max(M[0], std::abs(e + f * Z + gg * Y + h * Y * Z) / g.spacing[0]);
+              M[1] = std::max(M[1], std::abs(c + dd * Z + gg * X + h * X * Z) / g.spacing[1]);
+              M[2] = std::max(M[2], std::abs(b + dd * Y + f * X + h * X * Y) / g.spacing[2]);
             }
-        best = std::max(best, std::sqrt(3.0) * m);
+        if (in_box) best = std::max(best, std::sqrt(3.0) * std::max({M[0], M[1], M[2]}));
+        if (least < r && !in_box && near_inside) *near_inside = false;
+        if (least >= r) {
+          if (beyond) *beyond = std::max(*beyond, (M[0] * d[0] + M[1] * d[1] + M[2] * d[2]) / least);
+          if (m_beyond) *m_beyond = std::max({*m_beyond, M[0], M[1], M[2]});
+        }
       }
   return best;
 }
@@ -335,8 +363,15 @@ TEST_CASE("d, g_min and L_max as the thesis defines them (brute force)", "[pu]")
     REQUIRE(f.g_min() == Approx(gmin).epsilon(1e-6));
     // Every voxel centre is at least half a voxel from bdCA(X).
     REQUIRE(gmin >= 0.5 * std::min({sp[0], sp[1], sp[2]}) - 1e-6);
-    const double lmax = brute_lmax(g);
+    double beyond = 0, m_beyond = 0;
+    bool near_inside = false;
+    const double lmax = brute_lmax(g, PartitionOfUnity::weight_margin(sp), f.d(), &beyond, &m_beyond, &near_inside);
     REQUIRE(f.l_max() == Approx(lmax).epsilon(1e-9));
+    // The cells far from S hold 6.4.2 at their vertices by distance alone,
+    // and the near ones all count in L_max.
+    REQUIRE(beyond < 1);
+    REQUIRE(m_beyond <= 3.24 * (1 + 1e-6));
+    REQUIRE(near_inside);
     for (int i = 0; i < 3; ++i) {
       REQUIRE(f.d()[i] == Approx(std::min(sp[i] / 5, gmin / (2 * lmax))).epsilon(1e-6));
       REQUIRE(f.d()[i] <= sp[i] / 5 * (1 + 1e-12));
@@ -518,4 +553,63 @@ TEST_CASE("f on clamped samples: f's signs everywhere, f itself wherever |f| <= 
   // Under the stencil's diameter the argument fails: refused.
   const PartitionOfUnity f = implicit_from_well_composed(random_wc(12, 12, 12, 7));
   CHECK_THROWS_AS(PartitionOfUnity(f.samples().to_image(), f.d(), 1, 0.5f * PartitionOfUnity::clamp_for(f.samples(), 0)), Error);
+}
+
+TEST_CASE("d depends on g near S only: the cells of the foreground's box grown by weight_margin", "[pu]") {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const Vec3 sp = seed == 2 ? Vec3{0.6, 0.6, 1.3} : Vec3{1, 1, 1};
+    BinaryImage small = random_wc(10, 9, 8, seed + 70, sp, 2);
+    BinaryImage big = pad(small, {3, 2, 1}, {25, 4, 3}, std::uint8_t(0));
+    const FloatImage g = implicit_from_well_composed(big).samples().to_image();
+    double gm, lm;
+    const Vec3 d = PartitionOfUnity::weight_constant(g, &gm, &lm);
+    // Far beyond the grown box, a steep ridge (values far above R): the
+    // thesis's whole-grid L_max takes it, ours must not.
+    FloatImage ridged = g;
+    for (std::size_t z = 0; z < g.size[2]; ++z)
+      for (std::size_t y = 0; y < g.size[1]; ++y)
+        for (std::size_t x = g.size[0] - 8; x < g.size[0]; ++x)
+          ridged(x, y, z) = g(x, y, z) + float(0.9 * std::min(sp[0], sp[1]) * double((x + y + z) % 2));
+    REQUIRE(brute_lmax(ridged, {1000, 1000, 1000}) > lm);
+    double gm2, lm2;
+    const Vec3 d2 = PartitionOfUnity::weight_constant(ridged, &gm2, &lm2);
+    REQUIRE(gm2 == gm);
+    REQUIRE(lm2 == lm);
+    REQUIRE(d2 == d);
+  }
+}
+
+TEST_CASE("f streamed a slice at a time is the constructor's f, checks included", "[pu]") {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const Vec3 sp = seed == 2 ? Vec3{0.6, 0.6, 1.3} : Vec3{1, 1, 1};
+    const FloatImage g = implicit_from_well_composed(random_wc(20, 18, 17, seed + 60, sp, 4)).samples().to_image();
+    const float t = seed == 1 ? std::numeric_limits<float>::infinity() : PartitionOfUnity::clamp_for(g, 0.3);
+    const auto storage = seed == 3 ? SampleGrid::Storage::blocks : SampleGrid::Storage::automatic;
+    const PartitionOfUnity a(g, {0, 0, 0}, 1, t, storage);
+    std::size_t z = 0;
+    const std::size_t n = g.size[0] * g.size[1];
+    const PartitionOfUnity b = PartitionOfUnity::streamed(g, {0, 0, 0}, g, a.d(), t, [&](float* slice) {
+      std::copy_n(g.data.data() + z++ * n, n, slice);
+    }, storage);
+    REQUIRE(z == g.size[2]);
+    REQUIRE(b.d() == a.d());
+    REQUIRE(b.g_min() == a.g_min());
+    REQUIRE(b.l_max() <= a.l_max());  // the cells near S, among those of the grown box
+    REQUIRE(b.samples().to_image().data == a.samples().to_image().data);
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int i = 0; i < 2000; ++i) {
+      const Vec3 p = g.world(u(rng) * double(g.size[0] - 1), u(rng) * double(g.size[1] - 1), u(rng) * double(g.size[2] - 1));
+      REQUIRE(b.value(p) == a.value(p));
+    }
+  }
+  // A zero or NaN sample in a later slice is refused as the constructor does.
+  FloatImage g = implicit_from_well_composed(random_wc(10, 10, 10, 5)).samples().to_image();
+  g(3, 4, 7) = std::nanf("");
+  std::size_t z = 0;
+  REQUIRE_THROWS_WITH(PartitionOfUnity::streamed(g, {0, 0, 0}, g, {0.1, 0.1, 0.1}, std::numeric_limits<float>::infinity(),
+                                                 [&](float* slice) {
+                                                   std::copy_n(g.data.data() + z++ * 100, 100, slice);
+                                                 }),
+                      Catch::Contains("finite and nonzero"));
 }
