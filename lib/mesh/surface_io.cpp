@@ -93,6 +93,7 @@ SurfaceMesh read_off(const std::string& path) {
   m.points.resize(std::size_t(nv));
   for (auto& p : m.points)
     for (double& c : p) c = t.coordinate();
+  check_extent(m.points, path);
   m.triangles.resize(std::size_t(nf));
   for (auto& f : m.triangles) {
     const long k = t.get<long>("a face size");
@@ -123,14 +124,15 @@ struct PlyElement {
   std::vector<std::string> properties, types;  // names and (scalar) types, in order
   bool list = false;                           // a list property among them
 
-  // Where x, y, z are among the properties (those present), and none when a
-  // list makes a vertex's fields other than one per property.
-  std::vector<std::size_t> coordinates() const {
-    std::vector<std::size_t> xyz;
+  // Where x, y, z are among the properties (those present, as (axis,
+  // field)), and none when a list makes a vertex's fields other than one per
+  // property.
+  std::vector<std::pair<std::size_t, std::size_t>> coordinates() const {
+    std::vector<std::pair<std::size_t, std::size_t>> xyz;
     if (list) return xyz;
-    for (const char* c : {"x", "y", "z"}) {
-      const auto at = std::find(properties.begin(), properties.end(), c);
-      if (at != properties.end()) xyz.push_back(std::size_t(at - properties.begin()));
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const auto at = std::find(properties.begin(), properties.end(), std::string(1, char('x' + axis)));
+      if (at != properties.end()) xyz.push_back({axis, std::size_t(at - properties.begin())});
     }
     return xyz;
   }
@@ -191,17 +193,19 @@ void check_binary_ply_vertices(std::istream& in, const std::vector<PlyElement>& 
       continue;
     }
     in.seekg(at);
-    const std::vector<std::size_t> xyz = e.coordinates();
+    Extent extent;
     std::vector<unsigned char> b(record);
     for (long long i = 0; i < e.count; ++i) {
       if (!in.read(reinterpret_cast<char*>(b.data()), std::streamsize(record))) return;  // short: OpenMesh reports it
-      for (std::size_t k : xyz) {
+      for (const auto& [axis, k] : e.coordinates()) {
         const double v = ply_value(&b[offset[k]], e.types[k], big_endian);
         const bool single = e.types[k] == "float" || e.types[k] == "float32";
         if (single ? !valid_coordinate(float(v)) : !valid_coordinate(v))
           throw Error("cannot read the mesh: PLY vertex " + std::to_string(i) + ": " + coordinate_error(v), path);
+        extent.add(axis, v);
       }
     }
+    check_extent(extent.value(), path);
     return;
   }
 }
@@ -218,7 +222,8 @@ void check_ascii_ply_body(std::istream& in, const std::vector<PlyElement>& eleme
   for (const PlyElement& e : elements) {
     if (e.name == "vertex") vertices = e.count;
     // The coordinates' fields in a vertex line.
-    const std::vector<std::size_t> xyz = e.name == "vertex" ? e.coordinates() : std::vector<std::size_t>{};
+    const auto xyz = e.name == "vertex" ? e.coordinates() : std::vector<std::pair<std::size_t, std::size_t>>{};
+    Extent extent;
     for (long long i = 0; i < e.count; ++i) {
       if (!std::getline(in, line)) return;  // short: OpenMesh reports it
       ++number;
@@ -227,8 +232,11 @@ void check_ascii_ply_body(std::istream& in, const std::vector<PlyElement>& eleme
         std::vector<std::string> w;
         for (std::string x; words >> x;) w.push_back(x);
         double v;
-        for (std::size_t k : xyz)
+        for (const auto& [axis, k] : xyz) {
           if (k < w.size() && !parse_coordinate(w[k], v)) fail(coordinate_error(w[k]));
+          if (k < w.size()) extent.add(axis, v);
+        }
+        if (i + 1 == e.count) check_extent(extent.value(), path);
       }
       if (e.name != "face") continue;
       std::string first;
@@ -301,14 +309,15 @@ void check_ply_header(const std::string& path) {
 // Three coordinates from `words` (the rest of a vertex line of an ASCII
 // file OpenMesh reads): OpenMesh reads them as floats and, where one fails,
 // drops the vertex (OBJ) or the rest of the file (STL) without a word.
-void check_coordinates(std::istream& words, int number, const std::string& path) {
+void check_coordinates(std::istream& words, int number, const std::string& path, Extent& extent) {
   std::string word;
-  for (int k = 0; k < 3; ++k) {
+  for (std::size_t k = 0; k < 3; ++k) {
     double v;
     if (!(words >> word))
       throw Error("cannot read the mesh: line " + std::to_string(number) + ": a vertex needs x y z", path);
     if (!parse_coordinate(word, v))
       throw Error("cannot read the mesh: line " + std::to_string(number) + ": " + coordinate_error(word), path);
+    extent.add(k, v);
   }
 }
 
@@ -321,13 +330,14 @@ void check_obj_text(const std::string& path) {
   std::string line, word;
   long long vertices = 0;
   int number = 0;
+  Extent extent;
   while (std::getline(in, line)) {
     ++number;
     std::istringstream words(line);
     if (!(words >> word)) continue;
     if (word == "v") {
       ++vertices;
-      check_coordinates(words, number, path);
+      check_coordinates(words, number, path, extent);
     }
     if (word != "f") continue;
     int refs = 0;
@@ -348,6 +358,7 @@ void check_obj_text(const std::string& path) {
     if (refs < 3)
       throw Error("cannot read the mesh: line " + std::to_string(number) + ": a face needs 3 vertices", path);
   }
+  check_extent(extent.value(), path);
 }
 
 // An STL's coordinates as the file holds them: a binary one (84 + 50 n
@@ -362,6 +373,7 @@ void check_stl_coordinates(const std::string& path) {
   const long long size = in.tellg();
   long long triangles = 0;  // little-endian
   for (int i = 3; i >= 0; --i) triangles = triangles * 256 + head[80 + i];
+  Extent extent;
   if (size >= 84 && size == 84 + 50LL * triangles) {
     in.seekg(84);
     unsigned char t[50];
@@ -370,17 +382,19 @@ void check_stl_coordinates(const std::string& path) {
         const double v = ply_value(t + 4 * k, "float", false);
         if (!valid_coordinate(float(v)))
           throw Error("cannot read the mesh: STL triangle " + std::to_string(i) + ": " + coordinate_error(v), path);
+        extent.add(std::size_t(k % 3), v);
       }
-    return;
+  } else {
+    in.seekg(0);
+    std::string line, word;
+    int number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      std::istringstream words(line);
+      if (words >> word && word == "vertex") check_coordinates(words, number, path, extent);
+    }
   }
-  in.seekg(0);
-  std::string line, word;
-  int number = 0;
-  while (std::getline(in, line)) {
-    ++number;
-    std::istringstream words(line);
-    if (words >> word && word == "vertex") check_coordinates(words, number, path);
-  }
+  check_extent(extent.value(), path);
 }
 
 void write_off(std::ostream& out, const SurfaceMesh& m) {
@@ -471,6 +485,7 @@ SurfaceMesh read_surface(const std::string& path) {
     if (k != 3) throw Error("a face with fewer than 3 vertices", path);
     m.triangles.push_back(tri);
   }
+  check_extent(m.points, path);
   return m;
 }
 

@@ -541,6 +541,7 @@ TetMesh read_tet_mesh(const std::string& path) {
     else throw Error("reading tetrahedral meshes: .msh, .mesh or .vtu", path);
   }
   if (m.tets.empty()) throw Error("no tetrahedron", path);
+  check_extent(m.points, path);
   return m;
 }
 

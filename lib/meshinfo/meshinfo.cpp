@@ -79,6 +79,7 @@ PolyMesh read_off_polygons(const std::string& path) {
     // with the line structure, so OFF colours are not supported here.
   }
   if (k != tok.size()) throw Error("unexpected data after the faces (face colours are not supported)", path);
+  check_extent(m.points, path);
   return m;
 }
 

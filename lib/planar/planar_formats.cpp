@@ -157,6 +157,7 @@ PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t m
     m.points.push_back({coordinate(f[0]), coordinate(f[1])});
     if (f.size() > 2) coordinate(f[2]);  // z is dropped, but read as the others
   }
+  check_extent(m.points, path);
   for (long long i = 0; i < nf; ++i, ++li) {
     const auto& f = lines[li].second;
     const long long k = integer(f[0]);

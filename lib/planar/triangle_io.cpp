@@ -122,6 +122,7 @@ void read_vertices(Fields& f, PlanarMesh& m, std::size_t n, std::size_t nattr, b
     }
     if (markers) m.point_markers.push_back(int(f.integer(l[3 + nattr])));
   }
+  check_extent(m.points, f.path());
 }
 
 void read_node_header_and_vertices(Fields& f, PlanarMesh& m, bool allow_empty, bool* deferred) {

@@ -1,6 +1,6 @@
 // Fast number text: TextOutput writes reals byte for byte as
-// printf("%.17g"), and extreme doubles (coordinates: the ends of their
-// range) survive a round trip through Triangle's formats bit for bit.
+// printf("%.17g"), and extreme doubles (coordinates: up to the ends of
+// their range) survive a round trip through Triangle's formats bit for bit.
 #include "planar/text_io.hpp"
 #include "planar/triangle_io.hpp"
 #include "util/error.hpp"
@@ -57,15 +57,16 @@ const double extremes[] = {0.0,
                            -9007199254740993.0,
                            std::nextafter(1.0, 2.0),
                            std::ldexp(1.0, -1074) * 3};
-// Coordinates: 0, or 1e-30 to 1e30 in magnitude (util/coordinates.hpp).
+// Coordinates: any finite double of magnitude at most 1e30 (util/coordinates.hpp).
 const double coordinate_extremes[] = {0.0,
                                       -0.0,
                                       1e30,
                                       -1e30,
-                                      1e-30,
-                                      -1e-30,
                                       std::nextafter(1e30, 0.0),
-                                      std::nextafter(1e-30, 1.0),
+                                      std::numeric_limits<double>::min(),
+                                      std::numeric_limits<double>::denorm_min(),
+                                      -2.2250738585072009e-308,
+                                      1e-320,
                                       0.1 + 0.2,
                                       1.0 / 3.0,
                                       123456789.12345678,
@@ -113,14 +114,14 @@ TEST_CASE("TextOutput writes reals as %.17g, byte for byte, across chunk boundar
 TEST_CASE("extreme doubles round trip through .node/.poly/.ele bit for bit") {
   PlanarMesh m;
   for (double x : coordinate_extremes)
-    for (double y : {-0.0, 1e30, 1e-30}) m.points.push_back({x, y});
+    for (double y : {-0.0, 1e30, std::numeric_limits<double>::denorm_min()}) m.points.push_back({x, y});
   for (std::size_t i = 0; i < m.points.size(); ++i) m.point_attributes.push_back({extremes[i % std::size(extremes)]});
   m.point_markers.assign(m.points.size(), -3);
   m.elements = {{0, 1, 2, 3}, {4, 5, 6, 7}};
   m.element_attributes = {{-0.0}, {1e-320}};
   m.segments = {{0, 1}};
-  m.holes = {{-0.0, 1e-30}};
-  m.regions = {{{1e30, -1e-30}, -0.0, 1.0 / 3.0}};
+  m.holes = {{-0.0, 1e-310}};
+  m.regions = {{{1e30, -1e-308}, -0.0, 1.0 / 3.0}};
   const std::string ele = scratch("x.ele"), poly = scratch("x.poly");
   write_node(scratch("x.node"), m);
   write_ele(ele, m);
@@ -139,10 +140,10 @@ TEST_CASE("extreme doubles round trip through .node/.poly/.ele bit for bit") {
   CHECK(bits(r.element_attributes[0][0]) == bits(-0.0));
   CHECK(bits(r.element_attributes[1][0]) == bits(1e-320));
   CHECK(bits(p.holes[0][0]) == bits(-0.0));
-  CHECK(bits(p.holes[0][1]) == bits(1e-30));
+  CHECK(bits(p.holes[0][1]) == bits(1e-310));
   REQUIRE(p.regions.size() == 1);
   CHECK(bits(p.regions[0].point[0]) == bits(1e30));
-  CHECK(bits(p.regions[0].point[1]) == bits(-1e-30));
+  CHECK(bits(p.regions[0].point[1]) == bits(-1e-308));
   CHECK(bits(p.regions[0].attribute) == bits(-0.0));
   CHECK(bits(p.regions[0].max_area) == bits(1.0 / 3.0));
   fs::remove_all(fs::path(ele).parent_path());
@@ -153,7 +154,7 @@ TEST_CASE("Triangle readers: strtod's forms and comments right after data") {
   std::ofstream(node) << "3 2 0 0#header\n"
                          "  \t \n"
                          "0 +1.5 0x1p3\n"
-                         "1 0e-400 .5# no space before the comment\n"
+                         "1 1e-400 .5# no space before the comment\n"
                          "#\n"
                          "2 5. -0\r\n";
   const PlanarMesh m = read_node(node);
@@ -162,16 +163,29 @@ TEST_CASE("Triangle readers: strtod's forms and comments right after data") {
   CHECK(m.points[1] == Point2{0, 0.5});
   CHECK(m.points[2] == Point2{5, 0});
   CHECK(std::signbit(m.points[2][1]));
-  for (const char* bad : {"1e400", "1e-400", "1e31", "1e-31", "nan"}) {
+  for (const char* bad : {"1e400", "-1e31", "1.0000000000000002e30", "nan", "-inf"}) {
     std::ofstream(node) << "3 2 0 0\n0 0 0\n1 " << bad << " 0\n2 0 1\n";
     try {
       read_node(node);
       FAIL(std::string(bad) + " accepted");
     } catch (const Error& e) {
-      CHECK(e.message().find(std::string("line 3: coordinate '") + bad + "' is not a number in the tools' range") !=
-            std::string::npos);
+      CHECK(e.message().find(std::string("line 3: coordinate '") + bad +
+                             "' is out of range (finite, at most 1e30 in magnitude)") != std::string::npos);
     }
   }
+  // A mesh 1e-31 across is too small for double arithmetic; one all at a
+  // point is a degenerate mesh, the tools' to refuse.
+  std::ofstream(node) << "3 2 0 0\n0 0 0\n1 1e-31 0\n2 0 5e-32\n";
+  try {
+    read_node(node);
+    FAIL("a mesh 1e-31 across accepted");
+  } catch (const Error& e) {
+    CHECK(e.message().find("the coordinates span only 1e-31: under 1e-30") != std::string::npos);
+  }
+  std::ofstream(node) << "3 2 0 0\n0 1e-31 0\n1 1e-31 0\n2 1e-31 0\n";
+  CHECK(read_node(node).points.size() == 3);
+  std::ofstream(node) << "3 2 0 0\n0 0 0\n1 1e-30 0\n2 0 1e-300\n";
+  CHECK(read_node(node).points[1][0] == 1e-30);
   std::ofstream(node) << "3 2 1 0\n0 0 0 1e-320\n1 1 0 1e308\n2 0 1 -0\n";  // attributes: any finite number
   CHECK(read_node(node).point_attributes[1][0] == 1e308);
   std::ofstream(node) << "3 2 1 0\n0 0 0 0\n1 1 0 1e400\n2 0 1 0\n";
@@ -186,7 +200,7 @@ TEST_CASE("Triangle readers: strtod's forms and comments right after data") {
     read_node(node);
     FAIL("1e accepted");
   } catch (const Error& e) {
-    CHECK(e.message().find("line 4: coordinate '1e' is not a number") != std::string::npos);
+    CHECK(e.message().find("line 4: '1e' is not a number") != std::string::npos);
   }
   std::ofstream(node) << "99999999999999999999 2 0 0\n";
   try {
