@@ -6,7 +6,7 @@
 // break the mesher's invariants (a point in conflict with neither face beside
 // the segment it splits, a flat face among the bad ones) CGAL's check throws,
 // where without it the next step dereferences a null face. Cost: within the
-// noise on a 100,000-triangle mesh (doc/benchmarks.md, poly2tri).
+// noise on a 100,000-triangle mesh (BrainT1Slice.poly --max-area 0.5).
 #define CGAL_DEBUG
 #include "planar/triangulate.hpp"
 
