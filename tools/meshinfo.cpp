@@ -19,10 +19,18 @@ int main(int argc, char** argv) {
   tool.data_output(imgmesh::cli::Tool::kStdout, imgmesh::cli::Stream::Text, [&] { return !json; });  // --json: one object
   tool.app.add_flag("--json", json, "print one JSON object (keys 'components' and 'euler' first) instead of text");
   tool.app.add_option("--image", image,
-                      "3D: well-composed image; match each mesh component by place to a bdCA(X) component, one to "
-                      "one, same euler. 2D: the image img2poly read (repaired as img2poly does); match each region "
-                      "of the planar mesh to a pixel region (exit 3 if not)")
+                      "3D: well-composed image; certify the mesh against its voxel boundary bdCA(X): closed, "
+                      "manifold, oriented outward, no self-intersection, each component within --place-tolerance of "
+                      "one bdCA(X) component and it of the mesh component, one to one, same euler. 2D: the image "
+                      "img2poly read (repaired as img2poly does); match each region of the planar mesh to a pixel "
+                      "region (exit 3 if not)")
       ->type_name("FILE");
+  imgmesh::CertificateOptions cert;
+  auto* place = tool.app.add_option("--place-tolerance", cert.place_tolerance,
+                      "with a 3D --image: how far (world units) a vertex may lie from its bdCA(X) component, and a "
+                      "corner of bdCA(X) from its mesh component (default: one voxel diagonal)")
+      ->type_name("D")
+      ->check(CLI::Range(1e-300, 1e300).description(""));
   imgmesh::Selection sel;
   auto* label = tool.app.add_option("--label", sel.labels,
                                     "with --image: keep this label (repeatable), other values become 0, as in img2poly and img2wc")
@@ -50,6 +58,7 @@ int main(int argc, char** argv) {
     sel.has_threshold = thr->count() > 0;
     if (image.empty() && (sel.has_threshold || !sel.labels.empty()))
       throw imgmesh::UsageError("--label and --threshold select the foreground of --image: give --image");
+    if (image.empty() && place->count()) throw imgmesh::UsageError("--place-tolerance is the certificate's, against --image: give --image");
     // A 2D image: the labels img2poly traced (same selection, same repair).
     bool planar_image = false;
     if (!image.empty() && !tets && image != "-") {
@@ -60,9 +69,9 @@ int main(int argc, char** argv) {
     std::optional<imgmesh::LabelImage> labels;
     if (planar_image) labels = imgmesh::well_composed_labels(imgmesh::read_labels(image, sel), tool.seed());
     else if (!image.empty()) img = imgmesh::read_foreground(image, sel);
-    const imgmesh::MeshInfo info = tets     ? imgmesh::tet_mesh_info(*tm, in, img ? &*img : nullptr, image)
+    const imgmesh::MeshInfo info = tets     ? imgmesh::tet_mesh_info(*tm, in, img ? &*img : nullptr, image, cert)
                                    : labels ? imgmesh::planar_mesh_info(*pm, in, *labels, image, tolerance + 1)
-                                            : imgmesh::mesh_info(*pm, in, img ? &*img : nullptr, image);
+                                            : imgmesh::mesh_info(*pm, in, img ? &*img : nullptr, image, cert);
     if (json) tool.print_json(info.report);
     else std::cout << imgmesh::format_report(info.report);
     return tool.finish(info);

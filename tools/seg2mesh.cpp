@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
   LabelSurfacesOptions opt;
   SurfaceWriteOptions write_opt;
   opt.jobs = int(std::max(1u, std::thread::hardware_concurrency()));
-  tool.app.add_option("IN", in, "Label image (NRRD, MetaImage, NIfTI; - for stdin)")->required();
+  tool.app.add_option("IN", in, "Label image (NRRD, MetaImage, NIfTI, 3D Slicer's .seg.nrrd; - for stdin)")->required();
   tool.app.add_option("OUT", out,
                       "Output surface in world (LPS) coordinates: .ply, .vtp, .vtk or .msh (a label and a component "
                       "id per face); .off, .obj, .stl (no labels; - for OFF on stdout)")
@@ -78,7 +78,7 @@ int main(int argc, char** argv) {
     if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
 
     tool.report_progress("reading " + in);
-    const LabelImage image = read_labels(in);
+    const LabelImage image = read_labels(in, &opt.names);
     opt.mesher = surface_options.resolve(image.spacing);
     opt.mesher.seed = tool.seed();
     const LabelSurfacesResult res = naming_input(in, [&] { return mesh_label_surfaces(image, opt); });
@@ -88,7 +88,8 @@ int main(int argc, char** argv) {
     tool.stats["output"] = out;
     for (const LabelSurface& l : res.labels) {
       std::ostringstream msg;
-      msg << "label " << l.label << ": " << l.mesh.mesh.triangles.size() << " triangles, Euler characteristic(s)";
+      msg << "label " << l.label << (l.name.empty() ? "" : " (" + l.name + ")") << ": " << l.mesh.mesh.triangles.size()
+          << " triangles, Euler characteristic(s)";
       for (long long e : l.mesh.topology.sorted_euler()) msg << ' ' << e;
       msg << ", " << l.seconds << " s";
       tool.debug(msg.str());

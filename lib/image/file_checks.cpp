@@ -201,13 +201,12 @@ std::string metaimage_header_error(const std::string& file) {
       if (n < 1 || n > 10 || end == line.c_str() + eq + 1 || end[std::strspn(end, " \t\r")] != '\0')
         return "the MetaImage's NDims must be a whole number from 1 to 10";
     }
-    // MetaIO allocates CompressedDataSize bytes as the header says.
+    // MetaIO allocates CompressedDataSize bytes as the header says: a
+    // negative or NaN size is refused here, one beyond its data file by
+    // metaimage_data_error, which knows the data files.
     if (line.compare(0, 18, "CompressedDataSize") == 0 && eq != std::string::npos) {
-      std::error_code ec;
       const double declared = std::strtod(line.c_str() + eq + 1, nullptr);
-      const auto size = std::filesystem::file_size(file, ec);
-      if (!(declared >= 0) || (!ec && declared > double(size)))
-        return "the MetaImage's CompressedDataSize is more than the file holds";
+      if (!(declared >= 0)) return "the MetaImage's CompressedDataSize is not a size";
     }
     if (line.compare(0, 15, "ElementDataFile") != 0 || line.find_first_not_of(" \t", 15) != line.find('=')) continue;
     // An empty value makes MetaIO take its file name from the data after.
@@ -230,8 +229,10 @@ std::string metaimage_header_error(const std::string& file) {
 // files that are missing, or compressed data that does not inflate, as
 // zeros (printing at most "Uncompress failed"), and takes a directory's
 // size as 2^63. So the data the header points to is checked here: every
-// file it names is a regular file, and compressed data inflates to the
-// image's `bytes` (the inflated bytes are counted, not kept).
+// file it names is a regular file, holds what the header declares (raw
+// voxels, or CompressedDataSize bytes, which MetaIO allocates for each
+// file), and compressed data inflates to the image's `bytes` (the
+// inflated bytes are counted, not kept).
 namespace {
 std::string inflate_error(const std::string& file, std::uintmax_t offset, std::uintmax_t& bytes) {
   std::ifstream in(file, std::ios::binary);
@@ -258,13 +259,20 @@ std::string inflate_error(const std::string& file, std::uintmax_t offset, std::u
   if (err != Z_OK && err != Z_STREAM_END) return "compressed data is corrupt (zlib: " + std::string(z.msg ? z.msg : "error") + ")";
   return "";
 }
-}  // namespace
 
-std::string metaimage_data_error(const std::string& file, std::uintmax_t bytes) {
+// What metaimage_data_error reads of a header: its fields up to
+// ElementDataFile (the last), and the lines after it (a LIST's names).
+struct MetaDataFields {
+  std::string data, ndims, dimsize;
+  bool compressed = false, binary = true;
+  double compressed_size = 0;
+  std::uintmax_t offset = 0;  // where LOCAL data starts
+  std::vector<std::string> after;
+};
+
+MetaDataFields read_data_fields(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
-  std::string line, data, ndims, dimsize;
-  bool compressed = false;
-  std::uintmax_t offset = 0;
+  MetaDataFields f;
   auto value = [](const std::string& l) {
     std::size_t v = l.find_first_not_of(" \t", l.find('=') + 1);
     std::string s = v == std::string::npos ? "" : l.substr(v);
@@ -275,37 +283,47 @@ std::string metaimage_data_error(const std::string& file, std::uintmax_t bytes) 
     const std::size_t n = std::strlen(k);
     return l.compare(0, n, k) == 0 && l.find_first_not_of(" \t", n) == l.find('=');
   };
-  while (std::getline(in, line)) {
+  for (std::string line; std::getline(in, line);) {
     if (line.find('=') == std::string::npos) continue;
-    if (key(line, "CompressedData")) compressed = metaio_true(value(line));
-    if (key(line, "NDims")) ndims = value(line);
-    if (key(line, "DimSize")) dimsize = value(line);
+    if (key(line, "CompressedData")) f.compressed = metaio_true(value(line));
+    if (key(line, "CompressedDataSize")) f.compressed_size = std::strtod(value(line).c_str(), nullptr);
+    if (key(line, "BinaryData")) f.binary = metaio_true(value(line));
+    if (key(line, "NDims")) f.ndims = value(line);
+    if (key(line, "DimSize")) f.dimsize = value(line);
     if (key(line, "ElementDataFile")) {
-      data = value(line);
-      offset = std::uintmax_t(in.tellg());
+      f.data = value(line);
+      f.offset = std::uintmax_t(in.tellg());
       break;
     }
   }
-  if (data.empty()) return "";  // MetaIO itself refuses a header without one
-  const std::string fewer = "the MetaImage's compressed data holds fewer bytes than its size declares";
-  if (data == "LOCAL") {
-    if (!compressed) return "";
-    const std::string e = inflate_error(file, offset, bytes);
-    return !e.empty() ? "the MetaImage's " + e : bytes ? fewer : "";
-  }
-  const std::filesystem::path dir = std::filesystem::path(file).parent_path();
+  if (f.data.substr(0, f.data.find_first_of(" \t")) == "LIST")
+    for (std::string name; std::getline(in, name);) {
+      while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.pop_back();
+      if (!name.empty()) f.after.push_back(name);
+    }
+  return f;
+}
+
+struct DataFile {
+  std::string name;  // as the header gives it
+  std::filesystem::path path;
+};
+
+// The data files of a header whose ElementDataFile is not LOCAL: one file,
+// a LIST or a %d pattern; files of a LIST or a pattern hold slices, as many
+// as the last axes (of the file's own dimension, NDims - 1 unless "LIST 2D"
+// and such say). Names relative to the header's folder, as MetaIO takes them.
+std::string data_files(const std::string& file, const MetaDataFields& f, std::vector<DataFile>& files) {
   std::vector<std::string> names;
-  std::istringstream words(data);
+  std::istringstream words(f.data);
   std::string first;
   words >> first;
-  // Files of a LIST or a pattern hold slices: as many as the last axes (of
-  // the file's own dimension, NDims - 1 unless "LIST 2D" and such say).
   std::vector<long> dims;
   {
-    std::istringstream d(dimsize);
+    std::istringstream d(f.dimsize);
     for (long x; d >> x;) dims.push_back(x);
   }
-  const long n = std::atol(ndims.c_str());
+  const long n = std::atol(f.ndims.c_str());
   auto slices = [&](long file_dims) {
     long count = 1;
     for (long i = std::max(0L, file_dims); i < n && i < long(dims.size()); ++i) count *= std::max(1L, dims[i]);
@@ -316,10 +334,7 @@ std::string metaimage_data_error(const std::string& file, std::uintmax_t bytes) 
     std::string d;
     words >> d;
     needed = slices(d.empty() ? n - 1 : std::atol(d.c_str()));
-    for (std::string name; std::getline(in, name);) {
-      while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back()))) name.pop_back();
-      if (!name.empty()) names.push_back(name);
-    }
+    names = f.after;
   } else if (first.find('%') != std::string::npos) {
     long lo = 0, hi = -1, step = 1;
     words >> lo >> hi >> step;
@@ -331,22 +346,68 @@ std::string metaimage_data_error(const std::string& file, std::uintmax_t bytes) 
       names.push_back(name);
     }
   } else {
-    names.push_back(data);
+    names.push_back(f.data);
   }
   if (long(names.size()) < needed)
     return "the MetaImage's ElementDataFile names " + std::to_string(names.size()) + " files, " +
            std::to_string(needed) + " needed";
+  const std::filesystem::path dir = std::filesystem::path(file).parent_path();
   for (const std::string& name : names) {
     const std::filesystem::path p = std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : dir / name;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(p, ec))
       return "the MetaImage's data file '" + name + "' is missing or not a regular file";
+    files.push_back({name, p});
   }
-  if (!compressed) return "";
-  for (const std::string& name : names) {
-    const std::filesystem::path p = std::filesystem::path(name).is_absolute() ? std::filesystem::path(name) : dir / name;
-    const std::string e = inflate_error(p.string(), 0, bytes);
-    if (!e.empty()) return "the MetaImage's data file '" + name + "': " + e;
+  return "";
+}
+
+// The sizes the data files hold against what the header declares.
+std::string data_size_error(const std::string& file, const MetaDataFields& f,
+                            const std::vector<DataFile>& files, std::uintmax_t bytes) {
+  std::uintmax_t largest = 0, total = 0;
+  for (const DataFile& d : files) {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(d.path, ec);
+    largest = std::max(largest, ec ? 0 : size);
+    total += ec ? 0 : size;
+  }
+  const std::string where = files.empty() ? std::string("the file")
+                            : files.size() == 1 ? "its data file '" + files[0].name + "'"
+                                                : "the largest of its data files";
+  if (files.empty()) {
+    std::error_code ec;
+    largest = std::filesystem::file_size(file, ec);
+    if (ec) return "";
+  }
+  if (f.compressed && f.compressed_size > double(largest))
+    return "the MetaImage's CompressedDataSize (" + std::to_string((unsigned long long)std::min(f.compressed_size, 1e19)) +
+           " bytes) is more than " + where + " holds (" + std::to_string(largest) + " bytes)";
+  if (!f.compressed && f.binary && !files.empty() && total < bytes)
+    return "the MetaImage's data file" + std::string(files.size() == 1 ? " '" + files[0].name + "' holds " : "s hold ") +
+           std::to_string(total) + " bytes, the header declares " + std::to_string(bytes);
+  return "";
+}
+}  // namespace
+
+std::string metaimage_data_error(const std::string& file, std::uintmax_t bytes) {
+  const MetaDataFields f = read_data_fields(file);
+  if (f.data.empty()) return "";  // MetaIO itself refuses a header without one
+  std::vector<DataFile> files;  // none: LOCAL
+  if (f.data != "LOCAL") {
+    const std::string e = data_files(file, f, files);
+    if (!e.empty()) return e;
+  }
+  if (const std::string e = data_size_error(file, f, files, bytes); !e.empty()) return e;
+  if (!f.compressed) return "";
+  const std::string fewer = "the MetaImage's compressed data holds fewer bytes than its size declares";
+  if (files.empty()) {
+    const std::string e = inflate_error(file, f.offset, bytes);
+    return !e.empty() ? "the MetaImage's " + e : bytes ? fewer : "";
+  }
+  for (const DataFile& d : files) {
+    const std::string e = inflate_error(d.path.string(), 0, bytes);
+    if (!e.empty()) return "the MetaImage's data file '" + d.name + "': " + e;
   }
   return bytes ? fewer : "";
 }

@@ -3,6 +3,7 @@
 // through itk::Image + ImageFileWriter.
 #include "image/io.hpp"
 #include "image/file_checks.hpp"
+#include "image/slicer_segmentation.hpp"
 
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
@@ -24,6 +25,7 @@
 #include <png.h>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -127,12 +129,35 @@ private:
   int saved_ = -1;
 };
 
-// stdin is spooled to a temporary file whose extension comes from the content,
-// since ITK reads only from paths and picks readers by name and content.
+// The file ITK is given for a path. stdin is spooled to a temporary file
+// whose extension comes from the content, since ITK reads only from paths
+// and picks readers by name and content. niftilib reads the voxels of
+// X.nii.gz from X.nii when that file exists beside it (nifti_findimgname
+// tries .nii first), so such a file is given through a link of another
+// name in a temporary folder.
 class Spool {
 public:
   explicit Spool(const std::string& path) : path_(path) {
-    if (path != "-") return;
+    if (path == "-") {
+      spool_stdin();
+    } else if (extension_of(path) == ".nii.gz" && std::ifstream(path.substr(0, path.size() - 3))) {
+      link_alone();
+    }
+  }
+  ~Spool() {
+    if (!tmp_.empty()) std::remove(tmp_.c_str());
+    if (!dir_.empty()) rmdir(dir_.c_str());
+  }
+  Spool(const Spool&) = delete;
+  Spool& operator=(const Spool&) = delete;
+  const std::string& file() const { return tmp_.empty() ? path_ : tmp_; }
+
+private:
+  static std::string tmpdir() {
+    const char* t = std::getenv("TMPDIR");
+    return t && *t ? t : "/tmp";
+  }
+  void spool_stdin() {
     std::string data((std::istreambuf_iterator<char>(std::cin)), std::istreambuf_iterator<char>());
     if (data.empty()) throw Error("standard input is empty", "-");
     std::string ext;
@@ -143,8 +168,7 @@ public:
     else if (starts("ObjectType") || starts("NDims")) ext = ".mha";
     else if (data.size() > 348 && data.compare(344, 3, "n+1") == 0) ext = ".nii";
     else throw Error("cannot tell the image format of standard input (NRRD, MetaImage, NIfTI or PNG expected)", "-");
-    const char* tmpdir = std::getenv("TMPDIR");
-    std::string templ = std::string(tmpdir && *tmpdir ? tmpdir : "/tmp") + "/stdin-XXXXXX" + ext;
+    std::string templ = tmpdir() + "/stdin-XXXXXX" + ext;
     std::vector<char> buf(templ.begin(), templ.end());
     buf.push_back('\0');
     int fd = mkstemps(buf.data(), int(ext.size()));
@@ -155,17 +179,39 @@ public:
     out.write(data.data(), std::streamsize(data.size()));
     if (!out) throw Error("cannot spool standard input", "-");
   }
-  ~Spool() { if (!tmp_.empty()) std::remove(tmp_.c_str()); }
-  const std::string& file() const { return tmp_.empty() ? path_ : tmp_; }
-
-private:
-  std::string path_, tmp_;
+  void link_alone() {
+    std::string templ = tmpdir() + "/nii-XXXXXX";
+    std::vector<char> buf(templ.begin(), templ.end());
+    buf.push_back('\0');
+    if (!mkdtemp(buf.data())) throw Error("cannot make a temporary folder to read the image alone", path_);
+    dir_ = buf.data();
+    const std::string link = dir_ + "/image.nii.gz";
+    std::error_code ec;
+    const std::filesystem::path target = std::filesystem::absolute(path_, ec);
+    if (ec || symlink(target.c_str(), link.c_str()) != 0) {
+      rmdir(dir_.c_str());
+      throw Error("cannot link the image alone into a temporary folder", path_);
+    }
+    tmp_ = link;
+  }
+  std::string path_, tmp_, dir_;
 };
 
 struct Opened {
   itk::ImageIOBase::Pointer io;
   ImageInfo info;
+  LabelNames names;  // 3D Slicer's segment names
 };
+
+// The key/value fields of a file that are strings (NRRD's "key:=value").
+std::map<std::string, std::string> string_fields(const itk::MetaDataDictionary& dict) {
+  std::map<std::string, std::string> fields;
+  for (const auto& key : dict.GetKeys()) {
+    std::string value;
+    if (itk::ExposeMetaData<std::string>(dict, key, value)) fields[key] = value;
+  }
+  return fields;
+}
 
 Opened open_image_itk(const std::string& path, const std::string& file) {
   register_factories();
@@ -200,6 +246,11 @@ Opened open_image_itk(const std::string& path, const std::string& file) {
   } catch (const itk::ExceptionObject& e) {
     throw said.error(e, path);
   }
+  // A 3D Slicer segmentation's layers are pixel components: checked (and
+  // its names kept) before components are taken for colours.
+  o.names = naming_input(path, [&] {
+    return slicer_label_names(string_fields(o.io->GetMetaDataDictionary()), o.io->GetNumberOfComponents());
+  });
   const unsigned n = o.io->GetNumberOfDimensions();
   // Trailing axes of size 1 do not count (a 3D file holding one slice is 2D
   // data, a "4D" file with one time point is 3D).
@@ -434,12 +485,13 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel) {
   return out;
 }
 
-LabelImage read_labels(const std::string& path) {
+LabelImage read_labels(const std::string& path, LabelNames* names) {
   Spool spool(path);
   Opened o = open_image(path, spool.file());
+  if (names) *names = o.names;
   LabelImage out(o.info.geometry, 0);
   visit_values(path, o, [&](std::size_t i, double v) {
-    if (v != std::floor(v) || std::abs(v) > 2147483647.0)
+    if (v != std::floor(v) || v < -2147483648.0 || v > 2147483647.0)
       throw Error("not a label image: value " + std::to_string(v) + " is not a 32-bit integer", path);
     out.data[i] = std::int32_t(v);
   });
@@ -470,14 +522,7 @@ FloatImage read_float(const std::string& path, std::map<std::string, std::string
   Opened o = open_image(path, spool.file());
   FloatImage out(o.info.geometry, 0.f);
   visit_values(path, o, [&](std::size_t i, double v) { out.data[i] = float(v); });
-  if (fields) {
-    fields->clear();
-    const auto& dict = o.io->GetMetaDataDictionary();
-    for (const auto& key : dict.GetKeys()) {
-      std::string value;
-      if (itk::ExposeMetaData<std::string>(dict, key, value)) (*fields)[key] = value;
-    }
-  }
+  if (fields) *fields = string_fields(o.io->GetMetaDataDictionary());
   return out;
 }
 

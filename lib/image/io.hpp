@@ -4,6 +4,7 @@
 // NRRD to stdout. Writers go through AtomicOutput: no partial files.
 #pragma once
 #include "image/grid.hpp"
+#include "image/slicer_segmentation.hpp"
 
 #include <map>
 #include <string>
@@ -35,8 +36,12 @@ ImageInfo read_image_info(const std::string& path);
 // foreground, NaNs, or any unreadable input.
 BinaryImage read_foreground(const std::string& path, const Selection& sel);
 
-// Read an integer label image (2D or 3D). Throws Error on non-integer values.
-LabelImage read_labels(const std::string& path);
+// Read an integer label image (2D or 3D) and, when `names` is given, the
+// names its file gives its labels (3D Slicer's segment names, empty when
+// none). Throws Error on non-integer values. Every reader refuses a 3D
+// Slicer segmentation of several layers (overlapping segments) or of a
+// fractional labelmap (slicer_segmentation.hpp).
+LabelImage read_labels(const std::string& path, LabelNames* names = nullptr);
 // The same with a selection: a threshold gives the 0/1 foreground (as
 // read_foreground); labels keep those labels and make every other value 0
 // (Error when one does not occur); neither keeps every value.

@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 #include <map>
 #include <numeric>
+#include <set>
 
 namespace imgmesh {
 namespace {
@@ -48,6 +50,71 @@ void data_array(std::ostream& out, const char* type, const char* name, int compo
 
 void xyz(std::ostream& out, const std::array<double, 3>& p) { out << p[0] << ' ' << p[1] << ' ' << p[2]; }
 
+// The names of the labels the faces carry (empty names left out), by label.
+std::map<int, std::string> names_used(const SurfaceMesh& m) {
+  std::map<int, std::string> out;
+  if (!has_labels(m) || m.label_names.empty()) return out;
+  const std::set<int> used(m.labels.begin(), m.labels.end());
+  for (const auto& [label, name] : m.label_names)
+    if (used.count(label) && !name.empty()) out.emplace(label, name);
+  return out;
+}
+
+// A name on one header line: control characters as spaces.
+std::string one_line(std::string name) {
+  for (char& c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+  return name;
+}
+
+// A Gmsh physical name: one line, no double quote, at most 127 bytes (the
+// format's limit), not cut inside a UTF-8 character.
+std::string msh_name(const std::string& name) {
+  std::string s = one_line(name);
+  std::replace(s.begin(), s.end(), '"', '\'');
+  if (s.size() > 127) {
+    std::size_t end = 127;
+    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xc0) == 0x80) --end;
+    s.resize(end);
+  }
+  return s;
+}
+
+// Legacy VTK's string values, one a line, with VTK's own escapes
+// (vtkDataWriter::EncodeString): %XX for a space, '"', '%' and every byte
+// outside 33..126.
+std::string vtk_legacy_string(const std::string& name) {
+  std::string out;
+  for (unsigned char c : name) {
+    if (c < 33 || c > 126 || c == '"' || c == '%') {
+      char hex[4];
+      std::snprintf(hex, sizeof hex, "%%%02X", c);
+      out += hex;
+    } else {
+      out += char(c);
+    }
+  }
+  return out;
+}
+
+// The labels' values and names as VTK XML field data; an ASCII String
+// array holds each string's bytes as numbers (signed char, as VTK writes
+// them) ended by 0.
+void vtp_field_data(std::ostream& out, const std::map<int, std::string>& names) {
+  if (names.empty()) return;
+  out << "    <FieldData>\n      <DataArray type=\"Int32\" Name=\"label_values\" NumberOfTuples=\"" << names.size()
+      << "\" format=\"ascii\">\n        ";
+  for (const auto& [label, name] : names) out << label << ' ';
+  out << "\n      </DataArray>\n      <DataArray type=\"String\" Name=\"label_names\" NumberOfTuples=\""
+      << names.size() << "\" format=\"ascii\">\n";
+  for (const auto& [label, name] : names) {
+    out << "        ";
+    for (char c : name) out << short(static_cast<signed char>(c)) << ' ';
+    out << "0\n";
+  }
+  out << "      </DataArray>\n    </FieldData>\n";
+}
+
 } // namespace
 
 std::vector<int> face_components(const SurfaceMesh& m) {
@@ -80,8 +147,9 @@ std::vector<int> face_components(const SurfaceMesh& m) {
 void write_vtp(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component) {
   out.precision(17);
   out << "<?xml version=\"1.0\"?>\n<!-- imgmesh surface, world coordinates SPACE=LPS (as ITK) -->\n"
-      << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <PolyData>\n"
-      << "    <Piece NumberOfPoints=\"" << m.points.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
+      << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <PolyData>\n";
+  vtp_field_data(out, names_used(m));
+  out << "    <Piece NumberOfPoints=\"" << m.points.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
       << "NumberOfStrips=\"0\" NumberOfPolys=\"" << m.triangles.size() << "\">\n";
   if (has_normals(m)) {
     out << "      <PointData Normals=\"Normals\">\n";
@@ -106,7 +174,14 @@ void write_vtk_legacy(std::ostream& out, const SurfaceMesh& m, const std::vector
   out.precision(17);
   // Version 4.2: the POLYGONS layout every VTK reader (and meshio) takes.
   out << "# vtk DataFile Version 4.2\nimgmesh surface, world coordinates SPACE=LPS (as ITK)\nASCII\n"
-      << "DATASET POLYDATA\nPOINTS " << m.points.size() << " double\n";
+      << "DATASET POLYDATA\n";
+  if (const auto names = names_used(m); !names.empty()) {
+    out << "FIELD FieldData 2\nlabel_values 1 " << names.size() << " int\n";
+    for (const auto& [label, name] : names) out << label << ' ';
+    out << "\nlabel_names 1 " << names.size() << " string\n";
+    for (const auto& [label, name] : names) out << vtk_legacy_string(name) << '\n';
+  }
+  out << "POINTS " << m.points.size() << " double\n";
   for (const auto& p : m.points) {
     xyz(out, p);
     out << '\n';
@@ -136,10 +211,15 @@ void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
   std::vector<int> physical(std::size_t(components), 0);
   for (std::size_t i = 0; i < m.triangles.size(); ++i)
     physical[std::size_t(component[i])] = labels ? m.labels[i] : component[i] + 1;
+  const std::map<int, std::string> label_names = names_used(m);
   std::map<int, std::string> names;
-  for (int c = 0; c < components; ++c)
-    names[physical[std::size_t(c)]] = labels ? "label " + std::to_string(physical[std::size_t(c)])
-                                             : "component " + std::to_string(c);
+  for (int c = 0; c < components; ++c) {
+    const int tag = physical[std::size_t(c)];
+    const auto named = label_names.find(tag);
+    names[tag] = !labels ? "component " + std::to_string(c)
+                 : named != label_names.end() ? msh_name(named->second)
+                                              : "label " + std::to_string(tag);
+  }
   out << "$MeshFormat\n" << version << " 0 8\n$EndMeshFormat\n$PhysicalNames\n" << names.size() << '\n';
   for (const auto& [tag, name] : names) out << "2 " << tag << " \"" << name << "\"\n";
   out << "$EndPhysicalNames\n";
@@ -225,8 +305,9 @@ void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
 
 void write_ply(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component) {
   const bool normals = has_normals(m), labels = has_labels(m);
-  out << "ply\nformat binary_little_endian 1.0\ncomment imgmesh surface, world coordinates SPACE=LPS (as ITK)\n"
-      << "element vertex " << m.points.size() << "\nproperty float x\nproperty float y\nproperty float z\n";
+  out << "ply\nformat binary_little_endian 1.0\ncomment imgmesh surface, world coordinates SPACE=LPS (as ITK)\n";
+  for (const auto& [label, name] : names_used(m)) out << "comment label_name " << label << ' ' << one_line(name) << '\n';
+  out << "element vertex " << m.points.size() << "\nproperty float x\nproperty float y\nproperty float z\n";
   if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
   out << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nproperty int component\n";
   if (labels) out << "property int label\n";

@@ -3,7 +3,10 @@
 // 3D Slicer, Gmsh .msh (4.1 or 2.2) with a physical group per label or
 // component, and binary PLY with face properties (MeshLab, Slicer). Every
 // face carries its component id (0 = the largest component) and, when the
-// mesh has labels, its label; vertex normals go where the format holds them.
+// mesh has labels, its label; the labels' names (label_names) go in the
+// VTK files' field data (label_values, label_names), the .msh physical
+// names and PLY header comments ("comment label_name L NAME"); vertex
+// normals go where the format holds them.
 // Coordinates are world coordinates as ITK's (LPS); the VTK and PLY headers
 // say "SPACE=LPS", which 3D Slicer reads. Plain writers on a stream: no
 // OpenMesh, no files (surface_io.cpp opens the atomic output).
@@ -23,8 +26,9 @@ std::vector<int> face_components(const SurfaceMesh& mesh);
 void write_vtp(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component);
 void write_vtk_legacy(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component);
 // version "4.1" or "2.2". One surface entity per component; its physical
-// group is its label ("label L") when the mesh has labels, else the
-// component ("component C", tag C + 1). Normals as a node data view.
+// group is its label (named as label_names says, else "label L") when the
+// mesh has labels, else the component ("component C", tag C + 1). Normals
+// as a node data view.
 void write_msh(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component,
                const std::string& version);
 // Binary little-endian, float coordinates (and normals), face properties

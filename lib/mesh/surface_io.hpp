@@ -4,6 +4,7 @@
 // header is plain data; OpenMesh stays inside surface_io.cpp.
 #pragma once
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@ struct SurfaceMesh {
   std::vector<std::array<int, 3>> triangles;   // 0-based, counter-clockwise seen from outside
   std::vector<std::array<double, 3>> normals;  // per vertex, empty or points.size()
   std::vector<int> labels;  // per triangle: the segmentation label it bounds, empty when not known
+  std::map<int, std::string> label_names;  // a label's name where its image gives one (3D Slicer's segments)
 };
 
 struct SurfaceWriteOptions {
@@ -31,7 +33,7 @@ bool surface_output_holds_labels(const std::string& path);
 SurfaceMesh read_surface(const std::string& path);
 // Atomic; binary PLY/STL, ASCII OFF/OBJ/VTK/msh; normals written when
 // present (PLY, OBJ, VTK, msh); per-face component ids and labels in PLY, VTK
-// and msh. Throws UsageError on an unknown extension or msh version.
+// and msh, with the labels' names where known. Throws UsageError on an unknown extension or msh version.
 void write_surface(const std::string& path, const SurfaceMesh& mesh, const SurfaceWriteOptions& options = {});
 
 } // namespace imgmesh

@@ -454,21 +454,24 @@ template <class In> VoxelBoundary voxel_boundary_of(const std::array<std::size_t
   auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return (std::uint64_t(k) * H + j) * W + i; };
   // Outward-oriented unit squares; corners as lattice ids, compacted below.
   std::vector<std::uint64_t> lat;
+  std::vector<std::uint8_t> bits;  // per quad: VoxelBoundary::faces' bits for its first (lowest) corner
   for (std::size_t z = 0; z < nz; ++z)
     for (std::size_t y = 0; y < ny; ++y)
       for (std::size_t x = 0; x < nx; ++x) {
         const std::ptrdiff_t X = std::ptrdiff_t(x), Y = std::ptrdiff_t(y), Z = std::ptrdiff_t(z);
         if (!in(X, Y, Z)) continue;
-        auto quad = [&](std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {
+        auto quad = [&](int axis, bool plus, std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {
           lat.push_back(a); lat.push_back(b); lat.push_back(c); lat.push_back(d);
+          bits.push_back(std::uint8_t((VoxelBoundary::kNormalAxis | (plus ? VoxelBoundary::kPlus : 0)) << axis));
         };
         // Counter-clockwise seen from outside: (e_u x e_v) points outward.
-        if (!in(X + 1, Y, Z)) quad(id(x + 1, y, z), id(x + 1, y + 1, z), id(x + 1, y + 1, z + 1), id(x + 1, y, z + 1));
-        if (!in(X - 1, Y, Z)) quad(id(x, y, z), id(x, y, z + 1), id(x, y + 1, z + 1), id(x, y + 1, z));
-        if (!in(X, Y + 1, Z)) quad(id(x, y + 1, z), id(x, y + 1, z + 1), id(x + 1, y + 1, z + 1), id(x + 1, y + 1, z));
-        if (!in(X, Y - 1, Z)) quad(id(x, y, z), id(x + 1, y, z), id(x + 1, y, z + 1), id(x, y, z + 1));
-        if (!in(X, Y, Z + 1)) quad(id(x, y, z + 1), id(x + 1, y, z + 1), id(x + 1, y + 1, z + 1), id(x, y + 1, z + 1));
-        if (!in(X, Y, Z - 1)) quad(id(x, y, z), id(x, y + 1, z), id(x + 1, y + 1, z), id(x + 1, y, z));
+        // The first corner is the lowest.
+        if (!in(X + 1, Y, Z)) quad(0, true, id(x + 1, y, z), id(x + 1, y + 1, z), id(x + 1, y + 1, z + 1), id(x + 1, y, z + 1));
+        if (!in(X - 1, Y, Z)) quad(0, false, id(x, y, z), id(x, y, z + 1), id(x, y + 1, z + 1), id(x, y + 1, z));
+        if (!in(X, Y + 1, Z)) quad(1, true, id(x, y + 1, z), id(x, y + 1, z + 1), id(x + 1, y + 1, z + 1), id(x + 1, y + 1, z));
+        if (!in(X, Y - 1, Z)) quad(1, false, id(x, y, z), id(x + 1, y, z), id(x + 1, y, z + 1), id(x, y, z + 1));
+        if (!in(X, Y, Z + 1)) quad(2, true, id(x, y, z + 1), id(x + 1, y, z + 1), id(x + 1, y + 1, z + 1), id(x, y + 1, z + 1));
+        if (!in(X, Y, Z - 1)) quad(2, false, id(x, y, z), id(x, y + 1, z), id(x + 1, y + 1, z), id(x + 1, y, z));
       }
   vb.lattice_ids = lat;
   std::sort(vb.lattice_ids.begin(), vb.lattice_ids.end());
@@ -481,6 +484,8 @@ template <class In> VoxelBoundary voxel_boundary_of(const std::array<std::size_t
     vb.corners[i] = int(std::lower_bound(vb.lattice_ids.begin(), vb.lattice_ids.end(), lat[i]) - vb.lattice_ids.begin());
   lat.clear();
   lat.shrink_to_fit();
+  vb.faces.assign(vb.lattice_ids.size(), 0);
+  for (std::size_t f = 0; f < bits.size(); ++f) vb.faces[std::size_t(vb.corners[4 * f])] |= bits[f];
   vb.offsets.resize(vb.corners.size() / 4 + 1);
   for (std::size_t f = 0; f < vb.offsets.size(); ++f) vb.offsets[f] = 4 * f;
   return vb;
@@ -530,163 +535,5 @@ bool same_topology(const MeshTopology& a, const MeshTopology& b) { return a.sort
 MeshTopology mesh_topology(const SurfaceMesh& mesh) { return mesh_topology(mesh.points.size(), mesh.triangles); }
 
 MeshTopology voxel_boundary_topology(const SampleGrid& g) { return mesh_topology(voxel_boundary(g)); }
-
-namespace {
-
-// The bdCA(X) component a world point lies on, -1 when no boundary corner is
-// less than one lattice step away on every axis.
-int boundary_component_at(const Vec3& p, const Geometry& grid, const VoxelBoundary& b, const MeshTopology& bt) {
-  const Vec3 ci = grid.continuous_index(p);
-  double best = 0;
-  int found = -1;
-  long long lo[3], hi[3];
-  double l[3];
-  for (int a = 0; a < 3; ++a) {
-    l[a] = ci[a] + 0.5;  // corner i sits at voxel index i - 1/2
-    if (!(l[a] > -1 && l[a] < double(b.lattice[a]))) return -1;  // no corner within reach (or NaN)
-    lo[a] = std::max(0LL, (long long)std::ceil(l[a] - 1));
-    hi[a] = std::min((long long)b.lattice[a] - 1, (long long)std::floor(l[a] + 1));
-  }
-  for (long long k = lo[2]; k <= hi[2]; ++k)
-    for (long long j = lo[1]; j <= hi[1]; ++j)
-      for (long long i = lo[0]; i <= hi[0]; ++i) {
-        const double d[3] = {l[0] - double(i), l[1] - double(j), l[2] - double(k)};
-        if (std::abs(d[0]) >= 1 || std::abs(d[1]) >= 1 || std::abs(d[2]) >= 1) continue;
-        const std::uint64_t id = (std::uint64_t(k) * b.lattice[1] + std::uint64_t(j)) * b.lattice[0] + std::uint64_t(i);
-        const auto it = std::lower_bound(b.lattice_ids.begin(), b.lattice_ids.end(), id);
-        if (it == b.lattice_ids.end() || *it != id) continue;
-        const int c = bt.component_of[std::size_t(it - b.lattice_ids.begin())];
-        if (c < 0) continue;
-        double dist = 0;
-        for (int a = 0; a < 3; ++a) dist += (d[a] * grid.spacing[a]) * (d[a] * grid.spacing[a]);
-        if (found < 0 || dist < best) { best = dist; found = c; }
-      }
-  return found;
-}
-
-} // namespace
-
-ComponentCorrespondence match_components(const MeshTopology& mesh, const std::vector<Vec3>& points,
-                                         const Geometry& grid, const VoxelBoundary& boundary,
-                                         const MeshTopology& bt) {
-  if (mesh.component_of.size() != points.size() || bt.component_of.size() != boundary.lattice_ids.size())
-    throw Error("match_components: vertex labels do not fit the points");
-  ComponentCorrespondence r;
-  r.mesh.resize(mesh.components.size());
-  r.boundary.resize(bt.components.size());
-  for (std::size_t c = 0; c < mesh.components.size(); ++c) r.mesh[c].euler = mesh.components[c].euler;
-  for (std::size_t c = 0; c < bt.components.size(); ++c) r.boundary[c].euler = bt.components[c].euler;
-  // (mesh component, boundary component) per placed vertex, counted in runs.
-  std::vector<std::pair<int, int>> votes;
-  for (std::size_t v = 0; v < points.size(); ++v) {
-    const int m = mesh.component_of[v];
-    if (m < 0) continue;
-    ++r.mesh[std::size_t(m)].vertices;
-    const int c = boundary_component_at(points[v], grid, boundary, bt);
-    if (c >= 0) votes.push_back({m, c});
-  }
-  mesh_detail::tally_votes(r, votes);
-  return r;
-}
-
-void mesh_detail::tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes) {
-  std::sort(votes.begin(), votes.end());
-  for (std::size_t i = 0; i < votes.size();) {
-    std::size_t j = i;
-    while (j < votes.size() && votes[j] == votes[i]) ++j;
-    auto& ms = r.mesh[std::size_t(votes[i].first)];
-    ms.placed += j - i;
-    if (j - i > ms.votes) { ms.votes = j - i; ms.boundary = votes[i].second; }
-    i = j;
-  }
-  for (std::size_t m = 0; m < r.mesh.size(); ++m)
-    if (r.mesh[m].boundary >= 0) r.boundary[std::size_t(r.mesh[m].boundary)].matched_by.push_back(int(m));
-  for (auto& b : r.boundary) b.verdict = b.matched_by.empty() ? "unmatched" : b.matched_by.size() > 1 ? "matched twice" : "ok";
-  for (auto& m : r.mesh) {
-    if (m.boundary < 0) m.verdict = "unplaced";
-    else if (r.boundary[std::size_t(m.boundary)].matched_by.size() > 1) m.verdict = "matched twice";
-    else if (m.euler != r.boundary[std::size_t(m.boundary)].euler) m.verdict = "euler differs";
-    else m.verdict = "ok";
-  }
-}
-
-bool ComponentCorrespondence::matches() const {
-  for (const auto& m : mesh) if (m.verdict != "ok") return false;
-  for (const auto& b : boundary) if (b.verdict != "ok") return false;
-  return true;
-}
-
-Json ComponentCorrespondence::to_json() const {
-  Json j = Json::object();
-  j["matches"] = matches();
-  // Planar: mesh regions placed by their faces against pixel regions.
-  j["planar"] = planar;
-  Json ms = Json::array();
-  for (const auto& m : mesh) {
-    Json o = Json::object();
-    if (planar) o["label"] = m.label;
-    o["boundary_component"] = m.boundary;
-    o["euler"] = m.euler;
-    if (m.boundary >= 0) o["boundary_euler"] = boundary[std::size_t(m.boundary)].euler;
-    o[planar ? "faces" : "vertices"] = m.vertices;
-    o["placed"] = m.placed;
-    o["votes"] = m.votes;
-    o["verdict"] = m.verdict;
-    ms.push_back(o);
-  }
-  j["mesh_components"] = ms;
-  Json bs = Json::array();
-  for (const auto& b : boundary) {
-    Json o = Json::object();
-    if (planar) o["label"] = b.label;
-    o["euler"] = b.euler;
-    o["matched_by"] = b.matched_by;
-    o["verdict"] = b.verdict;
-    bs.push_back(o);
-  }
-  j["boundary_components"] = bs;
-  return j;
-}
-
-std::string ComponentCorrespondence::failed_guarantee() const {
-  // One line: the first failures, then how many more (the JSON has them all).
-  constexpr std::size_t kNamed = 10;
-  std::string s;
-  std::size_t failures = 0;
-  auto add = [&](const std::string& x) {
-    if (failures++ < kNamed) s += (s.empty() ? "" : "; ") + x;
-  };
-  // 3D: mesh components against bdCA(X)'s; planar: regions of one label.
-  auto mesh_name = [&](std::size_t i) {
-    return planar ? "mesh region " + std::to_string(i) + " (label " + std::to_string(mesh[i].label) + ")"
-                  : "mesh component " + std::to_string(i);
-  };
-  auto image_name = [&](std::size_t i) {
-    return planar ? "pixel region " + std::to_string(i) + " (label " + std::to_string(boundary[i].label) + ")"
-                  : "bdCA(X) component " + std::to_string(i);
-  };
-  for (std::size_t i = 0; i < mesh.size(); ++i) {
-    const auto& m = mesh[i];
-    const std::string name = mesh_name(i);
-    if (m.verdict == "unplaced")
-      add(name + (planar ? ": no face lies on a pixel of its label" : ": no vertex lies on bdCA(X)"));
-    else if (m.verdict == "euler differs")
-      add(name + ": euler " + std::to_string(m.euler) + ", its " + image_name(std::size_t(m.boundary)) + " has " +
-          std::to_string(boundary[std::size_t(m.boundary)].euler));
-  }
-  for (std::size_t i = 0; i < boundary.size(); ++i) {
-    const auto& b = boundary[i];
-    const std::string name = image_name(i);
-    if (b.verdict == "unmatched")
-      add(name + " (euler " + std::to_string(b.euler) + (planar ? "): no mesh region" : "): no mesh component"));
-    else if (b.verdict == "matched twice") {
-      std::string who;
-      for (int m : b.matched_by) who += (who.empty() ? "" : ", ") + std::to_string(m);
-      add(name + (planar ? ": matched by mesh regions " : ": matched by mesh components ") + who);
-    }
-  }
-  if (failures > kNamed) s += "; and " + std::to_string(failures - kNamed) + " more";
-  return s;
-}
 
 } // namespace imgmesh

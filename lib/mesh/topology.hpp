@@ -68,6 +68,13 @@ struct VoxelBoundary {
   std::vector<std::uint64_t> lattice_ids;       // of each vertex, ascending
   std::vector<int> corners;                     // 4 per quad, counter-clockwise seen from outside
   std::vector<std::size_t> offsets;             // quads + 1 entries
+  // Per vertex, the quads whose lowest corner it is (a quad is known by its
+  // lowest corner and the axis it is normal to): bit a (0..2) the quad
+  // normal to axis a, bit 3 + a set when its outward normal is +a. Kept when
+  // the quads are dropped: the certificate measures distances and the
+  // orientation of each component with them.
+  std::vector<std::uint8_t> faces;
+  enum : std::uint8_t { kNormalAxis = 1, kPlus = 8 };  // kNormalAxis << a, kPlus << a
   std::array<std::size_t, 3> corner(std::size_t vertex) const;
 };
 // X = the foreground; a single slice gives the two faces of a slab.
@@ -90,42 +97,64 @@ MeshTopology voxel_boundary_topology(const BinaryImage& img);
 bool same_topology(const MeshTopology& a, const MeshTopology& b);
 
 // The topology certificate by correspondence (thesis Thm 7.3.1, component by
-// component): each mesh component is matched by place to the component of
-// bdCA(X) it lies on, the match must be one to one, and each matched pair
-// must have the same Euler characteristic. A vertex lies on the component of
-// the boundary corner nearest to it (world distance) among the corners less
-// than one lattice step away on every axis; S lies in the active cubes,
-// whose centres are exactly the boundary corners, so a vertex on S always
-// finds one. A mesh component goes to the boundary component most of its
-// placed vertices lie on (ties: the lower index).
+// component), the part of the surface certificate (surface_certificate.hpp)
+// that pairs components: each mesh component is placed on the bdCA(X)
+// component that every one of its vertices lies within `tolerance` of
+// (world distance to the component's voxel faces); when several qualify, on
+// the one whose farthest vertex is nearest, and an exact tie is a failure,
+// never broken by index. A vertex within the tolerance of no component its
+// predecessors lie near leaves its component unplaced. The match must be one
+// to one, and each matched pair must have the same Euler characteristic.
+// The mesher's vertices lie on S, in the active cubes around the boundary
+// corners: within half a voxel diagonal of bdCA(X).
 struct ComponentCorrespondence {
   struct MeshSide {
-    int boundary = -1;            // matched bdCA(X) component, -1 when no vertex is placed
-    // votes: placed vertices on `boundary`. Planar (match_regions): faces, not vertices.
+    int boundary = -1;            // matched bdCA(X) component, -1 when unplaced or tied
+    // 3D: placed = vertices within the tolerance of `boundary`. Planar
+    // (match_regions): faces, not vertices; votes: placed faces on `boundary`.
     std::size_t vertices = 0, placed = 0, votes = 0;
     long long euler = 0;
     std::int32_t label = 0;       // planar: the region label of its faces
-    std::string verdict;          // "ok", "unplaced", "matched twice", "euler differs"
+    // 3D: the farthest vertex from `boundary` and its distance (world); when
+    // unplaced, the vertex that is beyond the tolerance, `near` the bdCA(X)
+    // component its predecessors lay near (-1: none within the tolerance of
+    // the first); when tied, `tied` the components as near.
+    double distance = -1;
+    std::size_t far_vertex = 0;
+    Vec3 far_point{0, 0, 0};
+    int near = -1;
+    std::vector<int> tied;
+    // 3D: "ok", "unplaced", "tie", "matched twice", "nesting differs" (set by
+    // certify_surface), "euler differs". Planar: "ok", "unplaced", "matched
+    // twice", "euler differs".
+    std::string verdict;
   };
   struct BoundarySide {
     long long euler = 0;
     std::int32_t label = 0;       // planar: the pixel region's label
     std::vector<int> matched_by;  // mesh components
+    long long volume = 0;         // 3D: signed volume in voxels (> 0 an outer surface, < 0 a cavity's)
     std::string verdict;          // "ok", "unmatched", "matched twice"
   };
   std::vector<MeshSide> mesh;          // as MeshTopology::components (planar: as mesh_regions)
   std::vector<BoundarySide> boundary;  // as bdCA(X)'s components (planar: as PixelRegions)
   bool planar = false;                 // made by match_regions: regions of faces and of pixels
+  double tolerance = 0;                // 3D: the place tolerance (world units)
   bool matches() const;                // every verdict "ok"
   Json to_json() const;
-  std::string failed_guarantee() const;  // each failing component and why
+  // Each failing component and why, those with one of `verdicts` only when
+  // given.
+  std::string failed_guarantee(const std::vector<std::string>& verdicts = {}) const;
 };
 // points: the mesh's vertices in world coordinates; grid: the image's (the
-// lattice of `boundary` is its voxel corners); boundary_topology =
-// mesh_topology(boundary).
+// lattice of `boundary` is its voxel corners; boundary.faces is read, not its
+// quads); boundary_topology = mesh_topology(boundary); tolerance > 0, world
+// units.
 ComponentCorrespondence match_components(const MeshTopology& mesh, const std::vector<Vec3>& points,
                                          const Geometry& grid, const VoxelBoundary& boundary,
-                                         const MeshTopology& boundary_topology);
+                                         const MeshTopology& boundary_topology, double tolerance);
+// The world position of a VoxelBoundary vertex (a voxel corner).
+Vec3 corner_position(const Geometry& grid, const VoxelBoundary& boundary, std::size_t vertex);
 
 // The certificate by correspondence in 2D (planar meshes against a 2D label
 // image; topology_planar.cpp). What is matched are regions, not boundary

@@ -2,6 +2,7 @@
 
 #include "mesh/surface_io.hpp"
 #include "mesh/triangle_quality.hpp"
+#include "mesh/voxel_sides.hpp"
 #include "planar/image_pslg.hpp"
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
@@ -165,15 +166,44 @@ Json mesh_report(const PolyMesh& m) {
   return j;
 }
 
-Json image_comparison(const MeshTopology& mesh, const MeshTopology& image, const ComponentCorrespondence* by_place) {
+Json image_comparison(const MeshTopology& image, const SurfaceCertificate& cert) {
   Json j = Json::object();
   j["components"] = image.components.size();
   j["euler"] = image.euler_list();
   j["manifold"] = image.manifold;
-  j["matches"] = by_place ? by_place->matches() : same_topology(mesh, image);
-  if (by_place) j["correspondence"] = by_place->to_json();
+  j["matches"] = cert.ok();
+  j["correspondence"] = cert.correspondence.to_json();
+  j["certificate"] = cert.to_json();
   return j;
 }
+
+namespace {
+
+// The 3D certificate's lines: the verdict, then each check.
+void format_certificate(std::ostream& o, const Json& c) {
+  const bool ok = c.at("verdict").string() == "ok";
+  o << "; mesh " << (ok ? "MATCHES" : "DOES NOT MATCH") << " (certificate " << (ok ? "holds" : "fails") << ")\n";
+  o << "certificate";
+  const Json& checks = c.at("checks");
+  for (std::size_t i = 0; i < checks.keys().size(); ++i) {
+    const Json& v = checks.items()[i];
+    o << ' ' << checks.keys()[i] << (v.kind() == Json::Kind::Null ? " -" : v.boolean() ? " yes" : " NO") << (i + 1 < checks.keys().size() ? "," : "");
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.4g", c.at("place_tolerance").number());
+  o << " (place tolerance " << buf << ")\n";
+  if (!ok) o << "  first failure: " << c.at("failure").string() << "\n";
+}
+
+// Issue 38's count (not part of the verdict).
+void format_voxel_sides(std::ostream& o, const Json& v) {
+  o << "voxel sides " << v.at("wrong_side").integer() << " of the " << v.at("voxel_centres_checked").integer()
+    << " voxel centres next to bdCA(X) on the wrong side of the mesh (" << v.at("foreground_outside").integer()
+    << " foreground outside, " << v.at("background_inside").integer() << " background inside, "
+    << v.at("on_surface").integer() << " on it; reported, not certified)\n";
+}
+
+} // namespace
 
 std::string format_report(const Json& r) {
   std::ostringstream o;
@@ -255,7 +285,9 @@ std::string format_report(const Json& r) {
     const char* bd = planar ? "region" : "bdCA";
     o << (planar ? "regions     " : "bdCA(X)     ") << im.at("components").integer() << " component(s), euler";
     for (const Json& e : im.at("euler").items()) o << ' ' << e.integer();
-    o << "; mesh " << (im.at("matches").boolean() ? "MATCHES" : "DOES NOT MATCH") << " component by component\n";
+    if (planar) o << "; mesh " << (im.at("matches").boolean() ? "MATCHES" : "DOES NOT MATCH") << " component by component\n";
+    else format_certificate(o, im.at("certificate"));
+    if (im.contains("voxel_sides")) format_voxel_sides(o, im.at("voxel_sides"));
     if (im.contains("correspondence")) {
       int m = 0;
       for (const Json& c : im.at("correspondence").at("mesh_components").items()) {
@@ -306,7 +338,7 @@ MeshInfo planar_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, co
 }
 
 MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
-                   const std::string& image_name) {
+                   const std::string& image_name, const CertificateOptions& options) {
   if (image && (image->dimension == 2 || image->size[2] == 1)) {
     LabelImage labels(image->geometry());
     for (std::size_t i = 0; i < labels.data.size(); ++i) labels.data[i] = image->data[i] != 0;
@@ -319,19 +351,31 @@ MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const Bin
   const MeshTopology it = naming_input(image_name, [&] { return voxel_boundary_topology(*image); });
   if (!it.manifold)
     throw Error("bdCA(X) is not a manifold: the image is not well-composed (run img2wc first)", image_name);
-  const MeshTopology mt = mesh_topology(mesh.points.size(), mesh.faces);
   r.compared = true;
   r.image_name = image_name;
-  // The certificate by correspondence; voxel_boundary_topology counted the same quads.
+  // Polygons as fans of triangles (the same V - E + F); voxel_boundary_topology
+  // counted the same quads.
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& f : mesh.faces)
+    for (std::size_t k = 1; k + 1 < f.size(); ++k) triangles.push_back({f[0], f[k], f[k + 1]});
   const VoxelBoundary vb = voxel_boundary(*image);
-  r.by_place = match_components(mt, mesh.points, *image, vb, mesh_topology(vb));
-  r.report["image"] = image_comparison(mt, it, &r.by_place);
-  r.matches = r.by_place.matches();
+  r.certificate = certify_surface(mesh.points, triangles, *image, vb, mesh_topology(vb), options);
+  r.report["image"] = image_comparison(it, r.certificate);
+  // Issue 38's count, on a surface with sides (closed, manifold, oriented):
+  // reported, not part of the verdict.
+  if (r.certificate.state[SurfaceCertificate::kIntersections] >= 0) {
+    std::vector<int> component(triangles.size());
+    for (std::size_t t = 0; t < triangles.size(); ++t)
+      component[t] = r.certificate.topology.component_of[std::size_t(triangles[t][0])];
+    r.report["image"]["voxel_sides"] =
+        voxel_sides(mesh.points, triangles, component, r.certificate.topology.components.size(), *image).to_json();
+  }
+  r.matches = r.certificate.ok();
   return r;
 }
 
 MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
-                       const std::string& image_name) {
+                       const std::string& image_name, const CertificateOptions& options) {
   // The boundary on its own vertices (interior ones would count as isolated).
   // With region 1 among others (implicit2tet --outside: region 2 fills the
   // box around it), region 1's boundary: the surface of the foreground.
@@ -352,7 +396,7 @@ MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const 
     }
     b.faces.push_back(f);
   }
-  MeshInfo r = mesh_info(b, mesh_name, image, image_name);
+  MeshInfo r = mesh_info(b, mesh_name, image, image_name, options);
   const TetConformity c = tet_conformity(mesh);
   r.conforming = c.ok();
   Json tj = tet_quality(mesh).to_json();
@@ -379,10 +423,10 @@ Json MeshInfo::to_json() const {
 std::string MeshInfo::failed_guarantee() const {
   if (!conforming) return "the tetrahedra are not all positively oriented and conforming";
   if (matches) return "";
+  if (!by_place.planar) return "the mesh is not certified against bdCA(X) of " + image_name + ": " + certificate.failure();
   const std::string why = by_place.failed_guarantee();
-  return std::string(by_place.planar ? "the mesh's regions do not match the pixel regions of "
-                                     : "the mesh does not match bdCA(X) of ") +
-         image_name + " component by component" + (why.empty() ? "" : ": " + why);
+  return "the mesh's regions do not match the pixel regions of " + image_name + " component by component" +
+         (why.empty() ? "" : ": " + why);
 }
 
 } // namespace imgmesh

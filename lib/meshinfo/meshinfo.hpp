@@ -1,6 +1,7 @@
 // meshinfo's library: read any mesh of the suite and describe it (topology
 // and element quality) as one ordered JSON object, or as text.
 #pragma once
+#include "mesh/surface_certificate.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "mesh/topology.hpp"
 #include "util/json.hpp"
@@ -32,35 +33,35 @@ PolyMesh read_poly_mesh(const std::string& path);
 // "components" and "euler" first), triangle and quad quality.
 Json mesh_report(const PolyMesh& m);
 
-// The "image" section for --image: bdCA(X)'s components and whether the
-// mesh matches it component by component ("matches"): by place when
-// by_place is given (its verdicts under "correspondence"), else by sorted
-// Euler characteristics.
-Json image_comparison(const MeshTopology& mesh, const MeshTopology& image,
-                      const ComponentCorrespondence* by_place = nullptr);
+// The "image" section for --image (3D): bdCA(X)'s components, whether the
+// mesh is certified against it ("matches"), the correspondence and the
+// certificate's checks.
+Json image_comparison(const MeshTopology& image, const SurfaceCertificate& certificate);
 
 // Human-readable lines for a report made by mesh_report.
 std::string format_report(const Json& report);
 
-// meshinfo's result: the report, and with an image whether the mesh matches
-// bdCA(X) component by component (the guarantee it checks).
+// meshinfo's result: the report, and with an image whether the mesh is
+// certified against it (the guarantee it checks).
 struct MeshInfo {
   Json report;  // mesh_report(), with "image" (image_comparison) when compared
   bool compared = false, matches = true;
   bool conforming = true;  // tetrahedral meshes: positive, conforming tetrahedra
   std::string image_name;
-  ComponentCorrespondence by_place;  // the certificate by correspondence (2D: by_place.planar)
+  SurfaceCertificate certificate;    // 3D: the surface's against bdCA(X)
+  ComponentCorrespondence by_place;  // 2D: the certificate by correspondence of regions (planar)
   Json to_json() const;  // vertices, faces, components, euler; matches_image when compared
   std::string failed_guarantee() const;
 };
 
-// mesh_report of `mesh` and, when `image` is given, its comparison with
-// bdCA(X) of the image's foreground by correspondence (match_components, the
-// mesh's points in the image's world coordinates). A 2D image goes to
-// planar_mesh_info as a 0/1 label image. Throws Error naming mesh_name (no
-// face, bad ids) or image_name (no foreground, not well-composed).
+// mesh_report of `mesh` and, when `image` is given, its certificate against
+// bdCA(X) of the image's foreground (certify_surface, the mesh's points in
+// the image's world coordinates, polygons split into triangles by a fan from
+// their first corner). A 2D image goes to planar_mesh_info as a 0/1 label
+// image. Throws Error naming mesh_name (no face, bad ids) or image_name (no
+// foreground, not well-composed).
 MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const BinaryImage* image = nullptr,
-                   const std::string& image_name = "");
+                   const std::string& image_name = "", const CertificateOptions& options = {});
 
 // A planar mesh against a well-composed 2D label image (well_composed_labels
 // of what img2poly read): the certificate by correspondence of regions
@@ -73,11 +74,12 @@ MeshInfo planar_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, co
                           const std::string& image_name, double reach = 2);
 
 // A tetrahedral mesh (.msh, .mesh, .vtu): mesh_info of the boundary of all
-// its tetrahedra (compared with bdCA(X) when `image` is given), with a
+// its tetrahedra (region 1's when there are others; certified against
+// bdCA(X) when `image` is given), with a
 // "tetrahedra" section: conformity and orientation, radius-edge ratios,
 // dihedral angles (smallest, histogram), volume per region, and with an
 // image the foreground's voxel volume.
 MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image = nullptr,
-                       const std::string& image_name = "");
+                       const std::string& image_name = "", const CertificateOptions& options = {});
 
 } // namespace imgmesh

@@ -26,6 +26,7 @@ LabelSurface mesh_one_label(const LabelImage& image, long long label, std::size_
   const auto t0 = std::chrono::steady_clock::now();
   LabelSurface out;
   out.label = label;
+  if (const auto it = opt.names.find(label); it != opt.names.end()) out.name = it->second;
   out.voxels = voxels;
   BinaryImage fg(image, 0);
   for (std::size_t i = 0; i < image.data.size(); ++i) fg.data[i] = image.data[i] == label ? 1 : 0;
@@ -128,6 +129,7 @@ LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurf
     if (opt.normals) res.mesh.normals.insert(res.mesh.normals.end(), m.normals.begin(), m.normals.end());
     for (const auto& f : m.triangles) res.mesh.triangles.push_back({f[0] + base, f[1] + base, f[2] + base});
     res.mesh.labels.insert(res.mesh.labels.end(), m.triangles.size(), int(l.label));
+    if (!l.name.empty()) res.mesh.label_names[int(l.label)] = l.name;
   }
   return res;
 }
@@ -142,6 +144,7 @@ Json LabelSurfacesResult::to_json() const {
   for (const LabelSurface& l : labels) {
     Json j = l.mesh.to_json();
     j["label"] = l.label;
+    if (!l.name.empty()) j["name"] = l.name;
     j["voxels"] = l.voxels;
     j["well_composed_changed"] = l.changed;
     j["seconds"] = l.seconds;

@@ -3,10 +3,12 @@
 // (ch. 6) and its certified restricted Delaunay surface (ch. 7-8), exactly
 // what img2wc | wc2implicit | implicit2mesh do for --label L; labels run in
 // parallel, one thread a label. The surfaces are then joined into one mesh
-// whose faces carry their label: neighbouring labels give separate closed
-// surfaces (a shared interface mesh is later work).
+// whose faces carry their label (and its name, from a 3D Slicer
+// segmentation): neighbouring labels give separate closed surfaces (a shared
+// interface mesh is later work).
 #pragma once
 #include "image/grid.hpp"
+#include "image/slicer_segmentation.hpp"
 #include "mesh/surface_io.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "util/json.hpp"
@@ -21,6 +23,7 @@ namespace imgmesh {
 
 struct LabelSurfacesOptions {
   std::vector<long long> labels;       // empty: every nonzero value present
+  LabelNames names;                    // the labels' names where the image gives them (read_labels)
   RepairMode mode = RepairMode::Add;   // img2wc --mode
   RestrictedDelaunayOptions mesher;    // seed, bounds (threads: set by jobs)
   bool normals = false;                // per-vertex normals from grad f
@@ -31,6 +34,7 @@ struct LabelSurfacesOptions {
 
 struct LabelSurface {
   long long label = 0;
+  std::string name;                    // from LabelSurfacesOptions::names, or empty
   std::size_t voxels = 0;              // of the label in the input
   std::size_t changed = 0;             // voxels the well-composed repair changed
   std::string well_composed_failure;   // make_well_composed's failed guarantee, or empty
@@ -41,7 +45,7 @@ struct LabelSurface {
 
 struct LabelSurfacesResult {
   std::vector<LabelSurface> labels;    // ascending label
-  SurfaceMesh mesh;                    // all surfaces, mesh.labels set
+  SurfaceMesh mesh;                    // all surfaces, mesh.labels (and label_names) set
   int jobs = 1;
   Json to_json() const;
   // Each label whose surface is not certified, named: "label 3: ...".

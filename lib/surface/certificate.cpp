@@ -66,8 +66,9 @@ ExpectedTopology expected_topology(const CubeGrid& grid) {
     for (int a = 0; a < 3; ++a) cube[a] = std::clamp(long(k[a]) - 1, 0L, grid.n[a] - 2);
     e.s_component.push_back(grid.comp_of(cube[0], cube[1], cube[2]));
   }
-  // From here on only the corners' places are read (match_components): the
-  // quads are not held through the run (brain label 4: 2.9 MB).
+  // From here on only the corners and their faces bits are read
+  // (certify_surface): the quads are not held through the run (brain label
+  // 4: 2.9 MB).
   std::vector<int>().swap(e.boundary.corners);
   std::vector<std::size_t>().swap(e.boundary.offsets);
   return e;
@@ -180,43 +181,25 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
 }
 
 void check_certificate(Certificate& cert, const CubeGrid& grid, const ExpectedTopology& expected) {
-  cert.topology = mesh_topology(cert.mesh);
   // The mesher's local frame as a grid: voxel centre i at i * spacing.
   Geometry local;
   local.size = grid.g.size;
   local.spacing = grid.g.spacing;
-  cert.correspondence = match_components(cert.topology, cert.mesh.points, local, expected.boundary, expected.topology);
-  const MeshTopology& t = cert.topology;
-  cert.ok = cert.correspondence.matches() && t.closed && t.manifold && t.oriented;
+  cert.check = SurfaceCertificate();  // the last one let go of first: this is the run's peak
+  cert.check = certify_surface(cert.mesh.points, cert.mesh.triangles, local, expected.boundary, expected.topology);
+  cert.ok = cert.check.ok();
   // What to repair: the S components under every failing mesh component
   // (its vertices' sites) and of every failing bdCA(X) component.
-  std::vector<char> bad_mesh(t.components.size(), 0);
-  for (std::size_t m = 0; m < t.components.size(); ++m) {
-    const ComponentTopology& c = t.components[m];
-    bad_mesh[m] = cert.correspondence.mesh[m].verdict != "ok" || !c.closed || !c.manifold || !c.oriented;
-  }
+  const MeshTopology& t = cert.check.topology;
   std::set<int> bad;
   for (std::size_t v = 0; v < cert.mesh.points.size(); ++v) {
     const int m = t.component_of[v];
-    if (m >= 0 && bad_mesh[std::size_t(m)] && cert.vertex_comp[v] >= 0) bad.insert(cert.vertex_comp[v]);
+    if (m >= 0 && !cert.check.component_ok[std::size_t(m)] && cert.vertex_comp[v] >= 0) bad.insert(cert.vertex_comp[v]);
   }
-  for (std::size_t b = 0; b < cert.correspondence.boundary.size(); ++b)
-    if (cert.correspondence.boundary[b].verdict != "ok" && expected.s_component[b] >= 0) bad.insert(expected.s_component[b]);
+  const auto& boundary = cert.check.correspondence.boundary;
+  for (std::size_t b = 0; b < boundary.size(); ++b)
+    if (boundary[b].verdict != "ok" && expected.s_component[b] >= 0) bad.insert(expected.s_component[b]);
   cert.bad.assign(bad.begin(), bad.end());
-}
-
-std::string topology_failure(const Certificate& cert) {
-  if (cert.ok) return "";
-  std::string s = cert.correspondence.failed_guarantee();
-  for (std::size_t m = 0; m < cert.topology.components.size(); ++m) {
-    const ComponentTopology& c = cert.topology.components[m];
-    std::string what;
-    if (!c.closed) what += " not closed";
-    if (!c.manifold) what += " not manifold";
-    else if (!c.oriented) what += " not oriented";
-    if (!what.empty()) s += (s.empty() ? "" : "; ") + ("mesh component " + std::to_string(m) + what);
-  }
-  return s;
 }
 
 MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sampler, const Certificate& cert) {

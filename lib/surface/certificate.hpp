@@ -1,12 +1,14 @@
 // The certificate (after DELMESH): the restricted facets as an oriented
-// triangle mesh, its components matched one to one, by place, with those of
-// the voxel boundary bdCA(X), each with the same Euler characteristic
-// (match_components, the code meshinfo --image runs); the guarantees
-// measured on the output; and the fallback's points where a component does
-// not match. Queries: DELMESH inserts what the fallback returns.
+// triangle mesh, certified against the voxel boundary bdCA(X) by
+// certify_surface (mesh/surface_certificate.hpp, the code meshinfo --image
+// runs: closed, manifold, outward, no self-intersection, components placed
+// and matched one to one, each with the same Euler characteristic); the
+// guarantees measured on the output; and the fallback's points where a
+// component fails. Queries: DELMESH inserts what the fallback returns.
 #pragma once
 #include "surface/cube_grid.hpp"
 #include "surface/delaunay_types.hpp"
+#include "mesh/surface_certificate.hpp"
 #include "mesh/topology.hpp"
 #include "mesh/triangle_quality.hpp"
 
@@ -19,8 +21,9 @@ namespace imgmesh::surface_detail {
 // The restricted facets in a deterministic order (by vertex ids).
 std::vector<Facet> restricted_facets(const Tr& tr);
 
-// bdCA(X) for X = {g < 0}: its corners (the quads, once counted, are
-// dropped), components and Euler characteristics, and per component the S
+// bdCA(X) for X = {g < 0}: its corners and their faces bits (the quads,
+// once counted, are dropped), components and Euler characteristics, and per
+// component the S
 // component (cube-grid numbering) of the active cube around one of its
 // corners, to name what the repairs refine.
 struct ExpectedTopology {
@@ -52,11 +55,9 @@ struct Certificate {
   std::vector<PackedFacet> facets;  // per triangle: its Delaunay facet
   std::vector<int> vertex_comp;     // per mesh vertex: the S component of its site
   double max_roughness = 0;         // of mesh (radians), for measure_guarantees
-  MeshTopology topology;            // of mesh
-  ComponentCorrespondence correspondence;  // mesh components against bdCA(X)'s, by place
+  SurfaceCertificate check;         // of mesh against bdCA(X) (its topology, correspondence, checks)
   std::vector<int> bad;             // S components to repair, ascending
-  // One-to-one match by place, chi per matched pair, closed, manifold, oriented.
-  bool ok = false;
+  bool ok = false;                  // check.ok()
 };
 
 // The restricted Delaunay surface of W as a mesh (vertices in id order of
@@ -66,10 +67,8 @@ struct Certificate {
 Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid, const ExpectedTopology& expected);
 
 // The check alone, on cert.mesh (local coordinates of `grid`) and
-// cert.vertex_comp: sets topology, correspondence, bad and ok.
+// cert.vertex_comp: sets check, bad and ok.
 void check_certificate(Certificate& cert, const CubeGrid& grid, const ExpectedTopology& expected);
-// Why cert is not ok, naming each failing component; empty when it is.
-std::string topology_failure(const Certificate& cert);
 
 // The guarantees measured on the output (local coordinates).
 struct MeasuredGuarantees {

@@ -565,8 +565,9 @@ RestrictedDelaunayResult DelMesh::run() {
   }
   refine();
 
-  // Certificate: mesh components matched by place to bdCA(X)'s, one to one,
-  // chi per pair. On a mismatch (TOPOLOGY should leave none), HandleDetection
+  // Certificate (certify_surface): closed, manifold, outward, no
+  // self-intersection, components placed on bdCA(X)'s and matched one to
+  // one, chi per pair. On a failure (TOPOLOGY should leave none), HandleDetection
   // on the failing S components, else the fallback, and DELMESH's queues
   // again. Termination: at most opt_.fallback_rounds rounds, each of which
   // inserts at least one point (else the loop stops) and ends with REFINE,
@@ -608,9 +609,9 @@ RestrictedDelaunayResult DelMesh::run() {
 
   // Guarantees, measured on the output.
   const MeasuredGuarantees m = measure_guarantees(tr_, sampler_, cert);
-  res.topology = cert.topology;
+  res.topology = cert.check.topology;
   res.topology_ok = cert.ok;
-  res.topology_failure = topology_failure(cert);
+  res.topology_failure = cert.check.failure();
   res.ratio_ok = m.quality.largest_radius_edge_ratio() <= opt_.ratio * (1 + 1e-9);
   res.roughness_ok = m.max_roughness <= opt_.roughness + 1e-9;
   res.distance_ok = opt_.max_distance <= 0 || m.max_distance_to_plane <= opt_.max_distance * (1 + 1e-9);

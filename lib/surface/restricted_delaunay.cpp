@@ -76,7 +76,7 @@ Json RestrictedDelaunayResult::to_json() const {
 std::string RestrictedDelaunayResult::failed_guarantee() const {
   std::string failure;
   if (max_points_hit) failure = "--max-points reached (" + std::to_string(max_points) + " points); ";
-  if (!topology_ok) failure += "topology differs from the voxel boundary bdCA(X) (" + topology_failure + "); ";
+  if (!topology_ok) failure += "the certificate against the voxel boundary bdCA(X) fails (" + topology_failure + "); ";
   if (topology_insertions_refused)
     failure += std::to_string(topology_insertions_refused) + " TOPOLOGY insertion(s) refused, the first " +
                topology_insertion_refused_first + "; ";

@@ -3,9 +3,9 @@
 // seeds from the components of bdCA(X) (8.1), TOPOLOGY (VorEdge with
 // EdgeSurface on the cube grid, TopoDisk, FacetCycle, HandleDetection),
 // QUALITY(rho_0) and SMOOTH(g) as in DELMESH, plus --max-distance, then a
-// certificate: the output's components and Euler characteristics are
-// compared with bdCA(X); where they differ, HandleDetection on all the
-// component's samples and then a fallback refine.
+// certificate (certify_surface, as meshinfo --image): where it fails,
+// HandleDetection on all the failing component's samples and then a
+// fallback refine.
 #pragma once
 #include "mesh/surface_io.hpp"
 #include "surface/implicit_surface.hpp"
@@ -60,9 +60,9 @@ struct RestrictedDelaunayResult {
   std::vector<Vec3> centers;        // per triangle: its surface Delaunay ball centre (world)
   MeshTopology topology;            // of mesh
   MeshTopology expected;            // of bdCA(X)
-  VoxelBoundary expected_boundary;  // bdCA(X)'s corners (its quads dropped), for match_components
-  bool topology_ok = false;         // closed oriented manifold, components matched by place one to one, same chi
-  std::string topology_failure;     // when not: each failing component and why
+  VoxelBoundary expected_boundary;  // bdCA(X)'s corners and faces bits (its quads dropped), for certify_surface
+  bool topology_ok = false;         // certify_surface holds (mesh/surface_certificate.hpp)
+  std::string topology_failure;     // when not: its first failed check and why
   bool ratio_ok = false, roughness_ok = false, distance_ok = false;
   bool max_points_hit = false;
 

@@ -436,9 +436,8 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
 
   r.quality = tet_quality(r.mesh);
   r.conformity = tet_conformity(r.mesh);
-  r.boundary_topology = mesh_topology(r.mesh.points.size(), region1);
-  r.boundary_match = match_components(r.boundary_topology, r.mesh.points, surface.samples(), r.surface.expected_boundary,
-                                      r.surface.expected);
+  r.boundary_certificate =
+      certify_surface(r.mesh.points, region1, surface.samples(), r.surface.expected_boundary, r.surface.expected);
   r.volume_points = cells.volume_points;
   r.facet_points = cells.facet_points;
   r.off_surface_facet_points = cells.off_surface_points;
@@ -472,6 +471,7 @@ Json TetRefinementResult::to_json() const {
   j["tetrahedra"] = mesh.tets.size();
   j["boundary_triangles"] = mesh.triangles.size();
   Json comps = Json::array();
+  const MeshTopology& boundary_topology = boundary_certificate.topology;
   for (long long e : boundary_topology.sorted_euler()) comps.push_back(e);
   j["components_euler"] = comps;
   Json ex = Json::array();
@@ -479,9 +479,9 @@ Json TetRefinementResult::to_json() const {
   j["voxel_boundary_euler"] = ex;
   j["boundary_closed_manifold"] = boundary_topology.closed && boundary_topology.manifold;
   j["boundary_oriented"] = boundary_topology.oriented;
-  j["boundary_matches_voxel_boundary"] = boundary_match.matches();
+  j["boundary_matches_voxel_boundary"] = boundary_certificate.ok();
   j["boundary_is_restricted_surface"] = boundary_is_surface;
-  j["topology_matches"] = surface.topology_ok && boundary_match.matches() && boundary_is_surface;
+  j["topology_matches"] = surface.topology_ok && boundary_certificate.ok() && boundary_is_surface;
   j["conforming"] = conformity.ok();
   j["cell_ratio_bound"] = cell_ratio;
   j["cell_size_bound"] = cell_size;
@@ -524,7 +524,8 @@ std::string TetRefinementResult::failed_guarantee() const {
   if (cell_points_exhausted) add("cell refinement stopped at --max-cell-points (" + std::to_string(max_cell_points) + ")");
   if (!conformity.ok()) add("tetrahedra not positively oriented or not conforming");
   if (!boundary_is_surface) add("the tetrahedra's boundary is not the restricted Delaunay surface");
-  if (!boundary_match.matches()) add("the tetrahedra's boundary differs from the voxel boundary bdCA(X): " + boundary_match.failed_guarantee());
+  if (!boundary_certificate.ok())
+    add("the tetrahedra's boundary is not certified against the voxel boundary bdCA(X): " + boundary_certificate.failure());
   if (!ratio_ok) add("a tetrahedron's radius-edge ratio is above --cell-ratio");
   if (!size_ok) add("a tetrahedron's circumradius is above --cell-size");
   if (rounds_exhausted) add("cell refinement stopped after " + std::to_string(rounds) + " rounds");

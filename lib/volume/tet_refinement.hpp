@@ -18,6 +18,7 @@
 //   the output: the cells whose circumcentre lies inside; their boundary is
 //   checked to be the restricted Delaunay surface, face for face
 #pragma once
+#include "mesh/surface_certificate.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "mesh/topology.hpp"
 #include "surface/restricted_delaunay.hpp"
@@ -52,8 +53,9 @@ struct TetRefinementResult {
   TetMesh mesh;
   TetQualityReport quality;
   TetConformity conformity;
-  MeshTopology boundary_topology;         // of mesh.triangles
-  ComponentCorrespondence boundary_match;  // against bdCA(X), by place
+  // Region 1's boundary (the surface) certified against bdCA(X), as
+  // meshinfo --image certifies it; its topology.
+  SurfaceCertificate boundary_certificate;
   bool boundary_is_surface = false;       // boundary faces = restricted facets
   long long volume_points = 0, facet_points = 0, off_surface_facet_points = 0, refused = 0;
   long long sliver_points = 0;  // circumcentres of slivers inserted

@@ -138,6 +138,40 @@ brain=$DATA/brain-kmeans-labels.nii.gz
 }
 }
 
+# A MetaImage with its compressed voxels in a separate .zraw, as ITK's and
+# VTK's writers make it (CompressedDataSize beyond the header file's size),
+# reads as the NRRD it was made from: the same output voxels, and the same
+# world geometry to 1e-12.
+case_mhd_with_zraw_reads_as_its_nrrd() {
+  python3 "$E2E/labels_image.py" labels.nrrd || return
+  python3 - <<'PY' || { fail "cannot write labels.mhd"; return; }
+import math, zlib
+raw = open('labels.nrrd', 'rb').read()
+data = zlib.compress(raw[raw.index(b'\n\n') + 2:], 0)  # stored: more bytes than the header, as a real scan's
+c, s = math.cos(math.pi / 6), math.sin(math.pi / 6)
+open('labels.zraw', 'wb').write(data)
+open('labels.mhd', 'w').write(
+    'ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\nCompressedData = True\n'
+    'CompressedDataSize = %d\nTransformMatrix = %r %r 0 %r %r 0 0 0 1\nOffset = 10 -20 5\nCenterOfRotation = 0 0 0\n'
+    'AnatomicalOrientation = RAI\nElementSpacing = 0.6 0.7 0.8\nDimSize = 32 26 20\nElementType = MET_SHORT\n'
+    'ElementDataFile = labels.zraw\n' % (len(data), c, s, -s, c))
+assert len(data) > len(open('labels.mhd').read())
+PY
+  expect 0 img2wc labels.mhd --label 5 from-mhd.mha -q && expect 0 img2wc labels.nrrd --label 5 from-nrrd.mha -q || return
+  python3 - > same.txt 2>&1 <<'PY' || fail "the .mhd + .zraw does not read as its NRRD: $(cat same.txt)"
+import zlib
+def read(path):
+    raw = open(path, 'rb').read()
+    end = raw.index(b'\n', raw.index(b'ElementDataFile = ')) + 1
+    h = dict(l.split(' = ', 1) for l in raw[:end].decode().splitlines())
+    return h, zlib.decompress(raw[end:])
+(a, va), (b, vb) = read('from-mhd.mha'), read('from-nrrd.mha')
+assert va == vb and a['DimSize'] == b['DimSize'], 'voxels differ'
+for k in ('Offset', 'ElementSpacing', 'TransformMatrix'):
+    assert max(abs(float(x) - float(y)) for x, y in zip(a[k].split(), b[k].split())) < 1e-12, (k, a[k], b[k])
+PY
+}
+
 # Bad input: one line on stderr, exit 1 or 2, no output file.
 bad() {  # expected-exit description args...
   local want=$1 what=$2; shift 2

@@ -119,7 +119,8 @@ expect 0 img2wc two.nrrd two-wc.nrrd && expect 0 wc2implicit two-wc.nrrd two-f.n
   expect 0 implicit2mesh two-f.nrrd two.off || return
 OUT=two.json expect 0 meshinfo --json two.off --image two-wc.nrrd || fail "the right mesh of a ball and a torus"
 [ "$(comps two.off)" = "2 0,2" ] || fail "two.off: $(comps two.off)"
-[ "$(tr -d ' \n' < two.json | grep -o '"verdict":"ok"' | wc -l)" = 4 ] || fail "two.off: not 4 ok verdicts"
+# Two mesh components, two bdCA(X) components, the certificate: 5 verdicts ok.
+[ "$(tr -d ' \n' < two.json | grep -o '"verdict":"ok"' | wc -l)" = 5 ] || fail "two.off: not 5 ok verdicts"
 python3 - two.off two-wc.nrrd > swapped.off <<'P'
 import re, sys
 # Mirror an OFF mesh in x about the centre of an axis-aligned NRRD grid; flip faces.
@@ -139,8 +140,22 @@ P
 OUT=swapped.txt expect 3 meshinfo swapped.off --image two-wc.nrrd || fail "the swapped mesh"
 cp err.txt swapped.err
 grep -q "DOES NOT MATCH" swapped.txt || fail "swapped: no mismatch line"
-grep -q "euler differs" swapped.txt || fail "swapped: no per-component verdict"
-grep -q "mesh component .: euler 2, its bdCA(X) component . has 0" swapped.err || fail "swapped: message $(cat swapped.err)"
+# The torus where the ball is has its hole's walls inside the ball, the
+# sphere where the torus is lies inside its outer faces: each farther than a
+# voxel diagonal from the faces there.
+grep -q "mesh #0: unplaced" swapped.txt || fail "swapped: no per-component verdict"
+grep -q "first failure: placed" swapped.txt || fail "swapped: no first failure line"
+grep -q "not certified against bdCA(X) of two-wc.nrrd: placed: mesh component .: vertex [0-9]* at (.*) is farther than 1.732 (the place tolerance) from" swapped.err ||
+  fail "swapped: message $(cat swapped.err)"
+# Shifted by 5 voxels: refused at the default tolerance (one voxel
+# diagonal), accepted with --place-tolerance 6 (the components are 19 voxels
+# apart); the option needs --image and a positive distance.
+awk 'NR > 2 && NF == 3 { $1 = sprintf("%.17g", $1 + 5) } { print }' two.off > shifted.off
+expect 3 meshinfo shifted.off --image two-wc.nrrd || fail "shifted by 5 voxels"
+grep -q ": placed: " err.txt || fail "shifted: $(cat err.txt)"
+expect 0 meshinfo shifted.off --image two-wc.nrrd --place-tolerance 6 || fail "shifted, --place-tolerance 6"
+expect 2 meshinfo shifted.off --place-tolerance 6
+expect 2 meshinfo shifted.off --image two-wc.nrrd --place-tolerance 0
 }
 
 # 2D: a disk around x = 16 and an annulus around x = 47 in a 64 x 32 NRRD

@@ -14,6 +14,8 @@ all_ply() { local l; l=$(labels) && expect 0 seg2mesh "$l" all.ply --jobs 2 --st
 all_msh() { local l; l=$(labels) && expect 0 seg2mesh "$l" all.msh --jobs 1 -q; }
 all1_ply() { local l; l=$(labels) && expect 0 seg2mesh "$l" all1.ply --jobs 1 -q; }
 label_wc() { local l; l=$(labels) && expect 0 img2wc "$l" --label "$1" "wc$1.nrrd" -q; }
+seg_nrrd() { python3 "$E2E/labels_image.py" labels.seg.nrrd; }
+seg() { shared labels.seg.nrrd seg_nrrd; }
 # here FILE FUNC: the shared FILE linked into the case's folder.
 here() { local f; f=$(shared "$@") && ln -sf "$f" "$1"; }
 
@@ -128,6 +130,53 @@ case_max_points_exit_3_with_the_file_naming_the_label() {
   expect 3 seg2mesh "$(labels)" cap.ply --max-points 40
   [[ -s cap.ply ]] || fail "--max-points 40: exit 3 without the file"
   grep -q "^seg2mesh: .*label [125]: " err.txt || fail "the failing label is not named: $(cat err.txt)"
+}
+
+# 3D Slicer's .seg.nrrd (labels_image.py's voxels as Slicer saves them,
+# uint8 and gzip, the segments named): the surfaces are the label map's, byte
+# for byte, and every labelled format carries the names: PLY header
+# comments, the .msh physical names (4.1 and 2.2, read again by Gmsh where
+# installed), the VTK files' field data (decoded as VTK's writers encode
+# it), --stats.
+case_seg_nrrd_names_reach_every_labelled_format() {
+  local s a f; s=$(seg) && a=$(shared all1.ply all1_ply) || return
+  expect 0 seg2mesh "$s" named.ply --jobs 1 --stats st.json -q || return
+  for f in named.vtp named.vtk named.msh; do expect 0 seg2mesh "$s" "$f" -q || return; done
+  expect 0 seg2mesh "$s" named22.msh --msh-version 2.2 -q || return
+  if command -v gmsh > /dev/null; then
+    gmsh named.msh -0 -format msh22 -o gmsh.msh > gmsh.log 2>&1 && ! grep -qi error gmsh.log ||
+      fail "gmsh cannot read named.msh: $(cat gmsh.log)"
+  fi
+  python3 - "$a" "$E2E" > names.txt 2>&1 <<'PY' || fail "the segments' names: $(cat names.txt)"
+import json, os, re, sys, xml.etree.ElementTree as ET
+sys.path.insert(0, sys.argv[2]); import surface_read as r
+names = {1: 'ball', 2: 'box touching the ball', 5: 'solid "torus" \u00e9 50%'}
+ply = open('named.ply', 'rb').read()
+comments = re.findall(rb'comment label_name (\d+) ([^\n]*)\n', ply)
+assert {int(l): n.decode() for l, n in comments} == names, comments
+assert re.sub(rb'comment label_name [^\n]*\n', b'', ply) == open(sys.argv[1], 'rb').read(), 'not the label map\'s mesh'
+msh = {l: n.replace('"', "'") for l, n in names.items()}
+for f in ['named.msh', 'named22.msh'] + (['gmsh.msh'] if os.path.exists('gmsh.msh') else []):
+    assert r.read(f)['names'] == msh, (f, r.read(f)['names'])
+field = ET.parse('named.vtp').getroot().find('PolyData/FieldData')
+values = [int(x) for x in field.find("DataArray[@Name='label_values']").text.split()]
+codes = [int(x) % 256 for x in field.find("DataArray[@Name='label_names']").text.split()]
+strings = bytes(codes).split(b'\0')[:-1]
+assert dict(zip(values, (x.decode() for x in strings))) == names, (values, strings)
+vtk = open('named.vtk').read().split('\n')
+at = vtk.index('FIELD FieldData 2')
+assert vtk[at + 1] == 'label_values 1 3 int' and vtk[at + 3] == 'label_names 1 3 string', vtk[at:at + 7]
+decode = lambda t: re.sub(b'%([0-9A-F]{2})', lambda m: bytes([int(m.group(1), 16)]), t.encode()).decode()
+assert dict(zip(map(int, vtk[at + 2].split()), map(decode, vtk[at + 4:at + 7]))) == names, vtk[at:at + 7]
+assert {l['label']: l['name'] for l in json.load(open('st.json'))['labels']} == names
+PY
+}
+
+# A .seg.nrrd of two layers (overlapping segments): one line naming the
+# limitation, no output.
+case_seg_nrrd_of_two_layers_refused() {
+  python3 "$E2E/labels_image.py" layers.seg.nrrd 2 || return
+  refused seg2mesh "2 layers (overlapping segments): only a single-layer segmentation is read" layers.seg.nrrd x.ply
 }
 
 run_cases "$@"

@@ -63,3 +63,35 @@ TEST_CASE("msh: one entity per component, physical group per label") {
     }
   }
 }
+
+TEST_CASE("label names: .msh physical names, PLY comments, VTK field data; labels without a face left out") {
+  SurfaceMesh m = two_pieces();
+  m.labels = {7, 3, 7, 3, 3, 7, 3};
+  m.label_names = {{3, "left \"kidney\" 5%\n\xc3\xa9"}, {7, ""}, {9, "absent"}};
+  const std::vector<int> comp = face_components(m);
+  std::ostringstream msh, ply, vtp, vtk;
+  write_msh(msh, m, comp, "4.1");
+  CHECK(msh.str().find("$PhysicalNames\n2\n2 3 \"left 'kidney' 5% \xc3\xa9\"\n2 7 \"label 7\"\n") != std::string::npos);
+  write_ply(ply, m, comp);
+  CHECK(ply.str().find("(as ITK)\ncomment label_name 3 left \"kidney\" 5% \xc3\xa9\nelement vertex") != std::string::npos);
+  write_vtp(vtp, m, comp);
+  CHECK(vtp.str().find("  <PolyData>\n    <FieldData>\n"
+                       "      <DataArray type=\"Int32\" Name=\"label_values\" NumberOfTuples=\"1\" format=\"ascii\">\n"
+                       "        3 \n      </DataArray>\n"
+                       "      <DataArray type=\"String\" Name=\"label_names\" NumberOfTuples=\"1\" format=\"ascii\">\n"
+                       "        108 101 102 116 32 34 107 105 100 110 101 121 34 32 53 37 10 -61 -87 0\n"
+                       "      </DataArray>\n    </FieldData>\n    <Piece ") != std::string::npos);
+  write_vtk_legacy(vtk, m, comp);
+  CHECK(vtk.str().find("DATASET POLYDATA\nFIELD FieldData 2\nlabel_values 1 1 int\n3 \nlabel_names 1 1 string\n"
+                       "left%20%22kidney%22%205%25%0A%C3%A9\nPOINTS 8 double\n") != std::string::npos);
+  // A long name is cut at 127 bytes in .msh, never inside a UTF-8 character.
+  m.label_names = {{3, std::string(126, 'a') + "\xc3\xa9"}};
+  std::ostringstream cut;
+  write_msh(cut, m, comp, "2.2");
+  CHECK(cut.str().find("2 3 \"" + std::string(126, 'a') + "\"\n") != std::string::npos);
+  // Without names every format is as before.
+  m.label_names.clear();
+  std::ostringstream plain;
+  write_vtp(plain, m, comp);
+  CHECK(plain.str().find("FieldData") == std::string::npos);
+}

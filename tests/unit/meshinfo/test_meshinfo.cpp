@@ -45,43 +45,52 @@ TEST_CASE("mesh_report puts components and euler first", "[meshinfo]") {
   CHECK(back.at("faces").integer() == long(s.f.size()));
 }
 
-TEST_CASE("image_comparison: the cube sphere matches bdCA(X) of one voxel", "[meshinfo]") {
+TEST_CASE("mesh_info: the --image certificate and its report", "[meshinfo]") {
   BinaryImage img = image3(5);
   img(2, 2, 2) = 1;
-  const Faces s = cube_sphere(2);
-  const Json j = image_comparison(mesh_topology(s.nv, s.f), voxel_boundary_topology(img));
-  CHECK(j.at("matches").boolean());
-  Faces two = cube_sphere(2);
-  two.add(cube_sphere(1));
-  CHECK_FALSE(image_comparison(mesh_topology(two.nv, two.f), voxel_boundary_topology(img)).at("matches").boolean());
-}
-
-TEST_CASE("mesh_info: the --image guarantee and its report", "[meshinfo]") {
-  auto poly = [](const Faces& s) {
+  // The voxel's six faces as quads (split into fans for the certificate).
+  auto cube = [&](const Vec3& shift) {
+    const VoxelBoundary b = voxel_boundary(img);
     PolyMesh m;
-    for (std::size_t i = 0; i < s.nv; ++i) m.points.push_back({double(i % 3), double(i % 5), double(i % 7)});
-    m.faces = s.f;
+    for (std::size_t v = 0; v < b.lattice_ids.size(); ++v) {
+      const Vec3 p = corner_position(img, b, v);
+      m.points.push_back({p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]});
+    }
+    for (std::size_t f = 0; f + 1 < b.offsets.size(); ++f)
+      m.faces.push_back({b.corners[b.offsets[f]], b.corners[b.offsets[f] + 1], b.corners[b.offsets[f] + 2], b.corners[b.offsets[f] + 3]});
+    m.format = "off";
     return m;
   };
-  BinaryImage img = image3(5);
-  img(2, 2, 2) = 1;
-  const MeshInfo same = mesh_info(poly(cube_sphere(2)), "m.off", &img, "x.nrrd");
+  const MeshInfo same = mesh_info(cube({0, 0, 0}), "m.off", &img, "x.nrrd");
   CHECK(same.failed_guarantee().empty());
   CHECK(same.to_json().at("matches_image").boolean());
   CHECK(same.report.at("image").at("matches").boolean());
-  Faces two = cube_sphere(2);
-  two.add(cube_sphere(1));
-  const MeshInfo differ = mesh_info(poly(two), "m.off", &img, "x.nrrd");
-  CHECK(differ.failed_guarantee().find("x.nrrd") != std::string::npos);
+  CHECK(same.report.at("image").at("certificate").at("verdict").string() == "ok");
+  CHECK(has(format_report(same.report), "MATCHES (certificate holds)"));
+  // The cube and a copy of it three voxels away: the copy is placed nowhere.
+  PolyMesh two = cube({0, 0, 0});
+  const PolyMesh far = cube({3, 0, 0});
+  for (auto f : far.faces) {
+    for (int& v : f) v += int(two.points.size());
+    two.faces.push_back(f);
+  }
+  two.points.insert(two.points.end(), far.points.begin(), far.points.end());
+  const MeshInfo differ = mesh_info(two, "m.off", &img, "x.nrrd");
+  CHECK(has(differ.failed_guarantee(), "the mesh is not certified against bdCA(X) of x.nrrd: placed: mesh component 1"));
   CHECK_FALSE(differ.to_json().at("matches_image").boolean());
   CHECK(differ.to_json().at("components").integer() == 2);
+  CHECK(has(format_report(differ.report), "first failure: placed"));
+  // A --place-tolerance of 4 voxels places the copy, on the voxel already matched.
+  CertificateOptions wide;
+  wide.place_tolerance = 4;
+  CHECK(has(mesh_info(two, "m.off", &img, "x.nrrd", wide).failed_guarantee(), "matched: bdCA(X) component 0: matched by mesh components 0, 1"));
   // Without an image there is nothing to fail and no matches_image.
-  const MeshInfo alone = mesh_info(poly(two), "m.off");
+  const MeshInfo alone = mesh_info(two, "m.off");
   CHECK(alone.failed_guarantee().empty());
   CHECK_FALSE(alone.to_json().contains("matches_image"));
   // A non-well-composed image and a mesh without faces are refused.
   img(3, 3, 2) = 1;
-  CHECK_THROWS_AS(mesh_info(poly(cube_sphere(2)), "m.off", &img, "x.nrrd"), Error);
+  CHECK_THROWS_AS(mesh_info(cube({0, 0, 0}), "m.off", &img, "x.nrrd"), Error);
   CHECK_THROWS_AS(mesh_info(PolyMesh{}, "m.off"), Error);
 }
 
@@ -99,10 +108,14 @@ TEST_CASE("meshinfo --image: the swapped mesh fails with a per-component verdict
   const MeshInfo swapped = mesh_info(poly(triangulate(img, {0, 1}, true)), "s.off", &img, "wc.nrrd");
   CHECK_FALSE(swapped.to_json().at("matches_image").boolean());
   CHECK_FALSE(swapped.report.at("image").at("matches").boolean());
-  CHECK(swapped.failed_guarantee().find("mesh component 0: euler") != std::string::npos);
+  // The torus where the ball is: its hole's walls are far from the ball's
+  // faces. The sphere where the torus is lies on its outer faces: placed,
+  // with the wrong Euler characteristic.
+  CHECK(has(swapped.failed_guarantee(), "placed: mesh component "));
   const std::string text = format_report(swapped.report);
-  CHECK(text.find("DOES NOT MATCH") != std::string::npos);
-  CHECK(text.find("mesh #0: euler differs") != std::string::npos);
+  CHECK(has(text, "DOES NOT MATCH"));
+  CHECK(has(text, "euler differs"));
+  CHECK(has(text, "unplaced"));
 }
 
 TEST_CASE("planar_mesh_info reports the regions and names the failure", "[correspondence2d]") {

@@ -44,7 +44,7 @@ TEST_CASE("certificate: refuses the ball and torus in each other's places and a 
   REQUIRE(expected.topology.sorted_euler() == std::vector<long long>{0, 2});
   const Certificate right = refined_certificate(false);
   REQUIRE(right.ok);
-  REQUIRE(right.topology.sorted_euler() == std::vector<long long>{0, 2});
+  REQUIRE(right.check.topology.sorted_euler() == std::vector<long long>{0, 2});
   {
     // Mirrored in x about the grid's centre, faces flipped to stay outward:
     // the same sorted Euler list, the components in each other's places.
@@ -52,30 +52,30 @@ TEST_CASE("certificate: refuses the ball and torus in each other's places and a 
     for (Vec3& p : swapped.mesh.points) p[0] = grid.hi[0] - p[0];
     for (auto& t : swapped.mesh.triangles) std::swap(t[1], t[2]);
     check_certificate(swapped, grid, expected);
-    CHECK(swapped.topology.sorted_euler() == expected.topology.sorted_euler());
-    CHECK(swapped.topology.closed);
-    CHECK(swapped.topology.oriented);
+    CHECK(swapped.check.topology.sorted_euler() == expected.topology.sorted_euler());
+    CHECK(swapped.check.topology.closed);
+    CHECK(swapped.check.topology.oriented);
     CHECK_FALSE(swapped.ok);
     CHECK(swapped.bad.size() == 2);  // both S components need repair
-    CHECK(!topology_failure(swapped).empty());
+    CHECK(!swapped.check.failure().empty());
     // The unmirrored copy, checked the same way, passes.
     Certificate again = right;
     check_certificate(again, grid, expected);
     CHECK(again.ok);
     CHECK(again.bad.empty());
-    CHECK(topology_failure(again).empty());
+    CHECK(again.check.failure().empty());
   }
   {
     // The torus with its hole closed: a sphere where the torus is.
     const Certificate filled = refined_certificate(true);
     REQUIRE(filled.ok);  // against its own voxel boundary
-    REQUIRE(filled.topology.sorted_euler() == std::vector<long long>{2, 2});
+    REQUIRE(filled.check.topology.sorted_euler() == std::vector<long long>{2, 2});
     Certificate wrong = filled;
     check_certificate(wrong, grid, expected);
     CHECK_FALSE(wrong.ok);
     const int torus = grid.comp_at(Vec3{kTorusX + 5.2 + 2.1, 9.2, 7.4});
     CHECK(wrong.bad == std::vector<int>{torus});
-    CHECK(topology_failure(wrong).find("euler 2") != std::string::npos);
+    CHECK(wrong.check.failure().find("euler 2") != std::string::npos);
   }
 }
 
@@ -110,8 +110,8 @@ TEST_CASE("certificate: refuses DELMESH's seeds alone on a ball and a torus, acc
   const Certificate cert = certify(m.triangulation(), m.vertices().size(), m.grid(), expected);
   CHECK(cert.ok);
   CHECK(cert.bad.empty());
-  CHECK(cert.correspondence.matches());
-  CHECK(cert.topology.sorted_euler() == std::vector<long long>{0, 2});
+  CHECK(cert.check.correspondence.matches());
+  CHECK(cert.check.topology.sorted_euler() == std::vector<long long>{0, 2});
   REQUIRE(cert.facets.size() == cert.mesh.triangles.size());
   // Restricted facets in vertex-id order, each restricted.
   const std::vector<Facet> restricted = restricted_facets(m.triangulation());

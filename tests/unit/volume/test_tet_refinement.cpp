@@ -123,7 +123,9 @@ void check_tets(const ImplicitSurface& s, const TetRefinementResult& r, double r
   const VoxelBoundary vb = voxel_boundary(s.samples());
   const MeshTopology expected = mesh_topology(vb);
   CHECK(t.sorted_euler() == expected.sorted_euler());
-  CHECK(match_components(t, m.points, s.samples(), vb, expected).matches());
+  const SurfaceCertificate cert = certify_surface(m.points, b, s.samples(), vb, expected);
+  INFO(cert.failure());
+  CHECK(cert.ok());
   auto sorted_b = b, sorted_r = m.triangles;
   std::sort(sorted_b.begin(), sorted_b.end());
   std::sort(sorted_r.begin(), sorted_r.end());
@@ -240,7 +242,7 @@ TEST_CASE("ball: tetrahedra inside the certified sphere, volume close to the bal
   o.surface.max_distance = 0.1;
   const auto r = tetrahedral_mesh(s, o);
   check_tets(s, r, o.cell_ratio);
-  CHECK(r.boundary_topology.sorted_euler() == std::vector<long long>{2});
+  CHECK(r.boundary_certificate.topology.sorted_euler() == std::vector<long long>{2});
   CHECK(r.quality.total_volume == Approx(4 * M_PI * R * R * R / 3).epsilon(0.03));
   CHECK(r.volume_points > 0);  // the inside was refined, not only the surface
   // Slivers refined at the default 10 degrees (measured, not a theorem);
@@ -261,7 +263,7 @@ TEST_CASE("hollow ball: the cavity stays empty; solid torus with a size bound") 
   o.surface.max_distance = 0.1;
   const auto h = tetrahedral_mesh(shell, o);
   check_tets(shell, h, o.cell_ratio);
-  CHECK(h.boundary_topology.sorted_euler() == std::vector<long long>{2, 2});
+  CHECK(h.boundary_certificate.topology.sorted_euler() == std::vector<long long>{2, 2});
   // The centre of the cavity is in no tetrahedron: all its tetrahedra lie
   // outside the inner sphere's convex hull, so their volume is the shell's.
   const double shell_volume = 4 * M_PI * (std::pow(8.7, 3) - std::pow(4.1, 3)) / 3;
@@ -277,7 +279,7 @@ TEST_CASE("hollow ball: the cavity stays empty; solid torus with a size bound") 
   o.cell_size = 1.0;
   const auto r = tetrahedral_mesh(torus, o);
   check_tets(torus, r, o.cell_ratio);
-  CHECK(r.boundary_topology.sorted_euler() == std::vector<long long>{0});
+  CHECK(r.boundary_certificate.topology.sorted_euler() == std::vector<long long>{0});
   CHECK(r.quality.max_circumradius <= 1.0 * (1 + 1e-9));
 }
 
@@ -375,7 +377,7 @@ TEST_CASE("--outside: two balls and a hollow one, cavities in region 2") {
   o.outside = true;
   const auto r = tetrahedral_mesh(two, o);
   check_outside(two, r, o.cell_ratio);
-  CHECK(r.boundary_topology.sorted_euler() == std::vector<long long>{2, 2});
+  CHECK(r.boundary_certificate.topology.sorted_euler() == std::vector<long long>{2, 2});
 
   const Vec3 c{10.2, 9.9, 10.3};
   FunctionSurface shell(grid(23, 23, 23), [&](const Vec3& p) { return std::abs(sphere(p, c, 6.4)) - 2.3; });

@@ -1,0 +1,132 @@
+// SurfaceGeometry over CGAL: one Surface_mesh of the whole surface, with
+// an AABB tree per component (distances, nesting) and one over every
+// triangle (sides), each built when first asked. The kernel has exact
+// predicates: do_intersect of two triangles and the ray tests are exact on
+// the input doubles; distances are constructions (rounded).
+#include "mesh/embedding.hpp"
+
+#include "util/error.hpp"
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/Euler_operations.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace imgmesh {
+
+namespace {
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<K::Point_3>;
+using Face = Mesh::Face_index;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+using Side = CGAL::Side_of_triangle_mesh<Mesh, K, CGAL::Default, Tree>;
+} // namespace
+
+struct SurfaceGeometry::Impl {
+  Mesh mesh;
+  std::vector<std::vector<Face>> faces;  // per component, ascending
+  mutable std::vector<std::unique_ptr<Tree>> trees;
+  mutable std::unique_ptr<Tree> all;
+
+  const Tree& tree(std::size_t c) const {
+    if (!trees[c]) {
+      trees[c] = std::make_unique<Tree>(faces[c].begin(), faces[c].end(), mesh);
+      trees[c]->accelerate_distance_queries();
+    }
+    return *trees[c];
+  }
+};
+
+SurfaceGeometry::SurfaceGeometry(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                 const std::vector<int>& component, std::size_t components)
+    : impl_(std::make_unique<Impl>()) {
+  Mesh& m = impl_->mesh;
+  m.reserve(Mesh::size_type(points.size()), Mesh::size_type(3 * triangles.size() / 2), Mesh::size_type(triangles.size()));
+  for (const Vec3& p : points) m.add_vertex(K::Point_3(p[0], p[1], p[2]));
+  impl_->faces.resize(components);
+  impl_->trees.resize(components);
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const std::array<Mesh::Vertex_index, 3> vs{Mesh::Vertex_index(Mesh::size_type(triangles[t][0])),
+                                               Mesh::Vertex_index(Mesh::size_type(triangles[t][1])),
+                                               Mesh::Vertex_index(Mesh::size_type(triangles[t][2]))};
+    const Face f = CGAL::Euler::add_face(vs, m);
+    // Faces are numbered in the order they are added: face t is triangle t.
+    if (f == Mesh::null_face() || std::size_t(f) != t)
+      throw Error("the surface's triangles do not make a manifold, consistently oriented surface");
+    impl_->faces.at(std::size_t(component[t])).push_back(f);
+  }
+}
+
+SurfaceGeometry::~SurfaceGeometry() = default;
+
+SelfIntersections SurfaceGeometry::self_intersections(std::size_t cap) const {
+  std::vector<std::pair<Face, Face>> found;
+  CGAL::Polygon_mesh_processing::self_intersections(impl_->mesh, std::back_inserter(found),
+                                                    CGAL::parameters::maximum_number(unsigned(cap)));
+  SelfIntersections s;
+  s.pairs = found.size();
+  s.capped = cap > 0 && found.size() >= cap;
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    std::array<std::size_t, 2> p{std::size_t(found[i].first), std::size_t(found[i].second)};
+    if (p[0] > p[1]) std::swap(p[0], p[1]);
+    s.degenerate += p[0] == p[1];
+    if (i == 0 || p < s.first) s.first = p;
+  }
+  return s;
+}
+
+std::vector<int> SurfaceGeometry::nesting_depths(const std::vector<int>& component_of) const {
+  const Mesh& m = impl_->mesh;
+  const std::size_t n = impl_->faces.size();
+  std::vector<CGAL::Bbox_3> box(n);
+  std::vector<std::vector<Mesh::Vertex_index>> samples(n);  // per component, its vertices ascending
+  for (std::size_t v = 0; v < component_of.size(); ++v) {
+    const int c = component_of[v];
+    if (c < 0) continue;
+    const Mesh::Vertex_index x{Mesh::size_type(v)};
+    box[std::size_t(c)] += m.point(x).bbox();
+    samples[std::size_t(c)].push_back(x);
+  }
+  auto within = [](const K::Point_3& p, const CGAL::Bbox_3& b) {
+    return p.x() >= b.xmin() && p.y() >= b.ymin() && p.z() >= b.zmin() && p.x() <= b.xmax() && p.y() <= b.ymax() &&
+           p.z() <= b.zmax();
+  };
+  std::vector<int> depth(n, 0);
+  for (std::size_t b = 0; b < n; ++b) {
+    std::unique_ptr<Side> side;
+    for (std::size_t a = 0; a < n; ++a) {
+      // Only a component whose first vertex is in b's box can be inside b.
+      if (a == b || samples[a].empty() || !within(m.point(samples[a][0]), box[b])) continue;
+      if (!side) side = std::make_unique<Side>(impl_->tree(b));
+      // a's first vertex not on b's surface (the two meet only where
+      // triangles intersect, which the certificate refuses anyway).
+      for (Mesh::Vertex_index x : samples[a]) {
+        const CGAL::Bounded_side s = (*side)(m.point(x));
+        if (s == CGAL::ON_BOUNDARY) continue;
+        depth[a] += s == CGAL::ON_BOUNDED_SIDE;
+        break;
+      }
+    }
+  }
+  return depth;
+}
+
+double SurfaceGeometry::distance(const Vec3& p, int component) const {
+  return std::sqrt(impl_->tree(std::size_t(component)).squared_distance(K::Point_3(p[0], p[1], p[2])));
+}
+
+int SurfaceGeometry::side(const Vec3& p) const {
+  if (!impl_->all) impl_->all = std::make_unique<Tree>(faces(impl_->mesh).first, faces(impl_->mesh).second, impl_->mesh);
+  const CGAL::Bounded_side s = Side(*impl_->all)(K::Point_3(p[0], p[1], p[2]));
+  return s == CGAL::ON_BOUNDED_SIDE ? -1 : s == CGAL::ON_BOUNDARY ? 0 : 1;
+}
+
+} // namespace imgmesh

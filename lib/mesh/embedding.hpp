@@ -1,0 +1,57 @@
+// What the surface certificate (surface_certificate.hpp) asks of a triangle
+// surface's geometry: whether two of its triangles intersect other than in
+// a shared edge or vertex (CGAL Polygon_mesh_processing's
+// self_intersections, exact predicates), how its components nest and which
+// side of it a point is on (CGAL's Side_of_triangle_mesh: rays against the
+// triangles, exact predicates, another ray when one grazes an edge), and
+// distances to a component's triangles (an AABB tree). CGAL stays in
+// embedding.cpp.
+#pragma once
+#include "image/grid.hpp"
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace imgmesh {
+
+struct SelfIntersections {
+  std::size_t pairs = 0;       // intersecting pairs found, degenerate triangles included (at most the cap)
+  std::size_t degenerate = 0;  // triangles whose corners are collinear (each a pair with itself)
+  bool capped = false;         // the search stopped at the cap: there may be more
+  std::array<std::size_t, 2> first{0, 0};  // the least pair found (triangle ids, ascending)
+};
+
+class SurfaceGeometry {
+public:
+  // triangles: a 2-manifold, consistently oriented surface (mesh_topology
+  // says so: checked by the caller; Error if CGAL cannot build it); points
+  // in no triangle are ignored. component: per triangle, its component in
+  // 0 .. components - 1.
+  SurfaceGeometry(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                  const std::vector<int>& component, std::size_t components);
+  ~SurfaceGeometry();
+  SurfaceGeometry(const SurfaceGeometry&) = delete;
+  SurfaceGeometry& operator=(const SurfaceGeometry&) = delete;
+
+  // Pairs of triangles that meet other than in a shared edge or vertex
+  // (triangles of different components included), up to `cap`.
+  SelfIntersections self_intersections(std::size_t cap) const;
+  // Closed components only: per component, how many others enclose it:
+  // those its first vertex is strictly inside (by vertex id; a vertex on
+  // the other's surface is passed over for the next). component_of: per
+  // vertex, its component or -1 (MeshTopology's).
+  std::vector<int> nesting_depths(const std::vector<int>& component_of) const;
+  // World distance from p to the triangles of a component.
+  double distance(const Vec3& p, int component) const;
+  // Closed surface only: -1 when p is inside (enclosed by an odd number of
+  // components), 0 on a triangle, 1 outside.
+  int side(const Vec3& p) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace imgmesh

@@ -1,0 +1,41 @@
+#include "mesh/voxel_sides.hpp"
+
+#include "mesh/embedding.hpp"
+
+namespace imgmesh {
+
+Json VoxelSides::to_json() const {
+  Json j = Json::object();
+  j["voxel_centres_checked"] = checked;
+  j["wrong_side"] = wrong();
+  j["foreground_outside"] = foreground_outside;
+  j["background_inside"] = background_inside;
+  j["on_surface"] = on_surface;
+  return j;
+}
+
+VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                       const std::vector<int>& component, std::size_t components, const BinaryImage& img) {
+  const SurfaceGeometry g(points, triangles, component, components);
+  VoxelSides r;
+  for (std::size_t k = 0; k < img.size[2]; ++k)
+    for (std::size_t j = 0; j < img.size[1]; ++j)
+      for (std::size_t i = 0; i < img.size[0]; ++i) {
+        const std::ptrdiff_t x = std::ptrdiff_t(i), y = std::ptrdiff_t(j), z = std::ptrdiff_t(k);
+        const bool in = img(i, j, k) != 0;
+        // Next to bdCA(X): a face-neighbour (or the outside, for foreground) on the other side.
+        bool next = false;
+        for (int a = 0; a < 3 && !next; ++a)
+          for (int s : {-1, 1})
+            next = next || (img.at(x + (a == 0) * s, y + (a == 1) * s, z + (a == 2) * s, 0) != 0) != in;
+        if (!next) continue;
+        ++r.checked;
+        const int side = g.side(img.world(double(i), double(j), double(k)));
+        if (side == 0) ++r.on_surface;
+        else if (in && side > 0) ++r.foreground_outside;
+        else if (!in && side < 0) ++r.background_inside;
+      }
+  return r;
+}
+
+} // namespace imgmesh

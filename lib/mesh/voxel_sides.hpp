@@ -1,0 +1,32 @@
+// Which side of a closed surface each voxel centre next to the voxel
+// boundary bdCA(X) lies on (issue 38): a foreground centre should be inside
+// the surface, a background one outside. Sides by CGAL's
+// Side_of_triangle_mesh (SurfaceGeometry::side: exact ray tests), inside
+// meaning enclosed by an odd number of the surface's components. Reported
+// by meshinfo --image; not part of the certificate's verdict.
+#pragma once
+#include "image/grid.hpp"
+#include "util/json.hpp"
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace imgmesh {
+
+struct VoxelSides {
+  std::size_t checked = 0;             // voxel centres with a face on bdCA(X)
+  std::size_t foreground_outside = 0;  // of those, foreground centres outside the surface
+  std::size_t background_inside = 0;   // background centres inside it
+  std::size_t on_surface = 0;          // centres on a triangle (counted wrong: on no side)
+  std::size_t wrong() const { return foreground_outside + background_inside + on_surface; }
+  Json to_json() const;
+};
+
+// The surface in img's world coordinates: closed, 2-manifold, consistently
+// oriented (the certificate's first checks; Error otherwise). component:
+// per triangle, its component (0 .. components - 1).
+VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                       const std::vector<int>& component, std::size_t components, const BinaryImage& img);
+
+} // namespace imgmesh
