@@ -271,13 +271,25 @@ void refine(Triangulation& t) {
   mesher.set_seeds(t.seeds.begin(), t.seeds.end(), false);
   mesher.init();
   if (!(opt.min_angle > 0 || opt.max_area > 0 || opt.max_edge > 0)) return;
-  std::size_t steps = 0;
+  std::size_t steps = 0, idle = 0, vertices = t.cdt.number_of_vertices();
   while (!mesher.is_refinement_done()) {
     mesher.step_by_step_refine_mesh();
     // Every step: a small --max-vertices must hold too (a step adds one vertex).
     if (t.cdt.number_of_vertices() > opt.max_vertices) {
       t.res.limit_reached = true;
       break;
+    }
+    // A step adds no vertex where it drops an element no longer to refine
+    // (at most one a queued face or edge: fewer than 8 a vertex; on the
+    // bundled images at most 1 step in a row). Where features are below
+    // double precision (a rectangle 1 by 1e-300) the mesher went on for
+    // ever without placing a vertex (issue 35).
+    if (t.cdt.number_of_vertices() != vertices) {
+      vertices = t.cdt.number_of_vertices();
+      idle = 0;
+    } else if (++idle > 8 * vertices + 1024) {
+      throw Error("refinement went beyond double precision: the PSLG has features too small for the size of their "
+                  "coordinates (no vertex placed in " + std::to_string(idle) + " steps)");
     }
     if (++steps % 4096 == 0 && opt.progress) opt.progress(t.cdt.number_of_vertices());
   }

@@ -65,3 +65,12 @@ TEST_CASE("a PSLG made by no reader is held to the coordinate range too") {
   p.points[1][0] = 1e-32;
   CHECK(error_of(p).find("the coordinates span only") != std::string::npos);
 }
+
+TEST_CASE("a rectangle 1 by 1e-300 is refused, not refined for ever") {
+  // Its extent is 1, in the range; refinement placed no vertex after 84
+  // and went on (the default angle bound, with or without the lattice).
+  PlanarMesh flat;
+  flat.points = {{0, 0}, {1, 0}, {1, 1e-300}, {0, 1e-300}};
+  flat.segments = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  CHECK(error_of(flat).find("beyond double precision") != std::string::npos);
+}
