@@ -1,4 +1,4 @@
-// The coordinates the tools take (doc/design.md "Data contracts"): finite
+// The coordinates the tools take (their man pages say it too): finite
 // numbers of magnitude at most 1e30, spanning (largest minus smallest, on
 // some axis) 0 or at least 1e-30. Then what the tools compute from them
 // stays a normal double: differences of at most 2e30, so the products of

@@ -172,8 +172,8 @@ case_surface_meshes_refused() {
 }
 
 # Coordinates out of the range every reader takes (finite, at most 1e30 in
-# magnitude, a mesh 0 or at least 1e-30 across: doc/design.md "Data
-# contracts"), a file a reader: refused naming the line (binary files: the
+# magnitude, a mesh 0 or at least 1e-30 across: util/coordinates.hpp,
+# the man pages), a file a reader: refused naming the line (binary files: the
 # vertex) and the value. The first is issue 35's: poly2tri died of SIGFPE.
 case_extreme_coordinates_refused() {
   local range="is out of range (finite, at most 1e30 in magnitude)" span="the coordinates span only"

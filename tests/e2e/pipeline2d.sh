@@ -189,7 +189,7 @@ case_default_chain_on_brain_kmeans_slices() {
   done
 }
 
-# The ends of the coordinate range (doc/design.md "Data contracts": finite,
+# The ends of the coordinate range (util/coordinates.hpp: finite,
 # at most 1e30, a mesh at least 1e-30 across): the ventricles' PSLG scaled
 # by 2^91 (coordinates up to 7e29) and by 2^-98 (about 1e-27 across) gives,
 # at every stage of the default chain, the same mesh scaled. Powers of two

@@ -1,5 +1,5 @@
 // util/parse.hpp accepts exactly what strtod / strtoll do; util/coordinates.hpp
-// takes exactly the documented range (doc/design.md "Data contracts"): finite,
+// takes exactly the documented range (the man pages): finite,
 // at most 1e30 in magnitude, a mesh 0 or at least 1e-30 across.
 #include "util/coordinates.hpp"
 #include "util/parse.hpp"
