@@ -8,6 +8,7 @@
 #include "mesh/surface_formats.hpp"
 
 #include "util/atomic_file.hpp"
+#include "util/coordinates.hpp"
 #include "util/error.hpp"
 #include "util/path.hpp"
 
@@ -15,6 +16,7 @@
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -56,6 +58,13 @@ public:
     if (!(ss >> v) || !ss.eof()) fail(std::string("expected ") + what + ", found '" + tok + "'");
     return v;
   }
+  double coordinate() {
+    std::string tok;
+    if (!next(tok)) fail("truncated: expected a coordinate");
+    double v;
+    if (!parse_coordinate(tok, v)) fail(coordinate_error(tok));
+    return v;
+  }
   [[noreturn]] void fail(const std::string& what) const {
     throw Error("line " + std::to_string(lineno_) + ": " + what, path_);
   }
@@ -83,10 +92,8 @@ SurfaceMesh read_off(const std::string& path) {
   SurfaceMesh m;
   m.points.resize(std::size_t(nv));
   for (auto& p : m.points)
-    for (double& c : p) {
-      c = t.get<double>("a coordinate");
-      if (!std::isfinite(c)) t.fail("coordinate is not finite");
-    }
+    for (double& c : p) c = t.coordinate();
+  check_extent(m.points, path);
   m.triangles.resize(std::size_t(nf));
   for (auto& f : m.triangles) {
     const long k = t.get<long>("a face size");
@@ -107,28 +114,137 @@ SurfaceMesh read_off(const std::string& path) {
 // stops, a property before any element crashes it, and it reserves what the
 // counts say, list lengths too. So the header is checked here first against
 // the PLY grammar, every element count against the bytes of the file, and in
-// an ASCII file every face's vertex count against the vertices there are.
+// an ASCII file every face's vertex count against the vertices there are and
+// every vertex's x, y, z against the coordinates the tools take (OpenMesh
+// reads them as floats: a number past that range fails its stream and the
+// rest of the file with it).
+struct PlyElement {
+  std::string name;
+  long long count = 0;
+  std::vector<std::string> properties, types;  // names and (scalar) types, in order
+  bool list = false;                           // a list property among them
+
+  // Where x, y, z are among the properties (those present, as (axis,
+  // field)), and none when a list makes a vertex's fields other than one per
+  // property.
+  std::vector<std::pair<std::size_t, std::size_t>> coordinates() const {
+    std::vector<std::pair<std::size_t, std::size_t>> xyz;
+    if (list) return xyz;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const auto at = std::find(properties.begin(), properties.end(), std::string(1, char('x' + axis)));
+      if (at != properties.end()) xyz.push_back({axis, std::size_t(at - properties.begin())});
+    }
+    return xyz;
+  }
+};
+
+bool host_big_endian() {
+  const std::uint32_t one = 1;
+  unsigned char first;
+  std::memcpy(&first, &one, 1);
+  return first != 1;
+}
+
+// Bytes of a PLY scalar type (the header check admits no other name).
+std::size_t ply_size(const std::string& type) {
+  if (type == "double" || type == "float64") return 8;
+  if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" || type == "float32")
+    return 4;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  return 1;
+}
+
+// A binary PLY scalar of `type` at b, in the file's byte order, as a double.
+double ply_value(const unsigned char* b, const std::string& type, bool big_endian) {
+  unsigned char v[8];
+  const std::size_t n = ply_size(type);
+  const bool swap = big_endian != host_big_endian();
+  for (std::size_t i = 0; i < n; ++i) v[i] = b[swap ? n - 1 - i : i];
+  const auto get = [&](auto x) {
+    std::memcpy(&x, v, sizeof x);
+    return double(x);
+  };
+  if (type == "double" || type == "float64") return get(double());
+  if (type == "float" || type == "float32") return get(float());
+  if (type == "int" || type == "int32") return get(std::int32_t());
+  if (type == "uint" || type == "uint32") return get(std::uint32_t());
+  if (type == "short" || type == "int16") return get(std::int16_t());
+  if (type == "ushort" || type == "uint16") return get(std::uint16_t());
+  if (type == "char" || type == "int8") return get(std::int8_t());
+  return get(std::uint8_t());
+}
+
+// The vertices of a binary PLY, where the elements before them have no
+// lists (so that their place is known): every x, y, z as the file holds it
+// (OpenMesh reads them as floats: 1e-300 would come out 0, 1e300 infinite).
+void check_binary_ply_vertices(std::istream& in, const std::vector<PlyElement>& elements, bool big_endian,
+                               const std::string& path) {
+  std::streamoff at = in.tellg();
+  for (const PlyElement& e : elements) {
+    if (e.list) return;
+    std::size_t record = 0;
+    std::vector<std::size_t> offset;
+    for (const auto& t : e.types) {
+      offset.push_back(record);
+      record += ply_size(t);
+    }
+    if (e.name != "vertex") {
+      at += std::streamoff(record) * e.count;
+      continue;
+    }
+    in.seekg(at);
+    Extent extent;
+    std::vector<unsigned char> b(record);
+    for (long long i = 0; i < e.count; ++i) {
+      if (!in.read(reinterpret_cast<char*>(b.data()), std::streamsize(record))) return;  // short: OpenMesh reports it
+      for (const auto& [axis, k] : e.coordinates()) {
+        const double v = ply_value(&b[offset[k]], e.types[k], big_endian);
+        const bool single = e.types[k] == "float" || e.types[k] == "float32";
+        if (single ? !valid_coordinate(float(v)) : !valid_coordinate(v))
+          throw Error("cannot read the mesh: PLY vertex " + std::to_string(i) + ": " + coordinate_error(v), path);
+        extent.add(axis, v);
+      }
+    }
+    check_extent(extent.value(), path);
+    return;
+  }
+}
+
 // The body of an ASCII PLY, one element a line: each face line starts with
 // a vertex count from 3 to the number of vertices.
-void check_ascii_ply_faces(std::istream& in, const std::vector<std::pair<std::string, long long>>& elements,
-                           int number, const std::string& path) {
+void check_ascii_ply_body(std::istream& in, const std::vector<PlyElement>& elements, int number,
+                          const std::string& path) {
   long long vertices = 0;
   std::string line;
-  for (const auto& [name, count] : elements) {
-    if (name == "vertex") vertices = count;
-    for (long long i = 0; i < count; ++i) {
+  auto fail = [&](const std::string& what) {
+    throw Error("cannot read the mesh: PLY line " + std::to_string(number) + ": " + what, path);
+  };
+  for (const PlyElement& e : elements) {
+    if (e.name == "vertex") vertices = e.count;
+    // The coordinates' fields in a vertex line.
+    const auto xyz = e.name == "vertex" ? e.coordinates() : std::vector<std::pair<std::size_t, std::size_t>>{};
+    Extent extent;
+    for (long long i = 0; i < e.count; ++i) {
       if (!std::getline(in, line)) return;  // short: OpenMesh reports it
       ++number;
-      if (name != "face") continue;
       std::istringstream words(line);
+      if (!xyz.empty()) {
+        std::vector<std::string> w;
+        for (std::string x; words >> x;) w.push_back(x);
+        double v;
+        for (const auto& [axis, k] : xyz) {
+          if (k < w.size() && !parse_coordinate(w[k], v)) fail(coordinate_error(w[k]));
+          if (k < w.size()) extent.add(axis, v);
+        }
+        if (i + 1 == e.count) check_extent(extent.value(), path);
+      }
+      if (e.name != "face") continue;
       std::string first;
       long long n = 0;
       if (!(words >> first) || !(std::istringstream(first) >> n) || n < 3 || n > vertices)
-        throw Error("cannot read the mesh: PLY line " + std::to_string(number) + ": " +
-                        (first.empty() ? std::string("a face without its vertex count")
-                                       : "a face of " + first.substr(0, 20) + " vertices (" +
-                                             std::to_string(vertices) + " in the file)"),
-                    path);
+        fail(first.empty() ? std::string("a face without its vertex count")
+                           : "a face of " + first.substr(0, 20) + " vertices (" + std::to_string(vertices) +
+                                 " in the file)");
     }
   }
 }
@@ -143,8 +259,8 @@ void check_ply_header(const std::string& path) {
                                            "int32", "uint32", "float32", "float64"};
   std::string line;
   int number = 0;
-  bool element = false, ascii = false;
-  std::vector<std::pair<std::string, long long>> elements;  // in file order
+  bool element = false, ascii = false, big_endian = false;
+  std::vector<PlyElement> elements;  // in file order
   auto fail = [&](const std::string& what) {
     throw Error("cannot read the mesh: PLY header line " + std::to_string(number) + ": " + what, path);
   };
@@ -159,7 +275,8 @@ void check_ply_header(const std::string& path) {
     }
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "end_header") {
-      if (ascii) check_ascii_ply_faces(in, elements, number, path);
+      if (ascii) check_ascii_ply_body(in, elements, number, path);
+      else check_binary_ply_vertices(in, elements, big_endian, path);
       return;
     }
     if (w[0] == "format") {
@@ -168,16 +285,20 @@ void check_ply_header(const std::string& path) {
           (w[2] != "1.0" && w[2] != "1"))
         fail("bad format line (ascii, binary_little_endian or binary_big_endian, version 1.0)");
       ascii = w[1] == "ascii";
+      big_endian = w[1] == "binary_big_endian";
     } else if (w[0] == "element") {
       long long n = -1;
       if (w.size() != 3 || !(std::istringstream(w[2]) >> n) || n < 0) fail("bad element line");
       if (n > file_size) fail("element count " + w[2] + " beyond the " + std::to_string(file_size) + " bytes of the file");
-      elements.emplace_back(w[1], n);
+      elements.push_back({w[1], n, {}, {}, false});
       element = true;
     } else if (w[0] == "property") {
       if (!element) fail("a property before any element");
       const bool list = w.size() == 5 && w[1] == "list" && types.count(w[2]) && types.count(w[3]);
       if (!list && (w.size() != 3 || !types.count(w[1]))) fail("bad property line");
+      elements.back().properties.push_back(w.back());
+      elements.back().types.push_back(list ? std::string() : w[1]);
+      elements.back().list |= list;
     } else {
       fail("unknown keyword '" + w[0] + "'");
     }
@@ -185,20 +306,39 @@ void check_ply_header(const std::string& path) {
   fail("no end_header");
 }
 
+// Three coordinates from `words` (the rest of a vertex line of an ASCII
+// file OpenMesh reads): OpenMesh reads them as floats and, where one fails,
+// drops the vertex (OBJ) or the rest of the file (STL) without a word.
+void check_coordinates(std::istream& words, int number, const std::string& path, Extent& extent) {
+  std::string word;
+  for (std::size_t k = 0; k < 3; ++k) {
+    double v;
+    if (!(words >> word))
+      throw Error("cannot read the mesh: line " + std::to_string(number) + ": a vertex needs x y z", path);
+    if (!parse_coordinate(word, v))
+      throw Error("cannot read the mesh: line " + std::to_string(number) + ": " + coordinate_error(word), path);
+    extent.add(k, v);
+  }
+}
+
 // OpenMesh's OBJ reader asserts (aborts) on a face without a vertex it can
 // use: every face is checked here first to be at least 3 references
 // "v[/vt][/vn]" to vertices defined before it (1-based, or negative from
-// the last one).
-void check_obj_faces(const std::string& path) {
+// the last one); every vertex to be 3 coordinates.
+void check_obj_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::string line, word;
   long long vertices = 0;
   int number = 0;
+  Extent extent;
   while (std::getline(in, line)) {
     ++number;
     std::istringstream words(line);
     if (!(words >> word)) continue;
-    if (word == "v") ++vertices;
+    if (word == "v") {
+      ++vertices;
+      check_coordinates(words, number, path, extent);
+    }
     if (word != "f") continue;
     int refs = 0;
     while (words >> word) {
@@ -218,6 +358,43 @@ void check_obj_faces(const std::string& path) {
     if (refs < 3)
       throw Error("cannot read the mesh: line " + std::to_string(number) + ": a face needs 3 vertices", path);
   }
+  check_extent(extent.value(), path);
+}
+
+// An STL's coordinates as the file holds them: a binary one (84 + 50 n
+// bytes, as OpenMesh tells them apart) as floats, an ASCII one as the text
+// of its "vertex" lines.
+void check_stl_coordinates(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char head[84] = {};
+  in.read(reinterpret_cast<char*>(head), 84);
+  in.clear();
+  in.seekg(0, std::ios::end);
+  const long long size = in.tellg();
+  long long triangles = 0;  // little-endian
+  for (int i = 3; i >= 0; --i) triangles = triangles * 256 + head[80 + i];
+  Extent extent;
+  if (size >= 84 && size == 84 + 50LL * triangles) {
+    in.seekg(84);
+    unsigned char t[50];
+    for (long long i = 0; i < triangles && in.read(reinterpret_cast<char*>(t), 50); ++i)
+      for (int k = 3; k < 12; ++k) {  // after the normal, 3 corners
+        const double v = ply_value(t + 4 * k, "float", false);
+        if (!valid_coordinate(float(v)))
+          throw Error("cannot read the mesh: STL triangle " + std::to_string(i) + ": " + coordinate_error(v), path);
+        extent.add(std::size_t(k % 3), v);
+      }
+  } else {
+    in.seekg(0);
+    std::string line, word;
+    int number = 0;
+    while (std::getline(in, line)) {
+      ++number;
+      std::istringstream words(line);
+      if (words >> word && word == "vertex") check_coordinates(words, number, path, extent);
+    }
+  }
+  check_extent(extent.value(), path);
 }
 
 void write_off(std::ostream& out, const SurfaceMesh& m) {
@@ -231,10 +408,7 @@ void write_off(std::ostream& out, const SurfaceMesh& m) {
 template <class T> void put(std::ostream& out, T v) {
   unsigned char b[sizeof(T)];
   std::memcpy(b, &v, sizeof(T));
-  std::uint32_t one = 1;
-  unsigned char first;
-  std::memcpy(&first, &one, 1);
-  if (first != 1)
+  if (host_big_endian())
     for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
   out.write(reinterpret_cast<const char*>(b), sizeof(T));
 }
@@ -284,7 +458,8 @@ SurfaceMesh read_surface(const std::string& path) {
     if (!probe) throw Error("cannot open", path);
   }
   if (ext == ".ply") check_ply_header(path);
-  if (ext == ".obj") check_obj_faces(path);
+  if (ext == ".obj") check_obj_text(path);
+  if (ext == ".stl") check_stl_coordinates(path);
   PolyMesh pm;
   OpenMesh::IO::Options opt;
   omerr().disable();
@@ -295,6 +470,7 @@ SurfaceMesh read_surface(const std::string& path) {
   m.points.reserve(pm.n_vertices());
   for (auto v : pm.vertices()) {
     const auto& p = pm.point(v);
+    // Checked in the file above, but for a PLY whose vertices follow a list.
     for (int i = 0; i < 3; ++i)
       if (!std::isfinite(p[i])) throw Error("coordinate is not finite", path);
     m.points.push_back({p[0], p[1], p[2]});
@@ -309,6 +485,7 @@ SurfaceMesh read_surface(const std::string& path) {
     if (k != 3) throw Error("a face with fewer than 3 vertices", path);
     m.triangles.push_back(tri);
   }
+  check_extent(m.points, path);
   return m;
 }
 

@@ -1,10 +1,13 @@
 #include "mesh/volume_io.hpp"
 
 #include "util/atomic_file.hpp"
+#include "util/coordinates.hpp"
 #include "util/error.hpp"
+#include "util/parse.hpp"
 #include "util/path.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -193,38 +196,59 @@ void write_inp(std::ostream& o, const TetMesh& m) {
   }
 }
 
-// Reading: a whitespace token stream with the file's name in its errors.
+// Reading: a whitespace token stream, counting lines, with the file's name
+// and the line in its errors.
 struct Tokens {
   std::istream& in;
   const std::string& path;
+  int line = 1;  // of the last token read (or where reading stopped)
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error("line " + std::to_string(line) + ": " + what, path);
+  }
+  // Past the blanks; false at the end.
+  bool more() {
+    for (int c; (c = in.peek()) != EOF && std::isspace(c); in.get())
+      if (c == '\n') ++line;
+    return in.peek() != EOF;
+  }
+  bool read(std::string& s) {
+    if (!more()) return false;
+    s.clear();
+    for (int c; (c = in.peek()) != EOF && !std::isspace(c); in.get()) s.push_back(char(c));
+    return true;
+  }
   std::string next() {
     std::string s;
-    if (!(in >> s)) throw Error("unexpected end of file", path);
+    if (!read(s)) fail("unexpected end of file");
     return s;
+  }
+  void skip_line() {
+    for (int c; (c = in.get()) != EOF && c != '\n';) {
+    }
+    ++line;
   }
   long long integer() {
     const std::string s = next();
-    try {
-      std::size_t used = 0;
-      const long long v = std::stoll(s, &used);
-      if (used == s.size()) return v;
-    } catch (const std::exception&) {
-    }
-    throw Error("expected an integer, found '" + s + "'", path);
+    long long v;
+    if (!parse_integer(s, v)) fail("expected an integer, found '" + s.substr(0, 40) + "'");
+    return v;
   }
   double real() {
     const std::string s = next();
-    try {
-      std::size_t used = 0;
-      const double v = std::stod(s, &used);
-      if (used == s.size() && std::isfinite(v)) return v;
-    } catch (const std::exception&) {
-    }
-    throw Error("expected a finite number, found '" + s + "'", path);
+    double v;
+    if (!parse_real(s, v) || !std::isfinite(v)) fail("expected a finite number, found '" + s.substr(0, 40) + "'");
+    return v;
+  }
+  double coordinate() {
+    const std::string s = next();
+    double v;
+    if (!parse_coordinate(s, v)) fail(coordinate_error(s));
+    return v;
   }
   std::size_t count(const char* what) {
     const long long n = integer();
-    if (n < 0 || n > 200000000) throw Error(std::string("bad ") + what + " count " + std::to_string(n), path);
+    if (n < 0 || n > 200000000) fail(std::string("bad ") + what + " count " + std::to_string(n));
     return std::size_t(n);
   }
   void skip_to(const std::string& end) {
@@ -277,7 +301,7 @@ TetMesh read_msh(std::istream& in, const std::string& path) {
   NodeIds ids;
   std::map<std::pair<int, int>, int> physical;  // 4.1: (dim, entity) -> its first physical tag
   std::string s;
-  while (in >> s) {
+  while (t.read(s)) {
     if (s == "$Entities" && v4) {
       std::size_t n[4];
       for (auto& k : n) k = t.count("entity");
@@ -311,7 +335,7 @@ TetMesh read_msh(std::istream& in, const std::string& path) {
           for (auto& g : tags) g = t.integer();
           for (long long g : tags) {
             ids.id[g] = int(m.points.size());
-            m.points.push_back({t.real(), t.real(), t.real()});
+            m.points.push_back({t.coordinate(), t.coordinate(), t.coordinate()});
           }
         }
       } else {
@@ -319,7 +343,7 @@ TetMesh read_msh(std::istream& in, const std::string& path) {
         for (std::size_t i = 0; i < k; ++i) {
           const long long g = t.integer();
           ids.id[g] = int(m.points.size());
-          m.points.push_back({t.real(), t.real(), t.real()});
+          m.points.push_back({t.coordinate(), t.coordinate(), t.coordinate()});
         }
       }
       if (t.next() != "$EndNodes") throw Error("malformed $Nodes", path);
@@ -377,7 +401,7 @@ TetMesh read_medit(std::istream& in, const std::string& path) {
   TetMesh m;
   std::string s;
   bool seen_version = false;
-  while (in >> s) {
+  while (t.read(s)) {
     if (s == "MeshVersionFormatted") {
       t.integer();
       seen_version = true;
@@ -386,7 +410,7 @@ TetMesh read_medit(std::istream& in, const std::string& path) {
     } else if (s == "Vertices") {
       const std::size_t n = t.count("vertex");
       for (std::size_t i = 0; i < n; ++i) {
-        m.points.push_back({t.real(), t.real(), t.real()});
+        m.points.push_back({t.coordinate(), t.coordinate(), t.coordinate()});
         t.integer();
       }
     } else if (s == "Triangles" || s == "Tetrahedra" || s == "Edges" || s == "Quadrilaterals") {
@@ -409,7 +433,7 @@ TetMesh read_medit(std::istream& in, const std::string& path) {
     } else if (s == "End") {
       break;
     } else if (s[0] == '#') {
-      std::getline(in, s);
+      t.skip_line();
     } else {
       throw Error("unsupported MEDIT keyword '" + s + "'", path);
     }
@@ -418,9 +442,14 @@ TetMesh read_medit(std::istream& in, const std::string& path) {
   return m;
 }
 
-// The text of the DataArray named `name` (or the first in `section`), ASCII only.
-std::string vtu_array(const std::string& x, const std::string& section, const std::string& name, const std::string& path,
-                      bool required = true) {
+// The text of the DataArray named `name` (or the first in `section`), ASCII
+// only, and the line of the file it starts on.
+struct VtuArray {
+  std::string text;
+  int line = 1;
+};
+VtuArray vtu_array(const std::string& x, const std::string& section, const std::string& name, const std::string& path,
+                   bool required = true) {
   std::size_t from = 0;
   if (!section.empty()) {
     from = x.find("<" + section);
@@ -441,7 +470,8 @@ std::string vtu_array(const std::string& x, const std::string& section, const st
     if (name.empty() || tag.find("Name=\"" + name + "\"") != std::string::npos) {
       if (tag.find("format=\"ascii\"") == std::string::npos) throw Error("only ASCII .vtu files are supported", path);
       const std::size_t end = x.find("</DataArray>", close);
-      return x.substr(close + 1, end - close - 1);
+      const auto begin = x.begin() + std::ptrdiff_t(close + 1);
+      return {x.substr(close + 1, end - close - 1), 1 + int(std::count(x.begin(), begin, '\n'))};
     }
     at = close;
   }
@@ -451,25 +481,27 @@ TetMesh read_vtu(const std::string& path) {
   const std::string x = read_all(path);
   if (x.find("UnstructuredGrid") == std::string::npos) throw Error("not a VTK UnstructuredGrid .vtu file", path);
   TetMesh m;
-  std::istringstream pts(vtu_array(x, "Points", "", path)), con(vtu_array(x, "", "connectivity", path)),
-      off(vtu_array(x, "", "offsets", path)), types(vtu_array(x, "", "types", path)),
-      reg(vtu_array(x, "CellData", "region", path, false));
-  Tokens tp{pts, path}, tc{con, path}, to{off, path}, tt{types, path}, tr{reg, path};
+  const VtuArray ap = vtu_array(x, "Points", "", path), ac = vtu_array(x, "", "connectivity", path),
+                 ao = vtu_array(x, "", "offsets", path), at = vtu_array(x, "", "types", path),
+                 ar = vtu_array(x, "CellData", "region", path, false);
+  std::istringstream pts(ap.text), con(ac.text), off(ao.text), types(at.text), reg(ar.text);
+  Tokens tp{pts, path, ap.line}, tc{con, path, ac.line}, to{off, path, ao.line}, tt{types, path, at.line},
+      tr{reg, path, ar.line};
   std::vector<double> xyz;
-  while (pts >> std::ws, !pts.eof()) xyz.push_back(tp.real());
+  while (tp.more()) xyz.push_back(tp.coordinate());
   if (xyz.size() % 3) throw Error("the point count is not a multiple of 3", path);
   for (std::size_t i = 0; i < xyz.size(); i += 3) m.points.push_back({xyz[i], xyz[i + 1], xyz[i + 2]});
-  const bool regions = !reg.str().empty();
+  const bool regions = !ar.text.empty();
   long long last = 0;
   std::vector<int> v;
-  while (types >> std::ws, !types.eof()) {
+  while (tt.more()) {
     const int type = int(tt.integer());
     const long long end = to.integer();
-    if (end < last) throw Error("decreasing offsets", path);
+    if (end < last) to.fail("decreasing offsets");
     v.clear();
     for (long long k = last; k < end; ++k) {
       const long long id = tc.integer();
-      if (id < 0 || id >= (long long)m.points.size()) throw Error("cell refers to unknown point " + std::to_string(id), path);
+      if (id < 0 || id >= (long long)m.points.size()) tc.fail("cell refers to unknown point " + std::to_string(id));
       v.push_back(int(id));
     }
     last = end;
@@ -509,6 +541,7 @@ TetMesh read_tet_mesh(const std::string& path) {
     else throw Error("reading tetrahedral meshes: .msh, .mesh or .vtu", path);
   }
   if (m.tets.empty()) throw Error("no tetrahedron", path);
+  check_extent(m.points, path);
   return m;
 }
 

@@ -7,6 +7,7 @@
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
 #include "util/atomic_file.hpp"
+#include "util/coordinates.hpp"
 #include "util/error.hpp"
 #include "util/path.hpp"
 
@@ -25,31 +26,37 @@ PolyMesh read_off_polygons(const std::string& path) {
   const std::string text = read_all(path);
   std::istringstream in(text);
   std::vector<std::string> tok;
+  std::vector<int> tok_line;  // the line of each token, for errors
   std::string line;
-  while (std::getline(in, line)) {
+  for (int number = 1; std::getline(in, line); ++number) {
     const auto h = line.find('#');
     if (h != std::string::npos) line.resize(h);
     std::istringstream ls(line);
     std::string w;
-    while (ls >> w) tok.push_back(w);
+    while (ls >> w) {
+      tok.push_back(w);
+      tok_line.push_back(number);
+    }
   }
   std::size_t k = 0;
   auto next = [&](const char* what) -> const std::string& {
     if (k >= tok.size()) throw Error(std::string("truncated OFF file (expected ") + what + ")", path);
     return tok[k++];
   };
+  auto fail = [&](const std::string& what) {
+    throw Error("line " + std::to_string(tok_line[k - 1]) + ": " + what, path);
+  };
   auto integer = [&](const char* what, long long lo, long long hi) {
     const std::string& s = next(what);
     char* end = nullptr;
     const long long v = std::strtoll(s.c_str(), &end, 10);
-    if (end == s.c_str() || *end || v < lo || v > hi) throw Error(std::string("bad ") + what + " '" + s + "'", path);
+    if (end == s.c_str() || *end || v < lo || v > hi) fail(std::string("bad ") + what + " '" + s + "'");
     return v;
   };
-  auto real = [&](const char* what) {
-    const std::string& s = next(what);
-    char* end = nullptr;
-    const double v = std::strtod(s.c_str(), &end);
-    if (end == s.c_str() || *end || !std::isfinite(v)) throw Error(std::string("bad ") + what + " '" + s + "'", path);
+  auto coordinate = [&] {
+    const std::string& s = next("a vertex coordinate");
+    double v;
+    if (!parse_coordinate(s, v)) fail(coordinate_error(s));
     return v;
   };
   if (tok.empty() || tok[0] != "OFF") throw Error("not an OFF file (no OFF header)", path);
@@ -62,11 +69,8 @@ PolyMesh read_off_polygons(const std::string& path) {
   PolyMesh m;
   m.format = "off";
   m.points.resize(std::size_t(nv));
-  for (auto& p : m.points) {
-    p[0] = real("vertex coordinate");
-    p[1] = real("vertex coordinate");
-    p[2] = real("vertex coordinate");
-  }
+  for (auto& p : m.points)
+    for (double& c : p) c = coordinate();
   m.faces.resize(std::size_t(nf));
   for (auto& f : m.faces) {
     const long long n = integer("face size", 3, 1 << 20);
@@ -76,6 +80,7 @@ PolyMesh read_off_polygons(const std::string& path) {
     // with the line structure, so OFF colours are not supported here.
   }
   if (k != tok.size()) throw Error("unexpected data after the faces (face colours are not supported)", path);
+  check_extent(m.points, path);
   return m;
 }
 

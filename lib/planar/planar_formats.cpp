@@ -3,6 +3,7 @@
 
 #include "planar/text_io.hpp"
 #include "util/atomic_file.hpp"
+#include "util/coordinates.hpp"
 #include "util/error.hpp"
 #include "util/path.hpp"
 
@@ -125,9 +126,9 @@ PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t m
     const int n = li < lines.size() ? lines[li].first : (lines.empty() ? 0 : lines.back().first);
     throw Error("line " + std::to_string(n) + ": " + what, path);
   };
-  auto real = [&](std::string_view s) {
+  auto coordinate = [&](std::string_view s) {
     double v;
-    if (!parse_real(s, v) || !std::isfinite(v)) fail("'" + std::string(s) + "' is not a finite number");
+    if (!parse_coordinate(s, v)) fail(coordinate_error(s));
     return v;
   };
   auto integer = [&](std::string_view s) {
@@ -153,8 +154,10 @@ PlanarMesh read_off(const std::string& path, std::size_t min_face, std::size_t m
   for (long long i = 0; i < nv; ++i, ++li) {
     const auto& f = lines[li].second;
     if (f.size() < 2) fail("a vertex needs x y [z]");
-    m.points.push_back({real(f[0]), real(f[1])});
+    m.points.push_back({coordinate(f[0]), coordinate(f[1])});
+    if (f.size() > 2) coordinate(f[2]);  // z is dropped, but read as the others
   }
+  check_extent(m.points, path);
   for (long long i = 0; i < nf; ++i, ++li) {
     const auto& f = lines[li].second;
     const long long k = integer(f[0]);

@@ -1,8 +1,9 @@
-// Fast text numbers for the planar formats: parsing with std::from_chars and
-// writing with std::to_chars into large chunks, with the results strtod /
-// strtoll and printf("%.17g") gave (10^6 quads: ~3 CPU-s of I/O with those).
+// Fast text for the planar formats: fields split in place, numbers parsed by
+// util/parse.hpp and written with std::to_chars into large chunks, with the
+// results printf("%.17g") gave (10^6 quads: ~3 CPU-s of I/O with stdio).
 #pragma once
 #include "util/atomic_file.hpp"
+#include "util/parse.hpp"
 
 #include <charconv>
 #include <string>
@@ -18,12 +19,6 @@ constexpr bool blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c ==
 // The fields of a line up to a '#' (a comment) into `fields`, as views of
 // the line, split on blanks.
 void split_fields(std::string_view line, std::vector<std::string_view>& fields);
-
-// All of s as a number, accepting exactly what strtod / strtoll (base 10,
-// C locale) accept; false if s is not entirely one number or (integers) out
-// of range. Reals may come out infinite or NaN ("inf", "nan", "1e400").
-bool parse_real(std::string_view s, double& v);
-bool parse_integer(std::string_view s, long long& v);
 
 // An AtomicOutput written in chunks of ~1 MiB: reals as printf("%.17g")
 // (every bit kept; to_chars with precision 17 is specified to match it).

@@ -8,6 +8,7 @@
 #include "planar/triangle_io.hpp"
 
 #include "planar/text_io.hpp"
+#include "util/coordinates.hpp"
 #include "util/error.hpp"
 #include "util/path.hpp"
 
@@ -64,6 +65,12 @@ public:
     if (!std::isfinite(v)) fail("'" + std::string(s) + "' is not a finite number");
     return v;
   }
+  // A coordinate: a number in the range every tool takes (util/coordinates.hpp).
+  double coordinate(std::string_view s) const {
+    double v;
+    if (!parse_coordinate(s, v)) fail(coordinate_error(s));
+    return v;
+  }
   long long integer(std::string_view s) const {
     long long v;
     if (!parse_integer(s, v)) fail("'" + std::string(s) + "' is not an integer");
@@ -107,7 +114,7 @@ void read_vertices(Fields& f, PlanarMesh& m, std::size_t n, std::size_t nattr, b
     } else if (id != m.first_index + (long long)i) {
       f.fail("vertex number " + std::string(l[0]) + ", expected " + std::to_string(m.first_index + i));
     }
-    m.points.push_back({f.real(l[1]), f.real(l[2])});
+    m.points.push_back({f.coordinate(l[1]), f.coordinate(l[2])});
     if (nattr) {
       std::vector<double> a(nattr);
       for (std::size_t k = 0; k < nattr; ++k) a[k] = f.real(l[3 + k]);
@@ -115,6 +122,7 @@ void read_vertices(Fields& f, PlanarMesh& m, std::size_t n, std::size_t nattr, b
     }
     if (markers) m.point_markers.push_back(int(f.integer(l[3 + nattr])));
   }
+  check_extent(m.points, f.path());
 }
 
 void read_node_header_and_vertices(Fields& f, PlanarMesh& m, bool allow_empty, bool* deferred) {
@@ -185,7 +193,7 @@ PlanarMesh read_poly(const std::string& path) {
   f.need_lines(nh, "holes");
   for (std::size_t i = 0; i < nh; ++i) {
     const auto& l = f.next(3, "a hole");
-    m.holes.push_back({f.real(l[1]), f.real(l[2])});
+    m.holes.push_back({f.coordinate(l[1]), f.coordinate(l[2])});
   }
   if (f.at_end()) return m;
   const std::size_t nr = f.count(f.next(1, "the region count")[0], "region count");
@@ -193,7 +201,7 @@ PlanarMesh read_poly(const std::string& path) {
   for (std::size_t i = 0; i < nr; ++i) {
     const auto& l = f.next(4, "a region (number x y attribute [max area])");
     PlanarMesh::Region r;
-    r.point = {f.real(l[1]), f.real(l[2])};
+    r.point = {f.coordinate(l[1]), f.coordinate(l[2])};
     r.attribute = f.real(l[3]);
     r.max_area = l.size() > 4 ? f.real(l[4]) : r.attribute;
     m.regions.push_back(r);

@@ -2,9 +2,16 @@
 // refinement, then Triangle's conventions on the result (region attributes,
 // segment markers carried to the subsegments and their vertices). The
 // driver, triangulate_pslg, at the end; the lattices in lattice.cpp.
+// CGAL's assertions on here, NDEBUG or not: where rounded refinement points
+// break the mesher's invariants (a point in conflict with neither face beside
+// the segment it splits, a flat face among the bad ones) CGAL's check throws,
+// where without it the next step dereferences a null face. Cost: within the
+// noise on a 100,000-triangle mesh (BrainT1Slice.poly --max-area 0.5).
+#define CGAL_DEBUG
 #include "planar/triangulate.hpp"
 
 #include "planar/triangulate_detail.hpp"
+#include "util/coordinates.hpp"
 #include "util/error.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -24,10 +31,71 @@
 #include <utility>
 #include <vector>
 
+// Delaunay refinement places its points by inexact constructions
+// (circumcentres, segment midpoints, cluster split points). Next to features
+// of a few units in the last place of their coordinates a rounded point can
+// fall on an end of its segment or off its circle, or come out non-finite;
+// CGAL then walks the triangulation into a null face (SIGSEGV) or hands inf
+// to an exact predicate, which GMP answers with SIGFPE (issue 35). So every
+// refinement point is checked as it is made, and such an input refused.
+namespace imgmesh::planar_detail {
+
+using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+struct RefinementKernel : Epick {
+  [[noreturn]] static void beyond_precision(const Epick::Point_2& near) {
+    std::ostringstream msg;
+    msg << std::setprecision(6) << "refinement needs a point beyond double precision near (" << near.x() << ", "
+        << near.y() << "): features there are too small for the size of their coordinates";
+    throw Error(msg.str());
+  }
+  static bool finite(const Epick::Point_2& p) { return std::isfinite(p.x()) && std::isfinite(p.y()); }
+
+  struct Construct_circumcenter_2 : Epick::Construct_circumcenter_2 {
+    template <class... P> Epick::Point_2 operator()(const Epick::Point_2& a, const P&... rest) const {
+      const Epick::Point_2 c = Epick::Construct_circumcenter_2::operator()(a, rest...);
+      if (!finite(c)) beyond_precision(a);
+      return c;
+    }
+  };
+  // A segment's split point: strictly inside its diametral circle (it then
+  // conflicts with a face beside the segment, as the mesher needs).
+  struct Construct_midpoint_2 : Epick::Construct_midpoint_2 {
+    Epick::Point_2 operator()(const Epick::Point_2& a, const Epick::Point_2& b) const {
+      const Epick::Point_2 m = Epick::Construct_midpoint_2::operator()(a, b);
+      if (!finite(m) || CGAL::side_of_bounded_circle(a, b, m) != CGAL::ON_BOUNDED_SIDE) beyond_precision(a);
+      return m;
+    }
+  };
+  // A cluster's split point, a + v: not a itself.
+  struct Construct_translated_point_2 : Epick::Construct_translated_point_2 {
+    Epick::Point_2 operator()(const Epick::Point_2& a, const Epick::Vector_2& v) const {
+      const Epick::Point_2 p = Epick::Construct_translated_point_2::operator()(a, v);
+      if (!finite(p) || p == a) beyond_precision(a);
+      return p;
+    }
+  };
+  Construct_circumcenter_2 construct_circumcenter_2_object() const { return {}; }
+  Construct_midpoint_2 construct_midpoint_2_object() const { return {}; }
+  Construct_translated_point_2 construct_translated_point_2_object() const { return {}; }
+};
+
+} // namespace imgmesh::planar_detail
+
+// As for Epick: locate walks with inexact orientations first (structural
+// filtering). Without it the walks, and so the order of the triangulation's
+// faces and vertices, differ from Epick's: another mesh.
+namespace CGAL {
+template <> struct Triangulation_structural_filtering_traits<imgmesh::planar_detail::RefinementKernel> {
+  typedef Tag_true Use_structural_filtering_tag;
+};
+} // namespace CGAL
+
 namespace imgmesh {
 namespace {
 
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using K = planar_detail::RefinementKernel;
+
 struct VertexInfo {
   int input = -1;  // input vertex id, or -1 for a Steiner point
   int id = -1;     // output id
@@ -107,8 +175,11 @@ void check_input(const PlanarMesh& in, const TriangulateOptions& opt) {
   if (in.points.size() < 3) throw Error("a PSLG needs at least 3 vertices");
   if (!(opt.min_angle >= 0 && opt.min_angle <= 34))
     throw UsageError("the minimum angle must be between 0 and 34 degrees (refinement may not end beyond)");
+  // The readers hold the range; a PSLG made otherwise (img2poly's) too.
   for (const auto& p : in.points)
-    if (!std::isfinite(p[0]) || !std::isfinite(p[1])) throw Error("a vertex has a non-finite coordinate");
+    for (double c : p)
+      if (!valid_coordinate(c)) throw Error("a vertex's " + coordinate_error(c));
+  check_extent(in.points, "");
 }
 
 // The input points, then its segments as constraints.
@@ -200,13 +271,25 @@ void refine(Triangulation& t) {
   mesher.set_seeds(t.seeds.begin(), t.seeds.end(), false);
   mesher.init();
   if (!(opt.min_angle > 0 || opt.max_area > 0 || opt.max_edge > 0)) return;
-  std::size_t steps = 0;
+  std::size_t steps = 0, idle = 0, vertices = t.cdt.number_of_vertices();
   while (!mesher.is_refinement_done()) {
     mesher.step_by_step_refine_mesh();
     // Every step: a small --max-vertices must hold too (a step adds one vertex).
     if (t.cdt.number_of_vertices() > opt.max_vertices) {
       t.res.limit_reached = true;
       break;
+    }
+    // A step adds no vertex where it drops an element no longer to refine
+    // (at most one a queued face or edge: fewer than 8 a vertex; on the
+    // bundled images at most 1 step in a row). Where features are below
+    // double precision (a rectangle 1 by 1e-300) the mesher went on for
+    // ever without placing a vertex (issue 35).
+    if (t.cdt.number_of_vertices() != vertices) {
+      vertices = t.cdt.number_of_vertices();
+      idle = 0;
+    } else if (++idle > 8 * vertices + 1024) {
+      throw Error("refinement went beyond double precision: the PSLG has features too small for the size of their "
+                  "coordinates (no vertex placed in " + std::to_string(idle) + " steps)");
     }
     if (++steps % 4096 == 0 && opt.progress) opt.progress(t.cdt.number_of_vertices());
   }
@@ -271,6 +354,11 @@ void output_subsegments(Triangulation& t, std::size_t s) {
   const double ax = va->point().x(), ay = va->point().y();
   const double dx = vb->point().x() - ax, dy = vb->point().y() - ay;
   const double len2 = dx * dx + dy * dy;
+  // The split points are rounded midpoints: off the line by a few units in
+  // the last place of the coordinates, which a short segment among large
+  // coordinates (1e-12 long at 0.5) makes more than 1e-6 of its length.
+  const double scale = std::max({std::abs(ax), std::abs(ay), std::abs(vb->point().x()), std::abs(vb->point().y())});
+  const double tolerance = 1e-6 * std::sqrt(len2) + 1e-13 * scale;
   Vertex_handle cur = va;
   double tcur = 0;
   for (std::size_t guard = 0; cur != vb; ++guard) {
@@ -291,8 +379,9 @@ void output_subsegments(Triangulation& t, std::size_t s) {
         best_t = u;
       }
     } while (++circ != end);
-    if (best == Vertex_handle() || best_d > 1e-6 * std::sqrt(len2) || guard > t.cdt.number_of_vertices())
-      throw Error("internal: " + segment_name(in, s) + " is not a chain of mesh edges");
+    if (best == Vertex_handle() || best_d > tolerance || guard > t.cdt.number_of_vertices())
+      throw Error(segment_name(in, s) + " is not a chain of mesh edges: refinement went beyond double precision "
+                  "along it (features too small for the size of their coordinates)");
     if (cur->info().id >= 0 && best->info().id >= 0) {
       m.segments.push_back({cur->info().id, best->info().id});
       m.segment_markers.push_back(marker);
@@ -407,8 +496,8 @@ InputAngles input_angles(const PlanarMesh& in) {
 
 } // namespace planar_detail
 
-TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOptions& opt) {
-  check_input(in, opt);
+namespace {
+TriangulateResult triangulate_checked(const PlanarMesh& in, const TriangulateOptions& opt) {
   Triangulation t(in, opt);
   insert_input(t);
   const planar_detail::InputAngles angles = planar_detail::input_angles(in);
@@ -426,6 +515,17 @@ TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOption
   mark_near_small_angles(t, angles.apexes);
   report_quality(t);
   return std::move(t.res);
+}
+} // namespace
+
+TriangulateResult triangulate_pslg(const PlanarMesh& in, const TriangulateOptions& opt) {
+  check_input(in, opt);
+  try {
+    return triangulate_checked(in, opt);
+  } catch (const CGAL::Failure_exception& e) {
+    throw Error("refinement went beyond double precision: the PSLG has features too small for the size of their "
+                "coordinates (CGAL's check '" + e.expression() + "' failed)");
+  }
 }
 
 double default_lattice_side(const PlanarMesh& in) {

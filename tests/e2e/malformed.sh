@@ -126,7 +126,7 @@ case_planar_meshes_refused() {
     [[ $tool == poly2tri ]] && out=out.ele
     refused $tool "not an OFF file" empty.off $out
     refused $tool "vertex 5 does not exist" range.off $out
-    refused $tool "'nan' is not a finite number" nan.off $out
+    refused $tool "line 5: coordinate 'nan' is out of range" nan.off $out
     refused $tool "truncated" truncated.off $out
   done
   refused poly2tri "vertex 9 does not exist" range.poly out.ele
@@ -136,7 +136,7 @@ case_planar_meshes_refused() {
     out=out.off
     [[ $tool == meshinfo ]] && out=
     refused $tool "vertex 7 does not exist" tri.ele $out
-    NAMED=nan.node refused $tool "'nan' is not a finite number" nan.ele $out
+    NAMED=nan.node refused $tool "line 3: coordinate 'nan' is out of range" nan.ele $out
     refused $tool "an element needs 4 fields, has 3" short.ele $out
   done
   printf 'OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n' >quad.off
@@ -153,7 +153,7 @@ case_surface_meshes_refused() {
   printf 'OFF\n3 1 0\n0 0 0\n1 0 0\n' >truncated.off
   refused meshinfo "not an OFF file" empty.off
   refused meshinfo "bad vertex id '5'" range.off
-  refused meshinfo "bad vertex coordinate 'nan'" nan.off
+  refused meshinfo "line 5: coordinate 'nan' is out of range" nan.off
   refused meshinfo "truncated" truncated.off
   printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n' >truncated.ply
   refused meshinfo "cannot read the mesh" truncated.ply
@@ -169,6 +169,76 @@ case_surface_meshes_refused() {
   refused meshinfo "no faces" truncated.stl
   head -c 90 /dev/zero >short-binary.stl
   refused meshinfo "no faces" short-binary.stl
+}
+
+# Coordinates out of the range every reader takes (finite, at most 1e30 in
+# magnitude, a mesh 0 or at least 1e-30 across: util/coordinates.hpp,
+# the man pages), a file a reader: refused naming the line (binary files: the
+# vertex) and the value. The first is issue 35's: poly2tri died of SIGFPE.
+case_extreme_coordinates_refused() {
+  local range="is out of range (finite, at most 1e30 in magnitude)" span="the coordinates span only"
+  printf '4 2 0 0\n1 0 0\n2 1e300 0\n3 1e300 1e-300\n4 0 1e300\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n' >huge.poly
+  refused poly2tri "line 3: coordinate '1e300' $range" huge.poly out.ele
+  printf 'OFF\n3 1 0\n0 0 0\n1e-300 0 0\n0 1e-300 0\n3 0 1 2\n' >tiny.off
+  refused poly2tri "$span 1e-300: under 1e-30" tiny.off out.ele
+  printf '3 2 0 0\n1 0 0\n2 5e-320 0\n3 0 5e-320\n' >denormal.node
+  printf '0 2 0 0\n3 0\n1 1 2\n2 2 3\n3 3 1\n' >denormal.poly
+  NAMED=denormal.node refused poly2tri "$span 5e-320" denormal.node out.ele
+  printf '3 2 0 0\n1 0 0\n2 1e31 0\n3 0 1\n' >big.node
+  printf '1 3 0\n1 1 2 3\n' >big.ele
+  NAMED=big.node refused tri2quad "line 3: coordinate '1e31' $range" big.ele out.ele
+  printf 'OFF\n4 1 0\n0 0 0\n1 0 0\n1 inf 0\n0 1 0\n4 0 1 2 3\n' >inf.off
+  refused quadsmooth "line 5: coordinate 'inf' $range" inf.off out.off
+  printf 'OFF\n3 1 0\n0 0 0\n1 0 -1e31\n0 1 0\n3 0 1 2\n' >z.off
+  refused meshinfo "line 4: coordinate '-1e31' $range" z.off
+  python3 - <<'PY'
+import struct
+tet = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
+faces = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
+def text(bad):  # the tetrahedron's corners as text, vertex 1's x replaced
+    return [[bad if (i, k) == (1, 0) else str(c) for k, c in enumerate(p)] for i, p in enumerate(tet)]
+head = ("ply\nformat {}\nelement vertex 4\nproperty {t} x\nproperty {t} y\nproperty {t} z\n"
+        "element face 4\nproperty list uchar int vertex_indices\nend_header\n")
+open("nan.ply", "w").write(head.format("ascii 1.0", t="float") + "".join(" ".join(p) + "\n" for p in text("nan"))
+                           + "".join("3 %d %d %d\n" % f for f in faces))
+b = head.format("binary_little_endian 1.0", t="double").encode()
+b += b"".join(struct.pack("<3d", *(1e300 if (i, k) == (1, 0) else c for k, c in enumerate(p))) for i, p in enumerate(tet))
+open("huge.ply", "wb").write(b + b"".join(struct.pack("<B3i", 3, *f) for f in faces))
+open("over.obj", "w").write("".join("v " + " ".join(p) + "\n" for p in text("1e400"))
+                            + "".join("f %d %d %d\n" % tuple(v + 1 for v in f) for f in faces))
+corner = lambda v, bad: " ".join(text(bad)[v])
+open("big.stl", "w").write("solid t\n" + "".join(" facet normal 0 0 0\n  outer loop\n" + "".join(
+    "   vertex " + corner(v, "-1e31") + "\n" for v in f) + "  endloop\n endfacet\n" for f in faces) + "endsolid t\n")
+b = bytes(80) + struct.pack("<I", 4)
+for f in faces:
+    b += struct.pack("<3f", 0, 0, 0) + b"".join(struct.pack("<3f", *(float("inf") if (v, k) == (1, 0) else c
+                                                                    for k, c in enumerate(tet[v]))) for v in f) + bytes(2)
+open("inf.stl", "wb").write(b)
+nodes = lambda bad: "".join("%d %s\n" % (i + 1, " ".join(p)) for i, p in enumerate(text(bad)))
+els = "".join("%d 2 2 1 1 %d %d %d\n" % (i + 1, *(v + 1 for v in f)) for i, f in enumerate(faces)) + "5 4 2 1 1 1 2 3 4\n"
+open("huge.msh", "w").write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n" + nodes("1e300")
+                            + "$EndNodes\n$Elements\n5\n" + els + "$EndElements\n")
+coords = lambda bad: "".join(" ".join(p) + "\n" for p in text(bad))
+open("nan.msh", "w").write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n3 1 0 4\n1\n2\n3\n4\n" + coords("nan")
+                           + "$EndNodes\n$Elements\n1 1 1 1\n3 1 4 1\n1 1 2 3 4\n$EndElements\n")
+open("tiny.mesh", "w").write("MeshVersionFormatted 2\nDimension 3\nVertices\n4\n" + "".join(
+    " ".join("%g" % (c * 1e-31) for c in p) + " 0\n" for p in tet) + "Tetrahedra\n1\n1 2 3 4 1\nEnd\n")
+open("big.vtu", "w").write(
+    '<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="0.1">\n<UnstructuredGrid>\n'
+    '<Piece NumberOfPoints="4" NumberOfCells="1">\n<Points>\n<DataArray type="Float64" NumberOfComponents="3" format="ascii">\n'
+    + coords("1e31") + '</DataArray>\n</Points>\n<Cells>\n<DataArray type="Int64" Name="connectivity" format="ascii">\n0 1 2 3\n'
+    '</DataArray>\n<DataArray type="Int64" Name="offsets" format="ascii">\n4\n</DataArray>\n'
+    '<DataArray type="UInt8" Name="types" format="ascii">\n10\n</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n')
+PY
+  refused meshinfo "PLY line 11: coordinate 'nan' $range" nan.ply
+  refused meshinfo "PLY vertex 1: coordinate '1.0000000000000001e+300' $range" huge.ply
+  refused meshinfo "line 2: coordinate '1e400' $range" over.obj
+  refused meshinfo "line 6: coordinate '-1e31' $range" big.stl
+  refused meshinfo "STL triangle 0: coordinate 'inf' $range" inf.stl
+  refused meshinfo "line 7: coordinate '1e300' $range" huge.msh
+  refused meshinfo "line 12: coordinate 'nan' $range" nan.msh
+  refused meshinfo "$span 1e-31: under 1e-30" tiny.mesh
+  refused meshinfo "line 8: coordinate '1e31' $range" big.vtu
 }
 
 run_cases "$@"

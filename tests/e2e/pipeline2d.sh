@@ -189,4 +189,53 @@ case_default_chain_on_brain_kmeans_slices() {
   done
 }
 
+# The ends of the coordinate range (util/coordinates.hpp: finite,
+# at most 1e30, a mesh at least 1e-30 across): the ventricles' PSLG scaled
+# by 2^91 (coordinates up to 7e29) and by 2^-98 (about 1e-27 across) gives,
+# at every stage of the default chain, the same mesh scaled. Powers of two
+# scale every rounding with them, so nothing may differ, not a bit: no
+# absolute tolerance, no overflow, no underflow anywhere in the chain.
+case_extreme_scales_give_the_mesh_scaled() {
+  expect 0 img2poly "$DATA/VentricleModel.png" v.poly --threshold 128 || return
+  local k
+  for k in 0 91 -98; do
+    python3 - v.poly "s$k.poly" "$k" <<'PY' || fail "scaling by 2^$k"
+import math, sys
+src, dst, k = sys.argv[1], sys.argv[2], int(sys.argv[3])
+lines = open(src).read().split("\n")
+rows = [(i, l.split("#")[0].split()) for i, l in enumerate(lines)]
+rows = [(i, f) for i, f in rows if f]
+at = 0
+def block(coords):  # a count line, then that many rows; coords: the fields to scale
+    global at
+    n = int(rows[at][1][0]); at += 1
+    for i, f in rows[at:at + n]:
+        for c in coords: f[c] = repr(math.ldexp(float(f[c]), k))
+        lines[i] = " ".join(f)
+    at += n
+block([1, 2]); block([])                       # vertices, segments
+while at < len(rows): block([1, 2])            # holes, regions (x y first)
+open(dst, "w").write("\n".join(lines))
+PY
+    expect 0 poly2tri "s$k.poly" "s$k.1.ele" && expect 0 tri2quad "s$k.1.ele" "s$k.q.ele" &&
+      expect 0 quadsmooth "s$k.q.ele" "s$k.qs.ele" || return
+  done
+  for k in 91 -98; do
+    python3 - "$k" <<'PY' || fail "2^$k: a stage's mesh is not the unscaled one scaled"
+import math, sys
+k = int(sys.argv[1])
+def rows(p):
+    return [f for f in (l.split("#")[0].split() for l in open(p)) if f]
+for stage in ("1", "q", "qs"):
+    a, b = rows("s0.%s.node" % stage), rows("s%d.%s.node" % (k, stage))
+    n = int(a[0][0])
+    assert a[0] == b[0], stage
+    for u, v in zip(a[1:n + 1], b[1:n + 1]):
+        assert [math.ldexp(float(u[1]), k), math.ldexp(float(u[2]), k)] == [float(v[1]), float(v[2])], (stage, u, v)
+        assert u[3:] == v[3:], (stage, u, v)
+    assert rows("s0.%s.ele" % stage) == rows("s%d.%s.ele" % (k, stage)), stage
+PY
+  done
+}
+
 run_cases "$@"
