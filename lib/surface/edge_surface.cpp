@@ -38,6 +38,59 @@ void plane_crossings(const Vec3& a, const Vec3& d, double ta, double tb, const d
 
 namespace {
 
+// How far x lies outside the box of voxel centres (0 inside), per axis at most.
+double beyond_box(const CubeGrid& grid, const Vec3& x) {
+  double out = 0;
+  for (int i = 0; i < 3; ++i) out = std::max({out, -x[i], x[i] - grid.hi[i]});
+  return out;
+}
+
+// The circumcentre of triangle (p, q, r), from p.
+Vec3 circumcentre(const Vec3& p, const Vec3& q, const Vec3& r) {
+  const Vec3 u = sub(q, p), v = sub(r, p), n = cross(u, v);
+  const double n2 = dot(n, n);
+  const Vec3 a = cross(v, n), b = cross(n, u);
+  const double su = dot(u, u), sv = dot(v, v);
+  return {p[0] + (su * a[0] + sv * b[0]) / (2 * n2), p[1] + (su * a[1] + sv * b[1]) / (2 * n2),
+          p[2] + (su * a[2] + sv * b[2]) / (2 * n2)};
+}
+
+} // namespace
+
+bool walk_ends(const CubeGrid& grid, const Vec3& a, const Vec3& b, const std::array<Vec3, 3>* sites, Vec3& a0, Vec3& b0) {
+  // Beyond 2^16 delta an end's rounding (2^-53 of its distance) exceeds
+  // the root finder's tolerance (1e-11 delta); nearer, the ends stay as
+  // they are (the outputs on isotropic images, which have such ends up to
+  // ~10^6 voxels away, unchanged).
+  const double far = 65536 * grid.delta;
+  a0 = a;
+  b0 = b;
+  if (!(beyond_box(grid, a) > far)) return true;
+  if (!(beyond_box(grid, b) > far)) {
+    std::swap(a0, b0);
+    return true;
+  }
+  if (!sites) return true;
+  // Both far: the line through the facet's circumcentre c (within the box's
+  // diameter of its sites when the line meets the box), along b - a; the
+  // box lies within `reach` of c.
+  const Vec3 c = circumcentre((*sites)[0], (*sites)[1], (*sites)[2]);
+  const Vec3 d = sub(b, a);
+  const double len = norm(d);
+  if (!(len > 0) || !std::isfinite(c[0] + c[1] + c[2])) return false;
+  const Vec3 u{d[0] / len, d[1] / len, d[2] / len};
+  double reach2 = 0;
+  for (int i = 0; i < 3; ++i) reach2 += std::pow(std::max(std::abs(c[i]), std::abs(c[i] - grid.hi[i])), 2);
+  const double reach = std::sqrt(reach2) + grid.delta;
+  const double sa = std::max(dot(sub(a, c), u), -reach), sb = std::min(dot(sub(b, c), u), reach);
+  if (!(sa < sb)) return false;
+  a0 = {c[0] + sa * u[0], c[1] + sa * u[1], c[2] + sa * u[2]};
+  b0 = {c[0] + sb * u[0], c[1] + sb * u[1], c[2] + sb * u[2]};
+  return true;
+}
+
+namespace {
+
 // A piece [ta, tb] of the edge in an active cube left to sample; monotone:
 // f is monotone along it (one root or none).
 struct EdgePiece {
@@ -92,8 +145,11 @@ struct EdgeWalk {
 // holds exactly one root if its ends differ in sign, none otherwise. Only
 // the pieces left undecided are sampled at delta/8 (with the dip search);
 // two roots closer than that there are missed (see the man page).
-EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a, const Vec3& b, const Vec3& site) {
+EdgeCrossing edge_surface(const SurfaceSampler& f, const Vec3& a_in, const Vec3& b_in, const Vec3& site,
+                          const std::array<Vec3, 3>* sites) {
   EdgeCrossing out;
+  Vec3 a, b;
+  if (!walk_ends(f.grid(), a_in, b_in, sites, a, b)) return out;
   const Vec3 d = sub(b, a);
   double t0, t1;
   if (!clip_to_box(f.grid(), a, d, t0, t1)) return out;
@@ -289,12 +345,17 @@ FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i, co
       if (b < a) std::swap(a, b);  // lexicographic: both sides agree bit for bit
       ok = a != b;                 // zero-length Voronoi edge: not restricted
     } else {
-      // A ray from the finite cell's circumcentre, away from its fourth vertex.
+      // A ray from the finite cell's circumcentre, away from its fourth
+      // vertex: the side by the exact predicate (a flat cell's fourth vertex
+      // lies within rounding of the facet's plane, and the ray pointed back
+      // through the cell: surface centres on the wrong half of the line,
+      // which their insertion did not destroy; issue 35).
       Ch fc = ci ? n : c;
       const int fi_ = ci ? j : i;
-      const Vec3 q0 = p0, q1 = vec(fv[1]->point()), q2 = vec(fv[2]->point()), opp = vec(fc->vertex(fi_)->point());
+      const Vec3 q0 = p0, q1 = vec(fv[1]->point()), q2 = vec(fv[2]->point());
       Vec3 nrm = cross(sub(q1, q0), sub(q2, q0));
-      if (dot(nrm, sub(opp, q0)) > 0) nrm = {-nrm[0], -nrm[1], -nrm[2]};
+      if (CGAL::orientation(fv[0]->point(), fv[1]->point(), fv[2]->point(), fc->vertex(fi_)->point()) == CGAL::POSITIVE)
+        nrm = {-nrm[0], -nrm[1], -nrm[2]};
       const double nl = norm(nrm);
       ok = nl > 0;
       if (ok) {
@@ -305,7 +366,8 @@ FacetInfo edge_surface_of(const Tr& tr, const SurfaceSampler& f, Ch c, int i, co
       }
     }
     if (ok) {
-      const EdgeCrossing e = edge_surface(f, a, b, p0);
+      const std::array<Vec3, 3> sites{p0, vec(fv[1]->point()), vec(fv[2]->point())};
+      const EdgeCrossing e = edge_surface(f, a, b, p0, &sites);
       if (e.count > 0) {
         fi.state |= kRestricted;
         if (e.count > 1) fi.state |= kMulti;

@@ -39,9 +39,10 @@ struct MtVertex {
 };
 
 // HandleDetection's state for one vertex p: V(p), the box of the sub-grid
-// (spacing s/2, indices x, y, z) that marching tetrahedra (MT) run on, and
-// the triangles they made, clipped to V(p). Scratch reused across checks,
-// one per thread (this runs on several threads).
+// (step h[i] = s[i] / m[i] on axis i, indices x, y, z) that marching
+// tetrahedra (MT) run on, and the triangles they made, clipped to V(p).
+// Scratch reused across checks, one per thread (this runs on several
+// threads).
 struct CellMarch {
   struct Scratch {
     std::vector<Ch> cells;
@@ -54,28 +55,41 @@ struct CellMarch {
     std::vector<std::vector<ClipVertex>> polys;
     std::vector<ClipVertex> next;
   };
-  CellMarch(const SurfaceSampler& f, Vh p, Scratch& s)
-      : f(f), grid(f.grid()), s(s), pp(vec(p->point())), h{grid.s[0] / 2, grid.s[1] / 2, grid.s[2] / 2},
-        NX(2 * grid.n[0]), NY(2 * grid.n[1]) {}
+  CellMarch(const SurfaceSampler& f, Vh p, Scratch& s) : f(f), grid(f.grid()), s(s), pp(vec(p->point())) {
+    resolution(grid.delta / 2);
+  }
   const SurfaceSampler& f;
   const CubeGrid& grid;
   Scratch& s;
   const Vec3 pp;
-  const double h[3];
-  const long long NX, NY;  // sub-grid keys: x + NX (y + NY z)
-  double reach2 = 0;       // p's surface Delaunay balls' reach, squared
+  long m[3] = {2, 2, 2};  // sub-cubes a cube along each axis
+  double h[3] = {0, 0, 0};
+  double reach2 = 0;  // p's surface Delaunay balls' reach, squared
   Vec3 vlo{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, vhi{HUGE_VAL, HUGE_VAL, HUGE_VAL};  // V(p)'s bounding box
   long lo[3] = {0, 0, 0}, n[3] = {0, 0, 0};  // the box: n[i] points from lo[i]
   bool grid_face_lo[3] = {}, grid_face_hi[3] = {}, whole = true;  // its sides on the grid or V(p)'s box
 
+  // The sub-grid: each cube split along axis i into m[i] >= 2 parts of at
+  // most `step`, the same step on every axis where the spacings allow (half
+  // of each axis's own spacing made MT's triangles, on a grid of 10 x 1 x 1
+  // voxels, 5 voxels long across cells a voxel wide: issue 35).
+  void resolution(double step) {
+    for (int i = 0; i < 3; ++i) {
+      m[i] = std::max(2L, long(std::ceil(grid.s[i] / step * (1 - 1e-12))));
+      h[i] = grid.s[i] / double(m[i]);
+    }
+  }
   Vec3 point(long x, long y, long z) const { return Vec3{x * h[0], y * h[1], z * h[2]}; }
   void cell(const Tr& tr, Vh p);
+  HandleAnswer test(Vec3& q);
   bool set_box(double reach);
   void march();
   bool clip_all();
   bool far_point(const ClippedComplex& k, Vec3& q) const;
 
 private:
+  // A sub-grid point's index in the box, also its key (keys ordered as the
+  // points' (z, y, x)).
   std::size_t idx(long x, long y, long z) const { return std::size_t((x - lo[0]) + n[0] * ((y - lo[1]) + n[1] * (z - lo[2]))); }
   double f_at(long x, long y, long z);
   int vertex(long long ka, long long kb, const long (&ca)[3], const long (&cb)[3]);
@@ -87,8 +101,8 @@ private:
 } // namespace
 
 // HandleDetection (8.3): is S inside V(p) a disk? S is triangulated by
-// marching tetrahedra on a grid of half the voxel spacing (f sampled only in
-// active cubes; F1 gives the sign elsewhere) in a box around p, twice the
+// marching tetrahedra on a sub-grid of step delta/2 on every axis (f sampled
+// only in active cubes; F1 gives the sign elsewhere) in a box around p, twice the
 // reach of p's surface Delaunay balls, doubled while the piece of S in V(p)
 // reaches a side of the box that is not a face of the grid or of V(p)'s
 // bounding box (S n V(p) lies inside both, so the growth ends at the latest
@@ -100,22 +114,35 @@ private:
 // component) makes it disconnected. If not a disk, q is the MT vertex in
 // V(p) farthest from p, moved onto S and still inside V(p) (the thesis's
 // choice). Undecided when the box would exceed 300,000 sample points, S n
-// V(p) is below the MT resolution, or no such q is found: the caller
-// refines (or counts), never passes.
+// V(p) is below the MT resolution, or no such q is found: then once more
+// on a sub-grid of a quarter of the reach, where V(p) is small against
+// delta/2 (its piece of S a few MT triangles that V(p)'s faces cut in two:
+// every refinement made V(p) smaller against that fixed step, and the test
+// never decided again; issue 35). Still undecided: the caller refines (or
+// counts), never passes.
 HandleAnswer handle_detection(const Tr& tr, const SurfaceSampler& f, Vh p, Vec3& q) {
   thread_local CellMarch::Scratch scratch;
   CellMarch c(f, p, scratch);
   c.cell(tr, p);
+  const HandleAnswer a = c.test(q);
+  const double fine = std::sqrt(c.reach2) / 4;
+  if (a != HandleAnswer::kUndecided || !(fine < f.grid().delta / 2)) return a;
+  c.resolution(fine);
+  return c.test(q);
+}
+
+// The test at the sub-grid's resolution.
+HandleAnswer CellMarch::test(Vec3& q) {
   for (double scale = 2;; scale *= 2) {
-    if (!c.set_box(scale * std::sqrt(c.reach2))) return HandleAnswer::kUndecided;
-    c.march();
-    if (!c.clip_all() || c.whole) break;
+    if (!set_box(scale * std::sqrt(reach2))) return HandleAnswer::kUndecided;
+    march();
+    if (!clip_all() || whole) break;
   }
   ClippedComplex k;
-  glue_pieces(scratch.polys, scratch.tris.size(), k);
+  glue_pieces(s.polys, s.tris.size(), k);
   if (k.faces == 0) return HandleAnswer::kUndecided;  // S n V(p) below the MT resolution
   if (k.components == 1 && k.chi == 1) return HandleAnswer::kDisk;
-  return c.far_point(k, q) ? HandleAnswer::kNotDisk : HandleAnswer::kUndecided;
+  return far_point(k, q) ? HandleAnswer::kNotDisk : HandleAnswer::kUndecided;
 }
 
 // V(p), the reach of p's surface Delaunay balls and V(p)'s bounding box.
@@ -152,7 +179,7 @@ void CellMarch::cell(const Tr& tr, Vh p) {
 bool CellMarch::set_box(double reach) {
   whole = true;
   for (int i = 0; i < 3; ++i) {
-    const long top = 2 * (grid.n[i] - 1);
+    const long top = m[i] * (grid.n[i] - 1);
     const long cell_lo = std::clamp(long(std::floor(std::max(vlo[i] / h[i], -1.0))), 0L, top - 1);
     const long cell_hi = std::clamp(long(std::ceil(std::min(vhi[i] / h[i], double(top) + 1))), cell_lo + 1, top);
     lo[i] = std::clamp(long(std::floor((pp[i] - reach) / h[i])), cell_lo, cell_hi - 1);
@@ -172,11 +199,11 @@ double CellMarch::f_at(long x, long y, long z) {
   if (std::isnan(v)) {
     bool act = false;
     for (int k = 0; k < 8 && !act; ++k) {
-      const long c[3] = {(x - (k & 1)) / 2, (y - ((k >> 1) & 1)) / 2, (z - ((k >> 2) & 1)) / 2};
+      const long c[3] = {(x - (k & 1)) / m[0], (y - ((k >> 1) & 1)) / m[1], (z - ((k >> 2) & 1)) / m[2]};
       act = grid.active(c[0], c[1], c[2]);
     }
     if (act) v = f.value(point(x, y, z));
-    else v = grid.neg(std::min(x / 2, grid.n[0] - 1), std::min(y / 2, grid.n[1] - 1), std::min(z / 2, grid.n[2] - 1)) ? -1.0 : 1.0;
+    else v = grid.neg(std::min(x / m[0], grid.n[0] - 1), std::min(y / m[1], grid.n[1] - 1), std::min(z / m[2], grid.n[2] - 1)) ? -1.0 : 1.0;
   }
   return v;
 }
@@ -210,7 +237,7 @@ void CellMarch::march() {
   for (long z = lo[2]; z + 1 < lo[2] + n[2]; ++z)
     for (long y = lo[1]; y + 1 < lo[1] + n[1]; ++y)
       for (long x = lo[0]; x + 1 < lo[0] + n[0]; ++x) {
-        if (!grid.active(x / 2, y / 2, z / 2)) continue;
+        if (!grid.active(x / m[0], y / m[1], z / m[2])) continue;
         bool beyond = false;
         for (std::size_t e = 0; e < s.hs.size() && !beyond; ++e)
           beyond = beyond_face(s.hs[e], x, y, z, [&](long i, long j, long k) { return point(i, j, k); });
@@ -230,7 +257,7 @@ void CellMarch::sub_cube(long x, long y, long z) {
     c[k][1] = y + ((k >> 1) & 1);
     c[k][2] = z + ((k >> 2) & 1);
     v[k] = f_at(c[k][0], c[k][1], c[k][2]);
-    key[k] = c[k][0] + NX * (c[k][1] + NY * c[k][2]);
+    key[k] = static_cast<long long>(idx(c[k][0], c[k][1], c[k][2]));
   }
   const bool side = (x == lo[0] && !grid_face_lo[0]) || (y == lo[1] && !grid_face_lo[1]) ||
                     (z == lo[2] && !grid_face_lo[2]) || (x + 2 == lo[0] + n[0] && !grid_face_hi[0]) ||
@@ -369,7 +396,7 @@ bool CellMarch::far_point(const ClippedComplex& k, Vec3& q) const {
   for (const auto& [key, id] : k.vkey)
     if (key[0] == 0 && interior(k.vx[std::size_t(id)])) order.emplace_back(-dist2(k.vx[std::size_t(id)], pp), int(key[1]));
   std::sort(order.begin(), order.end());
-  auto coords = [&](long long key) { return point(long(key % NX), long((key / NX) % NY), long(key / NX / NY)); };
+  auto coords = [&](long long key) { return point(lo[0] + long(key % n[0]), lo[1] + long((key / n[0]) % n[1]), lo[2] + long(key / n[0] / n[1])); };
   for (std::size_t i = 0; i < order.size() && i < 64; ++i) {
     const MtVertex& b = s.pv[std::size_t(order[i].second)];
     const Vec3 xa = coords(b.a), xb = coords(b.b);

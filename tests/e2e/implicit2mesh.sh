@@ -199,6 +199,39 @@ P
   [[ -s nt0.off ]] || fail "fallback-rounds 0: no mesh written"
 }
 
+# Voxels up to 5:1 (issue 35): a ball and a solid torus (grids of N^3, off
+# centre) at spacing 1/5/1 and 1/2.5/0.5, each meshed at the defaults
+# within 60 s (under a second here; before the fix each exited 3 on a
+# restricted Delaunay violation or refused TOPOLOGY insertions) and
+# checked independently. anisotropic SHAPE N CX CY CZ R r SX SY SZ.
+anisotropic() {
+  python3 - "$@" <<'PY'
+import math, sys
+shape = sys.argv[1]
+n = int(sys.argv[2])
+cx, cy, cz, R, r, sx, sy, sz = map(float, sys.argv[3:])
+def inside(x, y, z):
+    if shape == 'ball':
+        return (x - cx) ** 2 + (y - cy) ** 2 + (z - cz) ** 2 <= R * R
+    return (math.hypot(x - cx, y - cy) - R) ** 2 + (z - cz) ** 2 <= r * r
+b = bytes(1 if inside(x, y, z) else 0 for z in range(n) for y in range(n) for x in range(n))
+open('in.nrrd', 'wb').write(("NRRD0004\ntype: uchar\ndimension: 3\nsizes: %d %d %d\nspacings: %r %r %r\nencoding: raw\n\n"
+                             % (n, n, n, sx, sy, sz)).encode() + b)
+PY
+  expect 0 img2wc in.nrrd wc.nrrd -q
+  expect 0 wc2implicit wc.nrrd f.nrrd -q
+  local start=$SECONDS
+  expect 0 timeout 60 "$BIN/implicit2mesh" f.nrrd out.ply --stats stats.json
+  ((SECONDS - start <= 60)) || fail "took $((SECONDS - start)) s"
+  surface out.ply wc.nrrd 1.2 2.0943951023931953
+  [[ $(json stats.json restricted_delaunay_violations) == 0 ]] || fail "restricted Delaunay violations"
+  [[ $(json stats.json handle_detection_undecided) == 0 ]] || fail "undecided HandleDetection checks"
+}
+case_anisotropic_ball_1_5_1() { anisotropic ball 16 7.64 8.02 8.26 6.1 0 1 5 1; }
+case_anisotropic_ball_1_2p5_0p5() { anisotropic ball 16 8.15 7.95 7.75 5.5 0 1 2.5 0.5; }
+case_anisotropic_torus_1_5_1() { anisotropic torus 18 8.9 8.8 8.8 5.6 1.4 1 5 1; }
+case_anisotropic_torus_1_2p5_0p5() { anisotropic torus 16 7.63 7.59 7.77 3.75 1.4 1 2.5 0.5; }
+
 # share/examples/Makefile on the bundled liver labels: vessels (127, 29
 # components), parenchyma (255) and label 85, one mesh per label, in parallel.
 case_examples_makefile_one_mesh_per_label() {

@@ -6,6 +6,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <random>
+
 using namespace imgmesh;
 using namespace imgmesh::surface_detail;
 
@@ -161,4 +163,117 @@ TEST_CASE("edge_surface's stages: the segment clipped to the box of voxel centre
   CHECK(ts == std::vector<double>{0.25, 0.5, 0.5, 0.75});
   plane_crossings(Vec3{0.5, 0.5, 0.5}, Vec3{3, 1, 0}, 0, 1, two, ts);  // x = 2 only
   CHECK(ts == std::vector<double>{0, 0.5, 1});
+}
+
+namespace {
+// Distance from x to the line through o along the unit vector u.
+double to_line(const Vec3& x, const Vec3& o, const Vec3& u) { return norm(cross(sub(x, o), u)); }
+} // namespace
+
+// A flat cell's circumcentre can lie 1e14 voxels away (anisotropic grids
+// make such cells): walked from there, points a + t (b - a) rounded to
+// 2^-53 |a| ~ 0.01 off the edge, and surface centres left their Voronoi
+// edge (issue 35). The crossings must be on the segment's line.
+TEST_CASE("edge_surface: an edge from a Voronoi vertex 1e14 away crosses S on its line") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  FunctionSurface s(test::box(21, 21, 21), [&](const Vec3& p) { return test::sphere_f(p, c, 6.3); });
+  CubeGrid grid(s.samples());
+  grid.label();
+  SurfaceSampler f(s, grid);
+  const double l = std::sqrt(3.0 * 3.0 + 1.0 + 0.5 * 0.5);
+  const Vec3 u{3 / l, 1 / l, 0.5 / l};  // through c, crossing S at c -+ 6.3 u
+  auto on = [&](double t) { return Vec3{c[0] + t * u[0], c[1] + t * u[1], c[2] + t * u[2]}; };
+  // One end far (either way round), the other in the box.
+  for (const auto& [a, b] : {std::pair{on(-1e14), on(2)}, std::pair{on(2), on(-1e14)}}) {
+    const EdgeCrossing e = edge_surface(f, a, b, on(2));
+    REQUIRE(e.count == 1);
+    CHECK(to_line(e.x, c, u) < 1e-12);
+    CHECK(std::abs(s.value(e.x)) < 1e-9);
+    CHECK(dot(sub(e.x, c), u) == Approx(-6.3).margin(1e-9));
+  }
+  // Both ends far: the three sites of the dual facet, on a circle around the
+  // line at c + 4 u (their circumcentre), give a point of the line.
+  const Vec3 v = cross(u, Vec3{0, 0, 1}), w = cross(u, v);
+  const double vl = norm(v), wl = norm(w);
+  std::array<Vec3, 3> sites;
+  for (int k = 0; k < 3; ++k) {
+    const double th = 2.1 * k + 0.3;
+    for (int i = 0; i < 3; ++i) sites[std::size_t(k)][i] = on(4)[i] + 5 * (std::cos(th) * v[i] / vl + std::sin(th) * w[i] / wl);
+  }
+  const EdgeCrossing e = edge_surface(f, on(-1e14), on(3e13), sites[0], &sites);
+  REQUIRE(e.count == 2);
+  CHECK(to_line(e.x, c, u) < 1e-12);
+  CHECK(std::abs(s.value(e.x)) < 1e-9);
+  const double r2 = dist2(e.x, sites[0]);
+  for (const Vec3& p : sites) CHECK(dist2(e.x, p) == Approx(r2).epsilon(1e-12));
+  // The ends themselves where they are near the box: both kept, bit for bit.
+  Vec3 a0, b0;
+  REQUIRE(walk_ends(grid, on(-30), on(2), &sites, a0, b0));
+  CHECK((a0 == on(-30) && b0 == on(2)));
+  REQUIRE(walk_ends(grid, on(-1e14), on(2), &sites, a0, b0));
+  CHECK((a0 == on(2) && b0 == on(-1e14)));
+}
+
+// A hull facet's Voronoi ray leaves the finite cell's circumcentre away
+// from the cell's fourth vertex. With the fourth vertex within rounding of
+// the facet's plane (a flat cell), the side computed in floating point
+// pointed the ray back through the cell: a crossing on the wrong half of
+// the line, not in the facet's dual, whose insertion left the facet in
+// place (issue 35: TopoDisk asked for it again, "TOPOLOGY insertion
+// refused").
+TEST_CASE("edge_surface_of: the ray of a flat cell's hull facet points away from its fourth vertex (exact side)") {
+  const Vec3 c{10.3, 9.7, 10.1};
+  FunctionSurface s(test::box(21, 21, 21), [&](const Vec3& p) { return test::sphere_f(p, c, 6.3); });
+  CubeGrid grid(s.samples());
+  grid.label();
+  SurfaceSampler f(s, grid);
+  // Three sites on a tilted circle of radius 3 around c (S crosses the
+  // axis on both sides of c), a fourth in their plane, outside the circle,
+  // nudged by a few ulps: among such cells, those whose floating-point side
+  // differs from the exact one.
+  std::mt19937_64 rng(35);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int wrong_side = 0;
+  for (int trial = 0; trial < 4000 && wrong_side < 20; ++trial) {
+    Vec3 n{U(rng), U(rng), 1};
+    const double nl = norm(n);
+    n = {n[0] / nl, n[1] / nl, n[2] / nl};
+    Vec3 e1 = cross(n, Vec3{1, 0, 0});
+    const double el = norm(e1);
+    e1 = {e1[0] / el, e1[1] / el, e1[2] / el};
+    const Vec3 e2 = cross(n, e1);
+    auto at = [&](double r, double th, double h) {
+      return Vec3{c[0] + r * (std::cos(th) * e1[0] + std::sin(th) * e2[0]) + h * n[0],
+                  c[1] + r * (std::cos(th) * e1[1] + std::sin(th) * e2[1]) + h * n[1],
+                  c[2] + r * (std::cos(th) * e1[2] + std::sin(th) * e2[2]) + h * n[2]};
+    };
+    const Vec3 p[4] = {at(3, 0.1, 0), at(3, 2.2, 0), at(3, 4.3, 0), at(4.5, 3.3 + U(rng), 1e-15 * U(rng))};
+    const double naive = dot(cross(sub(p[1], p[0]), sub(p[2], p[0])), sub(p[3], p[0]));
+    const CGAL::Orientation exact = CGAL::orientation(Point(p[0][0], p[0][1], p[0][2]), Point(p[1][0], p[1][1], p[1][2]),
+                                                      Point(p[2][0], p[2][1], p[2][2]), Point(p[3][0], p[3][1], p[3][2]));
+    if (exact == CGAL::COPLANAR || (naive > 0) == (exact == CGAL::POSITIVE)) continue;
+    ++wrong_side;
+    Tr tr;
+    Vh v[4];
+    for (int k = 0; k < 4; ++k) {
+      v[k] = tr.insert(Point(p[k][0], p[k][1], p[k][2]));
+      v[k]->info().id = k;
+    }
+    REQUIRE(tr.dimension() == 3);
+    Ch cell;
+    int i0, i1, i2;
+    REQUIRE(tr.is_facet(v[0], v[1], v[2], cell, i0, i1, i2));
+    const FacetInfo fi = edge_surface_of(tr, f, cell, 6 - i0 - i1 - i2);  // the facet opposite the fourth index
+    // The ray holds both crossings of the axis (the finite cell's centre lies
+    // far beyond one of them): the facet is restricted, its surface centre
+    // on S, equidistant from its sites and no nearer the fourth vertex.
+    REQUIRE((fi.state & kRestricted));
+    const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
+    CHECK(std::abs(s.value(x)) < 1e-9);
+    const double r0 = dist2(x, p[0]);
+    CHECK(dist2(x, p[1]) == Approx(r0).epsilon(1e-9));
+    CHECK(dist2(x, p[2]) == Approx(r0).epsilon(1e-9));
+    CHECK(dist2(x, p[3]) >= r0 * (1 - 1e-9));
+  }
+  CHECK(wrong_side >= 5);
 }
