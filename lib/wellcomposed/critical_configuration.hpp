@@ -9,6 +9,10 @@
 #include <array>
 #include <cstdint>
 
+namespace imgmesh {
+struct Geometry;
+}
+
 namespace imgmesh::wellcomposed_detail {
 
 // CriticalConfiguration flags of one block: which of N_x(r), N_y(r), N_z(r)
@@ -31,5 +35,9 @@ struct CandidateSets {
   std::array<std::uint8_t, 6> sets{};
 };
 const CandidateSets& candidate_sets(std::uint8_t code);
+
+// Throws Error (naming `what`) unless g is a 2D or 3D grid small enough to
+// index: each side 1 to 2^20 voxels, at most 2^40 voxels.
+void check_size(const Geometry& g, const char* what);
 
 } // namespace imgmesh::wellcomposed_detail

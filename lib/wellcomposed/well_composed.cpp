@@ -8,6 +8,7 @@
 
 #include "util/error.hpp"
 #include "wellcomposed/critical_configuration.hpp"
+#include "wellcomposed/label_grid.hpp"
 
 #include <algorithm>
 #include <array>
@@ -26,6 +27,9 @@ using wellcomposed_detail::kC1x;
 using wellcomposed_detail::kC1y;
 using wellcomposed_detail::kC1z;
 using wellcomposed_detail::kC2;
+using wellcomposed_detail::check_size;
+using wellcomposed_detail::Padding;
+using wellcomposed_detail::border_padding;
 
 // Local copies of the block tables, so that lookups inline (and popcount
 // needs no CPU extension).
@@ -47,16 +51,6 @@ void add_counts(CriticalCounts& c, std::uint8_t flags) {
   c.c2 += (flags & kC2) ? 1 : 0;
 }
 
-void check_size(const Geometry& g, const char* what) {
-  if (g.dimension != 2 && g.dimension != 3)
-    throw Error(std::string(what) + ": image must be 2D or 3D");
-  if (g.dimension == 2 && g.size[2] != 1) throw Error(std::string(what) + ": 2D image with depth > 1");
-  for (std::size_t s : g.size)
-    if (s == 0 || s > (std::size_t(1) << 20))
-      throw Error(std::string(what) + ": image size out of range");
-  if (g.size[0] * g.size[1] > (std::size_t(1) << 40) / g.size[2])
-    throw Error(std::string(what) + ": image too large");
-}
 
 // Four rows of 8 bytes, all equal to 0 or all to 1: no block among them is
 // critical (the common case, checked with four 64-bit loads).
@@ -328,40 +322,6 @@ private:
   }
 };
 
-struct Padding {
-  std::array<std::size_t, 3> before{0, 0, 0}, after{0, 0, 0};
-  bool any() const {
-    for (int a = 0; a < 3; ++a)
-      if (before[a] || after[a]) return true;
-    return false;
-  }
-};
-
-// One voxel more on each side where foreground touches the border (2D: x, y).
-Padding border_padding(const BinaryImage& in) {
-  Padding p;
-  const std::size_t nx = in.size[0], ny = in.size[1], nz = in.size[2];
-  const int axes = in.dimension == 2 ? 2 : 3;
-  for (std::size_t z = 0; z < nz; ++z)
-    for (std::size_t y = 0; y < ny; ++y) {
-      const std::uint8_t* row = &in.data[in.index(0, y, z)];
-      const bool edge_row = y == 0 || y + 1 == ny || (axes == 3 && (z == 0 || z + 1 == nz));
-      if (edge_row) {
-        bool anyfg = false;
-        for (std::size_t x = 0; x < nx && !anyfg; ++x) anyfg = row[x] != 0;
-        if (anyfg) {
-          if (y == 0) p.before[1] = 1;
-          if (y + 1 == ny) p.after[1] = 1;
-          if (axes == 3 && z == 0) p.before[2] = 1;
-          if (axes == 3 && z + 1 == nz) p.after[2] = 1;
-        }
-      }
-      if (row[0]) p.before[0] = 1;
-      if (row[nx - 1]) p.after[0] = 1;
-    }
-  return p;
-}
-
 // Repair in one mode on a padded copy. Remove is the dual: complement, add,
 // complement back (the border stays background in the result, since the
 // complement's border is foreground and add never touches it).
@@ -406,6 +366,21 @@ WellComposedResult repair(const BinaryImage& in, const Padding& pad, RepairMode 
 }
 
 } // namespace
+
+namespace wellcomposed_detail {
+
+void check_size(const Geometry& g, const char* what) {
+  if (g.dimension != 2 && g.dimension != 3)
+    throw Error(std::string(what) + ": image must be 2D or 3D");
+  if (g.dimension == 2 && g.size[2] != 1) throw Error(std::string(what) + ": 2D image with depth > 1");
+  for (std::size_t s : g.size)
+    if (s == 0 || s > (std::size_t(1) << 20))
+      throw Error(std::string(what) + ": image size out of range");
+  if (g.size[0] * g.size[1] > (std::size_t(1) << 40) / g.size[2])
+    throw Error(std::string(what) + ": image too large");
+}
+
+} // namespace wellcomposed_detail
 
 CriticalCounts count_critical_configurations(const BinaryImage& img) {
   check_size(img, "count_critical_configurations");

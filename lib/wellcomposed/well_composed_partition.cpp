@@ -1,0 +1,435 @@
+// The multi-label repair (issue 36), chapter 5's algorithm with labels for
+// colours.
+//
+// A configuration is an instance (square or block, label L): a C1 of L in a
+// square N_x(r), N_y(r), N_z(r), or a C2 of L in a block N(r). It is
+// resolved by relabelling one voxel of that square or block, among the
+// moves that remove it (C1, L on one diagonal: a voxel of the other diagonal
+// becomes L, or an L voxel takes a label of the other diagonal; C2, L on two
+// opposite corners: one of them takes a label of the other six, or one of
+// the six becomes L; C2, L on six: one of the other two becomes L, or an L
+// voxel takes a label of those two). Of those, the move chosen keeps every
+// kept label's last voxel, creates no configuration if one can, removes the
+// most configurations around it, creates the fewest (the thesis's rules
+// (1)-(3) with B(r) made of single moves), the first in a fixed order on
+// ties: deterministic. Configurations it creates lie in the 8 blocks
+// holding the voxel: those go on the queue R.
+//
+// Why it terminates. Labels have a priority (rank): the background lowest,
+// then the labels from the most voxels to the fewest, so small structures
+// grow rather than vanish. A move only ever gives a voxel a label of higher
+// rank, and one exists for every configuration: C1 of L with a, b on the
+// other diagonal: if rank L > rank a, a's voxel becomes L; else an L voxel
+// becomes a. C2 of L on two corners: if a label x of the six ranks above L,
+// a corner becomes x; else one of the six becomes L. C2 of L on six, a, b on
+// the other two: a's voxel becomes L if L ranks above a, else an L voxel
+// becomes a. So the sum of the ranks of all voxels grows with every move. A
+// label whose last voxel every move would take is raised once to the top
+// rank (then a move keeping it exists: an L voxel takes that label); that
+// raises the sum too, and happens at most once a label. The sum is at most
+// N (2K) for N voxels and K labels, so the moves are finite: at most 2K a
+// voxel, and each queue entry is a block made critical by a move (at most 8
+// a move) or one of the N blocks of the scan: linear in voxels + moves.
+//
+// Why no configuration is left. Every critical block is either still ahead
+// in the scan or on the queue (a move changes only the 8 blocks holding its
+// voxel, and queues them), and a block leaves the scan or the queue only
+// when it holds none. At the end both are empty. The count is redone on the
+// output anyway (PartitionResult::output).
+//
+// The border. Where a label touches a side the grid grows by one background
+// voxel, so every side layer is background. A square with two side-layer
+// voxels, or a block with four, holds no configuration of any label, so no
+// move ever involves a side voxel: the border stays background, and blocks
+// reaching outside the grid are never critical.
+//
+// Last, every changed voxel goes back to its input label when that creates
+// no configuration in its 8 blocks (and keeps every kept label), once, in
+// the order of the changes: fewer changes, still none left.
+#include "wellcomposed/well_composed_partition.hpp"
+
+#include "util/error.hpp"
+#include "wellcomposed/critical_configuration.hpp"
+#include "wellcomposed/label_grid.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+#include <tuple>
+
+namespace imgmesh {
+namespace {
+
+using wellcomposed_detail::critical_configurations;
+using wellcomposed_detail::mask_of;
+
+constexpr unsigned kFace[3] = {0x55u, 0x33u, 0x0fu};  // N_x(r), N_y(r), N_z(r) as block bits
+
+inline int popcount(unsigned v) { return __builtin_popcount(v); }
+inline std::uint8_t flags(unsigned mask) { return critical_configurations(std::uint8_t(mask)); }
+
+// One configuration: label l's code m in block r, and which (0-2: C1 on
+// N_x, N_y, N_z; 3: C2).
+struct Instance {
+  std::size_t r;
+  unsigned label, m;
+  int kind;
+};
+
+struct Move {
+  std::size_t voxel;
+  unsigned from, to;
+  int created = 0, removed = 0;
+  bool kills = false;  // takes the last voxel of a kept label
+  bool better_than(const Move& o) const {
+    return std::make_tuple(kills, created > 0, -removed, created) <
+           std::make_tuple(o.kills, o.created > 0, -o.removed, o.created);
+  }
+};
+
+template <class T> class PartitionRepair {
+public:
+  // grid: nx x ny x nz label indices whose side layers are 0; 2D: nz == 2,
+  // the image in layer 0, layer 1 background.
+  PartitionRepair(T* grid, std::size_t nx, std::size_t ny, std::size_t nz, bool planar, std::vector<unsigned> rank,
+                  std::vector<std::size_t> count, std::vector<char> keep)
+      : v_(grid), n_{nx, ny, nz}, sy_(nx), sz_(nx * ny), blocks_(planar ? 4 : 8), rank_(std::move(rank)),
+        top_(unsigned(rank_.size())), count_(std::move(count)), keep_(std::move(keep)), raised_(rank_.size(), 0) {
+    for (int k = 0; k < 8; ++k) off_[k] = std::size_t(k & 1) + std::size_t((k >> 1) & 1) * sy_ + std::size_t((k >> 2) & 1) * sz_;
+  }
+
+  // Figures 5.1 and 5.2: scan the blocks; resolve each critical one, then
+  // drain R (blocks made critical by the moves) before the scan goes on.
+  void run() {
+    if (n_[0] < 2 || n_[1] < 2 || n_[2] < 2) return;
+    for (std::size_t z = 0; z + 1 < n_[2]; ++z)
+      for (std::size_t y = 0; y + 1 < n_[1]; ++y) {
+        const std::size_t row = sy_ * y + sz_ * z;
+        for (std::size_t x = 0; x + 1 < n_[0]; ++x) {
+          const std::size_t r = row + x;
+          if (x + 8 <= n_[0] && wellcomposed_detail::uniform_rows(v_ + r, v_ + r + sy_, v_ + r + sz_, v_ + r + sz_ + sy_)) {
+            x += 6;  // blocks x .. x+6 hold one label
+            continue;
+          }
+          resolve(r);
+          for (std::size_t head = 0; head < queue_.size(); ++head) resolve(queue_[head]);
+          queue_.clear();
+        }
+      }
+  }
+
+  // A changed voxel goes back to its input label when none of its blocks
+  // becomes critical (only those see it); once each, in the order of change.
+  void prune() {
+    std::vector<std::size_t> order(log_.size());
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return log_[a].first < log_[b].first; });
+    std::vector<std::size_t> first;  // log positions of each voxel's first change
+    for (std::size_t i = 0; i < order.size(); ++i)
+      if (i == 0 || log_[order[i]].first != log_[order[i - 1]].first) first.push_back(order[i]);
+    std::sort(first.begin(), first.end());
+    for (std::size_t pos : first) {
+      const std::size_t i = log_[pos].first;
+      const unsigned input = log_[pos].second, now = v_[i];
+      if (now == input || (keep_[now] && count_[now] == 1)) continue;
+      bool ok = true;
+      for (int k = 0; k < blocks_ && ok; ++k) {
+        T b[8];
+        load(i - off_[k], b);
+        b[k] = T(input);
+        ok = !flags(mask_of(b, T(input))) && !flags(mask_of(b, T(now)));
+      }
+      if (ok) set(i, input);
+    }
+    log_.clear();
+  }
+
+  std::size_t steps = 0, raised = 0;
+  const std::vector<std::size_t>& count() const { return count_; }
+
+private:
+  void load(std::size_t r, T b[8]) const {
+    for (int k = 0; k < 8; ++k) b[k] = v_[r + off_[k]];
+  }
+
+  // The first configuration of block r (labels in the order of their first
+  // voxel; C1 on N_x, N_y, N_z, then C2), if any.
+  bool first_instance(std::size_t r, Instance& in) const {
+    T b[8];
+    load(r, b);
+    unsigned done = 0;
+    for (int k = 0; k < 8; ++k) {
+      if (done >> k & 1u) continue;
+      const unsigned m = mask_of(b, b[k]);
+      if (m == 0xffu) return false;
+      done |= m;
+      if (const std::uint8_t f = flags(m)) {
+        in = {r, unsigned(b[k]), m, __builtin_ctz(f)};
+        return true;
+      }
+    }
+    return false;
+  }
+
+  void resolve(std::size_t r) {
+    Instance in;
+    while (first_instance(r, in)) fix(in);
+  }
+
+  // Configurations created and removed by voxel i taking label `to`: only
+  // the codes of its old and new label change, in the blocks holding i.
+  Move evaluate(std::size_t i, unsigned to) const {
+    Move mv{i, v_[i], to};
+    for (int k = 0; k < blocks_; ++k) {
+      T b[8];
+      load(i - off_[k], b);
+      const unsigned bit = 1u << k, ma = mask_of(b, T(mv.from)), mb = mask_of(b, T(to));
+      const unsigned fa0 = flags(ma), fa1 = flags(ma & ~bit), fb0 = flags(mb), fb1 = flags(mb | bit);
+      mv.created += popcount(fa1 & ~fa0) + popcount(fb1 & ~fb0);
+      mv.removed += popcount(fa0 & ~fa1) + popcount(fb0 & ~fb1);
+    }
+    mv.kills = keep_[mv.from] && count_[mv.from] == 1;
+    return mv;
+  }
+
+  // The moves of the header that remove `in`, upward in rank only.
+  int moves(const Instance& in, Move out[24]) const {
+    int n = 0;
+    auto consider = [&](int k, unsigned to) {
+      const std::size_t i = in.r + off_[k];
+      if (rank_[to] > rank_[v_[i]]) out[n++] = evaluate(i, to);
+    };
+    // Labels of the voxels in `set`, each once.
+    auto labels_of = [&](unsigned set, unsigned* ls) {
+      int c = 0;
+      for (unsigned s = set; s; s &= s - 1) {
+        const unsigned l = v_[in.r + off_[__builtin_ctz(s)]];
+        if (std::find(ls, ls + c, l) == ls + c) ls[c++] = l;
+      }
+      return c;
+    };
+    unsigned ls[6];
+    if (in.kind < 3) {  // C1: L on one diagonal of the face, two others on the other
+      const unsigned face = kFace[in.kind], diag = in.m & face, other = face & ~in.m;
+      const int c = labels_of(other, ls);
+      for (unsigned s = other; s; s &= s - 1) consider(__builtin_ctz(s), in.label);
+      for (unsigned s = diag; s; s &= s - 1)
+        for (int j = 0; j < c; ++j) consider(__builtin_ctz(s), ls[j]);
+    } else if (popcount(in.m) == 2) {  // C2, L on two opposite corners
+      const unsigned six = ~in.m & 0xffu;
+      const int c = labels_of(six, ls);
+      for (unsigned s = in.m; s; s &= s - 1)
+        for (int j = 0; j < c; ++j) consider(__builtin_ctz(s), ls[j]);
+      for (unsigned s = six; s; s &= s - 1) consider(__builtin_ctz(s), in.label);
+    } else {  // C2, L on six
+      const unsigned two = ~in.m & 0xffu;
+      const int c = labels_of(two, ls);
+      for (unsigned s = two; s; s &= s - 1) consider(__builtin_ctz(s), in.label);
+      for (unsigned s = in.m; s; s &= s - 1)
+        for (int j = 0; j < c; ++j) consider(__builtin_ctz(s), ls[j]);
+    }
+    return n;
+  }
+
+  void fix(const Instance& in) {
+    Move mv[24];
+    const int n = moves(in, mv);
+    if (n == 0) throw Error("internal: no upward move for a critical configuration");  // see the header
+    int best = 0;
+    for (int i = 1; i < n; ++i)
+      if (mv[i].better_than(mv[best])) best = i;
+    if (mv[best].kills && !raised_[mv[best].from]) {
+      // Every move takes a kept label's last voxel: raise that label to the
+      // top once, then moves keeping it exist (see the header).
+      raised_[mv[best].from] = 1;
+      rank_[mv[best].from] = top_++;
+      ++raised;
+      return;
+    }
+    set(mv[best].voxel, mv[best].to);
+    log_.emplace_back(mv[best].voxel, T(mv[best].from));
+    ++steps;
+    for (int k = 0; k < blocks_; ++k) queue_.push_back(mv[best].voxel - off_[k]);
+  }
+
+  void set(std::size_t i, unsigned to) {
+    --count_[v_[i]];
+    ++count_[to];
+    v_[i] = T(to);
+  }
+
+  T* v_;
+  std::size_t n_[3], sy_, sz_, off_[8];
+  int blocks_;  // blocks holding a voxel: 8, or 4 in 2D (those below the image see only background)
+  std::vector<unsigned> rank_;
+  unsigned top_;
+  std::vector<std::size_t> count_;
+  std::vector<char> keep_, raised_;
+  std::vector<std::size_t> queue_;                // R
+  std::vector<std::pair<std::size_t, T>> log_;    // (voxel, label before) of every move
+};
+
+// Ranks: background 0, then the labels from the most input voxels to the
+// fewest (ties: larger value first).
+std::vector<unsigned> label_ranks(const std::vector<std::size_t>& voxels) {
+  std::vector<unsigned> order(voxels.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin() + 1, order.end(), [&](unsigned a, unsigned b) { return voxels[a] > voxels[b]; });
+  std::vector<unsigned> rank(voxels.size());
+  for (std::size_t i = 0; i < order.size(); ++i) rank[order[i]] = unsigned(i);
+  return rank;
+}
+
+} // namespace
+
+namespace {
+
+// The repair on the padded grid of dense indices (T: one byte up to 255
+// labels, two above); fills res.image, res.output and the counts.
+template <class T>
+void repair_dense(const LabelImage& in, const wellcomposed_detail::LabelValues& lv,
+                  const wellcomposed_detail::Padding& pad, const PartitionOptions& opt, PartitionResult& res) {
+  const bool planar = in.dimension == 2;
+  const std::size_t nx = in.size[0] + pad.before[0] + pad.after[0], ny = in.size[1] + pad.before[1] + pad.after[1];
+  const std::size_t nz = planar ? 2 : in.size[2] + pad.before[2] + pad.after[2];
+  std::vector<T> grid(nx * ny * nz, T(0));
+  auto at = [&](std::size_t x, std::size_t y, std::size_t z) {
+    return x + pad.before[0] + nx * (y + pad.before[1] + ny * (z + pad.before[2]));
+  };
+  {
+    std::int32_t last = 0;
+    std::size_t index = 0;
+    for (std::size_t z = 0; z < in.size[2]; ++z)
+      for (std::size_t y = 0; y < in.size[1]; ++y) {
+        const std::int32_t* row = &in.data[in.index(0, y, z)];
+        T* out = &grid[at(0, y, z)];
+        for (std::size_t x = 0; x < in.size[0]; ++x) {
+          if (row[x] != last) index = lv.index_of(last = row[x]);
+          out[x] = T(index);
+        }
+      }
+  }
+  const std::size_t K = lv.values.size();
+  std::vector<char> keep(K, 0);
+  for (std::size_t l = 1; l < K; ++l) keep[l] = lv.voxels[l] >= std::max<std::size_t>(opt.min_voxels, 1);
+  std::vector<std::size_t> count(lv.voxels);
+  count[0] += grid.size() - in.count();
+  res.input.labels = lv.values;
+  res.input.counts.assign(K, {});
+  wellcomposed_detail::count_dense(grid.data(), nx, ny, nz, res.input.counts);  // outside = 0: the input's counts
+  PartitionRepair<T> rep(grid.data(), nx, ny, nz, planar, label_ranks(lv.voxels), count, keep);
+  if (opt.repair) {
+    rep.run();
+    if (opt.prune) rep.prune();
+  }
+  res.steps = rep.steps;
+  res.promotions = rep.raised;
+
+  res.output.labels = lv.values;
+  res.output.counts.assign(K, {});
+  wellcomposed_detail::count_dense(grid.data(), nx, ny, nz, res.output.counts);
+  // The output image, the changes, and the labels lost, from the grids.
+  Geometry g = in.geometry();
+  g.size = {nx, ny, planar ? 1 : nz};
+  g.origin = in.world(-double(pad.before[0]), -double(pad.before[1]), -double(pad.before[2]));
+  res.image = LabelImage(g);
+  for (std::size_t i = 0; i < res.image.data.size(); ++i) res.image.data[i] = lv.values[grid[i]];
+  std::vector<std::size_t> now(K, 0);
+  for (std::size_t i = 0; i < res.image.data.size(); ++i) ++now[grid[i]];
+  for (std::size_t z = 0; z < in.size[2]; ++z)
+    for (std::size_t y = 0; y < in.size[1]; ++y)
+      for (std::size_t x = 0; x < in.size[0]; ++x) {
+        const std::int32_t a = in(x, y, z), b = res.image.data[at(x, y, z)];
+        if (a != b) ++res.changes[{a, b}];
+      }
+  for (std::size_t l = 1; l < K; ++l)
+    if (lv.voxels[l] && !now[l]) {
+      res.lost.push_back(lv.values[l]);
+      if (keep[l]) res.lost_protected.push_back(lv.values[l]);
+    }
+}
+
+} // namespace
+
+PartitionResult make_well_composed_partition(const LabelImage& in, const PartitionOptions& opt) {
+  wellcomposed_detail::check_size(in, "make_well_composed_partition");
+  if (in.data.size() != in.count()) throw Error("make_well_composed_partition: image data size mismatch");
+  const wellcomposed_detail::LabelValues lv = wellcomposed_detail::label_values(in);
+  const wellcomposed_detail::Padding pad = wellcomposed_detail::border_padding(in);
+  PartitionResult res;
+  res.options = opt;
+  res.input_voxels = in.count();
+  res.padded_before = pad.before;
+  res.padded_after = pad.after;
+  if (lv.values.size() <= 256) repair_dense<std::uint8_t>(in, lv, pad, opt, res);
+  else repair_dense<std::uint16_t>(in, lv, pad, opt, res);
+  for (const auto& [pair, n] : res.changes) res.changed += n;
+  return res;
+}
+
+namespace {
+std::vector<unsigned long long> triple(const std::array<std::size_t, 3>& a) { return {a[0], a[1], a[2]}; }
+} // namespace
+
+Json PartitionResult::to_json() const {
+  Json j = Json::object();
+  j["dimension"] = image.dimension;
+  j["voxels"] = input_voxels;
+  j["labels"] = input.labels.size() - 1;
+  j["min_voxels"] = options.min_voxels;
+  const Json in = input.to_json();
+  j["c1"] = in.at("c1");
+  j["c2"] = in.at("c2");
+  j["labels_with_configurations"] = input.labels_with_configurations();
+  j["changed"] = changed;
+  j["steps"] = steps;
+  j["promotions"] = promotions;
+  // Per (from, to) pair, and per label: voxels that left it, voxels it gained.
+  Json pairs = Json::array();
+  std::map<std::int32_t, std::pair<std::size_t, std::size_t>> per;
+  for (const auto& [ab, n] : changes) {
+    Json p = Json::object();
+    p["from"] = ab.first;
+    p["to"] = ab.second;
+    p["voxels"] = n;
+    pairs.push_back(p);
+    per[ab.first].first += n;
+    per[ab.second].second += n;
+  }
+  j["changes"] = pairs;
+  Json labels = Json::object();
+  for (const auto& [l, n] : per) {
+    Json p = Json::object();
+    p["lost"] = n.first;
+    p["gained"] = n.second;
+    labels[std::to_string(l)] = p;
+  }
+  j["changed_per_label"] = labels;
+  j["input_per_label"] = in.at("per_label");
+  j["output_size"] = triple(image.size);
+  j["padded_before"] = triple(padded_before);
+  j["padded_after"] = triple(padded_after);
+  const Json out = output.to_json();
+  j["output_c1"] = out.at("c1");
+  j["output_c2"] = out.at("c2");
+  j["labels_left"] = out.at("labels_left");
+  j["lost"] = lost;
+  j["well_composed"] = output.total() == 0;
+  return j;
+}
+
+std::string PartitionResult::failed_guarantee() const {
+  std::string s;
+  if (output.total()) {
+    s = "output is NOT a well-composed partition (" + std::to_string(output.total()) +
+        " critical configurations left, in " + std::to_string(output.labels_with_configurations()) + " labels)";
+  }
+  if (!lost_protected.empty()) {
+    if (!s.empty()) s += "; ";
+    s += "label " + std::to_string(lost_protected.front()) + " lost";
+    if (lost_protected.size() > 1) s += " (and " + std::to_string(lost_protected.size() - 1) + " more)";
+  }
+  return s;
+}
+
+} // namespace imgmesh
