@@ -4,7 +4,9 @@
 #include "implicit/crop.hpp"
 #include "shared_options.hpp"
 #include "util/error.hpp"
+#include "util/parse.hpp"
 #include "wellcomposed/well_composed.hpp"
+#include "wellcomposed/well_composed_partition.hpp"
 
 #include <algorithm>
 #include <iostream>
@@ -13,21 +15,96 @@
 
 using namespace imgmesh;
 
+namespace {
+
+// --labels: "all" or a comma-separated list of integers (the selection).
+Selection parse_labels(const std::string& text) {
+  Selection sel;
+  if (text == "all") return sel;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t end = text.find(',', start);
+    long long v = 0;
+    if (!parse_integer(text.substr(start, end == std::string::npos ? std::string::npos : end - start), v))
+      throw UsageError("--labels: '" + text + "' is not 'all' or a comma-separated list of integer labels");
+    sel.labels.push_back(v);
+    if (end == std::string::npos) return sel;
+    start = end + 1;
+  }
+}
+
+// img2wc --labels: every label well-composed at once (or counted, --check).
+int run_labels(cli::Tool& tool, const std::string& in, const std::string& out, const std::string& labels,
+               const PartitionOptions& opt, bool check) {
+  ImageInfo info;
+  LabelImage img = read_labels(in, parse_labels(labels), &info);
+  tool.stats["input"] = in;
+  if (check) {
+    const PartitionCheck c = check_well_composed_partition(img);
+    std::cout << in << ": " << (c.counts.total() ? "not a well-composed partition" : "well-composed partition")
+              << " (" << c.counts.labels.size() - 1 << " labels; C1 " << c.counts.to_json().at("c1").integer()
+              << ", C2 " << c.counts.to_json().at("c2").integer() << ")\n";
+    for (std::size_t i = 0; i < c.counts.labels.size(); ++i)
+      if (c.counts.counts[i].total())
+        std::cout << "  label " << c.counts.labels[i] << ": C1 " << c.counts.counts[i].c1 << ", C2 "
+                  << c.counts.counts[i].c2 << "\n";
+    return tool.finish(c);
+  }
+  tool.report_progress("repairing " + std::to_string(img.count()) + " voxels, every label");
+  const std::array<std::size_t, 3> size = img.size;
+  const PartitionResult res = make_well_composed_partition(std::move(img), opt);
+  if (res.image.size != size) {
+    std::ostringstream msg;
+    msg << "labels touch the image border: grid grown to " << res.image.size[0] << "x" << res.image.size[1];
+    if (res.image.dimension == 3) msg << "x" << res.image.size[2];
+    msg << " (one background voxel added on those sides; origin moved, world coordinates unchanged)";
+    tool.info(msg.str());
+  }
+  write_image(out, res.image, info.component);
+  tool.debug("labels " + std::to_string(res.input.labels.size() - 1) + ", configurations " +
+             std::to_string(res.input.total()) + ", changed " + std::to_string(res.changed));
+  return tool.finish(res);
+}
+
+} // namespace
+
 int main(int argc, char** argv) {
   cli::Tool tool("img2wc", "Make a binary image well-composed: no critical configuration (C1)/(C2) "
-                           "remains, changing as few voxels as the repair of Siqueira (2006), ch. 5, finds.");
+                           "remains, changing as few voxels as the repair of Siqueira (2006), ch. 5, finds; "
+                           "with --labels, every label of a label image at once.");
   std::string in, out;
   Selection sel;
   WellComposedOptions opt;
   bool check = false, thesis_rules = false;
+  std::string labels;
+  PartitionOptions popt;
   tool.app.add_option("IN", in, "Input image (NRRD, MetaImage, NIfTI, PNG; - for stdin)")->required();
-  tool.app.add_option("OUT", out, "Output 0/1 uint8 image, format by extension (- for NRRD on stdout)");
+  tool.app.add_option("OUT", out, "Output 0/1 uint8 image (--labels: a label image of IN's type), format by extension (- for NRRD on stdout)");
   tool.data_output(out, cli::Stream::Binary);
   auto* label = tool.app.add_option("--label", sel.labels,
                                     "Foreground is this label (repeatable: the union); default: nonzero");
   label->type_name("L")->allow_extra_args(false);
   auto* thr = tool.app.add_option("--threshold", sel.threshold, "Foreground is value >= T")->type_name("T");
   thr->excludes(label);
+  auto* all = tool.app.add_option("--labels", labels,
+                                  "Every label at once: all, or a list 1,3,5 (others become 0); OUT is a label image "
+                                  "of IN's type in which each label and the background are well-composed");
+  all->type_name("all|L,L,...")->excludes(label)->excludes(thr);
+  tool.app.add_option("--min-voxels", popt.min_voxels,
+                      "With --labels: a label of fewer voxels may vanish (default: every label is kept)")
+      ->type_name("N")
+      ->needs(all);
+  tool.app
+      .add_option_function<std::string>(
+          "--priority",
+          [&popt](const std::string& p) {
+            popt.priority = p == "larger" ? PartitionOptions::Priority::Larger : PartitionOptions::Priority::Smaller;
+          },
+          "With --labels: which label of a configuration grows: smaller (the label of fewer voxels; small "
+          "structures never thin out) or larger (a few % fewer changes)")
+      ->check(CLI::IsMember({"smaller", "larger"}))
+      ->default_str("smaller")
+      ->needs(all);
   bool full_grid = false;
   tool.app.add_flag("--full-grid", full_grid,
                     "With --label: write the whole grid, not the label's box plus the background margin the next "
@@ -45,12 +122,19 @@ int main(int argc, char** argv) {
   bool skip_repair = false;
   tool.app.add_flag("--skip-repair", skip_repair)->group("");
   tool.app.add_flag("--check", check,
-                    "Write nothing: print whether IN is well-composed and its counts; exit 0 if it is, 1 if not");
+                    "Write nothing: print whether IN is well-composed and its counts; exit 0 if it is, 1 if not "
+                    "(with --labels: the counts per label, exit 3 if any is left)");
 
   return tool.run(argc, argv, [&] {
     sel.has_threshold = thr->count() > 0;
     if (!check && out.empty()) throw UsageError("OUT is required (or use --check)");
     if (check && !out.empty()) throw UsageError("--check writes nothing: give no OUT");
+    if (all->count()) {
+      if (tool.app.get_option("--mode")->count() || thesis_rules)
+        throw UsageError("--labels has no --mode or --thesis-rules: its moves are its own (see the man page)");
+      popt.repair = !skip_repair;
+      return run_labels(tool, in, out, labels, popt, check);
+    }
 
     BinaryImage img = read_foreground(in, sel);
     tool.stats["input"] = in;

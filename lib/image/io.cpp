@@ -369,8 +369,9 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
   }
 }
 
-template <unsigned D, class T>
-void write_itk(const std::string& file, const Image<T>& img, const std::map<std::string, std::string>& fields) {
+// Writes img's voxels as pixel type T (converted straight into ITK's buffer).
+template <unsigned D, class T, class Src>
+void write_itk(const std::string& file, const Image<Src>& img, const std::map<std::string, std::string>& fields) {
   using ItkImage = itk::Image<T, D>;
   auto out = ItkImage::New();
   typename ItkImage::RegionType region;
@@ -389,7 +390,7 @@ void write_itk(const std::string& file, const Image<T>& img, const std::map<std:
   out->SetOrigin(origin);
   out->SetDirection(dir);
   out->Allocate();
-  std::copy(img.data.begin(), img.data.end(), out->GetBufferPointer());
+  std::transform(img.data.begin(), img.data.end(), out->GetBufferPointer(), [](Src v) { return T(v); });
   auto& dict = out->GetMetaDataDictionary();
   for (const auto& [k, v] : fields) itk::EncapsulateMetaData<std::string>(dict, k, v);
   auto writer = itk::ImageFileWriter<ItkImage>::New();
@@ -399,8 +400,8 @@ void write_itk(const std::string& file, const Image<T>& img, const std::map<std:
   writer->Update();
 }
 
-template <class T>
-void write_any(const std::string& path, const Image<T>& img, const std::map<std::string, std::string>& fields) {
+template <class T, class Src = T>
+void write_any(const std::string& path, const Image<Src>& img, const std::map<std::string, std::string>& fields) {
   register_factories();
   if (img.data.size() != img.count()) throw Error("internal: image data does not match its size", path);
   const std::string ext = path == "-" ? ".nrrd" : extension_of(path);
@@ -414,8 +415,8 @@ void write_any(const std::string& path, const Image<T>& img, const std::map<std:
   AtomicOutput out(path, true, ".nrrd");
   const CerrCapture said;
   try {
-    if (img.dimension == 2) write_itk<2>(out.path(), img, fields);
-    else write_itk<3>(out.path(), img, fields);
+    if (img.dimension == 2) write_itk<2, T>(out.path(), img, fields);
+    else write_itk<3, T>(out.path(), img, fields);
   } catch (const itk::ExceptionObject& e) {
     throw said.error(e, path);
   }
@@ -500,10 +501,12 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel, std::
   return out;
 }
 
-LabelImage read_labels(const std::string& path, LabelNames* names) {
+namespace {
+LabelImage read_labels_opened(const std::string& path, LabelNames* names, ImageInfo* info) {
   Spool spool(path);
   Opened o = open_image(path, spool.file());
   if (names) *names = o.names;
+  if (info) *info = o.info;
   LabelImage out(o.info.geometry, 0);
   visit_values(path, o, [&](std::size_t i, double v) {
     if (v != std::floor(v) || v < -2147483648.0 || v > 2147483647.0)
@@ -512,15 +515,22 @@ LabelImage read_labels(const std::string& path, LabelNames* names) {
   });
   return out;
 }
+} // namespace
 
-LabelImage read_labels(const std::string& path, const Selection& sel) {
+LabelImage read_labels(const std::string& path, LabelNames* names) { return read_labels_opened(path, names, nullptr); }
+
+LabelImage read_labels(const std::string& path, const Selection& sel, ImageInfo* info) {
   if (sel.has_threshold) {
     const BinaryImage b = read_foreground(path, sel);
     LabelImage img(b.geometry());
     std::copy(b.data.begin(), b.data.end(), img.data.begin());
+    if (info) {
+      info->geometry = b.geometry();
+      info->component = "unsigned_char";
+    }
     return img;
   }
-  LabelImage img = read_labels(path);
+  LabelImage img = read_labels_opened(path, nullptr, info);
   if (!sel.labels.empty()) {
     const std::set<long long> keep(sel.labels.begin(), sel.labels.end());
     for (long long l : keep)
@@ -542,11 +552,26 @@ FloatImage read_float(const std::string& path, std::map<std::string, std::string
 }
 
 void write_image(const std::string& path, const BinaryImage& img, const std::map<std::string, std::string>& fields) {
-  write_any(path, img, fields);
+  write_any<std::uint8_t>(path, img, fields);
 }
 
 void write_image(const std::string& path, const FloatImage& img, const std::map<std::string, std::string>& fields) {
-  write_any(path, img, fields);
+  write_any<float>(path, img, fields);
+}
+
+void write_image(const std::string& path, const LabelImage& img, const std::string& component,
+                 const std::map<std::string, std::string>& fields) {
+  auto as = [&](auto tag) { write_any<decltype(tag)>(path, img, fields); };
+  switch (component.empty() ? itk::IOComponentEnum::INT : itk::ImageIOBase::GetComponentTypeFromString(component)) {
+    case itk::IOComponentEnum::UCHAR: as(std::uint8_t()); break;
+    case itk::IOComponentEnum::CHAR: as(std::int8_t()); break;
+    case itk::IOComponentEnum::USHORT: as(std::uint16_t()); break;
+    case itk::IOComponentEnum::SHORT: as(std::int16_t()); break;
+    case itk::IOComponentEnum::UINT: as(std::uint32_t()); break;
+    case itk::IOComponentEnum::FLOAT: as(float()); break;
+    case itk::IOComponentEnum::DOUBLE: as(double()); break;
+    default: write_any<std::int32_t>(path, img, fields); break;  // int and the 64-bit types: the values are 32-bit integers
+  }
 }
 
 } // namespace imgmesh

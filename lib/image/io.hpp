@@ -46,8 +46,10 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel,
 LabelImage read_labels(const std::string& path, LabelNames* names = nullptr);
 // The same with a selection: a threshold gives the 0/1 foreground (as
 // read_foreground); labels keep those labels and make every other value 0
-// (Error when one does not occur); neither keeps every value.
-LabelImage read_labels(const std::string& path, const Selection& sel);
+// (Error when one does not occur); neither keeps every value. `info`, when
+// given, gets the file's header (its component type: what a label image
+// written back keeps; unsigned_char with a threshold).
+LabelImage read_labels(const std::string& path, const Selection& sel, ImageInfo* info = nullptr);
 
 // Read a float image and its NRRD key/value fields ("key:=value").
 FloatImage read_float(const std::string& path, std::map<std::string, std::string>* fields = nullptr);
@@ -56,6 +58,10 @@ FloatImage read_float(const std::string& path, std::map<std::string, std::string
 // 2D images (dimension == 2) are written as 2D images.
 void write_image(const std::string& path, const BinaryImage& img, const std::map<std::string, std::string>& fields = {});
 void write_image(const std::string& path, const FloatImage& img,
+                 const std::map<std::string, std::string>& fields = {});
+// A label image in the component type `component` (ImageInfo::component of
+// the file it came from; its values must fit it).
+void write_image(const std::string& path, const LabelImage& img, const std::string& component,
                  const std::map<std::string, std::string>& fields = {});
 
 } // namespace imgmesh

@@ -157,4 +157,30 @@ LabelCriticalCounts count_label_critical_configurations(const LabelImage& img) {
   return out;
 }
 
+PartitionCheck check_well_composed_partition(const LabelImage& img) {
+  PartitionCheck c;
+  c.dimension = img.dimension;
+  c.voxels = img.count();
+  c.counts = count_label_critical_configurations(img);
+  return c;
+}
+
+Json PartitionCheck::to_json() const {
+  Json j = Json::object();
+  j["dimension"] = dimension;
+  j["voxels"] = voxels;
+  j["labels"] = counts.labels.size() - 1;
+  j["label_values"] = std::vector<std::int32_t>(counts.labels.begin() + 1, counts.labels.end());
+  const Json c = counts.to_json();
+  for (const char* k : {"c1", "c2", "labels_left", "per_label"}) j[k] = c.at(k);
+  j["well_composed"] = counts.total() == 0;
+  return j;
+}
+
+std::string PartitionCheck::failed_guarantee() const {
+  if (!counts.total()) return "";
+  return "not a well-composed partition: " + std::to_string(counts.total()) + " critical configurations in " +
+         std::to_string(counts.labels_with_configurations()) + " labels";
+}
+
 } // namespace imgmesh

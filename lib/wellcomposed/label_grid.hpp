@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace imgmesh::wellcomposed_detail {
@@ -43,6 +44,16 @@ template <class T> inline bool uniform_rows(const T* a, const T* b, const T* c, 
   unsigned diff = 0;
   for (int k = 0; k < 8; ++k) diff |= unsigned(a[k] ^ x) | unsigned(b[k] ^ x) | unsigned(c[k] ^ x) | unsigned(d[k] ^ x);
   return diff == 0;
+}
+// One byte a voxel: four 64-bit loads.
+template <> inline bool uniform_rows<std::uint8_t>(const std::uint8_t* a, const std::uint8_t* b, const std::uint8_t* c,
+                                                  const std::uint8_t* d) {
+  std::uint64_t w[4];
+  std::memcpy(&w[0], a, 8);
+  std::memcpy(&w[1], b, 8);
+  std::memcpy(&w[2], c, 8);
+  std::memcpy(&w[3], d, 8);
+  return w[0] == w[1] && w[0] == w[2] && w[0] == w[3] && w[0] == std::uint64_t(a[0]) * 0x0101010101010101ull;
 }
 
 // Per label index, C1/C2 of its indicator on an nx x ny x nz dense grid

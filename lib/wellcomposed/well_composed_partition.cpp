@@ -16,9 +16,10 @@
 // holding the voxel: those go on the queue R.
 //
 // Why it terminates. Labels have a priority (rank): the background lowest,
-// then the labels from the most voxels to the fewest, so small structures
-// grow rather than vanish. A move only ever gives a voxel a label of higher
-// rank, and one exists for every configuration: C1 of L with a, b on the
+// then by default the labels from the most voxels to the fewest, so small
+// structures grow rather than shrink (as the binary add mode: a thin vessel
+// stays connected); PartitionOptions::priority reverses it. A move only
+// ever gives a voxel a label of higher rank, and one exists for every configuration: C1 of L with a, b on the
 // other diagonal: if rank L > rank a, a's voxel becomes L; else an L voxel
 // becomes a. C2 of L on two corners: if a label x of the six ranks above L,
 // a corner becomes x; else one of the six becomes L. C2 of L on six, a, b on
@@ -270,11 +271,15 @@ private:
 };
 
 // Ranks: background 0, then the labels from the most input voxels to the
-// fewest (ties: larger value first).
-std::vector<unsigned> label_ranks(const std::vector<std::size_t>& voxels) {
+// fewest (Smaller: small labels win), or the reverse (Larger); ties: the
+// larger value ranks higher.
+std::vector<unsigned> label_ranks(const std::vector<std::size_t>& voxels, PartitionOptions::Priority priority) {
   std::vector<unsigned> order(voxels.size());
   std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin() + 1, order.end(), [&](unsigned a, unsigned b) { return voxels[a] > voxels[b]; });
+  const bool smaller = priority == PartitionOptions::Priority::Smaller;
+  std::stable_sort(order.begin() + 1, order.end(), [&](unsigned a, unsigned b) {
+    return smaller ? voxels[a] > voxels[b] : voxels[a] < voxels[b];
+  });
   std::vector<unsigned> rank(voxels.size());
   for (std::size_t i = 0; i < order.size(); ++i) rank[order[i]] = unsigned(i);
   return rank;
@@ -287,7 +292,7 @@ namespace {
 // The repair on the padded grid of dense indices (T: one byte up to 255
 // labels, two above); fills res.image, res.output and the counts.
 template <class T>
-void repair_dense(const LabelImage& in, const wellcomposed_detail::LabelValues& lv,
+void repair_dense(LabelImage& in, const wellcomposed_detail::LabelValues& lv,
                   const wellcomposed_detail::Padding& pad, const PartitionOptions& opt, PartitionResult& res) {
   const bool planar = in.dimension == 2;
   const std::size_t nx = in.size[0] + pad.before[0] + pad.after[0], ny = in.size[1] + pad.before[1] + pad.after[1];
@@ -317,7 +322,7 @@ void repair_dense(const LabelImage& in, const wellcomposed_detail::LabelValues& 
   res.input.labels = lv.values;
   res.input.counts.assign(K, {});
   wellcomposed_detail::count_dense(grid.data(), nx, ny, nz, res.input.counts);  // outside = 0: the input's counts
-  PartitionRepair<T> rep(grid.data(), nx, ny, nz, planar, label_ranks(lv.voxels), count, keep);
+  PartitionRepair<T> rep(grid.data(), nx, ny, nz, planar, label_ranks(lv.voxels, opt.priority), count, keep);
   if (opt.repair) {
     rep.run();
     if (opt.prune) rep.prune();
@@ -328,30 +333,43 @@ void repair_dense(const LabelImage& in, const wellcomposed_detail::LabelValues& 
   res.output.labels = lv.values;
   res.output.counts.assign(K, {});
   wellcomposed_detail::count_dense(grid.data(), nx, ny, nz, res.output.counts);
-  // The output image, the changes, and the labels lost, from the grids.
-  Geometry g = in.geometry();
-  g.size = {nx, ny, planar ? 1 : nz};
-  g.origin = in.world(-double(pad.before[0]), -double(pad.before[1]), -double(pad.before[2]));
-  res.image = LabelImage(g);
-  for (std::size_t i = 0; i < res.image.data.size(); ++i) res.image.data[i] = lv.values[grid[i]];
+  // The output image, the changes, and the labels lost, from the grids;
+  // without growth, in the input's own storage (a fresh image costs more
+  // than the repair on a large grid).
   std::vector<std::size_t> now(K, 0);
-  for (std::size_t i = 0; i < res.image.data.size(); ++i) ++now[grid[i]];
+  LabelImage out;
+  if (!pad.any()) {
+    out = std::move(in);
+  } else {
+    Geometry g = in.geometry();
+    g.size = {nx, ny, planar ? 1 : nz};
+    g.origin = in.world(-double(pad.before[0]), -double(pad.before[1]), -double(pad.before[2]));
+    out = LabelImage(g);
+  }
   for (std::size_t z = 0; z < in.size[2]; ++z)
-    for (std::size_t y = 0; y < in.size[1]; ++y)
+    for (std::size_t y = 0; y < in.size[1]; ++y) {
+      const std::size_t from = pad.any() ? in.index(0, y, z) : out.index(0, y, z), to = at(0, y, z);
+      const std::int32_t* a = pad.any() ? &in.data[from] : &out.data[from];
+      std::int32_t* b = &out.data[to];
       for (std::size_t x = 0; x < in.size[0]; ++x) {
-        const std::int32_t a = in(x, y, z), b = res.image.data[at(x, y, z)];
-        if (a != b) ++res.changes[{a, b}];
+        const T l = grid[to + x];
+        const std::int32_t v = lv.values[l];
+        ++now[l];
+        if (a[x] != v) ++res.changes[{a[x], v}];
+        b[x] = v;
       }
+    }
   for (std::size_t l = 1; l < K; ++l)
     if (lv.voxels[l] && !now[l]) {
       res.lost.push_back(lv.values[l]);
       if (keep[l]) res.lost_protected.push_back(lv.values[l]);
     }
+  res.image = std::move(out);
 }
 
 } // namespace
 
-PartitionResult make_well_composed_partition(const LabelImage& in, const PartitionOptions& opt) {
+PartitionResult make_well_composed_partition(LabelImage in, const PartitionOptions& opt) {
   wellcomposed_detail::check_size(in, "make_well_composed_partition");
   if (in.data.size() != in.count()) throw Error("make_well_composed_partition: image data size mismatch");
   const wellcomposed_detail::LabelValues lv = wellcomposed_detail::label_values(in);
@@ -376,7 +394,9 @@ Json PartitionResult::to_json() const {
   j["dimension"] = image.dimension;
   j["voxels"] = input_voxels;
   j["labels"] = input.labels.size() - 1;
+  j["label_values"] = std::vector<std::int32_t>(input.labels.begin() + 1, input.labels.end());
   j["min_voxels"] = options.min_voxels;
+  j["priority"] = options.priority == PartitionOptions::Priority::Smaller ? "smaller" : "larger";
   const Json in = input.to_json();
   j["c1"] = in.at("c1");
   j["c2"] = in.at("c2");

@@ -46,6 +46,12 @@ struct PartitionOptions {
   // choices that keep a label's last voxel and, if it must, raises that
   // label's priority once). 0 or 1: every label is kept.
   std::size_t min_voxels = 0;
+  // Which label of a configuration grows: the background always yields;
+  // Smaller: the label of fewer input voxels ranks higher (small structures
+  // grow, never thin out); Larger: the reverse (a few % fewer changes on
+  // noisy maps, small labels shrink).
+  enum class Priority { Smaller, Larger };
+  Priority priority = Priority::Smaller;
   // Prune: after the repair, every changed voxel goes back to its input
   // label when that creates no configuration (fewer changes).
   bool prune = true;
@@ -67,7 +73,7 @@ struct PartitionResult {
   std::size_t changed = 0;
   std::map<std::pair<std::int32_t, std::int32_t>, std::size_t> changes;
   std::size_t steps = 0;       // relabellings made by the repair (before pruning)
-  std::size_t promotions = 0;  // labels raised to keep their last voxel
+  std::size_t promotions = 0;  // labels raised to the top rank to keep their last voxel
   std::vector<std::int32_t> lost;  // labels of the input with no voxel left (none unless min_voxels)
   std::vector<std::int32_t> lost_protected;  // of those, labels of at least min_voxels voxels: a failed guarantee
   PartitionOptions options;
@@ -77,7 +83,20 @@ struct PartitionResult {
 };
 
 // Throws Error on an image that is not 2D/3D, too large, or of more than
-// 65535 labels besides 0.
-PartitionResult make_well_composed_partition(const LabelImage& in, const PartitionOptions& opt = {});
+// 65535 labels besides 0. `in` by value: moved in, its storage becomes the
+// output's when the grid does not grow.
+PartitionResult make_well_composed_partition(LabelImage in, const PartitionOptions& opt = {});
+
+// img2wc --labels --check: the counts of a label image. Configurations
+// left are a failed guarantee (exit 3): the check is the partition's
+// certificate.
+struct PartitionCheck {
+  int dimension = 3;
+  std::size_t voxels = 0;
+  LabelCriticalCounts counts;
+  Json to_json() const;
+  std::string failed_guarantee() const;
+};
+PartitionCheck check_well_composed_partition(const LabelImage& img);
 
 } // namespace imgmesh

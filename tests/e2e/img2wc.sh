@@ -210,7 +210,11 @@ bad 2 "unknown output format" "$DATA/bunny00-96.nrrd" "bad.xyz"
 mkdir -p "bad.dir.mha"
 bad 1 "output path is a folder" "$DATA/bunny00-96.nrrd" "bad.dir.mha"
 BAD_STDOUT=/dev/full bad 1 "stdout is /dev/full" "$DATA/bunny00-96.nrrd" -
-
+bad 2 "--labels not a list" "$DATA/bunny00-96.nrrd" "bad.mha" --labels 1,x
+bad 2 "--labels with --label" "$DATA/bunny00-96.nrrd" "bad.mha" --labels all --label 1
+bad 2 "--labels with --mode" "$DATA/bunny00-96.nrrd" "bad.mha" --labels all --mode min
+bad 2 "--min-voxels without --labels" "$DATA/bunny00-96.nrrd" "bad.mha" --min-voxels 3
+bad 1 "--labels absent label" "$DATA/bunny00-96.nrrd" "bad.mha" --labels 1,7
 }
 
 # Exit 3: with the repair skipped (the hidden test-only --skip-repair), the
@@ -226,6 +230,65 @@ case_exit_3_when_the_repair_is_skipped() {
   # --quiet silences what is not an error; a guarantee not met is one.
   expect 3 img2wc "$DATA/bunny00-96.nrrd" skip-q.nrrd --skip-repair -q
   grep -q "^img2wc: guarantee not met: output is NOT well-composed" err.txt || fail "-q hides which guarantee: '$(cat err.txt)'"
+}
+
+# --labels: every label of a label map at once (issue 36). Each label of
+# the output and the background pass the binary counter (img2wc --label L
+# --check, a code path of its own); label_partition_check.py checks the
+# rest against the input grown the same way (--skip-repair: exit 3, the
+# input written back): type, geometry, labels kept, changes as reported.
+partition() {  # partition NAME IN TYPE [ARGS...]: repair, then every check
+  local name=$1 in=$2 type=$3; shift 3
+  expect 0 img2wc "$in" "$name.nrrd" --labels all "$@" --stats "$name.json" || return 1
+  expect 3 img2wc "$in" "$name.in.nrrd" --labels all "$@" --skip-repair -q || return 1
+  OUT=/dev/null expect 0 img2wc "$name.nrrd" --labels all --check || fail "$name: --check refuses the output"
+  for l in $(python3 -c "import json,sys; print(*json.load(open(sys.argv[1]))['label_values'])" "$name.json"); do
+    OUT=/dev/null expect 0 img2wc "$name.nrrd" --label "$l" --check || fail "$name: label $l not well-composed"
+  done
+  OUT=/dev/null expect 0 img2wc "$name.nrrd" --check || fail "$name: background not well-composed"
+  python3 "$E2E/label_partition_check.py" "$name.in.nrrd" "$name.nrrd" "$name.json" "$type" >check.txt 2>&1 ||
+    fail "$name: $(cat check.txt)"
+}
+case_labels_brain_liver_every_label_well_composed() {
+  OUT=/dev/null expect 3 img2wc "$DATA/brain-kmeans-labels.nii.gz" --labels all --check
+  grep -q "^img2wc: guarantee not met: not a well-composed partition" err.txt || fail "--check: $(cat err.txt)"
+  partition brain "$DATA/brain-kmeans-labels.nii.gz" uint8
+  [[ $(st brain.json c1) -gt 10000 && $(st brain.json labels) == 6 && $(st brain.json output_size) == "[130, 130, 64]" ]] ||
+    fail "brain stats: $(head -c 600 brain.json)"
+  partition liver "$DATA/liver-labels.nrrd" uint8 --priority larger
+  expect 0 img2wc "$DATA/liver-labels.nrrd" liver.again.nrrd --labels all --priority larger
+  cmp -s liver.nrrd liver.again.nrrd || fail "same input, different output"
+}
+
+# A 2D label image (3 labels) and a list of labels (the others become 0).
+case_labels_2d_and_a_list() {
+  partition ventricle "$DATA/VentricleModel.png" uint8
+  [[ $(st ventricle.json dimension) == 2 && $(st ventricle.json c1) -gt 0 ]] || fail "2D stats: $(cat ventricle.json)"
+  expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" list.nrrd --labels 2,5 --stats list.json
+  [[ $(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['label_values'])" list.json) == "[2, 5]" ]] ||
+    fail "--labels 2,5: $(head -c 300 list.json)"
+  OUT=/dev/null expect 0 img2wc list.nrrd --labels all --check || fail "--labels 2,5 output not well-composed"
+}
+
+# The checker refuses a partition with one configuration left: two voxels
+# of label 5 sharing an edge only, between labels 1 and 2.
+case_labels_check_refuses_one_configuration() {
+  python3 - <<'PY'
+n = 6
+v = bytearray(n * n * n)
+for z in range(1, 5):
+    for y in range(1, 5):
+        for x in range(1, 5):
+            v[x + n * (y + n * z)] = 1 if x < 3 else 2
+v[2 + n * (2 + n * 2)] = 5
+v[3 + n * (3 + n * 2)] = 5
+open('one.nrrd', 'wb').write(b'NRRD0004\ntype: uint8\ndimension: 3\nsizes: 6 6 6\nencoding: raw\n\n' + bytes(v))
+PY
+  OUT=one.txt expect 3 img2wc one.nrrd --labels all --check --stats one.json
+  grep -q "label 5: C1 1, C2 0" one.txt || fail "--check does not name label 5: $(cat one.txt)"
+  [[ $(st one.json c1) == 1 && $(st one.json labels_left) == "[5]" ]] || fail "check stats: $(cat one.json)"
+  expect 0 img2wc one.nrrd one.wc.nrrd --labels all
+  OUT=/dev/null expect 0 img2wc one.wc.nrrd --labels all --check || fail "repaired image refused"
 }
 
 run_cases "$@"
