@@ -9,6 +9,10 @@
 // the four blocks around it. Every change raises the sum of the labels, so
 // the repair ends; blocks with three or four labels are junctions and stay
 // (vertices of degree 3 or 4 are fine for a PSLG).
+// Not wellcomposed/well_composed_partition.hpp's repair (img2wc --labels),
+// which also resolves a b / c a (a C1 of a) and lets the label of fewer
+// pixels win, not the higher value: it would change img2poly's outputs on
+// label images and their "labels only raised" property (test_image_pslg).
 //
 // The rectangle Omega is the image's extent (the union of its pixel squares).
 // Thesis 2.3 takes conv(D), the hull of the pixel centres, and assumes no
