@@ -41,9 +41,10 @@ int run_labels(cli::Tool& tool, const std::string& in, const std::string& out, c
   tool.stats["input"] = in;
   if (check) {
     const PartitionCheck c = check_well_composed_partition(img);
+    const Json totals = c.counts.to_json();
     std::cout << in << ": " << (c.counts.total() ? "not a well-composed partition" : "well-composed partition")
-              << " (" << c.counts.labels.size() - 1 << " labels; C1 " << c.counts.to_json().at("c1").integer()
-              << ", C2 " << c.counts.to_json().at("c2").integer() << ")\n";
+              << " (" << c.counts.labels.size() - 1 << " labels; C1 " << totals.at("c1").integer() << ", C2 "
+              << totals.at("c2").integer() << ")\n";
     for (std::size_t i = 0; i < c.counts.labels.size(); ++i)
       if (c.counts.counts[i].total())
         std::cout << "  label " << c.counts.labels[i] << ": C1 " << c.counts.counts[i].c1 << ", C2 "
@@ -79,7 +80,9 @@ int main(int argc, char** argv) {
   std::string labels;
   PartitionOptions popt;
   tool.app.add_option("IN", in, "Input image (NRRD, MetaImage, NIfTI, PNG; - for stdin)")->required();
-  tool.app.add_option("OUT", out, "Output 0/1 uint8 image (--labels: a label image of IN's type), format by extension (- for NRRD on stdout)");
+  tool.app.add_option("OUT", out,
+                      "Output 0/1 uint8 image (--labels: a label image of IN's type), format by extension "
+                      "(- for NRRD on stdout)");
   tool.data_output(out, cli::Stream::Binary);
   auto* label = tool.app.add_option("--label", sel.labels,
                                     "Foreground is this label (repeatable: the union); default: nonzero");
