@@ -104,6 +104,20 @@ int edge_labels(const Corner& k, const LocalEdge& e, std::array<std::int32_t, 4>
   return n;
 }
 
+// The 2x2x2 block of labels around corner k.c (0 beyond the grid).
+void load_block(const LabelImage& img, Corner& k) {
+  const std::size_t x = k.c[0], y = k.c[1], z = k.c[2];
+  if (x == 0 || y == 0 || z == 0 || x >= img.size[0] || y >= img.size[1] || z >= img.size[2]) {
+    for (int w = 0; w < 8; ++w)
+      k.label[std::size_t(w)] = img.at(std::ptrdiff_t(x) - 1 + (w & 1), std::ptrdiff_t(y) - 1 + ((w >> 1) & 1),
+                                       std::ptrdiff_t(z) - 1 + ((w >> 2) & 1), 0);
+    return;
+  }
+  const std::int32_t* p = img.data.data() + img.index(x - 1, y - 1, z - 1);
+  const std::size_t sy = img.size[0], sz = img.size[0] * img.size[1];
+  k.label = {p[0], p[1], p[sy], p[sy + 1], p[sz], p[sz + 1], p[sz + sy], p[sz + sy + 1]};
+}
+
 // Visits every corner in id order (x fastest), numbering faces and curve
 // edges at their lowest corners.
 template <class Visit> void scan_corners(const LabelImage& img, const std::array<std::size_t, 3>& lat, Visit&& visit) {
@@ -116,9 +130,7 @@ template <class Visit> void scan_corners(const LabelImage& img, const std::array
     for (std::size_t y = 0; y < lat[1]; ++y)
       for (std::size_t x = 0; x < lat[0]; ++x, ++k.id) {
         k.c = {x, y, z};
-        for (int w = 0; w < 8; ++w)
-          k.label[std::size_t(w)] = img.at(std::ptrdiff_t(x) - 1 + (w & 1), std::ptrdiff_t(y) - 1 + ((w >> 1) & 1),
-                                           std::ptrdiff_t(z) - 1 + ((w >> 2) & 1), 0);
+        load_block(img, k);
         const std::size_t here = x + lat[0] * y;
         k.uniform = std::all_of(k.label.begin(), k.label.end(), [&](std::int32_t l) { return l == k.label[0]; });
         k.own_faces = k.own_curves = 0;
