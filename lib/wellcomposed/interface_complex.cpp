@@ -247,7 +247,7 @@ Joins first_scan(const LabelImage& img, InterfaceComplex& out) {
     for (int n = 0; n < 3; ++n)
       if ((k.own_faces >> n) & 1) {
         const bool plus = k.label[std::size_t(7 ^ (1 << n))] > k.label[7];
-        out.faces.push_back((k.id * 3 + std::uint64_t(n)) << 1 | std::uint64_t(plus));
+        out.faces.push_back(InterfaceComplex::face_key(k.id, n, plus));
         j.faces.add();
       }
     for (int a = 0; a < 3; ++a)
@@ -493,6 +493,12 @@ InterfaceComplex interface_complex(const LabelImage& img) {
 std::array<std::size_t, 3> InterfaceComplex::corner(std::uint64_t id) const {
   return {std::size_t(id % lattice[0]), std::size_t(id / lattice[0] % lattice[1]),
           std::size_t(id / lattice[0] / lattice[1])};
+}
+
+std::size_t InterfaceComplex::find_face(std::uint64_t corner, int axis) const {
+  const auto it = std::lower_bound(faces.begin(), faces.end(), face_key(corner, axis, false));
+  return it != faces.end() && (*it >> 1) == (face_key(corner, axis, false) >> 1) ? std::size_t(it - faces.begin())
+                                                                                 : faces.size();
 }
 
 const InterfaceComplex::LabelBoundary* InterfaceComplex::find_label(std::int32_t label) const {

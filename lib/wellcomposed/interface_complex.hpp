@@ -134,11 +134,17 @@ struct InterfaceComplex {
 
   CriticalCounts critical;  // summed over the labels
 
-  // A face's lowest corner (lattice coordinates), normal axis, orientation.
+  // A corner's lattice coordinates; a face key's lowest corner, normal axis,
+  // orientation; the index of the face at a corner normal to an axis
+  // (faces.size() when there is none).
   std::array<std::size_t, 3> corner(std::uint64_t corner_id) const;
+  static std::uint64_t face_key(std::uint64_t corner, int axis, bool plus) {
+    return (corner * 3 + std::uint64_t(axis)) << 1 | std::uint64_t(plus);
+  }
   static std::uint64_t face_corner(std::uint64_t key) { return (key >> 1) / 3; }
   static int face_axis(std::uint64_t key) { return int((key >> 1) % 3); }
   static bool face_plus(std::uint64_t key) { return key & 1u; }
+  std::size_t find_face(std::uint64_t corner, int axis) const;
   const LabelBoundary* find_label(std::int32_t label) const;
 
   std::size_t closed_curves() const;

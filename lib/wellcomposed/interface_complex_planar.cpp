@@ -120,7 +120,7 @@ InterfaceComplex interface_complex_2d(const LabelImage& img) {
     for (int n = 0; n < 2; ++n)
       if ((k.own >> n) & 1) {
         const bool plus = k.label[std::size_t(3 ^ (1 << n))] > k.label[3];
-        out.faces.push_back((k.id * 3 + std::uint64_t(n)) << 1 | std::uint64_t(plus));
+        out.faces.push_back(InterfaceComplex::face_key(k.id, n, plus));
         j.faces.add();
       }
     join_at_corner(k, j);

@@ -27,6 +27,12 @@ std::vector<const Patch*> patches_of(const InterfaceComplex& k, std::int32_t a, 
   return out;
 }
 
+const Patch& one_patch(const InterfaceComplex& k, std::int32_t a, std::int32_t b) {
+  const auto p = patches_of(k, a, b);
+  REQUIRE(p.size() == 1);
+  return *p[0];
+}
+
 // (faces, euler) of a label's components, sorted.
 std::vector<std::pair<std::size_t, long long>> label_components(const InterfaceComplex& k, std::int32_t l) {
   std::vector<std::pair<std::size_t, long long>> out;
@@ -307,14 +313,14 @@ TEST_CASE("interface complex: nested shells are two spheres", "[interface_comple
   CHECK(label_components(k, 2) == std::vector<std::pair<std::size_t, long long>>{{54, 2}});
   // Orientation out of the higher label: the shell's top face at the centre
   // points +z (label 1 below, 0 above), the ball's bottom face -z (2 above).
-  const auto top = std::lower_bound(k.faces.begin(), k.faces.end(), std::uint64_t(((3 + 8 * (3 + 8 * 6)) * 3 + 2)) << 1);
-  REQUIRE(top != k.faces.end());
-  CHECK(InterfaceComplex::face_corner(*top) == 3 + 8 * (3 + 8 * 6));
-  CHECK(InterfaceComplex::face_axis(*top) == 2);
-  CHECK(InterfaceComplex::face_plus(*top));
-  const auto bottom = std::lower_bound(k.faces.begin(), k.faces.end(), std::uint64_t(((3 + 8 * (3 + 8 * 2)) * 3 + 2)) << 1);
-  CHECK(InterfaceComplex::face_corner(*bottom) == 3 + 8 * (3 + 8 * 2));
-  CHECK(!InterfaceComplex::face_plus(*bottom));
+  const std::size_t top = k.find_face(3 + 8 * (3 + 8 * 6), 2), bottom = k.find_face(3 + 8 * (3 + 8 * 2), 2);
+  REQUIRE(top < k.faces.size());
+  CHECK(InterfaceComplex::face_corner(k.faces[top]) == 3 + 8 * (3 + 8 * 6));
+  CHECK(InterfaceComplex::face_axis(k.faces[top]) == 2);
+  CHECK(InterfaceComplex::face_plus(k.faces[top]));
+  REQUIRE(bottom < k.faces.size());
+  CHECK(!InterfaceComplex::face_plus(k.faces[bottom]));
+  CHECK(k.find_face(0, 0) == k.faces.size());  // no face at the grid's corner
   CHECK(k.summary() == "interface complex: 2 patches, 0 curves, 0 junctions");
   check_against_brute_force(img, k);
 }
@@ -432,11 +438,10 @@ TEST_CASE("interface complex: labels filling the grid meet beyond it", "[interfa
   paint(img, {2, 0, 0}, {3, 3, 3}, 2);
   const InterfaceComplex k = interface_complex(img);
   REQUIRE(k.failed_guarantee().empty());
-  REQUIRE(patches_of(k, 2, 1).size() == 1);
-  CHECK(patches_of(k, 2, 1)[0]->faces == 16);
-  CHECK(patches_of(k, 2, 1)[0]->euler == 1);
-  CHECK(patches_of(k, 1, 0)[0]->faces == 48);
-  CHECK(patches_of(k, 1, 0)[0]->euler == 1);
+  CHECK(one_patch(k, 2, 1).faces == 16);
+  CHECK(one_patch(k, 2, 1).euler == 1);
+  CHECK(one_patch(k, 1, 0).faces == 48);
+  CHECK(one_patch(k, 1, 0).euler == 1);
   REQUIRE(k.curves.size() == 1);
   CHECK(k.curves[0].closed);
   CHECK(k.curves[0].edges == 16);
@@ -465,17 +470,14 @@ TEST_CASE("interface complex: one-voxel labels, alone and on an interface", "[in
   CHECK(cube[0]->vertices == 8);
   CHECK(cube[0]->edges == 12);
   CHECK(cube[0]->euler == 2);
-  REQUIRE(patches_of(k, 4, 1).size() == 1);
-  CHECK(patches_of(k, 4, 1)[0]->faces == 5);
-  CHECK(patches_of(k, 4, 1)[0]->euler == 1);
-  REQUIRE(patches_of(k, 4, 2).size() == 1);
-  CHECK(patches_of(k, 4, 2)[0]->faces == 1);
-  CHECK(patches_of(k, 4, 2)[0]->euler == 1);
-  CHECK(patches_of(k, 4, 2)[0]->boundary_edges == 4);
-  REQUIRE(patches_of(k, 2, 1).size() == 1);
-  CHECK(patches_of(k, 2, 1)[0]->faces == 15);
-  CHECK(patches_of(k, 2, 1)[0]->euler == 0);
-  CHECK(patches_of(k, 2, 1)[0]->boundary_loops == 2);
+  CHECK(one_patch(k, 4, 1).faces == 5);
+  CHECK(one_patch(k, 4, 1).euler == 1);
+  CHECK(one_patch(k, 4, 2).faces == 1);
+  CHECK(one_patch(k, 4, 2).euler == 1);
+  CHECK(one_patch(k, 4, 2).boundary_edges == 4);
+  CHECK(one_patch(k, 2, 1).faces == 15);
+  CHECK(one_patch(k, 2, 1).euler == 0);
+  CHECK(one_patch(k, 2, 1).boundary_loops == 2);
   REQUIRE(k.curves.size() == 2);
   std::multiset<std::size_t> lengths;
   for (const auto& c : k.curves) {
@@ -499,10 +501,9 @@ TEST_CASE("interface complex: a torus label inside another", "[interface_complex
   paint(img, {4, 4, 2}, {5, 5, 3}, 1);
   const InterfaceComplex k = interface_complex(img);
   REQUIRE(k.failed_guarantee().empty());
-  REQUIRE(patches_of(k, 2, 1).size() == 1);
-  CHECK(patches_of(k, 2, 1)[0]->euler == 0);
-  CHECK(patches_of(k, 2, 1)[0]->boundary_loops == 0);
-  CHECK(patches_of(k, 1, 0)[0]->euler == 2);
+  CHECK(one_patch(k, 2, 1).euler == 0);
+  CHECK(one_patch(k, 2, 1).boundary_loops == 0);
+  CHECK(one_patch(k, 1, 0).euler == 2);
   const auto l1 = label_components(k, 1);
   REQUIRE(l1.size() == 2);
   CHECK(std::set<long long>{l1[0].second, l1[1].second} == std::set<long long>{0, 2});
@@ -521,7 +522,6 @@ TEST_CASE("interface complex: a well-composed block where a patch pinches at a j
   for (int i = 0; i < 8; ++i) img.data[std::size_t(i)] = v[i];
   const InterfaceComplex k = interface_complex(img);
   REQUIRE(k.failed_guarantee().empty());
-  REQUIRE(patches_of(k, 3, 0).size() == 1);
   const Patch& p = *patches_of(k, 3, 0)[0];
   CHECK(p.faces == 8);
   CHECK(p.vertices == 12);
@@ -563,7 +563,7 @@ TEST_CASE("interface complex: a C1 or C2 is counted and fails the guarantee", "[
   CHECK(k.find_label(1)->critical.c1 >= 1);
   CHECK(k.find_label(2)->critical.c1 >= 1);
   CHECK(patches_of(k, 1, 2).size() == 1);
-  CHECK(patches_of(k, 1, 2)[0]->faces == 4);
+  CHECK(one_patch(k, 1, 2).faces == 4);
 }
 
 TEST_CASE("interface complex: random well-composed partitions against the brute force", "[interface_complex]") {
@@ -613,21 +613,18 @@ TEST_CASE("interface complex: 2D, two labels filling the grid and a one-pixel la
   REQUIRE(k.dimension == 2);
   REQUIRE(k.failed_guarantee().empty());
   CHECK(k.faces.size() == 28);
-  REQUIRE(patches_of(k, 2, 1).size() == 1);
   const Patch& line = *patches_of(k, 2, 1)[0];
   CHECK(line.faces == 4);
   CHECK(line.vertices == 5);
   CHECK(line.euler == 1);
   CHECK(line.boundary_edges == 2);
   for (std::int32_t l : {1, 2}) {
-    REQUIRE(patches_of(k, l, 0).size() == 1);
-    CHECK(patches_of(k, l, 0)[0]->faces == 10);
-    CHECK(patches_of(k, l, 0)[0]->euler == 1);
-    CHECK(patches_of(k, l, 0)[0]->boundary_edges == 2);
+      CHECK(one_patch(k, l, 0).faces == 10);
+    CHECK(one_patch(k, l, 0).euler == 1);
+    CHECK(one_patch(k, l, 0).boundary_edges == 2);
   }
-  REQUIRE(patches_of(k, 3, 1).size() == 1);
-  CHECK(patches_of(k, 3, 1)[0]->euler == 0);
-  CHECK(patches_of(k, 3, 1)[0]->boundary_edges == 0);
+  CHECK(one_patch(k, 3, 1).euler == 0);
+  CHECK(one_patch(k, 3, 1).boundary_edges == 0);
   REQUIRE(k.junctions.size() == 2);
   CHECK(k.corner(k.junctions[0]) == std::array<std::size_t, 3>{3, 0, 0});
   CHECK(k.corner(k.junctions[1]) == std::array<std::size_t, 3>{3, 4, 0});
@@ -637,17 +634,15 @@ TEST_CASE("interface complex: 2D, two labels filling the grid and a one-pixel la
   CHECK(label_components(k, 2) == std::vector<std::pair<std::size_t, long long>>{{14, 0}});
   // Orientation out of the higher label: the edge x = 3, y 0..1 between 1
   // (minus side) and 2: its normal points -x.
-  const auto e = std::lower_bound(k.faces.begin(), k.faces.end(), std::uint64_t((3 + 7 * 0) * 3) << 1);
-  CHECK(InterfaceComplex::face_corner(*e) == 3);
-  CHECK(InterfaceComplex::face_axis(*e) == 0);
-  CHECK(!InterfaceComplex::face_plus(*e));
+  const std::size_t e = k.find_face(3, 0);
+  REQUIRE(e < k.faces.size());
+  CHECK(!InterfaceComplex::face_plus(k.faces[e]));
   // A diagonal pair: C1 of 1 and of 2, one patch of 4 edges pinched.
   img = label_grid(2, 2, 1, 2);
   img(0, 0, 0) = 1, img(1, 1, 0) = 1, img(1, 0, 0) = 2, img(0, 1, 0) = 2;
   const InterfaceComplex d = interface_complex(img);
   CHECK(d.find_label(1)->critical.c1 == 1);
   CHECK(d.find_label(2)->critical.c1 == 1);
-  REQUIRE(patches_of(d, 1, 2).size() == 1);
-  CHECK(patches_of(d, 1, 2)[0]->pinched_vertices == 1);
+  CHECK(one_patch(d, 1, 2).pinched_vertices == 1);
   CHECK(!d.failed_guarantee().empty());
 }
