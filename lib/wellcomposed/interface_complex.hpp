@@ -64,6 +64,10 @@
 // boundary edges into loops. Linear time; per face 12 bytes (its key and its
 // patch).
 //
+// For the tools: summary() is the line "interface complex: N patches, M
+// curves, J junctions"; to_json() the counts (faces, patches, curves,
+// closed_curves, junctions, c1, c2, pinched_vertices, pinches).
+//
 // 2D (a single-slice image of dimension 2): faces are pixel edges, patches
 // are the components of one pair's pixel edges (arcs between junctions, or
 // loops), junctions the corners where three or more labels meet; there are no
@@ -93,11 +97,12 @@ struct InterfaceComplex {
 
   struct Patch {
     std::int32_t behind = 0, front = 0;   // behind > front: the pair
+    // 2D: vertices are corners, faces its pixel edges, edges 0.
     std::size_t faces = 0, vertices = 0, edges = 0;
-    long long euler = 0;                  // V - E + F (2D: V - E, E its pixel edges)
-    std::size_t boundary_edges = 0;       // edges with one face of it (2D: corners with one edge)
+    long long euler = 0;                  // V - E + F
+    std::size_t boundary_edges = 0;       // edges with one face of it (2D: its ends, corners with one)
     std::size_t boundary_loops = 0;       // components of those (2D: 0)
-    std::size_t pinched_vertices = 0;     // corners where its faces form two fans or more
+    std::size_t pinched_vertices = 0;     // corners where its faces form two fans or more (2D: four edges)
     std::size_t first_face = 0;
   };
   std::vector<Patch> patches;  // in the order of their first faces
@@ -130,7 +135,7 @@ struct InterfaceComplex {
     std::vector<Component> components;  // in the order of their first faces
     CriticalCounts critical;            // C1, C2 of {X = L} (label 0: of X != 0)
   };
-  std::vector<LabelBoundary> labels;  // ascending, 0 first (beyond the grid)
+  std::vector<LabelBoundary> labels;  // ascending; 0 (beyond the grid) always among them
 
   CriticalCounts critical;  // summed over the labels
 
