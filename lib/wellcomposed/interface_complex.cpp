@@ -385,8 +385,19 @@ void second_scan(const LabelImage& img, InterfaceComplex& out, const std::vector
     c.count_cells(k);
     c.count_fans_and_loops(k);
   });
-  for (std::uint32_t pos = 0; pos < c.loop_patch.size(); ++pos)
-    if (c.loop_patch[pos] != kNone && c.loops.find(pos) == pos) ++out.patches[c.loop_patch[pos]].boundary_loops;
+  // Loops numbered in the order of their first curve edges.
+  out.curve_edge_loop.assign(c.loop_patch.size(), kNone);
+  for (std::uint32_t pos = 0; pos < c.loop_patch.size(); ++pos) {
+    if (c.loop_patch[pos] == kNone) continue;
+    const std::uint32_t root = c.loops.find(pos);
+    if (root == pos) {
+      out.loops.push_back({c.loop_patch[pos], 0, pos / 4});
+      ++out.patches[c.loop_patch[pos]].boundary_loops;
+    }
+    // A root is its set's first position: numbered already.
+    out.curve_edge_loop[pos] = root == pos ? std::uint32_t(out.loops.size() - 1) : out.curve_edge_loop[root];
+    ++out.loops[out.curve_edge_loop[pos]].edges;
+  }
   for (auto& p : out.patches) p.euler = (long long)(p.vertices) - (long long)(p.edges) + (long long)(p.faces);
   for (auto& m : components) m.euler = (long long)(m.vertices) - (long long)(m.edges) + (long long)(m.faces);
 }

@@ -119,6 +119,18 @@ struct InterfaceComplex {
     std::array<std::uint64_t, 2> ends{0, 0};  // an arc's junction corners, ascending
   };
   std::vector<Curve> curves;  // in the order of their first edges
+  // Patches' boundary loops (3D). Per curve edge (lowest corner q, axis a;
+  // b = a + 1, c = a + 2 mod 3) 4 entries: entry i for the face between its
+  // voxels i and i + 1, voxel (s, t) = q - (1 - s) e_b - (1 - t) e_c in the
+  // order (0,0), (1,0), (1,1), (0,1): the loop that face's patch has there
+  // when it is the patch's only face at the edge, else kNoLoop.
+  static constexpr std::uint32_t kNoLoop = 0xffffffffu;
+  std::vector<std::uint32_t> curve_edge_loop;
+  struct Loop {
+    std::uint32_t patch = 0;
+    std::size_t edges = 0, first_edge = 0;  // its curve edges
+  };
+  std::vector<Loop> loops;  // in the order of their first curve edges
   // Junction corner ids, ascending; 2D: the corners where >= 3 labels meet.
   std::vector<std::uint64_t> junctions;
   // Corners where some patch is pinched, ascending.

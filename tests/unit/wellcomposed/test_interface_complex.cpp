@@ -199,6 +199,40 @@ void check_against_brute_force(const LabelImage& img, const InterfaceComplex& k)
   REQUIRE(k.curve_edges.size() == b.curve_edges.size());
   i = 0;
   for (auto e : b.curve_edges) REQUIRE(k.curve_edges[i++] == std::uint64_t(e));
+  // Loops: at each curve edge, the face of each patch with one face there.
+  std::vector<std::size_t> loop_edges(k.patches.size(), 0), loops_of(k.patches.size(), 0);
+  for (const auto& l : k.loops) loop_edges[l.patch] += l.edges, ++loops_of[l.patch];
+  for (std::size_t p = 0; p < k.patches.size(); ++p) {
+    CHECK(loop_edges[p] == k.patches[p].boundary_edges);
+    CHECK(loops_of[p] == k.patches[p].boundary_loops);
+  }
+  REQUIRE(k.curve_edge_loop.size() == 4 * k.curve_edges.size());
+  i = 0;
+  for (auto e : b.curve_edges) {
+    const int a = int(e % 3), bb = (a + 1) % 3, cc = (a + 2) % 3;
+    const std::int64_t q = e / 3;
+    const std::int64_t p[3] = {q % b.lat[0], q / b.lat[0] % b.lat[1], q / b.lat[0] / b.lat[1]};
+    const int st[5][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}};
+    std::map<std::uint32_t, int> count;
+    std::array<std::uint32_t, 4> patch_at{};
+    for (int f = 0; f < 4; ++f) {
+      // Faces i: between voxels f, f + 1; its lowest corner is the higher voxel's position.
+      std::int64_t hi[3] = {p[0], p[1], p[2]};
+      const int n = st[f][0] != st[f + 1][0] ? bb : cc;
+      hi[bb] -= 1 - std::max(st[f][0], st[f + 1][0]) * (n == bb) - st[f][0] * (n != bb);
+      hi[cc] -= 1 - std::max(st[f][1], st[f + 1][1]) * (n == cc) - st[f][1] * (n != cc);
+      const std::size_t id = k.find_face(std::uint64_t(b.corner(hi[0], hi[1], hi[2])), n);
+      patch_at[std::size_t(f)] = id < k.faces.size() ? k.face_patch[id] : InterfaceComplex::kNoLoop;
+      if (id < k.faces.size()) ++count[k.face_patch[id]];
+    }
+    for (int f = 0; f < 4; ++f) {
+      const std::uint32_t loop = k.curve_edge_loop[4 * i + std::size_t(f)];
+      const bool alone = patch_at[std::size_t(f)] != InterfaceComplex::kNoLoop && count[patch_at[std::size_t(f)]] == 1;
+      CHECK((loop != InterfaceComplex::kNoLoop) == alone);
+      if (alone) CHECK(k.loops[loop].patch == patch_at[std::size_t(f)]);
+    }
+    ++i;
+  }
   // Junctions: corners with curve edges other than two of one label set.
   std::map<std::int64_t, std::vector<std::int64_t>> at_corner;
   for (auto e : b.curve_edges)
