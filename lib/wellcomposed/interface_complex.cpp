@@ -539,6 +539,7 @@ Json InterfaceComplex::to_json() const {
   j["labels"] = labels.size();
   j["faces"] = faces.size();
   j["patches"] = patches.size();
+  j["boundary_loops"] = loops.size();
   j["curve_edges"] = curve_edges.size();
   j["curves"] = curves.size();
   j["closed_curves"] = closed_curves();

@@ -65,8 +65,9 @@
 // patch).
 //
 // For the tools: summary() is the line "interface complex: N patches, M
-// curves, J junctions"; to_json() the counts (faces, patches, curves,
-// closed_curves, junctions, c1, c2, pinched_vertices, pinches).
+// curves, J junctions"; to_json() the counts (faces, patches,
+// boundary_loops, curves, closed_curves, junctions, c1, c2,
+// pinched_vertices, pinches).
 //
 // 2D (a single-slice image of dimension 2): faces are pixel edges, patches
 // are the components of one pair's pixel edges (arcs between junctions, or
