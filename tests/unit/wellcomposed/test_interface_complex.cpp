@@ -458,6 +458,13 @@ TEST_CASE("interface complex: four columns meet on an axis between two junctions
   }
   CHECK(lengths == std::multiset<std::size_t>{4, 8, 8, 8, 8});
   CHECK(k.summary() == "interface complex: 8 patches, 5 curves, 2 junctions");
+  const Json j = k.to_json();
+  CHECK(j.at("faces").integer() == 128);
+  CHECK(j.at("boundary_loops").integer() == 8);
+  CHECK(j.at("curves").integer() == 5);
+  CHECK(j.at("closed_curves").integer() == 0);
+  CHECK(j.at("junctions").integer() == 2);
+  CHECK(j.at("c1").integer() + j.at("c2").integer() + j.at("pinches").integer() == 0);
   check_against_brute_force(img, k);
   check_labels_against_brute_force(img, k);
 }
