@@ -475,7 +475,17 @@ bool DelMesh::handle_vertex_pass() {
 bool DelMesh::voxel_sides_pass() {
   phase_ = "voxel sides";
   const Candidates pts = voxel_side_points_(tr_, sampler_, walk_start_, 1e-3 * grid_.delta, voxel_sides_wrong_, refused_);
-  return insert_batch(pts, kVoxelSide);
+  // A point waits for the next pass once one of this pass went in nearer
+  // to it than W was: one point often puts a run of centres right (fewer
+  // points, and fewer for QUALITY to repair around them).
+  bool any = false;
+  for (const auto& [x, clearance2] : pts) {
+    const Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), walk_start_->cell());
+    if (any && dist2(x, vec(nv->point())) < 0.99 * clearance2) continue;
+    if (insert(x, kVoxelSide)) any = true;
+    else refused_ += !max_hit_;
+  }
+  return any;
 }
 
 // HandleDetection on every vertex of the S components whose mesh has the
@@ -519,7 +529,6 @@ bool DelMesh::insert_batch(const Candidates& pts, Origin origin) {
       continue;
     }
     if (insert(x, origin)) any = true;
-    else if (origin == kVoxelSide) refused_ += !max_hit_;  // not TOPOLOGY: the certificate counts what is left
     else if (!max_hit_) refuse_topology(kOriginName[origin], x);
   }
   return any;

@@ -3,6 +3,7 @@
 #include "surface/voxel_side_points.hpp"
 
 #include <cmath>
+#include <unordered_set>
 
 namespace imgmesh::surface_detail {
 
@@ -79,6 +80,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
   Candidates pts;
   Ch hint = near->cell();
   std::vector<Ch> cells;
+  std::unordered_set<const void*> refined;  // membership only: the order is the centres'
   std::size_t k = 0;
   for_each_centre(g, [&](long x, long y, long z) {
     Seen& s = seen_[k++];
@@ -113,6 +115,18 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     }
     s = Seen{};
     ++wrong;
+    if (!refined.insert(&*bad).second) return;  // one point per cell and pass
+    // The surface centre of the cell's restricted facet with the largest
+    // ball, if that is at least half p's distance to W (DELMESH's usual
+    // point, well spaced); else the point of S towards the circumcentre.
+    const double d2 = dist2(p, vec(tr.nearest_vertex(pp, bad)->point()));
+    int best = -1;
+    for (int i = 0; i < 4; ++i)
+      if (bad->facet.restricted(i) && bad->facet[i].r2 >= d2 / 4 && (best < 0 || bad->facet[i].r2 > bad->facet[best].r2)) best = i;
+    if (best >= 0) {
+      pts.emplace_back(facet_center(Facet(bad, best)), bad->facet[best].r2);
+      return;
+    }
     Vec3 q;
     if (!f.bisect(p, far_end(tr, g, bad, p), f.value(p), q)) return;
     const Vh nv = tr.nearest_vertex(Point(q[0], q[1], q[2]), bad);
