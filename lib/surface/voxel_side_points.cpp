@@ -2,7 +2,6 @@
 // restricted Delaunay surface and the points of S that refine them.
 #include "surface/voxel_side_points.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <unordered_set>
 
@@ -41,21 +40,9 @@ std::uint64_t vertices_of(const Tr& tr, Ch c) {
   return h;
 }
 
-// The cell's side of S: its circumcentre's (f == 0 outside, as everywhere);
-// an infinite cell or a circumcentre beyond the grid's box is outside.
-// In an inactive cube, f has its corners' sign (F1): no evaluation.
-bool cell_inside(const Tr& tr, const SurfaceSampler& f, Ch c) {
-  if (tr.is_infinite(c)) return false;
-  const CubeGrid& g = f.grid();
-  const Vec3 x = vec(tr.dual(c));
-  long k[3];
-  for (int i = 0; i < 3; ++i) {
-    if (!(x[i] >= 0 && x[i] <= g.hi[i])) return false;
-    k[i] = std::min(long(x[i] / g.s[i]), g.n[i] - 2);
-  }
-  if (!g.active(k[0], k[1], k[2])) return g.neg(k[0], k[1], k[2]);
-  return SurfaceSampler::inside(f.value(x));
-}
+// The cell's side of S: its circumcentre's (f == 0 outside, as everywhere;
+// beyond the grid's box, outside); an infinite cell is outside.
+bool cell_inside(const Tr& tr, const SurfaceSampler& f, Ch c) { return !tr.is_infinite(c) && f.inside_at(vec(tr.dual(c))); }
 
 // Where the segment from centre p to refine towards ends: the cell's
 // circumcentre, or for an infinite cell a point beyond the grid's box, away
