@@ -643,7 +643,7 @@ RestrictedDelaunayResult DelMesh::run() {
   res.max_abs_f_at_vertices = m.max_abs_f_at_vertices;
   res.max_abs_f_at_centroids = m.max_abs_f_at_centroids;
   res.restricted_delaunay_violations = m.restricted_delaunay_violations;
-  res.voxel_sides_on = opt_.voxel_sides;
+  res.voxel_sides_on = opt_.voxel_sides && opt_.topology_steps;  // VoxelSides runs only with TOPOLOGY
   res.voxel_sides_counted = count_voxel_sides(cert, grid_, res.voxel_sides);
   res.ratio_bound = opt_.ratio;
   res.roughness_bound = opt_.roughness;

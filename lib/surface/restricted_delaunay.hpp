@@ -54,7 +54,8 @@ struct RestrictedDelaunayOptions {
   // or the fallback (a counted last resort: TOPOLOGY should leave nothing).
   int fallback_rounds = 40;
   // false (tests only): no VorEdge, TopoDisk, FacetCycle or HandleDetection,
-  // so that the certificate fails and the fallback must act.
+  // so that the certificate fails and the fallback must act; nor VoxelSides
+  // (it needs the closed ball property), whose count is then reported only.
   bool topology_steps = true;
   // Called now and then with the phase and the number of points so far.
   std::function<void(const std::string&)> progress;
