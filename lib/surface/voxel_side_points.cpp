@@ -61,6 +61,21 @@ Vec3 far_end(const Tr& tr, const CubeGrid& g, Ch c, const Vec3& p) {
   return {p[0] + n[0] / nl * reach, p[1] + n[1] / nl * reach, p[2] + n[2] / nl * reach};
 }
 
+// The crossing of S on [a, b] (ends of opposite signs) by halving on signs
+// alone, to ~1e-11 delta: far from S, implicit2mesh's f (clamped samples)
+// and seg2mesh's differ in value, never in sign, so both find the same point.
+bool crossing(const SurfaceSampler& f, Vec3 a, Vec3 b, Vec3& x) {
+  const bool in = SurfaceSampler::inside(f.value(a));
+  if (SurfaceSampler::inside(f.value(b)) == in) return false;
+  const double tol2 = std::pow(1e-11 * f.grid().delta, 2);
+  for (int it = 0; it < 200 && dist2(a, b) > tol2; ++it) {
+    const Vec3 m{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
+    (SurfaceSampler::inside(f.value(m)) == in ? a : b) = m;
+  }
+  x = b;  // within 1e-11 delta of S
+  return true;
+}
+
 } // namespace
 
 Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh near, double guard, long long& wrong,
@@ -122,7 +137,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
       return;
     }
     Vec3 q;
-    if (!f.bisect(p, far_end(tr, g, bad, p), f.value(p), q)) return;
+    if (!crossing(f, p, far_end(tr, g, bad, p), q)) return;
     const Vh nv = tr.nearest_vertex(Point(q[0], q[1], q[2]), bad);
     const double clearance2 = dist2(q, vec(nv->point()));
     if (clearance2 < guard * guard) ++refused;
