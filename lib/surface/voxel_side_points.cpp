@@ -2,6 +2,7 @@
 // restricted Delaunay surface and the points of S that refine them.
 #include "surface/voxel_side_points.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <unordered_set>
 
@@ -127,11 +128,13 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     if (!refined.insert(&*bad).second) return;  // one point per cell and pass
     // The surface centre of the cell's restricted facet with the largest
     // ball, if that is at least half p's distance to W (DELMESH's usual
-    // point, well spaced); else the point of S towards the circumcentre.
+    // point, well spaced) and the guard; else the point of S towards the
+    // circumcentre.
     const double d2 = dist2(p, vec(tr.nearest_vertex(pp, bad)->point()));
+    const double least = std::max(d2 / 4, guard * guard);
     int best = -1;
     for (int i = 0; i < 4; ++i)
-      if (bad->facet.restricted(i) && bad->facet[i].r2 >= d2 / 4 && (best < 0 || bad->facet[i].r2 > bad->facet[best].r2)) best = i;
+      if (bad->facet.restricted(i) && bad->facet[i].r2 >= least && (best < 0 || bad->facet[i].r2 > bad->facet[best].r2)) best = i;
     if (best >= 0) {
       pts.emplace_back(facet_center(Facet(bad, best)), bad->facet[best].r2);
       return;
