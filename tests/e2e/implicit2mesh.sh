@@ -85,6 +85,19 @@ PY
     fail "bunny at the defaults: $(cat dist.txt)"
 }
 
+# VoxelSides (issue 38, on by default): every voxel centre next to bdCA(X)
+# on its own side, counted by meshinfo --image's exact side tests and by the
+# mesher's own certificate (the bunny had 611 on the wrong side without it).
+case_bunny_every_voxel_centre_on_its_side() {
+  local f wc; f=$(shared bunny-f.nrrd bunny_f); wc=$(shared bunny-wc.nrrd bunny_wc)
+  expect 0 implicit2mesh "$f" sides.off --stats stats.json
+  OUT=info.json expect 0 meshinfo sides.off --image "$wc" --json
+  [[ $(json info.json image.voxel_sides.wrong_side) == 0 ]] || fail "meshinfo: $(json info.json image.voxel_sides)"
+  [[ $(json info.json image.voxel_sides.voxel_centres_checked) -gt 30000 ]] || fail "meshinfo: too few centres checked"
+  [[ $(json stats.json voxel_sides.wrong_side) == 0 ]] || fail "stats: $(json stats.json voxel_sides)"
+  [[ $(json stats.json points_inserted.voxel_side) -gt 0 ]] || fail "stats: VoxelSides inserted nothing"
+}
+
 # The distance bound's centroid half on brain tissue at the defaults: with
 # the surface centres alone within E = 0.3 voxel of their planes, a
 # triangle of brain label 1 had |f| = 0.63 voxel at its centroid.

@@ -70,7 +70,8 @@ case_msh_version_2_2_followed() {
 }
 
 # meshinfo reads it back: conforming, positive, the boundary matching
-# bdCA(X) by place, radius-edge ratios within 2.
+# bdCA(X) by place with every voxel centre next to it on its side,
+# radius-edge ratios within 2.
 read_back() {
   mesh "$1" || return
   OUT=info.json expect 0 meshinfo "$1" --image "$(shared bunny-wc.nrrd bunny_wc)" --json ||
@@ -85,6 +86,8 @@ assert t["max_radius_edge_ratio"] <= 2 * (1 + 1e-9), t["max_radius_edge_ratio"]
 assert t["min_dihedral_degrees"] >= 10, t["min_dihedral_degrees"]  # slivers refined (default --sliver-angle 10)
 assert t["tetrahedra"] > 1000 and t["boundary_triangles_in_file"] == r["faces"], (t["tetrahedra"], r["faces"])
 assert list(t["volume_by_region"]) == ["1"]
+# VoxelSides (issue 38): every voxel centre next to bdCA(X) on its side of region 1's boundary.
+assert r["image"]["voxel_sides"]["wrong_side"] == 0, r["image"]["voxel_sides"]
 PY
 }
 case_msh_read_back_conforming_matching_the_image() { read_back bunny.msh; }
