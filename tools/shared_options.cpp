@@ -14,6 +14,14 @@ CLI::Option* add_msh_version_option(cli::Tool& tool, std::string& version, const
       ->capture_default_str();
 }
 
+void add_encoding_options(cli::Tool& tool, bool& ascii, bool& msh_binary, const std::string& binary_formats) {
+  auto* a = tool.app.add_flag("--ascii", ascii,
+                              "Write " + binary_formats + " as text; by default they are binary (exact: the same "
+                              "numbers as the text, in less space and time)");
+  tool.app.add_flag("--msh-binary", msh_binary, "Write .msh in Gmsh's binary form (little-endian); ASCII by default")
+      ->excludes(a);
+}
+
 void add_repair_mode_option(cli::Tool& tool, RepairMode& mode, const std::string& description) {
   static const std::vector<std::pair<std::string, RepairMode>> modes{
       {"add", RepairMode::Add}, {"remove", RepairMode::Remove}, {"min", RepairMode::Min}};
