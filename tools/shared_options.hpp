@@ -13,9 +13,11 @@ namespace imgmesh {
 // --msh-version: the Gmsh format version of a .msh output, 4.1 or 2.2.
 CLI::Option* add_msh_version_option(cli::Tool& tool, std::string& version, const std::string& description);
 
-// --ascii and --msh-binary: OUT's encoding. Binary by default where the
+// --ascii (alone: poly2tri, tri2quad, quadsmooth, whose .vtk is binary by
+// default) and --msh-binary: OUT's encoding. Binary by default where the
 // format has a binary form (`binary_formats`, e.g. ".ply, .stl, .vtp and
 // .vtk"); .msh ASCII unless --msh-binary. The two exclude each other.
+CLI::Option* add_ascii_option(cli::Tool& tool, bool& ascii, const std::string& binary_formats);
 void add_encoding_options(cli::Tool& tool, bool& ascii, bool& msh_binary, const std::string& binary_formats);
 
 // --mode: img2wc's repair, add, remove or min; its default is mode's value.

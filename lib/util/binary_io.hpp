@@ -8,6 +8,7 @@
 #include <cstring>
 #include <ostream>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -46,27 +47,31 @@ template <class T> T get_bytes(const char* p, ByteOrder order = ByteOrder::Littl
   return v;
 }
 
-// Legacy VTK's values of one array: ASCII, the lines of `line_sizes` values
-// (each value printed by the stream, separated by a space); binary,
-// big-endian T's then a newline, as vtkDataWriter lays them out.
-template <class T>
-void vtk_legacy_values(std::ostream& out, const std::vector<T>& v, bool binary, const std::vector<std::size_t>& line_sizes) {
+// Legacy VTK's values of one array on `out` (an std::ostream, or any
+// stream with << for numbers, chars and string_views): ASCII, the lines of
+// `line_sizes` values, separated by a space; binary, big-endian T's then a
+// newline, as vtkDataWriter lays them out.
+template <class Out, class T>
+void vtk_legacy_values(Out& out, const std::vector<T>& v, bool binary, const std::vector<std::size_t>& line_sizes) {
   if (binary) {
     std::string b;
     b.reserve(v.size() * sizeof(T) + 1);
     for (T x : v) append_bytes(b, x, ByteOrder::Big);
-    out.write(b.data(), std::streamsize(b.size()));
-    out << '\n';
+    b += '\n';
+    out << std::string_view(b);
     return;
   }
   std::size_t i = 0;
   for (std::size_t n : line_sizes) {
-    for (std::size_t k = 0; k < n; ++k) out << (k ? " " : "") << v[i++];
+    for (std::size_t k = 0; k < n; ++k) {
+      if (k) out << ' ';
+      out << v[i++];
+    }
     out << '\n';
   }
 }
 // The same with `per_line` values on every line.
-template <class T> void vtk_legacy_values(std::ostream& out, const std::vector<T>& v, bool binary, std::size_t per_line) {
+template <class Out, class T> void vtk_legacy_values(Out& out, const std::vector<T>& v, bool binary, std::size_t per_line) {
   vtk_legacy_values(out, v, binary, std::vector<std::size_t>(per_line ? v.size() / per_line : 0, per_line));
 }
 

@@ -1,5 +1,5 @@
 """Readers for the surface formats imgmesh writes, independent of its code:
-VTK files by VTK's own Python readers (or legacy .vtk by meshio), .msh by
+VTK files by VTK's own Python readers, .msh by
 meshio (when given; ASCII or binary) or the text grammar of Gmsh's format
 documentation, PLY (binary little-endian or ASCII) and OFF by their grammars.
 read(path, reader) -> dict(points, triangles, component, label, normals, physical);
@@ -106,17 +106,6 @@ def read_vtk(path):
                 normals=None if n is None else [tuple(x) for x in arr(n)], physical=None, names=names)
 
 
-def read_vtk_meshio(path):
-    import meshio
-    m = meshio.read(path)
-    assert [c.type for c in m.cells] == ['triangle'], [c.type for c in m.cells]
-    cd = lambda k: [int(x) for x in m.cell_data[k][0]] if k in m.cell_data else None
-    n = m.point_data.get('Normals')
-    return dict(points=[tuple(p) for p in m.points.tolist()], triangles=[tuple(int(x) for x in t) for t in m.cells[0].data],
-                component=cd('component'), label=cd('label'),
-                normals=None if n is None else [tuple(x) for x in n.tolist()], physical=None)
-
-
 def read_msh_meshio(path):
     import meshio
     m = meshio.read(path)
@@ -202,8 +191,6 @@ def read(path, reader='text'):
         return read_off(path)
     if path.endswith('.ply'):
         return read_ply(path)
-    if path.endswith('.vtk') and reader == 'meshio':
-        return read_vtk_meshio(path)
     if path.endswith(('.vtp', '.vtk')):
         return read_vtk(path)
     if path.endswith('.msh'):
