@@ -1,8 +1,8 @@
 // Surface mesh I/O. OFF is read and written here directly (it is the format
 // on pipes, and reading it ourselves keeps non-manifold input intact so that
 // checks can report it); PLY, VTK and msh are written by surface_formats.cpp
-// (they carry per-face data); reading PLY, OBJ, STL and writing OBJ, STL go
-// through OpenMesh.
+// (they carry per-face data), ASCII STL here; reading PLY, OBJ, STL and
+// writing OBJ and binary STL go through OpenMesh.
 #include "mesh/surface_io.hpp"
 
 #include "mesh/surface_formats.hpp"

