@@ -332,6 +332,12 @@ struct MshValues {
   void data_starts() {
     if (binary && t.in.get() != '\n') throw Error("malformed binary .msh: no newline before the data", t.path);
   }
+  // ... and ends with a newline right where the counts say (a byte lost or
+  // added is an error, not other numbers).
+  void data_ends(const std::string& section) {
+    if (binary && t.in.get() != '\n')
+      throw Error("malformed binary .msh: " + section + " does not end where its counts say", t.path);
+  }
 };
 
 // 4.1's $Entities: (dim, tag) -> the entity's first physical tag.
@@ -467,12 +473,15 @@ TetMesh read_msh(std::istream& in, const std::string& path) {
     if (known && v4) v.data_starts();
     if (s == "$Entities" && v4) {
       read_msh_entities(v, physical);
+      v.data_ends(s);
       t.skip_to("$EndEntities");
     } else if (s == "$Nodes") {
       read_msh_nodes(v, v4, m, ids);
+      v.data_ends(s);
       if (t.next() != "$EndNodes") throw Error("malformed $Nodes", path);
     } else if (s == "$Elements") {
       read_msh_elements(v, v4, m, ids, physical);
+      v.data_ends(s);
       if (t.next() != "$EndElements") throw Error("malformed $Elements", path);
     } else if (!s.empty() && s[0] == '$' && s.rfind("$End", 0) != 0) {
       t.skip_to("$End" + s.substr(1));
