@@ -84,6 +84,10 @@ def read_vtk(path):
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
     r = vtk.vtkXMLPolyDataReader() if path.endswith('.vtp') else vtk.vtkPolyDataReader()
+    if path.endswith('.vtk'):  # every array, not only the first SCALARS
+        r.ReadAllScalarsOn()
+        r.ReadAllNormalsOn()
+        r.ReadAllFieldsOn()
     r.SetFileName(path)
     r.Update()
     pd = r.GetOutput()
