@@ -1,6 +1,8 @@
 #include "mesh/volume_io.hpp"
 
+#include "mesh/binary_formats.hpp"
 #include "util/atomic_file.hpp"
+#include "util/binary_io.hpp"
 #include "util/coordinates.hpp"
 #include "util/error.hpp"
 #include "util/parse.hpp"
@@ -13,6 +15,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <type_traits>
 #include <unordered_map>
 
 namespace imgmesh {
@@ -35,33 +38,38 @@ std::set<int> regions_of(const TetMesh& m) {
   return r;
 }
 
-void write_msh22(std::ostream& o, const TetMesh& m) {
-  const std::set<int> regions = regions_of(m);
-  o << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n" << 2 * regions.size() << '\n';
+void physical_names(std::ostream& o, const std::set<int>& regions) {
+  o << "$PhysicalNames\n" << 2 * regions.size() << '\n';
   for (int r : regions) o << "2 " << r << " \"boundary_" << r << "\"\n3 " << r << " \"region_" << r << "\"\n";
-  o << "$EndPhysicalNames\n$Nodes\n" << m.points.size() << '\n';
-  for (std::size_t i = 0; i < m.points.size(); ++i)
-    o << i + 1 << ' ' << m.points[i][0] << ' ' << m.points[i][1] << ' ' << m.points[i][2] << '\n';
-  o << "$EndNodes\n$Elements\n" << m.triangles.size() + m.tets.size() << '\n';
+  o << "$EndPhysicalNames\n";
+}
+
+void write_msh22(std::ostream& o, const TetMesh& m, bool binary) {
+  mesh_detail::MshWriter w(o, binary);
+  w.format("2.2");
+  physical_names(o, regions_of(m));
+  o << "$Nodes\n" << m.points.size() << '\n';
+  for (std::size_t i = 0; i < m.points.size(); ++i) w.i((long long)(i + 1)).d(m.points[i][0]).d(m.points[i][1]).d(m.points[i][2]).eol();
+  w.end("Nodes");
+  o << "$Elements\n" << m.triangles.size() + m.tets.size() << '\n';
   std::size_t id = 0;
+  w.block22(2, m.triangles.size(), 2);
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const int r = region_of(m.triangle_region, t);
-    o << ++id << " 2 2 " << r << ' ' << r;
-    for (int v : m.triangles[t]) o << ' ' << v + 1;
-    o << '\n';
+    w.element22(++id, 2, {r, r}, std::array<int, 3>{m.triangles[t][0] + 1, m.triangles[t][1] + 1, m.triangles[t][2] + 1});
   }
+  w.block22(4, m.tets.size(), 2);
   for (std::size_t t = 0; t < m.tets.size(); ++t) {
     const int r = region_of(m.tet_region, t);
-    o << ++id << " 4 2 " << r << ' ' << r;
-    for (int v : m.tets[t]) o << ' ' << v + 1;
-    o << '\n';
+    const auto& v = m.tets[t];
+    w.element22(++id, 4, {r, r}, std::array<int, 4>{v[0] + 1, v[1] + 1, v[2] + 1, v[3] + 1});
   }
-  o << "$EndElements\n";
+  w.end("Elements");
 }
 
 // Gmsh 4.1: one surface entity (tag R) and one volume entity (tag R) per
 // region, each in the physical group R of its dimension.
-void write_msh41(std::ostream& o, const TetMesh& m) {
+void write_msh41(std::ostream& o, const TetMesh& m, bool binary) {
   const std::set<int> regions = regions_of(m);
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
   for (int i = 0; i < 3 && !m.points.empty(); ++i) {
@@ -71,37 +79,52 @@ void write_msh41(std::ostream& o, const TetMesh& m) {
       hi[std::size_t(i)] = std::max(hi[std::size_t(i)], p[std::size_t(i)]);
     }
   }
-  auto box = [&] { return std::to_string(lo[0]) + ' ' + std::to_string(lo[1]) + ' ' + std::to_string(lo[2]) + ' ' +
-                          std::to_string(hi[0]) + ' ' + std::to_string(hi[1]) + ' ' + std::to_string(hi[2]); };
-  o << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n" << 2 * regions.size() << '\n';
-  for (int r : regions) o << "2 " << r << " \"boundary_" << r << "\"\n3 " << r << " \"region_" << r << "\"\n";
-  o << "$EndPhysicalNames\n$Entities\n0 0 " << regions.size() << ' ' << regions.size() << '\n';
-  for (int r : regions) o << r << ' ' << box() << " 1 " << r << " 0\n";
-  for (int r : regions) o << r << ' ' << box() << " 1 " << r << " 1 " << r << '\n';
-  o << "$EndEntities\n";
+  mesh_detail::MshWriter w(o, binary);
+  auto box = [&] {
+    for (const auto* b : {&lo, &hi})
+      for (double x : *b) w.d(x, std::to_string(x));
+  };
+  w.format("4.1");
+  physical_names(o, regions);
+  o << "$Entities\n";
+  w.z(0).z(0).z(regions.size()).z(regions.size()).eol();
+  for (int r : regions) {
+    w.i(r);
+    box();
+    w.z(1).i(r).z(0).eol();
+  }
+  for (int r : regions) {
+    w.i(r);
+    box();
+    w.z(1).i(r).z(1).i(r).eol();
+  }
+  w.end("Entities");
   const std::size_t n = m.points.size();
-  o << "$Nodes\n1 " << n << " 1 " << n << "\n3 " << *regions.begin() << " 0 " << n << '\n';
-  for (std::size_t i = 0; i < n; ++i) o << i + 1 << '\n';
-  for (const auto& p : m.points) o << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
-  o << "$EndNodes\n";
+  o << "$Nodes\n";
+  w.z(1).z(n).z(1).z(n).eol();
+  w.i(3).i(*regions.begin()).i(0).z(n).eol();
+  for (std::size_t i = 0; i < n; ++i) w.z(i + 1).eol();
+  for (const auto& p : m.points) w.d(p[0]).d(p[1]).d(p[2]).eol();
+  w.end("Nodes");
   std::map<std::pair<int, int>, std::vector<std::size_t>> blocks;  // (dim, region) -> elements
   for (std::size_t t = 0; t < m.triangles.size(); ++t) blocks[{2, region_of(m.triangle_region, t)}].push_back(t);
   for (std::size_t t = 0; t < m.tets.size(); ++t) blocks[{3, region_of(m.tet_region, t)}].push_back(t);
   const std::size_t total = m.triangles.size() + m.tets.size();
-  o << "$Elements\n" << blocks.size() << ' ' << total << " 1 " << total << '\n';
+  o << "$Elements\n";
+  w.z(blocks.size()).z(total).z(1).z(total).eol();
   std::size_t id = 0;
   for (const auto& [key, elems] : blocks) {
-    o << key.first << ' ' << key.second << ' ' << (key.first == 2 ? 2 : 4) << ' ' << elems.size() << '\n';
+    w.i(key.first).i(key.second).i(key.first == 2 ? 2 : 4).z(elems.size()).eol();
     for (std::size_t e : elems) {
-      o << ++id;
+      w.z(++id);
       if (key.first == 2)
-        for (int v : m.triangles[e]) o << ' ' << v + 1;
+        for (int v : m.triangles[e]) w.z(std::size_t(v + 1));
       else
-        for (int v : m.tets[e]) o << ' ' << v + 1;
-      o << '\n';
+        for (int v : m.tets[e]) w.z(std::size_t(v + 1));
+      w.eol();
     }
   }
-  o << "$EndElements\n";
+  w.end("Elements");
 }
 
 void write_medit(std::ostream& o, const TetMesh& m) {
@@ -119,29 +142,40 @@ void write_medit(std::ostream& o, const TetMesh& m) {
   o << "End\n";
 }
 
-void write_vtu(std::ostream& o, const TetMesh& m) {
+// Tetrahedra first, then the boundary triangles, as cells.
+void write_vtu(std::ostream& o, const TetMesh& m, bool binary) {
   const std::size_t cells = m.tets.size() + m.triangles.size();
-  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+  mesh_detail::VtkXmlArrays arrays(o, binary, "", "");
+  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" " << arrays.file_attributes() << ">\n"
        "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << m.points.size() << "\" NumberOfCells=\"" << cells << "\">\n"
-       "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (const auto& p : m.points) o << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
-  o << "</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (const auto& t : m.tets) o << t[0] << ' ' << t[1] << ' ' << t[2] << ' ' << t[3] << '\n';
-  for (const auto& t : m.triangles) o << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
-  o << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-  std::size_t off = 0;
-  for (std::size_t t = 0; t < m.tets.size(); ++t) o << (off += 4) << '\n';
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) o << (off += 3) << '\n';
-  o << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (std::size_t t = 0; t < m.tets.size(); ++t) o << "10\n";
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) o << "5\n";
-  o << "</DataArray>\n</Cells>\n<CellData Scalars=\"region\">\n<DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">\n";
-  for (std::size_t t = 0; t < m.tets.size(); ++t) o << region_of(m.tet_region, t) << '\n';
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) o << region_of(m.triangle_region, t) << '\n';
-  o << "</DataArray>\n<DataArray type=\"Int32\" Name=\"boundary\" format=\"ascii\">\n";
-  for (std::size_t t = 0; t < m.tets.size(); ++t) o << "0\n";
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) o << "1\n";
-  o << "</DataArray>\n</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+       "<Points>\n";
+  std::vector<double> xyz;
+  for (const auto& p : m.points) xyz.insert(xyz.end(), p.begin(), p.end());
+  arrays.array("Float64", nullptr, 3, xyz);
+  o << "</Points>\n<Cells>\n";
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::size_t> rows;
+  std::vector<std::uint8_t> types;
+  std::vector<std::int32_t> region, boundary;
+  auto cell = [&](const auto& v, std::uint8_t type, int r, int on_boundary) {
+    connectivity.insert(connectivity.end(), v.begin(), v.end());
+    rows.push_back(v.size());
+    offsets.push_back(std::int64_t(connectivity.size()));
+    types.push_back(type);
+    region.push_back(r);
+    boundary.push_back(on_boundary);
+  };
+  for (std::size_t t = 0; t < m.tets.size(); ++t) cell(m.tets[t], 10, region_of(m.tet_region, t), 0);
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) cell(m.triangles[t], 5, region_of(m.triangle_region, t), 1);
+  arrays.array("Int64", "connectivity", 1, connectivity, rows);
+  arrays.array("Int64", "offsets", 1, offsets);
+  arrays.array("UInt8", "types", 1, types);
+  o << "</Cells>\n<CellData Scalars=\"region\">\n";
+  arrays.array("Int32", "region", 1, region);
+  arrays.array("Int32", "boundary", 1, boundary);
+  o << "</CellData>\n</Piece>\n</UnstructuredGrid>\n";
+  arrays.appended_data();
+  o << "</VTKFile>\n";
 }
 
 // Abaqus: C3D4 elements in element sets REGION_R; the boundary triangles as
@@ -288,12 +322,189 @@ int gmsh_nodes(int type) {
   }
 }
 
+// Gmsh's values: ASCII tokens, or binary (little-endian int of 4 bytes,
+// size_t and double of 8), as the file's $MeshFormat says. The line count
+// goes on through binary data, so that an error in the text after it names
+// the file's line.
+struct MshValues {
+  Tokens& t;
+  bool binary;
+  std::size_t size = 0;  // the file's bytes: no binary count beyond them
+  template <class T> T raw() {
+    char b[sizeof(T)];
+    if (!t.in.read(b, sizeof b)) t.fail("unexpected end of file");
+    t.line += int(std::count(b, b + sizeof b, '\n'));
+    return get_bytes<T>(b);
+  }
+  long long i() { return binary ? raw<std::int32_t>() : t.integer(); }
+  long long z() {
+    if (!binary) return t.integer();
+    const std::uint64_t v = raw<std::uint64_t>();
+    return v > std::uint64_t(1) << 62 ? -1 : (long long)v;
+  }
+  double d() {
+    if (!binary) return t.real();
+    const double v = raw<double>();
+    if (!std::isfinite(v)) t.fail("a number is not finite");
+    return v;
+  }
+  // Node `tag`'s x, y, z, in the range util/coordinates.hpp sets (text
+  // errors name the line, binary ones the node).
+  std::array<double, 3> point(long long tag) {
+    std::array<double, 3> p;
+    for (double& c : p) {
+      if (!binary) {
+        c = t.coordinate();
+        continue;
+      }
+      c = raw<double>();
+      if (!valid_coordinate(c)) throw Error("node " + std::to_string(tag) + ": " + coordinate_error(c), t.path);
+    }
+    return p;
+  }
+  std::size_t count(long long n, const char* what) const {
+    if (n < 0 || n > 200000000 || (binary && std::size_t(n) > size))
+      t.fail(std::string("bad ") + what + " count " + std::to_string(n));
+    return std::size_t(n);
+  }
+  std::size_t count_z(const char* what) { return count(z(), what); }
+  std::size_t count_i(const char* what) { return count(i(), what); }
+  // Binary data starts after the newline that ends a keyword or count line.
+  void data_starts() {
+    if (!binary) return;
+    if (t.in.get() != '\n') t.fail("malformed binary .msh: no newline before the data");
+    ++t.line;
+  }
+  // ... and ends with a newline right where the counts say (a byte lost or
+  // added is an error, not other numbers).
+  void data_ends(const std::string& section) {
+    if (!binary) return;
+    if (t.in.get() != '\n') t.fail("malformed binary .msh: " + section + " does not end where its counts say");
+    ++t.line;
+  }
+};
+
+// 4.1's $Entities: (dim, tag) -> the entity's first physical tag.
+void read_msh_entities(MshValues& v, std::map<std::pair<int, int>, int>& physical) {
+  std::size_t n[4];
+  for (auto& k : n) k = v.count_z("entity");
+  for (int dim = 0; dim < 4; ++dim)
+    for (std::size_t e = 0; e < n[dim]; ++e) {
+      const int tag = int(v.i());
+      for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) v.d();
+      const std::size_t np = v.count_z("physical tag");
+      for (std::size_t k = 0; k < np; ++k) {
+        const int p = int(v.i());
+        if (k == 0) physical[{dim, tag}] = p;
+      }
+      if (dim > 0) {
+        const std::size_t nb = v.count_z("bounding entity");
+        for (std::size_t k = 0; k < nb; ++k) v.i();
+      }
+    }
+}
+
+void read_msh_nodes(MshValues& v, bool v4, TetMesh& m, NodeIds& ids) {
+  if (!v4) {
+    const std::size_t k = v.count(v.t.integer(), "node");
+    v.data_starts();
+    for (std::size_t i = 0; i < k; ++i) {
+      const long long g = v.i();
+      ids.id[g] = int(m.points.size());
+      m.points.push_back(v.point(g));
+    }
+    return;
+  }
+  const std::size_t blocks = v.count_z("block");
+  v.count_z("node");
+  v.z();
+  v.z();
+  for (std::size_t b = 0; b < blocks; ++b) {
+    v.i();
+    v.i();
+    if (v.i() != 0) throw Error("parametric nodes are not supported", v.t.path);
+    const std::size_t k = v.count_z("node");
+    std::vector<long long> tags(k);
+    for (auto& g : tags) g = v.z();
+    for (long long g : tags) {
+      ids.id[g] = int(m.points.size());
+      m.points.push_back(v.point(g));
+    }
+  }
+}
+
+// One element after its tag: `tags` tags (the first is its region, else
+// `region`) and its nodes.
+void read_msh_element(MshValues& v, TetMesh& m, const NodeIds& ids, int type, std::size_t tags, int region, bool v4) {
+  const int nn = gmsh_nodes(type);
+  if (nn < 0) throw Error("unsupported element type " + std::to_string(type), v.t.path);
+  for (std::size_t j = 0; j < tags; ++j) {
+    const int g = int(v.i());
+    if (j == 0) region = g;
+  }
+  std::vector<int> nodes;
+  for (int j = 0; j < nn; ++j) nodes.push_back(ids(v4 ? v.z() : v.i(), v.t.path));
+  add_element(m, type, nodes, region);
+}
+
+void read_msh_elements(MshValues& v, bool v4, TetMesh& m, const NodeIds& ids,
+                       const std::map<std::pair<int, int>, int>& physical) {
+  if (v4) {
+    const std::size_t blocks = v.count_z("block");
+    v.count_z("element");
+    v.z();
+    v.z();
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const int dim = int(v.i()), entity = int(v.i()), type = int(v.i());
+      const std::size_t k = v.count_z("element");
+      const auto p = physical.find({dim, entity});
+      for (std::size_t e = 0; e < k; ++e) {
+        v.z();
+        read_msh_element(v, m, ids, type, 0, p != physical.end() ? p->second : entity, true);
+      }
+    }
+    return;
+  }
+  const std::size_t k = v.count(v.t.integer(), "element");
+  v.data_starts();
+  // 2.2: in ASCII each element says its type and tag count after its tag; in
+  // binary a header (type, count, tag count) comes before each run.
+  for (std::size_t read = 0; read < k;) {
+    if (!v.binary) {
+      v.i();
+      const int type = int(v.i());
+      read_msh_element(v, m, ids, type, v.count_i("tag"), 1, false);
+      ++read;
+      continue;
+    }
+    const int type = int(v.i());
+    const std::size_t run = v.count_i("element"), tags = v.count_i("tag");
+    if (run == 0 || run > k - read) throw Error("malformed binary $Elements", v.t.path);
+    for (std::size_t e = 0; e < run; ++e) {
+      v.i();
+      read_msh_element(v, m, ids, type, tags, 1, false);
+    }
+    read += run;
+  }
+}
+
 TetMesh read_msh(std::istream& in, const std::string& path) {
   Tokens t{in, path};
   if (t.next() != "$MeshFormat") throw Error("not a Gmsh .msh file", path);
   const std::string version = t.next();
-  if (t.integer() != 0) throw Error("binary .msh is not supported (ASCII only)", path);
-  t.next();
+  const long long type = t.integer();
+  if (type != 0 && type != 1) throw Error("bad .msh file type " + std::to_string(type) + " (0 ASCII, 1 binary)", path);
+  MshValues v{t, type == 1};
+  const std::string size = t.next();
+  if (v.binary) {
+    if (size != "8") throw Error("binary .msh with a size_t of " + size + " bytes (8 expected)", path);
+    v.data_starts();
+    if (v.raw<std::int32_t>() != 1) throw Error("big-endian binary .msh is not supported", path);
+    const auto here = in.tellg();
+    in.seekg(0, std::ios::end);
+    v.size = std::size_t(in.tellg());
+    in.seekg(here);
+  }
   if (t.next() != "$EndMeshFormat") throw Error("malformed $MeshFormat", path);
   if (version != "2.2" && version != "4.1") throw Error("unsupported .msh version " + version + " (2.2 or 4.1)", path);
   const bool v4 = version == "4.1";
@@ -302,90 +513,19 @@ TetMesh read_msh(std::istream& in, const std::string& path) {
   std::map<std::pair<int, int>, int> physical;  // 4.1: (dim, entity) -> its first physical tag
   std::string s;
   while (t.read(s)) {
+    const bool known = (s == "$Entities" && v4) || s == "$Nodes" || s == "$Elements";
+    if (known && v4) v.data_starts();
     if (s == "$Entities" && v4) {
-      std::size_t n[4];
-      for (auto& k : n) k = t.count("entity");
-      for (int dim = 0; dim < 4; ++dim)
-        for (std::size_t e = 0; e < n[dim]; ++e) {
-          const int tag = int(t.integer());
-          for (int k = 0; k < (dim == 0 ? 3 : 6); ++k) t.real();
-          const std::size_t np = t.count("physical tag");
-          for (std::size_t k = 0; k < np; ++k) {
-            const int p = int(t.integer());
-            if (k == 0) physical[{dim, tag}] = p;
-          }
-          if (dim > 0) {
-            const std::size_t nb = t.count("bounding entity");
-            for (std::size_t k = 0; k < nb; ++k) t.integer();
-          }
-        }
+      read_msh_entities(v, physical);
+      v.data_ends(s);
       t.skip_to("$EndEntities");
     } else if (s == "$Nodes") {
-      if (v4) {
-        const std::size_t blocks = t.count("block");
-        t.count("node");
-        t.integer();
-        t.integer();
-        for (std::size_t b = 0; b < blocks; ++b) {
-          t.integer();
-          t.integer();
-          if (t.integer() != 0) throw Error("parametric nodes are not supported", path);
-          const std::size_t k = t.count("node");
-          std::vector<long long> tags(k);
-          for (auto& g : tags) g = t.integer();
-          for (long long g : tags) {
-            ids.id[g] = int(m.points.size());
-            m.points.push_back({t.coordinate(), t.coordinate(), t.coordinate()});
-          }
-        }
-      } else {
-        const std::size_t k = t.count("node");
-        for (std::size_t i = 0; i < k; ++i) {
-          const long long g = t.integer();
-          ids.id[g] = int(m.points.size());
-          m.points.push_back({t.coordinate(), t.coordinate(), t.coordinate()});
-        }
-      }
+      read_msh_nodes(v, v4, m, ids);
+      v.data_ends(s);
       if (t.next() != "$EndNodes") throw Error("malformed $Nodes", path);
     } else if (s == "$Elements") {
-      std::vector<int> v;
-      if (v4) {
-        const std::size_t blocks = t.count("block");
-        t.count("element");
-        t.integer();
-        t.integer();
-        for (std::size_t b = 0; b < blocks; ++b) {
-          const int dim = int(t.integer()), entity = int(t.integer()), type = int(t.integer());
-          const std::size_t k = t.count("element");
-          const int nn = gmsh_nodes(type);
-          if (nn < 0) throw Error("unsupported element type " + std::to_string(type), path);
-          const auto p = physical.find({dim, entity});
-          const int region = p != physical.end() ? p->second : entity;
-          for (std::size_t e = 0; e < k; ++e) {
-            t.integer();
-            v.clear();
-            for (int j = 0; j < nn; ++j) v.push_back(ids(t.integer(), path));
-            add_element(m, type, v, region);
-          }
-        }
-      } else {
-        const std::size_t k = t.count("element");
-        for (std::size_t e = 0; e < k; ++e) {
-          t.integer();
-          const int type = int(t.integer());
-          const std::size_t ntags = t.count("tag");
-          int region = 1;
-          for (std::size_t j = 0; j < ntags; ++j) {
-            const int g = int(t.integer());
-            if (j == 0) region = g;
-          }
-          const int nn = gmsh_nodes(type);
-          if (nn < 0) throw Error("unsupported element type " + std::to_string(type), path);
-          v.clear();
-          for (int j = 0; j < nn; ++j) v.push_back(ids(t.integer(), path));
-          add_element(m, type, v, region);
-        }
-      }
+      read_msh_elements(v, v4, m, ids, physical);
+      v.data_ends(s);
       if (t.next() != "$EndElements") throw Error("malformed $Elements", path);
     } else if (!s.empty() && s[0] == '$' && s.rfind("$End", 0) != 0) {
       t.skip_to("$End" + s.substr(1));
@@ -442,70 +582,171 @@ TetMesh read_medit(std::istream& in, const std::string& path) {
   return m;
 }
 
-// The text of the DataArray named `name` (or the first in `section`), ASCII
-// only, and the line of the file it starts on.
-struct VtuArray {
-  std::string text;
-  int line = 1;
+// One DataArray's values and where they are, for errors.
+template <class T> struct VtuArray {
+  std::vector<T> values;
+  std::string label;                     // its Name, or its section's
+  std::size_t text = std::string::npos;  // ASCII: where its values start in the file
 };
-VtuArray vtu_array(const std::string& x, const std::string& section, const std::string& name, const std::string& path,
-                   bool required = true) {
-  std::size_t from = 0;
-  if (!section.empty()) {
-    from = x.find("<" + section);
-    if (from == std::string::npos) {
-      if (required) throw Error("no <" + section + "> in the .vtu file", path);
-      return {};
+
+// A .vtu's DataArrays, ASCII inline or in the appended raw data
+// (zlib-compressed or not, UInt32 or UInt64 headers), as VTK writes them.
+// The real arrays read are coordinates (Points), in the range of
+// util/coordinates.hpp whichever the encoding.
+class VtuArrays {
+public:
+  VtuArrays(std::string text, std::string path) : x_(std::move(text)), path_(std::move(path)) {
+    const std::size_t file = x_.find("<VTKFile");
+    const std::string head = file == std::string::npos ? "" : x_.substr(file, x_.find('>', file) - file);
+    uint64_ = head.find("header_type=\"UInt64\"") != std::string::npos;
+    zlib_ = head.find("vtkZLibDataCompressor") != std::string::npos;
+    if (head.find("compressor=") != std::string::npos && !zlib_) throw Error("only zlib-compressed .vtu data is supported", path_);
+    if (head.find("BigEndian") != std::string::npos) throw Error("big-endian .vtu data is not supported", path_);
+    const std::size_t a = x_.find("<AppendedData");
+    if (a != std::string::npos) appended_ = x_.find('_', a);
+    if (a != std::string::npos && appended_ != std::string::npos) ++appended_;
+  }
+  // The values of the DataArray named `name` (or the first in `section`),
+  // as T (double or long long); empty when absent and not required.
+  template <class T> VtuArray<T> values(const std::string& section, const std::string& name, bool required = true) const {
+    std::size_t close = 0;
+    const std::string tag = find(section, name, required, close);
+    VtuArray<T> a{{}, name.empty() ? section : name};
+    if (tag.empty()) return a;
+    if (tag.find("format=\"appended\"") != std::string::npos) {
+      decode(tag, a);
+      return a;
+    }
+    if (tag.find("format=\"ascii\"") == std::string::npos)
+      throw Error("only ASCII and appended raw .vtu data are supported", path_);
+    a.text = close + 1;
+    std::istringstream text(ascii(a.text));
+    Tokens t{text, path_, line_at(a.text)};
+    while (t.more()) {
+      if constexpr (std::is_same_v<T, double>) a.values.push_back(t.coordinate());
+      else a.values.push_back(t.integer());
+    }
+    return a;
+  }
+  // Throws Error for value i of `a` (i = its size: where it ends): in ASCII
+  // naming the line it is on, in appended data the array and the index.
+  template <class T> [[noreturn]] void fail(const VtuArray<T>& a, std::size_t i, const std::string& what) const {
+    if (a.text == std::string::npos)
+      throw Error("appended DataArray " + a.label + ", value " + std::to_string(i) + ": " + what, path_);
+    std::istringstream text(ascii(a.text));
+    Tokens t{text, path_, line_at(a.text)};
+    std::string s;
+    for (std::size_t k = 0; k <= i && t.read(s); ++k) {
+    }
+    t.fail(what);
+  }
+
+private:
+  // The tag (up to its '>', at `close`) of the array.
+  std::string find(const std::string& section, const std::string& name, bool required, std::size_t& close) const {
+    std::size_t at = 0;
+    if (!section.empty()) {
+      at = x_.find("<" + section);
+      if (at == std::string::npos) {
+        if (required) throw Error("no <" + section + "> in the .vtu file", path_);
+        return {};
+      }
+    }
+    for (;;) {
+      at = x_.find("<DataArray", at);
+      if (at == std::string::npos) {
+        if (required) throw Error("no DataArray " + name + " in the .vtu file", path_);
+        return {};
+      }
+      close = x_.find('>', at);
+      if (close == std::string::npos) throw Error("a DataArray tag is not closed", path_);
+      const std::string tag = x_.substr(at, close - at);
+      if (name.empty() || tag.find("Name=\"" + name + "\"") != std::string::npos) return tag;
+      at = close;
     }
   }
-  std::size_t at = from;
-  for (;;) {
-    at = x.find("<DataArray", at);
-    if (at == std::string::npos) {
-      if (required) throw Error("no DataArray " + name + " in the .vtu file", path);
-      return {};
-    }
-    const std::size_t close = x.find('>', at);
-    const std::string tag = x.substr(at, close - at);
-    if (name.empty() || tag.find("Name=\"" + name + "\"") != std::string::npos) {
-      if (tag.find("format=\"ascii\"") == std::string::npos) throw Error("only ASCII .vtu files are supported", path);
-      const std::size_t end = x.find("</DataArray>", close);
-      const auto begin = x.begin() + std::ptrdiff_t(close + 1);
-      return {x.substr(close + 1, end - close - 1), 1 + int(std::count(x.begin(), begin, '\n'))};
-    }
-    at = close;
+  // An ASCII array's text from `begin`, and the file's line there.
+  std::string ascii(std::size_t begin) const {
+    const std::size_t end = x_.find("</DataArray>", begin);
+    return x_.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
   }
-}
+  int line_at(std::size_t begin) const {
+    return 1 + int(std::count(x_.begin(), x_.begin() + std::ptrdiff_t(begin), '\n'));
+  }
+  static std::string attribute(const std::string& tag, const std::string& key) {
+    const std::size_t at = tag.find(" " + key + "=\"");
+    if (at == std::string::npos) return {};
+    const std::size_t begin = at + key.size() + 3;
+    return tag.substr(begin, tag.find('"', begin) - begin);
+  }
+  template <class T> void decode(const std::string& tag, VtuArray<T>& a) const {
+    if (appended_ == std::string::npos) throw Error("an appended DataArray without <AppendedData>", path_);
+    std::size_t offset = 0;
+    try {
+      offset = std::stoull(attribute(tag, "offset"));
+    } catch (const std::exception&) {
+      throw Error("an appended DataArray without a valid offset", path_);
+    }
+    if (offset > x_.size() - appended_) throw Error("an appended DataArray's offset beyond the file", path_);
+    const std::string raw = zlib_ ? vtk_zlib_decode(x_, appended_ + offset, uint64_, path_)
+                                  : vtk_raw_decode(x_, appended_ + offset, uint64_, path_);
+    const std::string type = attribute(tag, "type");
+    if (type == "Float64") return convert<T, double>(raw, a);
+    if (type == "Float32") return convert<T, float>(raw, a);
+    if (type == "Int64") return convert<T, std::int64_t>(raw, a);
+    if (type == "UInt64") return convert<T, std::uint64_t>(raw, a);
+    if (type == "Int32") return convert<T, std::int32_t>(raw, a);
+    if (type == "UInt32") return convert<T, std::uint32_t>(raw, a);
+    if (type == "UInt8") return convert<T, std::uint8_t>(raw, a);
+    if (type == "Int8") return convert<T, std::int8_t>(raw, a);
+    throw Error("unsupported .vtu DataArray type '" + type + "'", path_);
+  }
+  template <class T, class S> void convert(const std::string& raw, VtuArray<T>& a) const {
+    if (raw.size() % sizeof(S)) throw Error("an appended DataArray's size is not a multiple of its type's", path_);
+    a.values.resize(raw.size() / sizeof(S));
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+      const S v = get_bytes<S>(raw.data() + i * sizeof(S));
+      if constexpr (std::is_floating_point_v<S>) {
+        if constexpr (!std::is_floating_point_v<T>) throw Error("real numbers where integers are expected", path_);
+        if (!valid_coordinate(v)) fail(a, i, coordinate_error(double(v)));
+      }
+      if constexpr (std::is_same_v<S, std::uint64_t>)
+        if (v > std::uint64_t(1) << 62) fail(a, i, "an integer out of range");
+      a.values[i] = T(v);
+    }
+  }
+  std::string x_, path_;
+  std::size_t appended_ = std::string::npos;
+  bool uint64_ = false, zlib_ = false;
+};
 
 TetMesh read_vtu(const std::string& path) {
-  const std::string x = read_all(path);
-  if (x.find("UnstructuredGrid") == std::string::npos) throw Error("not a VTK UnstructuredGrid .vtu file", path);
+  const VtuArrays f(read_all(path), path);
   TetMesh m;
-  const VtuArray ap = vtu_array(x, "Points", "", path), ac = vtu_array(x, "", "connectivity", path),
-                 ao = vtu_array(x, "", "offsets", path), at = vtu_array(x, "", "types", path),
-                 ar = vtu_array(x, "CellData", "region", path, false);
-  std::istringstream pts(ap.text), con(ac.text), off(ao.text), types(at.text), reg(ar.text);
-  Tokens tp{pts, path, ap.line}, tc{con, path, ac.line}, to{off, path, ao.line}, tt{types, path, at.line},
-      tr{reg, path, ar.line};
-  std::vector<double> xyz;
-  while (tp.more()) xyz.push_back(tp.coordinate());
-  if (xyz.size() % 3) throw Error("the point count is not a multiple of 3", path);
-  for (std::size_t i = 0; i < xyz.size(); i += 3) m.points.push_back({xyz[i], xyz[i + 1], xyz[i + 2]});
-  const bool regions = !ar.text.empty();
+  const VtuArray<double> xyz = f.values<double>("Points", "");
+  const VtuArray<long long> con = f.values<long long>("", "connectivity"), off = f.values<long long>("", "offsets"),
+                            types = f.values<long long>("", "types"), reg = f.values<long long>("CellData", "region", false);
+  const auto& p = xyz.values;
+  if (p.size() % 3) throw Error("the point count is not a multiple of 3", path);
+  for (std::size_t i = 0; i < p.size(); i += 3) m.points.push_back({p[i], p[i + 1], p[i + 2]});
+  const std::size_t cells = types.values.size();
+  if (off.values.size() < cells) f.fail(off, off.values.size(), "unexpected end of file");
+  if (!reg.values.empty() && reg.values.size() < cells) f.fail(reg, reg.values.size(), "unexpected end of file");
   long long last = 0;
   std::vector<int> v;
-  while (tt.more()) {
-    const int type = int(tt.integer());
-    const long long end = to.integer();
-    if (end < last) to.fail("decreasing offsets");
+  for (std::size_t c = 0; c < cells; ++c) {
+    const long long end = off.values[c];
+    if (end < last) f.fail(off, c, "decreasing offsets");
+    if (end > (long long)con.values.size()) f.fail(con, con.values.size(), "unexpected end of file");
     v.clear();
     for (long long k = last; k < end; ++k) {
-      const long long id = tc.integer();
-      if (id < 0 || id >= (long long)m.points.size()) tc.fail("cell refers to unknown point " + std::to_string(id));
+      const long long id = con.values[std::size_t(k)];
+      if (id < 0 || id >= (long long)m.points.size()) f.fail(con, std::size_t(k), "cell refers to unknown point " + std::to_string(id));
       v.push_back(int(id));
     }
     last = end;
-    const int region = regions ? int(tr.integer()) : 1;
+    const int region = reg.values.empty() ? 1 : int(reg.values[c]);
+    const long long type = types.values[c];
     if (type == 10 && v.size() == 4) add_element(m, 4, v, region);
     else if (type == 5 && v.size() == 3) add_element(m, 2, v, region);
   }
@@ -519,12 +760,12 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
   if (!is_tet_mesh_path(path)) throw UsageError(std::string("tetrahedral mesh format is chosen by extension: ") + kTetMeshExtensions, path);
   if (ext == ".msh" && options.msh_version != "4.1" && options.msh_version != "2.2")
     throw UsageError("--msh-version must be 4.1 or 2.2");
-  AtomicOutput out(path);
+  AtomicOutput out(path, (ext == ".vtu" && !options.ascii) || (ext == ".msh" && options.msh_binary));
   std::ostream& o = out.stream();
   o.precision(17);
-  if (ext == ".msh") (options.msh_version == "2.2" ? write_msh22 : write_msh41)(o, mesh);
+  if (ext == ".msh") (options.msh_version == "2.2" ? write_msh22 : write_msh41)(o, mesh, options.msh_binary);
   else if (ext == ".mesh") write_medit(o, mesh);
-  else if (ext == ".vtu") write_vtu(o, mesh);
+  else if (ext == ".vtu") write_vtu(o, mesh, !options.ascii);
   else write_inp(o, mesh);
   out.commit();
 }
@@ -534,7 +775,7 @@ TetMesh read_tet_mesh(const std::string& path) {
   TetMesh m;
   if (ext == ".vtu") m = read_vtu(path);
   else {
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open", path);
     if (ext == ".msh") m = read_msh(in, path);
     else if (ext == ".mesh") m = read_medit(in, path);
