@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -139,13 +138,6 @@ struct PlyElement {
   }
 };
 
-bool host_big_endian() {
-  const std::uint32_t one = 1;
-  unsigned char first;
-  std::memcpy(&first, &one, 1);
-  return first != 1;
-}
-
 // Bytes of a PLY scalar type (the header check admits no other name).
 std::size_t ply_size(const std::string& type) {
   if (type == "double" || type == "float64") return 8;
@@ -157,13 +149,8 @@ std::size_t ply_size(const std::string& type) {
 
 // A binary PLY scalar of `type` at b, in the file's byte order, as a double.
 double ply_value(const unsigned char* b, const std::string& type, bool big_endian) {
-  unsigned char v[8];
-  const std::size_t n = ply_size(type);
-  const bool swap = big_endian != host_big_endian();
-  for (std::size_t i = 0; i < n; ++i) v[i] = b[swap ? n - 1 - i : i];
   const auto get = [&](auto x) {
-    std::memcpy(&x, v, sizeof x);
-    return double(x);
+    return double(get_bytes<decltype(x)>(reinterpret_cast<const char*>(b), big_endian ? ByteOrder::Big : ByteOrder::Little));
   };
   if (type == "double" || type == "float64") return get(double());
   if (type == "float" || type == "float32") return get(float());
