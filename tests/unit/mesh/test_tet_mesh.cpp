@@ -73,6 +73,29 @@ TEST_CASE("malformed tetrahedral mesh files: an Error naming the file") {
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("an ASCII .vtu's cell errors name the line of the value") {
+  const std::filesystem::path dir = "imgmesh_test_tet_mesh_vtu";
+  std::filesystem::create_directories(dir);
+  // Line 4: the points; 5: connectivity; 6: offsets; 7: types.
+  auto vtu = [&](const std::string& connectivity, const std::string& offsets) {
+    const std::string path = (dir / "t.vtu").string();
+    std::ofstream(path) << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n<UnstructuredGrid>\n"
+                           "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\"><Points>\n"
+                           "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points><Cells>\n"
+                           "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">"
+                        << connectivity << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" << offsets
+                        << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10</DataArray>\n"
+                           "</Cells></Piece></UnstructuredGrid></VTKFile>\n";
+    return path;
+  };
+  CHECK(read_tet_mesh(vtu("0 1 2 3", "4")).tets.size() == 1);
+  CHECK_THROWS_WITH(read_tet_mesh(vtu("0 1 2 9", "4")), Catch::Contains("line 5: cell refers to unknown point 9"));
+  CHECK_THROWS_WITH(read_tet_mesh(vtu("0 1\n2\n\n 9", "4")), Catch::Contains("line 8: cell refers to unknown point 9"));
+  CHECK_THROWS_WITH(read_tet_mesh(vtu("0 1 2 3", "-1")), Catch::Contains("line 6: decreasing offsets"));
+  CHECK_THROWS_WITH(read_tet_mesh(vtu("0 1 2\n", "4")), Catch::Contains("line 6: unexpected end of file"));
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("binary .vtu and .msh read back to the mesh their ASCII form holds, exactly") {
   // Random points (fixed seed) filling more than one 32 KiB zlib block,
   // tetrahedra and boundary triangles in two regions.
