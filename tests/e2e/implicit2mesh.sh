@@ -88,7 +88,7 @@ PY
 # The distance bound's centroid half on brain tissue at the defaults: with
 # the surface centres alone within E = 0.3 voxel of their planes, a
 # triangle of brain label 1 had |f| = 0.63 voxel at its centroid.
-case_brain_label1_centroids_within_twice_the_bound() {
+case_brain_label1_centroids_within_twice_the_bound() {  # scale
   expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 1 b1-wc.nrrd -q
   expect 0 wc2implicit b1-wc.nrrd b1-f.nrrd -q
   expect 0 implicit2mesh b1-f.nrrd b1.off
@@ -147,7 +147,7 @@ case_threads_do_not_change_the_mesh() {
 
 # Real brain tissue: a noisy k-means class (289 components, one of genus
 # 1482; among them thin rods whose cross-sections nearly fill a Voronoi facet).
-case_brain_label5_has_voxel_topology() {
+case_brain_label5_has_voxel_topology() {  # scale
   expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 5 brain-wc.nrrd -q
   expect 0 wc2implicit brain-wc.nrrd brain-f.nrrd -q
   expect 0 implicit2mesh brain-f.nrrd brain.off "${LOOSE[@]}" --stats brain.json
@@ -238,7 +238,7 @@ case_anisotropic_torus_1_2p5_0p5() { anisotropic torus 16 7.63 7.59 7.77 3.75 1.
 
 # share/examples/Makefile on the bundled liver labels: vessels (127, 29
 # components), parenchyma (255) and label 85, one mesh per label, in parallel.
-case_examples_makefile_one_mesh_per_label() {
+case_examples_makefile_one_mesh_per_label() {  # scale
   make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85 127 255" BIN="$BIN/" OUT=ex -j2 \
     RATIO=2 FLAGS="--max-distance 0" 2> make.err || fail "make: $(cat make.err)"
   for l in 85 127 255; do
@@ -250,7 +250,7 @@ case_examples_makefile_one_mesh_per_label() {
 # share/examples/Snakefile over two scans (a folder of label maps), in both
 # modes: per label, the Makefile's pipeline; per scan, seg2mesh on the map.
 # Snakemake is a test dependency (scripts/install-deps).
-case_snakefile_meshes_every_scan() {
+case_snakefile_meshes_every_scan() {  # scale
   command -v snakemake > /dev/null || fail "snakemake is not installed (scripts/install-deps installs it)"
   mkdir scans
   ln -s "$DATA/liver-labels.nrrd" scans/a.nrrd

@@ -202,7 +202,7 @@ PY
 }
 
 # share/examples/Makefile's volume target on a small bundled label.
-case_examples_makefile_volume_matches_its_label() {
+case_examples_makefile_volume_matches_its_label() {  # scale
   [[ -x $BIN/img2wc && -x $BIN/wc2implicit ]] || die "the Makefile part needs img2wc and wc2implicit"
   make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85" BIN="$BIN/" OUT=ex volume \
     > make.out 2>&1 || { fail "make volume: $(cat make.out)"; return; }
