@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
   tool.add_threads();
   add_normals_option(tool, normals);
   add_msh_version_option(tool, write_opt.msh_version, "Gmsh format version of a .msh OUT");
+  add_encoding_options(tool, write_opt.ascii, write_opt.msh_binary, ".ply, .stl, .vtp and .vtk");
   // Tests only (hidden): no VorEdge, TopoDisk, FacetCycle or HandleDetection,
   // so that the certificate fails and its repairs must act.
   bool skip_topology = false;

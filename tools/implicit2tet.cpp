@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
       ->type_name("N")
       ->capture_default_str();
   add_msh_version_option(tool, wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")->type_name("V");
+  add_encoding_options(tool, wopt.ascii, wopt.msh_binary, ".vtu");
   SurfaceOptions surface_options(tool, "boundary triangle");
   tool.add_seed();
   tool.add_threads();

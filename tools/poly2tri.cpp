@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
                       "or .svg also work; - for OFF on stdout")
       ->required();
   tool.data_output(out);
+  PlanarWriteOptions wo;
+  add_ascii_option(tool, wo.ascii, "a .vtk OUT");
   tool.app.add_option("--min-angle", opt.min_angle,
                       "Smallest angle in degrees (0 = no quality refinement; at most 34); the bound holds "
                       "except near input angles below 60 degrees")
@@ -92,7 +94,7 @@ int main(int argc, char** argv) {
       opt.narrow = !wide_only;
     }
     const auto r = naming_input(in, [&] { return triangulate_pslg(pslg, opt); });
-    write_planar_mesh(out, r.mesh);  // "-": OFF on stdout
+    write_planar_mesh(out, r.mesh, wo);  // "-": OFF on stdout
     if (!svg.empty()) {
       PlanarWriteOptions so;
       so.svg_frame_foreground = !svg_whole;

@@ -4,6 +4,7 @@
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
 #include "quadsmooth/smooth.hpp"
+#include "shared_options.hpp"
 #include "util/error.hpp"
 
 #include <cmath>
@@ -20,6 +21,8 @@ int main(int argc, char** argv) {
   tool.app.add_option("OUT", out, "output mesh by extension: .ele (+ .node, .poly), .off, .vtk, .msh, .svg; - for OFF on stdout")
       ->required();
   tool.data_output(out);
+  imgmesh::PlanarWriteOptions wo;
+  imgmesh::add_ascii_option(tool, wo.ascii, "a .vtk OUT");
   tool.app.add_option("--iterations", opt.iterations, "smoothing passes, 0 to 1000000")
       ->type_name("N")
       ->check(CLI::Range(0, 1000000).description(""))
@@ -65,7 +68,7 @@ int main(int argc, char** argv) {
     // smooth_quad_mesh checks the input (conformity, orientation) first.
     const imgmesh::SmoothStats st = imgmesh::naming_input(in, [&] { return imgmesh::smooth_quad_mesh(mesh, opt); });
     if (!quads_only) tool.info(in + ": triangles found; their vertices stay fixed");
-    imgmesh::write_planar_mesh(out, mesh);
+    imgmesh::write_planar_mesh(out, mesh, wo);
     if (!svg.empty()) {
       imgmesh::PlanarWriteOptions w;
       for (const auto& e : mesh.elements)

@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   tool.add_seed();
   add_normals_option(tool, opt.normals);
   add_msh_version_option(tool, write_opt.msh_version, "Gmsh format version of a .msh OUT");
+  add_encoding_options(tool, write_opt.ascii, write_opt.msh_binary, ".ply, .stl, .vtp and .vtk");
 
   return tool.run(argc, argv, [&] {
     if (!is_surface_output(out))

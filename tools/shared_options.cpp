@@ -14,6 +14,18 @@ CLI::Option* add_msh_version_option(cli::Tool& tool, std::string& version, const
       ->capture_default_str();
 }
 
+CLI::Option* add_ascii_option(cli::Tool& tool, bool& ascii, const std::string& binary_formats) {
+  return tool.app.add_flag("--ascii", ascii,
+                           "Write " + binary_formats + " as text; by default binary (exact: the same numbers as the "
+                           "text, in less space and time)");
+}
+
+void add_encoding_options(cli::Tool& tool, bool& ascii, bool& msh_binary, const std::string& binary_formats) {
+  auto* a = add_ascii_option(tool, ascii, binary_formats);
+  tool.app.add_flag("--msh-binary", msh_binary, "Write .msh in Gmsh's binary form (little-endian); ASCII by default")
+      ->excludes(a);
+}
+
 void add_repair_mode_option(cli::Tool& tool, RepairMode& mode, const std::string& description) {
   static const std::vector<std::pair<std::string, RepairMode>> modes{
       {"add", RepairMode::Add}, {"remove", RepairMode::Remove}, {"min", RepairMode::Min}};

@@ -1,5 +1,5 @@
-// Options and checks that several tools share, declared once: --msh-version
-// (implicit2mesh, implicit2tet, seg2mesh), --mode (img2wc, seg2mesh), the
+// Options and checks that several tools share, declared once: --msh-version,
+// --ascii and --msh-binary (implicit2mesh, implicit2tet, seg2mesh), --mode (img2wc, seg2mesh), the
 // planar OUT of poly2tri and tri2quad and the --svg of img2poly and
 // tri2quad. The surface mesher's own are in surface_options.hpp.
 #pragma once
@@ -12,6 +12,13 @@ namespace imgmesh {
 
 // --msh-version: the Gmsh format version of a .msh output, 4.1 or 2.2.
 CLI::Option* add_msh_version_option(cli::Tool& tool, std::string& version, const std::string& description);
+
+// --ascii (alone: poly2tri, tri2quad, quadsmooth, whose .vtk is binary by
+// default) and --msh-binary: OUT's encoding. Binary by default where the
+// format has a binary form (`binary_formats`, e.g. ".ply, .stl, .vtp and
+// .vtk"); .msh ASCII unless --msh-binary. The two exclude each other.
+CLI::Option* add_ascii_option(cli::Tool& tool, bool& ascii, const std::string& binary_formats);
+void add_encoding_options(cli::Tool& tool, bool& ascii, bool& msh_binary, const std::string& binary_formats);
 
 // --mode: img2wc's repair, add, remove or min; its default is mode's value.
 void add_repair_mode_option(cli::Tool& tool, RepairMode& mode, const std::string& description);

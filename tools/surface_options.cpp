@@ -29,6 +29,11 @@ SurfaceOptions::SurfaceOptions(cli::Tool& tool, const std::string& what) {
       ->type_name("N")
       ->check(CLI::NonNegativeNumber.description(""))
       ->capture_default_str();
+  tool.app.add_flag("--voxel-sides,!--no-voxel-sides", bounds_.voxel_sides,
+                    "Refine until every voxel centre next to the voxel boundary lies on its own side of the "
+                    "surface (foreground inside, background outside), a point of the surface near it inserted "
+                    "where not; the certificate counts the centres on the "
+                    "wrong side and fails on one (on by default; --no-voxel-sides: off, counted only)");
   tool.app.add_option("--max-points", bounds_.max_points,
                       "Safety bound on the number of sample points; when hit, the mesh is written and the exit "
                       "status is 3")

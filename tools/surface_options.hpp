@@ -13,9 +13,10 @@ namespace imgmesh {
 
 class SurfaceOptions {
 public:
-  // Adds --ratio, --roughness, --max-distance, --fallback-rounds and
-  // --max-points, described for `what`, e.g. "triangle" or "boundary
-  // triangle". The options hold on to this object: it must not move.
+  // Adds --ratio, --roughness, --max-distance, --fallback-rounds,
+  // --voxel-sides / --no-voxel-sides and --max-points, described for
+  // `what`, e.g. "triangle" or "boundary triangle". The options hold on to
+  // this object: it must not move.
   explicit SurfaceOptions(cli::Tool& tool, const std::string& what = "triangle");
   SurfaceOptions(const SurfaceOptions&) = delete;
   SurfaceOptions& operator=(const SurfaceOptions&) = delete;

@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
                                   ".off, .vtk, .msh (Gmsh 2.2) or .svg; - for OFF on stdout")
       ->required();
   tool.data_output(out);
+  PlanarWriteOptions wo;
+  add_ascii_option(tool, wo.ascii, "a .vtk OUT");
   tool.app.add_option("--constraints", constraints, "Constraint segments from this .poly instead")
       ->type_name("FILE");
   tool.app.add_flag("--allow-outside", opt.allow_outside,
@@ -60,7 +62,6 @@ int main(int argc, char** argv) {
     const Tri2QuadResult r = tri2quad(input, opt);
 
     const PlanarMesh q = planar_mesh(r, input.index_base);
-    PlanarWriteOptions wo;
     std::vector<double> mu;
     mu.reserve(r.quads.size());
     for (const auto& f : r.quads)

@@ -2,6 +2,9 @@
 // formats print doubles with 17 digits, so that world coordinates survive.
 #include "mesh/surface_formats.hpp"
 
+#include "mesh/binary_formats.hpp"
+#include "util/binary_io.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -22,33 +25,14 @@ int find(std::vector<int>& parent, int x) {
   return x;
 }
 
-// Little-endian bytes of a value (PLY binary_little_endian).
-template <class T> void put(std::ostream& out, T v) {
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  const std::uint32_t one = 1;
-  unsigned char first;
-  std::memcpy(&first, &one, 1);
-  if (first != 1) std::reverse(b, b + sizeof(T));
-  out.write(reinterpret_cast<const char*>(b), sizeof(T));
+// The coordinates of `items` one after the other, as T.
+template <class T, class U, std::size_t N> std::vector<T> flat(const std::vector<std::array<U, N>>& items) {
+  std::vector<T> out;
+  out.reserve(items.size() * N);
+  for (const auto& item : items)
+    for (U x : item) out.push_back(T(x));
+  return out;
 }
-
-// A VTK XML DataArray in ASCII, `per_line` values a line.
-template <class Range, class F>
-void data_array(std::ostream& out, const char* type, const char* name, int components, const Range& items, F&& write) {
-  out << "        <DataArray type=\"" << type << "\"";
-  if (name) out << " Name=\"" << name << "\"";
-  if (components > 1) out << " NumberOfComponents=\"" << components << "\"";
-  out << " format=\"ascii\">\n";
-  for (const auto& item : items) {
-    out << "         ";
-    write(item);
-    out << '\n';
-  }
-  out << "        </DataArray>\n";
-}
-
-void xyz(std::ostream& out, const std::array<double, 3>& p) { out << p[0] << ' ' << p[1] << ' ' << p[2]; }
 
 // The names of the labels the faces carry (empty names left out), by label.
 std::map<int, std::string> names_used(const SurfaceMesh& m) {
@@ -144,66 +128,89 @@ std::vector<int> face_components(const SurfaceMesh& m) {
   return raw;
 }
 
-void write_vtp(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component) {
+void write_vtp(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component, bool binary) {
   out.precision(17);
+  mesh_detail::VtkXmlArrays arrays(out, binary, "        ", "         ");
   out << "<?xml version=\"1.0\"?>\n<!-- imgmesh surface, world coordinates SPACE=LPS (as ITK) -->\n"
-      << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n  <PolyData>\n";
+      << "<VTKFile type=\"PolyData\" " << arrays.file_attributes() << ">\n  <PolyData>\n";
   vtp_field_data(out, names_used(m));
   out << "    <Piece NumberOfPoints=\"" << m.points.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
       << "NumberOfStrips=\"0\" NumberOfPolys=\"" << m.triangles.size() << "\">\n";
   if (has_normals(m)) {
     out << "      <PointData Normals=\"Normals\">\n";
-    data_array(out, "Float64", "Normals", 3, m.normals, [&](const auto& n) { xyz(out, n); });
+    arrays.array("Float64", "Normals", 3, flat<double>(m.normals));
     out << "      </PointData>\n";
   }
   out << "      <CellData Scalars=\"" << (has_labels(m) ? "label" : "component") << "\">\n";
-  data_array(out, "Int32", "component", 1, component, [&](int c) { out << c; });
-  if (has_labels(m)) data_array(out, "Int32", "label", 1, m.labels, [&](int l) { out << l; });
+  arrays.array("Int32", "component", 1, component);
+  if (has_labels(m)) arrays.array("Int32", "label", 1, m.labels);
   out << "      </CellData>\n      <Points>\n";
-  data_array(out, "Float64", "Points", 3, m.points, [&](const auto& p) { xyz(out, p); });
+  arrays.array("Float64", "Points", 3, flat<double>(m.points));
   out << "      </Points>\n      <Polys>\n";
-  data_array(out, "Int64", "connectivity", 1, m.triangles,
-             [&](const auto& f) { out << f[0] << ' ' << f[1] << ' ' << f[2]; });
-  std::vector<std::size_t> offsets(m.triangles.size());
-  for (std::size_t i = 0; i < offsets.size(); ++i) offsets[i] = 3 * (i + 1);
-  data_array(out, "Int64", "offsets", 1, offsets, [&](std::size_t o) { out << o; });
-  out << "      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+  const std::vector<std::size_t> rows(m.triangles.size(), 3);
+  arrays.array("Int64", "connectivity", 1, flat<std::int64_t>(m.triangles), rows);
+  std::vector<std::int64_t> offsets(m.triangles.size());
+  for (std::size_t i = 0; i < offsets.size(); ++i) offsets[i] = std::int64_t(3 * (i + 1));
+  arrays.array("Int64", "offsets", 1, offsets);
+  out << "      </Polys>\n    </Piece>\n  </PolyData>\n";
+  arrays.appended_data();
+  out << "</VTKFile>\n";
 }
 
-void write_vtk_legacy(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component) {
+// Legacy VTK's strings in binary (vtkDataWriter): each behind its length,
+// one byte 0xC0 | n under 64, two big-endian bytes 0x8000 | n under 16384.
+void vtk_legacy_binary_strings(std::ostream& out, const std::map<int, std::string>& names) {
+  for (const auto& [label, name] : names) {
+    std::string n = name.substr(0, 16383);
+    if (n.size() < 64) put_bytes(out, std::uint8_t(0xC0 | n.size()));
+    else put_bytes(out, std::uint16_t(0x8000 | n.size()), ByteOrder::Big);
+    out << n;
+  }
+  out << '\n';
+}
+
+void write_vtk_legacy(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component, bool binary) {
   out.precision(17);
   // Version 4.2: the POLYGONS layout every VTK reader (and meshio) takes.
-  out << "# vtk DataFile Version 4.2\nimgmesh surface, world coordinates SPACE=LPS (as ITK)\nASCII\n"
-      << "DATASET POLYDATA\n";
+  // Binary legacy VTK is big-endian, as the format says.
+  out << "# vtk DataFile Version 4.2\nimgmesh surface, world coordinates SPACE=LPS (as ITK)\n"
+      << (binary ? "BINARY" : "ASCII") << "\nDATASET POLYDATA\n";
   if (const auto names = names_used(m); !names.empty()) {
     out << "FIELD FieldData 2\nlabel_values 1 " << names.size() << " int\n";
-    for (const auto& [label, name] : names) out << label << ' ';
-    out << "\nlabel_names 1 " << names.size() << " string\n";
-    for (const auto& [label, name] : names) out << vtk_legacy_string(name) << '\n';
+    std::vector<int> values;
+    for (const auto& [label, name] : names) values.push_back(label);
+    if (binary) {
+      vtk_legacy_values(out, values, true, 1);
+    } else {
+      for (int label : values) out << label << ' ';
+      out << '\n';
+    }
+    out << "label_names 1 " << names.size() << " string\n";
+    if (binary) vtk_legacy_binary_strings(out, names);
+    else
+      for (const auto& [label, name] : names) out << vtk_legacy_string(name) << '\n';
   }
   out << "POINTS " << m.points.size() << " double\n";
-  for (const auto& p : m.points) {
-    xyz(out, p);
-    out << '\n';
-  }
+  vtk_legacy_values(out, flat<double>(m.points), binary, 3);
   out << "POLYGONS " << m.triangles.size() << ' ' << 4 * m.triangles.size() << '\n';
-  for (const auto& f : m.triangles) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
+  std::vector<int> polygons;
+  polygons.reserve(4 * m.triangles.size());
+  for (const auto& f : m.triangles) polygons.insert(polygons.end(), {3, f[0], f[1], f[2]});
+  vtk_legacy_values(out, polygons, binary, 4);
   out << "CELL_DATA " << m.triangles.size() << "\nSCALARS component int 1\nLOOKUP_TABLE default\n";
-  for (int c : component) out << c << '\n';
+  vtk_legacy_values(out, component, binary, 1);
   if (has_labels(m)) {
     out << "SCALARS label int 1\nLOOKUP_TABLE default\n";
-    for (int l : m.labels) out << l << '\n';
+    vtk_legacy_values(out, m.labels, binary, 1);
   }
   if (has_normals(m)) {
     out << "POINT_DATA " << m.points.size() << "\nNORMALS Normals double\n";
-    for (const auto& n : m.normals) {
-      xyz(out, n);
-      out << '\n';
-    }
+    vtk_legacy_values(out, flat<double>(m.normals), binary, 3);
   }
 }
 
-void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component, const std::string& version) {
+void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component, const std::string& version,
+               bool binary) {
   out.precision(17);
   const bool labels = has_labels(m);
   const int components = component.empty() ? 0 : *std::max_element(component.begin(), component.end()) + 1;
@@ -220,7 +227,9 @@ void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
                  : named != label_names.end() ? msh_name(named->second)
                                               : "label " + std::to_string(tag);
   }
-  out << "$MeshFormat\n" << version << " 0 8\n$EndMeshFormat\n$PhysicalNames\n" << names.size() << '\n';
+  mesh_detail::MshWriter w(out, binary);
+  w.format(version);
+  out << "$PhysicalNames\n" << names.size() << '\n';
   for (const auto& [tag, name] : names) out << "2 " << tag << " \"" << name << "\"\n";
   out << "$EndPhysicalNames\n";
   // The entity of each vertex: its faces' (a vertex in no face joins entity 1).
@@ -230,21 +239,24 @@ void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
   // Node tags: v + 1 in 2.2; in 4.1 the order of the entity blocks, so that
   // readers that keep the file's order (meshio) agree with the tags.
   std::vector<std::size_t> tag(m.points.size());
+  auto point = [&](const std::array<double, 3>& p) { w.d(p[0]).d(p[1]).d(p[2]); };
   if (version == "2.2") {
     out << "$Nodes\n" << m.points.size() << '\n';
     for (std::size_t v = 0; v < m.points.size(); ++v) {
       tag[v] = v + 1;
-      out << v + 1 << ' ';
-      xyz(out, m.points[v]);
-      out << '\n';
+      w.i((long long)(v + 1));
+      point(m.points[v]);
+      w.eol();
     }
-    out << "$EndNodes\n$Elements\n" << m.triangles.size() << '\n';
+    w.end("Nodes");
+    out << "$Elements\n" << m.triangles.size() << '\n';
+    w.block22(2, m.triangles.size(), 2);
     for (std::size_t i = 0; i < m.triangles.size(); ++i) {
       const auto& f = m.triangles[i];
-      out << i + 1 << " 2 2 " << physical[std::size_t(component[i])] << ' ' << component[i] + 1 << ' ' << f[0] + 1
-          << ' ' << f[1] + 1 << ' ' << f[2] + 1 << '\n';
+      w.element22(i + 1, 2, {physical[std::size_t(component[i])], component[i] + 1},
+                  std::array<int, 3>{f[0] + 1, f[1] + 1, f[2] + 1});
     }
-    out << "$EndElements\n";
+    w.end("Elements");
   } else {
     auto nodes = std::vector<std::vector<std::size_t>>(std::size_t(components)), faces = nodes;
     if (components > 0)
@@ -253,7 +265,8 @@ void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
     std::size_t next = 0;
     for (const auto& block : nodes)
       for (std::size_t v : block) tag[v] = ++next;
-    out << "$Entities\n0 0 " << components << " 0\n";
+    out << "$Entities\n";
+    w.z(0).z(0).z(std::size_t(components)).z(0).eol();
     for (int c = 0; c < components; ++c) {
       std::array<double, 3> lo, hi;
       lo.fill(std::numeric_limits<double>::infinity());
@@ -263,65 +276,82 @@ void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
           lo[std::size_t(a)] = std::min(lo[std::size_t(a)], m.points[v][std::size_t(a)]);
           hi[std::size_t(a)] = std::max(hi[std::size_t(a)], m.points[v][std::size_t(a)]);
         }
-      out << c + 1 << ' ';
-      xyz(out, lo);
-      out << ' ';
-      xyz(out, hi);
-      out << " 1 " << physical[std::size_t(c)] << " 0\n";
+      w.i(c + 1);
+      point(lo);
+      point(hi);
+      w.z(1).i(physical[std::size_t(c)]).z(0).eol();
     }
-    out << "$EndEntities\n$Nodes\n" << components << ' ' << next << " 1 " << next << '\n';
+    w.end("Entities");
+    out << "$Nodes\n";
+    w.z(std::size_t(components)).z(next).z(1).z(next).eol();
     for (int c = 0; c < components; ++c) {
-      out << "2 " << c + 1 << " 0 " << nodes[std::size_t(c)].size() << '\n';
-      for (std::size_t v : nodes[std::size_t(c)]) out << tag[v] << '\n';
+      w.i(2).i(c + 1).i(0).z(nodes[std::size_t(c)].size()).eol();
+      for (std::size_t v : nodes[std::size_t(c)]) w.z(tag[v]).eol();
       for (std::size_t v : nodes[std::size_t(c)]) {
-        xyz(out, m.points[v]);
-        out << '\n';
+        point(m.points[v]);
+        w.eol();
       }
     }
-    out << "$EndNodes\n$Elements\n"
-        << components << ' ' << m.triangles.size() << " 1 " << m.triangles.size() << '\n';
+    w.end("Nodes");
+    out << "$Elements\n";
+    w.z(std::size_t(components)).z(m.triangles.size()).z(1).z(m.triangles.size()).eol();
     for (int c = 0; c < components; ++c) {
-      out << "2 " << c + 1 << " 2 " << faces[std::size_t(c)].size() << '\n';
+      w.i(2).i(c + 1).i(2).z(faces[std::size_t(c)].size()).eol();
       for (std::size_t i : faces[std::size_t(c)]) {
         const auto& f = m.triangles[i];
-        out << i + 1 << ' ' << tag[std::size_t(f[0])] << ' ' << tag[std::size_t(f[1])] << ' '
-            << tag[std::size_t(f[2])] << '\n';
+        w.z(i + 1).z(tag[std::size_t(f[0])]).z(tag[std::size_t(f[1])]).z(tag[std::size_t(f[2])]).eol();
       }
     }
-    out << "$EndElements\n";
+    w.end("Elements");
   }
   if (has_normals(m) && (components > 0 || version == "2.2")) {
     out << "$NodeData\n1\n\"normals\"\n1\n0.0\n3\n0\n3\n" << m.points.size() << '\n';
     std::vector<std::size_t> by_tag(m.points.size());
     for (std::size_t v = 0; v < m.points.size(); ++v) by_tag[tag[v] - 1] = v;
     for (std::size_t v : by_tag) {
-      out << tag[v] << ' ';
-      xyz(out, m.normals[v]);
-      out << '\n';
+      w.i((long long)tag[v]);
+      point(m.normals[v]);
+      w.eol();
     }
-    out << "$EndNodeData\n";
+    w.end("NodeData");
   }
 }
 
-void write_ply(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component) {
+void write_ply(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component, bool binary) {
   const bool normals = has_normals(m), labels = has_labels(m);
-  out << "ply\nformat binary_little_endian 1.0\ncomment imgmesh surface, world coordinates SPACE=LPS (as ITK)\n";
+  out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii")
+      << " 1.0\ncomment imgmesh surface, world coordinates SPACE=LPS (as ITK)\n";
   for (const auto& [label, name] : names_used(m)) out << "comment label_name " << label << ' ' << one_line(name) << '\n';
   out << "element vertex " << m.points.size() << "\nproperty float x\nproperty float y\nproperty float z\n";
   if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
   out << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nproperty int component\n";
   if (labels) out << "property int label\n";
   out << "end_header\n";
+  // ASCII: 9 significant digits give each float back exactly.
+  out.precision(9);
+  auto floats = [&](const std::array<double, 3>& p, bool first) {
+    for (double c : p) {
+      if (binary) put_bytes(out, float(c));
+      else out << (first ? "" : " ") << float(c);
+      first = false;
+    }
+  };
   for (std::size_t i = 0; i < m.points.size(); ++i) {
-    for (double c : m.points[i]) put(out, float(c));
-    if (normals)
-      for (double c : m.normals[i]) put(out, float(c));
+    floats(m.points[i], true);
+    if (normals) floats(m.normals[i], false);
+    if (!binary) out << '\n';
   }
   for (std::size_t i = 0; i < m.triangles.size(); ++i) {
-    put(out, std::uint8_t(3));
-    for (int v : m.triangles[i]) put(out, std::int32_t(v));
-    put(out, std::int32_t(component[i]));
-    if (labels) put(out, std::int32_t(m.labels[i]));
+    std::vector<std::int32_t> row{m.triangles[i][0], m.triangles[i][1], m.triangles[i][2], component[i]};
+    if (labels) row.push_back(m.labels[i]);
+    if (binary) {
+      put_bytes(out, std::uint8_t(3));
+      for (std::int32_t x : row) put_bytes(out, x);
+    } else {
+      out << '3';
+      for (std::int32_t x : row) out << ' ' << x;
+      out << '\n';
+    }
   }
 }
 

@@ -23,16 +23,20 @@ namespace imgmesh {
 // connected), numbered by decreasing face count, ties by first face.
 std::vector<int> face_components(const SurfaceMesh& mesh);
 
-void write_vtp(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component);
-void write_vtk_legacy(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component);
+// binary: .vtp with appended raw data, zlib-compressed (as vtkXMLWriter
+// writes by default), Float64 points; legacy .vtk BINARY (big-endian, as
+// the legacy format requires), double points. Else ASCII, 17 digits.
+void write_vtp(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component, bool binary);
+void write_vtk_legacy(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component, bool binary);
 // version "4.1" or "2.2". One surface entity per component; its physical
 // group is its label (named as label_names says, else "label L") when the
 // mesh has labels, else the component ("component C", tag C + 1). Normals
-// as a node data view.
+// as a node data view. binary: Gmsh's binary form (little-endian, doubles).
 void write_msh(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component,
-               const std::string& version);
-// Binary little-endian, float coordinates (and normals), face properties
-// "int component" and, with labels, "int label".
-void write_ply(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component);
+               const std::string& version, bool binary);
+// Binary little-endian or ASCII (9 digits: the same floats), float
+// coordinates (and normals), face properties "int component" and, with
+// labels, "int label".
+void write_ply(std::ostream& out, const SurfaceMesh& mesh, const std::vector<int>& component, bool binary);
 
 } // namespace imgmesh

@@ -1,13 +1,14 @@
 // Surface mesh I/O. OFF is read and written here directly (it is the format
 // on pipes, and reading it ourselves keeps non-manifold input intact so that
 // checks can report it); PLY, VTK and msh are written by surface_formats.cpp
-// (they carry per-face data); reading PLY, OBJ, STL and writing OBJ, STL go
-// through OpenMesh.
+// (they carry per-face data), ASCII STL here; reading PLY, OBJ, STL and
+// writing OBJ and binary STL go through OpenMesh.
 #include "mesh/surface_io.hpp"
 
 #include "mesh/surface_formats.hpp"
 
 #include "util/atomic_file.hpp"
+#include "util/binary_io.hpp"
 #include "util/coordinates.hpp"
 #include "util/error.hpp"
 #include "util/path.hpp"
@@ -19,7 +20,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -138,13 +138,6 @@ struct PlyElement {
   }
 };
 
-bool host_big_endian() {
-  const std::uint32_t one = 1;
-  unsigned char first;
-  std::memcpy(&first, &one, 1);
-  return first != 1;
-}
-
 // Bytes of a PLY scalar type (the header check admits no other name).
 std::size_t ply_size(const std::string& type) {
   if (type == "double" || type == "float64") return 8;
@@ -156,13 +149,8 @@ std::size_t ply_size(const std::string& type) {
 
 // A binary PLY scalar of `type` at b, in the file's byte order, as a double.
 double ply_value(const unsigned char* b, const std::string& type, bool big_endian) {
-  unsigned char v[8];
-  const std::size_t n = ply_size(type);
-  const bool swap = big_endian != host_big_endian();
-  for (std::size_t i = 0; i < n; ++i) v[i] = b[swap ? n - 1 - i : i];
   const auto get = [&](auto x) {
-    std::memcpy(&x, v, sizeof x);
-    return double(x);
+    return double(get_bytes<decltype(x)>(reinterpret_cast<const char*>(b), big_endian ? ByteOrder::Big : ByteOrder::Little));
   };
   if (type == "double" || type == "float64") return get(double());
   if (type == "float" || type == "float32") return get(float());
@@ -404,13 +392,30 @@ void write_off(std::ostream& out, const SurfaceMesh& m) {
   for (const auto& f : m.triangles) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
 }
 
-// Little-endian bytes of a value (PLY and STL binary are little-endian).
-template <class T> void put(std::ostream& out, T v) {
-  unsigned char b[sizeof(T)];
-  std::memcpy(b, &v, sizeof(T));
-  if (host_big_endian())
-    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
-  out.write(reinterpret_cast<const char*>(b), sizeof(T));
+// The unit normal of triangle f as STL stores it (0 when degenerate).
+std::array<float, 3> facet_normal(const SurfaceMesh& m, const std::array<int, 3>& f) {
+  const auto &a = m.points[std::size_t(f[0])], &b = m.points[std::size_t(f[1])], &c = m.points[std::size_t(f[2])];
+  std::array<double, 3> n{(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
+                          (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
+                          (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
+  const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  return {float(len > 0 ? n[0] / len : 0), float(len > 0 ? n[1] / len : 0), float(len > 0 ? n[2] / len : 0)};
+}
+
+// ASCII STL: the floats binary STL holds, 9 digits each (the same floats back).
+void write_stl_ascii(std::ostream& out, const SurfaceMesh& m) {
+  out.precision(9);
+  out << "solid imgmesh\n";
+  for (const auto& f : m.triangles) {
+    const auto n = facet_normal(m, f);
+    out << "  facet normal " << n[0] << ' ' << n[1] << ' ' << n[2] << "\n    outer loop\n";
+    for (int v : f) {
+      const auto& p = m.points[std::size_t(v)];
+      out << "      vertex " << float(p[0]) << ' ' << float(p[1]) << ' ' << float(p[2]) << '\n';
+    }
+    out << "    endloop\n  endfacet\n";
+  }
+  out << "endsolid imgmesh\n";
 }
 
 // A triangle set OpenMesh's halfedge mesh cannot hold (not a manifold: e.g.
@@ -431,17 +436,12 @@ void write_triangle_set(std::ostream& out, const std::string& ext, const Surface
     }
   } else {  // .stl
     out << std::string(80, ' ');
-    put(out, std::uint32_t(m.triangles.size()));
+    put_bytes(out, std::uint32_t(m.triangles.size()));
     for (const auto& f : m.triangles) {
-      const auto &a = m.points[std::size_t(f[0])], &b = m.points[std::size_t(f[1])], &c = m.points[std::size_t(f[2])];
-      std::array<double, 3> n{(b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
-                              (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
-                              (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])};
-      const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-      for (double x : n) put(out, float(len > 0 ? x / len : 0));
-      for (const auto* p : {&a, &b, &c})
-        for (double x : *p) put(out, float(x));
-      put(out, std::uint16_t(0));
+      for (float x : facet_normal(m, f)) put_bytes(out, x);
+      for (int v : f)
+        for (double x : m.points[std::size_t(v)]) put_bytes(out, float(x));
+      put_bytes(out, std::uint16_t(0));
     }
   }
 }
@@ -515,9 +515,10 @@ void write_surface(const std::string& path, const SurfaceMesh& m, const SurfaceW
   for (const auto& f : m.triangles)
     for (int v : f)
       if (v < 0 || std::size_t(v) >= m.points.size()) throw Error("internal: triangle refers to a missing vertex", path);
-  AtomicOutput out(path, ext == ".ply" || ext == ".stl");
-  if (ext == ".off") {
-    write_off(out.stream(), m);
+  const bool binary = !options.ascii && (ext == ".ply" || ext == ".stl" || ext == ".vtp" || ext == ".vtk");
+  AtomicOutput out(path, binary || (ext == ".msh" && options.msh_binary));
+  if (ext == ".off" || (ext == ".stl" && !binary)) {
+    (ext == ".off" ? write_off : write_stl_ascii)(out.stream(), m);
     out.commit();
     return;
   }
@@ -525,10 +526,10 @@ void write_surface(const std::string& path, const SurfaceMesh& m, const SurfaceW
   // (a triangle set that is not a manifold too).
   if (ext == ".ply" || ext == ".vtp" || ext == ".vtk" || ext == ".msh") {
     const std::vector<int> component = face_components(m);
-    if (ext == ".ply") write_ply(out.stream(), m, component);
-    if (ext == ".vtp") write_vtp(out.stream(), m, component);
-    if (ext == ".vtk") write_vtk_legacy(out.stream(), m, component);
-    if (ext == ".msh") write_msh(out.stream(), m, component, options.msh_version);
+    if (ext == ".ply") write_ply(out.stream(), m, component, binary);
+    if (ext == ".vtp") write_vtp(out.stream(), m, component, binary);
+    if (ext == ".vtk") write_vtk_legacy(out.stream(), m, component, binary);
+    if (ext == ".msh") write_msh(out.stream(), m, component, options.msh_version, options.msh_binary);
     out.commit();
     return;
   }

@@ -20,6 +20,11 @@ struct SurfaceMesh {
 
 struct SurfaceWriteOptions {
   std::string msh_version = "4.1";  // or "2.2"
+  // Binary is the default where the format has a binary form (.ply, .stl,
+  // .vtp, .vtk); ascii writes their text form. .msh is ASCII unless
+  // msh_binary (solvers read ASCII .msh more widely).
+  bool ascii = false;
+  bool msh_binary = false;
 };
 
 // The output extensions write_surface takes, for messages and checks.
@@ -31,7 +36,8 @@ bool surface_output_holds_labels(const std::string& path);
 
 // Throws Error on unreadable files, non-triangle faces, bad ids, NaNs.
 SurfaceMesh read_surface(const std::string& path);
-// Atomic; binary PLY/STL, ASCII OFF/OBJ/VTK/msh; normals written when
+// Atomic; binary PLY/STL/VTK (or ASCII, options.ascii), ASCII OFF/OBJ, msh
+// as options say; normals written when
 // present (PLY, OBJ, VTK, msh); per-face component ids and labels in PLY, VTK
 // and msh, with the labels' names where known. Throws UsageError on an unknown extension or msh version.
 void write_surface(const std::string& path, const SurfaceMesh& mesh, const SurfaceWriteOptions& options = {});

@@ -1,5 +1,6 @@
 // Tetrahedral mesh files, chosen by extension: Gmsh .msh (4.1, or 2.2 for
-// the solvers that read only that), MEDIT .mesh, VTK .vtu (XML, ASCII) and
+// the solvers that read only that; ASCII or binary), MEDIT .mesh, VTK .vtu
+// (XML, appended raw data zlib-compressed as VTK writes, or ASCII) and
 // Abaqus .inp. Regions travel as physical groups (tetrahedra: dimension 3,
 // tag = region; boundary triangles: dimension 2, same tag, "boundary_R"),
 // references, cell data "region" (and "boundary": 1 on triangles), element
@@ -18,12 +19,15 @@ bool is_tet_mesh_path(const std::string& path);
 
 struct TetWriteOptions {
   std::string msh_version = "4.1";  // or "2.2"
+  bool ascii = false;       // .vtu in ASCII (else appended raw data, zlib-compressed, as VTK writes)
+  bool msh_binary = false;  // .msh in Gmsh's binary form (else ASCII)
 };
 
 // Throws Error on failure (no file left), UsageError on an unknown extension.
 void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWriteOptions& options = {});
 
-// .msh (2.2 and 4.1 ASCII), .mesh, .vtu (ASCII): tetrahedra and triangles
+// .msh (2.2 and 4.1, ASCII or binary), .mesh, .vtu (ASCII or appended raw
+// data, zlib-compressed or not, as VTK and meshio write): tetrahedra and triangles
 // with their regions. Throws Error naming the file on anything malformed.
 TetMesh read_tet_mesh(const std::string& path);
 

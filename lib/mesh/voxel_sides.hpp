@@ -3,13 +3,15 @@
 // the surface, a background one outside. Sides by CGAL's
 // Side_of_triangle_mesh (SurfaceGeometry::side: exact ray tests), inside
 // meaning enclosed by an odd number of the surface's components. Reported
-// by meshinfo --image; not part of the certificate's verdict.
+// by meshinfo --image and by the surface mesher's own certificate (which
+// fails on a wrong centre unless --no-voxel-sides).
 #pragma once
 #include "image/grid.hpp"
 #include "util/json.hpp"
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace imgmesh {
@@ -28,5 +30,11 @@ struct VoxelSides {
 // per triangle, its component (0 .. components - 1).
 VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                        const std::vector<int>& component, std::size_t components, const BinaryImage& img);
+// The same on a grid whose foreground is given per voxel (in the grid;
+// beyond it, background): the mesher's, from the signs of f's samples.
+using Foreground = std::function<bool(std::size_t, std::size_t, std::size_t)>;
+VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                       const std::vector<int>& component, std::size_t components, const Geometry& grid,
+                       const Foreground& foreground);
 
 } // namespace imgmesh

@@ -3,6 +3,7 @@
 
 #include "planar/text_io.hpp"
 #include "util/atomic_file.hpp"
+#include "util/binary_io.hpp"
 #include "util/coordinates.hpp"
 #include "util/error.hpp"
 #include "util/path.hpp"
@@ -46,35 +47,45 @@ void write_off(const std::string& path, const PlanarMesh& m) {
   o.commit();
 }
 
+// Legacy VTK, ASCII or binary (big-endian, as the format requires): the
+// same numbers either way.
 void write_vtk(const std::string& path, const PlanarMesh& m, const PlanarWriteOptions& opt) {
   TextOutput o(path);
-  o << "# vtk DataFile Version 3.0\nimgmesh planar mesh\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+  const bool binary = !opt.ascii;
+  o << "# vtk DataFile Version 3.0\nimgmesh planar mesh\n" << (binary ? "BINARY" : "ASCII")
+    << "\nDATASET UNSTRUCTURED_GRID\n";
   o << "POINTS " << m.points.size() << " double\n";
-  for (const auto& p : m.points) o << p[0] << ' ' << p[1] << " 0\n";
-  std::size_t size = 0;
-  for (const auto& e : m.elements) size += e.size() + 1;
-  o << "CELLS " << m.elements.size() << ' ' << size << '\n';
+  std::vector<double> xyz;
+  for (const auto& p : m.points) xyz.insert(xyz.end(), {p[0], p[1], 0.0});
+  vtk_legacy_values(o, xyz, binary, 3);
+  std::vector<int> cells, types;
+  std::vector<std::size_t> rows;
   for (const auto& e : m.elements) {
-    o << e.size();
-    for (int v : e) o << ' ' << v;
-    o << '\n';
+    cells.push_back(int(e.size()));
+    cells.insert(cells.end(), e.begin(), e.end());
+    rows.push_back(e.size() + 1);
+    types.push_back(e.size() == 3 ? 5 : e.size() == 4 ? 9 : 7);
   }
+  o << "CELLS " << m.elements.size() << ' ' << cells.size() << '\n';
+  vtk_legacy_values(o, cells, binary, rows);
   o << "CELL_TYPES " << m.elements.size() << '\n';
-  for (const auto& e : m.elements) o << (e.size() == 3 ? 5 : e.size() == 4 ? 9 : 7) << '\n';
+  vtk_legacy_values(o, types, binary, 1);
   if (!m.elements.empty()) {
     o << "CELL_DATA " << m.elements.size() << '\n';
     o << "SCALARS region double 1\nLOOKUP_TABLE default\n";
-    for (std::size_t i = 0; i < m.elements.size(); ++i) o << region_of(m, i) << '\n';
+    std::vector<double> regions;
+    for (std::size_t i = 0; i < m.elements.size(); ++i) regions.push_back(region_of(m, i));
+    vtk_legacy_values(o, regions, binary, 1);
     if (opt.element_scalar.size() == m.elements.size()) {
       std::string name = opt.scalar_name.empty() ? "scalar" : opt.scalar_name;
       std::replace(name.begin(), name.end(), ' ', '_');
       o << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
-      for (double v : opt.element_scalar) o << v << '\n';
+      vtk_legacy_values(o, opt.element_scalar, binary, 1);
     }
   }
   if (m.point_markers.size() == m.points.size() && !m.points.empty()) {
     o << "POINT_DATA " << m.points.size() << "\nSCALARS marker int 1\nLOOKUP_TABLE default\n";
-    for (int k : m.point_markers) o << k << '\n';
+    vtk_legacy_values(o, m.point_markers, binary, 1);
   }
   o.commit();
 }

@@ -1,5 +1,6 @@
 // Planar meshes in and out by file extension (doc/design.md "Data contracts"):
-// Triangle's .ele/.node/.poly, OFF (z = 0), legacy VTK, Gmsh 2.2 and SVG.
+// Triangle's .ele/.node/.poly, OFF (z = 0), legacy VTK (binary unless
+// PlanarWriteOptions::ascii), Gmsh 2.2 and SVG.
 #pragma once
 #include "planar/triangle_io.hpp"
 
@@ -21,6 +22,8 @@ struct SvgBackground {
 };
 
 struct PlanarWriteOptions {
+  // Legacy .vtk as text; else binary (big-endian, as the format requires).
+  bool ascii = false;
   // Optional per-element scalar (one per element): VTK cell data and the SVG
   // fill colour (a blue-to-yellow map over its range). Without it the SVG
   // colours elements by their region attribute.

@@ -244,6 +244,22 @@ MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sample
   return m;
 }
 
+bool count_voxel_sides(const Certificate& cert, const CubeGrid& grid, VoxelSides& out) {
+  const auto& state = cert.check.state;
+  for (int c : {SurfaceCertificate::kClosed, SurfaceCertificate::kManifold, SurfaceCertificate::kOriented})
+    if (state[std::size_t(c)] != 1) return false;
+  Geometry local;  // the mesher's frame, as check_certificate's
+  local.size = grid.g.size;
+  local.spacing = grid.g.spacing;
+  const MeshTopology& t = cert.check.topology;
+  std::vector<int> component;
+  component.reserve(cert.mesh.triangles.size());
+  for (const auto& tri : cert.mesh.triangles) component.push_back(t.component_of[std::size_t(tri[0])]);
+  out = voxel_sides(cert.mesh.points, cert.mesh.triangles, component, t.components.size(), local,
+                    [&grid](std::size_t i, std::size_t j, std::size_t k) { return grid.g(i, j, k) < 0; });
+  return true;
+}
+
 Candidates fallback_points(const Tr& tr, const SurfaceSampler& sampler, int comp) {
   const CubeGrid& grid = sampler.grid();
   std::vector<std::pair<double, Facet>> mine;

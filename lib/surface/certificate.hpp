@@ -11,6 +11,7 @@
 #include "mesh/surface_certificate.hpp"
 #include "mesh/topology.hpp"
 #include "mesh/triangle_quality.hpp"
+#include "mesh/voxel_sides.hpp"
 
 #include <cstdint>
 #include <string>
@@ -77,6 +78,12 @@ struct MeasuredGuarantees {
   long long restricted_delaunay_violations = 0;  // surface centres whose nearest site is not their facet's
 };
 MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& f, const Certificate& cert);
+
+// The voxel centres next to bdCA(X) on the wrong side of cert.mesh
+// (mesh/voxel_sides.hpp: exact side tests on the mesh, not the
+// triangulation's cells), foreground where g < 0; false (out untouched) when
+// the mesh is not closed, manifold and oriented.
+bool count_voxel_sides(const Certificate& cert, const CubeGrid& grid, VoxelSides& out);
 
 // The fallback's points on S component `comp`: the surface centres of the
 // largest tenth of its restricted facets (read from `tr` as it is now) and

@@ -118,6 +118,18 @@ public:
   // Sign convention for zeros (8.4(1)): f == 0 counts as outside, i.e. we
   // mesh f^-1(-eps) symbolically, consistently on every edge.
   static bool inside(double v) { return v < 0; }
+  // Which side of S a local point is on: f's sign, read off the samples
+  // where the cube around q has one sign (no zero there, thesis F1); beyond
+  // the box of samples, outside.
+  bool inside_at(const Vec3& q) const {
+    long c[3];
+    for (int i = 0; i < 3; ++i) {
+      if (!(q[i] >= 0 && q[i] <= grid_.hi[i])) return false;
+      c[i] = std::min(long(q[i] / grid_.s[i]), grid_.n[i] - 2);
+    }
+    if (!grid_.active(c[0], c[1], c[2])) return grid_.neg(c[0], c[1], c[2]);
+    return inside(value(q));
+  }
   // The point x of S on segment [a, b] (fa = f(a)), to ~1e-11 delta, when
   // the ends have opposite signs; false (x untouched) when they do not: the
   // pair brackets no root, and a point found there need not be on S.

@@ -35,8 +35,9 @@ using Point = GT::Point_3;
 // Why a vertex is in W; also the per-subroutine counters of --stats.
 // kVolume: implicit2tet's cell circumcentres (lib/volume), not on S;
 // kBox: its points on the box of --outside (corners and box splits).
-enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kFacetCycle, kHandle, kQuality, kSmooth, kDistance, kFallback, kVolume, kBox, kOrigins };
-inline constexpr const char* kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "facet_cycle", "handle_detection", "quality", "smooth", "max_distance", "topology_fallback", "volume", "box"};
+// kVoxelSide: VoxelSides' points (issue 38), on S.
+enum Origin : std::uint8_t { kSeed, kVorEdge, kTopoDisk, kFacetCycle, kHandle, kQuality, kSmooth, kDistance, kFallback, kVoxelSide, kVolume, kBox, kOrigins };
+inline constexpr const char* kOriginName[kOrigins] = {"seed", "vor_edge", "topo_disk", "facet_cycle", "handle_detection", "quality", "smooth", "max_distance", "topology_fallback", "voxel_side", "volume", "box"};
 // A vertex placed on S (by the surface mesher), not by implicit2tet off S.
 inline bool on_surface(std::uint8_t origin) { return origin < kVolume; }
 

@@ -203,7 +203,8 @@ void DelMesh::refine() {
     if (queue_.empty()) std::vector<Item>().swap(queue_.c);
     if (max_hit_ || !opt_.topology_steps) break;
     if (opt_.facet_cycle && facet_cycle_pass()) continue;
-    if (!handle_vertex_pass()) break;
+    if (handle_vertex_pass()) continue;
+    if (!opt_.voxel_sides || topology_only_ || !voxel_sides_pass()) break;
   }
 }
 
@@ -467,6 +468,26 @@ bool DelMesh::handle_vertex_pass() {
   return insert_batch(pts, kHandle);
 }
 
+// VoxelSides (issue 38), once TOPOLOGY has nothing left: a point of S for
+// every voxel centre whose cell lies on the other side. Each goes in at
+// least half the centre's distance to W from W (doc/implicit2mesh.md 4.9),
+// and at least QUALITY's guard. True if one went in.
+bool DelMesh::voxel_sides_pass() {
+  phase_ = "voxel sides";
+  const Candidates pts = voxel_side_points_(tr_, sampler_, walk_start_, 1e-3 * grid_.delta, voxel_sides_wrong_, refused_);
+  // A point waits for the next pass once one of this pass went in nearer
+  // to it than W was: one point often puts a run of centres right (fewer
+  // points, and fewer for QUALITY to repair around them).
+  bool any = false;
+  for (const auto& [x, clearance2] : pts) {
+    const Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), walk_start_->cell());
+    if (any && dist2(x, vec(nv->point())) < 0.99 * clearance2) continue;
+    if (insert(x, kVoxelSide)) any = true;
+    else refused_ += !max_hit_;
+  }
+  return any;
+}
+
 // HandleDetection on every vertex of the S components whose mesh has the
 // wrong topology (the certificate says which), before the blunter fallback.
 bool DelMesh::handle_pass(const std::vector<int>& bad) {
@@ -622,6 +643,8 @@ RestrictedDelaunayResult DelMesh::run() {
   res.max_abs_f_at_vertices = m.max_abs_f_at_vertices;
   res.max_abs_f_at_centroids = m.max_abs_f_at_centroids;
   res.restricted_delaunay_violations = m.restricted_delaunay_violations;
+  res.voxel_sides_on = opt_.voxel_sides && opt_.topology_steps;  // VoxelSides runs only with TOPOLOGY
+  res.voxel_sides_counted = count_voxel_sides(cert, grid_, res.voxel_sides);
   res.ratio_bound = opt_.ratio;
   res.roughness_bound = opt_.roughness;
   res.max_distance_bound = opt_.max_distance;

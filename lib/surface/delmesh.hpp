@@ -21,12 +21,16 @@
 //         FacetCycle: S closed inside a Voronoi facet              facet_cycle.cpp (8.2),
 //           its raster of the facet                                facet_cycle_raster.cpp
 //         HandleDetection: S inside a Voronoi cell not a disk      handle_detection.cpp (8.3)
+//       then, once those find nothing (the closed ball property):
+//         VoxelSides: a voxel centre next to S in a cell on the
+//           other side of S (its circumcentre's)                   voxel_side_points.cpp (issue 38)
 //     certificate: components and Euler characteristics against
 //       bdCA(X), per component and by place                        certificate.cpp
 //     while a component differs (at most --fallback-rounds rounds):
 //       HandleDetection on all its vertices, else the fallback;
 //       REFINE; certificate again                                  handle_detection.cpp, certificate.cpp
-//     the guarantees measured on the output                        certificate.cpp
+//     the guarantees measured on the output, the voxel centres on
+//       the wrong side of it counted (mesh/voxel_sides.hpp)        certificate.cpp
 //
 // A point goes in at the surface centre x_t of the facet that asked for it
 // (EdgeSurface's crossing of its Voronoi edge), with the conflict zone
@@ -39,6 +43,7 @@
 #include "surface/handle_detection.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "surface/topo_disk.hpp"
+#include "surface/voxel_side_points.hpp"
 
 #include <chrono>
 #include <cstdint>
@@ -124,6 +129,7 @@ private:
   bool insert_batch(const Candidates& pts, Origin origin);
   bool facet_cycle_pass();
   bool handle_vertex_pass();
+  bool voxel_sides_pass();
   bool handle_pass(const std::vector<int>& bad_components);
   bool fallback(const std::vector<int>& bad_components);
   void refuse_topology(const char* step, const Vec3& x);
@@ -185,6 +191,8 @@ private:
   std::vector<Vh> touched_;
   std::uint32_t stamp_ = 0;
   std::function<bool(DelMesh&)> after_certificate_;
+  VoxelSidePoints voxel_side_points_;
+  long long voxel_sides_wrong_ = 0;  // wrong centres found, over all passes
 };
 
 // DelMesh(surface, options).run(), for restricted_delaunay_mesh().

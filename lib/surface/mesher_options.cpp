@@ -69,6 +69,7 @@ RestrictedDelaunayOptions MesherBounds::resolve(const Vec3& spacing) const {
                                                   : surface_detail::parse_number(max_distance);
   o.fallback_rounds = fallback_rounds;
   o.max_points = max_points;
+  o.voxel_sides = voxel_sides;
   surface_detail::check_bounds(o, roughness);
   return o;
 }

@@ -24,6 +24,7 @@ struct MesherBounds {
   std::string max_distance = kVoxelDistance;  // E in world units, or kVoxelDistance
   int fallback_rounds = RestrictedDelaunayOptions().fallback_rounds;
   std::size_t max_points = RestrictedDelaunayOptions().max_points;
+  bool voxel_sides = RestrictedDelaunayOptions().voxel_sides;
 
   // The bounds checked (UsageError naming the option, as check_options, and
   // quoting g as given) with their units resolved: g in radians, E from

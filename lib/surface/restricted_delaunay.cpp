@@ -64,6 +64,7 @@ Json RestrictedDelaunayResult::to_json() const {
   st["max_abs_f_at_vertices"] = max_abs_f_at_vertices;
   st["max_abs_f_at_centroids"] = max_abs_f_at_centroids;
   st["restricted_delaunay_violations"] = restricted_delaunay_violations;
+  if (voxel_sides_counted) st["voxel_sides"] = voxel_sides.to_json();
   st["function_evaluations"] = function_evaluations;
   Json times = Json::object();
   times["seeds"] = seconds_seeds;
@@ -88,6 +89,8 @@ std::string RestrictedDelaunayResult::failed_guarantee() const {
   if (!roughness_ok) failure += "roughness above the bound; ";
   if (!distance_ok) failure += "distance to the surface above --max-distance; ";
   if (restricted_delaunay_violations) failure += "restricted Delaunay property violated; ";
+  if (voxel_sides_on && voxel_sides_counted && voxel_sides.wrong())
+    failure += std::to_string(voxel_sides.wrong()) + " voxel centre(s) on the wrong side of the surface; ";
   if (!failure.empty()) failure.resize(failure.size() - 2);
   return failure;
 }

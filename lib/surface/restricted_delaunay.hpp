@@ -8,6 +8,7 @@
 // fallback refine.
 #pragma once
 #include "mesh/surface_io.hpp"
+#include "mesh/voxel_sides.hpp"
 #include "surface/implicit_surface.hpp"
 #include "mesh/topology.hpp"
 #include "mesh/triangle_quality.hpp"
@@ -45,11 +46,16 @@ struct RestrictedDelaunayOptions {
   bool prove_missed_cells = true;
   bool compare_missed_cells = false;
   bool seed_deletion = false;   // SAMPLETOPOLOGY as published: TOPOLOGY alone, then delete the seeds (7.6.2)
+  // VoxelSides (issue 38): refine until every voxel centre next to a sign
+  // change of g lies on its own side of the surface (delmesh.hpp); the
+  // certificate counts those that do not either way, and fails on one when on.
+  bool voxel_sides = true;
   // The certificate's repairs: at most this many rounds of HandleDetection
   // or the fallback (a counted last resort: TOPOLOGY should leave nothing).
   int fallback_rounds = 40;
   // false (tests only): no VorEdge, TopoDisk, FacetCycle or HandleDetection,
-  // so that the certificate fails and the fallback must act.
+  // so that the certificate fails and the fallback must act; nor VoxelSides
+  // (it needs the closed ball property), whose count is then reported only.
   bool topology_steps = true;
   // Called now and then with the phase and the number of points so far.
   std::function<void(const std::string&)> progress;
@@ -68,7 +74,8 @@ struct RestrictedDelaunayResult {
 
   // What DELMESH did: points inserted per subroutine (seed, vor_edge,
   // topo_disk, facet_cycle, handle_detection, quality, smooth, max_distance,
-  // topology_fallback), points refused (too close to W), deletions.
+  // topology_fallback, voxel_side), points refused (too close to W),
+  // deletions.
   std::vector<std::pair<std::string, long long>> points_inserted;
   long long points_refused = 0, seeds_deleted = 0, handle_points_deleted = 0, handle_points_restored = 0;
   int topology_fallback_rounds = 0;  // certificate rounds that repaired a component
@@ -89,6 +96,11 @@ struct RestrictedDelaunayResult {
   double max_distance_to_plane = 0;     // surface centre to its triangle's plane
   double max_abs_f_at_vertices = 0, max_abs_f_at_centroids = 0;
   long long restricted_delaunay_violations = 0;  // surface centres whose ball holds a vertex
+  // The voxel centres next to bdCA(X) on the wrong side of the mesh
+  // (mesh/voxel_sides.hpp), counted when the mesh is closed, manifold and
+  // oriented; a failed guarantee when voxel_sides_on.
+  VoxelSides voxel_sides;
+  bool voxel_sides_counted = false, voxel_sides_on = false;
   // The bounds asked.
   double ratio_bound = 0, roughness_bound = 0, max_distance_bound = 0;
   std::size_t max_points = 0;

@@ -36,20 +36,8 @@ public:
   CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt, const BoxRefinement* box)
       : f_(f), opt_(opt), box_(box), guard_(1e-3 * f.grid().delta) {}
 
-  // Which side of S a local point is on: f's sign, read off the samples
-  // where the cube around q has one sign (no zero there, thesis F1); beyond
-  // the box of samples, outside.
-  bool inside(const Point& p) const {
-    const CubeGrid& g = f_.grid();
-    const Vec3 q = vec(p);
-    long c[3];
-    for (int i = 0; i < 3; ++i) {
-      if (!(q[i] >= 0 && q[i] <= g.hi[i])) return false;
-      c[i] = std::min(long(q[i] / g.s[i]), g.n[i] - 2);
-    }
-    if (!g.active(c[0], c[1], c[2])) return g.neg(c[0], c[1], c[2]);
-    return SurfaceSampler::inside(f_.value(q));
-  }
+  // Which side of S a local point is on (SurfaceSampler::inside_at).
+  bool inside(const Point& p) const { return f_.inside_at(vec(p)); }
 
   // How far a finite cell is beyond the bounds (0: within them); slivers
   // (only a small dihedral angle) come after every other bad cell.

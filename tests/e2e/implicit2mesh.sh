@@ -85,10 +85,23 @@ PY
     fail "bunny at the defaults: $(cat dist.txt)"
 }
 
+# VoxelSides (issue 38, on by default): every voxel centre next to bdCA(X)
+# on its own side, counted by meshinfo --image's exact side tests and by the
+# mesher's own certificate (the bunny had 611 on the wrong side without it).
+case_bunny_every_voxel_centre_on_its_side() {
+  local f wc; f=$(shared bunny-f.nrrd bunny_f); wc=$(shared bunny-wc.nrrd bunny_wc)
+  expect 0 implicit2mesh "$f" sides.off --stats stats.json
+  OUT=info.json expect 0 meshinfo sides.off --image "$wc" --json
+  [[ $(json info.json image.voxel_sides.wrong_side) == 0 ]] || fail "meshinfo: $(json info.json image.voxel_sides)"
+  [[ $(json info.json image.voxel_sides.voxel_centres_checked) -gt 30000 ]] || fail "meshinfo: too few centres checked"
+  [[ $(json stats.json voxel_sides.wrong_side) == 0 ]] || fail "stats: $(json stats.json voxel_sides)"
+  [[ $(json stats.json points_inserted.voxel_side) -gt 0 ]] || fail "stats: VoxelSides inserted nothing"
+}
+
 # The distance bound's centroid half on brain tissue at the defaults: with
 # the surface centres alone within E = 0.3 voxel of their planes, a
 # triangle of brain label 1 had |f| = 0.63 voxel at its centroid.
-case_brain_label1_centroids_within_twice_the_bound() {
+case_brain_label1_centroids_within_twice_the_bound() {  # scale
   expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 1 b1-wc.nrrd -q
   expect 0 wc2implicit b1-wc.nrrd b1-f.nrrd -q
   expect 0 implicit2mesh b1-f.nrrd b1.off
@@ -132,18 +145,22 @@ case_normals_unit_and_outward() {
 }
 
 # FacetCycle and HandleDetection run on --threads threads, which take
-# chunks of the work as they finish: the same mesh for 1, 2 and 3 threads.
+# chunks of the work as they finish: the same mesh for 1, 2 and 3 threads,
+# the same bytes of the binary .vtp (exact doubles, zlib-compressed), at
+# most 40 bytes a triangle (issue 37).
 case_threads_do_not_change_the_mesh() {
   local f; f=$(shared bunny-f.nrrd bunny_f)
-  expect 0 implicit2mesh "$f" t1.off --threads 1
-  expect 0 implicit2mesh "$f" t2.off --threads 2
-  expect 0 implicit2mesh "$f" t3.off --threads 3
-  cmp -s t1.off t2.off && cmp -s t1.off t3.off || fail "--threads 1, 2 and 3 give different meshes"
+  expect 0 implicit2mesh "$f" t1.vtp --threads 1 --stats t1.json
+  expect 0 implicit2mesh "$f" t2.vtp --threads 2
+  expect 0 implicit2mesh "$f" t3.vtp --threads 3
+  cmp -s t1.vtp t2.vtp && cmp -s t1.vtp t3.vtp || fail "--threads 1, 2 and 3 give different meshes"
+  local n b; n=$(json t1.json triangles) b=$(stat -c %s t1.vtp)
+  (( n > 1000 && b <= 40 * n )) || fail "t1.vtp: $b bytes for $n triangles, over 40 a triangle"
 }
 
 # Real brain tissue: a noisy k-means class (289 components, one of genus
 # 1482; among them thin rods whose cross-sections nearly fill a Voronoi facet).
-case_brain_label5_has_voxel_topology() {
+case_brain_label5_has_voxel_topology() {  # scale
   expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 5 brain-wc.nrrd -q
   expect 0 wc2implicit brain-wc.nrrd brain-f.nrrd -q
   expect 0 implicit2mesh brain-f.nrrd brain.off "${LOOSE[@]}" --stats brain.json
@@ -234,7 +251,7 @@ case_anisotropic_torus_1_2p5_0p5() { anisotropic torus 16 7.63 7.59 7.77 3.75 1.
 
 # share/examples/Makefile on the bundled liver labels: vessels (127, 29
 # components), parenchyma (255) and label 85, one mesh per label, in parallel.
-case_examples_makefile_one_mesh_per_label() {
+case_examples_makefile_one_mesh_per_label() {  # scale
   make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85 127 255" BIN="$BIN/" OUT=ex -j2 \
     RATIO=2 FLAGS="--max-distance 0" 2> make.err || fail "make: $(cat make.err)"
   for l in 85 127 255; do
@@ -246,7 +263,7 @@ case_examples_makefile_one_mesh_per_label() {
 # share/examples/Snakefile over two scans (a folder of label maps), in both
 # modes: per label, the Makefile's pipeline; per scan, seg2mesh on the map.
 # Snakemake is a test dependency (scripts/install-deps).
-case_snakefile_meshes_every_scan() {
+case_snakefile_meshes_every_scan() {  # scale
   command -v snakemake > /dev/null || fail "snakemake is not installed (scripts/install-deps installs it)"
   mkdir scans
   ln -s "$DATA/liver-labels.nrrd" scans/a.nrrd

@@ -70,7 +70,8 @@ case_msh_version_2_2_followed() {
 }
 
 # meshinfo reads it back: conforming, positive, the boundary matching
-# bdCA(X) by place, radius-edge ratios within 2.
+# bdCA(X) by place with every voxel centre next to it on its side,
+# radius-edge ratios within 2.
 read_back() {
   mesh "$1" || return
   OUT=info.json expect 0 meshinfo "$1" --image "$(shared bunny-wc.nrrd bunny_wc)" --json ||
@@ -85,6 +86,8 @@ assert t["max_radius_edge_ratio"] <= 2 * (1 + 1e-9), t["max_radius_edge_ratio"]
 assert t["min_dihedral_degrees"] >= 10, t["min_dihedral_degrees"]  # slivers refined (default --sliver-angle 10)
 assert t["tetrahedra"] > 1000 and t["boundary_triangles_in_file"] == r["faces"], (t["tetrahedra"], r["faces"])
 assert list(t["volume_by_region"]) == ["1"]
+# VoxelSides (issue 38): every voxel centre next to bdCA(X) on its side of region 1's boundary.
+assert r["image"]["voxel_sides"]["wrong_side"] == 0, r["image"]["voxel_sides"]
 PY
 }
 case_msh_read_back_conforming_matching_the_image() { read_back bunny.msh; }
@@ -135,6 +138,45 @@ for f, key in [("bunny_s.msh", "gmsh:physical"), ("bunny_s22.msh", "gmsh:physica
 PY
 }
 
+# The binary outputs (.vtu by default, .msh with --msh-binary) hold what
+# their ASCII forms hold: meshio reads the same points (doubles), cells and
+# regions; meshinfo the same report, matching the image; gmsh reads the
+# binary .msh to the ASCII file's elements and physical groups.
+case_binary_vtu_and_msh_read_as_their_ascii_form() {
+  small bunny_s.msh && small bunny_s22.msh --msh-version 2.2 && small bunny_s.vtu && small bunny_sa.vtu --ascii &&
+    small bunny_sb.msh --msh-binary && small bunny_sb22.msh --msh-version 2.2 --msh-binary || return
+  head -c 200 bunny_s.vtu | grep -aq 'compressor="vtkZLibDataCompressor"' && head -2 bunny_sb.msh | grep -aqx '4.1 1 8' ||
+    { fail "not binary outputs"; return; }
+  local f wc; wc=$(shared bunny-wc.nrrd bunny_wc) || return
+  for f in bunny_s.msh bunny_s22.msh bunny_s.vtu bunny_sa.vtu bunny_sb.msh bunny_sb22.msh; do
+    OUT=$f.json expect 0 meshinfo "$f" --image "$wc" --json || { fail "meshinfo --image $f"; return; }
+  done
+  python3 - > info.txt 2>&1 <<'PY' || fail "meshinfo reads a binary file otherwise: $(cat info.txt)"
+import json
+r = lambda f: {k: v for k, v in json.load(open(f + '.json')).items() if k != 'file'}
+for b, a in [('bunny_s.vtu', 'bunny_sa.vtu'), ('bunny_sb.msh', 'bunny_s.msh'), ('bunny_sb22.msh', 'bunny_s22.msh')]:
+    assert r(b) == r(a), (b, a)
+    assert r(b)['image']['matches'] and r(b)['tetrahedra']['tetrahedra'] > 100, b
+PY
+  if /usr/bin/python3 -c 'import meshio' 2> /dev/null; then
+    /usr/bin/python3 - > meshio.txt 2>&1 <<'PY' || fail "meshio reads a binary file otherwise: $(cat meshio.txt)"
+import meshio
+for b, a in [('bunny_s.vtu', 'bunny_sa.vtu'), ('bunny_sb.msh', 'bunny_s.msh'), ('bunny_sb22.msh', 'bunny_s22.msh')]:
+    x, y = meshio.read(b), meshio.read(a)
+    assert (x.points == y.points).all(), (b, 'points')
+    assert [c.type for c in x.cells] == [c.type for c in y.cells] and all((p.data == q.data).all() for p, q in zip(x.cells, y.cells)), (b, 'cells')
+    assert sorted(x.cell_data) == sorted(y.cell_data) and all((p == q).all() for k in x.cell_data for p, q in zip(x.cell_data[k], y.cell_data[k])), (b, 'cell data')
+    assert any(c.type == 'tetra' for c in x.cells), b
+PY
+  fi
+  command -v gmsh > /dev/null || return 0
+  for f in bunny_s.msh bunny_sb.msh bunny_s22.msh bunny_sb22.msh; do
+    gmsh "$f" -0 -o "re-$f" -format msh22 > gmsh.log 2>&1 && ! grep -q '^Error' gmsh.log || { fail "gmsh cannot read $f: $(cat gmsh.log)"; return; }
+  done
+  cmp -s re-bunny_sb.msh re-bunny_s.msh && cmp -s re-bunny_sb22.msh re-bunny_s22.msh ||
+    fail "gmsh reads the binary .msh to other elements than the ASCII one"
+}
+
 # gmsh reads .msh (4.1 and 2.2) and .mesh and writes them again with the
 # same elements and physical groups (MEDIT references become elementary
 # entities there).
@@ -163,7 +205,7 @@ PY
 }
 
 # share/examples/Makefile's volume target on a small bundled label.
-case_examples_makefile_volume_matches_its_label() {
+case_examples_makefile_volume_matches_its_label() {  # scale
   [[ -x $BIN/img2wc && -x $BIN/wc2implicit ]] || die "the Makefile part needs img2wc and wc2implicit"
   make -s -f "$SRC/share/examples/Makefile" SCAN="$DATA/liver-labels.nrrd" LABELS="85" BIN="$BIN/" OUT=ex volume \
     > make.out 2>&1 || { fail "make volume: $(cat make.out)"; return; }

@@ -99,6 +99,13 @@ d = json.load(sys.stdin if sys.argv[1] == "-" else open(sys.argv[1]))
 for k in sys.argv[2].split("."): d = d[int(k)] if isinstance(d, list) else d[k]
 print(d)' "$1" "$2"
 }
+# A python that has the module, or none: the pyenv python on PATH may not
+# see Debian's python3-vtk9 / python3-meshio.
+python_with() {
+  for py in python3 /usr/bin/python3; do
+    if command -v "$py" > /dev/null && "$py" -c "import $1" 2> /dev/null; then echo "$py"; return; fi
+  done
+}
 # count FILE: the first number of a Triangle file (nodes or elements).
 count() { grep -v '^ *#' "$1" | head -1 | cut -d' ' -f1; }
 

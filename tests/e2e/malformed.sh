@@ -192,7 +192,7 @@ case_extreme_coordinates_refused() {
   printf 'OFF\n3 1 0\n0 0 0\n1 0 -1e31\n0 1 0\n3 0 1 2\n' >z.off
   refused meshinfo "line 4: coordinate '-1e31' $range" z.off
   python3 - <<'PY'
-import struct
+import struct, zlib
 tet = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
 faces = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
 def text(bad):  # the tetrahedron's corners as text, vertex 1's x replaced
@@ -229,8 +229,45 @@ open("big.vtu", "w").write(
     + coords("1e31") + '</DataArray>\n</Points>\n<Cells>\n<DataArray type="Int64" Name="connectivity" format="ascii">\n0 1 2 3\n'
     '</DataArray>\n<DataArray type="Int64" Name="offsets" format="ascii">\n4\n</DataArray>\n'
     '<DataArray type="UInt8" Name="types" format="ascii">\n10\n</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n')
+# The same in the binary forms the tools write (Gmsh's binary .msh 4.1 and
+# 2.2, VTK's appended zlib .vtu): the values go through the same check.
+bad = lambda v: [[v if (i, k) == (1, 0) else c for k, c in enumerate(p)] for i, p in enumerate(tet)]
+Z, I, D = (lambda *v: struct.pack("<%dQ" % len(v), *v)), (lambda *v: struct.pack("<%di" % len(v), *v)), \
+    (lambda *v: struct.pack("<%dd" % len(v), *v))
+head = b"$MeshFormat\n%s 1 8\n" + I(1) + b"\n$EndMeshFormat\n"
+open("nan-binary.msh", "wb").write(
+    head % b"4.1" + b"$Nodes\n" + Z(1, 4, 1, 4) + I(3, 1, 0) + Z(4) + Z(1, 2, 3, 4)
+    + b"".join(D(*p) for p in bad(float("nan"))) + b"\n$EndNodes\n$Elements\n" + Z(1, 1, 1, 1) + I(3, 1, 4) + Z(1)
+    + Z(1, 1, 2, 3, 4) + b"\n$EndElements\n")
+open("huge-binary22.msh", "wb").write(
+    head % b"2.2" + b"$Nodes\n4\n" + b"".join(I(i + 1) + D(*p) for i, p in enumerate(bad(1e300)))
+    + b"\n$EndNodes\n$Elements\n1\n" + I(4, 1, 2) + I(1, 1, 1, 1, 2, 3, 4) + b"\n$EndElements\n")
+def vtu(points_type, fmt, bad_value):  # appended zlib arrays as vtkXMLWriter writes them
+    data, tags = b"", ""
+    for name, typ, f, values in [(None, points_type, fmt, sum(bad(bad_value), [])), ("connectivity", "Int64", "q", [0, 1, 2, 3]),
+                                 ("offsets", "Int64", "q", [4]), ("types", "UInt8", "B", [10])]:
+        raw = struct.pack("<%d%s" % (len(values), f), *values)
+        block = zlib.compress(raw)
+        tags += '<DataArray type="%s"%s format="appended" offset="%d"/>\n' % (
+            typ, ' Name="%s"' % name if name else ' NumberOfComponents="3"', len(data))
+        data += Z(1, 32768, len(raw), len(block)) + block
+    points, cells = tags.split("\n", 1)
+    return ('<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" '
+            'header_type="UInt64" compressor="vtkZLibDataCompressor">\n<UnstructuredGrid>\n'
+            '<Piece NumberOfPoints="4" NumberOfCells="1">\n<Points>\n' + points + '\n</Points>\n<Cells>\n' + cells
+            + '</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding="raw">\n_').encode() + data \
+        + b"\n</AppendedData>\n</VTKFile>\n"
+open("huge-appended.vtu", "wb").write(vtu("Float64", "d", 1e300))
+open("inf-appended.vtu", "wb").write(vtu("Float32", "f", float("-inf")))
+open("fine-appended.vtu", "wb").write(vtu("Float64", "d", 1e30))
 PY
   refused meshinfo "PLY line 11: coordinate 'nan' $range" nan.ply
+  refused meshinfo "node 2: coordinate 'nan' $range" nan-binary.msh
+  refused meshinfo "node 2: coordinate '1.0000000000000001e+300' $range" huge-binary22.msh
+  refused meshinfo "appended DataArray Points, value 3: coordinate '1.0000000000000001e+300' $range" huge-appended.vtu
+  refused meshinfo "appended DataArray Points, value 3: coordinate '-inf' $range" inf-appended.vtu
+  # ... while the file is read, 1e30 at the end of the range: the refusals are the check's.
+  "$BIN/meshinfo" fine-appended.vtu >/dev/null || fail "meshinfo fine-appended.vtu: exit $?"
   refused meshinfo "PLY vertex 1: coordinate '1.0000000000000001e+300' $range" huge.ply
   refused meshinfo "line 2: coordinate '1e400' $range" over.obj
   refused meshinfo "line 6: coordinate '-1e31' $range" big.stl

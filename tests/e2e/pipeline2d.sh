@@ -69,7 +69,7 @@ case_lattice_beats_max_edge_on_the_ventricles() {
 # (--pair-above 0) turns much of such a lattice into 45-degree
 # parallelograms: more than 2 degrees less mean mu out of tri2quad (6-12 on
 # the bundled images; quadsmooth's mean pass and splits make up part of it).
-case_square_lattice_pairs_first_mean_mu_30() {
+case_square_lattice_pairs_first_mean_mu_30() {  # scale
   local spec image opts
   for spec in "${IMAGES[@]}"; do
     IFS=: read -r image opts <<< "$spec"
@@ -124,7 +124,7 @@ default_chain_bar() {
 }
 
 # The README's four commands with no option on the bundled images.
-case_default_chain_mean_mu_30_min_10_graded() {
+case_default_chain_mean_mu_30_min_10_graded() {  # scale
   local spec image opts
   for spec in "${IMAGES[@]}"; do
     IFS=: read -r image opts <<< "$spec"
@@ -179,7 +179,7 @@ open(sys.argv[3], "wb").write(hdr.encode() + data)
 PY
 }
 
-case_default_chain_on_brain_kmeans_slices() {
+case_default_chain_on_brain_kmeans_slices() {  # scale
   local spec z opts
   for spec in "30:" "30:--label 3" "60:--label 2"; do
     IFS=: read -r z opts <<< "$spec"

@@ -150,8 +150,8 @@ for ext in off ply obj stl vtp vtk msh; do
     ply) got=$(head -c 400 o/b.ply | grep -a "^element face" | cut -d" " -f3) ;;
     obj) got=$(grep -c "^f " o/b.obj) ;;
     stl) got=$(od -An -t u4 -j 80 -N 4 o/b.stl | tr -d " ") ;;
-    vtp) got=$(grep -o 'NumberOfPolys="[0-9]*"' o/b.vtp | tr -dc 0-9) ;;
-    vtk) got=$(grep "^POLYGONS" o/b.vtk | cut -d" " -f2) ;;
+    vtp) got=$(grep -ao 'NumberOfPolys="[0-9]*"' o/b.vtp | tr -dc 0-9) ;;
+    vtk) got=$(grep -a "^POLYGONS" o/b.vtk | cut -d" " -f2) ;;
     msh) got=$(sed -n '/^\$Elements/{n;p;q}' o/b.msh | cut -d" " -f2) ;;
   esac
   [[ $got == "$n" && $n -gt 0 ]] || fail "implicit2mesh exit 3 .$ext: $got triangles in the file, $n in --stats"

@@ -126,13 +126,28 @@ case_formats_off_vtk_msh_svg_hold_the_triangles() {
   square
   expect 0 poly2tri sq.poly ref.1.ele
   local t; t=$(count ref.1.ele)
-  for ext in off vtk msh svg; do expect 0 poly2tri sq.poly "sq.$ext"; done
+  for ext in off vtk msh svg; do expect 0 poly2tri sq.poly "sq.$ext" --ascii; done
   [[ $(sed -n 2p sq.off | cut -d' ' -f2) == "$t" && $(tail -n "$t" sq.off | grep -c '^3 ') == "$t" ]] || fail ".off: not $t triangles"
   grep -q "^CELLS $t " sq.vtk || fail ".vtk: not $t cells"
   grep -q '^\$MeshFormat' sq.msh && [[ $(awk '/^\$Elements/ { e = 1; getline; next } /^\$EndElements/ { e = 0 } e && $2 == 2' sq.msh | wc -l) == "$t" ]] ||
     fail ".msh: not $t triangles"
   [[ $(grep -c '<polygon' sq.svg) == "$t" ]] || fail ".svg: not $t polygons"
   for f in sq.vtk sq.msh sq.svg; do whole "$f"; done
+  # The default .vtk is binary (big-endian legacy VTK): meshio reads the
+  # same points, cells and cell data as from the --ascii file.
+  expect 0 poly2tri sq.poly sqb.vtk
+  head -3 sqb.vtk | grep -aqx BINARY || fail "sqb.vtk: not binary"
+  if /usr/bin/python3 -c 'import meshio' 2> /dev/null; then
+    /usr/bin/python3 - > mio.txt 2>&1 <<'PY' || fail "meshio reads the binary .vtk otherwise: $(cat mio.txt)"
+import meshio
+x, y = meshio.read('sqb.vtk'), meshio.read('sq.vtk')
+assert (x.points == y.points).all() and [c.type for c in x.cells] == [c.type for c in y.cells]
+assert all((p.data == q.data).all() for p, q in zip(x.cells, y.cells))
+assert sorted(x.cell_data) == sorted(y.cell_data) == ['region']
+assert all((p == q).all() for k in x.cell_data for p, q in zip(x.cell_data[k], y.cell_data[k]))
+assert (x.point_data['marker'] == y.point_data['marker']).all()
+PY
+  fi
 }
 
 # --lattice: the same guarantees (segments, angle, hole, regions, area) with

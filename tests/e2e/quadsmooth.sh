@@ -127,7 +127,7 @@ case_formats_off_vtk_msh_hold_the_mesh() {
   IN_ELE
   expect 0 quadsmooth in.ele ref.ele --iterations 2
   local q; q=$(count ref.ele)
-  for ext in off vtk msh; do expect 0 quadsmooth in.ele "out.$ext" --iterations 2; done
+  for ext in off vtk msh; do expect 0 quadsmooth in.ele "out.$ext" --iterations 2 --ascii; done
   [[ $(sed -n 2p out.off | cut -d' ' -f2) == "$q" && $(tail -n "$q" out.off | grep -c '^4 ') == "$q" ]] || fail ".off: not $q quads"
   grep -q "^CELLS $q " out.vtk || fail ".vtk: not $q cells"
   grep -q '^\$MeshFormat' out.msh && [[ $(awk '/^\$Elements/ { e = 1; getline; next } /^\$EndElements/ { e = 0 } e && $2 == 3' out.msh | wc -l) == "$q" ]] ||

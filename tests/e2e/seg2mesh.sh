@@ -146,11 +146,23 @@ case_max_points_exit_3_with_the_file_naming_the_label() {
 # for byte, and every labelled format carries the names: PLY header
 # comments, the .msh physical names (4.1 and 2.2, read again by Gmsh where
 # installed), the VTK files' field data (decoded as VTK's writers encode
-# it), --stats.
+# it, in the --ascii files), --stats; VTK reads the binary .vtp and .vtk to
+# the same names, labels and mesh as their --ascii forms.
 case_seg_nrrd_names_reach_every_labelled_format() {
   local s a f; s=$(seg) && a=$(shared all1.ply all1_ply) || return
   expect 0 seg2mesh "$s" named.ply --jobs 1 --stats st.json -q || return
-  for f in named.vtp named.vtk named.msh; do expect 0 seg2mesh "$s" "$f" -q || return; done
+  for f in named.vtp named.vtk named.msh; do expect 0 seg2mesh "$s" "$f" -q --ascii || return; done
+  for f in named-b.vtp named-b.vtk; do expect 0 seg2mesh "$s" "$f" -q || return; done
+  local py; py=$(python_with vtk)
+  if [[ -n $py ]]; then
+    $py - "$E2E" > vtk.txt 2>&1 <<'PY' || fail "VTK reads the binary files otherwise: $(cat vtk.txt)"
+import sys; sys.path.insert(0, sys.argv[1]); import surface_read as r
+names = {1: 'ball', 2: 'box touching the ball', 5: 'solid "torus" \u00e9 50%'}
+for f in ('named.vtp', 'named.vtk'):
+    a, b = r.read(f, 'vtk'), r.read(f.replace('.', '-b.'), 'vtk')
+    assert a == b and b['names'] == names and set(b['label']) == set(names), (f, b['names'])
+PY
+  fi
   expect 0 seg2mesh "$s" named22.msh --msh-version 2.2 -q || return
   if command -v gmsh > /dev/null; then
     gmsh named.msh -0 -format msh22 -o gmsh.msh > gmsh.log 2>&1 && ! grep -qi error gmsh.log ||

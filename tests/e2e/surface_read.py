@@ -1,8 +1,10 @@
 """Readers for the surface formats imgmesh writes, independent of its code:
-VTK files by VTK's own Python readers, .msh by meshio (when given) or the
-text grammar of Gmsh's format documentation, PLY and OFF by their grammars.
+VTK files by VTK's own Python readers, .msh by
+meshio (when given; ASCII or binary) or the text grammar of Gmsh's format
+documentation, PLY (binary little-endian or ASCII) and OFF by their grammars.
 read(path, reader) -> dict(points, triangles, component, label, normals, physical);
-a missing field is None. reader: 'vtk', 'meshio' or 'text'."""
+a missing field is None; VTK's field data as names {label: name}.
+reader: 'vtk', 'meshio' or 'text'."""
 import struct, sys
 
 
@@ -21,11 +23,17 @@ def read_off(path):
     return dict(points=pts, triangles=tris, component=None, label=None, normals=None, physical=None)
 
 
+def f32(text):
+    return struct.unpack('<f', struct.pack('<f', float(text)))[0]
+
+
 def read_ply(path):
     b = open(path, 'rb').read()
     end = b.index(b'end_header\n') + len(b'end_header\n')
     head = b[:end].decode().splitlines()
-    assert head[0] == 'ply' and head[1] == 'format binary_little_endian 1.0', head[:2]
+    assert head[0] == 'ply' and head[1] in ('format binary_little_endian 1.0', 'format ascii 1.0'), head[:2]
+    ascii = head[1] == 'format ascii 1.0'
+    words = b[end:].split() if ascii else None
     elements, cur = [], None
     for line in head:
         w = line.split()
@@ -41,7 +49,18 @@ def read_ply(path):
         for _ in range(n):
             row = {}
             for p in props:
-                if p[0] == 'list':
+                if ascii:
+                    kind = p[-2 if p[0] != 'list' else 2]
+                    # A float property is a float32 however its text is written.
+                    cast = (f32 if kind in ('float', 'float32') else float) if kind in ('float', 'float32', 'double', 'float64') else int
+                    if p[0] == 'list':
+                        k = int(words[0])
+                        row[p[3]] = tuple(cast(x) for x in words[1:1 + k])
+                        words = words[1 + k:]
+                    else:
+                        row[p[1]] = cast(words[0])
+                        words = words[1:]
+                elif p[0] == 'list':
                     (k,) = struct.unpack_from('<' + fmt[p[1]], b, off)
                     off += struct.calcsize(fmt[p[1]])
                     row[p[3]] = struct.unpack_from('<%d%s' % (k, fmt[p[2]]), b, off)
@@ -51,7 +70,7 @@ def read_ply(path):
                     off += struct.calcsize(fmt[p[0]])
             rows.append(row)
         out[name] = rows
-    assert off == len(b), 'trailing bytes'
+    assert (not words) if ascii else off == len(b), 'trailing bytes'
     v, f = out['vertex'], out['face']
     return dict(points=[(r['x'], r['y'], r['z']) for r in v],
                 triangles=[tuple(r['vertex_indices']) for r in f],
@@ -65,6 +84,10 @@ def read_vtk(path):
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
     r = vtk.vtkXMLPolyDataReader() if path.endswith('.vtp') else vtk.vtkPolyDataReader()
+    if path.endswith('.vtk'):  # every array, not only the first SCALARS
+        r.ReadAllScalarsOn()
+        r.ReadAllNormalsOn()
+        r.ReadAllFieldsOn()
     r.SetFileName(path)
     r.Update()
     pd = r.GetOutput()
@@ -77,9 +100,14 @@ def read_vtk(path):
         tris.append(tuple(c.GetPointId(k) for k in range(3)))
     arr = lambda a: None if a is None else vtk_to_numpy(a).tolist()
     n = pd.GetPointData().GetNormals()
+    fd = pd.GetFieldData()
+    values, strings = fd.GetAbstractArray('label_values'), fd.GetAbstractArray('label_names')
+    names = None
+    if values is not None and strings is not None:
+        names = {int(values.GetValue(i)): strings.GetValue(i) for i in range(values.GetNumberOfTuples())}
     return dict(points=pts, triangles=tris, component=arr(pd.GetCellData().GetArray('component')),
                 label=arr(pd.GetCellData().GetArray('label')),
-                normals=None if n is None else [tuple(x) for x in arr(n)], physical=None)
+                normals=None if n is None else [tuple(x) for x in arr(n)], physical=None, names=names)
 
 
 def read_msh_meshio(path):

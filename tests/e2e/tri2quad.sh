@@ -172,7 +172,7 @@ case_formats_off_vtk_msh_svg_hold_the_quads() {
   square
   expect 0 tri2quad sq.ele ref.ele
   local q; q=$(count ref.ele)
-  for ext in off vtk msh svg; do expect 0 tri2quad sq.ele "sq.q.$ext"; done
+  for ext in off vtk msh svg; do expect 0 tri2quad sq.ele "sq.q.$ext" --ascii; done
   [[ $(sed -n 2p sq.q.off | cut -d' ' -f2) == "$q" && $(tail -n "$q" sq.q.off | grep -c '^4 ') == "$q" ]] || fail ".off: not $q quads"
   grep -q "^CELLS $q " sq.q.vtk || fail ".vtk: not $q cells"
   grep -q '^\$MeshFormat' sq.q.msh && [[ $(awk '/^\$Elements/ { e = 1; getline; next } /^\$EndElements/ { e = 0 } e && $2 == 3' sq.q.msh | wc -l) == "$q" ]] ||

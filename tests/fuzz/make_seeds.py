@@ -154,3 +154,31 @@ put("volume", "vtu", "\2<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGri
     "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n10\n</DataArray>\n</Cells>\n<CellData>\n"
     "<DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">\n1\n</DataArray>\n</CellData>\n</Piece>\n"
     "</UnstructuredGrid>\n</VTKFile>\n")
+
+# The same tetrahedron in the binary forms imgmesh writes: Gmsh binary
+# (int 1 for the byte order; 2.2 element runs, 4.1 size_t tags) and a .vtu
+# with appended raw data, zlib-compressed behind UInt64 headers.
+xyz = [0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1]
+head = lambda v: b"\0$MeshFormat\n" + v + b" 1 8\n" + struct.pack("<i", 1) + b"\n$EndMeshFormat\n"
+put("volume", "msh22-binary", head(b"2.2") + b"$Nodes\n4\n" +
+    b"".join(struct.pack("<iddd", i + 1, *xyz[3 * i:3 * i + 3]) for i in range(4)) + b"\n$EndNodes\n$Elements\n2\n" +
+    struct.pack("<3i", 4, 1, 2) + struct.pack("<7i", 1, 1, 1, 1, 2, 3, 4) +
+    struct.pack("<3i", 2, 1, 2) + struct.pack("<6i", 2, 1, 1, 1, 3, 2) + b"\n$EndElements\n")
+put("volume", "msh41-binary", head(b"4.1") + b"$Entities\n" + struct.pack("<4Q", 0, 0, 0, 1) +
+    struct.pack("<i6dQiQ", 1, 0, 0, 0, 1, 1, 1, 1, 1, 0) + b"\n$EndEntities\n$Nodes\n" + struct.pack("<4Q", 1, 4, 1, 4) +
+    struct.pack("<3iQ", 3, 1, 0, 4) + struct.pack("<4Q", 1, 2, 3, 4) + struct.pack("<12d", *xyz) +
+    b"\n$EndNodes\n$Elements\n" + struct.pack("<4Q", 1, 1, 1, 1) + struct.pack("<3iQ", 3, 1, 4, 1) +
+    struct.pack("<5Q", 1, 1, 2, 3, 4) + b"\n$EndElements\n")
+appended, tags = b"", []
+for typ, name, comps, raw in [("Float64", None, 3, struct.pack("<12d", *xyz)), ("Int64", "connectivity", 1, struct.pack("<4q", 0, 1, 2, 3)),
+                              ("Int64", "offsets", 1, struct.pack("<q", 4)), ("UInt8", "types", 1, b"\x0a"),
+                              ("Int32", "region", 1, struct.pack("<i", 1))]:
+    z = zlib.compress(raw)
+    tags.append('<DataArray type="%s"%s%s format="appended" offset="%d"/>\n' % (
+        typ, ' Name="%s"' % name if name else "", ' NumberOfComponents="3"' if comps == 3 else "", len(appended)))
+    appended += struct.pack("<4Q", 1, 32768, len(raw), len(z)) + z
+put("volume", "vtu-appended-zlib", ("\2<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+    "byte_order=\"LittleEndian\" header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n<UnstructuredGrid>\n"
+    "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">\n<Points>\n" + tags[0] + "</Points>\n<Cells>\n" + "".join(tags[1:4]) +
+    "</Cells>\n<CellData>\n" + tags[4] + "</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n   _").encode()
+    + appended + b"\n</AppendedData>\n</VTKFile>\n")

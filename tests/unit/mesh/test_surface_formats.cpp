@@ -1,5 +1,8 @@
 #include "mesh/surface_formats.hpp"
 #include "mesh/surface_io.hpp"
+#include "util/binary_io.hpp"
+
+#include "util/error.hpp"
 
 #include <catch2/catch.hpp>
 #include <cstdint>
@@ -32,7 +35,7 @@ TEST_CASE("PLY face properties: component and label per face, in order") {
   SurfaceMesh m = two_pieces();
   m.labels = {7, 3, 7, 3, 3, 7, 3};
   std::ostringstream out;
-  write_ply(out, m, face_components(m));
+  write_ply(out, m, face_components(m), true);
   const std::string b = out.str();
   CHECK(b.find("property int component\nproperty int label\nend_header\n") != std::string::npos);
   const std::size_t faces = b.find("end_header\n") + 11 + 8 * 12;
@@ -51,7 +54,7 @@ TEST_CASE("msh: one entity per component, physical group per label") {
   m.labels = {7, 3, 7, 3, 3, 7, 3};
   for (const std::string version : {"4.1", "2.2"}) {
     std::ostringstream out;
-    write_msh(out, m, face_components(m), version);
+    write_msh(out, m, face_components(m), version, false);
     const std::string s = out.str();
     CHECK(s.find("$MeshFormat\n" + version + " 0 8\n") == 0);
     CHECK(s.find("$PhysicalNames\n2\n2 3 \"label 3\"\n2 7 \"label 7\"\n") != std::string::npos);
@@ -70,28 +73,73 @@ TEST_CASE("label names: .msh physical names, PLY comments, VTK field data; label
   m.label_names = {{3, "left \"kidney\" 5%\n\xc3\xa9"}, {7, ""}, {9, "absent"}};
   const std::vector<int> comp = face_components(m);
   std::ostringstream msh, ply, vtp, vtk;
-  write_msh(msh, m, comp, "4.1");
+  write_msh(msh, m, comp, "4.1", false);
   CHECK(msh.str().find("$PhysicalNames\n2\n2 3 \"left 'kidney' 5% \xc3\xa9\"\n2 7 \"label 7\"\n") != std::string::npos);
-  write_ply(ply, m, comp);
+  write_ply(ply, m, comp, true);
   CHECK(ply.str().find("(as ITK)\ncomment label_name 3 left \"kidney\" 5% \xc3\xa9\nelement vertex") != std::string::npos);
-  write_vtp(vtp, m, comp);
+  write_vtp(vtp, m, comp, false);
   CHECK(vtp.str().find("  <PolyData>\n    <FieldData>\n"
                        "      <DataArray type=\"Int32\" Name=\"label_values\" NumberOfTuples=\"1\" format=\"ascii\">\n"
                        "        3 \n      </DataArray>\n"
                        "      <DataArray type=\"String\" Name=\"label_names\" NumberOfTuples=\"1\" format=\"ascii\">\n"
                        "        108 101 102 116 32 34 107 105 100 110 101 121 34 32 53 37 10 -61 -87 0\n"
                        "      </DataArray>\n    </FieldData>\n    <Piece ") != std::string::npos);
-  write_vtk_legacy(vtk, m, comp);
+  write_vtk_legacy(vtk, m, comp, false);
   CHECK(vtk.str().find("DATASET POLYDATA\nFIELD FieldData 2\nlabel_values 1 1 int\n3 \nlabel_names 1 1 string\n"
                        "left%20%22kidney%22%205%25%0A%C3%A9\nPOINTS 8 double\n") != std::string::npos);
   // A long name is cut at 127 bytes in .msh, never inside a UTF-8 character.
   m.label_names = {{3, std::string(126, 'a') + "\xc3\xa9"}};
   std::ostringstream cut;
-  write_msh(cut, m, comp, "2.2");
+  write_msh(cut, m, comp, "2.2", false);
   CHECK(cut.str().find("2 3 \"" + std::string(126, 'a') + "\"\n") != std::string::npos);
   // Without names every format is as before.
   m.label_names.clear();
   std::ostringstream plain;
-  write_vtp(plain, m, comp);
+  write_vtp(plain, m, comp, false);
   CHECK(plain.str().find("FieldData") == std::string::npos);
+}
+
+TEST_CASE("binary .vtp: appended zlib arrays holding the exact doubles and ids; field data as in ASCII") {
+  SurfaceMesh m = two_pieces();
+  m.points[1] = {1.0 / 3, -2e-9, 123456.789012345};
+  m.labels = {7, 3, 7, 3, 3, 7, 3};
+  m.label_names = {{3, "liver"}};
+  const std::vector<int> comp = face_components(m);
+  std::ostringstream text, bin;
+  write_vtp(text, m, comp, false);
+  write_vtp(bin, m, comp, true);
+  const std::string b = bin.str();
+  CHECK(b.find("header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
+  CHECK(b.find("Name=\"label_names\" NumberOfTuples=\"1\" format=\"ascii\">\n        108 105 118 101 114 0\n") !=
+        std::string::npos);
+  const std::size_t data = b.find("<AppendedData encoding=\"raw\">\n   _") + 34;
+  REQUIRE(data > 34);
+  // Each array by the offset its DataArray gives.
+  auto array = [&](const std::string& name) {
+    const std::size_t tag = b.find("Name=\"" + name + "\"");
+    const std::size_t at = b.find("offset=\"", tag) + 8;
+    return vtk_zlib_decode(b, data + std::stoull(b.substr(at)), true, "t.vtp");
+  };
+  const std::string points = array("Points"), ids = array("connectivity"), labels = array("label");
+  REQUIRE(points.size() == 8 * 24);
+  for (std::size_t i = 0; i < 24; ++i) CHECK(get_bytes<double>(points.data() + 8 * i) == m.points[i / 3][i % 3]);
+  REQUIRE(ids.size() == 7 * 24);
+  for (std::size_t i = 0; i < 21; ++i) CHECK(get_bytes<std::int64_t>(ids.data() + 8 * i) == m.triangles[i / 3][i % 3]);
+  REQUIRE(labels.size() == 7 * 4);
+  for (std::size_t i = 0; i < 7; ++i) CHECK(get_bytes<std::int32_t>(labels.data() + 4 * i) == m.labels[i]);
+  // The text form is what it was: 17 digits, version 0.1, no appended data.
+  CHECK(text.str().find("version=\"0.1\" byte_order=\"LittleEndian\">") != std::string::npos);
+  CHECK(text.str().find("AppendedData") == std::string::npos);
+  CHECK(text.str().find("         0.33333333333333331 -2.0000000000000001e-09 123456.78901234501\n") != std::string::npos);
+}
+
+TEST_CASE("vtk_zlib: arrays over several 32 KiB blocks decode to their bytes; a cut array is an Error") {
+  std::string raw;
+  for (int i = 0; i < 20000; ++i) append_bytes(raw, double(i) / 7);
+  const std::string z = vtk_zlib_encode(raw);
+  CHECK(get_bytes<std::uint64_t>(z.data()) == 5);  // 160000 bytes: 4 full blocks and one of 28928
+  CHECK(get_bytes<std::uint64_t>(z.data() + 16) == 160000 % 32768);
+  CHECK(vtk_zlib_decode("xy" + z, 2, true, "t") == raw);
+  CHECK_THROWS_AS(vtk_zlib_decode(z.substr(0, z.size() - 1), 0, true, "t"), Error);
+  CHECK(vtk_zlib_decode(vtk_zlib_encode(""), 0, true, "t").empty());
 }

@@ -133,3 +133,26 @@ TEST_CASE("a triangle set that is not a manifold is still written as PLY, OBJ an
     CHECK(f32(b, t2 + 12 + 24 + 8) == 1.25f);
   }
 }
+
+TEST_CASE("binary and ASCII PLY and STL read back to the same floats and triangles") {
+  const SurfaceMesh m = tetra();
+  for (const char* ext : {".ply", ".stl"}) {
+    DYNAMIC_SECTION(ext) {
+      SurfaceWriteOptions text;
+      text.ascii = true;
+      const std::string a = temp_dir() + "/a" + ext, b = temp_dir() + "/b" + ext;
+      write_surface(a, m, text);
+      write_surface(b, m);
+      std::ifstream in(a);
+      std::string first;
+      in >> first;
+      CHECK(first == (std::string(ext) == ".ply" ? "ply" : "solid"));
+      const SurfaceMesh ra = read_surface(a), rb = read_surface(b);
+      CHECK(ra.points == rb.points);
+      CHECK(ra.triangles == rb.triangles);
+      CHECK(shape(ra) == shape(m));
+      for (std::size_t i = 0; i < ra.points.size(); ++i)
+        for (int k = 0; k < 3; ++k) CHECK(std::abs(ra.points[i][std::size_t(k)]) == std::abs(float(ra.points[i][std::size_t(k)])));
+    }
+  }
+}

@@ -4,10 +4,14 @@
 #include "mesh/volume_io.hpp"
 #include "util/error.hpp"
 
+#include "scratch_dir.hpp"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <random>
 
 using namespace imgmesh;
 
@@ -67,4 +71,78 @@ TEST_CASE("malformed tetrahedral mesh files: an Error naming the file") {
   CHECK_THROWS_AS(read_tet_mesh(write("e.vtu", "<VTKFile type=\"UnstructuredGrid\"><Points><DataArray format=\"binary\">")), Error);
   CHECK_THROWS_AS(read_tet_mesh(write("f.msh", "")), Error);
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("an ASCII .vtu's cell errors name the line of the value") {
+  const std::filesystem::path dir = "imgmesh_test_tet_mesh_vtu";
+  std::filesystem::create_directories(dir);
+  // Line 4: the points; 5: connectivity; 6: offsets; 7: types.
+  auto vtu = [&](const std::string& connectivity, const std::string& offsets) {
+    const std::string path = (dir / "t.vtu").string();
+    std::ofstream(path) << "<VTKFile type=\"UnstructuredGrid\" version=\"0.1\">\n<UnstructuredGrid>\n"
+                           "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\"><Points>\n"
+                           "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0 0 0 1</DataArray></Points><Cells>\n"
+                           "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">"
+                        << connectivity << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" << offsets
+                        << "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">10</DataArray>\n"
+                           "</Cells></Piece></UnstructuredGrid></VTKFile>\n";
+    return path;
+  };
+  CHECK(read_tet_mesh(vtu("0 1 2 3", "4")).tets.size() == 1);
+  CHECK_THROWS_WITH(read_tet_mesh(vtu("0 1 2 9", "4")), Catch::Contains("line 5: cell refers to unknown point 9"));
+  CHECK_THROWS_WITH(read_tet_mesh(vtu("0 1\n2\n\n 9", "4")), Catch::Contains("line 8: cell refers to unknown point 9"));
+  CHECK_THROWS_WITH(read_tet_mesh(vtu("0 1 2 3", "-1")), Catch::Contains("line 6: decreasing offsets"));
+  CHECK_THROWS_WITH(read_tet_mesh(vtu("0 1 2\n", "4")), Catch::Contains("line 6: unexpected end of file"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("binary .vtu and .msh read back to the mesh their ASCII form holds, exactly") {
+  // Random points (fixed seed) filling more than one 32 KiB zlib block,
+  // tetrahedra and boundary triangles in two regions.
+  TetMesh m;
+  std::mt19937 rng(37);
+  std::uniform_real_distribution<double> u(-100, 100);
+  for (int i = 0; i < 3000; ++i) m.points.push_back({u(rng), u(rng), u(rng)});
+  for (int i = 0; i + 3 < 3000; i += 3) {
+    m.tets.push_back({i, i + 1, i + 2, i + 3});
+    m.tet_region.push_back(1 + i % 2);
+    m.triangles.push_back({i + 3, i + 1, i});
+    m.triangle_region.push_back(1 + i % 2);
+  }
+  const std::string dir = test::scratch_dir();
+  auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  for (const std::string name : {"t.vtu", "t.msh", "t22.msh"}) {
+    DYNAMIC_SECTION(name) {
+      TetWriteOptions text, binary;
+      text.ascii = true;
+      binary.msh_binary = true;
+      text.msh_version = binary.msh_version = name == "t22.msh" ? "2.2" : "4.1";
+      write_tet_mesh(dir + "/a" + name, m, text);
+      write_tet_mesh(dir + "/b" + name, m, binary);
+      const std::string a = bytes(dir + "/a" + name), b = bytes(dir + "/b" + name);
+      if (name == "t.vtu") CHECK(b.find("<AppendedData encoding=\"raw\">") != std::string::npos);
+      if (name == "t.vtu") CHECK(b.size() < a.size() / 2);
+      else CHECK(b.find(text.msh_version + " 1 8\n") != std::string::npos);
+      const TetMesh ra = read_tet_mesh(dir + "/a" + name), rb = read_tet_mesh(dir + "/b" + name);
+      CHECK(rb.points == ra.points);
+      CHECK(rb.tets == ra.tets);
+      CHECK(rb.triangles == ra.triangles);
+      CHECK(rb.tet_region == ra.tet_region);
+      CHECK(rb.triangle_region == ra.triangle_region);
+      // 17 digits in ASCII: the doubles themselves.
+      CHECK(ra.points == m.points);
+      if (name == "t.vtu") {
+        CHECK(ra.tets == m.tets);
+        CHECK(rb.tet_region == m.tet_region);
+      }
+      // A byte lost in the binary data is an Error, not another mesh.
+      std::string cut = b;
+      cut.erase(b.size() / 2, 1);
+      std::ofstream(dir + "/c" + name, std::ios::binary) << cut;
+      CHECK_THROWS_AS(read_tet_mesh(dir + "/c" + name), Error);
+    }
+  }
 }

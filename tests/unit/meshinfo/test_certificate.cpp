@@ -442,11 +442,21 @@ TEST_CASE("meshinfo --image: voxel centres on the wrong side of the mesh (issue 
     CHECK(s.at("voxel_centres_checked").integer() > 300);
     CHECK(s.at("wrong_side").integer() == 0);
   }
+  // bdCA(X) itself (marching cubes' staircase): every centre half a voxel
+  // inside its side.
+  for (const BinaryImage* img : {&ball(), &hollow()}) {
+    const Json s = sides(voxel_faces(*img), *img);
+    CHECK(s.at("voxel_centres_checked").integer() > 300);
+    CHECK(s.at("wrong_side").integer() == 0);
+    CHECK(s.at("on_surface").integer() == 0);
+  }
   // Shifted by two voxels: the centres on the leading side are outside,
   // those on the trailing side inside: many, of both kinds.
-  const Json shifted = sides(moved(marching_tetrahedra(hollow()), step(hollow(), 0, 2)), hollow());
-  CHECK(shifted.at("foreground_outside").integer() > 50);
-  CHECK(shifted.at("background_inside").integer() > 50);
+  for (const Surface& s : {marching_tetrahedra(hollow()), voxel_faces(hollow())}) {
+    const Json shifted = sides(moved(s, step(hollow(), 0, 2)), hollow());
+    CHECK(shifted.at("foreground_outside").integer() > 50);
+    CHECK(shifted.at("background_inside").integer() > 50);
+  }
   // A small sphere on the ball's surface in place of the ball: each vertex
   // near bdCA(X), one to one, the same Euler characteristic, so certified
   // (that bdCA(X) lies near the mesh is not: the meshers do not guarantee

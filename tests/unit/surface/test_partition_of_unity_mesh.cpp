@@ -5,9 +5,11 @@
 #include "checks.hpp"
 #include "implicit/implicit_file.hpp"
 #include "implicit/partition_of_unity.hpp"
+#include "mesh/voxel_sides.hpp"
 #include "surface/delmesh.hpp"
 #include "surface/edge_surface.hpp"
 #include "surface/facet_cycle.hpp"
+#include "surface/mesher_options.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "wellcomposed/well_composed.hpp"
 
@@ -144,6 +146,65 @@ TEST_CASE("pipeline: degenerate and symmetric inputs (single voxel, 1-voxel rod 
   CHECK(plate.got.sorted_euler() == std::vector<long long>{2});
   auto ball = mesh(make(17, 17, 17, [](double x, double y, double z) { return (x - 8) * (x - 8) + (y - 8) * (y - 8) + (z - 8) * (z - 8) < 30; }));
   CHECK(ball.got.sorted_euler() == std::vector<long long>{2});
+}
+
+TEST_CASE("VoxelSides: every voxel centre next to bdCA(X) on its own side at the tools' defaults (a ball, a thin shell, random blobs)") {
+  // At the tools' bounds (--ratio 1.2, --roughness 120, --max-distance 0.3
+  // voxel) the mesh cuts centres off without VoxelSides: 16 of the ball's
+  // foreground centres outside, and the shell's both ways (measured).
+  using In = std::function<bool(double, double, double)>;
+  std::vector<In> shapes{[](double x, double y, double z) { return std::hypot(x - 9.6, y - 9.3, z - 9.8) < 5.3; },
+                         [](double x, double y, double z) {
+                           const double d = std::hypot(x - 9.6, y - 9.3, z - 9.8);
+                           return d > 5.4 && d < 6.6;
+                         }};
+  // Random blobs (fixed seeds): three balls of radius 2..5 anywhere inside,
+  // overlapping or not.
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::array<std::array<double, 4>, 3> b;
+    for (auto& x : b) x = {4 + 11 * u(rng), 4 + 11 * u(rng), 4 + 11 * u(rng), 2 + 3 * u(rng)};
+    shapes.push_back([b](double x, double y, double z) {
+      for (const auto& c : b)
+        if (std::hypot(x - c[0], y - c[1], z - c[2]) < c[3]) return true;
+      return false;
+    });
+  }
+  for (std::size_t shape = 0; shape < shapes.size(); ++shape) {
+    INFO("shape " << shape);
+    const In& in = shapes[shape];
+    const BinaryImage wc = make_well_composed(make(20, 20, 20, in)).image;
+    const PartitionOfUnity pu = implicit_from_well_composed(wc);
+    const PartitionOfUnitySurface s(pu);
+    // Counted on the mesh in world coordinates against the image, as meshinfo --image.
+    auto wrong = [&wc](const RestrictedDelaunayResult& r) {
+      const MeshTopology t = mesh_topology(r.mesh);
+      std::vector<int> comp;
+      for (const auto& tri : r.mesh.triangles) comp.push_back(t.component_of[std::size_t(tri[0])]);
+      return voxel_sides(r.mesh.points, r.mesh.triangles, comp, t.components.size(), wc).wrong();
+    };
+    RestrictedDelaunayOptions o = MesherBounds().resolve(pu.samples().spacing);
+    REQUIRE(o.voxel_sides);  // on by default
+    o.voxel_sides = false;
+    const RestrictedDelaunayResult off = restricted_delaunay_mesh(s, o);
+    CHECK(wrong(off) > 0);  // measured: 2 to 16 without VoxelSides
+    CHECK(off.voxel_sides_counted);
+    CHECK(off.voxel_sides.wrong() == wrong(off));  // counted, not failed, when off
+    CHECK(off.failed_guarantee().empty());
+    CHECK(off.inserted("voxel_side") == 0);
+    o.voxel_sides = true;
+    const RestrictedDelaunayResult on = restricted_delaunay_mesh(s, o);
+    INFO("failure: " << on.failed_guarantee());
+    CHECK(on.failed_guarantee().empty());
+    CHECK(on.inserted("voxel_side") > 0);
+    CHECK(wrong(on) == 0);
+    CHECK(on.voxel_sides_counted);
+    CHECK(on.voxel_sides.checked > 0);
+    CHECK(on.voxel_sides.wrong() == 0);
+    CHECK(mesh_topology(on.mesh).sorted_euler() == mesh_topology(off.mesh).sorted_euler());
+    CHECK(triangle_quality_report(on.mesh).largest_radius_edge_ratio() <= o.ratio * (1 + 1e-9));
+  }
 }
 
 TEST_CASE("pipeline: seed deletion (7.6.2) keeps the topology, also of a one-voxel component") {

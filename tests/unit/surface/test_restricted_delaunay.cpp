@@ -166,6 +166,21 @@ TEST_CASE("limits: refused parameters, max points, deterministic output") {
   CHECK_THROWS_AS(restricted_delaunay_mesh(touching, o), Error);
 }
 
+TEST_CASE("VoxelSides' count: a failed guarantee when on and a centre is left, reported either way") {
+  RestrictedDelaunayResult r;
+  r.topology_ok = r.ratio_ok = r.roughness_ok = r.distance_ok = true;
+  r.voxel_sides_counted = true;
+  r.voxel_sides.checked = 100;
+  r.voxel_sides.background_inside = 2;
+  r.voxel_sides.on_surface = 1;
+  CHECK(r.failed_guarantee().empty());  // off: counted only
+  CHECK(r.to_json().at("voxel_sides").at("wrong_side").number() == 3);
+  r.voxel_sides_on = true;
+  CHECK(r.failed_guarantee() == "3 voxel centre(s) on the wrong side of the surface");
+  r.voxel_sides = VoxelSides();
+  CHECK(r.failed_guarantee().empty());
+}
+
 TEST_CASE("max-distance bounds the surface Delaunay ball centre's distance to the facet plane") {
   const Vec3 c{10.3, 9.7, 10.1};
   FunctionSurface s(grid(21, 21, 21), [&](const Vec3& p) { return sphere(p, c, 6.3); });

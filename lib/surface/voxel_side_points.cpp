@@ -1,0 +1,152 @@
+// VoxelSides (issue 38): the voxel centres on the wrong side of the
+// restricted Delaunay surface and the points of S that refine them.
+#include "surface/voxel_side_points.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_set>
+
+namespace imgmesh::surface_detail {
+
+namespace {
+
+// Every corner of an active cube once, from the active cube of least key
+// that holds it: grid order, and neighbouring centres one after the other
+// (each locate starts from the last one's cell).
+template <class F> void for_each_centre(const CubeGrid& g, F&& visit) {
+  for (const ActiveCube& kc : g.sorted_cubes()) {
+    const auto [x, y, z] = g.cube_of_key(kc.key());
+    for (int e = 0; e < 8; ++e) {
+      const long p[3] = {x + (e & 1), y + (e >> 1 & 1), z + (e >> 2 & 1)};
+      bool first = true;
+      for (int o = 1; o < 8 && first; ++o) {
+        const long q[3] = {p[0] - (o & 1), p[1] - (o >> 1 & 1), p[2] - (o >> 2 & 1)};
+        first = !(g.active(q[0], q[1], q[2]) && g.key(q[0], q[1], q[2]) < kc.key());
+      }
+      if (first) visit(p[0], p[1], p[2]);
+    }
+  }
+}
+
+std::uint64_t mix(std::uint64_t z) {  // splitmix64's finaliser
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+// A cell's vertices as one number, whatever their order.
+std::uint64_t vertices_of(const Tr& tr, Ch c) {
+  std::uint64_t h = 0;
+  for (int i = 0; i < 4; ++i) h += mix(std::uint64_t(tr.is_infinite(c->vertex(i)) ? 0 : c->vertex(i)->info().id + 1));
+  return h;
+}
+
+// The cell's side of S: its circumcentre's (f == 0 outside, as everywhere;
+// beyond the grid's box, outside); an infinite cell is outside.
+bool cell_inside(const Tr& tr, const SurfaceSampler& f, Ch c) { return !tr.is_infinite(c) && f.inside_at(vec(tr.dual(c))); }
+
+// Where the segment from centre p to refine towards ends: the cell's
+// circumcentre, or for an infinite cell a point beyond the grid's box, away
+// from its hull facet (p lies on that facet's outer side).
+Vec3 far_end(const Tr& tr, const CubeGrid& g, Ch c, const Vec3& p) {
+  if (!tr.is_infinite(c)) return vec(tr.dual(c));
+  const int i = c->index(tr.infinite_vertex());
+  const std::array<Vh, 3> fv = facet_vertices(c, i);
+  const Vec3 q0 = vec(fv[0]->point());
+  Vec3 n = cross(sub(vec(fv[1]->point()), q0), sub(vec(fv[2]->point()), q0));
+  const Ch in = c->neighbor(i);
+  if (dot(n, sub(vec(in->vertex(in->index(c))->point()), q0)) > 0) n = {-n[0], -n[1], -n[2]};
+  const double nl = norm(n);
+  double reach = 0;  // far enough to leave the box
+  for (int k = 0; k < 3; ++k) reach += std::abs(p[k]) + g.hi[k];
+  return {p[0] + n[0] / nl * reach, p[1] + n[1] / nl * reach, p[2] + n[2] / nl * reach};
+}
+
+// The crossing of S on [a, b] (ends of opposite signs) by halving on signs
+// alone, to ~1e-11 delta: far from S, implicit2mesh's f (clamped samples)
+// and seg2mesh's differ in value, never in sign, so both find the same point.
+bool crossing(const SurfaceSampler& f, Vec3 a, Vec3 b, Vec3& x) {
+  const bool in = SurfaceSampler::inside(f.value(a));
+  if (SurfaceSampler::inside(f.value(b)) == in) return false;
+  const double tol2 = std::pow(1e-11 * f.grid().delta, 2);
+  for (int it = 0; it < 200 && dist2(a, b) > tol2; ++it) {
+    const Vec3 m{(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2};
+    (SurfaceSampler::inside(f.value(m)) == in ? a : b) = m;
+  }
+  x = b;  // within 1e-11 delta of S
+  return true;
+}
+
+} // namespace
+
+Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh near, double guard, long long& wrong,
+                                        long long& refused) {
+  const CubeGrid& g = f.grid();
+  if (seen_.empty()) {
+    std::size_t n = 0;
+    for_each_centre(g, [&n](long, long, long) { ++n; });
+    seen_.resize(n);
+  }
+  Candidates pts;
+  Ch hint = near->cell();
+  std::vector<Ch> cells;
+  std::unordered_set<const void*> refined;  // membership only: the order is the centres'
+  std::size_t k = 0;
+  for_each_centre(g, [&](long x, long y, long z) {
+    Seen& s = seen_[k++];
+    if (s.cell != Ch() && tr.tds().cells().is_used(s.cell) && vertices_of(tr, s.cell) == s.vertices) return;
+    const Vec3 p{double(x) * g.s[0], double(y) * g.s[1], double(z) * g.s[2]};
+    const Point pp(p[0], p[1], p[2]);
+    Tr::Locate_type lt;
+    int li, lj;
+    const Ch c = tr.locate(pp, lt, li, lj, hint);
+    hint = c;
+    // The cells holding p: one, or those around the facet, edge or vertex it lies on.
+    cells.assign(1, c);
+    if (lt == Tr::FACET) cells.push_back(c->neighbor(li));
+    else if (lt == Tr::EDGE) {
+      Tr::Cell_circulator cc = tr.incident_cells(c, li, lj), done = cc;
+      cells.clear();
+      do cells.push_back(cc); while (++cc != done);
+    } else if (lt == Tr::VERTEX) {
+      cells.clear();
+      tr.incident_cells(c->vertex(li), std::back_inserter(cells));
+    }
+    const bool in = g.neg(x, y, z);
+    Ch bad;
+    for (Ch h : cells)
+      if (cell_inside(tr, f, h) != in) {
+        bad = h;
+        break;
+      }
+    if (bad == Ch()) {
+      s = cells.size() == 1 ? Seen{c, vertices_of(tr, c)} : Seen{};  // on a facet: looked at again
+      return;
+    }
+    s = Seen{};
+    ++wrong;
+    if (!refined.insert(&*bad).second) return;  // one point per cell and pass
+    // The surface centre of the cell's restricted facet with the largest
+    // ball, if that is at least half p's distance to W (DELMESH's usual
+    // point, well spaced) and the guard; else the point of S towards the
+    // circumcentre.
+    const double d2 = dist2(p, vec(tr.nearest_vertex(pp, bad)->point()));
+    const double least = std::max(d2 / 4, guard * guard);
+    int best = -1;
+    for (int i = 0; i < 4; ++i)
+      if (bad->facet.restricted(i) && bad->facet[i].r2 >= least && (best < 0 || bad->facet[i].r2 > bad->facet[best].r2)) best = i;
+    if (best >= 0) {
+      pts.emplace_back(facet_center(Facet(bad, best)), bad->facet[best].r2);
+      return;
+    }
+    Vec3 q;
+    if (!crossing(f, p, far_end(tr, g, bad, p), q)) return;
+    const Vh nv = tr.nearest_vertex(Point(q[0], q[1], q[2]), bad);
+    const double clearance2 = dist2(q, vec(nv->point()));
+    if (clearance2 < guard * guard) ++refused;
+    else pts.emplace_back(q, clearance2);
+  });
+  return pts;
+}
+
+} // namespace imgmesh::surface_detail

@@ -1,0 +1,44 @@
+// VoxelSides (issue 38): the voxel centres next to S whose Delaunay cell
+// lies on the other side of S, and the points of S that refine them. Once
+// no Voronoi edge meets S twice (VorEdge) and TOPOLOGY has nothing left,
+// the restricted facets are exactly the facets between a cell whose
+// circumcentre f calls inside and one it calls outside (EdgeSurface sees
+// every sign change of f along a Voronoi edge, and a Voronoi edge with one
+// crossing joins circumcentres of opposite signs), an infinite cell or a
+// circumcentre beyond the grid's box being outside: a point lies inside the
+// mesh exactly when its cell's circumcentre does (doc/implicit2mesh.md 4.9).
+// A query: it reads the triangulation and f, and changes neither.
+#pragma once
+#include "surface/cube_grid.hpp"
+#include "surface/delaunay_types.hpp"
+
+#include <cstdint>
+#include <vector>
+
+namespace imgmesh::surface_detail {
+
+class VoxelSidePoints {
+public:
+  // Every corner of an active cube (a voxel centre within a voxel of S;
+  // f = g there, of the voxel's sign) whose Delaunay cell lies on the
+  // other side of S (a centre on a facet, edge or vertex: any of the cells
+  // holding it), in grid order: the point of S on the segment from the
+  // centre to that cell's circumcentre (an infinite cell: to beyond the
+  // box, away from its hull facet), with its clearance (squared distance to
+  // W), unless that is under guard^2 (counted in `refused`). `wrong`: the
+  // centres found on the wrong side. A centre found on its side is not
+  // looked at again while its cell stands.
+  Candidates operator()(const Tr& tr, const SurfaceSampler& f, Vh near, double guard, long long& wrong,
+                        long long& refused);
+
+private:
+  // Per centre (grid order), the cell it was last found right in and the
+  // cell's vertices (a hash of their ids: a cell's memory is reused).
+  struct Seen {
+    Ch cell;
+    std::uint64_t vertices = 0;
+  };
+  std::vector<Seen> seen_;
+};
+
+} // namespace imgmesh::surface_detail

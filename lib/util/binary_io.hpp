@@ -1,0 +1,89 @@
+// Numbers as bytes in a fixed byte order whatever the machine's (PLY, STL,
+// Gmsh and VTK XML binary are little-endian, legacy VTK big-endian), legacy
+// VTK's value lines in either encoding, and the zlib framing of VTK XML's
+// compressed arrays (vtkXMLWriter's default: appended raw data, zlib).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace imgmesh {
+
+enum class ByteOrder { Little, Big };
+
+inline bool machine_order_is(ByteOrder order) {
+  const std::uint32_t one = 1;
+  unsigned char first;
+  std::memcpy(&first, &one, 1);
+  return (first == 1) == (order == ByteOrder::Little);
+}
+
+// The bytes of v in `order` appended to out / written to out.
+template <class T> void append_bytes(std::string& out, T v, ByteOrder order = ByteOrder::Little) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  if (!machine_order_is(order))
+    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+  out.append(b, sizeof(T));
+}
+template <class T> void put_bytes(std::ostream& out, T v, ByteOrder order = ByteOrder::Little) {
+  std::string b;
+  append_bytes(b, v, order);
+  out.write(b.data(), std::streamsize(b.size()));
+}
+// The T whose bytes in `order` start at p.
+template <class T> T get_bytes(const char* p, ByteOrder order = ByteOrder::Little) {
+  char b[sizeof(T)];
+  std::memcpy(b, p, sizeof(T));
+  if (!machine_order_is(order))
+    for (std::size_t i = 0; i < sizeof(T) / 2; ++i) std::swap(b[i], b[sizeof(T) - 1 - i]);
+  T v;
+  std::memcpy(&v, b, sizeof(T));
+  return v;
+}
+
+// Legacy VTK's values of one array on `out` (an std::ostream, or any
+// stream with << for numbers, chars and string_views): ASCII, the lines of
+// `line_sizes` values, separated by a space; binary, big-endian T's then a
+// newline, as vtkDataWriter lays them out.
+template <class Out, class T>
+void vtk_legacy_values(Out& out, const std::vector<T>& v, bool binary, const std::vector<std::size_t>& line_sizes) {
+  if (binary) {
+    std::string b;
+    b.reserve(v.size() * sizeof(T) + 1);
+    for (T x : v) append_bytes(b, x, ByteOrder::Big);
+    b += '\n';
+    out << std::string_view(b);
+    return;
+  }
+  std::size_t i = 0;
+  for (std::size_t n : line_sizes) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (k) out << ' ';
+      out << v[i++];
+    }
+    out << '\n';
+  }
+}
+// The same with `per_line` values on every line.
+template <class Out, class T> void vtk_legacy_values(Out& out, const std::vector<T>& v, bool binary, std::size_t per_line) {
+  vtk_legacy_values(out, v, binary, std::vector<std::size_t>(per_line ? v.size() / per_line : 0, per_line));
+}
+
+// One array as vtkXMLWriter writes it compressed: a UInt64 header (number
+// of blocks, block size 32768, the last block's size when partial else 0,
+// each block's compressed size), then the blocks, each zlib-compressed.
+std::string vtk_zlib_encode(const std::string& raw);
+// The raw bytes of the compressed array at data[offset], its header of
+// UInt64 or UInt32 words; throws Error (naming path) on a malformed array.
+std::string vtk_zlib_decode(const std::string& data, std::size_t offset, bool uint64_header, const std::string& path);
+// An uncompressed appended array at data[offset]: its byte count (UInt64
+// or UInt32) then the bytes.
+std::string vtk_raw_decode(const std::string& data, std::size_t offset, bool uint64_header, const std::string& path);
+
+} // namespace imgmesh
