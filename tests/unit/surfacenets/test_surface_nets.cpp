@@ -236,6 +236,52 @@ TEST_CASE("surface nets: hand-built partitions", "[surfacenets]") {
   }
 }
 
+double quality(const InterfaceMesh& m, int a, int b, int c) {
+  const Vec3 &p = m.points[std::size_t(a)], &q = m.points[std::size_t(b)], &r = m.points[std::size_t(c)];
+  const Vec3 n = cross(sub(q, p), sub(r, p));
+  const Vec3 u = sub(q, p), v = sub(r, p), w = sub(r, q);
+  return 2 * std::sqrt(3.0) * std::sqrt(dot(n, n)) / (dot(u, u) + dot(v, v) + dot(w, w));
+}
+
+TEST_CASE("surface nets: smoothing moves curve vertices along their curve, splits along the better diagonal",
+          "[surfacenets]") {
+  const LabelImage img = three_labels();
+  const InterfaceComplex k = interface_complex(img);
+  const InterfaceMesh before = interface_mesh(img, k);
+  InterfaceMesh m = before;
+  smooth_interface_mesh(m);
+  // The 1|2|3 curve: x = 6, z = 7 in corners, y from 2 to 8, straight
+  // between its two junctions (its ends, where 1|2|0 begins): every vertex
+  // on it keeps x and z.
+  std::size_t on_line = 0;
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    const auto c = m.corner(v);
+    if (c[0] != 6 || c[2] != 7 || c[1] < 3 || c[1] > 7) continue;
+    REQUIRE(m.kind[v] == InterfaceMesh::kCurve);
+    ++on_line;
+    const Vec3 p = img.continuous_index(m.points[v]), p0 = img.continuous_index(before.points[v]);
+    CHECK(std::abs(p[0] - p0[0]) < 1e-12);
+    CHECK(std::abs(p[2] - p0[2]) < 1e-12);
+  }
+  CHECK(on_line == 5);
+  for (std::size_t y : {std::size_t(2), std::size_t(8)})
+    CHECK(m.kind[std::size_t(std::lower_bound(m.corners.begin(), m.corners.end(), 6 + m.lattice[0] * (y + m.lattice[1] * 7)) -
+                             m.corners.begin())] == InterfaceMesh::kJunction);
+  // Every quad split along the diagonal whose worse triangle is the better.
+  std::size_t flips = 0;
+  for (std::size_t f = 0; f < m.quads.size(); ++f) {
+    const auto& q = m.quads[f];
+    const double a = std::min(quality(m, q[0], q[1], q[2]), quality(m, q[0], q[2], q[3]));
+    const double b = std::min(quality(m, q[0], q[1], q[3]), quality(m, q[1], q[2], q[3]));
+    const auto& t = m.triangles[2 * f];
+    const double chosen = std::min(quality(m, t[0], t[1], t[2]),
+                                   quality(m, m.triangles[2 * f + 1][0], m.triangles[2 * f + 1][1], m.triangles[2 * f + 1][2]));
+    CHECK(chosen >= std::max(a, b) - 1e-12);
+    flips += b > a;
+  }
+  CHECK(flips > 0);  // smoothing made some quads prefer the other diagonal
+}
+
 TEST_CASE("surface nets: every well-composed 2x2x2 partition", "[surfacenets]") {
   std::size_t checked = 0;
   for_each_block_partition([&](const LabelImage& img) {
