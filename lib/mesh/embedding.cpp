@@ -67,18 +67,26 @@ SurfaceGeometry::SurfaceGeometry(const std::vector<Vec3>& points, const std::vec
 
 SurfaceGeometry::~SurfaceGeometry() = default;
 
-SelfIntersections SurfaceGeometry::self_intersections(std::size_t cap) const {
+std::vector<std::array<std::size_t, 2>> SurfaceGeometry::intersecting_pairs(std::size_t cap) const {
   std::vector<std::pair<Face, Face>> found;
   CGAL::Polygon_mesh_processing::self_intersections(impl_->mesh, std::back_inserter(found),
                                                     CGAL::parameters::maximum_number(unsigned(cap)));
+  std::vector<std::array<std::size_t, 2>> out(found.size());
+  for (std::size_t i = 0; i < found.size(); ++i) {
+    out[i] = {std::size_t(found[i].first), std::size_t(found[i].second)};
+    if (out[i][0] > out[i][1]) std::swap(out[i][0], out[i][1]);
+  }
+  return out;
+}
+
+SelfIntersections SurfaceGeometry::self_intersections(std::size_t cap) const {
+  const auto found = intersecting_pairs(cap);
   SelfIntersections s;
   s.pairs = found.size();
   s.capped = cap > 0 && found.size() >= cap;
   for (std::size_t i = 0; i < found.size(); ++i) {
-    std::array<std::size_t, 2> p{std::size_t(found[i].first), std::size_t(found[i].second)};
-    if (p[0] > p[1]) std::swap(p[0], p[1]);
-    s.degenerate += p[0] == p[1];
-    if (i == 0 || p < s.first) s.first = p;
+    s.degenerate += found[i][0] == found[i][1];
+    if (i == 0 || found[i] < s.first) s.first = found[i];
   }
   return s;
 }

@@ -38,6 +38,9 @@ public:
   // Pairs of triangles that meet other than in a shared edge or vertex
   // (triangles of different components included), up to `cap`.
   SelfIntersections self_intersections(std::size_t cap) const;
+  // The same pairs themselves (triangle ids, each pair ascending), up to
+  // `cap` (> 0): for callers that repair them (surfacenets' untangling).
+  std::vector<std::array<std::size_t, 2>> intersecting_pairs(std::size_t cap) const;
   // Closed components only: per component, how many others enclose it:
   // those its first vertex is strictly inside (by vertex id; a vertex on
   // the other's surface is passed over for the next). component_of: per

@@ -76,11 +76,21 @@ std::vector<std::array<int, 3>> label_triangles(const InterfaceMesh& mesh, std::
 struct SmoothingOptions {
   int rounds = 5;        // Jacobi rounds of relaxation toward the neighbours' mean
   double margin = 0.1;   // in voxels: each vertex kept this far inside its cell (0 <= margin < 0.5)
+  bool untangle = true;  // then untangle_interface_mesh (false: tests only, to see the folds)
 };
 // Constrained smoothing (Frisken 2022): every round moves each surface and
 // curve vertex to the mean of its neighbours (positions of the previous
 // round), clamped into its cell shrunk by the margin; junctions stay. The
-// quads are then split again. Throws Error on a margin outside [0, 0.5).
+// quads are then split again and the mesh untangled. Throws Error on a
+// margin outside [0, 0.5).
 void smooth_interface_mesh(InterfaceMesh& mesh, const SmoothingOptions& options = {});
+
+// Where two triangles of one label's surface intersect (other than in a
+// shared edge or vertex; exact predicates), their vertices go back halfway
+// to `rest` (the unsmoothed positions), onto it after a few halvings, and
+// the quads are split again, until no label's surface intersects itself.
+// Returns the vertex moves made. Not checked yet: triangles of two
+// surfaces with no label in common (a|b against c|d).
+std::size_t untangle_interface_mesh(InterfaceMesh& mesh, const std::vector<Vec3>& rest);
 
 } // namespace imgmesh

@@ -7,6 +7,7 @@
 // on its own label's side.
 #include "surfacenets/surface_nets.hpp"
 
+#include "mesh/embedding.hpp"
 #include "mesh/surface_certificate.hpp"
 #include "mesh/topology.hpp"
 #include "mesh/voxel_sides.hpp"
@@ -340,6 +341,53 @@ TEST_CASE("surface nets: a wrong mesh fails the check", "[surfacenets]") {
     CHECK(check_all_labels(m, k) != "");
     CHECK(check_unsmoothed_geometry(m, img) != "");
   }
+}
+
+// A noisy map (9^3 voxels of labels 0-2 drawn uniformly, seed 7, made
+// well-composed by make_well_composed_partition, padded to 11^3; one slice a
+// line) on which five rounds of relaxation fold a label's surface onto
+// itself where a curve bends tightly: two triangles sharing a vertex overlap.
+LabelImage folding_map() {
+  static const char* const digits =
+    "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+    "0000000000002222220200001120201100211222011001112222220022221122100200001121002222112220022211222200202122212000000000000"
+    "0000000000002222222220000221211200211112212001122222120002221221100002222111002222222120022210220200001122202000000000000"
+    "0000000000002220202220022201010200222112222002221222220022211222200122222222001220022220022210120000122221222000000000000"
+    "0000000000002220201110000101011100221111121002222221210020222222200112222200001122022010022222220100122222222000000000000"
+    "0000000000002022221100000122221100001112221001001222210020022222200211202200002110022220020202222100102121221000000000000"
+    "0000000000002022111100022222221000202100222002022201110022222212100221102111000011111220020002222200001111200000000000000"
+    "0000000000000022102220001222221100000122211002122221110022222212200222222220001112222220011222222200111221000000000000000"
+    "0000000000001110101120021222211000211102011002112221110022222012100210220221002102212210022222222000112222210000000000000"
+    "0000000000001012102120020221221200111112222000112222210022122012200211120220002222211110022220112100012102111000000000000"
+    "0000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000000";
+  LabelImage img = label_grid(11, 11, 11);
+  for (std::size_t i = 0; i < img.data.size(); ++i) img.data[i] = digits[i] - '0';
+  return img;
+}
+
+TEST_CASE("surface nets: untangling undoes the folds of relaxation", "[surfacenets]") {
+  const LabelImage img = folding_map();
+  const InterfaceComplex k = interface_complex(img);
+  REQUIRE(k.failed_guarantee().empty());
+  const InterfaceMesh rest = interface_mesh(img, k);
+  SmoothingOptions o;
+  o.untangle = false;
+  InterfaceMesh folded = rest;
+  smooth_interface_mesh(folded, o);
+  std::size_t failing = 0;  // labels whose relaxed surface intersects itself
+  for (std::int32_t l : labels_of(img)) {
+    const auto tris = label_triangles(folded, l);
+    const SurfaceGeometry g(folded.points, tris, std::vector<int>(tris.size(), 0), 1);
+    failing += g.self_intersections(10).pairs > 0;
+  }
+  REQUIRE(failing > 0);
+  InterfaceMesh m = rest;
+  smooth_interface_mesh(m);
+  check_smoothed(rest, m, SmoothingOptions{});
+  CHECK(check_all_labels(m, k) == "");
+  certify_labels(m, img);
+  CHECK(untangle_interface_mesh(folded, rest.points) > 0);
+  certify_labels(folded, img);
 }
 
 TEST_CASE("surface nets: refuses a partition that is not well-composed", "[surfacenets]") {
