@@ -13,7 +13,8 @@
 // diagonal corners of a voxel face are shared by no other face, so no edge
 // is created twice. Before smoothing the mesh IS bdCA(L) per label, each
 // vertex at its corner's world position. Smoothing (smoothing.cpp) moves
-// vertices inside their cells only and never changes the combinatorics.
+// vertices inside their cells only and never changes the quads (only
+// which diagonal splits each: either way a disc, the topology kept).
 //
 // Vertex kinds, for smoothing: a junction of K(X) (where curves meet, and
 // every corner where a patch pinches) never moves; a corner on a curve
