@@ -26,11 +26,15 @@ std::size_t untangle_interface_mesh(InterfaceMesh& m, const std::vector<Vec3>& r
   std::set<std::int32_t> labels;
   for (const auto& l : m.labels) labels.insert(l.begin(), l.end());
   std::vector<std::uint8_t> halvings(m.points.size(), 0), marked(m.points.size(), 0);
+  // Labels to test this round: all at first, then those with a triangle at
+  // a vertex moved last round (the others' triangles and splits are as when
+  // they tested clean).
+  std::set<std::int32_t> dirty = labels;
   std::size_t moved_total = 0;
   for (;;) {
     std::size_t pairs = 0, moved = 0;
     std::fill(marked.begin(), marked.end(), 0);
-    for (std::int32_t l : labels) {
+    for (std::int32_t l : dirty) {
       const auto tris = label_triangles(m, l);
       if (tris.empty()) continue;
       const SurfaceGeometry g(m.points, tris, std::vector<int>(tris.size(), 0), 1);
@@ -52,6 +56,10 @@ std::size_t untangle_interface_mesh(InterfaceMesh& m, const std::vector<Vec3>& r
     }
     if (moved == 0) throw Error("untangle_interface_mesh: triangles at their voxel corners intersect (a bug)");
     moved_total += moved;
+    dirty.clear();
+    for (std::size_t f = 0; f < m.quads.size(); ++f)
+      for (int v : m.quads[f])
+        if (marked[std::size_t(v)]) dirty.insert(m.labels[f].begin(), m.labels[f].end());
     split_quads(m);
   }
 }
