@@ -35,7 +35,9 @@ crop_is_full_grid() {
   (($(stat -c %s crop-f.nrrd) < $(stat -c %s full-f.nrrd))) || fail "label $L: the crop's file is not smaller"
 }
 
-case_bundled_liver_label_meshes_as_the_full_grid() { crop_is_full_grid "$DATA/liver-labels.nrrd" 85; }
+case_bundled_liver_label_meshes_as_the_full_grid() {  # scale
+  crop_is_full_grid "$DATA/liver-labels.nrrd" 85
+}
 
 # big.nrrd: a 220x200x90 label map (0.8 x 0.8 x 1.5 mm, a frame rotated by
 # 25 degrees about z, far from the origin): label 1 a large slab, label 7 a

@@ -171,7 +171,7 @@ case_brain_label5_has_voxel_topology() {  # scale
 # A real organ: CGAL's liver CT labels, the whole organ (35 components, the
 # liver's surface of Euler characteristic -6 around its vessels), with
 # anisotropic voxels (0.62 x 0.62 x 1.33 mm), at the thesis's bounds.
-case_liver_has_voxel_topology() {
+case_liver_has_voxel_topology() {  # scale
   expect 0 img2wc "$DATA/liver-labels.nrrd" --threshold 1 liver-wc.nrrd -q
   expect 0 wc2implicit liver-wc.nrrd liver-f.nrrd -q
   expect 0 implicit2mesh liver-f.nrrd liver.ply "${LOOSE[@]}" --roughness 60 --threads 2

@@ -114,7 +114,7 @@ PY
 }
 
 # python3-meshio (the system python, where it is installed) reads every format with its regions.
-case_meshio_reads_every_format_with_regions() {
+case_meshio_reads_every_format_with_regions() {  # interop
   if ! /usr/bin/python3 -c 'import meshio' 2>/dev/null; then echo "skipped: python3-meshio not installed"; return; fi
   small bunny_s.msh && small bunny_s22.msh --msh-version 2.2 && small bunny_s.mesh && small bunny_s.vtu &&
     small bunny_s.inp || return
@@ -269,7 +269,7 @@ PY
 }
 
 # Every format with both regions and the box's triangle group, read by meshio and gmsh where installed.
-case_outside_meshio_reads_every_format_with_two_regions() {
+case_outside_meshio_reads_every_format_with_two_regions() {  # interop
   if ! /usr/bin/python3 -c 'import meshio' 2>/dev/null; then echo "skipped: python3-meshio not installed"; return; fi
   local f
   for f in bunny_so.msh bunny_so.mesh bunny_so.vtu bunny_so.inp; do small $f --outside || return; done
@@ -312,7 +312,7 @@ for f, key in [("bunny_so.msh", "gmsh:physical"), ("bunny_so22.msh", "gmsh:physi
 PY
 }
 
-case_outside_gmsh_reads_both_regions() {
+case_outside_gmsh_reads_both_regions() {  # interop
   if ! command -v gmsh > /dev/null; then echo "skipped: gmsh not installed"; return; fi
   for f in bunny_out.msh bunny_out22.msh; do mesh $f || return; done
   for f in bunny_out.msh bunny_out22.msh; do

@@ -35,7 +35,7 @@ chain() {
 # gives about 0.02, 35% and 14; quadsmooth 15, 75% and 24). The thin strips
 # between constraint curves of the lung and the brain need the pair splits
 # into four.
-case_real_images_quads_mu_at_least_5() {
+case_real_images_quads_mu_at_least_5() {  # scale
   local spec image opts
   for spec in "${IMAGES[@]}"; do
     IFS=: read -r image opts <<< "$spec"
@@ -135,7 +135,7 @@ case_default_chain_mean_mu_30_min_10_graded() {  # scale
 
 # The same on images nobody tuned for: random blobs (unions of ellipses
 # minus smaller ones, python's Random(seed)) of random sizes and spacings.
-case_default_chain_on_random_blobs() {
+case_default_chain_on_random_blobs() {  # scale
   local seed
   for seed in 1 2 3 4 5; do
     python3 - "$seed" <<'PY'
