@@ -133,8 +133,9 @@ int main(int argc, char** argv) {
     if (!check && out.empty()) throw UsageError("OUT is required (or use --check)");
     if (check && !out.empty()) throw UsageError("--check writes nothing: give no OUT");
     if (all->count()) {
-      if (tool.app.get_option("--mode")->count() || thesis_rules)
-        throw UsageError("--labels has no --mode or --thesis-rules: its moves are its own (see the man page)");
+      if (tool.app.get_option("--mode")->count() || thesis_rules || tool.app.get_option("--seed")->count())
+        throw UsageError("--labels has no --mode, --thesis-rules or --seed: its moves are its own, drawn from "
+                         "nothing at random (see the man page)");
       popt.repair = !skip_repair;
       return run_labels(tool, in, out, labels, popt, check);
     }

@@ -213,6 +213,7 @@ BAD_STDOUT=/dev/full bad 1 "stdout is /dev/full" "$DATA/bunny00-96.nrrd" -
 bad 2 "--labels not a list" "$DATA/bunny00-96.nrrd" "bad.mha" --labels 1,x
 bad 2 "--labels with --label" "$DATA/bunny00-96.nrrd" "bad.mha" --labels all --label 1
 bad 2 "--labels with --mode" "$DATA/bunny00-96.nrrd" "bad.mha" --labels all --mode min
+bad 2 "--labels with --seed" "$DATA/bunny00-96.nrrd" "bad.mha" --labels all --seed 3
 bad 2 "--min-voxels without --labels" "$DATA/bunny00-96.nrrd" "bad.mha" --min-voxels 3
 bad 1 "--labels absent label" "$DATA/bunny00-96.nrrd" "bad.mha" --labels 1,7
 }
