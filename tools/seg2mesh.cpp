@@ -1,15 +1,19 @@
 // seg2mesh: every label of a segmentation meshed in one command, in
 // parallel, into one surface file with a label per face: for each label L,
 // what img2wc --label L | wc2implicit | implicit2mesh make, certified alike.
+// --fast: surface nets on the repaired partition's interface complex, each
+// interface once with its two labels (segmentation/label_surface_nets.hpp).
 #include "cli/cli.hpp"
 #include "image/io.hpp"
 #include "mesh/surface_io.hpp"
+#include "segmentation/label_surface_nets.hpp"
 #include "segmentation/label_surfaces.hpp"
 #include "shared_options.hpp"
 #include "surface_options.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <sstream>
 #include <thread>
 
@@ -36,6 +40,40 @@ std::vector<long long> parse_labels(const std::string& text) {
   if (out.empty()) throw UsageError("--labels: no label given");
   return out;
 }
+
+// The options of the Delaunay mesher, which --fast does not run.
+// (--voxel-sides is one option with --no-voxel-sides.)
+const char* const kDelaunayOnly[] = {"--jobs",          "--mode",        "--ratio",      "--roughness", "--max-distance",
+                                     "--fallback-rounds", "--voxel-sides", "--max-points", "--seed",      "--normals"};
+
+int run_fast(cli::Tool& tool, const std::string& in, const std::string& out, LabelSurfaceNetsOptions& opt,
+             const SurfaceWriteOptions& write_opt) {
+  for (const char* name : kDelaunayOnly)
+    if (const CLI::Option* o = tool.app.get_option_no_throw(name); o && o->count())
+      throw UsageError(std::string(name) + " is the Delaunay mesher's: --fast does not take it");
+  if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
+  tool.report_progress("reading " + in);
+  LabelImage image = read_labels(in, &opt.names);
+  LabelSurfaceNetsResult res = naming_input(in, [&] { return mesh_label_surface_nets(std::move(image), opt); });
+  const auto t0 = std::chrono::steady_clock::now();
+  tool.report_progress("writing " + out);
+  write_surface(out, res.mesh, write_opt);
+  res.seconds.push_back({"write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
+  tool.stats["input"] = in;
+  tool.stats["output"] = out;
+  for (const LabelNet& l : res.labels) {
+    std::ostringstream msg;
+    msg << "label " << l.label << (l.name.empty() ? "" : " (" + l.name + ")") << ": " << l.triangles
+        << " triangles, " << l.euler.size() << " components, Euler characteristics";
+    for (std::size_t i = 0, j; i < l.euler.size(); i = j) {  // ascending: each value and how often
+      for (j = i; j < l.euler.size() && l.euler[j] == l.euler[i];) ++j;
+      msg << (i ? ", " : " ") << l.euler[i] << (j - i > 1 ? " (x" + std::to_string(j - i) + ")" : "");
+    }
+    msg << "; volume " << l.volume << " against " << l.voxel_volume << " of voxels";
+    tool.debug(msg.str());
+  }
+  return tool.finish(res);
+}
 } // namespace
 
 int main(int argc, char** argv) {
@@ -50,7 +88,8 @@ int main(int argc, char** argv) {
   tool.app.add_option("IN", in, "Label image (NRRD, MetaImage, NIfTI, 3D Slicer's .seg.nrrd; - for stdin)")->required();
   tool.app.add_option("OUT", out,
                       "Output surface in world (LPS) coordinates: .ply, .vtp, .vtk or .msh (a label and a component "
-                      "id per face); .off, .obj, .stl (no labels; - for OFF on stdout)")
+                      "id per face; with --fast the two labels each face separates); .off, .obj, .stl (no labels; - "
+                      "for OFF on stdout)")
       ->required();
   tool.data_output(out);
   tool.app.add_option("--labels", labels_text, "Labels to mesh: all (every nonzero value) or a list such as 1,2,5")
@@ -65,6 +104,22 @@ int main(int argc, char** argv) {
   add_normals_option(tool, opt.normals);
   add_msh_version_option(tool, write_opt.msh_version, "Gmsh format version of a .msh OUT");
   add_encoding_options(tool, write_opt.ascii, write_opt.msh_binary, ".ply, .stl, .vtp and .vtk");
+  LabelSurfaceNetsOptions fast_opt;
+  auto* fast = tool.app.add_flag("--fast",
+                                 "Surface nets instead of the Delaunay mesher: the labels' partition repaired at once, "
+                                 "every interface between two labels meshed once, its triangles carrying both labels "
+                                 "(behind, front), each label's surface certified; seconds, not minutes");
+  tool.app.add_option("--smooth", fast_opt.smooth_rounds,
+                      "With --fast: rounds of smoothing, each vertex kept inside its voxel-corner cell (0: the voxel "
+                      "faces)")
+      ->type_name("N")
+      ->check(CLI::Range(0, 1000).description(""))
+      ->capture_default_str()
+      ->needs(fast);
+  tool.app.add_flag("--separate", fast_opt.separate,
+                    "With --fast: each label's closed surface alone (interfaces written twice, a label per face) "
+                    "instead of each interface once with its two labels")
+      ->needs(fast);
 
   return tool.run(argc, argv, [&] {
     if (!is_surface_output(out))
@@ -72,6 +127,10 @@ int main(int argc, char** argv) {
     if (!surface_output_holds_labels(out))
       tool.info("warning: " + surface_format_name(out) +
                 " holds no labels: use .ply, .vtp, .vtk or .msh to tell the labels' surfaces apart");
+    if (fast->count()) {
+      fast_opt.labels = parse_labels(labels_text);
+      return run_fast(tool, in, out, fast_opt, write_opt);
+    }
     warn_normals_ignored(tool, opt.normals, out);
     opt.labels = parse_labels(labels_text);
     surface_options.check();

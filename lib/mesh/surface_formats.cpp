@@ -19,6 +19,7 @@ namespace {
 
 bool has_normals(const SurfaceMesh& m) { return !m.normals.empty() && m.normals.size() == m.points.size(); }
 bool has_labels(const SurfaceMesh& m) { return !m.labels.empty() && m.labels.size() == m.triangles.size(); }
+bool has_pairs(const SurfaceMesh& m) { return !m.interfaces.empty() && m.interfaces.size() == m.triangles.size(); }
 
 int find(std::vector<int>& parent, int x) {
   while (parent[std::size_t(x)] != x) x = parent[std::size_t(x)] = parent[std::size_t(parent[std::size_t(x)])];
@@ -37,8 +38,11 @@ template <class T, class U, std::size_t N> std::vector<T> flat(const std::vector
 // The names of the labels the faces carry (empty names left out), by label.
 std::map<int, std::string> names_used(const SurfaceMesh& m) {
   std::map<int, std::string> out;
-  if (!has_labels(m) || m.label_names.empty()) return out;
-  const std::set<int> used(m.labels.begin(), m.labels.end());
+  if ((!has_labels(m) && !has_pairs(m)) || m.label_names.empty()) return out;
+  std::set<int> used;
+  if (has_labels(m)) used.insert(m.labels.begin(), m.labels.end());
+  if (has_pairs(m))
+    for (const auto& p : m.interfaces) used.insert(p.begin(), p.end());
   for (const auto& [label, name] : m.label_names)
     if (used.count(label) && !name.empty()) out.emplace(label, name);
   return out;
@@ -141,9 +145,10 @@ void write_vtp(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
     arrays.array("Float64", "Normals", 3, flat<double>(m.normals));
     out << "      </PointData>\n";
   }
-  out << "      <CellData Scalars=\"" << (has_labels(m) ? "label" : "component") << "\">\n";
+  out << "      <CellData Scalars=\"" << (has_pairs(m) ? "labels" : has_labels(m) ? "label" : "component") << "\">\n";
   arrays.array("Int32", "component", 1, component);
   if (has_labels(m)) arrays.array("Int32", "label", 1, m.labels);
+  if (has_pairs(m)) arrays.array("Int32", "labels", 2, flat<int>(m.interfaces));
   out << "      </CellData>\n      <Points>\n";
   arrays.array("Float64", "Points", 3, flat<double>(m.points));
   out << "      </Points>\n      <Polys>\n";
@@ -203,35 +208,83 @@ void write_vtk_legacy(std::ostream& out, const SurfaceMesh& m, const std::vector
     out << "SCALARS label int 1\nLOOKUP_TABLE default\n";
     vtk_legacy_values(out, m.labels, binary, 1);
   }
+  if (has_pairs(m)) {
+    out << "SCALARS labels int 2\nLOOKUP_TABLE default\n";
+    vtk_legacy_values(out, flat<int>(m.interfaces), binary, 2);
+  }
   if (has_normals(m)) {
     out << "POINT_DATA " << m.points.size() << "\nNORMALS Normals double\n";
     vtk_legacy_values(out, flat<double>(m.normals), binary, 3);
   }
 }
 
-void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& component, const std::string& version,
-               bool binary) {
-  out.precision(17);
-  const bool labels = has_labels(m);
-  const int components = component.empty() ? 0 : *std::max_element(component.begin(), component.end()) + 1;
-  // Entity e = component e - 1; its physical group.
-  std::vector<int> physical(std::size_t(components), 0);
-  for (std::size_t i = 0; i < m.triangles.size(); ++i)
-    physical[std::size_t(component[i])] = labels ? m.labels[i] : component[i] + 1;
-  const std::map<int, std::string> label_names = names_used(m);
+namespace {
+
+// The surface entities of a .msh: per face its entity (0-based), per entity
+// its physical tag, and the physical groups' names by tag. Without label
+// pairs an entity is a component, its group its label (or the component);
+// with them an entity is one pair's triangles, its group tag the pair's
+// rank (1-based, pairs in increasing order), named "a|b" or by the labels'
+// names, and pairs[tag] = (behind, front) for the $LabelPairs section.
+struct MshEntities {
+  std::vector<int> of_face, physical;
   std::map<int, std::string> names;
-  for (int c = 0; c < components; ++c) {
-    const int tag = physical[std::size_t(c)];
-    const auto named = label_names.find(tag);
-    names[tag] = !labels ? "component " + std::to_string(c)
-                 : named != label_names.end() ? msh_name(named->second)
-                                              : "label " + std::to_string(tag);
+  std::map<int, std::array<int, 2>> pairs;
+};
+
+MshEntities msh_entities(const SurfaceMesh& m, const std::vector<int>& component) {
+  MshEntities e;
+  const std::map<int, std::string> label_names = names_used(m);
+  const auto name = [&](int label) {
+    const auto named = label_names.find(label);
+    return named != label_names.end() ? named->second : std::to_string(label);
+  };
+  if (has_pairs(m)) {
+    std::map<std::array<int, 2>, int> rank;
+    for (const auto& p : m.interfaces) rank.emplace(p, 0);
+    for (auto& [pair, r] : rank) {
+      r = int(e.physical.size());
+      e.physical.push_back(r + 1);
+      e.pairs[r + 1] = pair;
+      e.names[r + 1] = msh_name(name(pair[0]) + "|" + name(pair[1]));
+    }
+    for (const auto& p : m.interfaces) e.of_face.push_back(rank[p]);
+    return e;
   }
+  const bool labels = has_labels(m);
+  e.of_face = component;
+  e.physical.assign(component.empty() ? 0 : std::size_t(*std::max_element(component.begin(), component.end()) + 1), 0);
+  for (std::size_t i = 0; i < m.triangles.size(); ++i)
+    e.physical[std::size_t(component[i])] = labels ? m.labels[i] : component[i] + 1;
+  for (std::size_t c = 0; c < e.physical.size(); ++c) {
+    const int tag = e.physical[c];
+    e.names[tag] = labels ? (label_names.count(tag) ? msh_name(label_names.at(tag)) : "label " + std::to_string(tag))
+                          : "component " + std::to_string(c);
+  }
+  return e;
+}
+
+} // namespace
+
+void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& face_component,
+               const std::string& version, bool binary) {
+  out.precision(17);
+  const MshEntities entities = msh_entities(m, face_component);
+  const std::vector<int>& component = entities.of_face;  // a face's entity
+  const std::vector<int>& physical = entities.physical;
+  const int components = int(physical.size());
   mesh_detail::MshWriter w(out, binary);
   w.format(version);
-  out << "$PhysicalNames\n" << names.size() << '\n';
-  for (const auto& [tag, name] : names) out << "2 " << tag << " \"" << name << "\"\n";
+  out << "$PhysicalNames\n" << entities.names.size() << '\n';
+  for (const auto& [tag, name] : entities.names) out << "2 " << tag << " \"" << name << "\"\n";
   out << "$EndPhysicalNames\n";
+  // Which labels each pair's group separates, for read_surface (Gmsh and
+  // meshio skip a section they do not know).
+  if (!entities.pairs.empty()) {
+    out << "$LabelPairs\n" << entities.pairs.size() << '\n';
+    for (const auto& [tag, pair] : entities.pairs) out << tag << ' ' << pair[0] << ' ' << pair[1] << '\n';
+    out << "$EndLabelPairs\n";
+  }
   // The entity of each vertex: its faces' (a vertex in no face joins entity 1).
   std::vector<int> entity(m.points.size(), 0);
   for (std::size_t i = 0; i < m.triangles.size(); ++i)
@@ -326,6 +379,7 @@ void write_ply(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
   if (normals) out << "property float nx\nproperty float ny\nproperty float nz\n";
   out << "element face " << m.triangles.size() << "\nproperty list uchar int vertex_indices\nproperty int component\n";
   if (labels) out << "property int label\n";
+  if (has_pairs(m)) out << "property int label_behind\nproperty int label_front\n";
   out << "end_header\n";
   // ASCII: 9 significant digits give each float back exactly.
   out.precision(9);
@@ -344,6 +398,7 @@ void write_ply(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
   for (std::size_t i = 0; i < m.triangles.size(); ++i) {
     std::vector<std::int32_t> row{m.triangles[i][0], m.triangles[i][1], m.triangles[i][2], component[i]};
     if (labels) row.push_back(m.labels[i]);
+    if (has_pairs(m)) row.insert(row.end(), {m.interfaces[i][0], m.interfaces[i][1]});
     if (binary) {
       put_bytes(out, std::uint8_t(3));
       for (std::int32_t x : row) put_bytes(out, x);

@@ -5,12 +5,14 @@
 // writing OBJ and binary STL go through OpenMesh.
 #include "mesh/surface_io.hpp"
 
+#include "mesh/mesh_read_detail.hpp"
 #include "mesh/surface_formats.hpp"
 
 #include "util/atomic_file.hpp"
 #include "util/binary_io.hpp"
 #include "util/coordinates.hpp"
 #include "util/error.hpp"
+#include "util/parse.hpp"
 #include "util/path.hpp"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
@@ -121,7 +123,7 @@ SurfaceMesh read_off(const std::string& path) {
 struct PlyElement {
   std::string name;
   long long count = 0;
-  std::vector<std::string> properties, types;  // names and (scalar) types, in order
+  std::vector<std::string> properties, types;  // names and types, in order ("list uchar int" for a list)
   bool list = false;                           // a list property among them
 
   // Where x, y, z are among the properties (those present, as (axis,
@@ -237,7 +239,18 @@ void check_ascii_ply_body(std::istream& in, const std::vector<PlyElement>& eleme
   }
 }
 
-void check_ply_header(const std::string& path) {
+struct PlyHeader {
+  std::vector<PlyElement> elements;  // in file order
+  bool ascii = false, big_endian = false;
+  std::streamoff body = 0;  // where the data starts
+  bool has(const std::string& element, const std::string& property) const {
+    for (const PlyElement& e : elements)
+      if (e.name == element && std::count(e.properties.begin(), e.properties.end(), property)) return true;
+    return false;
+  }
+};
+
+PlyHeader check_ply_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   in.seekg(0, std::ios::end);
   const long long file_size = in.tellg();
@@ -263,9 +276,10 @@ void check_ply_header(const std::string& path) {
     }
     if (w.empty() || w[0] == "comment" || w[0] == "obj_info") continue;
     if (w[0] == "end_header") {
+      const PlyHeader header{elements, ascii, big_endian, in.tellg()};
       if (ascii) check_ascii_ply_body(in, elements, number, path);
       else check_binary_ply_vertices(in, elements, big_endian, path);
-      return;
+      return header;
     }
     if (w[0] == "format") {
       // OpenMesh loops for ever on a version it cannot parse.
@@ -285,13 +299,80 @@ void check_ply_header(const std::string& path) {
       const bool list = w.size() == 5 && w[1] == "list" && types.count(w[2]) && types.count(w[3]);
       if (!list && (w.size() != 3 || !types.count(w[1]))) fail("bad property line");
       elements.back().properties.push_back(w.back());
-      elements.back().types.push_back(list ? std::string() : w[1]);
+      elements.back().types.push_back(list ? "list " + w[2] + " " + w[3] : w[1]);
       elements.back().list |= list;
     } else {
       fail("unknown keyword '" + w[0] + "'");
     }
   }
-  fail("no end_header");
+  throw Error("cannot read the mesh: PLY header line " + std::to_string(number) + ": no end_header", path);
+}
+
+// A PLY read as it is, every face kept in its place (OpenMesh cuts a
+// triangle set that is no manifold, as an interface mesh is at its
+// curves): vertices' x, y, z; faces' vertex_indices (triangles) and int
+// properties label, label_behind, label_front.
+SurfaceMesh read_ply_as_is(const std::string& path, const PlyHeader& h) {
+  const std::string x = read_all(path);
+  std::size_t at = std::size_t(h.body);
+  std::istringstream text(h.ascii ? x.substr(at) : std::string());
+  long long item = 0;  // the element being read, for errors
+  const auto fail = [&](const std::string& what) {
+    throw Error("cannot read the mesh: PLY element " + std::to_string(item) + ": " + what, path);
+  };
+  const auto scalar = [&](const std::string& type) {
+    double v;
+    if (h.ascii) {
+      std::string s;
+      if (!(text >> s) || !parse_real(s, v)) fail(s.empty() ? "unexpected end of file" : "not a number: " + s.substr(0, 40));
+      return type == "float" || type == "float32" ? double(float(v)) : v;  // as binary holds it
+    }
+    if (at + ply_size(type) > x.size()) fail("unexpected end of file");
+    v = ply_value(reinterpret_cast<const unsigned char*>(x.data() + at), type, h.big_endian);
+    at += ply_size(type);
+    return v;
+  };
+  SurfaceMesh m;
+  std::vector<int> label;
+  for (const PlyElement& e : h.elements)
+    for (item = 0; item < e.count; ++item) {
+      std::array<double, 3> p{0, 0, 0};
+      std::array<int, 3> t{-1, -1, -1};
+      std::array<int, 3> labels{0, 0, 0};  // label, label_behind, label_front
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const std::string& name = e.properties[k];
+        std::istringstream type(e.types[k]);
+        std::string list, count_type, value_type;
+        type >> list >> count_type >> value_type;
+        if (list != "list") {
+          const double v = scalar(e.types[k]);
+          if (e.name == "vertex" && name.size() == 1 && name[0] >= 'x' && name[0] <= 'z') {
+            if (!valid_coordinate(v)) fail(coordinate_error(v));
+            p[std::size_t(name[0] - 'x')] = v;
+          }
+          if (name == "label" || name == "label_behind" || name == "label_front")
+            labels[name == "label" ? 0 : name == "label_behind" ? 1 : 2] = int(v);
+          continue;
+        }
+        const double n = scalar(count_type);
+        const bool ids = e.name == "face" && (name == "vertex_indices" || name == "vertex_index");
+        if (ids && n != 3) fail("a face of " + std::to_string((long long)n) + " vertices: triangles expected");
+        for (long long i = 0; i < (long long)n; ++i) {
+          const double v = scalar(value_type);
+          if (ids) t[std::size_t(i)] = int(v);
+        }
+      }
+      if (e.name == "vertex") m.points.push_back(p);
+      if (e.name != "face") continue;
+      for (int v : t)
+        if (v < 0 || std::size_t(v) >= m.points.size()) fail("vertex id " + std::to_string(v) + " out of range");
+      m.triangles.push_back(t);
+      label.push_back(labels[0]);
+      m.interfaces.push_back({labels[1], labels[2]});
+    }
+  if (h.has("face", "label")) m.labels = label;
+  check_extent(m.points, path);
+  return m;
 }
 
 // Three coordinates from `words` (the rest of a vertex line of an ASCII
@@ -451,13 +532,19 @@ void write_triangle_set(std::ostream& out, const std::string& ext, const Surface
 SurfaceMesh read_surface(const std::string& path) {
   const std::string ext = path == "-" ? ".off" : extension_of(path);
   if (ext == ".off") return read_off(path);
-  if (ext != ".ply" && ext != ".obj" && ext != ".stl")
-    throw Error("unknown mesh extension '" + ext + "' (OFF, PLY, OBJ or STL expected)", path);
+  if (!is_surface_output(path))
+    throw Error("unknown mesh extension '" + ext + "' (OFF, PLY, OBJ, STL, VTP, VTK or MSH expected)", path);
   {
     std::ifstream probe(path);
     if (!probe) throw Error("cannot open", path);
   }
-  if (ext == ".ply") check_ply_header(path);
+  if (ext == ".vtp") return mesh_detail::read_vtp(path);
+  if (ext == ".vtk") return mesh_detail::read_vtk_legacy(path);
+  if (ext == ".msh") return mesh_detail::read_msh_surface(path);
+  if (ext == ".ply") {
+    const PlyHeader header = check_ply_header(path);
+    if (header.has("face", "label_behind") && header.has("face", "label_front")) return read_ply_as_is(path, header);
+  }
   if (ext == ".obj") check_obj_text(path);
   if (ext == ".stl") check_stl_coordinates(path);
   PolyMesh pm;

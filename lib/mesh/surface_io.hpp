@@ -1,5 +1,5 @@
 // Triangle surface meshes in world coordinates (LPS, as ITK), and their I/O:
-// read OFF, PLY, OBJ, STL; write those and VTK (.vtp, .vtk) and Gmsh .msh
+// read and write OFF, PLY, OBJ, STL, VTK (.vtp, .vtk) and Gmsh .msh
 // (surface_formats.hpp), by extension; "-" is OFF on stdin/stdout. This
 // header is plain data; OpenMesh stays inside surface_io.cpp.
 #pragma once
@@ -15,6 +15,10 @@ struct SurfaceMesh {
   std::vector<std::array<int, 3>> triangles;   // 0-based, counter-clockwise seen from outside
   std::vector<std::array<double, 3>> normals;  // per vertex, empty or points.size()
   std::vector<int> labels;  // per triangle: the segmentation label it bounds, empty when not known
+  // Per triangle, the two labels it separates (behind, front), the triangle
+  // oriented from behind into front (seg2mesh --fast: each interface once);
+  // empty when not known.
+  std::vector<std::array<int, 2>> interfaces;
   std::map<int, std::string> label_names;  // a label's name where its image gives one (3D Slicer's segments)
 };
 
@@ -35,11 +39,16 @@ bool surface_output_holds_normals(const std::string& path);
 bool surface_output_holds_labels(const std::string& path);
 
 // Throws Error on unreadable files, non-triangle faces, bad ids, NaNs.
+// Per-face labels and label pairs are read back from PLY (properties label,
+// label_behind and label_front), .vtp and .vtk (cell data label and the
+// 2-component labels) and .msh (physical groups, see write_msh); a PLY
+// with label pairs is read as it is (an interface mesh is no manifold:
+// OpenMesh would cut it), any other through OpenMesh.
 SurfaceMesh read_surface(const std::string& path);
 // Atomic; binary PLY/STL/VTK (or ASCII, options.ascii), ASCII OFF/OBJ, msh
 // as options say; normals written when
-// present (PLY, OBJ, VTK, msh); per-face component ids and labels in PLY, VTK
-// and msh, with the labels' names where known. Throws UsageError on an unknown extension or msh version.
+// present (PLY, OBJ, VTK, msh); per-face component ids, labels and label
+// pairs in PLY, VTK and msh, with the labels' names where known. Throws UsageError on an unknown extension or msh version.
 void write_surface(const std::string& path, const SurfaceMesh& mesh, const SurfaceWriteOptions& options = {});
 
 } // namespace imgmesh

@@ -3,6 +3,8 @@
 // coordinates checked against util/coordinates.hpp's range either way.
 #include "mesh/volume_io.hpp"
 
+#include "mesh/mesh_read_detail.hpp"
+
 #include "util/atomic_file.hpp"
 #include "util/binary_io.hpp"
 #include "util/coordinates.hpp"
@@ -283,7 +285,30 @@ void read_msh_elements(MshValues& v, bool v4, TetMesh& m, const NodeIds& ids,
   }
 }
 
-TetMesh read_msh(std::istream& in, const std::string& path) {
+// $PhysicalNames: "dim tag \"name\"" a line; the surface groups' names kept.
+void read_msh_physical_names(Tokens& t, std::map<int, std::string>& names) {
+  const std::size_t n = t.count("physical name");
+  for (std::size_t k = 0; k < n; ++k) {
+    const long long dim = t.integer(), tag = t.integer();
+    std::string rest;
+    std::getline(t.in, rest);
+    ++t.line;
+    const std::size_t a = rest.find('"'), b = rest.rfind('"');
+    if (a == std::string::npos || b == a) t.fail("a physical name without its double quotes");
+    if (dim == 2) names[int(tag)] = rest.substr(a + 1, b - a - 1);
+  }
+}
+
+// $LabelPairs (written by write_msh): "tag behind front" a line.
+void read_msh_label_pairs(Tokens& t, std::map<int, std::array<int, 2>>& pairs) {
+  const std::size_t n = t.count("label pair");
+  for (std::size_t k = 0; k < n; ++k) {
+    const long long tag = t.integer(), a = t.integer(), b = t.integer();
+    pairs[int(tag)] = {int(a), int(b)};
+  }
+}
+
+mesh_detail::MshFile read_msh(std::istream& in, const std::string& path) {
   Tokens t{in, path};
   if (t.next() != "$MeshFormat") throw Error("not a Gmsh .msh file", path);
   const std::string version = t.next();
@@ -303,7 +328,8 @@ TetMesh read_msh(std::istream& in, const std::string& path) {
   if (t.next() != "$EndMeshFormat") throw Error("malformed $MeshFormat", path);
   if (version != "2.2" && version != "4.1") throw Error("unsupported .msh version " + version + " (2.2 or 4.1)", path);
   const bool v4 = version == "4.1";
-  TetMesh m;
+  mesh_detail::MshFile file;
+  TetMesh& m = file.mesh;
   NodeIds ids;
   std::map<std::pair<int, int>, int> physical;  // 4.1: (dim, entity) -> its first physical tag
   std::string s;
@@ -322,13 +348,17 @@ TetMesh read_msh(std::istream& in, const std::string& path) {
       read_msh_elements(v, v4, m, ids, physical);
       v.data_ends(s);
       if (t.next() != "$EndElements") throw Error("malformed $Elements", path);
+    } else if (s == "$PhysicalNames" || s == "$LabelPairs") {
+      if (s == "$PhysicalNames") read_msh_physical_names(t, file.physical_names);
+      else read_msh_label_pairs(t, file.label_pairs);
+      if (t.next() != "$End" + s.substr(1)) throw Error("malformed " + s, path);
     } else if (!s.empty() && s[0] == '$' && s.rfind("$End", 0) != 0) {
       t.skip_to("$End" + s.substr(1));
     } else {
       throw Error("unexpected '" + s + "'", path);
     }
   }
-  return m;
+  return file;
 }
 
 TetMesh read_medit(std::istream& in, const std::string& path) {
@@ -550,6 +580,54 @@ TetMesh read_vtu(const std::string& path) {
 
 } // namespace
 
+namespace mesh_detail {
+
+MshFile read_msh_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("cannot open", path);
+  MshFile f = read_msh(in, path);
+  check_extent(f.mesh.points, path);
+  return f;
+}
+
+SurfaceMesh read_vtp(const std::string& path) {
+  const VtuArrays f(read_all(path), path);
+  const VtuArray<double> xyz = f.values<double>("Points", "");
+  const VtuArray<long long> con = f.values<long long>("Polys", "connectivity"),
+                            off = f.values<long long>("Polys", "offsets"),
+                            label = f.values<long long>("CellData", "label", false),
+                            labels = f.values<long long>("CellData", "labels", false);
+  SurfaceMesh m;
+  const auto& p = xyz.values;
+  if (p.size() % 3) throw Error("the point count is not a multiple of 3", path);
+  for (std::size_t i = 0; i < p.size(); i += 3) m.points.push_back({p[i], p[i + 1], p[i + 2]});
+  const std::size_t cells = off.values.size();
+  long long last = 0;
+  for (std::size_t c = 0; c < cells; ++c) {
+    const long long end = off.values[c];
+    if (end != last + 3) f.fail(off, c, "a polygon that is not a triangle (or decreasing offsets)");
+    if (end > (long long)con.values.size()) f.fail(con, con.values.size(), "unexpected end of file");
+    std::array<int, 3> t{};
+    for (long long k = last; k < end; ++k) {
+      const long long id = con.values[std::size_t(k)];
+      if (id < 0 || id >= (long long)m.points.size()) f.fail(con, std::size_t(k), "cell refers to unknown point " + std::to_string(id));
+      t[std::size_t(k - last)] = int(id);
+    }
+    m.triangles.push_back(t);
+    last = end;
+  }
+  if (!label.values.empty() && label.values.size() != cells) f.fail(label, label.values.size(), "not one label a triangle");
+  if (!labels.values.empty() && labels.values.size() != 2 * cells)
+    f.fail(labels, labels.values.size(), "not two labels a triangle");
+  for (long long l : label.values) m.labels.push_back(int(l));
+  for (std::size_t c = 0; c < labels.values.size(); c += 2)
+    m.interfaces.push_back({int(labels.values[c]), int(labels.values[c + 1])});
+  check_extent(m.points, path);
+  return m;
+}
+
+} // namespace mesh_detail
+
 TetMesh read_tet_mesh(const std::string& path) {
   const std::string ext = extension_of(path);
   TetMesh m;
@@ -557,7 +635,7 @@ TetMesh read_tet_mesh(const std::string& path) {
   else {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open", path);
-    if (ext == ".msh") m = read_msh(in, path);
+    if (ext == ".msh") m = read_msh(in, path).mesh;
     else if (ext == ".mesh") m = read_medit(in, path);
     else throw Error("reading tetrahedral meshes: .msh, .mesh or .vtu", path);
   }

@@ -81,20 +81,24 @@ std::vector<long long> labels_present(const LabelImage& image) {
   return {s.begin(), s.end()};
 }
 
-LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurfacesOptions& opt) {
+std::vector<long long> chosen_labels(const LabelImage& image, const std::vector<long long>& asked) {
   if (image.dimension != 3) throw Error("a 3D label image is needed (seg2mesh meshes surfaces)");
   const std::vector<long long> present = labels_present(image);
   if (present.empty()) throw Error("no label: every voxel is 0");
-  std::vector<long long> labels = opt.labels.empty() ? present : opt.labels;
+  std::vector<long long> labels = asked.empty() ? present : asked;
   std::sort(labels.begin(), labels.end());
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
   for (long long l : labels)
     if (!std::binary_search(present.begin(), present.end(), l))
       throw Error("label " + std::to_string(l) + " does not occur (labels present: " + list(present) + ")");
+  return labels;
+}
 
-  // One pass: each label's voxels and box (a run of one value looked up once).
-  std::vector<std::size_t> voxels(labels.size(), 0);
-  std::vector<VoxelBox> boxes(labels.size());
+void label_boxes(const LabelImage& image, const std::vector<long long>& labels, std::vector<std::size_t>& voxels,
+                 std::vector<VoxelBox>& boxes) {
+  // A run of one value looked up once.
+  voxels.assign(labels.size(), 0);
+  boxes.assign(labels.size(), VoxelBox());
   for (std::size_t z = 0; z < image.size[2]; ++z)
     for (std::size_t y = 0; y < image.size[1]; ++y) {
       const std::int32_t* row = &image(0, y, z);
@@ -111,6 +115,13 @@ LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurf
         x = end;
       }
     }
+}
+
+LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurfacesOptions& opt) {
+  const std::vector<long long> labels = chosen_labels(image, opt.labels);
+  std::vector<std::size_t> voxels;
+  std::vector<VoxelBox> boxes;
+  label_boxes(image, labels, voxels, boxes);
   // Largest first, by the box a label's work is proportional to (the
   // longest job must not start last); then by voxels.
   auto box_voxels = [&](std::size_t i) {

@@ -9,6 +9,7 @@
 #pragma once
 #include "image/grid.hpp"
 #include "image/slicer_segmentation.hpp"
+#include "implicit/crop.hpp"
 #include "mesh/surface_io.hpp"
 #include "surface/restricted_delaunay.hpp"
 #include "util/json.hpp"
@@ -56,6 +57,13 @@ struct LabelSurfacesResult {
 
 // The nonzero values of an image, ascending.
 std::vector<long long> labels_present(const LabelImage& image);
+// The labels to mesh: `asked` (every nonzero value when empty), ascending,
+// once each. Throws Error on a 2D image, an image without labels, or an
+// asked label absent from the image (naming those present).
+std::vector<long long> chosen_labels(const LabelImage& image, const std::vector<long long>& asked);
+// One pass over the image: the voxels and box of each of `labels` (ascending).
+void label_boxes(const LabelImage& image, const std::vector<long long>& labels, std::vector<std::size_t>& voxels,
+                 std::vector<VoxelBox>& boxes);
 
 // Throws Error on a label absent from the image (naming those present), an
 // image without labels, or a 2D image; an Error while meshing a label is

@@ -200,4 +200,165 @@ case_seg_nrrd_of_two_layers_refused() {
   refused seg2mesh "2 layers (overlapping segments): only a single-layer segmentation is read" layers.seg.nrrd x.ply
 }
 
+# --fast (surface nets on the repaired partition's interface complex).
+# fast_check FILE READER PAIRS: FILE read back independently (VTK,
+# meshio's names or our text readers): every triangle carries one of PAIRS
+# ("2|1 5|0 ..."), behind above front, each interface once (no triangle
+# twice); each label's triangles (those with it in front reversed) form a
+# closed surface, every edge twice in opposite directions, enclosing a
+# positive volume (oriented out of the label).
+fast_check() {
+  python3 - "$1" "$2" "$3" "$E2E" > check.txt 2>&1 <<'PY' || fail "$1: $(cat check.txt)"
+import sys; sys.path.insert(0, sys.argv[4]); import surface_read as r
+from collections import Counter
+m = r.read(sys.argv[1], sys.argv[2])
+pairs = m['pairs']
+if pairs is None:  # .msh: the physical groups' names
+    pairs = [tuple(int(x) for x in m['names'][p].split('|')) for p in m['physical']]
+want = {tuple(int(x) for x in w.split('|')) for w in sys.argv[3].split()}
+assert set(pairs) == want, ('pairs', sorted(set(pairs)), 'want', sorted(want))
+assert all(a > b for a, b in pairs), 'behind is not the higher label'
+assert len({frozenset(t) for t in m['triangles']}) == len(m['triangles']), 'a triangle written twice'
+P = m['points']
+det = lambda a, b, c: (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                       + a[2] * (b[0] * c[1] - b[1] * c[0]))
+for L in sorted({l for p in want for l in p} - {0}):
+    tris = [t if a == L else (t[0], t[2], t[1]) for t, (a, b) in zip(m['triangles'], pairs) if L in (a, b)]
+    edges = Counter((t[i], t[(i + 1) % 3]) for t in tris for i in range(3))
+    assert all(edges[(v, u)] == 1 and n == 1 for (u, v), n in edges.items()), 'label %d: not closed and oriented' % L
+    assert sum(det(P[a], P[b], P[c]) for a, b, c in tris) > 0, 'label %d points inward' % L
+PY
+}
+PAIRS="1|0 2|0 2|1 5|0 5|2"
+fast_vtp() { local l; l=$(labels) && expect 0 seg2mesh "$l" fast.vtp --fast --stats fast.json -q; }
+
+case_fast_vtp_read_by_vtk_two_component_labels() {
+  here fast.vtp fast_vtp || return
+  local py; py=$(python_with vtk)
+  [[ -n $py ]] || { echo "skipped: no python with vtk (python3-vtk9)"; return; }
+  PATH=$(dirname "$py"):$PATH fast_check fast.vtp vtk "$PAIRS"
+}
+
+# The stats: every label certified, its figures; unsmoothed (--smooth 0)
+# each label encloses exactly its voxels' volume, smoothed a little less.
+case_fast_stats_certified_volumes() {
+  local f; f=$(shared fast.vtp fast_vtp) || return
+  expect 0 seg2mesh "$(labels)" flat.ply --fast --smooth 0 --stats flat.json -q || return
+  fast_check flat.ply text "$PAIRS"
+  python3 - "$(dirname "$f")/fast.json" flat.json > stats.txt 2>&1 <<'PY' || fail "stats: $(cat stats.txt)"
+import json, sys
+d, flat = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+for s in d, flat:
+    assert s['all_certified'] is True and [l['label'] for l in s['labels']] == [1, 2, 5], s
+    assert [l['euler'] for l in s['labels']] == [[2], [2], [0]], [l['euler'] for l in s['labels']]
+    assert set(s['stage_seconds']) == {'repair', 'complex', 'mesh', 'smoothing', 'certificate', 'write'}
+for l in flat['labels']:
+    assert abs(l['volume'] - l['voxel_volume']) < 1e-9 * l['voxel_volume'], l
+for l in d['labels']:
+    assert 0.7 < l['volume_ratio'] < 1, l
+PY
+}
+
+case_fast_msh_physical_groups_read_by_meshio_and_gmsh() {
+  local l; l=$(labels) || return
+  expect 0 seg2mesh "$l" fast.msh --fast -q || return
+  whole fast.msh || return
+  fast_check fast.msh text "$PAIRS"
+  local py; py=$(python_with meshio)
+  if [[ -n $py ]]; then
+    $py - > meshio.txt 2>&1 <<'PY' || fail "meshio reads fast.msh otherwise: $(cat meshio.txt)"
+import meshio
+m = meshio.read('fast.msh')
+assert sorted(m.field_data) == ['1|0', '2|0', '2|1', '5|0', '5|2'], m.field_data
+assert sum(len(c.data) for c in m.cells) == sum(len(p) for p in m.cell_data['gmsh:physical'])
+PY
+  fi
+  if command -v gmsh > /dev/null; then
+    gmsh fast.msh -0 -format msh22 -o gmsh.msh > gmsh.log 2>&1 && ! grep -qi error gmsh.log ||
+      fail "gmsh cannot read fast.msh: $(cat gmsh.log)"
+    grep -q '"2|1"' gmsh.msh || fail "gmsh lost the physical group 2|1"
+  fi
+  # The names of a .seg.nrrd's segments name the groups.
+  expect 0 seg2mesh "$(seg)" named.msh --fast -q || return
+  grep -q '^2 [0-9]* "box touching the ball|ball"$' named.msh || fail "named.msh: no group 'box touching the ball|ball'"
+}
+
+# --separate: each label's closed surface alone, as seg2mesh writes without
+# --fast, certified against the label's own image.
+case_fast_separate_each_label_closed() {
+  local l; l=$(labels) || return
+  expect 0 seg2mesh "$l" sep.ply --fast --separate -q || return
+  [[ $(cut sep.ply) == "1 1 2 1 5 1 " ]] || fail "sep.ply: labels 1 2 5 with one component each expected"
+  local L wc
+  for L in 1 2 5; do
+    wc=$(shared wc$L.nrrd label_wc $L) || return
+    "$CHECK" "sep.ply.$L.off" "$wc" 1e9 > c.txt 2>&1 || fail "sep.ply: label $L's surface not certified: $(cat c.txt)"
+  done
+}
+
+case_fast_labels_subset() {
+  expect 0 seg2mesh "$(labels)" some.vtk --fast --labels 5,2 -q || return
+  local py; py=$(python_with vtk)
+  [[ -n $py ]] || { echo "skipped: no python with vtk (python3-vtk9)"; return; }
+  PATH=$(dirname "$py"):$PATH fast_check some.vtk vtk "2|0 5|0 5|2"
+}
+
+# A 32x32x16 crop of the bundled brain map holding its 7 values (~10^4
+# critical configurations a class in the whole map, which takes ~15 s):
+# repaired, meshed, certified, read back by VTK with its pairs.
+brain_crop() {
+  python3 - "$DATA/brain-kmeans-labels.nii.gz" <<'PY'
+import gzip, struct, sys
+b = gzip.open(sys.argv[1]).read()
+dim = struct.unpack_from('<8h', b, 40)
+assert dim[0] == 3 and struct.unpack_from('<h', b, 70)[0] == 2, 'uint8 3D NIfTI expected'
+nx, ny, nz = dim[1:4]
+sx, sy, sz = struct.unpack_from('<4f', b, 76)[1:4]
+data = b[int(struct.unpack_from('<f', b, 108)[0]):]
+box = [(64, 96), (64, 96), (32, 48)]
+out = bytes(data[i + nx * (j + ny * k)] for k in range(*box[2]) for j in range(*box[1]) for i in range(*box[0]))
+head = ('NRRD0004\ntype: uint8\ndimension: 3\nsizes: 32 32 16\nspacings: %r %r %r\nencoding: raw\n\n' % (sx, sy, sz))
+open('brain-crop.nrrd', 'wb').write(head.encode() + out)
+PY
+}
+
+case_fast_brain_crop_vtp() {
+  local b; b=$(shared brain-crop.nrrd brain_crop) || return
+  expect 0 seg2mesh "$b" brain.vtp --fast --stats brain.json -q || return
+  [[ $(json brain.json all_certified) == True ]] || fail "brain crop: not every label certified"
+  local py; py=$(python_with vtk)
+  [[ -n $py ]] || { echo "skipped: no python with vtk (python3-vtk9)"; return; }
+  "$py" - "$E2E" > vtk.txt 2>&1 <<'PY' || fail "brain.vtp: $(cat vtk.txt)"
+import sys; sys.path.insert(0, sys.argv[1]); import surface_read as r
+m = r.read('brain.vtp', 'vtk')
+assert len(m['pairs']) == len(m['triangles']) and all(a > b for a, b in m['pairs'])
+assert {l for p in m['pairs'] for l in p} == set(range(7)), sorted({l for p in m['pairs'] for l in p})
+PY
+}
+
+# Bad input: one line, a non-zero exit, no output.
+case_fast_bad_input_one_line() {
+  python3 - <<'PY' || return
+import struct
+def nrrd(name, kind, sizes, data, fmt):
+    head = 'NRRD0004\ntype: %s\ndimension: %d\nsizes: %s\nendian: little\nencoding: raw\n\n' % (
+        kind, len(sizes), ' '.join(map(str, sizes)))
+    open(name, 'wb').write(head.encode() + struct.pack('<%d%s' % (len(data), fmt), *data))
+nrrd('flat.nrrd', 'int16', [6, 5], [1] * 12 + [0] * 18, 'h')
+nrrd('float.nrrd', 'float', [4, 4, 4], [0.5] * 64, 'f')
+nrrd('empty.nrrd', 'int16', [4, 4, 4], [0] * 64, 'h')
+PY
+  local in why
+  for in in flat.nrrd:"a 3D label image is needed" float.nrrd:"not a label image" empty.nrrd:"no label"; do
+    why=${in#*:} in=${in%%:*}
+    expect 1 seg2mesh "$in" x.vtp --fast
+    [[ $(wc -l < err.txt) == 1 && ! -e x.vtp ]] || fail "$in: $(wc -l < err.txt) lines, x.vtp left: $(cat err.txt)"
+    grep -q "^seg2mesh: $in: .*$why" err.txt || fail "$in: '$(cat err.txt)' does not say '$why'"
+  done
+  expect 2 seg2mesh "$(labels)" x.vtp --fast --ratio 2
+  grep -q "^seg2mesh: --ratio is the Delaunay mesher's" err.txt || fail "--fast --ratio: $(cat err.txt)"
+  expect 2 seg2mesh "$(labels)" x.vtp --separate
+  [[ ! -e x.vtp ]] || fail "usage error left x.vtp"
+}
+
 run_cases "$@"

@@ -2,8 +2,9 @@
 VTK files by VTK's own Python readers, .msh by
 meshio (when given; ASCII or binary) or the text grammar of Gmsh's format
 documentation, PLY (binary little-endian or ASCII) and OFF by their grammars.
-read(path, reader) -> dict(points, triangles, component, label, normals, physical);
-a missing field is None; VTK's field data as names {label: name}.
+read(path, reader) -> dict(points, triangles, component, label, normals, physical,
+pairs); a missing field is None (pairs: each face's (behind, front) labels,
+from VTK's 2-component labels or PLY's label_behind and label_front); VTK's field data as names {label: name}.
 reader: 'vtk', 'meshio' or 'text'."""
 import struct, sys
 
@@ -20,7 +21,7 @@ def read_off(path):
         assert words[it] == '3'
         tris.append(tuple(int(x) for x in words[it + 1:it + 4]))
         it += 4
-    return dict(points=pts, triangles=tris, component=None, label=None, normals=None, physical=None)
+    return dict(points=pts, triangles=tris, component=None, label=None, normals=None, physical=None, pairs=None)
 
 
 def f32(text):
@@ -77,7 +78,8 @@ def read_ply(path):
                 component=[r['component'] for r in f] if f and 'component' in f[0] else None,
                 label=[r['label'] for r in f] if f and 'label' in f[0] else None,
                 normals=[(r['nx'], r['ny'], r['nz']) for r in v] if v and 'nx' in v[0] else None,
-                physical=None)
+                physical=None,
+                pairs=[(r['label_behind'], r['label_front']) for r in f] if f and 'label_behind' in f[0] else None)
 
 
 def read_vtk(path):
@@ -105,9 +107,14 @@ def read_vtk(path):
     names = None
     if values is not None and strings is not None:
         names = {int(values.GetValue(i)): strings.GetValue(i) for i in range(values.GetNumberOfTuples())}
+    pairs = pd.GetCellData().GetArray('labels')
+    if pairs is not None:
+        assert pairs.GetNumberOfComponents() == 2, 'labels of %d components' % pairs.GetNumberOfComponents()
+        pairs = [tuple(int(x) for x in p) for p in vtk_to_numpy(pairs).tolist()]
     return dict(points=pts, triangles=tris, component=arr(pd.GetCellData().GetArray('component')),
                 label=arr(pd.GetCellData().GetArray('label')),
-                normals=None if n is None else [tuple(x) for x in arr(n)], physical=None, names=names)
+                normals=None if n is None else [tuple(x) for x in arr(n)], physical=None, names=names,
+                pairs=pairs)
 
 
 def read_msh_meshio(path):
@@ -122,7 +129,7 @@ def read_msh_meshio(path):
     n = m.point_data.get('normals')
     return dict(points=[tuple(p) for p in m.points.tolist()], triangles=tris, component=[g - 1 for g in geo],
                 label=None, normals=None if n is None else [tuple(x) for x in n.tolist()], physical=phys,
-                names={v[0]: k for k, v in m.field_data.items()})
+                names={v[0]: k for k, v in m.field_data.items()}, pairs=None)
 
 
 def read_msh_text(path):
@@ -187,7 +194,7 @@ def read_msh_text(path):
         vals = {int(l.split()[0]): tuple(float(x) for x in l.split()[1:4]) for l in view[8:8 + n]}
         normals = [vals[t] for t in order]
     return dict(points=[nodes[t] for t in order], triangles=[tuple(index[v] for v in t) for t in tris],
-                component=[g - 1 for g in geo], label=None, normals=normals, physical=phys, names=names)
+                component=[g - 1 for g in geo], label=None, normals=normals, physical=phys, names=names, pairs=None)
 
 
 def read(path, reader='text'):

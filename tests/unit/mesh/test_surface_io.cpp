@@ -156,3 +156,94 @@ TEST_CASE("binary and ASCII PLY and STL read back to the same floats and triangl
     }
   }
 }
+
+namespace {
+// Three triangles on one edge (0, 1), as at a curve where labels 1, 2 and
+// 3 meet: no manifold, each triangle with its (behind, front) pair.
+SurfaceMesh three_sheets() {
+  SurfaceMesh m;
+  m.points = {{0, 0, 0}, {0, 0, 1.25}, {1, 0, 0.5}, {-0.5, 0.75, 0.5}, {-0.5, -0.75, 0.5}};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  m.interfaces = {{2, 1}, {3, 2}, {3, 1}};
+  return m;
+}
+// Each triangle as its cycle of corners (shape's) with its pair: .msh 4.1
+// writes nodes and triangles grouped by physical group.
+std::multiset<std::pair<std::array<Corner, 3>, std::array<int, 2>>> labelled_shape(const SurfaceMesh& m) {
+  std::multiset<std::pair<std::array<Corner, 3>, std::array<int, 2>>> s;
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+    SurfaceMesh one;
+    one.points = m.points;
+    one.triangles = {m.triangles[i]};
+    s.insert({*shape(one).begin(), m.interfaces.at(i)});
+  }
+  return s;
+}
+} // namespace
+
+TEST_CASE("label pairs round-trip through .vtp, .vtk, .ply and .msh, each triangle in its place") {
+  SurfaceMesh m = three_sheets();
+  SECTION("numbers") {}
+  SECTION("names") { m.label_names = {{1, "grey matter"}, {3, "csf"}}; }
+  struct Case {
+    const char* ext;
+    SurfaceWriteOptions options;
+  };
+  SurfaceWriteOptions ascii, msh22, msh_binary;
+  ascii.ascii = true;
+  msh22.msh_version = "2.2";
+  msh_binary.msh_binary = true;
+  for (const Case& c : {Case{".vtp", {}}, Case{".vtp", ascii}, Case{".vtk", {}}, Case{".vtk", ascii}, Case{".ply", {}},
+                        Case{".ply", ascii}, Case{".msh", {}}, Case{".msh", msh22}, Case{".msh", msh_binary}}) {
+    INFO(c.ext << (c.options.ascii ? " ascii" : "") << " msh " << c.options.msh_version << c.options.msh_binary);
+    const std::string path = temp_dir() + "/pairs" + c.ext;
+    write_surface(path, m, c.options);
+    const SurfaceMesh back = read_surface(path);
+    CHECK(labelled_shape(back) == labelled_shape(m));
+    CHECK(back.labels.empty());
+    if (std::string(c.ext) == ".msh") continue;
+    CHECK(back.points == m.points);  // exact in floats too
+    CHECK(back.triangles == m.triangles);
+    CHECK(back.interfaces == m.interfaces);
+  }
+}
+
+TEST_CASE("single labels read back from .vtp, .vtk and .msh; a .msh's groups named a|b are pairs") {
+  SurfaceMesh m = three_sheets();
+  m.interfaces.clear();
+  for (const char* ext : {".vtp", ".vtk", ".msh"}) {
+    // .msh: a physical group per component (one here), so one label.
+    m.labels = std::string(ext) == ".msh" ? std::vector<int>{4, 4, 4} : std::vector<int>{4, 4, 9};
+    const std::string path = temp_dir() + "/single" + ext;
+    write_surface(path, m);
+    const SurfaceMesh back = read_surface(path);
+    std::vector<int> sorted = back.labels;
+    std::sort(sorted.begin(), sorted.end());
+    CHECK(sorted == m.labels);  // .msh: grouped
+    CHECK(back.interfaces.empty());
+  }
+  // As Gmsh writes the file again: the physical names, no $LabelPairs.
+  const std::string gmsh = temp_dir() + "/gmsh.msh";
+  std::ofstream(gmsh) << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n2 1 \"2|1\"\n2 2 \"3|2\"\n"
+                         "$EndPhysicalNames\n$Entities\n0 0 2 0\n1 0 0 0 1 1 1 1 1 0\n2 0 0 0 1 1 1 1 2 0\n"
+                         "$EndEntities\n$Nodes\n1 4 1 4\n2 1 0 4\n1\n2\n3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n$EndNodes\n"
+                         "$Elements\n2 2 1 2\n2 1 2 1\n1 1 2 3\n2 2 2 1\n2 1 2 4\n$EndElements\n";
+  const SurfaceMesh back = read_surface(gmsh);
+  CHECK(back.interfaces == std::vector<std::array<int, 2>>{{2, 1}, {3, 2}});
+  CHECK(back.triangles == std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 1, 3}});
+}
+
+TEST_CASE("a legacy VTK 5.1 file (OFFSETS, CONNECTIVITY, METADATA) as VTK 9 writes it") {
+  const std::string path = temp_dir() + "/v51.vtk";
+  std::ofstream(path) << "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n"
+                         "0 0 0 1 0 0 0 1 0\n0 0 1\nPOLYGONS 3 6\nOFFSETS vtktypeint64\n0 3 6\n"
+                         "CONNECTIVITY vtktypeint64\n0 1 2 0 1 3\nCELL_DATA 2\nFIELD FieldData 1\nlabels 2 2 int\n"
+                         "2 1 3 2\nMETADATA\nINFORMATION 0\n\n";
+  const SurfaceMesh back = read_surface(path);
+  CHECK(back.triangles == std::vector<std::array<int, 3>>{{0, 1, 2}, {0, 1, 3}});
+  CHECK(back.interfaces == std::vector<std::array<int, 2>>{{2, 1}, {3, 2}});
+  std::ofstream(path) << "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n"
+                         "0 0 0 1 0 0 0 1 0\n0 0 1\nPOLYGONS 2 4\nOFFSETS vtktypeint64\n0 4\n"
+                         "CONNECTIVITY vtktypeint64\n0 1 2 3\n";
+  CHECK_THROWS_WITH(read_surface(path), Catch::Contains("only triangles"));
+}

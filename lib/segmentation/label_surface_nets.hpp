@@ -1,0 +1,70 @@
+// seg2mesh --fast (issue 39): every label's surface at once, the shared
+// interfaces meshed once. The stages, each timed:
+//   repair       the chosen labels kept (the rest background), the
+//                partition made well-composed (img2wc --labels all's
+//                make_well_composed_partition), in memory;
+//   complex      its interface complex K(X);
+//   mesh         surface nets on K(X): a vertex per corner, a quad per
+//                face split in two, each triangle with its (behind, front)
+//                labels (surfacenets/surface_nets.hpp);
+//   smoothing    `smooth_rounds` rounds inside each corner's cell, then
+//                untangled (0: the voxel faces);
+//   certificate  each label's closed surface against its voxel boundary.
+// Then one SurfaceMesh: every triangle once with its pair, or, `separate`,
+// each label's closed surface alone (its own vertices, interfaces twice)
+// with a label per triangle.
+#pragma once
+#include "image/grid.hpp"
+#include "image/slicer_segmentation.hpp"
+#include "mesh/surface_io.hpp"
+#include "util/json.hpp"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace imgmesh {
+
+struct LabelSurfaceNetsOptions {
+  std::vector<long long> labels;  // empty: every nonzero value present
+  LabelNames names;               // the labels' names where the image gives them
+  int smooth_rounds = 5;          // >= 0
+  bool separate = false;
+  std::function<void(const std::string&)> progress;
+};
+
+struct LabelNet {
+  std::int32_t label = 0;
+  std::string name;
+  std::size_t voxels = 0;        // after the repair
+  std::size_t triangles = 0;     // of its closed surface
+  double area = 0;               // world units
+  double volume = 0;             // enclosed by its surface (oriented out of it)
+  double voxel_volume = 0;       // voxels times a voxel's volume
+  std::vector<long long> euler;  // per component of its surface, ascending
+  std::string failure;           // the certificate's, empty when it holds
+};
+
+struct LabelSurfaceNetsResult {
+  std::vector<LabelNet> labels;  // ascending
+  SurfaceMesh mesh;              // interfaces set (or labels, separate); label_names
+  std::size_t changed = 0;       // voxels the repair relabelled
+  std::array<std::size_t, 3> grid{0, 0, 0};  // the repaired grid (grown by a voxel where labels touch the side)
+  Json complex = Json::object(); // K(X)'s counts
+  int smooth_rounds = 0;
+  bool separate = false;
+  // Seconds of each stage, in order: repair, complex, mesh, smoothing, certificate.
+  std::vector<std::pair<std::string, double>> seconds;
+  Json to_json() const;
+  std::string failed_guarantee() const;  // the first failing label, named
+};
+
+// Throws Error on a 2D image, one without labels, an asked label absent, a
+// partition the repair cannot make (more than 65535 labels), a negative
+// smooth_rounds.
+LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurfaceNetsOptions& options);
+
+} // namespace imgmesh
