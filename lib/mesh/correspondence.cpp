@@ -215,7 +215,7 @@ ComponentCorrespondence match_components(const MeshTopology& mesh, const std::ve
   return r;
 }
 
-void mesh_detail::tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes) {
+void tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes) {
   std::sort(votes.begin(), votes.end());
   for (std::size_t i = 0; i < votes.size();) {
     std::size_t j = i;

@@ -14,6 +14,7 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/box_intersection_d.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 
 #include <algorithm>
@@ -28,7 +29,65 @@ using Mesh = CGAL::Surface_mesh<K::Point_3>;
 using Face = Mesh::Face_index;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
 using Side = CGAL::Side_of_triangle_mesh<Mesh, K, CGAL::Default, Tree>;
+using Point = K::Point_3;
+
+// Whether triangles t and u (not degenerate) meet other than in what they
+// share: PMP's do_faces_intersect on vertex ids. Sharing an edge pq (r, s
+// the others), they overlap only when coplanar with r and s on one side of
+// pq; sharing a vertex, when the edge opposite it in one crosses the other.
+bool meet_improperly(const std::array<int, 3>& t, const std::array<int, 3>& u, const std::vector<Point>& p) {
+  int shared = 0, ti[3], ui[3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (t[std::size_t(i)] == u[std::size_t(j)]) ti[shared] = i, ui[shared++] = j;
+  auto at = [&](const std::array<int, 3>& x, int i) -> const Point& { return p[std::size_t(x[std::size_t(i % 3)])]; };
+  if (shared == 3) return true;
+  if (shared == 2) {
+    const Point &a = at(t, ti[0]), &b = at(t, ti[1]), &r = at(t, 3 - ti[0] - ti[1]), &s = at(u, 3 - ui[0] - ui[1]);
+    return CGAL::coplanar(a, b, r, s) && CGAL::coplanar_orientation(a, b, r, s) == CGAL::POSITIVE;
+  }
+  const K::Triangle_3 tt(at(t, 0), at(t, 1), at(t, 2)), uu(at(u, 0), at(u, 1), at(u, 2));
+  if (shared == 1)
+    return CGAL::do_intersect(tt, K::Segment_3(at(u, ui[0] + 1), at(u, ui[0] + 2))) ||
+           CGAL::do_intersect(uu, K::Segment_3(at(t, ti[0] + 1), at(t, ti[0] + 2)));
+  return CGAL::do_intersect(tt, uu);
+}
+
+struct CapReached {};
+
 } // namespace
+
+std::vector<std::array<std::size_t, 2>> intersecting_triangles(const std::vector<Vec3>& points,
+                                                               const std::vector<std::array<int, 3>>& triangles,
+                                                               std::size_t cap) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
+  std::vector<Point> p;
+  p.reserve(points.size());
+  for (const Vec3& x : points) p.emplace_back(x[0], x[1], x[2]);
+  std::vector<std::array<std::size_t, 2>> out;
+  std::vector<Box> boxes;
+  boxes.reserve(triangles.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const Point &a = p[std::size_t(triangles[t][0])], &b = p[std::size_t(triangles[t][1])], &c = p[std::size_t(triangles[t][2])];
+    if (CGAL::collinear(a, b, c)) out.push_back({t, t});
+    else boxes.emplace_back(a.bbox() + b.bbox() + c.bbox(), t);
+  }
+  if (out.size() >= cap) return {out.begin(), out.begin() + std::ptrdiff_t(cap)};
+  std::vector<const Box*> ptrs;
+  ptrs.reserve(boxes.size());
+  for (const Box& b : boxes) ptrs.push_back(&b);
+  auto test = [&](const Box* a, const Box* b) {
+    const std::size_t t = a->info(), u = b->info();
+    if (!meet_improperly(triangles[t], triangles[u], p)) return;
+    out.push_back({std::min(t, u), std::max(t, u)});
+    if (out.size() >= cap) throw CapReached{};
+  };
+  try {
+    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(ptrs.begin(), ptrs.end(), test, std::ptrdiff_t(2000));
+  } catch (const CapReached&) {
+  }
+  return out;
+}
 
 struct SurfaceGeometry::Impl {
   Mesh mesh;
@@ -80,7 +139,10 @@ std::vector<std::array<std::size_t, 2>> SurfaceGeometry::intersecting_pairs(std:
 }
 
 SelfIntersections SurfaceGeometry::self_intersections(std::size_t cap) const {
-  const auto found = intersecting_pairs(cap);
+  return summarize_intersections(intersecting_pairs(cap), cap);
+}
+
+SelfIntersections summarize_intersections(const std::vector<std::array<std::size_t, 2>>& found, std::size_t cap) {
   SelfIntersections s;
   s.pairs = found.size();
   s.capped = cap > 0 && found.size() >= cap;

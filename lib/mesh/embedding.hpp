@@ -22,6 +22,19 @@ struct SelfIntersections {
   bool capped = false;         // the search stopped at the cap: there may be more
   std::array<std::size_t, 2> first{0, 0};  // the least pair found (triangle ids, ascending)
 };
+// The summary of the pairs found by a search stopped at `cap` (0: no cap).
+SelfIntersections summarize_intersections(const std::vector<std::array<std::size_t, 2>>& pairs, std::size_t cap);
+
+// Pairs of triangles of any triangle set on shared vertex ids (edges in
+// three triangles or more, mixed orientations: a multi-label mesh, which
+// SurfaceGeometry cannot hold) that meet other than in the edge or vertices
+// they share, up to `cap` (> 0), each ascending; a degenerate triangle
+// (collinear corners) as a pair with itself; a triangle given twice
+// intersects its copy. The tests of self_intersections (exact predicates),
+// on vertex ids instead of half-edges. Points must be finite.
+std::vector<std::array<std::size_t, 2>> intersecting_triangles(const std::vector<Vec3>& points,
+                                                               const std::vector<std::array<int, 3>>& triangles,
+                                                               std::size_t cap);
 
 class SurfaceGeometry {
 public:

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace imgmesh {
@@ -188,6 +189,14 @@ struct MeshRegions {
 // of a 0/1 image). Throws Error on a bad face.
 MeshRegions mesh_regions(std::size_t num_vertices, const std::vector<std::vector<int>>& faces,
                          const std::vector<std::int32_t>& face_labels);
+
+// The vote and the verdicts of a correspondence whose sides are sized (their
+// Euler characteristics set): votes holds (mesh component, image component)
+// once per placed element; a mesh component goes to the image component with
+// most votes (ties: the lower index), then one to one and equal Euler
+// characteristics are checked. match_regions' and the multi-label
+// certificate's (surfacenets/interface_certificate.hpp) patches'.
+void tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes);
 
 // Each face is placed by its centroid (world coordinates; the image's x-y
 // plane): on the region of the nearest pixel centre of the face's label less

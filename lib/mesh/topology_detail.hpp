@@ -32,10 +32,4 @@ struct UnionFind {
   }
 };
 
-// The vote and the verdicts of a correspondence whose sides are sized:
-// votes holds (mesh component, image component) once per placed element; a
-// mesh component goes to the image component with most votes (ties: the
-// lower index), then one to one and equal Euler characteristics are checked.
-void tally_votes(ComponentCorrespondence& r, std::vector<std::pair<int, int>>& votes);
-
 } // namespace imgmesh::mesh_detail

@@ -192,7 +192,7 @@ ComponentCorrespondence match_regions(const MeshRegions& mesh, const std::vector
     const int k = place(f, mesh.label[std::size_t(m)]);
     if (k >= 0) votes.push_back({m, k});
   }
-  mesh_detail::tally_votes(r, votes);
+  tally_votes(r, votes);
   return r;
 }
 

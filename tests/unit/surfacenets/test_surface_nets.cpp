@@ -12,7 +12,7 @@
 #include "mesh/topology.hpp"
 #include "mesh/voxel_sides.hpp"
 #include "util/error.hpp"
-#include "wellcomposed/label_images.hpp"
+#include "surfacenets/label_maps.hpp"
 #include "wellcomposed/well_composed_partition.hpp"
 
 #include <catch2/catch.hpp>
@@ -159,30 +159,6 @@ void check_smoothed(const InterfaceMesh& before, const InterfaceMesh& m, const S
     }
     if (m.kind[v] == InterfaceMesh::kJunction) REQUIRE(m.points[v] == before.points[v]);
   }
-}
-
-LabelImage nested_shells() {
-  LabelImage img = label_grid(12, 12, 12);
-  paint(img, {2, 2, 2}, {9, 9, 9}, 1);
-  paint(img, {4, 4, 4}, {7, 7, 7}, 2);
-  paint(img, {5, 5, 5}, {6, 6, 6}, 0);  // a cavity of background inside 2
-  return img;
-}
-// Labels 1 and 2 side by side under a slab of 3: triple curves 1|2|3,
-// 1|2|0, 1|3|0, 2|3|0 and junctions where they meet.
-LabelImage three_labels() {
-  LabelImage img = label_grid(12, 10, 10);
-  paint(img, {2, 2, 2}, {5, 7, 6}, 1);
-  paint(img, {6, 2, 2}, {9, 7, 6}, 2);
-  paint(img, {2, 2, 7}, {9, 7, 8}, 3);
-  return img;
-}
-// Label 1 on the grid's side x = 0 and z = 0, label 2 one voxel inside it.
-LabelImage side_and_one_voxel() {
-  LabelImage img = label_grid(8, 8, 8);
-  paint(img, {0, 1, 0}, {4, 6, 4}, 1);
-  paint(img, {2, 3, 2}, {2, 3, 2}, 2);
-  return img;
 }
 
 void check_case(const LabelImage& img, bool certify = true) {

@@ -1,0 +1,351 @@
+// certify_interface_mesh: a short driver over the checks
+// interface_certificate.hpp lists: the interfaces (interface_patches.cpp),
+// the whole mesh's crossings (intersecting_triangles), each label's surface
+// against a crop of its indicator (certify_surface, voxel_sides).
+#include "surfacenets/interface_certificate.hpp"
+
+#include "surfacenets/interface_certificate_detail.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace imgmesh {
+namespace {
+
+using Cert = InterfaceCertificate;
+
+void validate(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+              const std::vector<std::array<std::int32_t, 2>>& pairs, const LabelImage& image,
+              const InterfaceComplex& k) {
+  if (image.dimension != 3 || k.dimension != 3) throw Error("certify_interface_mesh: a 3D label image is needed");
+  for (int a = 0; a < 3; ++a)
+    if (k.lattice[std::size_t(a)] != image.size[std::size_t(a)] + 1)
+      throw Error("certify_interface_mesh: the interface complex is not the label image's");
+  if (k.critical.total()) throw Error("certify_interface_mesh: " + k.failed_guarantee());
+  if (pairs.size() != triangles.size())
+    throw Error("certify_interface_mesh: " + std::to_string(pairs.size()) + " label pairs for " +
+                std::to_string(triangles.size()) + " triangles");
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& tri = triangles[t];
+    for (int v : tri) {
+      if (v < 0 || std::size_t(v) >= points.size())
+        throw Error("triangle " + std::to_string(t) + " has a vertex id out of range: " + std::to_string(v));
+      const Vec3& p = points[std::size_t(v)];
+      if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+        throw Error("vertex " + std::to_string(v) + " has a coordinate that is not a finite number");
+    }
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+      throw Error("triangle " + std::to_string(t) + " repeats a corner");
+  }
+}
+
+// The voxel box of each label (label 0: of X != 0) and its voxel count.
+struct LabelBox {
+  std::array<std::size_t, 3> lo{0, 0, 0}, hi{0, 0, 0};
+  std::size_t voxels = 0;
+  void add(std::size_t x, std::size_t y, std::size_t z) {
+    const std::array<std::size_t, 3> p{x, y, z};
+    for (std::size_t a = 0; a < 3; ++a) {
+      lo[a] = voxels ? std::min(lo[a], p[a]) : p[a];
+      hi[a] = voxels ? std::max(hi[a], p[a]) : p[a];
+    }
+    ++voxels;
+  }
+};
+// labels: ascending, 0 among them.
+std::vector<LabelBox> label_boxes(const LabelImage& img, const std::vector<std::int32_t>& labels) {
+  std::vector<LabelBox> box(labels.size());
+  const std::size_t zero = std::size_t(std::lower_bound(labels.begin(), labels.end(), 0) - labels.begin());
+  std::size_t at = 0;
+  for (std::size_t z = 0; z < img.size[2]; ++z)
+    for (std::size_t y = 0; y < img.size[1]; ++y)
+      for (std::size_t x = 0; x < img.size[0]; ++x) {
+        const std::int32_t v = img(x, y, z);
+        if (labels[at] != v) at = std::size_t(std::lower_bound(labels.begin(), labels.end(), v) - labels.begin());
+        if (v != 0) box[at].add(x, y, z), box[zero].add(x, y, z);
+      }
+  return box;
+}
+
+// {X = label} (label 0: X != 0) on its box grown by a voxel within the
+// grid: every voxel with a face on its bdCA, and its neighbours across.
+BinaryImage crop_indicator(const LabelImage& img, std::int32_t label, const LabelBox& box) {
+  Geometry g = img.geometry();
+  std::array<std::size_t, 3> lo{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    lo[a] = box.lo[a] ? box.lo[a] - 1 : 0;
+    g.size[a] = std::min(box.hi[a] + 1, img.size[a] - 1) - lo[a] + 1;
+  }
+  g.origin = img.world(double(lo[0]), double(lo[1]), double(lo[2]));
+  BinaryImage b(g, 0);
+  for (std::size_t z = 0; z < g.size[2]; ++z)
+    for (std::size_t y = 0; y < g.size[1]; ++y)
+      for (std::size_t x = 0; x < g.size[0]; ++x) {
+        const std::int32_t v = img(lo[0] + x, lo[1] + y, lo[2] + z);
+        b(x, y, z) = label == 0 ? v != 0 : v == label;
+      }
+  return b;
+}
+
+// A label's triangles, oriented out of it (label 0: out of X != 0, into 0),
+// on its own vertices (renumbered through `local`, left all -1 again).
+void label_surface(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                   const std::vector<std::array<std::int32_t, 2>>& pairs, const std::vector<std::size_t>& ts,
+                   std::int32_t label, std::vector<int>& local, std::vector<Vec3>& p,
+                   std::vector<std::array<int, 3>>& tris) {
+  std::vector<int> used;
+  p.clear();
+  tris.resize(ts.size());
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    auto tri = triangles[ts[i]];
+    const auto& pr = pairs[ts[i]];
+    if (label == 0 ? pr[1] != 0 : pr[0] != label) std::swap(tri[1], tri[2]);
+    for (int c = 0; c < 3; ++c) {
+      int& v = local[std::size_t(tri[std::size_t(c)])];
+      if (v < 0) v = int(used.size()), used.push_back(tri[std::size_t(c)]), p.push_back(points[std::size_t(tri[std::size_t(c)])]);
+      tris[i][std::size_t(c)] = v;
+    }
+  }
+  for (int v : used) local[std::size_t(v)] = -1;
+}
+
+double area_of(const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& tris) {
+  double area = 0;
+  for (const auto& t : tris) {
+    const Vec3 &a = p[std::size_t(t[0])], &b = p[std::size_t(t[1])], &c = p[std::size_t(t[2])];
+    const Vec3 u{b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v{c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    const Vec3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    area += std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / 2;
+  }
+  return area;
+}
+
+// One label: its surface certified against the crop of its indicator, its
+// figures, its voxel centres' sides.
+void certify_label(Cert::Label& l, const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& tris,
+                   const LabelImage& image, const LabelBox& box, const CertificateOptions& options) {
+  l.triangles = tris.size();
+  l.area = area_of(p, tris);
+  l.voxels = box.voxels;
+  l.voxel_volume = double(box.voxels) * image.spacing[0] * image.spacing[1] * image.spacing[2];
+  const BinaryImage crop = crop_indicator(image, l.label, box);
+  const VoxelBoundary vb = voxel_boundary(crop);
+  l.surface = certify_surface(p, tris, crop, vb, mesh_topology(vb), options);
+  for (double v : l.surface.volume) l.volume += v;
+  if (l.surface.state[SurfaceCertificate::kIntersections] < 0) return;  // not closed, manifold, oriented
+  std::vector<int> component(tris.size());
+  for (std::size_t t = 0; t < tris.size(); ++t) component[t] = l.surface.topology.component_of[std::size_t(tris[t][0])];
+  l.sides = voxel_sides(p, tris, component, l.surface.topology.components.size(), crop);
+  l.sides_checked = true;
+}
+
+// Every label of K(X) with faces and every label of the mesh, ascending.
+std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                        const std::vector<std::array<std::int32_t, 2>>& pairs, const LabelImage& image,
+                                        const InterfaceComplex& k, const CertificateOptions& options) {
+  std::vector<std::int32_t> in_image, labels;
+  for (const auto& lb : k.labels) in_image.push_back(lb.label);  // ascending, 0 among them
+  for (const auto& lb : k.labels)
+    if (lb.faces) labels.push_back(lb.label);
+  for (const auto& pr : pairs) labels.insert(labels.end(), pr.begin(), pr.end());
+  std::sort(labels.begin(), labels.end());
+  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  // Per label, its triangles (CSR, ascending ids).
+  auto index = [&](std::int32_t v) { return std::size_t(std::lower_bound(labels.begin(), labels.end(), v) - labels.begin()); };
+  std::vector<std::size_t> start(labels.size() + 1, 0);
+  for (const auto& pr : pairs) {
+    ++start[index(pr[0]) + 1];
+    if (pr[1] != pr[0]) ++start[index(pr[1]) + 1];
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<std::size_t> of(start.back()), next(start.begin(), start.end() - 1);
+  for (std::size_t t = 0; t < pairs.size(); ++t) {
+    of[next[index(pairs[t][0])]++] = t;
+    if (pairs[t][1] != pairs[t][0]) of[next[index(pairs[t][1])]++] = t;
+  }
+  const std::vector<LabelBox> boxes = label_boxes(image, in_image);
+  std::vector<Cert::Label> out(labels.size());
+  std::vector<int> local(points.size(), -1);
+  std::vector<Vec3> p;
+  std::vector<std::array<int, 3>> tris;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    Cert::Label& l = out[i];
+    l.label = labels[i];
+    const std::vector<std::size_t> ts(of.begin() + std::ptrdiff_t(start[i]), of.begin() + std::ptrdiff_t(start[i + 1]));
+    label_surface(points, triangles, pairs, ts, l.label, local, p, tris);
+    const auto b = std::lower_bound(in_image.begin(), in_image.end(), l.label);
+    l.in_image = b != in_image.end() && *b == l.label;
+    if (!l.in_image) {
+      l.triangles = tris.size();
+      l.area = area_of(p, tris);
+      continue;
+    }
+    certify_label(l, p, tris, image, boxes[std::size_t(b - in_image.begin())], options);
+  }
+  return out;
+}
+
+void set(Cert& c, int check, bool held, const std::string& why = "") {
+  c.state[std::size_t(check)] = held ? 1 : 0;
+  if (!held) c.why[std::size_t(check)] = why;
+}
+
+std::string pair_text(const std::array<std::int32_t, 2>& p) { return std::to_string(p[0]) + "|" + std::to_string(p[1]); }
+
+void check_intersections(Cert& c, const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                         const std::vector<std::array<std::int32_t, 2>>& pairs, std::size_t cap) {
+  const SelfIntersections& s = c.intersections = summarize_intersections(intersecting_triangles(points, triangles, cap), cap);
+  if (s.pairs == 0) return set(c, Cert::kIntersections, true);
+  auto tri = [&](std::size_t t) { return "triangle " + std::to_string(t) + " (" + pair_text(pairs[t]) + ")"; };
+  std::string why = "intersections: ";
+  if (s.first[0] == s.first[1]) why += std::to_string(s.degenerate) + " degenerate triangle(s) (collinear corners), the first " + tri(s.first[0]);
+  else
+    why += std::string(s.capped ? "at least " : "") + std::to_string(s.pairs - s.degenerate) +
+           " pair(s) of triangles meet other than in a shared edge or vertex, the first " + tri(s.first[0]) + " and " +
+           tri(s.first[1]);
+  set(c, Cert::kIntersections, false, why);
+}
+
+// labels and voxel sides from the labels' certificates.
+void check_labels(Cert& c) {
+  c.state[Cert::kSides] = 1;
+  for (const auto& l : c.labels) {
+    const std::string name = "label " + std::to_string(l.label) + ": ";
+    if (c.state[Cert::kLabels] != 0 && (!l.in_image || !l.surface.ok()))
+      set(c, Cert::kLabels, false,
+          name + (l.in_image ? l.surface.failure() : "not a label of the image (" + std::to_string(l.triangles) + " triangles)"));
+    if (c.state[Cert::kSides] == 0) continue;
+    if (!l.sides_checked) c.state[Cert::kSides] = -1;
+    else if (l.sides.wrong())
+      set(c, Cert::kSides, false,
+          name + "voxel sides: " + std::to_string(l.sides.wrong()) + " of " + std::to_string(l.sides.checked) +
+              " voxel centres on the wrong side (" + std::to_string(l.sides.foreground_outside) + " of the label outside its surface, " +
+              std::to_string(l.sides.background_inside) + " others inside, " + std::to_string(l.sides.on_surface) + " on it)");
+  }
+  if (c.state[Cert::kLabels] != 0) c.state[Cert::kLabels] = 1;
+}
+
+} // namespace
+
+std::string InterfaceCertificate::Interface::name() const { return pair_text({behind, front}); }
+
+const char* InterfaceCertificate::name(int check) {
+  static const char* const names[kChecks] = {"interfaces", "intersections", "labels", "voxel sides"};
+  return check >= 0 && check < kChecks ? names[check] : "none";
+}
+
+int InterfaceCertificate::first_failed() const {
+  for (int k = 0; k < kChecks; ++k)
+    if (state[std::size_t(k)] != 1) return k;
+  return kChecks;
+}
+
+std::string InterfaceCertificate::failure() const {
+  const int k = first_failed();
+  if (k == kChecks) return "";
+  return state[std::size_t(k)] < 0 ? std::string(name(k)) + ": not checked" : why[std::size_t(k)];
+}
+
+std::string InterfaceCertificate::summary() const {
+  if (!ok()) return "interface certificate fails: " + failure();
+  std::size_t patches = 0, centres = 0;
+  for (const auto& in : interfaces) patches += in.patches.size();
+  for (const auto& l : labels) centres += l.sides.checked;
+  return "interface certificate holds: " + std::to_string(labels.size()) + " labels, " + std::to_string(interfaces.size()) +
+         " interfaces (" + std::to_string(patches) + " patches), no crossing, " + std::to_string(centres) +
+         " voxel centres on their side";
+}
+
+Json InterfaceCertificate::to_json() const {
+  Json j = Json::object();
+  j["verdict"] = ok() ? "ok" : name(first_failed());
+  if (!ok()) j["failure"] = failure();
+  j["place_tolerance"] = place_tolerance;
+  Json checks = Json::object();
+  for (int k = 0; k < kChecks; ++k) checks[name(k)] = state[std::size_t(k)] < 0 ? Json() : Json(state[std::size_t(k)] == 1);
+  j["checks"] = checks;
+  j["intersecting_pairs"] = intersections.pairs - intersections.degenerate;
+  j["degenerate_triangles"] = intersections.degenerate;
+  Json ls = Json::array();
+  for (const auto& l : labels) {
+    Json o = Json::object();
+    o["label"] = l.label;
+    if (l.label == 0) o["surface_of"] = "X != 0";
+    o["triangles"] = l.triangles;
+    o["area"] = l.area;
+    o["volume"] = l.volume;
+    o["voxels"] = l.voxels;
+    o["voxel_volume"] = l.voxel_volume;
+    o["components"] = l.surface.topology.components.size();
+    o["euler"] = l.surface.topology.euler_list();
+    o["verdict"] = !l.in_image ? "not in the image" : l.surface.ok() ? "ok" : SurfaceCertificate::name(l.surface.first_failed());
+    if (l.in_image && !l.surface.ok()) o["failure"] = l.surface.failure();
+    if (l.sides_checked) o["voxel_sides"] = l.sides.to_json();
+    ls.push_back(o);
+  }
+  j["labels"] = ls;
+  Json is = Json::array();
+  for (const auto& in : interfaces) {
+    Json o = Json::object();
+    o["pair"] = in.name();
+    o["triangles"] = in.triangles;
+    o["reversed"] = in.reversed;
+    o["complex_patches"] = in.complex_patches.size();
+    Json ps = Json::array();
+    for (const auto& p : in.patches) {
+      Json q = Json::object();
+      q["first_triangle"] = p.first_triangle;
+      q["triangles"] = p.triangles;
+      q["euler"] = p.euler;
+      q["boundary_loops"] = p.boundary_loops;
+      q["pinched_vertices"] = p.pinched_vertices;
+      q["placed"] = p.placed;
+      q["complex_patch"] = p.complex_patch;
+      q["verdict"] = p.verdict;
+      ps.push_back(q);
+    }
+    o["patches"] = ps;
+    if (!in.why.empty()) o["failure"] = in.why;
+    is.push_back(o);
+  }
+  j["interfaces"] = is;
+  return j;
+}
+
+InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
+                                            const std::vector<std::array<int, 3>>& triangles,
+                                            const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                            const LabelImage& image, const InterfaceComplex& k,
+                                            const InterfaceCertificateOptions& options) {
+  validate(points, triangles, pairs, image, k);
+  if (options.intersections_cap == 0) throw Error("certify_interface_mesh: the intersections cap must be positive");
+  InterfaceCertificate c;
+  c.state.fill(-1);
+  c.place_tolerance = options.place_tolerance > 0 ? options.place_tolerance : default_place_tolerance(image);
+  c.interfaces = surfacenets_detail::certify_interfaces(points, triangles, pairs, image, k, c.place_tolerance);
+  set(c, Cert::kInterfaces, true);
+  for (const auto& in : c.interfaces)
+    if (!in.why.empty()) {
+      set(c, Cert::kInterfaces, false, in.why);
+      break;
+    }
+  CertificateOptions co;
+  co.place_tolerance = c.place_tolerance;
+  co.intersections_cap = options.intersections_cap;
+  check_intersections(c, points, triangles, pairs, options.intersections_cap);
+  c.labels = certify_labels(points, triangles, pairs, image, k, co);
+  check_labels(c);
+  return c;
+}
+
+InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
+                                            const std::vector<std::array<int, 3>>& triangles,
+                                            const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                            const LabelImage& image, const InterfaceCertificateOptions& options) {
+  if (image.dimension != 3) throw Error("certify_interface_mesh: a 3D label image is needed");
+  return certify_interface_mesh(points, triangles, pairs, image, interface_complex(image), options);
+}
+
+} // namespace imgmesh

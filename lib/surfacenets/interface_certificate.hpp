@@ -1,0 +1,160 @@
+// The multi-label certificate (issue 39): any triangle mesh whose triangles
+// each carry a label pair (behind, front), oriented out of behind (ours,
+// VTK's, CGAL's: vertices anywhere, not only near lattice corners), against
+// the interface complex K(X) of a well-composed label image X
+// (wellcomposed/interface_complex.hpp). Its checks, in order; the verdict
+// names the first that fails, with its pair or label:
+//
+//   interfaces     per label pair {a, b} (K(X)'s and the mesh's), the mesh's
+//                  patches (its triangles of the pair, either orientation,
+//                  joined along edges) against K(X)'s patches of the pair:
+//                  as many; each placed on one (every triangle votes for the
+//                  patch of the nearest face of the pair within the place
+//                  tolerance of its centroid; most votes wins, ties the
+//                  lower index: tally_votes), one to one; each with its
+//                  patch's Euler characteristic, boundary loops and pinched
+//                  vertices, and no edge in three of its triangles.
+//                  "interface 3|1: 2 patches, K(X) has 1"
+//   intersections  no two triangles of the whole mesh meet other than in a
+//                  shared edge or vertex (a|b against c|d too; exact
+//                  predicates, mesh/embedding.hpp intersecting_triangles).
+//                  "intersections: ... triangle 5 (2|1) and triangle 9 (3|0)"
+//   labels         per label L, the triangles with L on a side, oriented out
+//                  of L, pass certify_surface against bdCA({X = L}) (closed,
+//                  manifold, oriented, intersections, placed, matched,
+//                  topology; mesh/surface_certificate.hpp).
+//                  "label 3: topology: ..."
+//   voxel sides    per label, every voxel centre next to bdCA({X = L}) on its
+//                  own side of L's surface (mesh/voxel_sides.hpp; counts).
+// Every check is run on what it can run on; a label's voxel sides need its
+// surface closed, manifold and oriented.
+//
+// Why this order: the interfaces are combinatorial and name the patch that
+// is wrong (a duplicated, dropped or split patch fails there, where every
+// label around it would only say "not closed"); the whole-mesh crossings
+// name both triangles and their pairs (a label's own crossings are among
+// them, and a|b against c|d, which no label's surface holds); a label's
+// surface then fails on orientation (a flipped triangle, a pair given the
+// wrong way round), placement and topology.
+//
+// Label 0 (the background, and beyond the grid) is certified too, as the
+// surface of the foreground X != 0 (its triangles oriented into 0, outward
+// from the organs), against bdCA(X != 0), which K(X) counts as bdCA(0):
+// the outer surface a user sees, whose nesting, components and topology
+// (the union of the organs, its cavities) no other label's surface holds.
+//
+// Pinches: where a K(X) patch pinches (two fans of its faces at a junction
+// corner, wellcomposed/interface_complex.hpp) K(X) counts the corner once
+// in V, the two loops through it as one, and the corner as a pinched
+// vertex. A mesh's pinch shows the same way: one vertex where its patch's
+// triangles form two fans (mesh_topology's bow-tie, counted per patch), the
+// Euler characteristic counting it once, its boundary edges joined there
+// into one loop. A mesh that splits the pinch into two vertices has a patch
+// of Euler characteristic one more and no pinch: refused (interfaces).
+//
+// Cost: linear in the mesh for the interfaces (the faces near a centroid
+// are looked up in K(X)'s sorted keys); per label, its own triangles
+// against a crop of the image to its voxels' box and one voxel around
+// (never a full grid a label), so a map of many small labels costs what its
+// boxes hold; the whole-mesh test is CGAL's box intersection.
+#pragma once
+#include "image/grid.hpp"
+#include "mesh/embedding.hpp"
+#include "mesh/surface_certificate.hpp"
+#include "mesh/voxel_sides.hpp"
+#include "util/json.hpp"
+#include "wellcomposed/interface_complex.hpp"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace imgmesh {
+
+struct InterfaceCertificateOptions {
+  // World units; 0: one voxel diagonal. Each label's (certify_surface: every
+  // vertex within it of its bdCA component) and each interface triangle's
+  // (its centroid within it of a face of its pair to vote).
+  double place_tolerance = 0;
+  std::size_t intersections_cap = 1000;  // intersecting pairs counted at most, per label and over the mesh
+};
+
+struct InterfaceCertificate {
+  enum Check : int { kInterfaces, kIntersections, kLabels, kSides, kChecks };
+  static const char* name(int check);  // "interfaces", "intersections", "labels", "voxel sides"
+
+  // A mesh patch: the triangles of one pair joined along edges.
+  struct Patch {
+    std::size_t first_triangle = 0;  // its least triangle id: a name a user can find it by
+    std::size_t triangles = 0, vertices = 0, edges = 0;
+    long long euler = 0;
+    std::size_t boundary_loops = 0;
+    std::size_t pinched_vertices = 0;   // vertices where its triangles form two fans or more
+    std::size_t nonmanifold_edges = 0;  // edges in three of its triangles or more
+    std::size_t placed = 0;             // triangles within the place tolerance of a face of the pair
+    long long complex_patch = -1;       // the K(X) patch it is placed on (InterfaceComplex::patches), -1 none
+    // "ok", "unplaced", "matched twice", "not a surface", "euler differs",
+    // "loops differ", "pinches differ".
+    std::string verdict;
+  };
+  struct Interface {
+    std::int32_t behind = 0, front = 0;      // as K(X): behind > front
+    std::size_t triangles = 0;
+    std::size_t reversed = 0;                // of those, given as (front, behind): oriented the other way
+    std::vector<Patch> patches;              // the mesh's, in the order of their first triangles
+    std::vector<std::size_t> complex_patches;  // K(X)'s patches of the pair, ascending
+    std::string why;                         // the first failure, empty when it holds
+    std::string name() const;                // "3|1"
+  };
+  struct Label {
+    std::int32_t label = 0;
+    bool in_image = true;
+    std::size_t triangles = 0;
+    double area = 0;                  // world units
+    double volume = 0;                // enclosed (the components' signed volumes summed; 0 when not closed)
+    std::size_t voxels = 0;           // of {X = L}; label 0: of X != 0
+    double voxel_volume = 0;          // voxels times a voxel's volume
+    SurfaceCertificate surface;       // of its triangles oriented out of it, against bdCA({X = L})
+    bool sides_checked = false;
+    VoxelSides sides;
+  };
+
+  std::vector<Interface> interfaces;  // by (behind, front) ascending
+  std::vector<Label> labels;          // ascending
+  SelfIntersections intersections;    // over the whole mesh
+  std::array<int, kChecks> state{};   // 1 held, 0 failed, -1 not run
+  std::array<std::string, kChecks> why;  // per failed check, naming the pair or label
+  double place_tolerance = 0;
+
+  int first_failed() const;  // kChecks when every check holds
+  bool ok() const { return first_failed() == kChecks; }
+  std::string failure() const;  // the first failed check's why; empty when ok
+  std::string failed_guarantee() const { return failure(); }
+  // "interface certificate holds: 5 labels, 7 interfaces (8 patches), 0
+  // crossings, 0 of 1234 voxel centres on the wrong side", or "interface
+  // certificate fails: WHY".
+  std::string summary() const;
+  Json to_json() const;
+};
+
+// points, triangles: the mesh in the world coordinates of `image`; pairs:
+// per triangle (behind, front), the triangle oriented out of behind (either
+// label may be the higher). k = interface_complex(image). Throws Error on a
+// 2D image, on K(X) not of `image` or counting critical configurations (not
+// well-composed: certify against img2wc --labels' output), on pairs not one
+// a triangle, on a triangle with an id out of range or a repeated corner,
+// and on a vertex of a triangle with a coordinate that is not finite.
+InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
+                                            const std::vector<std::array<int, 3>>& triangles,
+                                            const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                            const LabelImage& image, const InterfaceComplex& k,
+                                            const InterfaceCertificateOptions& options = {});
+// The same, K(X) built here.
+InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
+                                            const std::vector<std::array<int, 3>>& triangles,
+                                            const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                            const LabelImage& image, const InterfaceCertificateOptions& options = {});
+
+} // namespace imgmesh

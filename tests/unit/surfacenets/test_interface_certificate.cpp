@@ -1,0 +1,278 @@
+// The multi-label certificate (interface_certificate.hpp): it holds on the
+// surface-nets meshes of hand-built and random well-composed maps, before
+// and after smoothing, with each label's volume its voxels' before
+// smoothing; and each wrong mesh is refused, naming the check and the pair
+// or label that fails.
+#include "surfacenets/interface_certificate.hpp"
+
+#include "mesh/embedding.hpp"
+#include "surfacenets/label_maps.hpp"
+#include "surfacenets/surface_nets.hpp"
+#include "util/error.hpp"
+#include "wellcomposed/well_composed_partition.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+using namespace imgmesh;
+using namespace imgmesh::test;
+
+namespace {
+
+using Cert = InterfaceCertificate;
+
+// A mesh as any mesher hands it over: points, triangles, a pair each.
+struct Soup {
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<std::array<std::int32_t, 2>> pairs;
+};
+Soup soup_of(const InterfaceMesh& m) {
+  Soup s{m.points, m.triangles, {}};
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) s.pairs.push_back(m.triangle_labels(t));
+  return s;
+}
+
+Cert certify(const Soup& s, const LabelImage& img) { return certify_interface_mesh(s.points, s.triangles, s.pairs, img); }
+
+// Holds; the counts are K(X)'s; unsmoothed, every label encloses exactly
+// its voxels' volume (label 0: the foreground's).
+void check_holds(const Soup& s, const LabelImage& img, const InterfaceComplex& k, bool unsmoothed) {
+  const Cert c = certify(s, img);
+  INFO(c.summary());
+  REQUIRE(c.failure() == "");
+  CHECK(c.ok());
+  std::set<std::array<std::int32_t, 2>> pairs;
+  for (const auto& p : k.patches) pairs.insert({p.behind, p.front});
+  std::size_t patches = 0;
+  for (const auto& in : c.interfaces) patches += in.patches.size();
+  CHECK(c.interfaces.size() == pairs.size());
+  CHECK(patches == k.patches.size());
+  std::size_t labelled = 0;
+  for (const auto& lb : k.labels) labelled += lb.faces > 0;
+  CHECK(c.labels.size() == labelled);
+  for (const auto& l : c.labels) {
+    CHECK(l.sides_checked);
+    CHECK(l.area > 0);
+    if (unsmoothed) CHECK(std::abs(l.volume - l.voxel_volume) < 1e-9 * (1 + l.voxel_volume));
+    else CHECK(l.volume > 0);
+  }
+}
+
+// The certificate holds on the unsmoothed and the smoothed mesh.
+void check_case(const LabelImage& img) {
+  const InterfaceComplex k = interface_complex(img);
+  REQUIRE(k.failed_guarantee().empty());
+  InterfaceMesh m = interface_mesh(img, k);
+  check_holds(soup_of(m), img, k, true);
+  smooth_interface_mesh(m);
+  check_holds(soup_of(m), img, k, false);
+}
+
+} // namespace
+
+TEST_CASE("interface certificate: holds on hand-built maps, before and after smoothing", "[surfacenets]") {
+  SECTION("nested shells") { check_case(nested_shells()); }
+  SECTION("three labels along triple curves") { check_case(three_labels()); }
+  SECTION("a label on the grid's side and a one-voxel label") { check_case(side_and_one_voxel()); }
+  SECTION("anisotropic spacing and a reflecting direction") {
+    LabelImage img = three_labels();
+    img.spacing = {0.5, 1.5, 2.0};
+    img.origin = {3, -2, 7};
+    img.direction = {0, 1, 0, 1, 0, 0, 0, 0, 1};
+    check_case(img);
+  }
+  SECTION("four labels around one curve") { check_case(four_labels_around_an_edge()); }
+  SECTION("the pinched block: one vertex, two fans, as K(X) counts it") {
+    const LabelImage img = pinched_block();
+    const InterfaceComplex k = interface_complex(img);
+    REQUIRE(k.pinched_vertices() == 1);
+    check_case(img);
+    const Cert c = certify(soup_of(interface_mesh(img, k)), img);
+    for (const auto& in : c.interfaces)
+      for (const auto& p : in.patches) CHECK(p.pinched_vertices == (in.name() == "3|0" ? 1u : 0u));
+  }
+}
+
+TEST_CASE("interface certificate: a random map of 200 labels", "[surfacenets]") {
+  std::mt19937_64 rng(200);
+  const PartitionResult r = make_well_composed_partition(voronoi_map(rng, 16, 200));
+  REQUIRE(r.failed_guarantee().empty());
+  std::set<std::int32_t> labels(r.image.data.begin(), r.image.data.end());
+  REQUIRE(labels.size() > 150);
+  check_case(r.image);
+}
+
+namespace {
+
+// The mesh of the three-label map, and the triangles of one pair.
+struct Fixture {
+  LabelImage img = three_labels();
+  InterfaceComplex k = interface_complex(img);
+  InterfaceMesh m = interface_mesh(img, k);
+  Soup s = soup_of(m);
+  std::vector<std::size_t> of_pair(std::int32_t a, std::int32_t b) const {
+    std::vector<std::size_t> ts;
+    for (std::size_t t = 0; t < s.pairs.size(); ++t)
+      if (s.pairs[t] == std::array<std::int32_t, 2>{a, b}) ts.push_back(t);
+    return ts;
+  }
+};
+
+void erase(Soup& s, std::vector<std::size_t> ts) {
+  std::sort(ts.rbegin(), ts.rend());
+  for (std::size_t t : ts) {
+    s.triangles.erase(s.triangles.begin() + std::ptrdiff_t(t));
+    s.pairs.erase(s.pairs.begin() + std::ptrdiff_t(t));
+  }
+}
+
+// Triangles ts moved onto copies of the vertices `which` accepts.
+template <class Which> void copy_vertices(Soup& s, const std::vector<std::size_t>& ts, Which which) {
+  std::map<int, int> copy;
+  for (std::size_t t : ts)
+    for (int& v : s.triangles[t]) {
+      if (!which(v)) continue;
+      if (!copy.count(v)) copy[v] = int(s.points.size()), s.points.push_back(s.points[std::size_t(v)]);
+      v = copy[v];
+    }
+}
+
+void check_refused(const Soup& s, const LabelImage& img, int check, const std::string& start) {
+  const Cert c = certify(s, img);
+  INFO(c.failure());
+  CHECK(c.first_failed() == check);
+  CHECK(c.failure().rfind(start, 0) == 0);
+  CHECK(c.summary().rfind("interface certificate fails: " + start, 0) == 0);
+}
+
+} // namespace
+
+TEST_CASE("interface certificate: wrong meshes refused, naming the check", "[surfacenets]") {
+  Fixture f;
+  REQUIRE(certify(f.s, f.img).ok());
+  const auto p21 = f.of_pair(2, 1);
+  REQUIRE(!p21.empty());
+  SECTION("a duplicated interface (each label's copy, as separate surfaces write it)") {
+    Soup s = f.s;
+    for (std::size_t t : p21) s.triangles.push_back(s.triangles[t]), s.pairs.push_back(s.pairs[t]);
+    std::vector<std::size_t> copies(p21.size());
+    for (std::size_t i = 0; i < p21.size(); ++i) copies[i] = f.s.triangles.size() + i;
+    copy_vertices(s, copies, [](int) { return true; });
+    check_refused(s, f.img, Cert::kInterfaces, "interface 2|1: 2 patches, K(X) has 1");
+  }
+  SECTION("a duplicated interface on the same vertices") {
+    Soup s = f.s;
+    for (std::size_t t : p21) s.triangles.push_back(s.triangles[t]), s.pairs.push_back({1, 2});
+    check_refused(s, f.img, Cert::kInterfaces, "interface 2|1: the patch of triangle");
+  }
+  SECTION("a dropped patch") {
+    Soup s = f.s;
+    erase(s, p21);
+    check_refused(s, f.img, Cert::kInterfaces, "interface 2|1: 0 patches, K(X) has 1");
+  }
+  SECTION("a patch split in two") {
+    Soup s = f.s;
+    // Patch 2|1 is the plane x = 6 (corners), y 2..8, z 2..7: the half
+    // above y = 5 on copies of its inner vertices at y = 5.
+    std::vector<std::size_t> upper;
+    for (std::size_t t : p21) {
+      bool above = true;
+      for (int v : s.triangles[t]) above = above && f.m.corner(std::size_t(v))[1] >= 5;
+      if (above) upper.push_back(t);
+    }
+    copy_vertices(s, upper, [&](int v) {
+      const auto c = f.m.corner(std::size_t(v));
+      return c[1] == 5 && c[2] > 2 && c[2] < 7;
+    });
+    check_refused(s, f.img, Cert::kInterfaces, "interface 2|1: 2 patches, K(X) has 1");
+  }
+  SECTION("two labels swapped on a patch") {
+    Soup s = f.s;
+    for (std::size_t t : p21) s.pairs[t] = {1, 2};
+    check_refused(s, f.img, Cert::kLabels, "label 1: oriented: ");
+  }
+  SECTION("a patch given another label") {
+    Soup s = f.s;
+    for (std::size_t t : p21) s.pairs[t] = {2, 0};
+    check_refused(s, f.img, Cert::kInterfaces, "interface 2|1: 0 patches, K(X) has 1");
+  }
+  SECTION("one triangle flipped") {
+    Soup s = f.s;
+    std::swap(s.triangles[p21[3]][1], s.triangles[p21[3]][2]);
+    check_refused(s, f.img, Cert::kLabels, "label 1: oriented: ");
+  }
+  SECTION("a label the image does not have") {
+    Soup s = f.s;
+    for (std::size_t t : f.of_pair(3, 0)) s.pairs[t] = {7, 0};
+    check_refused(s, f.img, Cert::kInterfaces, "interface 3|0: 0 patches, K(X) has 1");
+  }
+}
+
+TEST_CASE("interface certificate: a vertex moved out of its cell, a|b crossing c|d", "[surfacenets]") {
+  const LabelImage img = four_labels_around_an_edge();
+  const InterfaceComplex k = interface_complex(img);
+  const InterfaceMesh m = interface_mesh(img, k);
+  Soup s = soup_of(m);
+  REQUIRE(certify(s, img).ok());
+  // Corner (4, 5, 2), on the curve 4|1|0 at the bottom of patch 4|1,
+  // moved 1.4, 0.7, -0.7 voxels (its cell reaches half a voxel each way):
+  // a triangle of 4|1 crosses one of 3|0.
+  const std::uint64_t corner = 4 + m.lattice[0] * (5 + m.lattice[1] * 2);
+  const auto v = std::size_t(std::lower_bound(m.corners.begin(), m.corners.end(), corner) - m.corners.begin());
+  REQUIRE(m.corners[v] == corner);
+  s.points[v] = {s.points[v][0] + 1.4, s.points[v][1] + 0.7, s.points[v][2] - 0.7};
+  const Cert c = certify(s, img);
+  INFO(c.failure());
+  CHECK(c.first_failed() == Cert::kIntersections);
+  const auto a = s.pairs[c.intersections.first[0]], b = s.pairs[c.intersections.first[1]];
+  CHECK(std::find(b.begin(), b.end(), a[0]) == b.end());
+  CHECK(std::find(b.begin(), b.end(), a[1]) == b.end());
+}
+
+TEST_CASE("interface certificate: a split pinch is refused", "[surfacenets]") {
+  const LabelImage img = pinched_block();
+  const InterfaceComplex k = interface_complex(img);
+  const InterfaceMesh m = interface_mesh(img, k);
+  Soup s = soup_of(m);
+  // The centre corner (1, 1, 1) of the 3x3x3 lattice; the fan of patch 3|0
+  // there in the plane z = 1 (the face between voxels (0,1,1) and (0,1,0))
+  // moved onto a copy of it.
+  const std::uint64_t centre = 1 + 3 * (1 + 3 * 1);
+  const int v = int(std::lower_bound(m.corners.begin(), m.corners.end(), centre) - m.corners.begin());
+  REQUIRE(m.corners[std::size_t(v)] == centre);
+  std::vector<std::size_t> fan;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    if (s.pairs[t] != std::array<std::int32_t, 2>{3, 0}) continue;
+    bool flat = true;  // all corners at z = 1
+    for (int w : s.triangles[t]) flat = flat && m.corner(std::size_t(w))[2] == 1;
+    if (flat) fan.push_back(t);
+  }
+  REQUIRE(!fan.empty());
+  copy_vertices(s, fan, [v](int w) { return w == v; });
+  check_refused(s, img, Cert::kInterfaces, "interface 3|0: the patch of triangle");
+  const Cert c = certify(s, img);
+  CHECK(c.failure().find("Euler characteristic") != std::string::npos);
+}
+
+TEST_CASE("interface certificate: bad input refused", "[surfacenets]") {
+  Fixture f;
+  Soup s = f.s;
+  s.pairs.pop_back();
+  CHECK_THROWS_AS(certify(s, f.img), Error);
+  s = f.s;
+  s.triangles[0][1] = s.triangles[0][0];
+  CHECK_THROWS_AS(certify(s, f.img), Error);
+  s = f.s;
+  s.triangles[0][1] = int(s.points.size());
+  CHECK_THROWS_AS(certify(s, f.img), Error);
+  LabelImage bad = label_grid(4, 4, 4);
+  bad(1, 1, 1) = 1;
+  bad(2, 2, 1) = 1;  // a C1 of label 1
+  CHECK_THROWS_AS(certify(Soup{}, bad), Error);
+}
