@@ -221,7 +221,10 @@ SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::v
     for (std::size_t t = 0; t < triangles.size(); ++t) component[t] = c.topology.component_of[std::size_t(triangles[t][0])];
     const SurfaceGeometry g(points, triangles, component, c.topology.components.size());
     check_outward(c, points, triangles, g);
-    check_intersections(c, triangles, g, options.intersections_cap);
+    if (options.intersections)
+      check_intersections(c, triangles, g, options.intersections_cap);
+    else
+      set(c, C::kIntersections, true);
     check_nesting(c);
   }
   settle(c);

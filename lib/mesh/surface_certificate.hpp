@@ -43,6 +43,10 @@ struct CertificateOptions {
   // World units; 0: one voxel diagonal of the grid, sqrt(sx^2 + sy^2 + sz^2).
   double place_tolerance = 0;
   std::size_t intersections_cap = 1000;  // intersecting pairs counted at most
+  // false: the caller tests the crossings of a larger triangle set holding
+  // these (the multi-label certificate tests the whole mesh once); the
+  // check then holds here and the caller's test decides.
+  bool intersections = true;
 };
 
 // The default place tolerance of a grid: one voxel diagonal.

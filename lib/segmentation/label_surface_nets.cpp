@@ -2,9 +2,8 @@
 // names; each stage is a library call of lib/wellcomposed or lib/surfacenets.
 #include "segmentation/label_surface_nets.hpp"
 
-#include "mesh/surface_certificate.hpp"
-#include "mesh/topology.hpp"
 #include "segmentation/label_surfaces.hpp"
+#include "surfacenets/interface_certificate.hpp"
 #include "surfacenets/surface_nets.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/interface_complex.hpp"
@@ -19,12 +18,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3 cross(const Vec3& u, const Vec3& v) {
-  return {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-}
-double dot(const Vec3& u, const Vec3& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; }
 
 // The chosen labels kept, every other value background.
 void keep_labels(LabelImage& image, const std::vector<long long>& labels) {
@@ -50,48 +43,17 @@ SurfaceMesh label_surface(const InterfaceMesh& m, std::int32_t label) {
   return s;
 }
 
-// The indicator of `label` on its box grown by one voxel (within the grid),
-// in the world frame of the image: the grid its voxel boundary is certified on.
-BinaryImage label_crop(const LabelImage& image, std::int32_t label, const VoxelBox& box) {
-  Index3 lo, hi;
-  Geometry g = image.geometry();
-  for (int a = 0; a < 3; ++a) {
-    lo[std::size_t(a)] = std::max<std::ptrdiff_t>(0, box.lo[std::size_t(a)] - 1);
-    hi[std::size_t(a)] = std::min<std::ptrdiff_t>(std::ptrdiff_t(image.size[std::size_t(a)]) - 1, box.hi[std::size_t(a)] + 1);
-    g.size[std::size_t(a)] = std::size_t(hi[std::size_t(a)] - lo[std::size_t(a)] + 1);
-  }
-  g.origin = image.world(double(lo[0]), double(lo[1]), double(lo[2]));
-  BinaryImage b(g, 0);
-  for (std::size_t z = 0; z < g.size[2]; ++z)
-    for (std::size_t y = 0; y < g.size[1]; ++y)
-      for (std::size_t x = 0; x < g.size[0]; ++x)
-        b(x, y, z) = image(x + std::size_t(lo[0]), y + std::size_t(lo[1]), z + std::size_t(lo[2])) == label;
-  return b;
-}
-
-// The figures of one label's surface, and its certificate: lib/mesh's
-// surface certificate against the label's voxel boundary. The one call
-// site of the certificate: the interface certificate (per label, per
-// interface, crossings) takes its place when it lands.
-LabelNet certify_label(const InterfaceMesh& m, const LabelImage& image, std::int32_t label, std::size_t voxels,
-                       const VoxelBox& box) {
+// The figures of one label from the interface certificate.
+LabelNet label_net(const InterfaceCertificate::Label& l) {
   LabelNet n;
-  n.label = label;
-  n.voxels = voxels;
-  n.voxel_volume = double(voxels) * image.spacing[0] * image.spacing[1] * image.spacing[2];
-  const SurfaceMesh s = label_surface(m, label);
-  n.triangles = s.triangles.size();
-  for (const auto& t : s.triangles) {
-    const Vec3 &a = s.points[std::size_t(t[0])], &b = s.points[std::size_t(t[1])], &c = s.points[std::size_t(t[2])];
-    const Vec3 normal = cross(sub(b, a), sub(c, a));
-    n.area += std::sqrt(dot(normal, normal)) / 2;
-    n.volume += dot(a, cross(b, c)) / 6;
-  }
-  const BinaryImage crop = label_crop(image, label, box);
-  const VoxelBoundary boundary = voxel_boundary(crop);
-  const SurfaceCertificate c = certify_surface(s.points, s.triangles, crop, boundary, mesh_topology(boundary));
-  n.euler = c.topology.sorted_euler();
-  n.failure = c.failure();
+  n.label = l.label;
+  n.voxels = l.voxels;
+  n.voxel_volume = l.voxel_volume;
+  n.triangles = l.triangles;
+  n.area = l.area;
+  n.volume = l.volume;
+  n.euler = l.surface.topology.sorted_euler();
+  if (!l.surface.ok()) n.failure = l.surface.failure();
   return n;
 }
 
@@ -163,14 +125,15 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
 
   t0 = Clock::now();
   say("certificate");
-  std::vector<std::size_t> voxels;
-  std::vector<VoxelBox> boxes;
-  label_boxes(wc, labels, voxels, boxes);
-  for (std::size_t i = 0; i < labels.size(); ++i) {
-    res.labels.push_back(certify_label(m, wc, std::int32_t(labels[i]), voxels[i], boxes[i]));
-    if (const auto it = opt.names.find(labels[i]); it != opt.names.end()) {
+  std::vector<std::array<std::int32_t, 2>> pairs(m.triangles.size());
+  for (std::size_t t = 0; t < pairs.size(); ++t) pairs[t] = m.triangle_labels(t);
+  res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k);
+  for (const auto& l : res.certificate.labels) {
+    if (!std::binary_search(labels.begin(), labels.end(), (long long)l.label)) continue;  // 0
+    res.labels.push_back(label_net(l));
+    if (const auto it = opt.names.find(l.label); it != opt.names.end()) {
       res.labels.back().name = it->second;
-      res.mesh.label_names[int(labels[i])] = it->second;
+      res.mesh.label_names[int(l.label)] = it->second;
     }
   }
   res.seconds.push_back({"certificate", since(t0)});
@@ -212,15 +175,18 @@ Json LabelSurfaceNetsResult::to_json() const {
     all = all && l.failure.empty();
     per.push_back(j);
   }
-  st["all_certified"] = all;
+  st["all_certified"] = all && certificate.ok();
   st["labels"] = per;
+  Json cert = Json::object();  // the interface certificate's verdict (its per-patch lists: meshinfo)
+  cert["verdict"] = certificate.ok() ? "ok" : InterfaceCertificate::name(certificate.first_failed());
+  if (!certificate.ok()) cert["failure"] = certificate.failure();
+  cert["summary"] = certificate.summary();
+  cert["interfaces"] = certificate.interfaces.size();
+  cert["intersecting_pairs"] = certificate.intersections.pairs - certificate.intersections.degenerate;
+  st["certificate"] = cert;
   return st;
 }
 
-std::string LabelSurfaceNetsResult::failed_guarantee() const {
-  for (const LabelNet& l : labels)
-    if (!l.failure.empty()) return "label " + std::to_string(l.label) + ": " + l.failure;
-  return "";
-}
+std::string LabelSurfaceNetsResult::failed_guarantee() const { return certificate.failure(); }
 
 } // namespace imgmesh

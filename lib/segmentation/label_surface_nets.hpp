@@ -9,7 +9,9 @@
 //                labels (surfacenets/surface_nets.hpp);
 //   smoothing    `smooth_rounds` rounds inside each corner's cell, then
 //                untangled (0: the voxel faces);
-//   certificate  each label's closed surface against its voxel boundary.
+//   certificate  the interface certificate (surfacenets/interface_certificate.hpp):
+//                every interface's patches against K(X)'s, no two triangles
+//                crossing, each label's closed surface against its voxels.
 // Then one SurfaceMesh: every triangle once with its pair, or, `separate`,
 // each label's closed surface alone (its own vertices, interfaces twice)
 // with a label per triangle.
@@ -17,6 +19,7 @@
 #include "image/grid.hpp"
 #include "image/slicer_segmentation.hpp"
 #include "mesh/surface_io.hpp"
+#include "surfacenets/interface_certificate.hpp"
 #include "util/json.hpp"
 
 #include <array>
@@ -45,7 +48,7 @@ struct LabelNet {
   double volume = 0;             // enclosed by its surface (oriented out of it)
   double voxel_volume = 0;       // voxels times a voxel's volume
   std::vector<long long> euler;  // per component of its surface, ascending
-  std::string failure;           // the certificate's, empty when it holds
+  std::string failure;           // its surface's certificate's, empty when it holds
 };
 
 struct LabelSurfaceNetsResult {
@@ -58,8 +61,9 @@ struct LabelSurfaceNetsResult {
   bool separate = false;
   // Seconds of each stage, in order: repair, complex, mesh, smoothing, certificate.
   std::vector<std::pair<std::string, double>> seconds;
+  InterfaceCertificate certificate;
   Json to_json() const;
-  std::string failed_guarantee() const;  // the first failing label, named
+  std::string failed_guarantee() const;  // the certificate's first failure, naming its label or pair
 };
 
 // Throws Error on a 2D image, one without labels, an asked label absent, a
