@@ -4,8 +4,10 @@
 // self_intersections, exact predicates), how its components nest and which
 // side of it a point is on (CGAL's Side_of_triangle_mesh: rays against the
 // triangles, exact predicates, another ray when one grazes an edge), and
-// distances to a component's triangles (an AABB tree). CGAL stays in
-// embedding.cpp.
+// distances to a component's triangles (an AABB tree); the same
+// intersection test on a triangle soup (any number of triangles at an edge,
+// as surface nets' interfaces meet along curves), pair by pair or over all
+// pairs. CGAL stays in embedding.cpp.
 #pragma once
 #include "image/grid.hpp"
 
@@ -22,6 +24,22 @@ struct SelfIntersections {
   bool capped = false;         // the search stopped at the cap: there may be more
   std::array<std::size_t, 2> first{0, 0};  // the least pair found (triangle ids, ascending)
 };
+
+// Triangle soups: triangles of vertex ids into `points`, vertices shared by
+// id. The rules are self_intersections' (CGAL's do_faces_intersect): two
+// triangles sharing an edge cross when they are coplanar with their third
+// corners on the same side of it; sharing one vertex, when the edge of
+// either opposite it meets the other; sharing none, when they meet at all
+// (touching counts). A degenerate triangle (collinear corners) is a pair
+// with itself and is tested against no other.
+bool triangle_degenerate(const std::vector<Vec3>& points, const std::array<int, 3>& t);
+// Whether two non-degenerate triangles cross by those rules (exact).
+bool triangles_cross(const std::vector<Vec3>& points, const std::array<int, 3>& a, const std::array<int, 3>& b);
+// Every crossing pair of the soup, found by box intersection over all its
+// triangles (the reference for local searches, and for soups without a
+// lattice): triangle ids, each pair ascending, sorted.
+std::vector<std::array<std::size_t, 2>> soup_crossing_pairs(const std::vector<Vec3>& points,
+                                                            const std::vector<std::array<int, 3>>& triangles);
 
 class SurfaceGeometry {
 public:
