@@ -86,12 +86,18 @@ struct SmoothingOptions {
 // margin outside [0, 0.5).
 void smooth_interface_mesh(InterfaceMesh& mesh, const SmoothingOptions& options = {});
 
-// Where two triangles of one label's surface intersect (other than in a
-// shared edge or vertex; exact predicates), their vertices go back halfway
+// The pairs of triangles of the mesh, whatever their labels, that meet
+// other than in a shared edge or vertex (lib/mesh's triangles_cross, exact
+// predicates; (t, t) for a degenerate triangle), each pair ascending,
+// sorted. Local: each quad is tested against the quads of neighbouring
+// cells only (crossings.cpp says why that finds every pair). Throws Error
+// when a vertex lies outside its cell.
+std::vector<std::array<std::size_t, 2>> crossing_pairs(const InterfaceMesh& mesh);
+
+// While two triangles cross (crossing_pairs), their vertices go back halfway
 // to `rest` (the unsmoothed positions), onto it after a few halvings, and
-// the quads are split again, until no label's surface intersects itself.
-// Returns the vertex moves made. Not checked yet: triangles of two
-// surfaces with no label in common (a|b against c|d).
+// their quads are split again; after the first search only the quads at a
+// moved vertex are tested again. Returns the vertex moves made.
 std::size_t untangle_interface_mesh(InterfaceMesh& mesh, const std::vector<Vec3>& rest);
 
 } // namespace imgmesh
