@@ -21,8 +21,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <string>
+#include <thread>
 
 namespace imgmesh {
 namespace surfacenets_detail {
@@ -63,7 +65,7 @@ std::array<std::size_t, 2> ascending(std::size_t a, std::size_t b) { return {std
 
 } // namespace
 
-CrossingSearch::CrossingSearch(const InterfaceMesh& m) : m_(m) {
+CrossingSearch::CrossingSearch(const InterfaceMesh& m, unsigned threads) : m_(m), threads_(std::max(1u, threads)) {
   for (std::size_t v = 0; v < m.points.size(); ++v) {
     const Vec3 p = m.grid.continuous_index(m.points[v]);
     const auto c = m.corner(v);
@@ -148,41 +150,63 @@ std::vector<std::array<std::size_t, 2>> CrossingSearch::all_pairs() const {
   return search(all, true);
 }
 
-// The pairs with a triangle of `quads`; all: they are every quad.
+// The pairs with a triangle of `quads`; all: they are every quad. Threads
+// take contiguous slices of `quads`; the pairs are sorted at the end, so
+// the result does not depend on their number.
 std::vector<std::array<std::size_t, 2>> CrossingSearch::search(const std::vector<std::size_t>& quads, bool all) const {
   std::vector<std::uint8_t> listed(m_.quads.size(), std::uint8_t(all));
   for (std::size_t f : quads) listed[f] = 1;
+  const std::size_t slices = std::min<std::size_t>(threads_, quads.size() / 256 + 1);  // a slice worth a thread
+  std::vector<std::vector<std::array<std::size_t, 2>>> found(slices);
+  std::vector<std::exception_ptr> failed(slices);
+  auto run = [&](std::size_t k) {
+    try {
+      for (std::size_t i = quads.size() * k / slices; i < quads.size() * (k + 1) / slices; ++i)
+        search_quad(quads[i], listed, all, found[k]);
+    } catch (...) {
+      failed[k] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t k = 1; k < slices; ++k) pool.emplace_back(run, k);
+  run(0);
+  for (auto& t : pool) t.join();
+  for (const auto& e : failed)
+    if (e) std::rethrow_exception(e);
   std::vector<std::array<std::size_t, 2>> out;
-  for (std::size_t f : quads) {
-    const std::array<std::size_t, 2> s{2 * f, 2 * f + 1};
-    const std::array<std::array<double, 6>, 2> sb{triangle_box(m_, s[0]), triangle_box(m_, s[1])};
-    // f's triangles against triangle t; a degenerate one is paired with
-    // itself only (as CGAL's self_intersections does).
-    auto test = [&](std::size_t t) {
-      if (degenerate_[t]) return;
-      const std::array<double, 6> tb = triangle_box(m_, t);
-      for (std::size_t i = 0; i < 2; ++i)
-        if (s[i] != t && !degenerate_[s[i]] && boxes_meet(sb[i], tb) && triangles_cross(m_.points, m_.triangles[s[i]], m_.triangles[t]))
-          out.push_back(ascending(s[i], t));
-    };
-    for (std::size_t t : s)
-      if (degenerate_[t]) out.push_back({t, t});
-    test(s[1]);  // f's two triangles
-    for_each_neighbour(f, all, [&](std::size_t g) {
-      // A pair of listed quads once, from its first in order_.
-      if (g == f || (listed[g] && position_[g] < position_[f]) || !boxes_meet(box_[f], box_[g])) return;
-      test(2 * g);
-      test(2 * g + 1);
-    });
-  }
+  for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
   std::sort(out.begin(), out.end());
   return out;
 }
 
+void CrossingSearch::search_quad(std::size_t f, const std::vector<std::uint8_t>& listed, bool all,
+                                 std::vector<std::array<std::size_t, 2>>& out) const {
+  const std::array<std::size_t, 2> s{2 * f, 2 * f + 1};
+  const std::array<std::array<double, 6>, 2> sb{triangle_box(m_, s[0]), triangle_box(m_, s[1])};
+  // f's triangles against triangle t; a degenerate one is paired with
+  // itself only (as CGAL's self_intersections does).
+  auto test = [&](std::size_t t) {
+    if (degenerate_[t]) return;
+    const std::array<double, 6> tb = triangle_box(m_, t);
+    for (std::size_t i = 0; i < 2; ++i)
+      if (s[i] != t && !degenerate_[s[i]] && boxes_meet(sb[i], tb) && triangles_cross(m_.points, m_.triangles[s[i]], m_.triangles[t]))
+        out.push_back(ascending(s[i], t));
+  };
+  for (std::size_t t : s)
+    if (degenerate_[t]) out.push_back({t, t});
+  test(s[1]);  // f's two triangles
+  for_each_neighbour(f, all, [&](std::size_t g) {
+    // A pair of listed quads once, from its first in order_.
+    if (g == f || (listed[g] && position_[g] < position_[f]) || !boxes_meet(box_[f], box_[g])) return;
+    test(2 * g);
+    test(2 * g + 1);
+  });
+}
+
 } // namespace surfacenets_detail
 
-std::vector<std::array<std::size_t, 2>> crossing_pairs(const InterfaceMesh& mesh) {
-  return surfacenets_detail::CrossingSearch(mesh).all_pairs();
+std::vector<std::array<std::size_t, 2>> crossing_pairs(const InterfaceMesh& mesh, unsigned threads) {
+  return surfacenets_detail::CrossingSearch(mesh, threads).all_pairs();
 }
 
 } // namespace imgmesh

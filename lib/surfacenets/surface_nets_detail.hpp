@@ -20,8 +20,9 @@ void split_quad(InterfaceMesh& mesh, std::size_t f);
 class CrossingSearch {
 public:
   // Throws Error when a vertex lies outside its cell, or a quad is not a
-  // voxel face (its corners more than one lattice step apart).
-  explicit CrossingSearch(const InterfaceMesh& mesh);
+  // voxel face (its corners more than one lattice step apart). threads:
+  // how many search a long list of quads, each a slice (same pairs).
+  explicit CrossingSearch(const InterfaceMesh& mesh, unsigned threads = 1);
   void update(std::size_t quad);
   // The pairs with a triangle of one of `quads` (distinct quad ids), each
   // pair ascending, sorted; (t, t) for a degenerate triangle.
@@ -32,8 +33,11 @@ private:
   // forward: only the quads after it in order_ (all_pairs: each pair from its first quad).
   template <class Visit> void for_each_neighbour(std::size_t quad, bool forward, Visit&& visit) const;
   std::vector<std::array<std::size_t, 2>> search(const std::vector<std::size_t>& quads, bool all) const;
+  void search_quad(std::size_t f, const std::vector<std::uint8_t>& listed, bool all,
+                   std::vector<std::array<std::size_t, 2>>& out) const;
 
   const InterfaceMesh& m_;
+  unsigned threads_;
   std::vector<std::array<std::int32_t, 3>> lo_, hi_;  // per quad: its corners' lattice box
   std::vector<std::uint32_t> order_;                  // quads by lowest corner (z, y, x)
   std::vector<std::uint32_t> position_;               // per quad: its entry in order_

@@ -23,9 +23,9 @@ namespace {
 constexpr int kSnap = 6;
 } // namespace
 
-std::size_t untangle_interface_mesh(InterfaceMesh& m, const std::vector<Vec3>& rest) {
+std::size_t untangle_interface_mesh(InterfaceMesh& m, const std::vector<Vec3>& rest, unsigned threads) {
   if (rest.size() != m.points.size()) throw Error("untangle_interface_mesh: one rest position a vertex is needed");
-  surfacenets_detail::CrossingSearch search(m);
+  surfacenets_detail::CrossingSearch search(m, threads);
   std::vector<std::uint8_t> halvings(m.points.size(), 0), marked(m.points.size(), 0);
   std::size_t moves = 0;
   for (auto pairs = search.all_pairs(); !pairs.empty();) {

@@ -119,10 +119,14 @@ TEST_CASE("crossings: the local search finds every pair the global one finds", "
     local = crossing_pairs(m);
     const Pairs global = soup_crossing_pairs(m.points, m.triangles);
     CHECK(local == global);
+    CHECK(crossing_pairs(m, 3) == local);  // threads search slices: the same pairs
     jittered_pairs += local.size();
     check_labels_against_cgal(m, local);
     check_incremental(m, global, rng);
+    InterfaceMesh threaded = m;
     moves += untangle_interface_mesh(m, rest.points);
+    untangle_interface_mesh(threaded, rest.points, 2);
+    CHECK((threaded.points == m.points && threaded.triangles == m.triangles));
     CHECK(soup_crossing_pairs(m.points, m.triangles).empty());
     check_in_cells(m);
     certify_labels(m, r.image, false);  // a jittered vertex may leave a voxel centre on the wrong side
