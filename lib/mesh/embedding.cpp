@@ -2,7 +2,10 @@
 // an AABB tree per component (distances, nesting) and one over every
 // triangle (sides), each built when first asked. The kernel has exact
 // predicates: do_intersect of two triangles and the ray tests are exact on
-// the input doubles; distances are constructions (rounded).
+// the input doubles; distances are constructions (rounded). The soup test
+// (triangles_cross) follows do_faces_intersect with vertices shared by id,
+// after exact early exits that are cheap (Epick's statically filtered
+// orientation): a triangle all on one side of the other's plane.
 #include "mesh/embedding.hpp"
 
 #include "util/error.hpp"
@@ -14,11 +17,12 @@
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
-#include <CGAL/box_intersection_d.h>
 #include <CGAL/boost/graph/Euler_operations.h>
+#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <iterator>
 
 namespace imgmesh {
@@ -29,63 +33,139 @@ using Mesh = CGAL::Surface_mesh<K::Point_3>;
 using Face = Mesh::Face_index;
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
 using Side = CGAL::Side_of_triangle_mesh<Mesh, K, CGAL::Default, Tree>;
-using Point = K::Point_3;
 
-// Whether triangles t and u (not degenerate) meet other than in what they
-// share: PMP's do_faces_intersect on vertex ids. Sharing an edge pq (r, s
-// the others), they overlap only when coplanar with r and s on one side of
-// pq; sharing a vertex, when the edge opposite it in one crosses the other.
-bool meet_improperly(const std::array<int, 3>& t, const std::array<int, 3>& u, const std::vector<Point>& p) {
-  int shared = 0, ti[3], ui[3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (t[std::size_t(i)] == u[std::size_t(j)]) ti[shared] = i, ui[shared++] = j;
-  auto at = [&](const std::array<int, 3>& x, int i) -> const Point& { return p[std::size_t(x[std::size_t(i % 3)])]; };
-  if (shared == 3) return true;
-  if (shared == 2) {
-    const Point &a = at(t, ti[0]), &b = at(t, ti[1]), &r = at(t, 3 - ti[0] - ti[1]), &s = at(u, 3 - ui[0] - ui[1]);
-    return CGAL::coplanar(a, b, r, s) && CGAL::coplanar_orientation(a, b, r, s) == CGAL::POSITIVE;
-  }
-  const K::Triangle_3 tt(at(t, 0), at(t, 1), at(t, 2)), uu(at(u, 0), at(u, 1), at(u, 2));
-  if (shared == 1)
-    return CGAL::do_intersect(tt, K::Segment_3(at(u, ui[0] + 1), at(u, ui[0] + 2))) ||
-           CGAL::do_intersect(uu, K::Segment_3(at(t, ti[0] + 1), at(t, ti[0] + 2)));
-  return CGAL::do_intersect(tt, uu);
+K::Point_3 point(const std::vector<Vec3>& points, int v) {
+  const Vec3& p = points[std::size_t(v)];
+  return {p[0], p[1], p[2]};
 }
 
-struct CapReached {};
+// Whether every point of q lies strictly on one side of the plane (a, b, c)
+// (never for a degenerate a, b, c: every point is on its "plane").
+bool strictly_one_side(const K::Point_3& a, const K::Point_3& b, const K::Point_3& c,
+                       std::initializer_list<const K::Point_3*> q) {
+  CGAL::Orientation side = CGAL::COPLANAR;
+  for (const K::Point_3* x : q) {
+    const CGAL::Orientation o = CGAL::orientation(a, b, c, *x);
+    if (o == CGAL::COPLANAR || (side != CGAL::COPLANAR && o != side)) return false;
+    side = o;
+  }
+  return true;
+}
+// The axis all six corners share exactly (planes of a voxel map's flat
+// regions), or -1. There the test is done exactly in the other two axes
+// (a projection that changes nothing), where the predicates rarely meet
+// the exact zeros that make 3D ones slow.
+int common_axis(const std::array<K::Point_3, 3>& p, const std::array<K::Point_3, 3>& q) {
+  for (int a = 0; a < 3; ++a) {
+    const double x = p[0][a];
+    if (p[1][a] == x && p[2][a] == x && q[0][a] == x && q[1][a] == x && q[2][a] == x) return a;
+  }
+  return -1;
+}
 
+std::array<K::Point_2, 3> project(const std::array<K::Point_3, 3>& p, int axis) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  return {K::Point_2(p[0][u], p[0][v]), K::Point_2(p[1][u], p[1][v]), K::Point_2(p[2][u], p[2][v])};
+}
+
+// triangles_cross for two triangles in one plane of constant `axis`, with
+// `shared` ids in common; i, j: the positions in a and in b of the shared
+// vertex (shared == 1) or of the corners not shared (shared == 2).
+bool plane_triangles_cross(const std::array<K::Point_2, 3>& p, const std::array<K::Point_2, 3>& q, int shared,
+                           std::size_t i, std::size_t j) {
+  if (shared == 2)
+    return CGAL::orientation(p[(i + 1) % 3], p[(i + 2) % 3], p[i]) == CGAL::orientation(p[(i + 1) % 3], p[(i + 2) % 3], q[j]);
+  if (shared == 1) {
+    // Met only at the shared vertex when a line through it along an edge
+    // of one has the other's far corners strictly on the side away from it.
+    auto separates = [](const K::Point_2& o, const K::Point_2& x, const K::Point_2& own, const K::Point_2& f0,
+                        const K::Point_2& f1) {
+      const CGAL::Orientation side = CGAL::orientation(o, x, own);
+      return CGAL::orientation(o, x, f0) == -side && CGAL::orientation(o, x, f1) == -side;
+    };
+    const K::Point_2 &o = p[i], &a1 = p[(i + 1) % 3], &a2 = p[(i + 2) % 3], &b1 = q[(j + 1) % 3], &b2 = q[(j + 2) % 3];
+    if (separates(o, a1, a2, b1, b2) || separates(o, a2, a1, b1, b2) || separates(o, b1, b2, a1, a2) ||
+        separates(o, b2, b1, a1, a2))
+      return false;
+    return CGAL::do_intersect(K::Triangle_2(p[0], p[1], p[2]), K::Segment_2(b1, b2)) ||
+           CGAL::do_intersect(K::Triangle_2(q[0], q[1], q[2]), K::Segment_2(a1, a2));
+  }
+  return CGAL::do_intersect(K::Triangle_2(p[0], p[1], p[2]), K::Triangle_2(q[0], q[1], q[2]));
+}
 } // namespace
 
-std::vector<std::array<std::size_t, 2>> intersecting_triangles(const std::vector<Vec3>& points,
-                                                               const std::vector<std::array<int, 3>>& triangles,
-                                                               std::size_t cap) {
-  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
-  std::vector<Point> p;
-  p.reserve(points.size());
-  for (const Vec3& x : points) p.emplace_back(x[0], x[1], x[2]);
+bool triangle_degenerate(const std::vector<Vec3>& points, const std::array<int, 3>& t) {
+  return CGAL::collinear(point(points, t[0]), point(points, t[1]), point(points, t[2]));
+}
+
+bool triangles_cross(const std::vector<Vec3>& points, const std::array<int, 3>& a, const std::array<int, 3>& b) {
+  // How many ids they share; i, j: the positions in a and in b of a shared
+  // vertex (one shared) or of the corners not shared (two).
+  int shared = 0;
+  std::size_t i = 0, j = 0;
+  std::array<bool, 3> a_shared{false, false, false}, b_shared{false, false, false};
+  for (std::size_t x = 0; x < 3; ++x)
+    for (std::size_t y = 0; y < 3; ++y)
+      if (a[x] == b[y]) {
+        ++shared;
+        a_shared[x] = b_shared[y] = true;
+        i = x;
+        j = y;
+      }
+  if (shared == 3) return true;  // the same triangle twice
+  if (shared == 2) {
+    i = j = 0;
+    while (a_shared[i]) ++i;
+    while (b_shared[j]) ++j;
+  }
+  const std::array<K::Point_3, 3> p{point(points, a[0]), point(points, a[1]), point(points, a[2])},
+      q{point(points, b[0]), point(points, b[1]), point(points, b[2])};
+  if (const int axis = common_axis(p, q); axis >= 0)
+    return plane_triangles_cross(project(p, axis), project(q, axis), shared, i, j);
+  if (shared == 2) {
+    // The shared edge e0 e1, a's third corner p[i], b's q[j]: coplanar, on one side.
+    const K::Point_3 &e0 = p[(i + 1) % 3], &e1 = p[(i + 2) % 3];
+    return CGAL::coplanar(e0, e1, p[i], q[j]) && CGAL::coplanar_orientation(e0, e1, p[i], q[j]) == CGAL::POSITIVE;
+  }
+  const std::size_t i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+  if (shared == 1) {
+    // b's far corners strictly on one side of a's plane: b meets that plane,
+    // hence a, only in the shared vertex (and the same the other way).
+    if (strictly_one_side(p[0], p[1], p[2], {&q[j1], &q[j2]}) || strictly_one_side(q[0], q[1], q[2], {&p[i1], &p[i2]}))
+      return false;
+    const K::Triangle_3 ta(p[0], p[1], p[2]), tb(q[0], q[1], q[2]);
+    return CGAL::do_intersect(ta, K::Segment_3(q[j1], q[j2])) || CGAL::do_intersect(tb, K::Segment_3(p[i1], p[i2]));
+  }
+  if (strictly_one_side(p[0], p[1], p[2], {&q[0], &q[1], &q[2]}) || strictly_one_side(q[0], q[1], q[2], {&p[0], &p[1], &p[2]}))
+    return false;
+  return CGAL::do_intersect(K::Triangle_3(p[0], p[1], p[2]), K::Triangle_3(q[0], q[1], q[2]));
+}
+
+std::vector<std::array<std::size_t, 2>> soup_crossing_pairs(const std::vector<Vec3>& points,
+                                                            const std::vector<std::array<int, 3>>& triangles,
+                                                            std::size_t cap) {
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
+  struct CapReached {};
   std::vector<std::array<std::size_t, 2>> out;
   std::vector<Box> boxes;
-  boxes.reserve(triangles.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const Point &a = p[std::size_t(triangles[t][0])], &b = p[std::size_t(triangles[t][1])], &c = p[std::size_t(triangles[t][2])];
-    if (CGAL::collinear(a, b, c)) out.push_back({t, t});
-    else boxes.emplace_back(a.bbox() + b.bbox() + c.bbox(), t);
+  for (std::size_t t = 0; t < triangles.size() && out.size() < cap; ++t) {
+    if (triangle_degenerate(points, triangles[t])) {
+      out.push_back({t, t});
+      continue;
+    }
+    CGAL::Bbox_3 b;
+    for (int v : triangles[t]) b += point(points, v).bbox();
+    boxes.emplace_back(b, t);
   }
-  if (out.size() >= cap) return {out.begin(), out.begin() + std::ptrdiff_t(cap)};
-  std::vector<const Box*> ptrs;
-  ptrs.reserve(boxes.size());
-  for (const Box& b : boxes) ptrs.push_back(&b);
-  auto test = [&](const Box* a, const Box* b) {
-    const std::size_t t = a->info(), u = b->info();
-    if (!meet_improperly(triangles[t], triangles[u], p)) return;
-    out.push_back({std::min(t, u), std::max(t, u)});
-    if (out.size() >= cap) throw CapReached{};
-  };
-  try {
-    CGAL::box_self_intersection_d<CGAL::Sequential_tag>(ptrs.begin(), ptrs.end(), test, std::ptrdiff_t(2000));
-  } catch (const CapReached&) {
-  }
+  if (out.size() < cap) try {
+      CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+        if (!triangles_cross(points, triangles[x.info()], triangles[y.info()])) return;
+        out.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
+        if (out.size() >= cap) throw CapReached{};
+      });
+    } catch (const CapReached&) {
+    }
+  std::sort(out.begin(), out.end());
   return out;
 }
 

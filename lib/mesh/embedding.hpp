@@ -4,8 +4,10 @@
 // self_intersections, exact predicates), how its components nest and which
 // side of it a point is on (CGAL's Side_of_triangle_mesh: rays against the
 // triangles, exact predicates, another ray when one grazes an edge), and
-// distances to a component's triangles (an AABB tree). CGAL stays in
-// embedding.cpp.
+// distances to a component's triangles (an AABB tree); the same
+// intersection test on a triangle soup (any number of triangles at an edge,
+// as surface nets' interfaces meet along curves), pair by pair or over all
+// pairs. CGAL stays in embedding.cpp.
 #pragma once
 #include "image/grid.hpp"
 
@@ -25,16 +27,25 @@ struct SelfIntersections {
 // The summary of the pairs found by a search stopped at `cap` (0: no cap).
 SelfIntersections summarize_intersections(const std::vector<std::array<std::size_t, 2>>& pairs, std::size_t cap);
 
-// Pairs of triangles of any triangle set on shared vertex ids (edges in
-// three triangles or more, mixed orientations: a multi-label mesh, which
-// SurfaceGeometry cannot hold) that meet other than in the edge or vertices
-// they share, up to `cap` (> 0), each ascending; a degenerate triangle
-// (collinear corners) as a pair with itself; a triangle given twice
-// intersects its copy. The tests of self_intersections (exact predicates),
-// on vertex ids instead of half-edges. Points must be finite.
-std::vector<std::array<std::size_t, 2>> intersecting_triangles(const std::vector<Vec3>& points,
-                                                               const std::vector<std::array<int, 3>>& triangles,
-                                                               std::size_t cap);
+// Triangle soups: triangles of vertex ids into `points`, vertices shared by
+// id, any number of triangles at an edge (a multi-label mesh, which
+// SurfaceGeometry cannot hold). The rules are self_intersections' (CGAL's do_faces_intersect): two
+// triangles sharing an edge cross when they are coplanar with their third
+// corners on the same side of it; sharing one vertex, when the edge of
+// either opposite it meets the other; sharing none, when they meet at all
+// (touching counts). A degenerate triangle (collinear corners) is a pair
+// with itself and is tested against no other.
+bool triangle_degenerate(const std::vector<Vec3>& points, const std::array<int, 3>& t);
+// Whether two non-degenerate triangles cross by those rules (exact).
+bool triangles_cross(const std::vector<Vec3>& points, const std::array<int, 3>& a, const std::array<int, 3>& b);
+// Every crossing pair of the soup (a triangle given twice crosses its
+// copy), found by box intersection over all its triangles (the reference
+// for local searches, and for soups without a lattice): triangle ids, each
+// pair ascending, sorted; the search stops at `cap` pairs (which ones are
+// found first is CGAL's order). Points must be finite.
+std::vector<std::array<std::size_t, 2>> soup_crossing_pairs(const std::vector<Vec3>& points,
+                                                            const std::vector<std::array<int, 3>>& triangles,
+                                                            std::size_t cap = std::size_t(-1));
 
 class SurfaceGeometry {
 public:

@@ -1,6 +1,6 @@
 // certify_interface_mesh: a short driver over the checks
 // interface_certificate.hpp lists: the interfaces (interface_patches.cpp),
-// the whole mesh's crossings (intersecting_triangles), each label's surface
+// the whole mesh's crossings (soup_crossing_pairs), each label's surface
 // against a crop of its indicator (certify_surface, voxel_sides).
 #include "surfacenets/interface_certificate.hpp"
 
@@ -196,7 +196,7 @@ std::string pair_text(const std::array<std::int32_t, 2>& p) { return std::to_str
 
 void check_intersections(Cert& c, const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                          const std::vector<std::array<std::int32_t, 2>>& pairs, std::size_t cap) {
-  const SelfIntersections& s = c.intersections = summarize_intersections(intersecting_triangles(points, triangles, cap), cap);
+  const SelfIntersections& s = c.intersections = summarize_intersections(soup_crossing_pairs(points, triangles, cap), cap);
   if (s.pairs == 0) return set(c, Cert::kIntersections, true);
   auto tri = [&](std::size_t t) { return "triangle " + std::to_string(t) + " (" + pair_text(pairs[t]) + ")"; };
   std::string why = "intersections: ";

@@ -17,7 +17,7 @@
 //                  "interface 3|1: 2 patches, K(X) has 1"
 //   intersections  no two triangles of the whole mesh meet other than in a
 //                  shared edge or vertex (a|b against c|d too; exact
-//                  predicates, mesh/embedding.hpp intersecting_triangles).
+//                  predicates, mesh/embedding.hpp soup_crossing_pairs).
 //                  "intersections: ... triangle 5 (2|1) and triangle 9 (3|0)"
 //   labels         per label L, the triangles with L on a side, oriented out
 //                  of L, pass certify_surface against bdCA({X = L}) (closed,

@@ -36,7 +36,7 @@ void smooth_interface_mesh(InterfaceMesh& m, const SmoothingOptions& o) {
   }
   for (std::size_t v = 0; v < n; ++v) m.points[v] = m.grid.world(p[v][0], p[v][1], p[v][2]);
   split_quads(m);
-  if (o.untangle) untangle_interface_mesh(m, rest);
+  if (o.untangle) untangle_interface_mesh(m, rest, o.threads);
 }
 
 } // namespace imgmesh

@@ -2,6 +2,7 @@
 // (surface_nets.hpp).
 #include "surfacenets/surface_nets.hpp"
 
+#include "surfacenets/surface_nets_detail.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>
@@ -121,20 +122,22 @@ InterfaceMesh interface_mesh(const Geometry& image, const InterfaceComplex& k) {
 
 void split_quads(InterfaceMesh& m) {
   m.triangles.resize(m.quads.size() * 2);
-  for (std::size_t f = 0; f < m.quads.size(); ++f) {
-    const auto& q = m.quads[f];
-    const Vec3 &p0 = m.points[std::size_t(q[0])], &p1 = m.points[std::size_t(q[1])],
-               &p2 = m.points[std::size_t(q[2])], &p3 = m.points[std::size_t(q[3])];
-    const double first = std::min(triangle_quality(p0, p1, p2), triangle_quality(p0, p2, p3));
-    const double second = std::min(triangle_quality(p0, p1, p3), triangle_quality(p1, p2, p3));
-    // A margin so that rounding never decides a planar rectangle's split.
-    if (second > first * (1 + 1e-9)) {
-      m.triangles[2 * f] = {q[0], q[1], q[3]};
-      m.triangles[2 * f + 1] = {q[1], q[2], q[3]};
-    } else {
-      m.triangles[2 * f] = {q[0], q[1], q[2]};
-      m.triangles[2 * f + 1] = {q[0], q[2], q[3]};
-    }
+  for (std::size_t f = 0; f < m.quads.size(); ++f) surfacenets_detail::split_quad(m, f);
+}
+
+void surfacenets_detail::split_quad(InterfaceMesh& m, std::size_t f) {
+  const auto& q = m.quads[f];
+  const Vec3 &p0 = m.points[std::size_t(q[0])], &p1 = m.points[std::size_t(q[1])], &p2 = m.points[std::size_t(q[2])],
+             &p3 = m.points[std::size_t(q[3])];
+  const double first = std::min(triangle_quality(p0, p1, p2), triangle_quality(p0, p2, p3));
+  const double second = std::min(triangle_quality(p0, p1, p3), triangle_quality(p1, p2, p3));
+  // A margin so that rounding never decides a planar rectangle's split.
+  if (second > first * (1 + 1e-9)) {
+    m.triangles[2 * f] = {q[0], q[1], q[3]};
+    m.triangles[2 * f + 1] = {q[1], q[2], q[3]};
+  } else {
+    m.triangles[2 * f] = {q[0], q[1], q[2]};
+    m.triangles[2 * f + 1] = {q[0], q[2], q[3]};
   }
 }
 

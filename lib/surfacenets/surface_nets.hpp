@@ -78,6 +78,7 @@ struct SmoothingOptions {
   int rounds = 5;        // Jacobi rounds of relaxation toward the neighbours' mean
   double margin = 0.1;   // in voxels: each vertex kept this far inside its cell (0 <= margin < 0.5)
   bool untangle = true;  // then untangle_interface_mesh (false: tests only, to see the folds)
+  unsigned threads = 1;  // for the untangling's crossing search
 };
 // Constrained smoothing (Frisken 2022): every round moves each surface and
 // curve vertex to the mean of its neighbours (positions of the previous
@@ -86,12 +87,20 @@ struct SmoothingOptions {
 // margin outside [0, 0.5).
 void smooth_interface_mesh(InterfaceMesh& mesh, const SmoothingOptions& options = {});
 
-// Where two triangles of one label's surface intersect (other than in a
-// shared edge or vertex; exact predicates), their vertices go back halfway
+// The pairs of triangles of the mesh, whatever their labels, that meet
+// other than in a shared edge or vertex (lib/mesh's triangles_cross, exact
+// predicates; (t, t) for a degenerate triangle), each pair ascending,
+// sorted. Local: each quad is tested against the quads of neighbouring
+// cells only (crossings.cpp says why that finds every pair), by `threads`
+// threads (the same pairs whatever their number). Throws Error when a
+// vertex lies outside its cell.
+std::vector<std::array<std::size_t, 2>> crossing_pairs(const InterfaceMesh& mesh, unsigned threads = 1);
+
+// While two triangles cross (crossing_pairs), their vertices go back halfway
 // to `rest` (the unsmoothed positions), onto it after a few halvings, and
-// the quads are split again, until no label's surface intersects itself.
-// Returns the vertex moves made. Not checked yet: triangles of two
-// surfaces with no label in common (a|b against c|d).
-std::size_t untangle_interface_mesh(InterfaceMesh& mesh, const std::vector<Vec3>& rest);
+// their quads are split again; after the first search only the quads at a
+// moved vertex are tested again (by `threads` threads: the same result
+// whatever their number). Returns the vertex moves made.
+std::size_t untangle_interface_mesh(InterfaceMesh& mesh, const std::vector<Vec3>& rest, unsigned threads = 1);
 
 } // namespace imgmesh

@@ -1,67 +1,67 @@
 // Untangling after smoothing (surface_nets.hpp): Frisken's relaxation keeps
-// every vertex in its cell but may fold a label's surface onto itself where
-// a curve bends tightly (noisy maps: two triangles sharing a vertex
-// overlapping). The vertices of every intersecting pair, per label surface
-// (exact predicates, lib/mesh), go halfway back to their corners, and after
-// kSnap halvings onto them. At the corners the mesh is bdCA(L) per label,
-// which is embedded; every round moves some vertex that is not at its
-// corner (a pair of triangles all at their corners cannot intersect), so
-// the loop ends.
+// every vertex in its cell but may fold the mesh where a curve bends
+// tightly (noisy maps: two triangles sharing a vertex overlapping), and the
+// sheets of two interfaces may cross. The vertices of every crossing pair
+// of triangles (any labels: crossings.cpp, exact predicates) go halfway
+// back to their corners, and after kSnap halvings onto them. Why it ends:
+// at the corners the mesh is K(X) with each face split in two, which is
+// embedded (two faces meet only in a shared voxel edge or corner, a shared
+// edge or vertex of their triangles), so every crossing pair has a vertex
+// off its corner, and every round moves all of those; a vertex moves at
+// most kSnap times, then sits at its corner for good: at most kSnap times
+// the vertices rounds. After the first search, a round tests only the
+// quads at a moved vertex: any other pair is as it was when last tested,
+// and did not cross then (a crossing pair had a vertex moved, so a quad of
+// it is tested again).
 #include "surfacenets/surface_nets.hpp"
 
-#include "mesh/embedding.hpp"
+#include "surfacenets/surface_nets_detail.hpp"
 #include "util/error.hpp"
-
-#include <algorithm>
-#include <set>
 
 namespace imgmesh {
 namespace {
 constexpr int kSnap = 6;
-constexpr std::size_t kPairsCap = 1u << 20;
 } // namespace
 
-std::size_t untangle_interface_mesh(InterfaceMesh& m, const std::vector<Vec3>& rest) {
+std::size_t untangle_interface_mesh(InterfaceMesh& m, const std::vector<Vec3>& rest, unsigned threads) {
   if (rest.size() != m.points.size()) throw Error("untangle_interface_mesh: one rest position a vertex is needed");
-  std::set<std::int32_t> labels;
-  for (const auto& l : m.labels) labels.insert(l.begin(), l.end());
+  surfacenets_detail::CrossingSearch search(m, threads);
   std::vector<std::uint8_t> halvings(m.points.size(), 0), marked(m.points.size(), 0);
-  // Labels to test this round: all at first, then those with a triangle at
-  // a vertex moved last round (the others' triangles and splits are as when
-  // they tested clean).
-  std::set<std::int32_t> dirty = labels;
-  std::size_t moved_total = 0;
-  for (;;) {
-    std::size_t pairs = 0, moved = 0;
-    std::fill(marked.begin(), marked.end(), 0);
-    for (std::int32_t l : dirty) {
-      const auto tris = label_triangles(m, l);
-      if (tris.empty()) continue;
-      const SurfaceGeometry g(m.points, tris, std::vector<int>(tris.size(), 0), 1);
-      for (const auto& p : g.intersecting_pairs(kPairsCap)) {
-        ++pairs;
-        for (std::size_t t : p)
-          for (int v : tris[t]) marked[std::size_t(v)] |= m.points[std::size_t(v)] != rest[std::size_t(v)];
-      }
+  std::size_t moves = 0;
+  for (auto pairs = search.all_pairs(); !pairs.empty();) {
+    std::vector<std::size_t> moving;
+    for (const auto& p : pairs) {
+      bool movable = false;
+      for (std::size_t t : p)
+        for (int v : m.triangles[t]) {
+          if (m.points[std::size_t(v)] == rest[std::size_t(v)]) continue;
+          movable = true;
+          if (!marked[std::size_t(v)]) moving.push_back(std::size_t(v));
+          marked[std::size_t(v)] = 1;
+        }
+      if (!movable) throw Error("untangle_interface_mesh: triangles at their voxel corners cross (a bug)");
     }
-    if (pairs == 0) return moved_total;
-    for (std::size_t v = 0; v < m.points.size(); ++v) {
-      if (!marked[v]) continue;
-      ++moved;
+    for (std::size_t v : moving) {
       if (++halvings[v] >= kSnap) {
         m.points[v] = rest[v];
         continue;
       }
-      for (int a = 0; a < 3; ++a) m.points[v][std::size_t(a)] = (m.points[v][std::size_t(a)] + rest[v][std::size_t(a)]) / 2;
+      for (std::size_t a = 0; a < 3; ++a) m.points[v][a] = (m.points[v][a] + rest[v][a]) / 2;
     }
-    if (moved == 0) throw Error("untangle_interface_mesh: triangles at their voxel corners intersect (a bug)");
-    moved_total += moved;
-    dirty.clear();
-    for (std::size_t f = 0; f < m.quads.size(); ++f)
-      for (int v : m.quads[f])
-        if (marked[std::size_t(v)]) dirty.insert(m.labels[f].begin(), m.labels[f].end());
-    split_quads(m);
+    moves += moving.size();
+    std::vector<std::size_t> moved_quads;
+    for (std::size_t f = 0; f < m.quads.size(); ++f) {
+      const auto& q = m.quads[f];
+      if (!(marked[std::size_t(q[0])] | marked[std::size_t(q[1])] | marked[std::size_t(q[2])] | marked[std::size_t(q[3])]))
+        continue;
+      moved_quads.push_back(f);
+      surfacenets_detail::split_quad(m, f);
+      search.update(f);
+    }
+    for (std::size_t v : moving) marked[v] = 0;
+    pairs = search.pairs(moved_quads);
   }
+  return moves;
 }
 
 } // namespace imgmesh

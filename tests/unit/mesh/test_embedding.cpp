@@ -1,4 +1,4 @@
-// intersecting_triangles (embedding.hpp): the exact test on any triangle
+// soup_crossing_pairs (embedding.hpp): the exact test on any triangle
 // set, shared vertex ids standing for shared corners; three triangles on one
 // edge (a multi-label mesh's curves) meet only there.
 #include "mesh/embedding.hpp"
@@ -12,13 +12,13 @@ using namespace imgmesh;
 namespace {
 using Pairs = std::vector<std::array<std::size_t, 2>>;
 Pairs pairs_of(const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t) {
-  Pairs r = intersecting_triangles(p, t, 100);
+  Pairs r = soup_crossing_pairs(p, t, 100);
   std::sort(r.begin(), r.end());
   return r;
 }
 } // namespace
 
-TEST_CASE("intersecting_triangles: shared edges and vertices, crossings, copies", "[embedding]") {
+TEST_CASE("soup_crossing_pairs: shared edges and vertices, crossings, copies", "[embedding]") {
   // Edge 0-1 along x; 2 above it, 3 beside it, 4 below, 5 on 2's side in
   // 2's plane (overlapping it), 6 far.
   const std::vector<Vec3> p{{0, 0, 0}, {1, 0, 0}, {0.5, 0, 1}, {0.5, 1, 0}, {0.5, 0, -1}, {0.5, 0, 0.5}, {5, 5, 5}};
@@ -56,8 +56,8 @@ TEST_CASE("intersecting_triangles: shared edges and vertices, crossings, copies"
       q.push_back({0.25 + 0.1 * i, 0.2, 1});
       t.push_back({7 + 3 * i, 8 + 3 * i, 9 + 3 * i});
     }
-    CHECK(intersecting_triangles(q, t, 100).size() == 5);
-    const SelfIntersections s = summarize_intersections(intersecting_triangles(q, t, 3), 3);
+    CHECK(soup_crossing_pairs(q, t, 100).size() == 5);
+    const SelfIntersections s = summarize_intersections(soup_crossing_pairs(q, t, 3), 3);
     CHECK(s.pairs == 3);
     CHECK(s.capped);
   }

@@ -7,6 +7,7 @@
 // on its own label's side.
 #include "surfacenets/surface_nets.hpp"
 
+#include "surfacenets/certify_labels.hpp"
 #include "mesh/embedding.hpp"
 #include "mesh/surface_certificate.hpp"
 #include "mesh/topology.hpp"
@@ -128,25 +129,6 @@ std::string check_all_labels(const InterfaceMesh& m, const InterfaceComplex& k) 
     if (!w.empty()) return w;
   }
   return "";
-}
-
-// lib/mesh's certificate on every nonzero label's surface against bdCA of
-// its indicator, and the voxel centres' sides.
-void certify_labels(const InterfaceMesh& m, const LabelImage& img) {
-  for (std::int32_t l : labels_of(img)) {
-    if (l == 0) continue;
-    INFO("label " << l);
-    const auto tris = label_triangles(m, l);
-    const BinaryImage b = indicator(img, l);
-    const VoxelBoundary vb = voxel_boundary(b);
-    const SurfaceCertificate c = certify_surface(m.points, tris, img, vb, mesh_topology(vb));
-    CHECK(c.failure() == "");
-    if (!c.ok()) continue;
-    std::vector<int> comp(tris.size());
-    for (std::size_t t = 0; t < tris.size(); ++t) comp[t] = c.topology.component_of[std::size_t(tris[t][0])];
-    const VoxelSides s = voxel_sides(m.points, tris, comp, c.topology.components.size(), b);
-    CHECK(s.wrong() == 0);
-  }
 }
 
 void check_smoothed(const InterfaceMesh& before, const InterfaceMesh& m, const SmoothingOptions& o) {
