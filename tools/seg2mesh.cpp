@@ -129,6 +129,7 @@ int main(int argc, char** argv) {
                 " holds no labels: use .ply, .vtp, .vtk or .msh to tell the labels' surfaces apart");
     if (fast->count()) {
       fast_opt.labels = parse_labels(labels_text);
+      fast_opt.threads = std::max(1u, std::thread::hardware_concurrency());  // the same mesh whatever the count
       return run_fast(tool, in, out, fast_opt, write_opt);
     }
     warn_normals_ignored(tool, opt.normals, out);

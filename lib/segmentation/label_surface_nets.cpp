@@ -119,6 +119,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   if (opt.smooth_rounds > 0) {
     SmoothingOptions so;
     so.rounds = opt.smooth_rounds;
+    so.threads = std::max(1u, opt.threads);
     smooth_interface_mesh(m, so);
   }
   res.seconds.push_back({"smoothing", since(t0)});
@@ -127,7 +128,9 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   say("certificate");
   std::vector<std::array<std::int32_t, 2>> pairs(m.triangles.size());
   for (std::size_t t = 0; t < pairs.size(); ++t) pairs[t] = m.triangle_labels(t);
-  res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k);
+  InterfaceCertificateOptions co;
+  co.crossings = [&] { return crossing_pairs(m, std::max(1u, opt.threads)); };  // local: every vertex in its cell
+  res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k, co);
   for (const auto& l : res.certificate.labels) {
     if (!std::binary_search(labels.begin(), labels.end(), (long long)l.label)) continue;  // 0
     res.labels.push_back(label_net(l));

@@ -195,8 +195,11 @@ void set(Cert& c, int check, bool held, const std::string& why = "") {
 std::string pair_text(const std::array<std::int32_t, 2>& p) { return std::to_string(p[0]) + "|" + std::to_string(p[1]); }
 
 void check_intersections(Cert& c, const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                         const std::vector<std::array<std::int32_t, 2>>& pairs, std::size_t cap) {
-  const SelfIntersections& s = c.intersections = summarize_intersections(soup_crossing_pairs(points, triangles, cap), cap);
+                         const std::vector<std::array<std::int32_t, 2>>& pairs, const InterfaceCertificateOptions& o) {
+  const std::size_t cap = o.intersections_cap;
+  std::vector<std::array<std::size_t, 2>> found = o.crossings ? o.crossings() : soup_crossing_pairs(points, triangles, cap);
+  if (found.size() > cap) found.resize(cap);
+  const SelfIntersections& s = c.intersections = summarize_intersections(found, cap);
   if (s.pairs == 0) return set(c, Cert::kIntersections, true);
   auto tri = [&](std::size_t t) { return "triangle " + std::to_string(t) + " (" + pair_text(pairs[t]) + ")"; };
   std::string why = "intersections: ";
@@ -335,7 +338,7 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
   co.place_tolerance = c.place_tolerance;
   co.intersections_cap = options.intersections_cap;
   co.intersections = false;  // each label's triangles are among the whole mesh's, tested here
-  check_intersections(c, points, triangles, pairs, options.intersections_cap);
+  check_intersections(c, points, triangles, pairs, options);
   c.labels = certify_labels(points, triangles, pairs, image, k, co);
   check_labels(c);
   return c;

@@ -68,6 +68,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -79,6 +80,12 @@ struct InterfaceCertificateOptions {
   // (its centroid within it of a face of its pair to vote).
   double place_tolerance = 0;
   std::size_t intersections_cap = 1000;  // intersecting pairs counted at most, per label and over the mesh
+  // The whole mesh's crossing pairs (soup_crossing_pairs' semantics) from a
+  // search the caller knows complete for its mesh: surface nets'
+  // crossing_pairs on the lattice (complete because every vertex stays in
+  // its cell, which it checks). Empty: CGAL's box intersection over every
+  // triangle, for any mesh.
+  std::function<std::vector<std::array<std::size_t, 2>>()> crossings;
 };
 
 struct InterfaceCertificate {
