@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Synthetic label maps for the multi-label benchmarks (fixed seeds).
+
+  labelmap.py body OUT.mha [NX NY NZ]   a whole-body-like map (default 512 512 400):
+      a body (label 1) around a muscle layer (2); 100 organs, random rotated
+      ellipsoids painted over one another inside it (3..102: they touch,
+      overlap and meet along triple curves); 4 bones, hollow shells around a
+      marrow (103..110: nested surfaces); 20 vessels, tubes one to three
+      voxels in radius along random walks (111..130: thin structures).
+  labelmap.py head OUT.mha [N]          a head-like map (default 256^3): scalp,
+      skull, CSF, grey and white matter as nested, bumpy shells (1..5), two
+      ventricles (6) and a thin falx of CSF between the hemispheres.
+
+MetaImage with raw uint8 data beside the header (ElementDataFile LOCAL), which
+both the tools here and VTK's vtkMetaImageReader read; 1 mm voxels.
+"""
+import sys
+
+import numpy as np
+
+
+def write_mha(path, a):
+    nz, ny, nx = a.shape
+    with open(path, "wb") as f:
+        f.write(("ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+                 "Offset = 0 0 0\nElementSpacing = 1 1 1\nDimSize = %d %d %d\nElementType = MET_UCHAR\n"
+                 "ElementDataFile = LOCAL\n" % (nx, ny, nz)).encode())
+        f.write(np.ascontiguousarray(a, dtype=np.uint8).tobytes())
+
+
+def rotation(rng):
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    return q
+
+
+def paint_ellipsoid(a, centre, radii, rot, label, inside=None):
+    """Set `label` where the point is in the ellipsoid (and where `inside`, a
+    boolean of a's shape, holds). A slice at a time: memory of a slice."""
+    r = max(radii)
+    lo = [max(0, int(np.floor(c - r)) - 1) for c in centre]
+    hi = [min(n, int(np.ceil(c + r)) + 2) for c, n in zip(centre, a.shape)]
+    if any(h <= l for l, h in zip(lo, hi)):
+        return
+    y, x = np.meshgrid(np.arange(lo[1], hi[1]) + 0.5 - centre[1], np.arange(lo[2], hi[2]) + 0.5 - centre[2],
+                       indexing="ij")
+    m = rot / np.asarray(radii)  # row i of p @ m: a point's coordinates scaled, in the ellipsoid's axes
+    for z in range(lo[0], hi[0]):
+        dz = z + 0.5 - centre[0]
+        q = sum(((dz * m[0, k] + y * m[1, k] + x * m[2, k]) ** 2 for k in range(3)))
+        sel = q <= 1
+        row = a[z, lo[1]:hi[1], lo[2]:hi[2]]
+        if inside is not None:
+            sel &= inside[z, lo[1]:hi[1], lo[2]:hi[2]]
+        row[sel] = label
+
+
+def body(nx, ny, nz):
+    rng = np.random.default_rng(1)
+    a = np.zeros((nz, ny, nx), np.uint8)
+    c = np.array([nz, ny, nx]) / 2
+    eye = np.eye(3)
+    paint_ellipsoid(a, c, (0.48 * nz, 0.42 * ny, 0.46 * nx), eye, 1)
+    paint_ellipsoid(a, c, (0.45 * nz, 0.37 * ny, 0.41 * nx), eye, 2)
+    inner = a == 2
+    for label in range(3, 103):
+        centre = c + rng.uniform(-0.33, 0.33, 3) * np.array([nz, ny, nx])
+        radii = rng.uniform(4, 0.09 * min(nx, ny, nz), 3)
+        paint_ellipsoid(a, centre, radii, rotation(rng), label, inner)
+    for k in range(4):  # bones: cortex shell (odd label) around marrow
+        centre = c + rng.uniform(-0.3, 0.3, 3) * np.array([nz, ny, nx])
+        radii = rng.uniform(12, 0.12 * min(nx, ny, nz), 3)
+        rot = rotation(rng)
+        paint_ellipsoid(a, centre, radii, rot, 103 + 2 * k, inner)
+        paint_ellipsoid(a, centre, radii * 0.7, rot, 104 + 2 * k, inner)
+    for label in range(111, 131):  # vessels
+        p = c + rng.uniform(-0.3, 0.3, 3) * np.array([nz, ny, nx])
+        d = rotation(rng)[0]
+        radius = rng.uniform(1.0, 3.0)
+        for _ in range(int(0.6 * max(nx, ny, nz))):
+            paint_ellipsoid(a, p, (radius, radius, radius), eye, label, inner)
+            d = d + rng.normal(scale=0.15, size=3)
+            d /= np.linalg.norm(d)
+            p = p + d
+    return a
+
+
+def head(n):
+    rng = np.random.default_rng(2)
+    c = n / 2
+    bumps = [(rotation(rng)[0], rng.uniform(0.005, 0.02), rng.integers(2, 7)) for _ in range(12)]
+    y, x = np.meshgrid(np.arange(n) + 0.5, np.arange(n) + 0.5, indexing="ij")
+    a = np.zeros((n, n, n), np.uint8)
+    for zi in range(n):  # a slice at a time
+        p = np.stack([np.full_like(x, (zi + 0.5 - c) / 0.46), (y - c) / 0.40, (x - c) / 0.36], axis=-1) / n
+        r = np.linalg.norm(p, axis=-1)
+        u = p / np.maximum(r, 1e-9)[..., None]
+        bump = sum(w * np.cos(f * np.arccos(np.clip(u @ k, -1, 1))) for k, w, f in bumps)  # low frequency
+        fold = 0.015 * np.sin(40 * u[..., 0]) * np.sin(40 * u[..., 1])  # the cortex's folds
+        s = r + bump
+        t = a[zi]
+        t[s <= 1.0] = 1   # scalp
+        t[s <= 0.94] = 2  # skull
+        t[s <= 0.86] = 3  # CSF
+        t[s + fold <= 0.82] = 4  # grey matter
+        t[s + 2 * fold <= 0.68] = 5  # white matter
+        t[(np.abs(x - c) <= 1) & (t >= 4)] = 3  # the falx
+    for side in (-1, 1):
+        paint_ellipsoid(a, (c, c - 0.02 * n, c + side * 0.07 * n), (0.05 * n, 0.12 * n, 0.025 * n),
+                        np.eye(3), 6, a == 5)
+    return a
+
+
+def main():
+    kind, out = sys.argv[1], sys.argv[2]
+    rest = [int(v) for v in sys.argv[3:]]
+    if kind == "body":
+        nx, ny, nz = rest if rest else (512, 512, 400)
+        write_mha(out, body(nx, ny, nz))
+    elif kind == "head":
+        write_mha(out, head(rest[0] if rest else 256))
+    else:
+        sys.exit("labelmap.py: body or head")
+
+
+if __name__ == "__main__":
+    main()
