@@ -232,7 +232,7 @@ PY
 PAIRS="1|0 2|0 2|1 5|0 5|2"
 fast_vtp() { local l; l=$(labels) && expect 0 seg2mesh "$l" fast.vtp --fast --stats fast.json -q; }
 
-case_fast_vtp_read_by_vtk_two_component_labels() {
+case_fast_vtp_read_by_vtk_two_component_labels() {  # interop
   here fast.vtp fast_vtp || return
   local py; py=$(python_with vtk)
   [[ -n $py ]] || { echo "skipped: no python with vtk (python3-vtk9)"; return; }
@@ -259,7 +259,7 @@ for l in d['labels']:
 PY
 }
 
-case_fast_msh_physical_groups_read_by_meshio_and_gmsh() {
+case_fast_msh_physical_groups_read_by_meshio_and_gmsh() {  # interop
   local l; l=$(labels) || return
   expect 0 seg2mesh "$l" fast.msh --fast -q || return
   whole fast.msh || return
