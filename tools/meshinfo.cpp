@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   imgmesh::cli::Tool tool("meshinfo", "Report the topology and quality of a mesh (surface or planar)");
   std::string in, image;
   bool json = false;
-  tool.app.add_option("MESH", in, "mesh: .off .ply .obj .stl (surface), .ele/.node, .off (planar) or .msh .mesh .vtu (tetrahedra); - = OFF on stdin")
+  tool.app.add_option("MESH", in, "mesh: .off .ply .obj .stl .vtp .vtk (surface), .ele/.node, .off (planar) or .msh .mesh .vtu (tetrahedra); - = OFF on stdin")
       ->required();
   tool.data_output(imgmesh::cli::Tool::kStdout, imgmesh::cli::Stream::Text, [&] { return !json; });  // --json: one object
   tool.app.add_flag("--json", json, "print one JSON object (keys 'components' and 'euler' first) instead of text");
@@ -23,7 +23,9 @@ int main(int argc, char** argv) {
                       "manifold, oriented outward, no self-intersection, each component within --place-tolerance of "
                       "one bdCA(X) component and it of the mesh component, one to one, same euler. 2D: the image "
                       "img2poly read (repaired as img2poly does); match each region of the planar mesh to a pixel "
-                      "region (exit 3 if not)")
+                      "region (exit 3 if not). A surface with a label pair per face (seg2mesh's fast mode): the label "
+                      "image, repaired as that mode does; the interface certificate (every pair's patches, no "
+                      "crossing, each label's surface, voxel sides)")
       ->type_name("FILE");
   imgmesh::CertificateOptions cert;
   auto* place = tool.app.add_option("--place-tolerance", cert.place_tolerance,
@@ -64,6 +66,14 @@ int main(int argc, char** argv) {
     if (!image.empty() && !tets && image != "-") {
       const auto g = imgmesh::read_image_info(image).geometry;
       planar_image = g.dimension == 2 || g.size[2] == 1;
+    }
+    if (pm && !pm->interfaces.empty() && !image.empty() && !planar_image) {
+      imgmesh::InterfaceCertificateOptions icert;
+      icert.place_tolerance = cert.place_tolerance;
+      const imgmesh::MeshInfo info = imgmesh::interface_mesh_info(*pm, in, imgmesh::read_labels(image, sel), image, icert);
+      if (json) tool.print_json(info.report);
+      else std::cout << imgmesh::format_report(info.report);
+      return tool.finish(info);
     }
     std::optional<imgmesh::BinaryImage> img;
     std::optional<imgmesh::LabelImage> labels;

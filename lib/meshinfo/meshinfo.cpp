@@ -10,6 +10,7 @@
 #include "util/coordinates.hpp"
 #include "util/error.hpp"
 #include "util/path.hpp"
+#include "wellcomposed/well_composed_partition.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -111,15 +112,16 @@ PolyMesh read_poly_mesh(const std::string& path) {
       }
     return m;
   }
-  if (ext == ".ply" || ext == ".obj" || ext == ".stl") {
+  if (ext == ".ply" || ext == ".obj" || ext == ".stl" || ext == ".vtp" || ext == ".vtk") {
     const SurfaceMesh s = read_surface(path);
     PolyMesh m;
     m.format = ext.substr(1);
     m.points = s.points;
     for (const auto& t : s.triangles) m.faces.push_back({t[0], t[1], t[2]});
+    for (const auto& p : s.interfaces) m.interfaces.push_back({std::int32_t(p[0]), std::int32_t(p[1])});
     return m;
   }
-  throw Error("unknown mesh format '" + ext + "' (use .off, .ply, .obj, .stl or .ele)", path);
+  throw Error("unknown mesh format '" + ext + "' (use .off, .ply, .obj, .stl, .vtp, .vtk or .ele)", path);
 }
 
 Json mesh_report(const PolyMesh& m) {
@@ -279,6 +281,12 @@ std::string format_report(const Json& r) {
     }
     if (q.contains("foreground_voxel_volume")) o << "  foreground voxel volume " << q.at("foreground_voxel_volume").number() << "\n";
   }
+  if (r.contains("interface_image")) {
+    const Json& im = r.at("interface_image");
+    o << "labels      " << im.at("labels").items().size() << " (0 the background), interfaces " << im.at("interfaces").items().size()
+      << ", repaired voxels " << im.at("repaired_voxels").integer() << "; interface certificate "
+      << (im.at("verdict").string() == "ok" ? "HOLDS" : "FAILS: " + im.at("failure").string()) << "\n";
+  }
   if (r.contains("image")) {
     const Json& im = r.at("image");
     const bool planar = im.contains("labels");
@@ -374,6 +382,29 @@ MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const Bin
   return r;
 }
 
+MeshInfo interface_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, LabelImage labels,
+                             const std::string& image_name, const InterfaceCertificateOptions& options) {
+  if (mesh.faces.empty()) throw Error("mesh has no faces", mesh_name);
+  if (labels.dimension == 2 || labels.size[2] == 1) throw Error("label pairs are certified against a 3D label image", image_name);
+  std::vector<std::array<int, 3>> triangles;
+  for (const auto& f : mesh.faces) {
+    if (f.size() != 3) throw Error("a mesh with label pairs must be triangles", mesh_name);
+    triangles.push_back({f[0], f[1], f[2]});
+  }
+  MeshInfo r;
+  r.report = naming_input(mesh_name, [&] { return mesh_report(mesh); });
+  const PartitionResult p = naming_input(image_name, [&] { return make_well_composed_partition(std::move(labels)); });
+  if (const std::string why = p.failed_guarantee(); !why.empty()) throw Error("the partition repair failed: " + why, image_name);
+  r.compared = r.by_interfaces = true;
+  r.image_name = image_name;
+  r.interfaces = certify_interface_mesh(mesh.points, triangles, mesh.interfaces, p.image, options);
+  r.matches = r.interfaces.ok();
+  Json j = r.interfaces.to_json();
+  j["repaired_voxels"] = p.changed;
+  r.report["interface_image"] = j;
+  return r;
+}
+
 MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
                        const std::string& image_name, const CertificateOptions& options) {
   // The boundary on its own vertices (interior ones would count as isolated).
@@ -423,6 +454,7 @@ Json MeshInfo::to_json() const {
 std::string MeshInfo::failed_guarantee() const {
   if (!conforming) return "the tetrahedra are not all positively oriented and conforming";
   if (matches) return "";
+  if (by_interfaces) return "the mesh is not certified against the partition of " + image_name + ": " + interfaces.failure();
   if (!by_place.planar) return "the mesh is not certified against bdCA(X) of " + image_name + ": " + certificate.failure();
   const std::string why = by_place.failed_guarantee();
   return "the mesh's regions do not match the pixel regions of " + image_name + " component by component" +

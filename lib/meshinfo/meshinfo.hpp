@@ -3,6 +3,7 @@
 #pragma once
 #include "mesh/surface_certificate.hpp"
 #include "mesh/tet_mesh.hpp"
+#include "surfacenets/interface_certificate.hpp"
 #include "mesh/topology.hpp"
 #include "util/json.hpp"
 
@@ -23,9 +24,13 @@ struct PolyMesh {
   // .ele with element attributes: each face's region label (its first
   // attribute, an integer); empty otherwise.
   std::vector<std::int32_t> region;
+  // Per face, the label pair (behind, front) it separates, the face
+  // oriented out of behind, when the file gives one (seg2mesh --fast's
+  // .vtp, .vtk, .ply); empty otherwise.
+  std::vector<std::array<std::int32_t, 2>> interfaces;
 };
 
-// By extension: .ele (+ .node), .off (any polygons), .ply/.obj/.stl
+// By extension: .ele (+ .node), .off (any polygons), .ply/.obj/.stl/.vtp/.vtk
 // (triangles). "-" reads OFF from stdin. Throws Error.
 PolyMesh read_poly_mesh(const std::string& path);
 
@@ -50,6 +55,8 @@ struct MeshInfo {
   std::string image_name;
   SurfaceCertificate certificate;    // 3D: the surface's against bdCA(X)
   ComponentCorrespondence by_place;  // 2D: the certificate by correspondence of regions (planar)
+  bool by_interfaces = false;        // 3D label pairs: the interface certificate decides
+  InterfaceCertificate interfaces;
   Json to_json() const;  // vertices, faces, components, euler; matches_image when compared
   std::string failed_guarantee() const;
 };
@@ -72,6 +79,16 @@ MeshInfo mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const Bin
 // a mesh that is not planar.
 MeshInfo planar_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, const LabelImage& labels,
                           const std::string& image_name, double reach = 2);
+
+// A mesh with a label pair per face (PolyMesh::interfaces) against a 3D
+// label image: the interface certificate (surfacenets/interface_certificate.hpp:
+// every pair's patches against K(X)'s, no two triangles crossing, each
+// label's surface, voxel sides) against the image's partition made
+// well-composed as seg2mesh --fast and img2wc --labels all make it (a map
+// already well-composed is unchanged), in "image". Throws Error as
+// mesh_info, and on faces that are not triangles.
+MeshInfo interface_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, LabelImage labels,
+                             const std::string& image_name, const InterfaceCertificateOptions& options = {});
 
 // A tetrahedral mesh (.msh, .mesh, .vtu): mesh_info of the boundary of all
 // its tetrahedra (region 1's when there are others; certified against

@@ -336,6 +336,31 @@ assert {l for p in m['pairs'] for l in p} == set(range(7)), sorted({l for p in m
 PY
 }
 
+# meshinfo --image on a mesh with label pairs runs the interface
+# certificate against the map (repaired as --fast repairs it): it holds on
+# seg2mesh's mesh and fails, exit 3 naming a label, when one triangle's pair
+# is given the wrong way round.
+case_meshinfo_interface_certificate_on_fast_meshes() {
+  local b; b=$(shared brain-crop.nrrd brain_crop) || return
+  expect 0 seg2mesh "$b" brain.vtk --fast --ascii -q || return
+  OUT=info.json expect 0 meshinfo brain.vtk --image "$b" --json || { fail "meshinfo refuses seg2mesh's mesh: $(cat err.txt)"; return; }
+  python3 - info.json > info.txt 2>&1 <<'PY' || fail "meshinfo: $(cat info.txt)"
+import json, sys
+r = json.load(open(sys.argv[1]))['interface_image']
+assert r['verdict'] == 'ok' and r['checks'] == {'interfaces': True, 'intersections': True, 'labels': True, 'voxel sides': True}, r['checks']
+assert sorted(l['label'] for l in r['labels']) == list(range(7)), [l['label'] for l in r['labels']]
+PY
+  python3 - <<'PY' || return
+lines = open('brain.vtk').read().split('\n')
+i = lines.index('SCALARS labels int 2') + 2
+a, b = lines[i].split()
+lines[i] = b + ' ' + a
+open('wrong.vtk', 'w').write('\n'.join(lines))
+PY
+  OUT=wrong.txt expect 3 meshinfo wrong.vtk --image "$b" || return
+  grep -q 'interface certificate FAILS: label [0-9]*: oriented' wrong.txt || fail "a swapped pair: $(tail -1 wrong.txt)"
+}
+
 # Bad input: one line, a non-zero exit, no output.
 case_fast_bad_input_one_line() {
   python3 - <<'PY' || return
