@@ -130,6 +130,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   for (std::size_t t = 0; t < pairs.size(); ++t) pairs[t] = m.triangle_labels(t);
   InterfaceCertificateOptions co;
   co.crossings = [&] { return crossing_pairs(m, std::max(1u, opt.threads)); };  // local: every vertex in its cell
+  co.threads = std::max(1u, opt.threads);
   res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k, co);
   for (const auto& l : res.certificate.labels) {
     if (!std::binary_search(labels.begin(), labels.end(), (long long)l.label)) continue;  // 0

@@ -8,6 +8,10 @@
 #include "util/error.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <cmath>
 #include <numeric>
 
@@ -142,9 +146,11 @@ void certify_label(Cert::Label& l, const std::vector<Vec3>& p, const std::vector
 }
 
 // Every label of K(X) with faces and every label of the mesh, ascending.
+// Labels are independent: `threads` threads take them in turn, each result
+// in its label's slot, so the certificate is the same whatever their number.
 std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                                         const std::vector<std::array<std::int32_t, 2>>& pairs, const LabelImage& image,
-                                        const InterfaceComplex& k, const CertificateOptions& options) {
+                                        const InterfaceComplex& k, const CertificateOptions& options, unsigned threads) {
   std::vector<std::int32_t> in_image, labels;
   for (const auto& lb : k.labels) in_image.push_back(lb.label);  // ascending, 0 among them
   for (const auto& lb : k.labels)
@@ -167,10 +173,7 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
   }
   const std::vector<LabelBox> boxes = label_boxes(image, in_image);
   std::vector<Cert::Label> out(labels.size());
-  std::vector<int> local(points.size(), -1);
-  std::vector<Vec3> p;
-  std::vector<std::array<int, 3>> tris;
-  for (std::size_t i = 0; i < labels.size(); ++i) {
+  auto certify_one = [&](std::size_t i, std::vector<int>& local, std::vector<Vec3>& p, std::vector<std::array<int, 3>>& tris) {
     Cert::Label& l = out[i];
     l.label = labels[i];
     const std::vector<std::size_t> ts(of.begin() + std::ptrdiff_t(start[i]), of.begin() + std::ptrdiff_t(start[i + 1]));
@@ -180,10 +183,30 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
     if (!l.in_image) {
       l.triangles = tris.size();
       l.area = area_of(p, tris);
-      continue;
+      return;
     }
     certify_label(l, p, tris, image, boxes[std::size_t(b - in_image.begin())], options);
-  }
+  };
+  std::atomic<std::size_t> next_label{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto work = [&] {
+    std::vector<int> local(points.size(), -1);
+    std::vector<Vec3> p;
+    std::vector<std::array<int, 3>> tris;
+    try {
+      for (std::size_t i; (i = next_label++) < labels.size();) certify_one(i, local, p, tris);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next_label = labels.size();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::min<std::size_t>(std::max(1u, threads), labels.size()); ++t) pool.emplace_back(work);
+  work();
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
   return out;
 }
 
@@ -339,7 +362,7 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
   co.intersections_cap = options.intersections_cap;
   co.intersections = false;  // each label's triangles are among the whole mesh's, tested here
   check_intersections(c, points, triangles, pairs, options);
-  c.labels = certify_labels(points, triangles, pairs, image, k, co);
+  c.labels = certify_labels(points, triangles, pairs, image, k, co, options.threads);
   check_labels(c);
   return c;
 }

@@ -86,6 +86,7 @@ struct InterfaceCertificateOptions {
   // its cell, which it checks). Empty: CGAL's box intersection over every
   // triangle, for any mesh.
   std::function<std::vector<std::array<std::size_t, 2>>()> crossings;
+  unsigned threads = 1;  // labels certified at once (the same certificate whatever the number)
 };
 
 struct InterfaceCertificate {

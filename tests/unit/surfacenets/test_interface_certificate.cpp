@@ -106,6 +106,16 @@ TEST_CASE("interface certificate: a random map of 200 labels", "[surfacenets]") 
   std::set<std::int32_t> labels(r.image.data.begin(), r.image.data.end());
   REQUIRE(labels.size() > 150);
   check_case(r.image);
+  // Labels certified by several threads: the same certificate.
+  const InterfaceComplex k = interface_complex(r.image);
+  InterfaceMesh m = interface_mesh(r.image, k);
+  smooth_interface_mesh(m);
+  const Soup s = soup_of(m);
+  InterfaceCertificateOptions three;
+  three.threads = 3;
+  const InterfaceCertificate one = certify_interface_mesh(s.points, s.triangles, s.pairs, r.image, k);
+  CHECK(one.ok());
+  CHECK(certify_interface_mesh(s.points, s.triangles, s.pairs, r.image, k, three).to_json().dump() == one.to_json().dump());
 }
 
 namespace {
