@@ -3,8 +3,8 @@
 #pragma once
 #include "mesh/surface_certificate.hpp"
 #include "mesh/tet_mesh.hpp"
-#include "surfacenets/interface_certificate.hpp"
 #include "mesh/topology.hpp"
+#include "surfacenets/interface_certificate.hpp"
 #include "util/json.hpp"
 
 #include <array>
@@ -85,7 +85,7 @@ MeshInfo planar_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, co
 // every pair's patches against K(X)'s, no two triangles crossing, each
 // label's surface, voxel sides) against the image's partition made
 // well-composed as seg2mesh --fast and img2wc --labels all make it (a map
-// already well-composed is unchanged), in "image". Throws Error as
+// already well-composed is unchanged), in "interface_image". Throws Error as
 // mesh_info, and on faces that are not triangles.
 MeshInfo interface_mesh_info(const PolyMesh& mesh, const std::string& mesh_name, LabelImage labels,
                              const std::string& image_name, const InterfaceCertificateOptions& options = {});

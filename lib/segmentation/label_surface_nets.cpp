@@ -58,16 +58,14 @@ LabelNet label_net(const InterfaceCertificate::Label& l) {
 }
 
 // The output: every triangle once with its pair, or each label's surface alone.
-SurfaceMesh output_mesh(InterfaceMesh& m, const std::vector<long long>& labels, bool separate) {
+// pairs: per triangle, its (behind, front).
+SurfaceMesh output_mesh(InterfaceMesh& m, const std::vector<std::array<std::int32_t, 2>>& pairs,
+                        const std::vector<long long>& labels, bool separate) {
   SurfaceMesh out;
   if (!separate) {
     out.points = std::move(m.points);
     out.triangles = std::move(m.triangles);
-    out.interfaces.reserve(out.triangles.size());
-    for (std::size_t t = 0; t < out.triangles.size(); ++t) {
-      const auto l = m.triangle_labels(t);
-      out.interfaces.push_back({int(l[0]), int(l[1])});
-    }
+    out.interfaces.assign(pairs.begin(), pairs.end());
     return out;
   }
   for (long long label : labels) {
@@ -143,7 +141,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   res.seconds.push_back({"certificate", since(t0)});
 
   auto names = std::move(res.mesh.label_names);
-  res.mesh = output_mesh(m, labels, opt.separate);
+  res.mesh = output_mesh(m, pairs, labels, opt.separate);
   res.mesh.label_names = std::move(names);
   return res;
 }

@@ -73,27 +73,7 @@ std::string list(const std::vector<long long>& v) {
   return s.str();
 }
 
-} // namespace
-
-std::vector<long long> labels_present(const LabelImage& image) {
-  std::set<long long> s(image.data.begin(), image.data.end());
-  s.erase(0);
-  return {s.begin(), s.end()};
-}
-
-std::vector<long long> chosen_labels(const LabelImage& image, const std::vector<long long>& asked) {
-  if (image.dimension != 3) throw Error("a 3D label image is needed (seg2mesh meshes surfaces)");
-  const std::vector<long long> present = labels_present(image);
-  if (present.empty()) throw Error("no label: every voxel is 0");
-  std::vector<long long> labels = asked.empty() ? present : asked;
-  std::sort(labels.begin(), labels.end());
-  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
-  for (long long l : labels)
-    if (!std::binary_search(present.begin(), present.end(), l))
-      throw Error("label " + std::to_string(l) + " does not occur (labels present: " + list(present) + ")");
-  return labels;
-}
-
+// One pass over the image: the voxels and box of each of `labels` (ascending).
 void label_boxes(const LabelImage& image, const std::vector<long long>& labels, std::vector<std::size_t>& voxels,
                  std::vector<VoxelBox>& boxes) {
   // A run of one value looked up once.
@@ -115,6 +95,27 @@ void label_boxes(const LabelImage& image, const std::vector<long long>& labels, 
         x = end;
       }
     }
+}
+
+} // namespace
+
+std::vector<long long> labels_present(const LabelImage& image) {
+  std::set<long long> s(image.data.begin(), image.data.end());
+  s.erase(0);
+  return {s.begin(), s.end()};
+}
+
+std::vector<long long> chosen_labels(const LabelImage& image, const std::vector<long long>& asked) {
+  if (image.dimension != 3) throw Error("a 3D label image is needed (seg2mesh meshes surfaces)");
+  const std::vector<long long> present = labels_present(image);
+  if (present.empty()) throw Error("no label: every voxel is 0");
+  std::vector<long long> labels = asked.empty() ? present : asked;
+  std::sort(labels.begin(), labels.end());
+  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  for (long long l : labels)
+    if (!std::binary_search(present.begin(), present.end(), l))
+      throw Error("label " + std::to_string(l) + " does not occur (labels present: " + list(present) + ")");
+  return labels;
 }
 
 LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurfacesOptions& opt) {

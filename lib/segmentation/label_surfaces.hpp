@@ -61,9 +61,6 @@ std::vector<long long> labels_present(const LabelImage& image);
 // once each. Throws Error on a 2D image, an image without labels, or an
 // asked label absent from the image (naming those present).
 std::vector<long long> chosen_labels(const LabelImage& image, const std::vector<long long>& asked);
-// One pass over the image: the voxels and box of each of `labels` (ascending).
-void label_boxes(const LabelImage& image, const std::vector<long long>& labels, std::vector<std::size_t>& voxels,
-                 std::vector<VoxelBox>& boxes);
 
 // Throws Error on a label absent from the image (naming those present), an
 // image without labels, or a 2D image; an Error while meshing a label is
