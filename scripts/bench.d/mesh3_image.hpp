@@ -69,7 +69,7 @@ C3t3 mesh(const std::string& mode, const Domain& domain, const CGAL::Image_3& im
 }
 
 // World = origin + direction * (p - origin), p in CGAL's image frame.
-inline std::array<double, 3> world(const imgmesh::BinaryImage& x, const std::array<double, 3>& p) {
+inline std::array<double, 3> world(const imgmesh::Geometry& x, const std::array<double, 3>& p) {
   const double q[3] = {p[0] - x.origin[0], p[1] - x.origin[1], p[2] - x.origin[2]};
   std::array<double, 3> w{};
   for (std::size_t r = 0; r < 3; ++r)
