@@ -7,14 +7,15 @@
 # Mesh_3's, not the repair's); seg2mesh --fast; and seg2mesh --conforming
 # when its --help lists it. Maps: the bundled brain map and a synthetic head
 # (labelmap.py head, fixed seed: nested shells, triple curves, a thin falx)
-# of HEAD_SIZE^3 voxels (default 128). Per mesher: wall and CPU seconds,
-# peak memory, triangles, smallest angle, % of triangles with an angle under
-# 24 degrees, and the interface certificate (`meshinfo OUT --image MAP`,
-# against the map repaired as seg2mesh --fast repairs it) per label and per
-# interface: labels certified, labels meshed of the map's, interfaces
-# certified, K(X) patches matched, the repaired map's voxel components (per
-# label, 0 included) with a triangle of their label, voxel centres on the
-# wrong side, the first failure (interface_metrics.py).
+# of HEAD_SIZE^3 voxels (default 256, as in seg2mesh_fast.sh: Mesh_3 meshes
+# it in about 25 s). Per mesher: wall and CPU seconds, peak memory,
+# triangles, smallest angle, % of triangles with an angle under 24 degrees,
+# and the interface certificate (`meshinfo OUT --image MAP`, against the map
+# repaired as seg2mesh --fast repairs it) per label and per interface:
+# labels certified, labels meshed of the map's, interfaces certified, K(X)
+# patches matched, the repaired map's voxel components (per label, 0
+# included) with a triangle of their label, voxel centres on the wrong side,
+# the first failure (interface_metrics.py).
 # On a shared machine compare the CPU seconds: wall time grows with the load.
 #   $1: the build's tool folder. BENCH_MAPS (default "brain head") picks
 #   maps; HEAD_SIZE the head's size; MESH3_TIMEOUT (default 1800) the seconds
@@ -46,7 +47,10 @@ row() {  # row MAP NAME OUT.vtp IMAGE CMD...: time CMD, certify OUT against IMAG
     return
   fi
   "$tools/meshinfo" -q "$out" --image "$image" --json > "$out.json" 2> /dev/null || true
-  echo "  $(/usr/bin/python3 "$here/interface_metrics.py" "$out" "$out.json" "$work/$map-wc.mha")"
+  # The peer's last line: Mesh_3's own seconds (no reading, extracting, writing).
+  local own
+  own=$(tail -1 "$work/run.out" | awk 'NF == 3 { printf " mesh3_s=%.1f", $1 }')
+  echo "  $(/usr/bin/python3 "$here/interface_metrics.py" "$out" "$out.json" "$work/$map-wc.mha")$own"
   [ "$rc" -eq 0 ] || echo "         (exit $rc: $(tail -1 "$work/run.err"))"
 }
 
@@ -55,7 +59,7 @@ printf "  %-6s %-34s %7s %7s %7s  %s\n" map mesher wall_s cpu_s peak_MB "figures
 for m in $maps; do
   case $m in
     brain) img=$src/share/data/brain-kmeans-labels.nii.gz ;;
-    head) img=$work/head.mha; /usr/bin/python3 "$here/labelmap.py" head "$img" "${HEAD_SIZE:-128}" ;;
+    head) img=$work/head.mha; /usr/bin/python3 "$here/labelmap.py" head "$img" "${HEAD_SIZE:-256}" ;;
     *) echo "seg2mesh_quality.sh: unknown map $m" >&2; exit 2 ;;
   esac
   "$tools/img2wc" -q "$img" --labels all "$work/$m-wc.mha"
