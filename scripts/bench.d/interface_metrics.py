@@ -15,8 +15,10 @@ line of key=value:
   components=found/all (the 6-connected voxel components of every label of
   REPAIRED, 0 included, with a triangle of that label within a voxel: one
   of the voxels around its centroid's voxel, 27, is of the component),
-  wrong_side (voxel centres on the wrong side, over the labels checked),
-  verdict (the certificate's: ok or the first failed check)."""
+  wrong_side (voxel centres on the wrong side, over the labels checked:
+  sides_checked, those whose surface is closed, manifold and oriented),
+  verdict (the certificate's: ok or the first failed check), lost (the
+  largest components lost, label:voxels, six at most)."""
 import json
 import sys
 import zlib
@@ -134,11 +136,15 @@ def main():
     placed = sum(len({p["complex_patch"] for p in i["patches"] if p["complex_patch"] >= 0}) for i in pairs)
     comps = "%d/%d" % (hit.sum(), len(hit))
     wrong = sum(l["voxel_sides"]["wrong_side"] for l in labels if "voxel_sides" in l)
+    checked = sum("voxel_sides" in l for l in labels)
+    sizes = np.bincount(ids.ravel(), minlength=len(owner))
+    lost = sorted(((int(sizes[c]), int(owner[c])) for c in np.nonzero(~hit)[0]), reverse=True)
     print("triangles=%d min_angle=%.2f under24=%.2f labels=%d/%d present=%d/%d interfaces=%d/%d patches=%d/%d "
-          "components=%s wrong_side=%d verdict=%s" %
+          "components=%s wrong_side=%d sides_checked=%d/%d verdict=%s%s" %
           (len(smallest), smallest.min() if len(smallest) else 0, 100.0 * np.mean(smallest < 24) if len(smallest) else 0,
-           ok, len(labels), present, len(inmap), pairs_ok, len(pairs), placed, patches, comps, wrong,
-           "ok" if cert["verdict"] == "ok" else cert["verdict"]))
+           ok, len(labels), present, len(inmap), pairs_ok, len(pairs), placed, patches, comps, wrong, checked,
+           len(labels), "ok" if cert["verdict"] == "ok" else cert["verdict"],
+           " lost=" + ",".join("%d:%d" % (l, n) for n, l in lost[:6]) if lost else ""))
 
 
 main()

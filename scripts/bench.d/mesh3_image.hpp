@@ -16,7 +16,6 @@
 #include <CGAL/refine_mesh_3.h>
 
 #include <array>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -37,11 +36,14 @@ inline imgmesh::BinaryImage padded_foreground(const std::string& path) {
   return x;
 }
 
-// CGAL's copy of X (it has spacing and origin, no direction).
-inline CGAL::Image_3 cgal_image(const imgmesh::BinaryImage& x) {
-  _image* im = _createImage(x.size[0], x.size[1], x.size[2], 1, x.spacing[0], x.spacing[1], x.spacing[2], 1,
-                            WK_FIXED, SGN_UNSIGNED);
-  std::memcpy(im->data, x.data.data(), x.data.size());
+// CGAL's copy of X, as unsigned words of type Word (it has spacing and
+// origin, no direction).
+template <class Word = unsigned char, class T>
+CGAL::Image_3 cgal_image(const imgmesh::Image<T>& x) {
+  _image* im = _createImage(x.size[0], x.size[1], x.size[2], 1, x.spacing[0], x.spacing[1], x.spacing[2],
+                            sizeof(Word), WK_FIXED, SGN_UNSIGNED);
+  Word* data = static_cast<Word*>(im->data);
+  for (std::size_t i = 0; i < x.data.size(); ++i) data[i] = static_cast<Word>(x.data[i]);
   im->tx = float(x.origin[0]);
   im->ty = float(x.origin[1]);
   im->tz = float(x.origin[2]);

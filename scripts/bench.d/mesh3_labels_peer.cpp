@@ -35,18 +35,6 @@
 
 namespace {
 
-template <class Word>
-CGAL::Image_3 cgal_labels(const imgmesh::LabelImage& x) {
-  _image* im = _createImage(x.size[0], x.size[1], x.size[2], 1, x.spacing[0], x.spacing[1], x.spacing[2],
-                            sizeof(Word), WK_FIXED, SGN_UNSIGNED);
-  Word* data = static_cast<Word*>(im->data);
-  for (std::size_t i = 0; i < x.data.size(); ++i) data[i] = static_cast<Word>(x.data[i]);
-  im->tx = float(x.origin[0]);
-  im->ty = float(x.origin[1]);
-  im->tz = float(x.origin[2]);
-  return CGAL::Image_3(im);
-}
-
 // The complex's facets, each between the subdomains of its two cells (a
 // cell out of the complex is subdomain 0). A facet whose cells agree (its
 // patch index says otherwise) is counted in `same` and skipped.
@@ -98,7 +86,7 @@ template <class Word>
 int run(const imgmesh::LabelImage& x, const std::string& out, double distance, double size) {
   const double h = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
   const auto t0 = std::chrono::steady_clock::now();
-  const CGAL::Image_3 image = cgal_labels<Word>(x);
+  const CGAL::Image_3 image = mesh3::cgal_image<Word>(x);
   const mesh3::Domain domain = mesh3::Domain::create_labeled_image_mesh_domain(image);
   namespace p = CGAL::parameters;
   const mesh3::Criteria criteria = size > 0 ? mesh3::Criteria(p::facet_angle = 30, p::facet_distance = distance * h,

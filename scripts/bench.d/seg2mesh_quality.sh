@@ -77,7 +77,8 @@ for m in $maps; do
 import json, os, sys
 c = json.load(open(sys.argv[1]))["interface_image"]
 if c["verdict"] != "ok":
-    bad = [str(l["label"]) for l in c["labels"] if l["verdict"] != "ok"]
+    bad = [str(l["label"]) for l in c["labels"]
+           if l["verdict"] != "ok" or l.get("voxel_sides", {}).get("wrong_side", 0) > 0]
     print("    %s: %s; labels not certified: %s" % (os.path.basename(sys.argv[1])[:-9], c["failure"], " ".join(bad)))
 P
   done
