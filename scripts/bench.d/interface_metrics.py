@@ -28,15 +28,20 @@ import vtk
 from vtk.util import numpy_support
 
 
-def angles(path):
+def read_vtp(path):
+    """Points, triangles and label pairs of a .vtp with cell data "labels"."""
     r = vtk.vtkXMLPolyDataReader()
     r.SetFileName(path)
     r.Update()
     pd = r.GetOutput()
     v = numpy_support.vtk_to_numpy(pd.GetPoints().GetData()).astype(float)
-    cells = numpy_support.vtk_to_numpy(pd.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    p = v[cells]
-    smallest = np.full(len(cells), 180.0)
+    t = numpy_support.vtk_to_numpy(pd.GetPolys().GetConnectivityArray()).reshape(-1, 3)
+    return v, t, numpy_support.vtk_to_numpy(pd.GetCellData().GetArray("labels")).reshape(-1, 2)
+
+
+def smallest_angles(v, t):
+    p = v[t]
+    smallest = np.full(len(t), 180.0)
     for k in range(3):
         a = p[:, (k + 1) % 3] - p[:, k]
         b = p[:, (k + 2) % 3] - p[:, k]
@@ -94,15 +99,8 @@ def components(a):
     return ids, np.array(owner)
 
 
-def found_components(path, a, to_index, ids, owner):
+def found_components(v, t, pairs, a, to_index, ids, owner):
     """The components with a triangle of their label within a voxel."""
-    r = vtk.vtkXMLPolyDataReader()
-    r.SetFileName(path)
-    r.Update()
-    pd = r.GetOutput()
-    v = numpy_support.vtk_to_numpy(pd.GetPoints().GetData()).astype(float)
-    t = numpy_support.vtk_to_numpy(pd.GetPolys().GetConnectivityArray()).reshape(-1, 3)
-    pairs = numpy_support.vtk_to_numpy(pd.GetCellData().GetArray("labels")).reshape(-1, 2)
     centre = np.rint(to_index(v[t].mean(axis=1))).astype(np.int64)  # (x, y, z)
     hit = np.zeros(len(owner), bool)
     nz, ny, nx = a.shape
@@ -122,8 +120,9 @@ def main():
     mesh, info = sys.argv[1], json.load(open(sys.argv[2]))
     a, to_index = read_mha(sys.argv[3])
     ids, owner = components(a)
-    hit = found_components(mesh, a, to_index, ids, owner)
-    smallest = angles(mesh)
+    v, t, pairs = read_vtp(mesh)
+    hit = found_components(v, t, pairs, a, to_index, ids, owner)
+    smallest = smallest_angles(v, t)
     cert = info["interface_image"]
     labels = cert["labels"]
     ok = sum(l["verdict"] == "ok" for l in labels)
