@@ -116,6 +116,8 @@ int main(int argc, char** argv) {
     // CGAL's default random is seeded from the clock; the seeds' directions
     // come from it: the same mesh every run.
     CGAL::get_default_random() = CGAL::Random(0);
+    if (!imgmesh::is_surface_output(argv[2]))
+      throw std::runtime_error(std::string(argv[2]) + ": not " + imgmesh::kSurfaceExtensions);
     const double distance = argc >= 4 ? std::atof(argv[3]) : 0.25;
     const double size = argc >= 5 ? std::atof(argv[4]) : 0;
     const imgmesh::LabelImage x = imgmesh::pad(imgmesh::read_labels(argv[1]), {1, 1, 1}, {1, 1, 1});
