@@ -16,7 +16,6 @@
 #include <CGAL/refine_mesh_3.h>
 
 #include <array>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -37,11 +36,14 @@ inline imgmesh::BinaryImage padded_foreground(const std::string& path) {
   return x;
 }
 
-// CGAL's copy of X (it has spacing and origin, no direction).
-inline CGAL::Image_3 cgal_image(const imgmesh::BinaryImage& x) {
-  _image* im = _createImage(x.size[0], x.size[1], x.size[2], 1, x.spacing[0], x.spacing[1], x.spacing[2], 1,
-                            WK_FIXED, SGN_UNSIGNED);
-  std::memcpy(im->data, x.data.data(), x.data.size());
+// CGAL's copy of X, as unsigned words of type Word (it has spacing and
+// origin, no direction).
+template <class Word = unsigned char, class T>
+CGAL::Image_3 cgal_image(const imgmesh::Image<T>& x) {
+  _image* im = _createImage(x.size[0], x.size[1], x.size[2], 1, x.spacing[0], x.spacing[1], x.spacing[2],
+                            sizeof(Word), WK_FIXED, SGN_UNSIGNED);
+  Word* data = static_cast<Word*>(im->data);
+  for (std::size_t i = 0; i < x.data.size(); ++i) data[i] = static_cast<Word>(x.data[i]);
   im->tx = float(x.origin[0]);
   im->ty = float(x.origin[1]);
   im->tz = float(x.origin[2]);
@@ -69,7 +71,7 @@ C3t3 mesh(const std::string& mode, const Domain& domain, const CGAL::Image_3& im
 }
 
 // World = origin + direction * (p - origin), p in CGAL's image frame.
-inline std::array<double, 3> world(const imgmesh::BinaryImage& x, const std::array<double, 3>& p) {
+inline std::array<double, 3> world(const imgmesh::Geometry& x, const std::array<double, 3>& p) {
   const double q[3] = {p[0] - x.origin[0], p[1] - x.origin[1], p[2] - x.origin[2]};
   std::array<double, 3> w{};
   for (std::size_t r = 0; r < 3; ++r)

@@ -1,0 +1,132 @@
+// Benchmark peer of seg2mesh --conforming (issue 40; not installed, not a
+// test): CGAL 5.5's Mesh_3 on a whole label map, its surface complex written
+// with label pairs as seg2mesh writes interfaces, so that `meshinfo OUT
+// --image LABELS` certifies it per label and per interface.
+//   mesh3_labels_peer LABELS OUT.vtp [DISTANCE [SIZE]]
+// LABELS: any integer label image lib/image reads (labels 0..65535), padded
+// by one background voxel (a label touching the side gets a closed surface).
+// Labeled_mesh_domain_3::create_labeled_image_mesh_domain (labels
+// interpolated trilinearly, CGAL's default), seeded from every connected
+// component of every label (initialize_triangulation_from_labeled_image, as
+// mesh3_image.hpp's "seeded"), then refine_mesh_3 with the surface criteria
+// only: facet angle 30 degrees, facet distance DISTANCE (default 0.25) and
+// facet size SIZE (default 0: unbounded) in voxels of the smallest spacing;
+// no cell criteria, no manifold criterion (it would not end at curves where
+// three labels meet), no perturb, no exude.
+// OUT: every facet of the complex (between two different subdomains,
+// 0 the background) once, as (behind, front) = (higher label, lower label),
+// oriented from behind into front (its normal points into front), in world
+// coordinates. Prints "seconds triangles smallest_angle_deg" on its last
+// line (CGAL prints progress on stdout before it); the seconds are Mesh_3's
+// (domain, seeding, refinement), not reading or writing.
+#include "mesh3_image.hpp"
+#include "mesh/surface_io.hpp"
+#include "mesh/triangle_quality.hpp"
+
+#include <CGAL/Random.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+// The complex's facets, each between the subdomains of its two cells (a
+// cell out of the complex is subdomain 0). A facet whose cells agree (its
+// patch index says otherwise) is counted in `same` and skipped.
+imgmesh::SurfaceMesh surface_complex(const mesh3::C3t3& c3t3, const imgmesh::Geometry& g, std::size_t& same) {
+  using Tr = mesh3::Tr;
+  const Tr& tr = c3t3.triangulation();
+  const auto label = [&](Tr::Cell_handle c) { return c3t3.is_in_complex(c) ? int(c3t3.subdomain_index(c)) : 0; };
+  // A reflecting direction flips the orientation.
+  const auto& d = g.direction;
+  const double det = d[0] * (d[4] * d[8] - d[5] * d[7]) - d[1] * (d[3] * d[8] - d[5] * d[6]) +
+                     d[2] * (d[3] * d[7] - d[4] * d[6]);
+  imgmesh::SurfaceMesh m;
+  std::map<Tr::Vertex_handle, int> id;
+  const auto vertex = [&](Tr::Vertex_handle v) {
+    const auto [it, added] = id.emplace(v, int(m.points.size()));
+    if (added) {
+      const auto& q = tr.point(v).point();
+      m.points.push_back(mesh3::world(g, {q.x(), q.y(), q.z()}));
+    }
+    return it->second;
+  };
+  same = 0;
+  for (auto f = c3t3.facets_in_complex_begin(); f != c3t3.facets_in_complex_end(); ++f) {
+    Tr::Facet front = *f, behind = tr.mirror_facet(*f);
+    if (label(front.first) > label(behind.first)) std::swap(front, behind);
+    const int lo = label(front.first), hi = label(behind.first);
+    if (lo == hi) {
+      ++same;
+      continue;
+    }
+    // The triangle turns counter-clockwise around a normal toward the
+    // front cell's fourth vertex (away from the behind cell's when the
+    // front cell is the infinite one).
+    const bool finite = !tr.is_infinite(front.first);
+    const auto [c, i] = finite ? front : behind;
+    std::array<Tr::Vertex_handle, 3> v{c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+    const auto side = CGAL::orientation(tr.point(v[0]).point(), tr.point(v[1]).point(), tr.point(v[2]).point(),
+                                        tr.point(c->vertex(i)).point());
+    if ((side == CGAL::POSITIVE) != finite) std::swap(v[1], v[2]);
+    std::array<int, 3> t{vertex(v[0]), vertex(v[1]), vertex(v[2])};
+    if (det < 0) std::swap(t[1], t[2]);
+    m.triangles.push_back(t);
+    m.interfaces.push_back({hi, lo});
+  }
+  return m;
+}
+
+template <class Word>
+int run(const imgmesh::LabelImage& x, const std::string& out, double distance, double size) {
+  const double h = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
+  const auto t0 = std::chrono::steady_clock::now();
+  const CGAL::Image_3 image = mesh3::cgal_image<Word>(x);
+  const mesh3::Domain domain = mesh3::Domain::create_labeled_image_mesh_domain(image);
+  namespace p = CGAL::parameters;
+  const mesh3::Criteria criteria = size > 0 ? mesh3::Criteria(p::facet_angle = 30, p::facet_distance = distance * h,
+                                                              p::facet_size = size * h)
+                                            : mesh3::Criteria(p::facet_angle = 30, p::facet_distance = distance * h);
+  mesh3::C3t3 c3t3;
+  initialize_triangulation_from_labeled_image(c3t3, domain, image, criteria, Word(0));
+  CGAL::refine_mesh_3(c3t3, domain, criteria, p::no_perturb(), p::no_exude());
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::size_t same = 0;
+  const imgmesh::SurfaceMesh m = surface_complex(c3t3, x, same);
+  if (same) std::cerr << "mesh3_labels_peer: " << same << " facets of the complex between cells of one subdomain, left out\n";
+  imgmesh::write_surface(out, m);
+  const double angle = imgmesh::triangle_quality_report(m).smallest_angle();
+  std::cout << '\n' << secs << ' ' << m.triangles.size() << ' ' << angle << '\n';
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3 || argc > 5) {
+    std::cerr << "usage: mesh3_labels_peer LABELS OUT.vtp [DISTANCE [SIZE]]\n";
+    return 2;
+  }
+  try {
+    // CGAL's default random is seeded from the clock; the seeds' directions
+    // come from it: the same mesh every run.
+    CGAL::get_default_random() = CGAL::Random(0);
+    if (!imgmesh::is_surface_output(argv[2]))
+      throw std::runtime_error(std::string(argv[2]) + ": not " + imgmesh::kSurfaceExtensions);
+    const double distance = argc >= 4 ? std::atof(argv[3]) : 0.25;
+    const double size = argc >= 5 ? std::atof(argv[4]) : 0;
+    const imgmesh::LabelImage x = imgmesh::pad(imgmesh::read_labels(argv[1]), {1, 1, 1}, {1, 1, 1});
+    const auto [lo, hi] = std::minmax_element(x.data.begin(), x.data.end());
+    if (*lo < 0 || *hi > 65535) throw std::runtime_error("labels must lie in 0..65535");
+    if (*hi <= 255) return run<unsigned char>(x, argv[2], distance, size);
+    return run<unsigned short>(x, argv[2], distance, size);
+  } catch (const std::exception& e) {
+    std::cerr << "mesh3_labels_peer: " << e.what() << '\n';
+    return 1;
+  }
+}
