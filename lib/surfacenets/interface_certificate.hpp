@@ -87,6 +87,11 @@ struct InterfaceCertificateOptions {
   // triangle, for any mesh.
   std::function<std::vector<std::array<std::size_t, 2>>()> crossings;
   unsigned threads = 1;  // labels certified at once (the same certificate whatever the number)
+  // Each label's nesting and voxel sides from the lattice when the mesh is
+  // a surface-nets mesh of K(X) with every vertex strictly inside its cell
+  // (interface_cells.cpp: why they are then known; the structure is checked
+  // here); false: by rays always (the reference the tests compare with).
+  bool lattice = true;
 };
 
 struct InterfaceCertificate {
@@ -135,6 +140,7 @@ struct InterfaceCertificate {
   std::array<int, kChecks> state{};   // 1 held, 0 failed, -1 not run
   std::array<std::string, kChecks> why;  // per failed check, naming the pair or label
   double place_tolerance = 0;
+  bool on_lattice = false;  // the nesting and voxel sides came from the lattice (InterfaceCertificateOptions::lattice)
 
   int first_failed() const;  // kChecks when every check holds
   bool ok() const { return first_failed() == kChecks; }

@@ -1,11 +1,14 @@
 // What the multi-label certificate's files share (interface_certificate.cpp:
 // the driver, labels, intersections, sides; interface_patches.cpp: the
-// interfaces). Internal to lib/surfacenets.
+// interfaces; interface_cells.cpp: the lattice shortcut). Internal to
+// lib/surfacenets.
 #pragma once
 #include "surfacenets/interface_certificate.hpp"
 
 #include <array>
 #include <cstdint>
+#include <limits>
+#include <string>
 #include <vector>
 
 namespace imgmesh::surfacenets_detail {
@@ -18,5 +21,29 @@ std::vector<InterfaceCertificate::Interface> certify_interfaces(const std::vecto
                                                                 const std::vector<std::array<std::int32_t, 2>>& pairs,
                                                                 const Geometry& grid, const InterfaceComplex& k,
                                                                 double tolerance);
+
+// Whether the mesh is a surface-nets mesh of K(X) with every vertex
+// strictly inside its voxel-corner cell (interface_cells.cpp: what that
+// structure is, and why it decides the voxel sides and the nesting).
+struct NetCells {
+  static constexpr std::uint64_t kNoCorner = std::numeric_limits<std::uint64_t>::max();
+  bool holds = false;
+  std::string why;   // the first thing found that is not so, when it does not hold
+  double slack = 0;  // voxels: how far inside its cell a vertex was asked to be
+};
+NetCells net_cells(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                   const std::vector<std::array<std::int32_t, 2>>& pairs, const Geometry& grid,
+                   const InterfaceComplex& k);
+// The corner (K(X)'s lattice id) whose cell holds p `slack` voxels inside
+// at least, or kNoCorner.
+std::uint64_t net_corner(const Vec3& p, const Geometry& grid, const std::array<std::size_t, 3>& lattice, double slack);
+// On a mesh where net_cells holds, per component of one label's surface
+// (its topology `surface`, its points), how many of the others enclose it:
+// what SurfaceGeometry::nesting_depths' rays find, from the faces of the
+// crop's bdCA (vb, bt = mesh_topology(vb); crop_lo: the crop's first voxel
+// in the image). Empty when a component's vertex is not where it should be.
+std::vector<int> net_depths(const MeshTopology& surface, const std::vector<Vec3>& points, const Geometry& grid,
+                            const std::array<std::size_t, 3>& lattice, double slack,
+                            const std::array<std::size_t, 3>& crop_lo, const VoxelBoundary& vb, const MeshTopology& bt);
 
 } // namespace imgmesh::surfacenets_detail

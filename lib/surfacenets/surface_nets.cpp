@@ -12,10 +12,6 @@
 namespace imgmesh {
 namespace {
 
-double det3(const std::array<double, 9>& m) {
-  return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
-}
-
 std::array<std::uint64_t, 3> strides(const std::array<std::size_t, 3>& lattice) {
   return {1, lattice[0], std::uint64_t(lattice[0]) * lattice[1]};
 }
@@ -103,9 +99,7 @@ InterfaceMesh interface_mesh(const Geometry& image, const InterfaceComplex& k) {
     const auto c = m.corner(v);
     m.points[v] = image.world(double(c[0]) - 0.5, double(c[1]) - 0.5, double(c[2]) - 0.5);
   }
-  // A reflecting direction matrix turns index space's counter-clockwise
-  // into world space's clockwise.
-  const bool reflect = det3(image.direction) < 0;
+  const bool reflect = surfacenets_detail::reflects(image);
   m.quads.resize(k.faces.size());
   m.labels.resize(k.faces.size());
   for (std::size_t f = 0; f < k.faces.size(); ++f) {
@@ -123,6 +117,11 @@ InterfaceMesh interface_mesh(const Geometry& image, const InterfaceComplex& k) {
 void split_quads(InterfaceMesh& m) {
   m.triangles.resize(m.quads.size() * 2);
   for (std::size_t f = 0; f < m.quads.size(); ++f) surfacenets_detail::split_quad(m, f);
+}
+
+bool surfacenets_detail::reflects(const Geometry& grid) {
+  const auto& m = grid.direction;
+  return m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]) < 0;
 }
 
 void surfacenets_detail::split_quad(InterfaceMesh& m, std::size_t f) {

@@ -13,6 +13,10 @@ namespace imgmesh::surfacenets_detail {
 // Quad f split along its better diagonal (split_quads, for one quad).
 void split_quad(InterfaceMesh& mesh, std::size_t f);
 
+// Whether the grid's direction matrix reflects (a negative determinant):
+// index space's counter-clockwise is then world space's clockwise.
+bool reflects(const Geometry& grid);
+
 // The crossing pairs of an InterfaceMesh's triangles, each quad tested
 // against the quads of its lattice neighbourhood only (crossings.cpp says
 // why no crossing is missed). Holds a reference to the mesh: after moving a
