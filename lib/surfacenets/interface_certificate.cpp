@@ -159,6 +159,13 @@ void certify_label(Cert::Label& l, const std::vector<Vec3>& p, const std::vector
   l.sides = voxel_sides(p, tris, component, l.surface.topology.components.size(), crop);
 }
 
+// A thread's scratch for one label after another.
+struct Scratch {
+  std::vector<int> local;  // per mesh vertex its label-surface id, -1 between labels
+  std::vector<Vec3> p;
+  std::vector<std::array<int, 3>> tris;
+};
+
 // Every label of K(X) with faces and every label of the mesh, ascending.
 // Labels are independent: `threads` threads take them in turn, each result
 // in its label's slot, so the certificate is the same whatever their number.
@@ -202,26 +209,12 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
     }
     certify_label(l, p, tris, image, boxes[std::size_t(b - in_image.begin())], options, cells, k);
   };
-  std::atomic<std::size_t> next_label{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto work = [&] {
-    std::vector<int> local(points.size(), -1);
-    std::vector<Vec3> p;
-    std::vector<std::array<int, 3>> tris;
-    try {
-      for (std::size_t i; (i = next_label++) < labels.size();) certify_one(i, local, p, tris);
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(error_mutex);
-      if (!error) error = std::current_exception();
-      next_label = labels.size();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::min<std::size_t>(std::max(1u, threads), labels.size()); ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  std::vector<Scratch> scratch(std::max(1u, threads));
+  surfacenets_detail::for_each_index(labels.size(), threads, [&](std::size_t i, unsigned w) {
+    Scratch& s = scratch[w];
+    if (s.local.empty()) s.local.assign(points.size(), -1);
+    certify_one(i, s.local, s.p, s.tris);
+  });
   return out;
 }
 
@@ -269,6 +262,27 @@ void check_labels(Cert& c) {
 }
 
 } // namespace
+
+void surfacenets_detail::for_each_index(std::size_t n, unsigned threads,
+                                        const std::function<void(std::size_t, unsigned)>& work) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto run = [&](unsigned w) {
+    try {
+      for (std::size_t i; (i = next++) < n;) work(i, w);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next = n;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::min<std::size_t>(std::max(1u, threads), n); ++t) pool.emplace_back(run, t);
+  run(0);
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
 
 std::string InterfaceCertificate::Interface::name() const { return pair_text({behind, front}); }
 
@@ -365,7 +379,7 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
   InterfaceCertificate c;
   c.state.fill(-1);
   c.place_tolerance = options.place_tolerance > 0 ? options.place_tolerance : default_place_tolerance(image);
-  c.interfaces = surfacenets_detail::certify_interfaces(points, triangles, pairs, image, k, c.place_tolerance);
+  c.interfaces = surfacenets_detail::certify_interfaces(points, triangles, pairs, image, k, c.place_tolerance, options.threads);
   set(c, Cert::kInterfaces, true);
   for (const auto& in : c.interfaces)
     if (!in.why.empty()) {

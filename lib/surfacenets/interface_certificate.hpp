@@ -86,7 +86,7 @@ struct InterfaceCertificateOptions {
   // its cell, which it checks). Empty: CGAL's box intersection over every
   // triangle, for any mesh.
   std::function<std::vector<std::array<std::size_t, 2>>()> crossings;
-  unsigned threads = 1;  // labels certified at once (the same certificate whatever the number)
+  unsigned threads = 1;  // labels and interfaces certified at once (the same certificate whatever the number)
   // Each label's nesting and voxel sides from the lattice when the mesh is
   // a surface-nets mesh of K(X) with every vertex strictly inside its cell
   // (interface_cells.cpp: why they are then known; the structure is checked

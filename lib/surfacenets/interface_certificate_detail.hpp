@@ -7,20 +7,28 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
 
 namespace imgmesh::surfacenets_detail {
 
+// work(i, w) for every i in [0, n), taken in turn by `threads` threads (w:
+// which one, 0 the caller); each result in i's slot makes the outcome the
+// same whatever their number. The first exception thrown is rethrown once
+// all have stopped.
+void for_each_index(std::size_t n, unsigned threads, const std::function<void(std::size_t, unsigned)>& work);
+
 // The interfaces check: every pair of K(X) and of the mesh, each with its
-// patches matched to K(X)'s and `why` set when it fails. tolerance > 0,
+// patches matched to K(X)'s and `why` set when it fails, the pairs taken
+// by `threads` threads (the same whatever their number). tolerance > 0,
 // world units.
 std::vector<InterfaceCertificate::Interface> certify_interfaces(const std::vector<Vec3>& points,
                                                                 const std::vector<std::array<int, 3>>& triangles,
                                                                 const std::vector<std::array<std::int32_t, 2>>& pairs,
                                                                 const Geometry& grid, const InterfaceComplex& k,
-                                                                double tolerance);
+                                                                double tolerance, unsigned threads);
 
 // Whether the mesh is a surface-nets mesh of K(X) with every vertex
 // strictly inside its voxel-corner cell (interface_cells.cpp: what that
