@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <utility>
 
 namespace imgmesh {
 
@@ -65,9 +66,10 @@ void check_combinatorics(C& c) {
           (orientable ? "" : " (not all orientable)"));
 }
 
-// The outward half of oriented: signed volumes against the nesting.
+// The outward half of oriented: signed volumes against the nesting (depth:
+// per component, how many others enclose it).
 void check_outward(C& c, const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                   const SurfaceGeometry& g) {
+                   std::vector<int> depth) {
   const MeshTopology& t = c.topology;
   const std::size_t n = t.components.size();
   c.volume.assign(n, 0.0);
@@ -84,7 +86,7 @@ void check_outward(C& c, const std::vector<Vec3>& points, const std::vector<std:
     c.volume[std::size_t(k)] += (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
                                  a[2] * (b[0] * d[1] - b[1] * d[0])) / 6;
   }
-  c.depth = n > 1 ? g.nesting_depths(t.component_of) : std::vector<int>(n, 0);
+  c.depth = std::move(depth);
   std::string why;
   for (std::size_t k = 0; k < n && why.empty(); ++k) {
     const bool outer = c.depth[k] % 2 == 0;
@@ -217,12 +219,19 @@ SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::v
   c.correspondence = match_components(c.topology, points, grid, boundary, bt, tol);
   const bool geometry = c.state[C::kClosed] == 1 && c.state[C::kManifold] == 1 && c.state[C::kOriented] == 1;
   if (geometry) {
-    std::vector<int> component(triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t) component[t] = c.topology.component_of[std::size_t(triangles[t][0])];
-    const SurfaceGeometry g(points, triangles, component, c.topology.components.size());
-    check_outward(c, points, triangles, g);
+    const std::size_t n = c.topology.components.size();
+    std::vector<int> depth = n > 1 && options.nesting ? options.nesting(c.topology) : std::vector<int>();
+    // CGAL's surface only where rays or the crossings need it.
+    std::unique_ptr<SurfaceGeometry> g;
+    if (options.intersections || (n > 1 && depth.size() != n)) {
+      std::vector<int> component(triangles.size());
+      for (std::size_t t = 0; t < triangles.size(); ++t) component[t] = c.topology.component_of[std::size_t(triangles[t][0])];
+      g = std::make_unique<SurfaceGeometry>(points, triangles, component, n);
+    }
+    if (depth.size() != n) depth = n > 1 ? g->nesting_depths(c.topology.component_of) : std::vector<int>(n, 0);
+    check_outward(c, points, triangles, std::move(depth));
     if (options.intersections)
-      check_intersections(c, triangles, g, options.intersections_cap);
+      check_intersections(c, triangles, *g, options.intersections_cap);
     else
       set(c, C::kIntersections, true);
     check_nesting(c);

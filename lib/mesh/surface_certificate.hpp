@@ -34,6 +34,7 @@
 #include "util/json.hpp"
 
 #include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,11 @@ struct CertificateOptions {
   // these (the multi-label certificate tests the whole mesh once); the
   // check then holds here and the caller's test decides.
   bool intersections = true;
+  // Per component of the surface (mesh_topology's), how many of the others
+  // enclose it, from a caller that knows it exactly (the multi-label
+  // certificate on a surface-nets mesh, whose vertices stay in their
+  // cells); empty, or an empty answer: ray tests (SurfaceGeometry).
+  std::function<std::vector<int>(const MeshTopology&)> nesting;
 };
 
 // The default place tolerance of a grid: one voxel diagonal.

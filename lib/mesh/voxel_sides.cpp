@@ -20,31 +20,46 @@ VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::a
                      [&img](std::size_t i, std::size_t j, std::size_t k) { return img(i, j, k) != 0; });
 }
 
-VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                       const std::vector<int>& component, std::size_t components, const Geometry& grid,
-                       const Foreground& foreground) {
-  const SurfaceGeometry g(points, triangles, component, components);
+namespace {
+// visit(i, j, k, in) for every voxel with a face on bdCA(X): a
+// face-neighbour (or the outside, for foreground) on the other side.
+template <class Visit> void for_each_centre_next_to_boundary(const Geometry& grid, const Foreground& foreground, Visit visit) {
   const auto fg = [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
     return grid.inside(x, y, z) && foreground(std::size_t(x), std::size_t(y), std::size_t(z));
   };
-  VoxelSides r;
   for (std::size_t k = 0; k < grid.size[2]; ++k)
     for (std::size_t j = 0; j < grid.size[1]; ++j)
       for (std::size_t i = 0; i < grid.size[0]; ++i) {
         const std::ptrdiff_t x = std::ptrdiff_t(i), y = std::ptrdiff_t(j), z = std::ptrdiff_t(k);
         const bool in = foreground(i, j, k);
-        // Next to bdCA(X): a face-neighbour (or the outside, for foreground) on the other side.
         bool next = false;
         for (int a = 0; a < 3 && !next; ++a)
           for (int s : {-1, 1})
             next = next || fg(x + (a == 0) * s, y + (a == 1) * s, z + (a == 2) * s) != in;
-        if (!next) continue;
-        ++r.checked;
-        const int side = g.side(grid.world(double(i), double(j), double(k)));
-        if (side == 0) ++r.on_surface;
-        else if (in && side > 0) ++r.foreground_outside;
-        else if (!in && side < 0) ++r.background_inside;
+        if (next) visit(i, j, k, in);
       }
+}
+} // namespace
+
+std::size_t centres_next_to_boundary(const BinaryImage& img) {
+  std::size_t n = 0;
+  for_each_centre_next_to_boundary(img, [&img](std::size_t i, std::size_t j, std::size_t k) { return img(i, j, k) != 0; },
+                                   [&n](std::size_t, std::size_t, std::size_t, bool) { ++n; });
+  return n;
+}
+
+VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                       const std::vector<int>& component, std::size_t components, const Geometry& grid,
+                       const Foreground& foreground) {
+  const SurfaceGeometry g(points, triangles, component, components);
+  VoxelSides r;
+  for_each_centre_next_to_boundary(grid, foreground, [&](std::size_t i, std::size_t j, std::size_t k, bool in) {
+    ++r.checked;
+    const int side = g.side(grid.world(double(i), double(j), double(k)));
+    if (side == 0) ++r.on_surface;
+    else if (in && side > 0) ++r.foreground_outside;
+    else if (!in && side < 0) ++r.background_inside;
+  });
   return r;
 }
 

@@ -30,6 +30,9 @@ struct VoxelSides {
 // per triangle, its component (0 .. components - 1).
 VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                        const std::vector<int>& component, std::size_t components, const BinaryImage& img);
+// The voxel centres voxel_sides checks on img (those next to bdCA(X)), how
+// many: for a caller that knows they are all on their side.
+std::size_t centres_next_to_boundary(const BinaryImage& img);
 // The same on a grid whose foreground is given per voxel (in the grid;
 // beyond it, background): the mesher's, from the signs of f's samples.
 using Foreground = std::function<bool(std::size_t, std::size_t, std::size_t)>;

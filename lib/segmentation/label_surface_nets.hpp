@@ -36,7 +36,7 @@ struct LabelSurfaceNetsOptions {
   LabelNames names;               // the labels' names where the image gives them
   int smooth_rounds = 5;          // >= 0
   bool separate = false;
-  unsigned threads = 1;           // for the crossing searches (the same mesh whatever their number)
+  unsigned threads = 1;           // for the crossing searches and the certificate (the same result whatever their number)
   std::function<void(const std::string&)> progress;
 };
 

@@ -13,7 +13,12 @@
 // lo_f - 1 <= hi_g on every axis, hence lo_g in [lo_f - 2, hi_f + 1], the
 // rows (y, z) and the x range searched below. Boxes that do not meet are a
 // whole voxel apart (integer bounds), far beyond the rounding of world
-// coordinates. Candidates are then filtered by their points' boxes, and
+// coordinates. When every vertex lies strictly inside its cell (smoothing's
+// margin, the rest positions), its quad's triangles lie inside the open box
+// (lo - 1, hi), and two open boxes with integer bounds meet only when
+// lo_g <= hi_f and lo_f <= hi_g: the faces share a corner, lo_g in
+// [lo_f - 1, hi_f], a search a quarter the size (reach 0 below, 1 for
+// closed cells). Candidates are then filtered by their points' boxes, and
 // the pairs left go to lib/mesh's exact test (triangles_cross).
 #include "mesh/embedding.hpp"
 #include "surfacenets/surface_nets_detail.hpp"
@@ -65,14 +70,23 @@ std::array<std::size_t, 2> ascending(std::size_t a, std::size_t b) { return {std
 
 } // namespace
 
-CrossingSearch::CrossingSearch(const InterfaceMesh& m, unsigned threads) : m_(m), threads_(std::max(1u, threads)) {
-  for (std::size_t v = 0; v < m.points.size(); ++v) {
-    const Vec3 p = m.grid.continuous_index(m.points[v]);
-    const auto c = m.corner(v);
-    for (std::size_t a = 0; a < 3; ++a)
-      if (!(p[a] >= double(c[a]) - 1 - kCellSlack && p[a] <= double(c[a]) + kCellSlack))
-        throw Error("crossing search: vertex " + std::to_string(v) + " lies outside its voxel-corner cell");
+// 1 when vertex v lies in its closed cell only (within the rounding), 0
+// when strictly inside it; throws when outside.
+int CrossingSearch::reach_of(std::size_t v) const {
+  const Vec3 p = m_.grid.continuous_index(m_.points[v]);
+  const auto c = m_.corner(v);
+  int reach = 0;
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double lo = double(c[a]) - 1, hi = double(c[a]);
+    if (!(p[a] >= lo - kCellSlack && p[a] <= hi + kCellSlack))
+      throw Error("crossing search: vertex " + std::to_string(v) + " lies outside its voxel-corner cell");
+    if (!(p[a] > lo + kCellSlack && p[a] < hi - kCellSlack)) reach = 1;
   }
+  return reach;
+}
+
+CrossingSearch::CrossingSearch(const InterfaceMesh& m, unsigned threads) : m_(m), threads_(std::max(1u, threads)) {
+  for (std::size_t v = 0; v < m.points.size(); ++v) reach_ = std::max(reach_, reach_of(v));
   const std::size_t n = m.quads.size(), rows = m.lattice[1] * m.lattice[2];
   if (n > std::numeric_limits<std::uint32_t>::max()) throw Error("crossing search: more than 2^32 quads");
   lo_.resize(n);
@@ -110,6 +124,8 @@ CrossingSearch::CrossingSearch(const InterfaceMesh& m, unsigned threads) : m_(m)
 }
 
 void CrossingSearch::update(std::size_t f) {
+  if (reach_ == 0)
+    for (int v : m_.quads[f]) reach_ = std::max(reach_, reach_of(std::size_t(v)));
   for (std::size_t a = 0; a < 3; ++a) {
     double lo = m_.points[std::size_t(m_.quads[f][0])][a], hi = lo;
     for (std::size_t i = 1; i < 4; ++i) {
@@ -126,16 +142,16 @@ void CrossingSearch::update(std::size_t f) {
 // those of f's row (y, z) and after (some before f, in its row).
 template <class Visit> void CrossingSearch::for_each_neighbour(std::size_t f, bool forward, Visit&& visit) const {
   const auto &lo = lo_[f], &hi = hi_[f];
-  const std::int32_t ny = std::int32_t(m_.lattice[1]), nz = std::int32_t(m_.lattice[2]);
-  for (std::int32_t z = std::max(0, forward ? lo[2] : lo[2] - 2); z <= std::min(nz - 1, hi[2] + 1); ++z)
-    for (std::int32_t y = std::max(0, forward && z == lo[2] ? lo[1] : lo[1] - 2); y <= std::min(ny - 1, hi[1] + 1); ++y) {
+  const std::int32_t ny = std::int32_t(m_.lattice[1]), nz = std::int32_t(m_.lattice[2]), r = reach_;
+  for (std::int32_t z = std::max(0, forward ? lo[2] : lo[2] - 1 - r); z <= std::min(nz - 1, hi[2] + r); ++z)
+    for (std::int32_t y = std::max(0, forward && z == lo[2] ? lo[1] : lo[1] - 1 - r); y <= std::min(ny - 1, hi[1] + r); ++y) {
       const std::size_t row = std::size_t(y) + std::size_t(ny) * std::size_t(z);
       const auto e = order_.begin() + std::ptrdiff_t(row_begin_[row + 1]);
-      auto it = std::lower_bound(order_.begin() + std::ptrdiff_t(row_begin_[row]), e, lo[0] - 2,
+      auto it = std::lower_bound(order_.begin() + std::ptrdiff_t(row_begin_[row]), e, lo[0] - 1 - r,
                                  [this](std::uint32_t g, std::int32_t x) { return lo_[g][0] < x; });
-      for (; it != e && lo_[*it][0] <= hi[0] + 1; ++it) {
+      for (; it != e && lo_[*it][0] <= hi[0] + r; ++it) {
         const auto& h = hi_[*it];
-        if (h[0] >= lo[0] - 1 && h[1] >= lo[1] - 1 && h[2] >= lo[2] - 1) visit(std::size_t(*it));
+        if (h[0] >= lo[0] - r && h[1] >= lo[1] - r && h[2] >= lo[2] - r) visit(std::size_t(*it));
       }
     }
 }

@@ -73,15 +73,17 @@ std::vector<LabelBox> label_boxes(const LabelImage& img, const std::vector<std::
   return box;
 }
 
+// The first voxel of a label's crop: its box grown by a voxel within the grid.
+std::array<std::size_t, 3> crop_lo(const LabelBox& box) {
+  return {box.lo[0] ? box.lo[0] - 1 : 0, box.lo[1] ? box.lo[1] - 1 : 0, box.lo[2] ? box.lo[2] - 1 : 0};
+}
+
 // {X = label} (label 0: X != 0) on its box grown by a voxel within the
 // grid: every voxel with a face on its bdCA, and its neighbours across.
 BinaryImage crop_indicator(const LabelImage& img, std::int32_t label, const LabelBox& box) {
   Geometry g = img.geometry();
-  std::array<std::size_t, 3> lo{};
-  for (std::size_t a = 0; a < 3; ++a) {
-    lo[a] = box.lo[a] ? box.lo[a] - 1 : 0;
-    g.size[a] = std::min(box.hi[a] + 1, img.size[a] - 1) - lo[a] + 1;
-  }
+  const std::array<std::size_t, 3> lo = crop_lo(box);
+  for (std::size_t a = 0; a < 3; ++a) g.size[a] = std::min(box.hi[a] + 1, img.size[a] - 1) - lo[a] + 1;
   g.origin = img.world(double(lo[0]), double(lo[1]), double(lo[2]));
   BinaryImage b(g, 0);
   for (std::size_t z = 0; z < g.size[2]; ++z)
@@ -127,30 +129,50 @@ double area_of(const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>
 }
 
 // One label: its surface certified against the crop of its indicator, its
-// figures, its voxel centres' sides.
+// figures, its voxel centres' sides. On a mesh where `cells` holds, the
+// nesting and the sides from the lattice (interface_cells.cpp), else by rays.
 void certify_label(Cert::Label& l, const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& tris,
-                   const LabelImage& image, const LabelBox& box, const CertificateOptions& options) {
+                   const LabelImage& image, const LabelBox& box, const CertificateOptions& options,
+                   const surfacenets_detail::NetCells& cells, const InterfaceComplex& k) {
   l.triangles = tris.size();
   l.area = area_of(p, tris);
   l.voxels = box.voxels;
   l.voxel_volume = double(box.voxels) * image.spacing[0] * image.spacing[1] * image.spacing[2];
   const BinaryImage crop = crop_indicator(image, l.label, box);
   const VoxelBoundary vb = voxel_boundary(crop);
-  l.surface = certify_surface(p, tris, crop, vb, mesh_topology(vb), options);
+  const MeshTopology bt = mesh_topology(vb);
+  CertificateOptions o = options;
+  if (cells.holds)
+    o.nesting = [&](const MeshTopology& t) {
+      return surfacenets_detail::net_depths(t, p, image, k.lattice, cells.slack, crop_lo(box), vb, bt);
+    };
+  l.surface = certify_surface(p, tris, crop, vb, bt, o);
   for (double v : l.surface.volume) l.volume += v;
   if (l.surface.state[SurfaceCertificate::kIntersections] < 0) return;  // not closed, manifold, oriented
+  l.sides_checked = true;
+  if (cells.holds) {
+    l.sides.checked = centres_next_to_boundary(crop);  // every one on its side
+    return;
+  }
   std::vector<int> component(tris.size());
   for (std::size_t t = 0; t < tris.size(); ++t) component[t] = l.surface.topology.component_of[std::size_t(tris[t][0])];
   l.sides = voxel_sides(p, tris, component, l.surface.topology.components.size(), crop);
-  l.sides_checked = true;
 }
+
+// A thread's scratch for one label after another.
+struct Scratch {
+  std::vector<int> local;  // per mesh vertex its label-surface id, -1 between labels
+  std::vector<Vec3> p;
+  std::vector<std::array<int, 3>> tris;
+};
 
 // Every label of K(X) with faces and every label of the mesh, ascending.
 // Labels are independent: `threads` threads take them in turn, each result
 // in its label's slot, so the certificate is the same whatever their number.
 std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                                         const std::vector<std::array<std::int32_t, 2>>& pairs, const LabelImage& image,
-                                        const InterfaceComplex& k, const CertificateOptions& options, unsigned threads) {
+                                        const InterfaceComplex& k, const CertificateOptions& options, unsigned threads,
+                                        const surfacenets_detail::NetCells& cells) {
   std::vector<std::int32_t> in_image, labels;
   for (const auto& lb : k.labels) in_image.push_back(lb.label);  // ascending, 0 among them
   for (const auto& lb : k.labels)
@@ -185,28 +207,14 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
       l.area = area_of(p, tris);
       return;
     }
-    certify_label(l, p, tris, image, boxes[std::size_t(b - in_image.begin())], options);
+    certify_label(l, p, tris, image, boxes[std::size_t(b - in_image.begin())], options, cells, k);
   };
-  std::atomic<std::size_t> next_label{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto work = [&] {
-    std::vector<int> local(points.size(), -1);
-    std::vector<Vec3> p;
-    std::vector<std::array<int, 3>> tris;
-    try {
-      for (std::size_t i; (i = next_label++) < labels.size();) certify_one(i, local, p, tris);
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(error_mutex);
-      if (!error) error = std::current_exception();
-      next_label = labels.size();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::min<std::size_t>(std::max(1u, threads), labels.size()); ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  std::vector<Scratch> scratch(std::max(1u, threads));
+  surfacenets_detail::for_each_index(labels.size(), threads, [&](std::size_t i, unsigned w) {
+    Scratch& s = scratch[w];
+    if (s.local.empty()) s.local.assign(points.size(), -1);
+    certify_one(i, s.local, s.p, s.tris);
+  });
   return out;
 }
 
@@ -254,6 +262,27 @@ void check_labels(Cert& c) {
 }
 
 } // namespace
+
+void surfacenets_detail::for_each_index(std::size_t n, unsigned threads,
+                                        const std::function<void(std::size_t, unsigned)>& work) {
+  std::atomic<std::size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto run = [&](unsigned w) {
+    try {
+      for (std::size_t i; (i = next++) < n;) work(i, w);
+    } catch (...) {
+      const std::lock_guard<std::mutex> lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next = n;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::min<std::size_t>(std::max(1u, threads), n); ++t) pool.emplace_back(run, t);
+  run(0);
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
 
 std::string InterfaceCertificate::Interface::name() const { return pair_text({behind, front}); }
 
@@ -350,7 +379,7 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
   InterfaceCertificate c;
   c.state.fill(-1);
   c.place_tolerance = options.place_tolerance > 0 ? options.place_tolerance : default_place_tolerance(image);
-  c.interfaces = surfacenets_detail::certify_interfaces(points, triangles, pairs, image, k, c.place_tolerance);
+  c.interfaces = surfacenets_detail::certify_interfaces(points, triangles, pairs, image, k, c.place_tolerance, options.threads);
   set(c, Cert::kInterfaces, true);
   for (const auto& in : c.interfaces)
     if (!in.why.empty()) {
@@ -362,7 +391,10 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
   co.intersections_cap = options.intersections_cap;
   co.intersections = false;  // each label's triangles are among the whole mesh's, tested here
   check_intersections(c, points, triangles, pairs, options);
-  c.labels = certify_labels(points, triangles, pairs, image, k, co, options.threads);
+  const surfacenets_detail::NetCells cells =
+      options.lattice ? surfacenets_detail::net_cells(points, triangles, pairs, image, k) : surfacenets_detail::NetCells();
+  c.on_lattice = cells.holds;
+  c.labels = certify_labels(points, triangles, pairs, image, k, co, options.threads, cells);
   check_labels(c);
   return c;
 }

@@ -29,6 +29,12 @@
 // Every check is run on what it can run on; a label's voxel sides need its
 // surface closed, manifold and oriented.
 //
+// The lattice shortcut: on a surface-nets mesh of K(X) with every vertex
+// strictly inside its voxel-corner cell (checked exactly on the mesh given:
+// interface_cells.cpp), the voxel sides and each label's nesting (for
+// "oriented") are what the ray tests would find, and are taken from the
+// lattice; any other mesh gets the rays. The verdicts are the same.
+//
 // Why this order: the interfaces are combinatorial and name the patch that
 // is wrong (a duplicated, dropped or split patch fails there, where every
 // label around it would only say "not closed"); the whole-mesh crossings
@@ -56,7 +62,8 @@
 // are looked up in K(X)'s sorted keys); per label, its own triangles
 // against a crop of the image to its voxels' box and one voxel around
 // (never a full grid a label), so a map of many small labels costs what its
-// boxes hold; the whole-mesh test is CGAL's box intersection.
+// boxes hold; the whole-mesh test is CGAL's box intersection (or the
+// caller's local search); labels and interfaces run on `threads` threads.
 #pragma once
 #include "image/grid.hpp"
 #include "mesh/embedding.hpp"
@@ -86,7 +93,12 @@ struct InterfaceCertificateOptions {
   // its cell, which it checks). Empty: CGAL's box intersection over every
   // triangle, for any mesh.
   std::function<std::vector<std::array<std::size_t, 2>>()> crossings;
-  unsigned threads = 1;  // labels certified at once (the same certificate whatever the number)
+  unsigned threads = 1;  // labels and interfaces certified at once (the same certificate whatever the number)
+  // Each label's nesting and voxel sides from the lattice when the mesh is
+  // a surface-nets mesh of K(X) with every vertex strictly inside its cell
+  // (interface_cells.cpp: why they are then known; the structure is checked
+  // here); false: by rays always (the reference the tests compare with).
+  bool lattice = true;
 };
 
 struct InterfaceCertificate {
@@ -135,6 +147,7 @@ struct InterfaceCertificate {
   std::array<int, kChecks> state{};   // 1 held, 0 failed, -1 not run
   std::array<std::string, kChecks> why;  // per failed check, naming the pair or label
   double place_tolerance = 0;
+  bool on_lattice = false;  // the nesting and voxel sides came from the lattice (InterfaceCertificateOptions::lattice)
 
   int first_failed() const;  // kChecks when every check holds
   bool ok() const { return first_failed() == kChecks; }

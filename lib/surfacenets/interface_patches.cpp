@@ -31,7 +31,14 @@ Pair pair_key(const Pair& p) { return {std::max(p[0], p[1]), std::min(p[0], p[1]
 
 class FaceSearch {
 public:
-  FaceSearch(const Geometry& grid, const InterfaceComplex& k) : grid_(grid), k_(k) {}
+  FaceSearch(const Geometry& grid, const InterfaceComplex& k)
+      : grid_(grid), k_(k), row_begin_(k.lattice[1] * k.lattice[2] + 1, k.faces.size()) {
+    // K(X)'s faces are sorted by lowest corner, z slowest: each lattice row
+    // (y, z) a run of them, found without a search.
+    for (std::size_t f = k.faces.size(); f-- > 0;)
+      row_begin_[InterfaceComplex::face_corner(k.faces[f]) / k.lattice[0]] = f;
+    for (std::size_t r = row_begin_.size() - 1; r-- > 0;) row_begin_[r] = std::min(row_begin_[r], row_begin_[r + 1]);
+  }
 
   // The K(X) patch of the face of `pair` nearest to p (world) within r
   // (world), -1 when none; an exact tie goes to the lower face.
@@ -53,8 +60,10 @@ public:
     for (std::size_t z = lo[2]; z <= hi[2]; ++z)
       for (std::size_t y = lo[1]; y <= hi[1]; ++y) {
         const std::uint64_t row = nx * (y + ny * z), end = InterfaceComplex::face_key(row + hi[0] + 1, 0, false);
-        auto it = std::lower_bound(k_.faces.begin(), k_.faces.end(), InterfaceComplex::face_key(row + lo[0], 0, false));
-        for (; it != k_.faces.end() && *it < end; ++it) {
+        const auto row_end = k_.faces.begin() + std::ptrdiff_t(row_begin_[y + ny * z + 1]);
+        auto it = std::lower_bound(k_.faces.begin() + std::ptrdiff_t(row_begin_[y + ny * z]), row_end,
+                                   InterfaceComplex::face_key(row + lo[0], 0, false));
+        for (; it != row_end && *it < end; ++it) {
           const std::size_t f = std::size_t(it - k_.faces.begin());
           const auto& patch = k_.patches[k_.face_patch[f]];
           if (patch.behind != pair[0] || patch.front != pair[1]) continue;
@@ -75,6 +84,7 @@ public:
 private:
   const Geometry& grid_;
   const InterfaceComplex& k_;
+  std::vector<std::size_t> row_begin_;  // per lattice row y + ny z: its first face (faces.size() past the last)
 };
 
 // The triangles ts (ascending ids) joined along edges: per triangle of ts
@@ -219,35 +229,49 @@ std::vector<InterfaceCertificate::Interface> certify_interfaces(const std::vecto
                                                                 const std::vector<std::array<int, 3>>& triangles,
                                                                 const std::vector<std::array<std::int32_t, 2>>& pairs,
                                                                 const Geometry& grid, const InterfaceComplex& k,
-                                                                double tolerance) {
+                                                                double tolerance, unsigned threads) {
   // (pair, id) of every triangle and of every K(X) patch, each by pair.
   std::vector<std::pair<Pair, std::size_t>> mesh(triangles.size()), complex(k.patches.size());
   for (std::size_t t = 0; t < triangles.size(); ++t) mesh[t] = {pair_key(pairs[t]), t};
   for (std::size_t p = 0; p < k.patches.size(); ++p) complex[p] = {Pair{k.patches[p].behind, k.patches[p].front}, p};
   std::sort(mesh.begin(), mesh.end());
   std::sort(complex.begin(), complex.end());
-  const FaceSearch search(grid, k);
-  const double small = std::min(tolerance, 0.75 * std::min({grid.spacing[0], grid.spacing[1], grid.spacing[2]}));
-  std::vector<int> local(points.size(), -1);
-  std::vector<Cert::Interface> out;
-  std::vector<std::size_t> ts;
+  // Per pair, its runs in both: mesh[i0, i1), complex[j0, j1).
+  struct Run {
+    Pair pair;
+    std::size_t i0, i1, j0, j1;
+  };
+  std::vector<Run> runs;
   for (std::size_t i = 0, j = 0; i < mesh.size() || j < complex.size();) {
     const Pair p = i == mesh.size() ? complex[j].first
                    : j == complex.size() ? mesh[i].first
                                          : std::min(mesh[i].first, complex[j].first);
-    Cert::Interface in;
-    in.behind = p[0];
-    in.front = p[1];
-    ts.clear();
-    for (; i < mesh.size() && mesh[i].first == p; ++i) {
+    Run r{p, i, i, j, j};
+    while (i < mesh.size() && mesh[i].first == p) ++i;
+    while (j < complex.size() && complex[j].first == p) ++j;
+    r.i1 = i;
+    r.j1 = j;
+    runs.push_back(r);
+  }
+  const FaceSearch search(grid, k);
+  const double small = std::min(tolerance, 0.75 * std::min({grid.spacing[0], grid.spacing[1], grid.spacing[2]}));
+  std::vector<Cert::Interface> out(runs.size());
+  std::vector<std::vector<int>> local(std::max(1u, threads));  // per thread, -1 a vertex when idle
+  for_each_index(runs.size(), threads, [&](std::size_t r, unsigned w) {
+    const Run& run = runs[r];
+    Cert::Interface& in = out[r];
+    in.behind = run.pair[0];
+    in.front = run.pair[1];
+    std::vector<std::size_t> ts;
+    for (std::size_t i = run.i0; i < run.i1; ++i) {
       ts.push_back(mesh[i].second);
       in.reversed += pairs[mesh[i].second][0] < pairs[mesh[i].second][1];
     }
-    for (; j < complex.size() && complex[j].first == p; ++j) in.complex_patches.push_back(complex[j].second);
+    for (std::size_t j = run.j0; j < run.j1; ++j) in.complex_patches.push_back(complex[j].second);
     in.triangles = ts.size();
-    certify_interface(in, points, triangles, ts, search, k, small, tolerance, local);
-    out.push_back(std::move(in));
-  }
+    if (local[w].empty()) local[w].assign(points.size(), -1);
+    certify_interface(in, points, triangles, ts, search, k, small, tolerance, local[w]);
+  });
   return out;
 }
 

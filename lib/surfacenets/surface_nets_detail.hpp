@@ -13,6 +13,10 @@ namespace imgmesh::surfacenets_detail {
 // Quad f split along its better diagonal (split_quads, for one quad).
 void split_quad(InterfaceMesh& mesh, std::size_t f);
 
+// Whether the grid's direction matrix reflects (a negative determinant):
+// index space's counter-clockwise is then world space's clockwise.
+bool reflects(const Geometry& grid);
+
 // The crossing pairs of an InterfaceMesh's triangles, each quad tested
 // against the quads of its lattice neighbourhood only (crossings.cpp says
 // why no crossing is missed). Holds a reference to the mesh: after moving a
@@ -35,9 +39,14 @@ private:
   std::vector<std::array<std::size_t, 2>> search(const std::vector<std::size_t>& quads, bool all) const;
   void search_quad(std::size_t f, const std::vector<std::uint8_t>& listed, bool all,
                    std::vector<std::array<std::size_t, 2>>& out) const;
+  int reach_of(std::size_t vertex) const;
 
   const InterfaceMesh& m_;
   unsigned threads_;
+  // How far beyond a quad's corner box its neighbours' start: 0 while every
+  // vertex lies strictly inside its cell, 1 once one lies on a cell's side
+  // (crossings.cpp).
+  int reach_ = 0;
   std::vector<std::array<std::int32_t, 3>> lo_, hi_;  // per quad: its corners' lattice box
   std::vector<std::uint32_t> order_;                  // quads by lowest corner (z, y, x)
   std::vector<std::uint32_t> position_;               // per quad: its entry in order_

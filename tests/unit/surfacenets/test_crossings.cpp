@@ -27,11 +27,11 @@ namespace {
 
 using Pairs = std::vector<std::array<std::size_t, 2>>;
 
-// Every vertex at a random point of its closed cell, on the quarter-voxel
-// grid, so that vertices on cell faces, touching and coplanar triangles
-// and degenerate ones are common.
-void jitter(InterfaceMesh& m, std::mt19937_64& rng) {
-  std::uniform_int_distribution<int> quarter(0, 4);
+// Every vertex at a random point of its closed cell (strict: of its open
+// cell), on the quarter-voxel grid, so that vertices on cell faces,
+// touching and coplanar triangles and degenerate ones are common.
+void jitter(InterfaceMesh& m, std::mt19937_64& rng, bool strict = false) {
+  std::uniform_int_distribution<int> quarter(strict ? 1 : 0, strict ? 3 : 4);
   for (std::size_t v = 0; v < m.points.size(); ++v) {
     const auto c = m.corner(v);
     Vec3 p;
@@ -114,7 +114,10 @@ TEST_CASE("crossings: the local search finds every pair the global one finds", "
     smooth_interface_mesh(m, o);
     Pairs local = crossing_pairs(m);
     CHECK(local == soup_crossing_pairs(m.points, m.triangles));
-    // Every vertex anywhere in its closed cell: a tangle.
+    // Every vertex strictly inside its cell (the search's smaller reach),
+    // then anywhere in its closed cell: tangles.
+    jitter(m, rng, true);
+    CHECK(crossing_pairs(m) == soup_crossing_pairs(m.points, m.triangles));
     jitter(m, rng);
     local = crossing_pairs(m);
     const Pairs global = soup_crossing_pairs(m.points, m.triangles);

@@ -1,12 +1,13 @@
 // The multi-label certificate (interface_certificate.hpp): it holds on the
 // surface-nets meshes of hand-built and random well-composed maps, before
 // and after smoothing, with each label's volume its voxels' before
-// smoothing; and each wrong mesh is refused, naming the check and the pair
+// smoothing, and is the same with its lattice shortcut as with rays; and each wrong mesh is refused, naming the check and the pair
 // or label that fails.
 #include "surfacenets/interface_certificate.hpp"
 
 #include "mesh/embedding.hpp"
 #include "surfacenets/label_maps.hpp"
+#include "surfacenets/soup.hpp"
 #include "surfacenets/surface_nets.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/well_composed_partition.hpp"
@@ -26,18 +27,6 @@ namespace {
 
 using Cert = InterfaceCertificate;
 
-// A mesh as any mesher hands it over: points, triangles, a pair each.
-struct Soup {
-  std::vector<Vec3> points;
-  std::vector<std::array<int, 3>> triangles;
-  std::vector<std::array<std::int32_t, 2>> pairs;
-};
-Soup soup_of(const InterfaceMesh& m) {
-  Soup s{m.points, m.triangles, {}};
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) s.pairs.push_back(m.triangle_labels(t));
-  return s;
-}
-
 Cert certify(const Soup& s, const LabelImage& img) { return certify_interface_mesh(s.points, s.triangles, s.pairs, img); }
 
 // Holds; the counts are K(X)'s; unsmoothed, every label encloses exactly
@@ -47,6 +36,14 @@ void check_holds(const Soup& s, const LabelImage& img, const InterfaceComplex& k
   INFO(c.summary());
   REQUIRE(c.failure() == "");
   CHECK(c.ok());
+  // The nesting and voxel sides from the lattice (interface_cells.cpp): the rays' certificate.
+  CHECK(c.on_lattice);
+  InterfaceCertificateOptions rays;
+  rays.lattice = false;
+  const Cert r = certify_interface_mesh(s.points, s.triangles, s.pairs, img, rays);
+  CHECK(r.to_json().dump() == c.to_json().dump());
+  REQUIRE(r.labels.size() == c.labels.size());
+  for (std::size_t i = 0; i < c.labels.size(); ++i) CHECK(r.labels[i].surface.depth == c.labels[i].surface.depth);
   std::set<std::array<std::int32_t, 2>> pairs;
   for (const auto& p : k.patches) pairs.insert({p.behind, p.front});
   std::size_t patches = 0;
