@@ -61,15 +61,17 @@ int run_fast(cli::Tool& tool, const std::string& in, const std::string& out, Lab
   res.seconds.push_back({"write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
   tool.stats["input"] = in;
   tool.stats["output"] = out;
-  for (const LabelNet& l : res.labels) {
+  for (const InterfaceCertificate::Label* l : res.meshed_labels()) {
+    const auto name = res.mesh.label_names.find(int(l->label));
+    const std::vector<long long> euler = l->surface.topology.sorted_euler();
     std::ostringstream msg;
-    msg << "label " << l.label << (l.name.empty() ? "" : " (" + l.name + ")") << ": " << l.triangles
-        << " triangles, " << l.euler.size() << " components, Euler characteristics";
-    for (std::size_t i = 0, j; i < l.euler.size(); i = j) {  // ascending: each value and how often
-      for (j = i; j < l.euler.size() && l.euler[j] == l.euler[i];) ++j;
-      msg << (i ? ", " : " ") << l.euler[i] << (j - i > 1 ? " (x" + std::to_string(j - i) + ")" : "");
+    msg << "label " << l->label << (name == res.mesh.label_names.end() ? "" : " (" + name->second + ")") << ": "
+        << l->triangles << " triangles, " << euler.size() << " components, Euler characteristics";
+    for (std::size_t i = 0, j; i < euler.size(); i = j) {  // ascending: each value and how often
+      for (j = i; j < euler.size() && euler[j] == euler[i];) ++j;
+      msg << (i ? ", " : " ") << euler[i] << (j - i > 1 ? " (x" + std::to_string(j - i) + ")" : "");
     }
-    msg << "; volume " << l.volume << " against " << l.voxel_volume << " of voxels";
+    msg << "; volume " << l->volume << " against " << l->voxel_volume << " of voxels";
     tool.debug(msg.str());
   }
   return tool.finish(res);

@@ -43,20 +43,6 @@ SurfaceMesh label_surface(const InterfaceMesh& m, std::int32_t label) {
   return s;
 }
 
-// The figures of one label from the interface certificate.
-LabelNet label_net(const InterfaceCertificate::Label& l) {
-  LabelNet n;
-  n.label = l.label;
-  n.voxels = l.voxels;
-  n.voxel_volume = l.voxel_volume;
-  n.triangles = l.triangles;
-  n.area = l.area;
-  n.volume = l.volume;
-  n.euler = l.surface.topology.sorted_euler();
-  if (!l.surface.ok()) n.failure = l.surface.failure();
-  return n;
-}
-
 // The output: every triangle once with its pair, or each label's surface alone.
 // pairs: per triangle, its (behind, front).
 SurfaceMesh output_mesh(InterfaceMesh& m, const std::vector<std::array<std::int32_t, 2>>& pairs,
@@ -130,13 +116,9 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   co.crossings = [&] { return crossing_pairs(m, std::max(1u, opt.threads)); };  // local: every vertex in its cell
   co.threads = std::max(1u, opt.threads);
   res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k, co);
-  for (const auto& l : res.certificate.labels) {
-    if (!std::binary_search(labels.begin(), labels.end(), (long long)l.label)) continue;  // 0
-    res.labels.push_back(label_net(l));
-    if (const auto it = opt.names.find(l.label); it != opt.names.end()) {
-      res.labels.back().name = it->second;
-      res.mesh.label_names[int(l.label)] = it->second;
-    }
+  for (long long l : labels) {
+    res.labels.push_back(std::int32_t(l));
+    if (const auto it = opt.names.find(std::int32_t(l)); it != opt.names.end()) res.mesh.label_names[int(l)] = it->second;
   }
   res.seconds.push_back({"certificate", since(t0)});
 
@@ -160,21 +142,22 @@ Json LabelSurfaceNetsResult::to_json() const {
   st["stage_seconds"] = times;
   bool all = true;
   Json per = Json::array();
-  for (const LabelNet& l : labels) {
+  for (const InterfaceCertificate::Label* l : meshed_labels()) {
     Json j = Json::object();
-    j["label"] = l.label;
-    if (!l.name.empty()) j["name"] = l.name;
-    j["voxels"] = l.voxels;
-    j["triangles"] = l.triangles;
-    j["area"] = l.area;
-    j["volume"] = l.volume;
-    j["voxel_volume"] = l.voxel_volume;
-    j["volume_ratio"] = l.voxel_volume > 0 ? l.volume / l.voxel_volume : 0.0;
-    j["components"] = l.euler.size();
-    j["euler"] = l.euler;
-    j["certified"] = l.failure.empty();
-    if (!l.failure.empty()) j["failure"] = l.failure;
-    all = all && l.failure.empty();
+    j["label"] = l->label;
+    if (const auto it = mesh.label_names.find(int(l->label)); it != mesh.label_names.end()) j["name"] = it->second;
+    j["voxels"] = l->voxels;
+    j["triangles"] = l->triangles;
+    j["area"] = l->area;
+    j["volume"] = l->volume;
+    j["voxel_volume"] = l->voxel_volume;
+    j["volume_ratio"] = l->voxel_volume > 0 ? l->volume / l->voxel_volume : 0.0;
+    const std::vector<long long> euler = l->surface.topology.sorted_euler();
+    j["components"] = euler.size();
+    j["euler"] = euler;
+    j["certified"] = l->surface.ok();
+    if (!l->surface.ok()) j["failure"] = l->surface.failure();
+    all = all && l->surface.ok();
     per.push_back(j);
   }
   st["all_certified"] = all && certificate.ok();
@@ -187,6 +170,13 @@ Json LabelSurfaceNetsResult::to_json() const {
   cert["intersecting_pairs"] = certificate.intersections.pairs - certificate.intersections.degenerate;
   st["certificate"] = cert;
   return st;
+}
+
+std::vector<const InterfaceCertificate::Label*> LabelSurfaceNetsResult::meshed_labels() const {
+  std::vector<const InterfaceCertificate::Label*> out;
+  for (const auto& l : certificate.labels)
+    if (std::binary_search(labels.begin(), labels.end(), l.label)) out.push_back(&l);
+  return out;
 }
 
 std::string LabelSurfaceNetsResult::failed_guarantee() const { return certificate.failure(); }

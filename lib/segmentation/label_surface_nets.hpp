@@ -40,20 +40,8 @@ struct LabelSurfaceNetsOptions {
   std::function<void(const std::string&)> progress;
 };
 
-struct LabelNet {
-  std::int32_t label = 0;
-  std::string name;
-  std::size_t voxels = 0;        // after the repair
-  std::size_t triangles = 0;     // of its closed surface
-  double area = 0;               // world units
-  double volume = 0;             // enclosed by its surface (oriented out of it)
-  double voxel_volume = 0;       // voxels times a voxel's volume
-  std::vector<long long> euler;  // per component of its surface, ascending
-  std::string failure;           // its surface's certificate's, empty when it holds
-};
-
 struct LabelSurfaceNetsResult {
-  std::vector<LabelNet> labels;  // ascending
+  std::vector<std::int32_t> labels;  // the labels meshed, ascending (their figures: meshed_labels())
   SurfaceMesh mesh;              // interfaces set (or labels, separate); label_names
   std::size_t changed = 0;       // voxels the repair relabelled
   std::array<std::size_t, 3> grid{0, 0, 0};  // the repaired grid (grown by a voxel where labels touch the side)
@@ -63,6 +51,10 @@ struct LabelSurfaceNetsResult {
   // Seconds of each stage, in order: repair, complex, mesh, smoothing, certificate.
   std::vector<std::pair<std::string, double>> seconds;
   InterfaceCertificate certificate;
+  // Per meshed label its figures and surface certificate (voxels after the
+  // repair, triangles, area, enclosed volume, voxel volume, components),
+  // as the interface certificate found them; label 0 left out.
+  std::vector<const InterfaceCertificate::Label*> meshed_labels() const;
   Json to_json() const;
   std::string failed_guarantee() const;  // the certificate's first failure, naming its label or pair
 };
