@@ -14,7 +14,7 @@ int main(int argc, char** argv) {
   imgmesh::cli::Tool tool("meshinfo", "Report the topology and quality of a mesh (surface or planar)");
   std::string in, image;
   bool json = false;
-  tool.app.add_option("MESH", in, "mesh: .off .ply .obj .stl .vtp .vtk (surface), .ele/.node, .off (planar) or .msh .mesh .vtu (tetrahedra); - = OFF on stdin")
+  tool.app.add_option("MESH", in, "mesh: .off .ply .obj .stl .vtp .vtk (surface), .ele/.node, .off (planar), .mesh .vtu (tetrahedra) or .msh (tetrahedra, else its triangles); - = OFF on stdin")
       ->required();
   tool.data_output(imgmesh::cli::Tool::kStdout, imgmesh::cli::Stream::Text, [&] { return !json; });  // --json: one object
   tool.app.add_flag("--json", json, "print one JSON object (keys 'components' and 'euler' first) instead of text");
@@ -52,11 +52,18 @@ int main(int argc, char** argv) {
 
   return tool.run(argc, argv, [&] {
     const std::string ext = imgmesh::extension_of(in);
-    const bool tets = ext == ".msh" || ext == ".mesh" || ext == ".vtu";
     std::optional<imgmesh::TetMesh> tm;
     std::optional<imgmesh::PolyMesh> pm;
-    if (tets) tm = imgmesh::read_tet_mesh(in);
-    else pm = imgmesh::read_poly_mesh(in);
+    if (ext == ".msh") {  // tetrahedra, or a surface (seg2mesh's, with its label pairs)
+      imgmesh::MshMesh m = imgmesh::read_msh_mesh(in);
+      if (m.tets) tm = std::move(*m.tets);
+      else pm = imgmesh::poly_mesh(*m.surface, "msh");
+    } else if (ext == ".mesh" || ext == ".vtu") {
+      tm = imgmesh::read_tet_mesh(in);
+    } else {
+      pm = imgmesh::read_poly_mesh(in);
+    }
+    const bool tets = tm.has_value();
     sel.has_threshold = thr->count() > 0;
     if (image.empty() && (sel.has_threshold || !sel.labels.empty()))
       throw imgmesh::UsageError("--label and --threshold select the foreground of --image: give --image");

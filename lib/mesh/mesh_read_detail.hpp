@@ -31,5 +31,7 @@ SurfaceMesh read_vtk_legacy(const std::string& path);
 // integers), else labels (the group's tag) unless the groups are
 // components ("component C").
 SurfaceMesh read_msh_surface(const std::string& path);
+// The same from a file read (read_msh_file); path names it in errors.
+SurfaceMesh msh_surface(MshFile file, const std::string& path);
 
 } // namespace imgmesh::mesh_detail

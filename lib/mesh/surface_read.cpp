@@ -298,8 +298,9 @@ SurfaceMesh read_vtk_legacy(const std::string& path) {
 // A .msh's triangles; their groups as label pairs (its $LabelPairs, else
 // names "a|b" of two integers), else as labels (tag = label, as write_msh
 // writes them) unless the groups are components.
-SurfaceMesh read_msh_surface(const std::string& path) {
-  mesh_detail::MshFile f = mesh_detail::read_msh_file(path);
+SurfaceMesh read_msh_surface(const std::string& path) { return msh_surface(read_msh_file(path), path); }
+
+SurfaceMesh msh_surface(MshFile f, const std::string& path) {
   SurfaceMesh m;
   m.points = std::move(f.mesh.points);
   m.triangles = std::move(f.mesh.triangles);

@@ -7,8 +7,10 @@
 // sets REGION_R with the boundary as an element-face surface BOUNDARY_R.
 // Writes are atomic. Plain C++.
 #pragma once
+#include "mesh/surface_io.hpp"
 #include "mesh/tet_mesh.hpp"
 
+#include <optional>
 #include <string>
 
 namespace imgmesh {
@@ -30,5 +32,15 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
 // data, zlib-compressed or not, as VTK and meshio write): tetrahedra and triangles
 // with their regions. Throws Error naming the file on anything malformed.
 TetMesh read_tet_mesh(const std::string& path);
+
+// A .msh of either kind, read once (meshinfo takes both): `tets` when it
+// holds tetrahedra (as read_tet_mesh reads them), else `surface`, its
+// triangles as read_surface reads them (label pairs or labels from its
+// physical groups). Throws Error as they do.
+struct MshMesh {
+  std::optional<TetMesh> tets;
+  std::optional<SurfaceMesh> surface;
+};
+MshMesh read_msh_mesh(const std::string& path);
 
 } // namespace imgmesh

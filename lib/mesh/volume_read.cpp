@@ -644,4 +644,12 @@ TetMesh read_tet_mesh(const std::string& path) {
   return m;
 }
 
+MshMesh read_msh_mesh(const std::string& path) {
+  mesh_detail::MshFile f = mesh_detail::read_msh_file(path);
+  MshMesh m;
+  if (!f.mesh.tets.empty()) m.tets = std::move(f.mesh);
+  else m.surface = mesh_detail::msh_surface(std::move(f), path);
+  return m;
+}
+
 } // namespace imgmesh

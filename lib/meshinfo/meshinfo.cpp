@@ -87,6 +87,15 @@ PolyMesh read_off_polygons(const std::string& path) {
 
 } // namespace
 
+PolyMesh poly_mesh(const SurfaceMesh& s, const std::string& format) {
+  PolyMesh m;
+  m.format = format;
+  m.points = s.points;
+  for (const auto& t : s.triangles) m.faces.push_back({t[0], t[1], t[2]});
+  for (const auto& p : s.interfaces) m.interfaces.push_back({std::int32_t(p[0]), std::int32_t(p[1])});
+  return m;
+}
+
 PolyMesh read_poly_mesh(const std::string& path) {
   const std::string ext = path == "-" ? ".off" : extension_of(path);
   if (ext == ".off") {
@@ -112,15 +121,8 @@ PolyMesh read_poly_mesh(const std::string& path) {
       }
     return m;
   }
-  if (ext == ".ply" || ext == ".obj" || ext == ".stl" || ext == ".vtp" || ext == ".vtk") {
-    const SurfaceMesh s = read_surface(path);
-    PolyMesh m;
-    m.format = ext.substr(1);
-    m.points = s.points;
-    for (const auto& t : s.triangles) m.faces.push_back({t[0], t[1], t[2]});
-    for (const auto& p : s.interfaces) m.interfaces.push_back({std::int32_t(p[0]), std::int32_t(p[1])});
-    return m;
-  }
+  if (ext == ".ply" || ext == ".obj" || ext == ".stl" || ext == ".vtp" || ext == ".vtk")
+    return poly_mesh(read_surface(path), ext.substr(1));
   throw Error("unknown mesh format '" + ext + "' (use .off, .ply, .obj, .stl, .vtp, .vtk or .ele)", path);
 }
 

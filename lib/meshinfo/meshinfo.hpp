@@ -33,6 +33,9 @@ struct PolyMesh {
 // By extension: .ele (+ .node), .off (any polygons), .ply/.obj/.stl/.vtp/.vtk
 // (triangles). "-" reads OFF from stdin. Throws Error.
 PolyMesh read_poly_mesh(const std::string& path);
+// A surface read by read_surface (a .msh of triangles among them), its
+// label pairs kept; format names it in the report ("msh").
+PolyMesh poly_mesh(const SurfaceMesh& surface, const std::string& format);
 
 // Everything meshinfo reports: counts, topology (MeshTopology::to_json, with
 // "components" and "euler" first), triangle and quad quality.

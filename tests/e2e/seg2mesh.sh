@@ -359,6 +359,20 @@ open('wrong.vtk', 'w').write('\n'.join(lines))
 PY
   OUT=wrong.txt expect 3 meshinfo wrong.vtk --image "$b" || return
   grep -q 'interface certificate FAILS: label [0-9]*: oriented' wrong.txt || fail "a swapped pair: $(tail -1 wrong.txt)"
+  # The .msh form (a surface: no tetrahedron), its pairs in $LabelPairs;
+  # one group's pair swapped turns a whole interface inside out.
+  expect 0 seg2mesh "$b" brain.msh --fast -q || return
+  OUT=msh.txt expect 0 meshinfo brain.msh --image "$b" || { fail "meshinfo refuses seg2mesh's .msh: $(cat err.txt)"; return; }
+  grep -q 'interface certificate HOLDS' msh.txt || fail ".msh: $(tail -1 msh.txt)"
+  python3 - <<'PY' || return
+lines = open('brain.msh').read().split('\n')
+i = lines.index('$LabelPairs') + 2
+tag, a, b = lines[i].split()
+lines[i] = ' '.join([tag, b, a])
+open('wrong.msh', 'w').write('\n'.join(lines))
+PY
+  OUT=wrong.txt expect 3 meshinfo wrong.msh --image "$b" || return
+  grep -q 'interface certificate FAILS' wrong.txt || fail "a swapped .msh pair: $(tail -1 wrong.txt)"
 }
 
 # Bad input: one line, a non-zero exit, no output.
