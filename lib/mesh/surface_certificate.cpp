@@ -66,8 +66,7 @@ void check_combinatorics(C& c) {
 }
 
 // The outward half of oriented: signed volumes against the nesting.
-void check_outward(C& c, const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                   const SurfaceGeometry& g) {
+void check_outward(C& c, const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles) {
   const MeshTopology& t = c.topology;
   const std::size_t n = t.components.size();
   c.volume.assign(n, 0.0);
@@ -84,7 +83,12 @@ void check_outward(C& c, const std::vector<Vec3>& points, const std::vector<std:
     c.volume[std::size_t(k)] += (a[0] * (b[1] * d[2] - b[2] * d[1]) - a[1] * (b[0] * d[2] - b[2] * d[0]) +
                                  a[2] * (b[0] * d[1] - b[1] * d[0])) / 6;
   }
-  c.depth = n > 1 ? g.nesting_depths(t.component_of) : std::vector<int>(n, 0);
+  c.depth.assign(n, 0);
+  if (n > 1) {  // a CGAL Surface_mesh and AABB trees only where components may nest
+    std::vector<int> component(triangles.size());
+    for (std::size_t k = 0; k < triangles.size(); ++k) component[k] = t.component_of[std::size_t(triangles[k][0])];
+    c.depth = SurfaceGeometry(points, triangles, component, n).nesting_depths(t.component_of);
+  }
   std::string why;
   for (std::size_t k = 0; k < n && why.empty(); ++k) {
     const bool outer = c.depth[k] % 2 == 0;
@@ -96,9 +100,9 @@ void check_outward(C& c, const std::vector<Vec3>& points, const std::vector<std:
   set(c, C::kOriented, why.empty(), why);
 }
 
-void check_intersections(C& c, const std::vector<std::array<int, 3>>& triangles, const SurfaceGeometry& g,
+void check_intersections(C& c, const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                          std::size_t cap) {
-  const SelfIntersections& s = c.intersections = g.self_intersections(cap);
+  const SelfIntersections& s = c.intersections = summarize_intersections(soup_crossing_pairs(points, triangles, cap), cap);
   if (s.pairs == 0) return set(c, C::kIntersections, true);
   auto comp = [&](std::size_t t) { return std::to_string(c.topology.component_of[std::size_t(triangles[t][0])]); };
   std::string why;
@@ -217,18 +221,23 @@ SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::v
   c.correspondence = match_components(c.topology, points, grid, boundary, bt, tol);
   const bool geometry = c.state[C::kClosed] == 1 && c.state[C::kManifold] == 1 && c.state[C::kOriented] == 1;
   if (geometry) {
-    std::vector<int> component(triangles.size());
-    for (std::size_t t = 0; t < triangles.size(); ++t) component[t] = c.topology.component_of[std::size_t(triangles[t][0])];
-    const SurfaceGeometry g(points, triangles, component, c.topology.components.size());
-    check_outward(c, points, triangles, g);
+    // The intersections first, on the triangles alone (no Surface_mesh
+    // beside them): the mesher calls this at its peak.
     if (options.intersections)
-      check_intersections(c, triangles, g, options.intersections_cap);
+      check_intersections(c, points, triangles, options.intersections_cap);
     else
       set(c, C::kIntersections, true);
+    check_outward(c, points, triangles);
     check_nesting(c);
   }
   settle(c);
   return c;
+}
+
+void check_surface_intersections(SurfaceCertificate& c, const std::vector<Vec3>& points,
+                                 const std::vector<std::array<int, 3>>& triangles, std::size_t cap) {
+  if (c.state[C::kIntersections] < 0) return;
+  check_intersections(c, points, triangles, cap);
 }
 
 } // namespace imgmesh
