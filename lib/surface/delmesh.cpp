@@ -5,6 +5,7 @@
 #include "surface/facet_cycle.hpp"
 #include "surface/seeds.hpp"
 #include "util/error.hpp"
+#include "util/memory.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -600,11 +601,15 @@ RestrictedDelaunayResult DelMesh::run() {
   int rounds = 0;
   Certificate cert;
   std::uint32_t settled = 0;  // computed_ when the last round inserted nothing
+  // The surface mesher leaves the certificate's intersections until its
+  // triangulation is gone (their boxes made the run's peak beside it);
+  // implicit2tet refines on once it holds, so it needs them here.
+  const bool late_intersections = !after_certificate_;
   for (;;) {
     cert = Certificate();  // the last round's, not held while the next is built
     dirty_.release();      // the certificate is the run's peak
     cell_changed_.release();
-    cert = certify(tr_, vertices_.size(), grid_, expected);
+    cert = certify(tr_, vertices_.size(), grid_, expected, !late_intersections);
     if (cert.ok && !max_hit_ && after_certificate_ && computed_ != settled) {
       bool any = false;
       while (!max_hit_ && after_certificate_(*this)) {
@@ -630,6 +635,14 @@ RestrictedDelaunayResult DelMesh::run() {
 
   // Guarantees, measured on the output.
   const MeasuredGuarantees m = measure_guarantees(tr_, sampler_, cert);
+  if (late_intersections) {
+    // The last use of the triangulation: its pages go back before the
+    // intersections' boxes and VoxelSides' search structures are built.
+    tr_.clear();
+    release_free_memory();
+    check_surface_intersections(cert.check, cert.mesh.points, cert.mesh.triangles);
+    cert.ok = cert.check.ok();
+  }
   res.topology = cert.check.topology;
   res.topology_ok = cert.ok;
   res.topology_failure = cert.check.failure();
