@@ -1,4 +1,5 @@
 #include "surface/certificate.hpp"
+#include "util/memory.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -175,7 +176,10 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
       }
   }
   check_certificate(cert, grid, expected, intersections);
-  // After the check, which is the run's peak (beside the triangulation).
+  // After the check, which is the run's peak (beside the triangulation),
+  // in pages of their own: the check's scratch, freed in pieces, would not
+  // hold them.
+  release_free_memory();
   cert.centers.reserve(cert.facets.size());
   for (const PackedFacet& f : cert.facets) cert.centers.push_back(facet_center(f.facet()));
   return cert;

@@ -609,6 +609,12 @@ RestrictedDelaunayResult DelMesh::run() {
     cert = Certificate();  // the last round's, not held while the next is built
     dirty_.release();      // the certificate is the run's peak
     cell_changed_.release();
+    // VoxelSides' memory of the centres found on their side too (16 bytes
+    // an active cube's corner): a repair round looks at them all again,
+    // located from another walk (a centre on a facet or edge of W, or
+    // outside its hull, may be found in another of its cells).
+    if (late_intersections) voxel_side_points_.release();
+    release_free_memory();
     cert = certify(tr_, vertices_.size(), grid_, expected, !late_intersections);
     if (cert.ok && !max_hit_ && after_certificate_ && computed_ != settled) {
       bool any = false;
