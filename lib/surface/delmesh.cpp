@@ -601,21 +601,14 @@ RestrictedDelaunayResult DelMesh::run() {
   int rounds = 0;
   Certificate cert;
   std::uint32_t settled = 0;  // computed_ when the last round inserted nothing
-  // The surface mesher leaves the certificate's intersections until its
-  // triangulation is gone (their boxes made the run's peak beside it);
-  // implicit2tet refines on once it holds, so it needs them here.
-  const bool late_intersections = !after_certificate_;
+  const bool late = !after_certificate_;  // delmesh.hpp: memory
   for (;;) {
     cert = Certificate();  // the last round's, not held while the next is built
     dirty_.release();      // the certificate is the run's peak
     cell_changed_.release();
-    // VoxelSides' memory of the centres found on their side too (16 bytes
-    // an active cube's corner): a repair round looks at them all again,
-    // located from another walk (a centre on a facet or edge of W, or
-    // outside its hull, may be found in another of its cells).
-    if (late_intersections) voxel_side_points_.release();
+    if (late) voxel_side_points_.release();
     release_free_memory();
-    cert = certify(tr_, vertices_.size(), grid_, expected, !late_intersections);
+    cert = certify(tr_, vertices_.size(), grid_, expected, !late);
     if (cert.ok && !max_hit_ && after_certificate_ && computed_ != settled) {
       bool any = false;
       while (!max_hit_ && after_certificate_(*this)) {
@@ -641,9 +634,7 @@ RestrictedDelaunayResult DelMesh::run() {
 
   // Guarantees, measured on the output.
   const MeasuredGuarantees m = measure_guarantees(tr_, sampler_, cert);
-  if (late_intersections) {
-    // The last use of the triangulation: its pages go back before the
-    // intersections' boxes and VoxelSides' search structures are built.
+  if (late) {  // the triangulation's last use: its pages back first
     tr_.clear();
     release_free_memory();
     check_surface_intersections(cert.check, cert.mesh.points, cert.mesh.triangles);
