@@ -38,10 +38,14 @@ SampleGrid::SampleGrid(FloatImage g, float clamp, Storage storage)
         if (g.data.size() != g.count()) throw Error("internal: sample data does not match the grid size");
         const std::size_t n = g.size[0] * g.size[1];
         std::copy_n(g.data.data() + z++ * n, n, slice);
-      }) {}
+      }, &g.data) {}
 
 SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
                        Storage storage, const SliceReader& next_slice)
+    : SampleGrid(grid, lo, box_size, clamp, storage, next_slice, nullptr) {}
+
+SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
+                       Storage storage, const SliceReader& next_slice, std::vector<float>* given)
     : Geometry(grid), clamp_(clamp) {
   if (!(clamp > 0)) throw Error("internal: the samples' clamp must be positive");
   bool whole = true;
@@ -61,7 +65,7 @@ SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<
   const std::size_t dense_bytes = count() * sizeof(float);
   if (storage == Storage::dense ||
       (storage == Storage::automatic && (dense_bytes < kBlocksWorth || !std::isfinite(clamp)))) {
-    stream_dense(box_size, next_slice);
+    stream_dense(box_size, next_slice, given);
     return;
   }
   stream_blocks(box_size, next_slice);
@@ -70,8 +74,15 @@ SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<
     blocks_to_dense();
 }
 
-void SampleGrid::stream_dense(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice) {
+void SampleGrid::stream_dense(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice,
+                              std::vector<float>* given) {
   auto clamped = [this](float v) { return v < -clamp_ ? -clamp_ : v > clamp_ ? clamp_ : v; };  // NaN kept
+  if (given) {  // taken, not copied: two dense grids made seg2mesh's peak on a large label
+    if (given->size() != count()) throw Error("internal: sample data does not match the grid size");
+    dense_ = std::move(*given);
+    std::transform(dense_.begin(), dense_.end(), dense_.begin(), clamped);
+    return;
+  }
   const std::size_t n = box_size[0] * box_size[1];
   dense_.reserve(count());
   prefer_huge_pages(dense_);

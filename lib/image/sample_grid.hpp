@@ -112,7 +112,10 @@ private:
   float clamp_ = std::numeric_limits<float>::infinity();
   Index3 box_lo_{0, 0, 0}, box_hi_{-1, -1, -1};
 
-  void stream_dense(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice);
+  // given: the dense samples of the whole grid, taken (not copied) when dense.
+  SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
+             Storage storage, const SliceReader& next_slice, std::vector<float>* given);
+  void stream_dense(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice, std::vector<float>* given);
   void stream_blocks(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice);
   void blocks_to_dense();
 };

@@ -24,6 +24,8 @@
 #include <cmath>
 #include <initializer_list>
 #include <iterator>
+#include <limits>
+#include <cstdint>
 
 namespace imgmesh {
 
@@ -144,8 +146,21 @@ bool triangles_cross(const std::vector<Vec3>& points, const std::array<int, 3>& 
 std::vector<std::array<std::size_t, 2>> soup_crossing_pairs(const std::vector<Vec3>& points,
                                                             const std::vector<std::array<int, 3>>& triangles,
                                                             std::size_t cap) {
-  using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
+  // Float boxes rounded outward (more candidates, never fewer; the exact
+  // test decides), searched through pointers: 36 bytes a triangle where
+  // double boxes copied by the search took 128, beside the mesher's
+  // triangulation at its peak.
+  using Box = CGAL::Box_intersection_d::Box_with_info_d<float, 3, std::uint32_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
   struct CapReached {};
+  if (triangles.size() > std::numeric_limits<std::uint32_t>::max()) throw Error("too many triangles");
+  auto down = [](double x) {
+    const float f = float(x);
+    return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+  };
+  auto up = [](double x) {
+    const float f = float(x);
+    return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  };
   std::vector<std::array<std::size_t, 2>> out;
   std::vector<Box> boxes;
   for (std::size_t t = 0; t < triangles.size() && out.size() < cap; ++t) {
@@ -153,14 +168,25 @@ std::vector<std::array<std::size_t, 2>> soup_crossing_pairs(const std::vector<Ve
       out.push_back({t, t});
       continue;
     }
-    CGAL::Bbox_3 b;
-    for (int v : triangles[t]) b += point(points, v).bbox();
-    boxes.emplace_back(b, t);
+    float lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      double l = points[std::size_t(triangles[t][0])][a], h = l;
+      for (int m = 1; m < 3; ++m) {
+        l = std::min(l, points[std::size_t(triangles[t][m])][a]);
+        h = std::max(h, points[std::size_t(triangles[t][m])][a]);
+      }
+      lo[a] = down(l);
+      hi[a] = up(h);
+    }
+    boxes.emplace_back(lo, hi, std::uint32_t(t));
   }
+  std::vector<const Box*> at(boxes.size());
+  for (std::size_t i = 0; i < boxes.size(); ++i) at[i] = &boxes[i];
   if (out.size() < cap) try {
-      CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-        if (!triangles_cross(points, triangles[x.info()], triangles[y.info()])) return;
-        out.push_back({std::min(x.info(), y.info()), std::max(x.info(), y.info())});
+      CGAL::box_self_intersection_d(at.begin(), at.end(), [&](const Box* x, const Box* y) {
+        const std::size_t a = x->info(), b = y->info();
+        if (!triangles_cross(points, triangles[a], triangles[b])) return;
+        out.push_back({std::min(a, b), std::max(a, b)});
         if (out.size() >= cap) throw CapReached{};
       });
     } catch (const CapReached&) {

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <utility>
 
 namespace imgmesh {
@@ -98,9 +97,9 @@ void check_outward(C& c, const std::vector<Vec3>& points, const std::vector<std:
   set(c, C::kOriented, why.empty(), why);
 }
 
-void check_intersections(C& c, const std::vector<std::array<int, 3>>& triangles, const SurfaceGeometry& g,
+void check_intersections(C& c, const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                          std::size_t cap) {
-  const SelfIntersections& s = c.intersections = g.self_intersections(cap);
+  const SelfIntersections& s = c.intersections = summarize_intersections(soup_crossing_pairs(points, triangles, cap), cap);
   if (s.pairs == 0) return set(c, C::kIntersections, true);
   auto comp = [&](std::size_t t) { return std::to_string(c.topology.component_of[std::size_t(triangles[t][0])]); };
   std::string why;
@@ -219,25 +218,35 @@ SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::v
   c.correspondence = match_components(c.topology, points, grid, boundary, bt, tol);
   const bool geometry = c.state[C::kClosed] == 1 && c.state[C::kManifold] == 1 && c.state[C::kOriented] == 1;
   if (geometry) {
-    const std::size_t n = c.topology.components.size();
-    std::vector<int> depth = n > 1 && options.nesting ? options.nesting(c.topology) : std::vector<int>();
-    // CGAL's surface only where rays or the crossings need it.
-    std::unique_ptr<SurfaceGeometry> g;
-    if (options.intersections || (n > 1 && depth.size() != n)) {
-      std::vector<int> component(triangles.size());
-      for (std::size_t t = 0; t < triangles.size(); ++t) component[t] = c.topology.component_of[std::size_t(triangles[t][0])];
-      g = std::make_unique<SurfaceGeometry>(points, triangles, component, n);
-    }
-    if (depth.size() != n) depth = n > 1 ? g->nesting_depths(c.topology.component_of) : std::vector<int>(n, 0);
-    check_outward(c, points, triangles, std::move(depth));
+    // The intersections first, on the triangles alone (no Surface_mesh
+    // beside them): the mesher calls this at its peak.
     if (options.intersections)
-      check_intersections(c, triangles, *g, options.intersections_cap);
+      check_intersections(c, points, triangles, options.intersections_cap);
     else
       set(c, C::kIntersections, true);
+    // The nesting from the caller when it knows it, else by rays (a CGAL
+    // Surface_mesh and AABB trees only where components may nest).
+    const std::size_t n = c.topology.components.size();
+    std::vector<int> depth = n > 1 && options.nesting ? options.nesting(c.topology) : std::vector<int>();
+    if (depth.size() != n) {
+      depth.assign(n, 0);
+      if (n > 1) {
+        std::vector<int> component(triangles.size());
+        for (std::size_t t = 0; t < triangles.size(); ++t) component[t] = c.topology.component_of[std::size_t(triangles[t][0])];
+        depth = SurfaceGeometry(points, triangles, component, n).nesting_depths(c.topology.component_of);
+      }
+    }
+    check_outward(c, points, triangles, std::move(depth));
     check_nesting(c);
   }
   settle(c);
   return c;
+}
+
+void check_surface_intersections(SurfaceCertificate& c, const std::vector<Vec3>& points,
+                                 const std::vector<std::array<int, 3>>& triangles, std::size_t cap) {
+  if (c.state[C::kIntersections] < 0) return;
+  check_intersections(c, points, triangles, cap);
 }
 
 } // namespace imgmesh

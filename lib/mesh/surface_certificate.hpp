@@ -86,5 +86,14 @@ struct SurfaceCertificate {
 SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                                    const Geometry& grid, const VoxelBoundary& boundary,
                                    const MeshTopology& boundary_topology, const CertificateOptions& options = {});
+// The intersections check of a certificate made with options.intersections
+// false, for a caller that runs it later (the mesher, once its
+// triangulation is gone: the boxes would stack on it at the run's peak).
+// Only where certify_surface ran the geometric checks (the state is -1
+// where it did not); the same points and triangles.
+void check_surface_intersections(SurfaceCertificate& c, const std::vector<Vec3>& points,
+                                 const std::vector<std::array<int, 3>>& triangles,
+                                 std::size_t cap = CertificateOptions().intersections_cap);
+
 
 } // namespace imgmesh

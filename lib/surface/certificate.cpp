@@ -1,4 +1,5 @@
 #include "surface/certificate.hpp"
+#include "util/memory.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -74,7 +75,8 @@ ExpectedTopology expected_topology(const CubeGrid& grid) {
   return e;
 }
 
-Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid, const ExpectedTopology& expected) {
+Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid, const ExpectedTopology& expected,
+                    bool intersections) {
   Certificate cert;
   SurfaceMesh& mesh = cert.mesh;
   std::vector<Facet> fs = restricted_facets(tr);
@@ -173,20 +175,25 @@ Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid
               std::max(cert.max_roughness, std::acos(std::clamp(dot(unit_normal(k), unit_normal(std::size_t(other))), -1.0, 1.0)));
       }
   }
-  check_certificate(cert, grid, expected);
-  // After the check, which is the run's peak (beside the triangulation).
+  check_certificate(cert, grid, expected, intersections);
+  // After the check, which is the run's peak (beside the triangulation),
+  // in pages of their own: the check's scratch, freed in pieces, would not
+  // hold them.
+  release_free_memory();
   cert.centers.reserve(cert.facets.size());
   for (const PackedFacet& f : cert.facets) cert.centers.push_back(facet_center(f.facet()));
   return cert;
 }
 
-void check_certificate(Certificate& cert, const CubeGrid& grid, const ExpectedTopology& expected) {
+void check_certificate(Certificate& cert, const CubeGrid& grid, const ExpectedTopology& expected, bool intersections) {
   // The mesher's local frame as a grid: voxel centre i at i * spacing.
   Geometry local;
   local.size = grid.g.size;
   local.spacing = grid.g.spacing;
   cert.check = SurfaceCertificate();  // the last one let go of first: this is the run's peak
-  cert.check = certify_surface(cert.mesh.points, cert.mesh.triangles, local, expected.boundary, expected.topology);
+  CertificateOptions options;
+  options.intersections = intersections;
+  cert.check = certify_surface(cert.mesh.points, cert.mesh.triangles, local, expected.boundary, expected.topology, options);
   cert.ok = cert.check.ok();
   // What to repair: the S components under every failing mesh component
   // (its vertices' sites) and of every failing bdCA(X) component.

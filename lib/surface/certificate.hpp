@@ -64,12 +64,17 @@ struct Certificate {
 // The restricted Delaunay surface of W as a mesh (vertices in id order of
 // first use, triangles in restricted_facets() order, each oriented along
 // grad f, then consistently per component by majority) and its check.
-// `vertex_count`: one more than the largest vertex id.
-Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid, const ExpectedTopology& expected);
+// `vertex_count`: one more than the largest vertex id. intersections
+// false: that check is left to the caller (check_surface_intersections on
+// cert.mesh, then ok again from check), which no repair needs: a failure of
+// it alone leaves no S component to repair.
+Certificate certify(const Tr& tr, std::size_t vertex_count, const CubeGrid& grid, const ExpectedTopology& expected,
+                    bool intersections = true);
 
 // The check alone, on cert.mesh (local coordinates of `grid`) and
 // cert.vertex_comp: sets check, bad and ok.
-void check_certificate(Certificate& cert, const CubeGrid& grid, const ExpectedTopology& expected);
+void check_certificate(Certificate& cert, const CubeGrid& grid, const ExpectedTopology& expected,
+                       bool intersections = true);
 
 // The guarantees measured on the output (local coordinates).
 struct MeasuredGuarantees {

@@ -5,6 +5,7 @@
 #include "surface/facet_cycle.hpp"
 #include "surface/seeds.hpp"
 #include "util/error.hpp"
+#include "util/memory.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -600,11 +601,14 @@ RestrictedDelaunayResult DelMesh::run() {
   int rounds = 0;
   Certificate cert;
   std::uint32_t settled = 0;  // computed_ when the last round inserted nothing
+  const bool late = !after_certificate_;  // delmesh.hpp: memory
   for (;;) {
     cert = Certificate();  // the last round's, not held while the next is built
     dirty_.release();      // the certificate is the run's peak
     cell_changed_.release();
-    cert = certify(tr_, vertices_.size(), grid_, expected);
+    if (late) voxel_side_points_.release();
+    release_free_memory();
+    cert = certify(tr_, vertices_.size(), grid_, expected, !late);
     if (cert.ok && !max_hit_ && after_certificate_ && computed_ != settled) {
       bool any = false;
       while (!max_hit_ && after_certificate_(*this)) {
@@ -630,6 +634,12 @@ RestrictedDelaunayResult DelMesh::run() {
 
   // Guarantees, measured on the output.
   const MeasuredGuarantees m = measure_guarantees(tr_, sampler_, cert);
+  if (late) {  // the triangulation's last use: its pages back first
+    tr_.clear();
+    release_free_memory();
+    check_surface_intersections(cert.check, cert.mesh.points, cert.mesh.triangles);
+    cert.ok = cert.check.ok();
+  }
   res.topology = cert.check.topology;
   res.topology_ok = cert.ok;
   res.topology_failure = cert.check.failure();

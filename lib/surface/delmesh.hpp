@@ -32,6 +32,16 @@
 //     the guarantees measured on the output, the voxel centres on
 //       the wrong side of it counted (mesh/voxel_sides.hpp)        certificate.cpp
 //
+// Memory: the certificate is the run's peak, beside the triangulation. The
+// surface mesher checks its intersections once the triangulation is gone
+// (their boxes made that peak; no repair needs them: a failure of them
+// alone leaves no component to repair), and VoxelSides' per-centre memory
+// goes before each certificate (a repair round looks at every centre
+// again, from another walk: a centre on a facet or edge of W, or outside
+// its hull, may be found in another of its cells); the heap's free pages
+// go back first (util/memory.hpp). implicit2tet, which refines on after
+// the certificate, does neither.
+//
 // A point goes in at the surface centre x_t of the facet that asked for it
 // (EdgeSurface's crossing of its Voronoi edge), with the conflict zone
 // started from that facet's cells (doc/implicit2mesh.md 2, step 3).

@@ -31,6 +31,10 @@ public:
   Candidates operator()(const Tr& tr, const SurfaceSampler& f, Vh near, double guard, long long& wrong,
                         long long& refused);
 
+  // The per-centre memory let go (the surface mesher's certificate, at its
+  // peak): the next call looks at every centre again.
+  void release() { std::vector<Seen>().swap(seen_); }
+
 private:
   // Per centre (grid order), the cell it was last found right in and the
   // cell's vertices (a hash of their ids: a cell's memory is reused).

@@ -2,6 +2,7 @@
 // same samples and the same geometry to the last bit (meshes depend on it).
 #include "image/io.hpp"
 #include "image/nrrd_float.hpp"
+#include "image/sample_grid.hpp"
 #include "util/error.hpp"
 
 #include "scratch_dir.hpp"
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <sstream>
 #include <streambuf>
@@ -206,5 +208,55 @@ TEST_CASE("samples stream in any chunks, from a pipe too, as they read whole") {
     }
     CHECK(got == f.data);
     CHECK_THROWS_AS(s.read(got.data(), 1), Error);  // beyond what the header declares
+  }
+}
+
+TEST_CASE("samples streamed into SampleGrid's blocks are those of the file read whole, raw and gzip", "[samples]") {
+  // Odd sizes: the last blocks of each axis partly outside the grid. g
+  // crosses zero inside, near the clamp T and beyond it on both sides.
+  Geometry g;
+  g.size = {13, 10, 7};
+  g.spacing = {0.5, 0.25, 2};
+  FloatImage f(g);
+  std::mt19937 rng(11);
+  for (std::size_t z = 0; z < 7; ++z)
+    for (std::size_t y = 0; y < 10; ++y)
+      for (std::size_t x = 0; x < 13; ++x)
+        f(x, y, z) = float(std::hypot((double(x) - 6.2) * 0.5, (double(y) - 4.6) * 0.25, (double(z) - 3.1) * 2) - 2.0 +
+                           double(rng() % 100) * 1e-4);
+  const float t = 1.5f;
+  for (bool raw : {false, true}) {
+    const std::string path = temp_path(raw ? "blocks-raw.nrrd" : "blocks-gz.nrrd");
+    write_image(path, f);
+    if (raw) {  // ITK compresses: a raw copy of the same samples
+      std::string bytes;
+      {
+        std::ifstream in(path, std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+      }
+      std::string head = bytes.substr(0, bytes.find("\n\n") + 2);
+      head.replace(head.find("encoding: gzip"), 14, "encoding: raw");
+      std::ofstream out(path, std::ios::binary | std::ios::trunc);
+      out << head;
+      out.write(reinterpret_cast<const char*>(f.data.data()), std::streamsize(f.data.size() * sizeof(float)));
+    }
+    const FloatImage whole = read_without_itk(path);
+    REQUIRE(whole.data == f.data);
+    std::ifstream in(path, std::ios::binary);
+    const NrrdHeader h = read_nrrd_header(in, path);
+    NrrdFloatStream s(h, in, path);
+    const std::size_t slice = g.size[0] * g.size[1];
+    const SampleGrid streamed(s.geometry(), {0, 0, 0}, g.size, t, SampleGrid::Storage::blocks,
+                              [&](float* out) { s.read(out, slice); });
+    const SampleGrid dense(whole, t, SampleGrid::Storage::blocks);
+    REQUIRE(!streamed.dense());
+    CHECK(streamed.stored_blocks() == dense.stored_blocks());
+    CHECK(streamed.stored_blocks() < streamed.blocks());  // some blocks clamp whole
+    for (std::size_t z = 0; z < 7; ++z)
+      for (std::size_t y = 0; y < 10; ++y)
+        for (std::size_t x = 0; x < 13; ++x) {
+          REQUIRE(streamed(x, y, z) == std::clamp(f(x, y, z), -t, t));
+          REQUIRE(streamed(x, y, z) == dense(x, y, z));
+        }
   }
 }

@@ -62,3 +62,16 @@ TEST_CASE("soup_crossing_pairs: shared edges and vertices, crossings, copies", "
     CHECK(s.capped);
   }
 }
+
+TEST_CASE("soup_crossing_pairs: triangles that only touch, at coordinates no float holds, are found", "[embedding]") {
+  // The boxes are floats rounded outward: rounded to nearest (or inward)
+  // two triangles meeting at x = 0.1 (no float) could have boxes apart.
+  for (double x : {0.1, 1.0 / 3, 1e5 + 0.1, -7.3}) {
+    const std::vector<Vec3> p{{x - 1, 0, 0}, {x, 0.3, 0.2}, {x - 1, 1, 0}, {x, 0.3, 0.2}, {x + 1, 0, 1}, {x + 1, 1, 1}};
+    INFO(x);
+    // A corner of each at the same point, no shared id: they meet.
+    CHECK(pairs_of(p, {{0, 1, 2}, {3, 4, 5}}) == Pairs{{0, 1}});
+    // The same point as one shared vertex: they do not cross.
+    CHECK(pairs_of(p, {{0, 1, 2}, {1, 4, 5}}).empty());
+  }
+}

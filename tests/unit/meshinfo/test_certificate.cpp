@@ -238,6 +238,35 @@ TEST_CASE("certificate: the wrong meshes of issue 35 fail at their first wrong c
   }
 }
 
+TEST_CASE("certificate: the intersections checked later give the same certificate", "[certificate]") {
+  // The mesher certifies without them while its triangulation stands
+  // (check_surface_intersections afterwards): every field as in one call.
+  const BinaryImage two = two_balls(8, 20);
+  Surface touching = to_world(sphere({8, 7.6, 7.8}, 6), two);
+  touching.add(to_world(sphere({20, 7.6, 7.8}, 6), two));
+  Surface folded = sphere(kC, 7);
+  for (Vec3& p : folded.points)
+    if (p[0] - kC[0] > 5.6) p[0] = kC[0] + 5.6 - 10 * (p[0] - kC[0] - 5.6);
+  Surface open = ball_sphere(ball(), 7);
+  open.tris.pop_back();
+  const std::vector<std::pair<Surface, const BinaryImage*>> cases{
+      {ball_sphere(ball(), 7), &ball()}, {touching, &two}, {to_world(folded, ball()), &ball()}, {open, &ball()}};
+  for (const auto& [s, img] : cases) {
+    const SurfaceCertificate whole = certify(s, *img);
+    const VoxelBoundary b = voxel_boundary(*img);
+    CertificateOptions o;
+    o.intersections = false;
+    SurfaceCertificate later = certify_surface(s.points, s.tris, *img, b, mesh_topology(b), o);
+    check_surface_intersections(later, s.points, s.tris);
+    INFO(whole.failure());
+    CHECK(later.state == whole.state);
+    CHECK(later.why == whole.why);
+    CHECK(later.intersections.pairs == whole.intersections.pairs);
+    CHECK(later.intersections.first == whole.intersections.first);
+    CHECK(later.failure() == whole.failure());
+  }
+}
+
 TEST_CASE("certificate: a mesh as near to two components is a tie, not broken by index", "[certificate]") {
   // Two voxels four apart on an integer grid, a voxel's cube midway: with
   // a tolerance of 4 both are within reach of every vertex, and the
