@@ -122,6 +122,9 @@ int main(int argc, char** argv) {
                     "With --fast: each label's closed surface alone (interfaces written twice, a label per face) "
                     "instead of each interface once with its two labels")
       ->needs(fast);
+  // Issue 40, route 1, not yet a mode: the restricted Delaunay complex of the
+  // labelling function on the repaired partition (lib/conforming).
+  auto* conforming = tool.app.add_flag("--conforming", fast_opt.conforming, "")->group("");
 
   return tool.run(argc, argv, [&] {
     if (!is_surface_output(out))
@@ -129,7 +132,7 @@ int main(int argc, char** argv) {
     if (!surface_output_holds_labels(out))
       tool.info("warning: " + surface_format_name(out) +
                 " holds no labels: use .ply, .vtp, .vtk or .msh to tell the labels' surfaces apart");
-    if (fast->count()) {
+    if (fast->count() || conforming->count()) {
       fast_opt.labels = parse_labels(labels_text);
       fast_opt.threads = std::max(1u, std::thread::hardware_concurrency());  // the same mesh whatever the count
       return run_fast(tool, in, out, fast_opt, write_opt);

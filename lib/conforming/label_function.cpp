@@ -1,0 +1,237 @@
+#include "conforming/label_function.hpp"
+
+#include "implicit/crop.hpp"
+#include "implicit/implicit_file.hpp"
+#include "util/error.hpp"
+#include "wellcomposed/well_composed.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace imgmesh {
+
+struct LabelFunction::Function {
+  PartitionOfUnity f;
+  double sign = 1;  // -1: the background's, -f of the union
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0};  // its crop's box, in X's continuous indices (outside: f > 0, not read)
+};
+
+namespace {
+
+// The label's (or, label < 0, the union's) indicator made a function as
+// seg2mesh makes a label's: its box plus the crop margin, f clamped and
+// placed in X's grid.
+PartitionOfUnity indicator_function(const LabelImage& x, std::int32_t label, const VoxelBox& box, double max_distance,
+                                    unsigned threads) {
+  WellComposedCrop wc = well_composed_crop(
+      x, box,
+      [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
+        const std::int32_t* v = &x(x0, y, z);
+        for (std::size_t i = 0; i < n; ++i) row[i] = label < 0 ? v[i] != 0 : v[i] == label;
+      },
+      WellComposedOptions{});
+  if (wc.result.changed != 0)
+    throw Error(label < 0 ? std::string("the labels' union is not well-composed (repair it: img2wc --labels all)")
+                          : "label " + std::to_string(label) +
+                                " is not well-composed (repair the map: img2wc --labels all)");
+  ImplicitReport rep;
+  const PartitionOfUnity whole = implicit_from_well_composed(wc.result.image, &rep, threads);
+  ScanFrame frame = wc.frame;
+  frame.foreground = foreground_box(wc.result.image);
+  if (!frame.grow(rep.padded_before, rep.padded_after, wc.result.image)) frame = ScanFrame();
+  std::vector<std::uint8_t>().swap(wc.result.image.data);
+  return function_in_scan(whole, frame, PartitionOfUnity::clamp_for(whole.samples(), max_distance));
+}
+
+// min and max of `v` over a window [-1, +2] along one axis (outside: 0).
+void window_min_max(const Geometry& g, int axis, std::vector<std::int32_t>& lo, std::vector<std::int32_t>& hi) {
+  const std::size_t n = g.size[axis];
+  const std::size_t stride = axis == 0 ? 1 : axis == 1 ? g.size[0] : g.size[0] * g.size[1];
+  std::vector<std::int32_t> a(n), b(n);
+  const std::size_t lines = g.count() / n;
+  for (std::size_t l = 0; l < lines; ++l) {
+    // The line's first voxel: l over the other two axes.
+    std::size_t base;
+    if (axis == 0) base = l * g.size[0];
+    else if (axis == 1) base = (l % g.size[0]) + (l / g.size[0]) * g.size[0] * g.size[1];
+    else base = l;
+    for (std::size_t i = 0; i < n; ++i) a[i] = lo[base + i * stride], b[i] = hi[base + i * stride];
+    for (std::size_t i = 0; i < n; ++i) {
+      std::int32_t mn = a[i], mx = b[i];
+      for (std::ptrdiff_t k = std::ptrdiff_t(i) - 1; k <= std::ptrdiff_t(i) + 2; ++k) {
+        const bool in = k >= 0 && std::size_t(k) < n;
+        mn = std::min(mn, in ? a[std::size_t(k)] : 0);
+        mx = std::max(mx, in ? b[std::size_t(k)] : 0);
+      }
+      lo[base + i * stride] = mn, hi[base + i * stride] = mx;
+    }
+  }
+}
+
+} // namespace
+
+LabelFunction::~LabelFunction() = default;
+LabelFunction::LabelFunction(LabelFunction&&) noexcept = default;
+
+LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned threads) : grid_(x.geometry()) {
+  if (x.dimension != 3) throw Error("the labelling function needs a 3D label image");
+  min_spacing_ = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
+  // Each label's box, and the union's.
+  std::vector<std::int32_t> present;
+  std::vector<VoxelBox> boxes;
+  VoxelBox all;
+  for (std::size_t z = 0; z < x.size[2]; ++z)
+    for (std::size_t y = 0; y < x.size[1]; ++y)
+      for (std::size_t i = 0; i < x.size[0]; ++i) {
+        const std::int32_t v = x(i, y, z);
+        if (v == 0) continue;
+        auto it = std::lower_bound(present.begin(), present.end(), v);
+        const std::size_t k = std::size_t(it - present.begin());
+        if (it == present.end() || *it != v) {
+          present.insert(it, v);
+          boxes.insert(boxes.begin() + std::ptrdiff_t(k), VoxelBox());
+        }
+        boxes[k].add(std::ptrdiff_t(i), std::ptrdiff_t(y), std::ptrdiff_t(z));
+        all.add(std::ptrdiff_t(i), std::ptrdiff_t(y), std::ptrdiff_t(z));
+      }
+  if (present.empty()) throw Error("the label image has no label (every voxel is 0)");
+  labels_.push_back(0);
+  labels_.insert(labels_.end(), present.begin(), present.end());
+  const auto margin = crop_margin(x.geometry());
+  auto make = [&](std::int32_t label, const VoxelBox& box, double sign) {
+    auto fn = std::make_unique<Function>(Function{indicator_function(x, label, box, max_distance, threads), sign, {}, {}});
+    for (int i = 0; i < 3; ++i) {
+      fn->lo[i] = double(box.lo[i]) - double(margin[i]);
+      fn->hi[i] = double(box.hi[i]) + double(margin[i]);
+    }
+    f_.push_back(std::move(fn));
+  };
+  make(-1, all, -1);
+  for (std::size_t k = 0; k < present.size(); ++k) make(present[k], boxes[k], 1);
+  // Pure cubes: min == max of the labels over the 4x4x4 voxels around.
+  std::vector<std::int32_t> lo(x.data), hi(x.data);
+  for (int axis = 0; axis < 3; ++axis) window_min_max(x, axis, lo, hi);
+  pure_.assign(x.count(), 0);
+  for (std::size_t v = 0; v < x.count(); ++v)
+    if (lo[v] == hi[v]) pure_[v] = lo[v] + 1;
+}
+
+double LabelFunction::value(std::int32_t label, const Vec3& p) const {
+  const auto it = std::lower_bound(labels_.begin(), labels_.end(), label);
+  if (it == labels_.end() || *it != label) throw Error("internal: no such label in the labelling function");
+  const Function& fn = *f_[std::size_t(it - labels_.begin())];
+  return fn.sign * fn.f.value(p);
+}
+
+std::int32_t LabelFunction::label(const Vec3& p) const {
+  const Vec3 q = grid_.continuous_index(p);
+  for (int i = 0; i < 3; ++i)
+    if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
+  std::int32_t best = 0;
+  double fbest = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < f_.size(); ++k) {
+    const Function& fn = *f_[k];
+    if (fn.sign > 0 && (q[0] < fn.lo[0] || q[0] > fn.hi[0] || q[1] < fn.lo[1] || q[1] > fn.hi[1] ||
+                        q[2] < fn.lo[2] || q[2] > fn.hi[2]))
+      continue;  // beyond the crop: f_L >= its clamp > 0
+    const double v = fn.sign * fn.f.value(p);
+    if (v < fbest) fbest = v, best = labels_[k];
+  }
+  return best;
+}
+
+bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
+  std::size_t c[3];
+  for (int i = 0; i < 3; ++i) {
+    if (!(q[i] >= 0 && q[i] < double(grid_.size[i] - 1))) return false;
+    c[i] = std::size_t(q[i]);
+  }
+  const std::int32_t p = pure_[grid_.index(c[0], c[1], c[2])];
+  if (p == 0) return false;
+  label = p - 1;
+  return true;
+}
+
+double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before) const {
+  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / min_spacing_;  // voxels
+  while ((t1 - t0) * len > 1e-6) {
+    const double t = 0.5 * (t0 + t1);
+    if (label({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}) == before) t0 = t;
+    else t1 = t;
+    if (!(t0 < t) && !(t < t1)) break;
+  }
+  return 0.5 * (t0 + t1);
+}
+
+void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& out, double step,
+                            std::size_t max_changes) const {
+  out.clear();
+  const Vec3 d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const Vec3 qa = grid_.continuous_index(a), qb = grid_.continuous_index(b);
+  const Vec3 dq{qb[0] - qa[0], qb[1] - qa[1], qb[2] - qa[2]};
+  double len = 0;  // in voxels of the smallest spacing
+  for (int i = 0; i < 3; ++i) len += d[i] * d[i];
+  len = std::sqrt(len) / min_spacing_;
+  if (!(len > 0) || !std::isfinite(len)) return;
+  // The part of the segment within a voxel of the box of centres: beyond,
+  // lambda is 0 (pure_cube's rule), like the segment's ends there.
+  double t0 = 0, t1 = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double lo = -1, hi = double(grid_.size[i]);
+    if (dq[i] == 0) {
+      if (qa[i] < lo || qa[i] > hi) t1 = -1;
+      continue;
+    }
+    double s0 = (lo - qa[i]) / dq[i], s1 = (hi - qa[i]) / dq[i];
+    if (s0 > s1) std::swap(s0, s1);
+    t0 = std::max(t0, s0), t1 = std::min(t1, s1);
+  }
+  const double dt = step / len;
+  std::int32_t prev = label(a);
+  double tprev = 0;
+  auto visit = [&](double t, std::int32_t l) {
+    if (l != prev) {
+      const double tc = bisect(a, d, tprev, t, prev);
+      out.push_back({tc, prev, l});
+      prev = l;
+    }
+    tprev = t;
+    return max_changes == 0 || out.size() < max_changes;
+  };
+  if (t0 <= t1) {
+    double t = t0;
+    while (t < t1) {
+      const Vec3 q{qa[0] + t * dq[0], qa[1] + t * dq[1], qa[2] + t * dq[2]};
+      std::int32_t l;
+      if (pure_cube(q, l)) {
+        if (!visit(t, l)) return;
+        // To the cube's exit (or the end): lambda is l all along.
+        double exit = t1;
+        for (int i = 0; i < 3; ++i) {
+          if (dq[i] == 0) continue;
+          const double c = std::floor(q[i]);
+          const double s = ((dq[i] > 0 ? c + 1 : c) - qa[i]) / dq[i];
+          if (s > t) exit = std::min(exit, s);
+        }
+        if (!visit(std::min(exit, t1), l)) return;
+        t = std::min(exit, t1) + 1e-12;
+        continue;
+      }
+      if (!visit(t, label({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}))) return;
+      t += dt;
+    }
+  }
+  visit(1, label(b));
+}
+
+bool LabelFunction::first_change(const Vec3& a, const Vec3& b, Vec3& x, double step) const {
+  std::vector<Change> c;
+  changes(a, b, c, step, 1);
+  if (c.empty()) return false;
+  for (int i = 0; i < 3; ++i) x[i] = a[i] + c[0].t * (b[i] - a[i]);
+  return true;
+}
+
+} // namespace imgmesh
