@@ -22,6 +22,7 @@ using GT = CGAL::Robust_circumcenter_filtered_traits_3<K0>;
 using Point = GT::Point_3;
 constexpr std::int32_t kUnknown = std::numeric_limits<std::int32_t>::min();
 struct CInfo {
+  Vec3 centre{0, 0, 0};           // the circumcentre, with the label
   std::int32_t label = kUnknown;  // lambda at the circumcentre
   std::uint32_t uid = 0;          // 0: made since the last pass
 };
@@ -83,10 +84,18 @@ public:
 private:
   std::int32_t label(Ch c) {
     if (tr_.is_infinite(c)) return 0;
-    if (c->info().label == kUnknown) c->info().label = f_.label(vec(c->circumcenter()));
+    known(c);
     return c->info().label;
   }
-  Vec3 centre(Ch c) const { return vec(c->circumcenter()); }
+  Vec3 centre(Ch c) {
+    known(c);
+    return c->info().centre;
+  }
+  void known(Ch c) {
+    if (c->info().label != kUnknown) return;
+    c->info().centre = vec(c->circumcenter());
+    c->info().label = f_.label(c->info().centre);
+  }
 
   Vec3 voxel_centre(std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) const {
     return x_.world(double(i), double(j), double(k));
@@ -181,8 +190,9 @@ private:
   bool surface_centre(Ch c, int i, Vec3& x) {
     Ch n = c->neighbor(i);
     if (tr_.is_infinite(c) || tr_.is_infinite(n)) return false;
-    if (label(c) == label(n)) return false;
-    f_.changes(centre(c), centre(n), changes_, o_.step);
+    const std::int32_t ends[2] = {label(c), label(n)};
+    if (ends[0] == ends[1]) return false;
+    f_.changes(centre(c), centre(n), changes_, o_.step, 0, ends);
     if (changes_.size() != 1) return false;
     const Vec3 a = centre(c), b = centre(n);
     for (int m = 0; m < 3; ++m) x[m] = a[m] + changes_[0].t * (b[m] - a[m]);
@@ -197,8 +207,8 @@ private:
     const std::int32_t la = label(c), lb = label(n);
     const auto v = facet_vertices(c, i);
     if (v[0]->info() < 0) return;  // a bounding-box corner: outside, in 0
-    // Quick: both ends one label and the edge inside pure cubes gives none.
-    f_.changes(a, b, changes_, o_.step);
+    const std::int32_t ends[2] = {la, lb};
+    f_.changes(a, b, changes_, o_.step, 0, ends);
     if (changes_.empty()) return;
     Candidate cand;
     cand.v = v;

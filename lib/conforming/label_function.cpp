@@ -45,27 +45,24 @@ PartitionOfUnity indicator_function(const LabelImage& x, std::int32_t label, con
   return function_in_scan(whole, frame, PartitionOfUnity::clamp_for(whole.samples(), max_distance));
 }
 
-// min and max of `v` over a window [-1, +2] along one axis (outside: 0).
-void window_min_max(const Geometry& g, int axis, std::vector<std::int32_t>& lo, std::vector<std::int32_t>& hi) {
+// Along one axis, each voxel's value replaced by op over the window
+// [i + lo, i + hi] (beyond the grid: `outside`).
+template <class T, class Op>
+void window(const Geometry& g, int axis, int lo, int hi, T outside, std::vector<T>& v, Op op) {
   const std::size_t n = g.size[axis];
   const std::size_t stride = axis == 0 ? 1 : axis == 1 ? g.size[0] : g.size[0] * g.size[1];
-  std::vector<std::int32_t> a(n), b(n);
+  std::vector<T> line(n);
   const std::size_t lines = g.count() / n;
   for (std::size_t l = 0; l < lines; ++l) {
-    // The line's first voxel: l over the other two axes.
-    std::size_t base;
-    if (axis == 0) base = l * g.size[0];
-    else if (axis == 1) base = (l % g.size[0]) + (l / g.size[0]) * g.size[0] * g.size[1];
-    else base = l;
-    for (std::size_t i = 0; i < n; ++i) a[i] = lo[base + i * stride], b[i] = hi[base + i * stride];
+    const std::size_t base = axis == 0 ? l * g.size[0]
+                             : axis == 1 ? (l % g.size[0]) + (l / g.size[0]) * g.size[0] * g.size[1]
+                                         : l;
+    for (std::size_t i = 0; i < n; ++i) line[i] = v[base + i * stride];
     for (std::size_t i = 0; i < n; ++i) {
-      std::int32_t mn = a[i], mx = b[i];
-      for (std::ptrdiff_t k = std::ptrdiff_t(i) - 1; k <= std::ptrdiff_t(i) + 2; ++k) {
-        const bool in = k >= 0 && std::size_t(k) < n;
-        mn = std::min(mn, in ? a[std::size_t(k)] : 0);
-        mx = std::max(mx, in ? b[std::size_t(k)] : 0);
-      }
-      lo[base + i * stride] = mn, hi[base + i * stride] = mx;
+      T r = line[i];
+      for (std::ptrdiff_t k = std::ptrdiff_t(i) + lo; k <= std::ptrdiff_t(i) + hi; ++k)
+        r = op(r, k >= 0 && std::size_t(k) < n ? line[std::size_t(k)] : outside);
+      v[base + i * stride] = r;
     }
   }
 }
@@ -110,12 +107,40 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   };
   make(-1, all, -1);
   for (std::size_t k = 0; k < present.size(); ++k) make(present[k], boxes[k], 1);
-  // Pure cubes: min == max of the labels over the 4x4x4 voxels around.
-  std::vector<std::int32_t> lo(x.data), hi(x.data);
-  for (int axis = 0; axis < 3; ++axis) window_min_max(x, axis, lo, hi);
-  pure_.assign(x.count(), 0);
-  for (std::size_t v = 0; v < x.count(); ++v)
-    if (lo[v] == hi[v]) pure_[v] = lo[v] + 1;
+  // Pure cubes: min == max of the labels over the 4x4x4 voxels around
+  // (window [-1, 2] per axis).
+  {
+    std::vector<std::int32_t> lo(x.data), hi(x.data);
+    for (int axis = 0; axis < 3; ++axis) {
+      window(x, axis, -1, 2, 0, lo, [](std::int32_t a, std::int32_t b) { return std::min(a, b); });
+      window(x, axis, -1, 2, 0, hi, [](std::int32_t a, std::int32_t b) { return std::max(a, b); });
+    }
+    pure_.assign(x.count(), 0);
+    for (std::size_t v = 0; v < x.count(); ++v)
+      if (lo[v] == hi[v]) pure_[v] = lo[v] + 1;
+  }
+  // Candidates: a label whose voxels all lie beyond the 6x6x6 voxels around
+  // a cube (window [-2, 3]) has g >= 1.5 voxels at every sample f reads in
+  // it, so f >= 1.3 voxels there (extension by d <= delta / 5, slope at
+  // most a voxel a voxel), where the label of the voxel holding the point
+  // has f under that: only the labels near a cube compete in it. Bit k % 64
+  // stands for label index k (a superset past 64 labels).
+  cand_.assign(x.count(), 0);
+  {
+    std::int32_t last = 0;
+    std::uint64_t bit = 1;
+    for (std::size_t v = 0; v < x.count(); ++v) {
+      if (x.data[v] != last) {
+        last = x.data[v];
+        bit = std::uint64_t(1) << (std::size_t(std::lower_bound(labels_.begin(), labels_.end(), last) - labels_.begin()) % 64);
+      }
+      cand_[v] = last == 0 ? 1 : bit;
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis)
+    window(x, axis, -2, 3, std::uint64_t(1), cand_, [](std::uint64_t a, std::uint64_t b) { return a | b; });
+  bit_labels_.resize(64);
+  for (std::size_t k = 0; k < labels_.size(); ++k) bit_labels_[k % 64].push_back(k);
 }
 
 double LabelFunction::value(std::int32_t label, const Vec3& p) const {
@@ -127,18 +152,22 @@ double LabelFunction::value(std::int32_t label, const Vec3& p) const {
 
 std::int32_t LabelFunction::label(const Vec3& p) const {
   const Vec3 q = grid_.continuous_index(p);
-  for (int i = 0; i < 3; ++i)
+  std::size_t c[3];
+  for (int i = 0; i < 3; ++i) {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
+    c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
+  }
   std::int32_t best = 0;
   double fbest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < f_.size(); ++k) {
-    const Function& fn = *f_[k];
-    if (fn.sign > 0 && (q[0] < fn.lo[0] || q[0] > fn.hi[0] || q[1] < fn.lo[1] || q[1] > fn.hi[1] ||
-                        q[2] < fn.lo[2] || q[2] > fn.hi[2]))
-      continue;  // beyond the crop: f_L >= its clamp > 0
-    const double v = fn.sign * fn.f.value(p);
-    if (v < fbest) fbest = v, best = labels_[k];
-  }
+  for (std::uint64_t m = cand_[grid_.index(c[0], c[1], c[2])]; m; m &= m - 1)
+    for (const std::size_t k : bit_labels_[std::size_t(__builtin_ctzll(m))]) {
+      const Function& fn = *f_[k];
+      if (fn.sign > 0 && (q[0] < fn.lo[0] || q[0] > fn.hi[0] || q[1] < fn.lo[1] || q[1] > fn.hi[1] ||
+                          q[2] < fn.lo[2] || q[2] > fn.hi[2]))
+        continue;  // beyond the crop: f_L >= its clamp > 0
+      const double v = fn.sign * fn.f.value(p);
+      if (v < fbest || (v == fbest && labels_[k] < best)) fbest = v, best = labels_[k];
+    }
   return best;
 }
 
@@ -154,11 +183,37 @@ bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
   return true;
 }
 
-double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before) const {
+double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before,
+                             std::int32_t after) const {
   const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / min_spacing_;  // voxels
+  auto at = [&](double t) { return Vec3{a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; };
+  // Where only `before` and `after` compete, lambda changes where
+  // h = f_before - f_after does: regula falsi (Illinois) on h, a few
+  // evaluations of two functions, then lambda checked on both sides of the
+  // root; else (a third label between) bisection on lambda itself.
+  double lo = t0, hi = t1;
+  double hlo = value(before, at(lo)) - value(after, at(lo)), hhi = value(before, at(hi)) - value(after, at(hi));
+  if (hlo < 0 && hhi > 0) {
+    int side = 0;
+    for (int it = 0; it < 60 && (hi - lo) * len > 1e-6; ++it) {
+      double t = (lo * hhi - hi * hlo) / (hhi - hlo);
+      if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+      const double h = value(before, at(t)) - value(after, at(t));
+      if (h < 0) {
+        lo = t, hlo = h;
+        if (side == -1) hhi *= 0.5;
+        side = -1;
+      } else {
+        hi = t, hhi = h;
+        if (side == 1) hlo *= 0.5;
+        side = 1;
+      }
+    }
+    if (label(at(lo)) == before && label(at(hi)) == after) return 0.5 * (lo + hi);
+  }
   while ((t1 - t0) * len > 1e-6) {
     const double t = 0.5 * (t0 + t1);
-    if (label({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}) == before) t0 = t;
+    if (label(at(t)) == before) t0 = t;
     else t1 = t;
     if (!(t0 < t) && !(t < t1)) break;
   }
@@ -166,7 +221,7 @@ double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1,
 }
 
 void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& out, double step,
-                            std::size_t max_changes) const {
+                            std::size_t max_changes, const std::int32_t* ends) const {
   out.clear();
   const Vec3 d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const Vec3 qa = grid_.continuous_index(a), qb = grid_.continuous_index(b);
@@ -189,11 +244,11 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
     t0 = std::max(t0, s0), t1 = std::min(t1, s1);
   }
   const double dt = step / len;
-  std::int32_t prev = label(a);
+  std::int32_t prev = ends ? ends[0] : label(a);
   double tprev = 0;
   auto visit = [&](double t, std::int32_t l) {
     if (l != prev) {
-      const double tc = bisect(a, d, tprev, t, prev);
+      const double tc = bisect(a, d, tprev, t, prev, l);
       out.push_back({tc, prev, l});
       prev = l;
     }
@@ -223,7 +278,7 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
       t += dt;
     }
   }
-  visit(1, label(b));
+  visit(1, ends ? ends[1] : label(b));
 }
 
 bool LabelFunction::first_change(const Vec3& a, const Vec3& b, Vec3& x, double step) const {

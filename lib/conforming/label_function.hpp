@@ -61,9 +61,10 @@ public:
   // steps of at most `step` voxels (the smallest spacing) inside cubes that
   // are not pure, each change then bisected to 1e-6 of a voxel. Changes
   // closer than `step` may be missed: the certificate decides. Stops after
-  // `max_changes` (0: no limit).
+  // `max_changes` (0: no limit). ends, when given: lambda(a) and lambda(b),
+  // known to the caller.
   void changes(const Vec3& a, const Vec3& b, std::vector<Change>& out, double step = 0.25,
-               std::size_t max_changes = 0) const;
+               std::size_t max_changes = 0, const std::int32_t* ends = nullptr) const;
   // The first change from a towards b, when lambda(a) != lambda(b) or some
   // change was found: its point.
   bool first_change(const Vec3& a, const Vec3& b, Vec3& x, double step = 0.25) const;
@@ -71,7 +72,7 @@ public:
 private:
   struct Function;
   bool pure_cube(const Vec3& q, std::int32_t& label) const;
-  double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before) const;
+  double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after) const;
 
   Geometry grid_;
   std::vector<std::int32_t> labels_;
@@ -79,6 +80,10 @@ private:
   // Per cube (lower corner voxel (i, j, k), i < size - 1): its label + 1
   // when pure, else 0.
   std::vector<std::int32_t> pure_;
+  // Per cube the labels that can be lambda in it (bits: label index % 64),
+  // and per bit its label indices.
+  std::vector<std::uint64_t> cand_;
+  std::vector<std::vector<std::size_t>> bit_labels_;
   double min_spacing_ = 1;
 };
 
