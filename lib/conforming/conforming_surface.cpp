@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
 #include <unordered_map>
 
 namespace imgmesh {
@@ -33,8 +34,8 @@ using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;
 using Vh = Tr::Vertex_handle;
 using Ch = Tr::Cell_handle;
 
-enum Step { kSeed, kVorEdge, kTopoDisk, kQuality, kDistance, kVoxelSide, kSteps };
-const char* const kStepName[kSteps] = {"seed", "vor_edge", "topo_disk", "quality", "max_distance", "voxel_side"};
+enum Step { kSeed, kVorEdge, kTopoDisk, kQuality, kDistance, kVoxelSide, kCertificate, kSteps };
+const char* const kStepName[kSteps] = {"seed", "vor_edge", "topo_disk", "quality", "max_distance", "voxel_side", "certificate"};
 
 inline Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
 inline Point pt(const Vec3& v) { return Point(v[0], v[1], v[2]); }
@@ -78,7 +79,15 @@ public:
     bounding_box();
     seeds();
     refine();
-    return output();
+    ConformingSurface out = output();
+    for (int round = 0; o_.certificate && round < o_.certificate_rounds && !max_hit_; ++round) {
+      const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
+      if (bad.empty() || !refine_pairs(bad)) break;
+      ++rounds_;
+      refine();
+      out = output();
+    }
+    return out;
   }
 
 private:
@@ -354,6 +363,24 @@ private:
     }
   }
 
+  // The surface centres of every restricted facet of `bad`'s pairs.
+  bool refine_pairs(std::vector<std::array<std::int32_t, 2>> bad) {
+    for (auto& p : bad)
+      if (p[0] < p[1]) std::swap(p[0], p[1]);
+    std::sort(bad.begin(), bad.end());
+    std::vector<Vec3> pts;
+    for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
+      const std::int32_t a = label(f->first), b = label(f->first->neighbor(f->second));
+      if (a == b || !std::binary_search(bad.begin(), bad.end(), std::array<std::int32_t, 2>{std::max(a, b), std::min(a, b)}))
+        continue;
+      Vec3 x;
+      if (surface_centre(f->first, f->second, x)) pts.push_back(x);
+    }
+    bool any = false;
+    for (const Vec3& x : pts) any = insert(x, kCertificate) || any;
+    return any;
+  }
+
   // Still the facet it was found on (same vertices, same two cells)?
   bool current(const Candidate& c) {
     if (c.step == kVoxelSide) return true;
@@ -400,6 +427,9 @@ private:
       std::sort(touched_.begin(), touched_.end());
       touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
       for (Vh v : touched_) check_vertex(v);
+      if (o_.progress)
+        o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
+                    std::to_string(topology_.size()) + " topology, " + std::to_string(quality_.size()) + " quality");
       if (max_hit_) break;
       // QUALITY's candidates wait while TOPOLOGY inserts: each was found
       // once (its facet fresh) and is dropped only when stale.
@@ -448,6 +478,7 @@ private:
     std::copy(inserted_.begin(), inserted_.end(), out.inserted.begin());
     out.refused = refused_;
     out.passes = passes_;
+    out.certificate_rounds = rounds_;
     out.max_points_hit = max_hit_;
     out.smallest_angle = out.triangles.empty() ? 0 : min_angle;
     return out;
@@ -463,6 +494,7 @@ private:
   std::size_t points_ = 0;
   std::array<long long, kSteps> inserted_{};
   long long refused_ = 0, passes_ = 0, restricted_ = 0;
+  int rounds_ = 0;
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
   std::vector<Ch> fresh_, cells_;
@@ -484,6 +516,7 @@ Json ConformingSurface::to_json() const {
   j["points_inserted"] = ins;
   j["points_refused"] = refused;
   j["passes"] = passes;
+  j["certificate_rounds"] = certificate_rounds;
   j["max_points_hit"] = max_points_hit;
   j["smallest_angle"] = smallest_angle;
   return j;

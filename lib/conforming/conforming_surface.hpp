@@ -25,6 +25,9 @@
 //     VoxelSides every voxel centre next to an interface in a cell of its
 //                own label, else the first change of lambda from the centre
 //                towards that cell's circumcentre.
+//   certificate  the caller's; where it fails, every facet of the pairs it
+//              names gets its surface centre, and REFINE again (a patch
+//              sampled too coarsely shows as split, merged or pinched).
 //   output     every restricted facet once, with (behind, front) = (higher,
 //              lower label), oriented out of behind (K(X)'s convention).
 // The Delaunay triangulation embeds the complex: no two triangles cross.
@@ -50,6 +53,15 @@ struct ConformingOptions {
   double step = 0.25;         // lambda's samples along a segment (voxels)
   std::size_t max_points = 2000000;
   bool voxel_sides = true;
+  // The certificate (surfacenets/interface_certificate.hpp, the caller's):
+  // the label pairs whose triangles it refuses, empty when it holds. Each
+  // round the surface centres of those pairs' facets go in and REFINE runs
+  // again, at most `certificate_rounds` times. Unset: no rounds.
+  std::function<std::vector<std::array<std::int32_t, 2>>(const std::vector<Vec3>& points,
+                                                         const std::vector<std::array<int, 3>>& triangles,
+                                                         const std::vector<std::array<std::int32_t, 2>>& pairs)>
+      certificate;
+  int certificate_rounds = 8;
   std::function<void(const std::string&)> progress;
 };
 
@@ -57,10 +69,11 @@ struct ConformingSurface {
   std::vector<Vec3> points;                         // world
   std::vector<std::array<int, 3>> triangles;        // oriented out of pairs[t][0]
   std::vector<std::array<std::int32_t, 2>> pairs;   // (behind, front), behind > front
-  // Points inserted per step: seed, vor_edge, topo_disk, quality, distance, voxel_side.
-  std::array<long long, 6> inserted{};
+  // Points inserted per step: seed, vor_edge, topo_disk, quality, distance, voxel_side, certificate.
+  std::array<long long, 7> inserted{};
   long long refused = 0;       // candidates within 1e-6 voxel of a vertex
   long long passes = 0;
+  int certificate_rounds = 0;  // rounds that refined where the certificate failed
   bool max_points_hit = false;
   double smallest_angle = 0;   // degrees, over the triangles
   Json to_json() const;

@@ -77,6 +77,7 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   min_spacing_ = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
   // Each label's box, and the union's.
   std::vector<std::int32_t> present;
+  std::vector<std::size_t> counts;
   std::vector<VoxelBox> boxes;
   VoxelBox all;
   for (std::size_t z = 0; z < x.size[2]; ++z)
@@ -88,14 +89,25 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
         const std::size_t k = std::size_t(it - present.begin());
         if (it == present.end() || *it != v) {
           present.insert(it, v);
+          counts.insert(counts.begin() + std::ptrdiff_t(k), 0);
           boxes.insert(boxes.begin() + std::ptrdiff_t(k), VoxelBox());
         }
+        ++counts[k];
         boxes[k].add(std::ptrdiff_t(i), std::ptrdiff_t(y), std::ptrdiff_t(z));
         all.add(std::ptrdiff_t(i), std::ptrdiff_t(y), std::ptrdiff_t(z));
       }
   if (present.empty()) throw Error("the label image has no label (every voxel is 0)");
   labels_.push_back(0);
   labels_.insert(labels_.end(), present.begin(), present.end());
+  // Ranks: 0 lowest, then from the most voxels to the fewest (ties: the
+  // larger label higher), as the partition repair ranks them by default.
+  {
+    std::vector<std::size_t> order(present.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return counts[a] > counts[b]; });
+    rank_.assign(labels_.size(), 0);
+    for (std::size_t r = 0; r < order.size(); ++r) rank_[order[r] + 1] = unsigned(r + 1);
+  }
   const auto margin = crop_margin(x.geometry());
   auto make = [&](std::int32_t label, const VoxelBox& box, double sign) {
     auto fn = std::make_unique<Function>(Function{indicator_function(x, label, box, max_distance, threads), sign, {}, {}});
@@ -143,10 +155,14 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   for (std::size_t k = 0; k < labels_.size(); ++k) bit_labels_[k % 64].push_back(k);
 }
 
-double LabelFunction::value(std::int32_t label, const Vec3& p) const {
+std::size_t LabelFunction::index_of(std::int32_t label) const {
   const auto it = std::lower_bound(labels_.begin(), labels_.end(), label);
   if (it == labels_.end() || *it != label) throw Error("internal: no such label in the labelling function");
-  const Function& fn = *f_[std::size_t(it - labels_.begin())];
+  return std::size_t(it - labels_.begin());
+}
+
+double LabelFunction::value(std::int32_t label, const Vec3& p) const {
+  const Function& fn = *f_[index_of(label)];
   return fn.sign * fn.f.value(p);
 }
 
@@ -157,7 +173,7 @@ std::int32_t LabelFunction::label(const Vec3& p) const {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
     c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
   }
-  std::int32_t best = 0;
+  std::size_t best = 0, inside = labels_.size();
   double fbest = std::numeric_limits<double>::infinity();
   for (std::uint64_t m = cand_[grid_.index(c[0], c[1], c[2])]; m; m &= m - 1)
     for (const std::size_t k : bit_labels_[std::size_t(__builtin_ctzll(m))]) {
@@ -166,9 +182,10 @@ std::int32_t LabelFunction::label(const Vec3& p) const {
                           q[2] < fn.lo[2] || q[2] > fn.hi[2]))
         continue;  // beyond the crop: f_L >= its clamp > 0
       const double v = fn.sign * fn.f.value(p);
-      if (v < fbest || (v == fbest && labels_[k] < best)) fbest = v, best = labels_[k];
+      if (v < 0 && (inside == labels_.size() || rank_[k] > rank_[inside])) inside = k;
+      if (v < fbest || (v == fbest && k < best)) fbest = v, best = k;
     }
-  return best;
+  return labels_[inside < labels_.size() ? inside : best];
 }
 
 bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
@@ -191,20 +208,30 @@ double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1,
   // h = f_before - f_after does: regula falsi (Illinois) on h, a few
   // evaluations of two functions, then lambda checked on both sides of the
   // root; else (a third label between) bisection on lambda itself.
+  // The function whose zero the change is: f_before where before wins by
+  // rank inside itself, -f_after likewise, else (a gap, where every f is
+  // positive) f_before - f_after.
   double lo = t0, hi = t1;
-  double hlo = value(before, at(lo)) - value(after, at(lo)), hhi = value(before, at(hi)) - value(after, at(hi));
+  const double rb = rank_[index_of(before)], ra = rank_[index_of(after)];
+  const double fb_lo = value(before, at(lo)), fa_hi = value(after, at(hi));
+  const int kind = fb_lo < 0 && rb > ra ? 0 : fa_hi < 0 && ra > rb ? 1 : 2;
+  auto h = [&](double t) {
+    const Vec3 p = at(t);
+    return kind == 0 ? value(before, p) : kind == 1 ? -value(after, p) : value(before, p) - value(after, p);
+  };
+  double hlo = h(lo), hhi = h(hi);
   if (hlo < 0 && hhi > 0) {
     int side = 0;
     for (int it = 0; it < 60 && (hi - lo) * len > 1e-6; ++it) {
       double t = (lo * hhi - hi * hlo) / (hhi - hlo);
       if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-      const double h = value(before, at(t)) - value(after, at(t));
-      if (h < 0) {
-        lo = t, hlo = h;
+      const double ht = h(t);
+      if (ht < 0) {
+        lo = t, hlo = ht;
         if (side == -1) hhi *= 0.5;
         side = -1;
       } else {
-        hi = t, hhi = h;
+        hi = t, hhi = ht;
         if (side == 1) hlo *= 0.5;
         side = 1;
       }

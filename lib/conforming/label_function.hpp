@@ -71,11 +71,13 @@ public:
 
 private:
   struct Function;
+  std::size_t index_of(std::int32_t label) const;
   bool pure_cube(const Vec3& q, std::int32_t& label) const;
   double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after) const;
 
   Geometry grid_;
   std::vector<std::int32_t> labels_;
+  std::vector<unsigned> rank_;  // per label index: 0 for the background, then fewest voxels highest
   std::vector<std::unique_ptr<Function>> f_;  // per label (f_U for 0)
   // Per cube (lower corner voxel (i, j, k), i < size - 1): its label + 1
   // when pure, else 0.

@@ -116,6 +116,12 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
     say("conforming surface");
     ConformingOptions o = opt.conforming_options;
     o.progress = opt.progress;
+    o.certificate = [&](const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t,
+                        const std::vector<std::array<std::int32_t, 2>>& l) {
+      InterfaceCertificateOptions c = co;
+      c.lattice = false;
+      return certify_interface_mesh(p, t, l, wc, k, c).failing_pairs();
+    };
     ConformingSurface c = conforming_surface(lambda, wc, k, o);
     res.conforming = c.to_json();
     points = std::move(c.points), triangles = std::move(c.triangles), pairs = std::move(c.pairs);

@@ -303,6 +303,18 @@ std::string InterfaceCertificate::failure() const {
   return state[std::size_t(k)] < 0 ? std::string(name(k)) + ": not checked" : why[std::size_t(k)];
 }
 
+std::vector<std::array<std::int32_t, 2>> InterfaceCertificate::failing_pairs() const {
+  std::vector<std::int32_t> bad;
+  for (const Label& l : labels)
+    if (!l.surface.ok() || (l.sides_checked && l.sides.wrong() > 0)) bad.push_back(l.label);
+  std::vector<std::array<std::int32_t, 2>> out;
+  for (const Interface& i : interfaces)
+    if (!i.why.empty() || std::find(bad.begin(), bad.end(), i.behind) != bad.end() ||
+        std::find(bad.begin(), bad.end(), i.front) != bad.end())
+      out.push_back({i.behind, i.front});
+  return out;
+}
+
 std::string InterfaceCertificate::summary() const {
   if (!ok()) return "interface certificate fails: " + failure();
   std::size_t patches = 0, centres = 0;

@@ -157,6 +157,10 @@ struct InterfaceCertificate {
   // crossings, 0 of 1234 voxel centres on the wrong side", or "interface
   // certificate fails: WHY".
   std::string summary() const;
+  // The label pairs (behind, front) where it fails: each failed interface,
+  // and every interface of a label whose surface or voxel sides fail. A
+  // mesher refines there (conforming/conforming_surface.hpp).
+  std::vector<std::array<std::int32_t, 2>> failing_pairs() const;
   Json to_json() const;
 };
 
