@@ -82,7 +82,7 @@ public:
     ConformingSurface out = output();
     for (int round = 0; o_.certificate && round < o_.certificate_rounds && !max_hit_; ++round) {
       const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
-      if (bad.empty() || !refine_pairs(bad)) break;
+      if (bad.empty() || !refine_patches(bad)) break;
       ++rounds_;
       refine();
       out = output();
@@ -363,18 +363,31 @@ private:
     }
   }
 
-  // The surface centres of every restricted facet of `bad`'s pairs.
-  bool refine_pairs(std::vector<std::array<std::int32_t, 2>> bad) {
-    for (auto& p : bad)
-      if (p[0] < p[1]) std::swap(p[0], p[1]);
-    std::sort(bad.begin(), bad.end());
+  // The surface centres of the restricted facets in the voxels next to the
+  // faces of K(X) patches `bad` (and one voxel around).
+  bool refine_patches(const std::vector<std::size_t>& bad) {
+    std::vector<char> near(x_.count(), 0);
+    for (std::size_t f = 0; f < k_.faces.size(); ++f) {
+      if (!std::binary_search(bad.begin(), bad.end(), std::size_t(k_.face_patch[f]))) continue;
+      const auto q = k_.corner(InterfaceComplex::face_corner(k_.faces[f]));
+      const int a = InterfaceComplex::face_axis(k_.faces[f]);
+      for (int s = 0; s < 2; ++s)
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]) + dx, std::ptrdiff_t(q[1]) + dy, std::ptrdiff_t(q[2]) + dz};
+              v[a] -= s;
+              if (x_.inside(v[0], v[1], v[2])) near[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))] = 1;
+            }
+    }
     std::vector<Vec3> pts;
     for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
-      const std::int32_t a = label(f->first), b = label(f->first->neighbor(f->second));
-      if (a == b || !std::binary_search(bad.begin(), bad.end(), std::array<std::int32_t, 2>{std::max(a, b), std::min(a, b)}))
-        continue;
       Vec3 x;
-      if (surface_centre(f->first, f->second, x)) pts.push_back(x);
+      if (!surface_centre(f->first, f->second, x)) continue;
+      const Vec3 q = x_.continuous_index(x);
+      const auto i = std::ptrdiff_t(std::floor(q[0] + 0.5)), j = std::ptrdiff_t(std::floor(q[1] + 0.5)),
+                 k = std::ptrdiff_t(std::floor(q[2] + 0.5));
+      if (x_.inside(i, j, k) && near[x_.index(std::size_t(i), std::size_t(j), std::size_t(k))]) pts.push_back(x);
     }
     bool any = false;
     for (const Vec3& x : pts) any = insert(x, kCertificate) || any;

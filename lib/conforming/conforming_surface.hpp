@@ -25,9 +25,10 @@
 //     VoxelSides every voxel centre next to an interface in a cell of its
 //                own label, else the first change of lambda from the centre
 //                towards that cell's circumcentre.
-//   certificate  the caller's; where it fails, every facet of the pairs it
-//              names gets its surface centre, and REFINE again (a patch
-//              sampled too coarsely shows as split, merged or pinched).
+//   certificate  the caller's; where it fails, every restricted facet near
+//              the K(X) patches it names gets its surface centre, and REFINE
+//              again (a patch sampled too coarsely shows as split, merged or
+//              pinched).
 //   output     every restricted facet once, with (behind, front) = (higher,
 //              lower label), oriented out of behind (K(X)'s convention).
 // The Delaunay triangulation embeds the complex: no two triangles cross.
@@ -54,12 +55,12 @@ struct ConformingOptions {
   std::size_t max_points = 2000000;
   bool voxel_sides = true;
   // The certificate (surfacenets/interface_certificate.hpp, the caller's):
-  // the label pairs whose triangles it refuses, empty when it holds. Each
-  // round the surface centres of those pairs' facets go in and REFINE runs
-  // again, at most `certificate_rounds` times. Unset: no rounds.
-  std::function<std::vector<std::array<std::int32_t, 2>>(const std::vector<Vec3>& points,
-                                                         const std::vector<std::array<int, 3>>& triangles,
-                                                         const std::vector<std::array<std::int32_t, 2>>& pairs)>
+  // the K(X) patches where it fails (failing_complex_patches), empty when
+  // it holds. Each round the surface centres of the restricted facets
+  // within a voxel of those patches' faces go in and REFINE runs again, at
+  // most `certificate_rounds` times. Unset: no rounds.
+  std::function<std::vector<std::size_t>(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                         const std::vector<std::array<std::int32_t, 2>>& pairs)>
       certificate;
   int certificate_rounds = 8;
   std::function<void(const std::string&)> progress;

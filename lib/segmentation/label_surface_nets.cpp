@@ -120,7 +120,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
                         const std::vector<std::array<std::int32_t, 2>>& l) {
       InterfaceCertificateOptions c = co;
       c.lattice = false;
-      return certify_interface_mesh(p, t, l, wc, k, c).failing_pairs();
+      return certify_interface_mesh(p, t, l, wc, k, c).failing_complex_patches();
     };
     ConformingSurface c = conforming_surface(lambda, wc, k, o);
     res.conforming = c.to_json();
