@@ -412,24 +412,33 @@ template <class T> struct VtuArray {
   std::vector<T> values;
   std::string label;                     // its Name, or its section's
   std::size_t text = std::string::npos;  // ASCII: where its values start in the file
+  std::string what;                      // binary: "appended DataArray NAME" or "binary DataArray NAME"
 };
 
-// A .vtu's DataArrays, ASCII inline or in the appended raw data
-// (zlib-compressed or not, UInt32 or UInt64 headers), as VTK writes them.
-// The real arrays read are coordinates (Points), in the range of
-// util/coordinates.hpp whichever the encoding.
+// A VTK XML file's DataArrays (.vtu, .vtp), ASCII or binary, inline or
+// appended, every layout vtkXMLWriter writes (util/binary_io.hpp's
+// VtkBinaryLayout) but LZ4 and LZMA compression, which are refused naming
+// the compressor. The real arrays read are coordinates (Points), in the
+// range of util/coordinates.hpp whichever the encoding.
 class VtuArrays {
 public:
   VtuArrays(std::string text, std::string path) : x_(std::move(text)), path_(std::move(path)) {
     const std::size_t file = x_.find("<VTKFile");
     const std::string head = file == std::string::npos ? "" : x_.substr(file, x_.find('>', file) - file);
-    uint64_ = head.find("header_type=\"UInt64\"") != std::string::npos;
-    zlib_ = head.find("vtkZLibDataCompressor") != std::string::npos;
-    if (head.find("compressor=") != std::string::npos && !zlib_) throw Error("only zlib-compressed .vtu data is supported", path_);
-    if (head.find("BigEndian") != std::string::npos) throw Error("big-endian .vtu data is not supported", path_);
+    layout_.uint64_header = attribute(head, "header_type") == "UInt64";
+    compressor_ = attribute(head, "compressor");
+    layout_.zlib = compressor_ == "vtkZLibDataCompressor";
+    const std::string order = attribute(head, "byte_order");
+    if (order != "" && order != "LittleEndian" && order != "BigEndian")
+      throw Error("VTK XML byte_order \"" + order.substr(0, 40) + "\" (LittleEndian or BigEndian expected)", path_);
+    layout_.order = order == "BigEndian" ? ByteOrder::Big : ByteOrder::Little;
+    // The appended data start after its tag, blanks and a '_'; base64 unless
+    // encoding="raw", as vtkXMLDataParser reads them.
     const std::size_t a = x_.find("<AppendedData");
-    if (a != std::string::npos) appended_ = x_.find('_', a);
-    if (a != std::string::npos && appended_ != std::string::npos) ++appended_;
+    if (a == std::string::npos || x_.find('>', a) == std::string::npos) return;
+    appended_base64_ = attribute(x_.substr(a, x_.find('>', a) - a), "encoding") != "raw";
+    appended_ = data_start(x_.find('>', a) + 1);
+    if (appended_ < x_.size() && x_[appended_] == '_') ++appended_;
   }
   // The values of the DataArray named `name` (or the first in `section`),
   // as T (double or long long); empty when absent and not required.
@@ -438,12 +447,12 @@ public:
     const std::string tag = find(section, name, required, close);
     VtuArray<T> a{{}, name.empty() ? section : name};
     if (tag.empty()) return a;
-    if (tag.find("format=\"appended\"") != std::string::npos) {
-      decode(tag, a);
+    const std::string format = attribute(tag, "format");
+    if (format == "appended" || format == "binary") {
+      decode(tag, format == "appended", close + 1, a);
       return a;
     }
-    if (tag.find("format=\"ascii\"") == std::string::npos)
-      throw Error("only ASCII and appended raw .vtu data are supported", path_);
+    if (format != "ascii") throw Error("DataArray " + a.label + ": format \"" + format.substr(0, 40) + "\" (ascii, binary or appended expected)", path_);
     a.text = close + 1;
     std::istringstream text(ascii(a.text));
     Tokens t{text, path_, line_at(a.text)};
@@ -454,10 +463,10 @@ public:
     return a;
   }
   // Throws Error for value i of `a` (i = its size: where it ends): in ASCII
-  // naming the line it is on, in appended data the array and the index.
+  // naming the line it is on, in binary data the array and the index.
   template <class T> [[noreturn]] void fail(const VtuArray<T>& a, std::size_t i, const std::string& what) const {
     if (a.text == std::string::npos)
-      throw Error("appended DataArray " + a.label + ", value " + std::to_string(i) + ": " + what, path_);
+      throw Error(a.what + ", value " + std::to_string(i) + ": " + what, path_);
     std::istringstream text(ascii(a.text));
     Tokens t{text, path_, line_at(a.text)};
     std::string s;
@@ -490,13 +499,19 @@ private:
       at = close;
     }
   }
-  // An ASCII array's text from `begin`, and the file's line there.
+  // An ASCII array's text from `begin` up to the next tag (the end of the
+  // array, or the InformationKey elements VTK writes after the values).
   std::string ascii(std::size_t begin) const {
-    const std::size_t end = x_.find("</DataArray>", begin);
+    const std::size_t end = x_.find('<', begin);
     return x_.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
   }
   int line_at(std::size_t begin) const {
     return 1 + int(std::count(x_.begin(), x_.begin() + std::ptrdiff_t(begin), '\n'));
+  }
+  // Past the blanks from `at`.
+  std::size_t data_start(std::size_t at) const {
+    while (at < x_.size() && std::isspace(static_cast<unsigned char>(x_[at]))) ++at;
+    return at;
   }
   static std::string attribute(const std::string& tag, const std::string& key) {
     const std::size_t at = tag.find(" " + key + "=\"");
@@ -504,17 +519,28 @@ private:
     const std::size_t begin = at + key.size() + 3;
     return tag.substr(begin, tag.find('"', begin) - begin);
   }
-  template <class T> void decode(const std::string& tag, VtuArray<T>& a) const {
-    if (appended_ == std::string::npos) throw Error("an appended DataArray without <AppendedData>", path_);
-    std::size_t offset = 0;
-    try {
-      offset = std::stoull(attribute(tag, "offset"));
-    } catch (const std::exception&) {
-      throw Error("an appended DataArray without a valid offset", path_);
+  // A binary array: inline base64 from `inline_at`, or appended.
+  template <class T> void decode(const std::string& tag, bool appended, std::size_t inline_at, VtuArray<T>& a) const {
+    a.what = (appended ? "appended DataArray " : "binary DataArray ") + a.label;
+    if (!compressor_.empty() && !layout_.zlib)
+      throw Error(a.what + ": compressed by " + compressor_.substr(0, 40) + " (only zlib or no compression is read)", path_);
+    VtkBinaryLayout layout = layout_;
+    std::size_t at = data_start(inline_at);
+    if (appended) {
+      if (appended_ == std::string::npos) throw Error("an appended DataArray without <AppendedData>", path_);
+      std::size_t offset = 0;
+      try {
+        offset = std::stoull(attribute(tag, "offset"));
+      } catch (const std::exception&) {
+        throw Error("an appended DataArray without a valid offset", path_);
+      }
+      if (offset > x_.size() - appended_) throw Error("an appended DataArray's offset beyond the file", path_);
+      at = appended_ + offset;
+      layout.base64 = appended_base64_;
+    } else {
+      layout.base64 = true;
     }
-    if (offset > x_.size() - appended_) throw Error("an appended DataArray's offset beyond the file", path_);
-    const std::string raw = zlib_ ? vtk_zlib_decode(x_, appended_ + offset, uint64_, path_)
-                                  : vtk_raw_decode(x_, appended_ + offset, uint64_, path_);
+    const std::string raw = vtk_array_decode(x_, at, layout, a.what, path_);
     const std::string type = attribute(tag, "type");
     if (type == "Float64") return convert<T, double>(raw, a);
     if (type == "Float32") return convert<T, float>(raw, a);
@@ -523,14 +549,16 @@ private:
     if (type == "Int32") return convert<T, std::int32_t>(raw, a);
     if (type == "UInt32") return convert<T, std::uint32_t>(raw, a);
     if (type == "UInt8") return convert<T, std::uint8_t>(raw, a);
+    if (type == "Int16") return convert<T, std::int16_t>(raw, a);
+    if (type == "UInt16") return convert<T, std::uint16_t>(raw, a);
     if (type == "Int8") return convert<T, std::int8_t>(raw, a);
-    throw Error("unsupported .vtu DataArray type '" + type + "'", path_);
+    throw Error(a.what + ": unsupported type '" + type.substr(0, 40) + "'", path_);
   }
   template <class T, class S> void convert(const std::string& raw, VtuArray<T>& a) const {
-    if (raw.size() % sizeof(S)) throw Error("an appended DataArray's size is not a multiple of its type's", path_);
+    if (raw.size() % sizeof(S)) throw Error(a.what + ": its size is not a multiple of its type's", path_);
     a.values.resize(raw.size() / sizeof(S));
     for (std::size_t i = 0; i < a.values.size(); ++i) {
-      const S v = get_bytes<S>(raw.data() + i * sizeof(S));
+      const S v = get_bytes<S>(raw.data() + i * sizeof(S), layout_.order);
       if constexpr (std::is_floating_point_v<S>) {
         if constexpr (!std::is_floating_point_v<T>) throw Error("real numbers where integers are expected", path_);
         if (!valid_coordinate(v)) fail(a, i, coordinate_error(double(v)));
@@ -541,8 +569,10 @@ private:
     }
   }
   std::string x_, path_;
-  std::size_t appended_ = std::string::npos;
-  bool uint64_ = false, zlib_ = false;
+  std::size_t appended_ = std::string::npos;  // where the appended data start
+  bool appended_base64_ = true;
+  VtkBinaryLayout layout_;
+  std::string compressor_;
 };
 
 TetMesh read_vtu(const std::string& path) {

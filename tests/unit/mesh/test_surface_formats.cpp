@@ -113,12 +113,14 @@ TEST_CASE("binary .vtp: appended zlib arrays holding the exact doubles and ids; 
   CHECK(b.find("Name=\"label_names\" NumberOfTuples=\"1\" format=\"ascii\">\n        108 105 118 101 114 0\n") !=
         std::string::npos);
   const std::size_t data = b.find("<AppendedData encoding=\"raw\">\n   _") + 34;
+  VtkBinaryLayout zlib64;
+  zlib64.zlib = zlib64.uint64_header = true;
   REQUIRE(data > 34);
   // Each array by the offset its DataArray gives.
   auto array = [&](const std::string& name) {
     const std::size_t tag = b.find("Name=\"" + name + "\"");
     const std::size_t at = b.find("offset=\"", tag) + 8;
-    return vtk_zlib_decode(b, data + std::stoull(b.substr(at)), true, "t.vtp");
+    return vtk_array_decode(b, data + std::stoull(b.substr(at)), zlib64, name, "t.vtp");
   };
   const std::string points = array("Points"), ids = array("connectivity"), labels = array("label");
   REQUIRE(points.size() == 8 * 24);
@@ -139,7 +141,9 @@ TEST_CASE("vtk_zlib: arrays over several 32 KiB blocks decode to their bytes; a 
   const std::string z = vtk_zlib_encode(raw);
   CHECK(get_bytes<std::uint64_t>(z.data()) == 5);  // 160000 bytes: 4 full blocks and one of 28928
   CHECK(get_bytes<std::uint64_t>(z.data() + 16) == 160000 % 32768);
-  CHECK(vtk_zlib_decode("xy" + z, 2, true, "t") == raw);
-  CHECK_THROWS_AS(vtk_zlib_decode(z.substr(0, z.size() - 1), 0, true, "t"), Error);
-  CHECK(vtk_zlib_decode(vtk_zlib_encode(""), 0, true, "t").empty());
+  VtkBinaryLayout zlib64;
+  zlib64.zlib = zlib64.uint64_header = true;
+  CHECK(vtk_array_decode("xy" + z, 2, zlib64, "a", "t") == raw);
+  CHECK_THROWS_AS(vtk_array_decode(z.substr(0, z.size() - 1), 0, zlib64, "a", "t"), Error);
+  CHECK(vtk_array_decode(vtk_zlib_encode(""), 0, zlib64, "a", "t").empty());
 }
