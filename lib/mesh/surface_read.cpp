@@ -66,7 +66,8 @@ public:
   void set_binary(bool binary) { binary_ = binary; }
   // n values of VTK type `type`, as doubles (exact for the integers the
   // format holds in a double's 53 bits).
-  std::vector<double> values(const std::string& type, std::size_t n) {
+  std::vector<double> values(const std::string& name, std::size_t n) {
+    const std::string type = canonical_type(name);
     if (n > x_.size()) fail("a count beyond the size of the file");
     std::vector<double> v(n);
     if (!binary_) {
@@ -117,12 +118,25 @@ private:
       fail(type == "float" || type == "double" ? coordinate_error(s) : "expected a number, found '" + s.substr(0, 40) + "'");
     return v;
   }
+  // The type names vtkDataReader reads (case-insensitive), as one of
+  // int8 ... uint64 (C names: char, short, int, long 8 bytes; vtkIdType is
+  // written as 4-byte int), float, double.
+  std::string canonical_type(std::string t) const {
+    for (char& c : t) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (t.rfind("vtktype", 0) == 0) t = t.substr(7);
+    static const std::map<std::string, std::string> names{
+        {"char", "int8"},      {"signed_char", "int8"},     {"unsigned_char", "uint8"},  {"short", "int16"},
+        {"unsigned_short", "uint16"}, {"int", "int32"},     {"vtkidtype", "int32"},      {"unsigned_int", "uint32"},
+        {"long", "int64"},     {"unsigned_long", "uint64"}, {"float", "float"},         {"double", "double"}};
+    if (const auto it = names.find(t); it != names.end()) return it->second;
+    static const std::set<std::string> sized{"int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64"};
+    if (!sized.count(t)) fail("unsupported data type '" + t.substr(0, 40) + "'");
+    return t;
+  }
   std::size_t type_size(const std::string& t) const {
-    if (t == "double" || t == "long" || t == "unsigned_long" || t == "vtktypeint64" || t == "vtktypeuint64") return 8;
-    if (t == "float" || t == "int" || t == "unsigned_int") return 4;
-    if (t == "short" || t == "unsigned_short") return 2;
-    if (t == "char" || t == "unsigned_char") return 1;
-    fail("unsupported data type '" + t + "'");
+    if (t == "double" || t == "int64" || t == "uint64") return 8;
+    if (t == "float" || t == "int32" || t == "uint32") return 4;
+    return t == "int16" || t == "uint16" ? 2 : 1;
   }
   double binary_value(const std::string& t, const char* b) const {
     const auto get = [&](auto x) { return double(get_bytes<decltype(x)>(b, ByteOrder::Big)); };
@@ -131,13 +145,13 @@ private:
       if (!valid_coordinate(v)) fail(coordinate_error(v));
       return v;
     }
-    if (t == "long" || t == "vtktypeint64") return get(std::int64_t());
-    if (t == "unsigned_long" || t == "vtktypeuint64") return get(std::uint64_t());
-    if (t == "int") return get(std::int32_t());
-    if (t == "unsigned_int") return get(std::uint32_t());
-    if (t == "short") return get(std::int16_t());
-    if (t == "unsigned_short") return get(std::uint16_t());
-    if (t == "char") return get(std::int8_t());
+    if (t == "int64") return get(std::int64_t());
+    if (t == "uint64") return get(std::uint64_t());
+    if (t == "int32") return get(std::int32_t());
+    if (t == "uint32") return get(std::uint32_t());
+    if (t == "int16") return get(std::int16_t());
+    if (t == "uint16") return get(std::uint16_t());
+    if (t == "int8") return get(std::int8_t());
     return get(std::uint8_t());
   }
   static std::string unescape(const std::string& s) {
