@@ -109,7 +109,7 @@ private:
       close = x_.find('>', at);
       if (close == std::string::npos) throw Error("a DataArray tag is not closed", path_);
       const std::string tag = x_.substr(at, close - at);
-      if (name.empty() || tag.find("Name=\"" + name + "\"") != std::string::npos) return tag;
+      if (name.empty() || attribute(tag, "Name") == name) return tag;
       at = close;
     }
   }
@@ -127,11 +127,18 @@ private:
     while (at < x_.size() && std::isspace(static_cast<unsigned char>(x_[at]))) ++at;
     return at;
   }
+  // The value of attribute `key` of `tag` (after a blank, quoted with " or
+  // '), empty when absent.
   static std::string attribute(const std::string& tag, const std::string& key) {
-    const std::size_t at = tag.find(" " + key + "=\"");
-    if (at == std::string::npos) return {};
-    const std::size_t begin = at + key.size() + 3;
-    return tag.substr(begin, tag.find('"', begin) - begin);
+    for (std::size_t at = tag.find(key + "="); at != std::string::npos; at = tag.find(key + "=", at + 1)) {
+      const std::size_t q = at + key.size() + 1;
+      if (at == 0 || !std::isspace(static_cast<unsigned char>(tag[at - 1])) || q >= tag.size() ||
+          (tag[q] != '"' && tag[q] != '\''))
+        continue;
+      const std::size_t end = tag.find(tag[q], q + 1);
+      return end == std::string::npos ? std::string() : tag.substr(q + 1, end - q - 1);
+    }
+    return {};
   }
   // A binary array: inline base64 from `inline_at`, or appended.
   template <class T> void decode(const std::string& tag, bool appended, std::size_t inline_at, VtuArray<T>& a) const {
