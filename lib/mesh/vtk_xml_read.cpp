@@ -66,7 +66,9 @@ public:
       decode(tag, format == "appended", close + 1, a);
       return a;
     }
-    if (format != "ascii") throw Error("DataArray " + a.label + ": format \"" + format.substr(0, 40) + "\" (ascii, binary or appended expected)", path_);
+    if (format != "ascii")
+      throw Error("DataArray " + a.label + ": format \"" + format.substr(0, 40) +
+                      "\" (ascii, binary or appended expected)", path_);
     a.text = close + 1;
     std::istringstream text(ascii(a.text));
     Tokens t{text, path_, line_at(a.text)};
@@ -96,14 +98,14 @@ private:
     if (!section.empty()) {
       at = x_.find("<" + section);
       if (at == std::string::npos) {
-        if (required) throw Error("no <" + section + "> in the .vtu file", path_);
+        if (required) throw Error("no <" + section + "> in the VTK XML file", path_);
         return {};
       }
     }
     for (;;) {
       at = x_.find("<DataArray", at);
       if (at == std::string::npos) {
-        if (required) throw Error("no DataArray " + name + " in the .vtu file", path_);
+        if (required) throw Error("no DataArray " + name + " in the VTK XML file", path_);
         return {};
       }
       close = x_.find('>', at);
@@ -144,7 +146,8 @@ private:
   template <class T> void decode(const std::string& tag, bool appended, std::size_t inline_at, VtuArray<T>& a) const {
     a.what = (appended ? "appended DataArray " : "binary DataArray ") + a.label;
     if (!compressor_.empty() && !layout_.zlib)
-      throw Error(a.what + ": compressed by " + compressor_.substr(0, 40) + " (only zlib or no compression is read)", path_);
+      throw Error(a.what + ": compressed by " + compressor_.substr(0, 40) + " (only zlib or no compression is read)",
+                  path_);
     VtkBinaryLayout layout = layout_;
     std::size_t at = data_start(inline_at);
     if (appended) {

@@ -93,7 +93,8 @@ std::string zlib_array(const ArrayRuns& runs, std::size_t offset, const VtkBinar
     if (sizes[b] > file) runs.fail("a compressed block runs past the end of the file");
     total += sizes[b];
   }
-  const std::string body = runs.bytes(offset + std::size_t(runs.size((3 + blocks) * word)), total, "its compressed blocks");
+  const std::size_t body_at = offset + std::size_t(runs.size((3 + blocks) * word));
+  const std::string body = runs.bytes(body_at, total, "its compressed blocks");
   std::string raw;
   std::size_t at = 0;
   for (std::uint64_t b = 0; b < blocks; ++b) {
