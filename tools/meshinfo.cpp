@@ -54,10 +54,10 @@ int main(int argc, char** argv) {
     const std::string ext = imgmesh::extension_of(in);
     std::optional<imgmesh::TetMesh> tm;
     std::optional<imgmesh::PolyMesh> pm;
-    if (ext == ".msh") {  // tetrahedra, or a surface (seg2mesh's, with its label pairs)
-      imgmesh::MshMesh m = imgmesh::read_msh_mesh(in);
+    if (ext == ".msh" || ext == ".vtk") {  // tetrahedra, or a surface (seg2mesh's, with its label pairs)
+      imgmesh::TetsOrSurface m = imgmesh::read_tets_or_surface(in);
       if (m.tets) tm = std::move(*m.tets);
-      else pm = imgmesh::poly_mesh(*m.surface, "msh");
+      else pm = imgmesh::poly_mesh(*m.surface, ext.substr(1));
     } else if (ext == ".mesh" || ext == ".vtu") {
       tm = imgmesh::read_tet_mesh(in);
     } else {

@@ -41,9 +41,10 @@ bool surface_output_holds_labels(const std::string& path);
 // Throws Error on unreadable files, non-triangle faces, bad ids, NaNs.
 // Per-face labels and label pairs are read back from PLY (properties label,
 // label_behind and label_front), .vtp and .vtk (cell data label and the
-// 2-component labels) and .msh (physical groups, see write_msh); a PLY
-// with label pairs is read as it is (an interface mesh is no manifold:
-// OpenMesh would cut it), any other through OpenMesh.
+// 2-component labels; in any layout VTK's writers use) and .msh (physical
+// groups, see write_msh); a PLY with label pairs is read as it is (an
+// interface mesh is no manifold: OpenMesh would cut it), any other through
+// OpenMesh.
 SurfaceMesh read_surface(const std::string& path);
 // Atomic; binary PLY/STL/VTK (or ASCII, options.ascii), ASCII OFF/OBJ, msh
 // as options say; normals written when

@@ -66,7 +66,8 @@ public:
   void set_binary(bool binary) { binary_ = binary; }
   // n values of VTK type `type`, as doubles (exact for the integers the
   // format holds in a double's 53 bits).
-  std::vector<double> values(const std::string& type, std::size_t n) {
+  std::vector<double> values(const std::string& name, std::size_t n) {
+    const std::string type = canonical_type(name);
     if (n > x_.size()) fail("a count beyond the size of the file");
     std::vector<double> v(n);
     if (!binary_) {
@@ -117,12 +118,25 @@ private:
       fail(type == "float" || type == "double" ? coordinate_error(s) : "expected a number, found '" + s.substr(0, 40) + "'");
     return v;
   }
+  // The type names vtkDataReader reads (case-insensitive), as one of
+  // int8 ... uint64 (C names: char, short, int, long 8 bytes; vtkIdType is
+  // written as 4-byte int), float, double.
+  std::string canonical_type(std::string t) const {
+    for (char& c : t) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (t.rfind("vtktype", 0) == 0) t = t.substr(7);
+    static const std::map<std::string, std::string> names{
+        {"char", "int8"},      {"signed_char", "int8"},     {"unsigned_char", "uint8"},  {"short", "int16"},
+        {"unsigned_short", "uint16"}, {"int", "int32"},     {"vtkidtype", "int32"},      {"unsigned_int", "uint32"},
+        {"long", "int64"},     {"unsigned_long", "uint64"}, {"float", "float"},         {"double", "double"}};
+    if (const auto it = names.find(t); it != names.end()) return it->second;
+    static const std::set<std::string> sized{"int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64"};
+    if (!sized.count(t)) fail("unsupported data type '" + t.substr(0, 40) + "'");
+    return t;
+  }
   std::size_t type_size(const std::string& t) const {
-    if (t == "double" || t == "long" || t == "unsigned_long" || t == "vtktypeint64" || t == "vtktypeuint64") return 8;
-    if (t == "float" || t == "int" || t == "unsigned_int") return 4;
-    if (t == "short" || t == "unsigned_short") return 2;
-    if (t == "char" || t == "unsigned_char") return 1;
-    fail("unsupported data type '" + t + "'");
+    if (t == "double" || t == "int64" || t == "uint64") return 8;
+    if (t == "float" || t == "int32" || t == "uint32") return 4;
+    return t == "int16" || t == "uint16" ? 2 : 1;
   }
   double binary_value(const std::string& t, const char* b) const {
     const auto get = [&](auto x) { return double(get_bytes<decltype(x)>(b, ByteOrder::Big)); };
@@ -131,13 +145,13 @@ private:
       if (!valid_coordinate(v)) fail(coordinate_error(v));
       return v;
     }
-    if (t == "long" || t == "vtktypeint64") return get(std::int64_t());
-    if (t == "unsigned_long" || t == "vtktypeuint64") return get(std::uint64_t());
-    if (t == "int") return get(std::int32_t());
-    if (t == "unsigned_int") return get(std::uint32_t());
-    if (t == "short") return get(std::int16_t());
-    if (t == "unsigned_short") return get(std::uint16_t());
-    if (t == "char") return get(std::int8_t());
+    if (t == "int64") return get(std::int64_t());
+    if (t == "uint64") return get(std::uint64_t());
+    if (t == "int32") return get(std::int32_t());
+    if (t == "uint32") return get(std::uint32_t());
+    if (t == "int16") return get(std::int16_t());
+    if (t == "uint16") return get(std::uint16_t());
+    if (t == "int8") return get(std::int8_t());
     return get(std::uint8_t());
   }
   static std::string unescape(const std::string& s) {
@@ -201,9 +215,9 @@ std::vector<std::vector<int>> read_cells(LegacyVtk& f, const std::vector<std::st
   return cells;
 }
 
-// What a legacy file's data sections hold that a SurfaceMesh keeps.
+// What a legacy file's data sections hold that a SurfaceMesh or a TetMesh keeps.
 struct VtkArrays {
-  std::vector<double> label, labels, label_values, normals;
+  std::vector<double> label, labels, region, label_values, normals;
   std::vector<std::string> label_names;
 };
 
@@ -223,6 +237,7 @@ void read_field(LegacyVtk& f, const std::vector<std::string>& w, bool cells, Vtk
       auto v = f.values(h[3], n);
       if (cells && h[0] == "label" && h[1] == "1") out.label = std::move(v);
       if (cells && h[0] == "labels" && h[1] == "2") out.labels = std::move(v);
+      if (cells && h[0] == "region" && h[1] == "1") out.region = std::move(v);
       if (!cells && h[0] == "label_values") out.label_values = std::move(v);
     }
     if (auto m = f.peek(); !m.empty() && m[0] == "METADATA")
@@ -231,58 +246,87 @@ void read_field(LegacyVtk& f, const std::vector<std::string>& w, bool cells, Vtk
   }
 }
 
-} // namespace
+// A legacy file's dataset: POLYDATA (its triangles) or UNSTRUCTURED_GRID
+// (its cells and their types), the points and the arrays kept.
+struct LegacyDataset {
+  bool grid = false;
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::vector<int>> cells;
+  std::vector<double> types;
+  VtkArrays arrays;
+};
 
-namespace mesh_detail {
+// One section of a legacy file, its keyword line `w`, into d; `tuples`,
+// `cells` and `data` say which data section we are in.
+void read_section(LegacyVtk& f, const std::vector<std::string>& w, LegacyDataset& d, std::size_t& tuples, bool& cells,
+                  bool& data) {
+  const std::string& k = w[0];
+  VtkArrays& arrays = d.arrays;
+  if (k == "POINTS" && w.size() == 3) {
+    const std::vector<double> p = f.values(w[2], 3 * count_of(f, w[1]));
+    for (std::size_t i = 0; i < p.size(); i += 3) d.points.push_back({p[i], p[i + 1], p[i + 2]});
+  } else if (!d.grid && (k == "POLYGONS" || k == "VERTICES" || k == "LINES" || k == "TRIANGLE_STRIPS")) {
+    for (auto& c : read_cells(f, w, d.points.size())) {
+      if (k != "POLYGONS" || c.size() != 3) f.fail("a cell that is not a triangle: only triangles are read");
+      d.cells.push_back(std::move(c));
+    }
+  } else if (d.grid && k == "CELLS") {
+    d.cells = read_cells(f, w, d.points.size());
+  } else if (d.grid && k == "CELL_TYPES" && w.size() == 2) {
+    d.types = f.values("int", count_of(f, w[1]));
+  } else if ((k == "CELL_DATA" || k == "POINT_DATA") && w.size() == 2) {
+    cells = k == "CELL_DATA";
+    data = true;
+    tuples = count_of(f, w[1]);
+  } else if (k == "FIELD") {
+    read_field(f, w, data && cells, arrays);
+  } else if (k == "SCALARS" && data && w.size() >= 3) {
+    const std::size_t components = w.size() > 3 ? count_of(f, w[3]) : 1;
+    const auto lut = f.peek();
+    if (lut.size() == 2 && lut[0] == "LOOKUP_TABLE") f.next();
+    auto v = f.values(w[2], tuples * components);
+    if (cells && w[1] == "label" && components == 1) arrays.label = std::move(v);
+    if (cells && w[1] == "labels" && components == 2) arrays.labels = std::move(v);
+    if (cells && w[1] == "region" && components == 1) arrays.region = std::move(v);
+  } else if ((k == "NORMALS" || k == "VECTORS" || k == "TENSORS") && data && w.size() == 3) {
+    auto v = f.values(w[2], tuples * (k == "TENSORS" ? 9 : 3));
+    if (!cells && k == "NORMALS") arrays.normals = std::move(v);
+  } else if (k == "METADATA") {
+    while (!f.at_end() && !f.line().empty()) {
+    }
+  } else {
+    f.fail("unsupported legacy VTK keyword '" + k.substr(0, 40) + "'");
+  }
+}
 
-SurfaceMesh read_vtk_legacy(const std::string& path) {
-  LegacyVtk f(path);
+LegacyDataset read_dataset(LegacyVtk& f) {
   if (f.line().rfind("# vtk DataFile Version", 0) != 0) f.fail("not a legacy VTK file");
   f.line();  // the title
   const auto encoding = f.words();
   if (encoding.size() != 1 || (encoding[0] != "ASCII" && encoding[0] != "BINARY")) f.fail("ASCII or BINARY expected");
   f.set_binary(encoding[0] == "BINARY");
-  if (f.next() != std::vector<std::string>{"DATASET", "POLYDATA"}) f.fail("only DATASET POLYDATA is read as a surface");
-  SurfaceMesh m;
-  VtkArrays arrays;
+  LegacyDataset d;
+  const auto dataset = f.next();
+  d.grid = dataset == std::vector<std::string>{"DATASET", "UNSTRUCTURED_GRID"};
+  if (!d.grid && dataset != std::vector<std::string>{"DATASET", "POLYDATA"})
+    f.fail("only DATASET POLYDATA (a surface) or UNSTRUCTURED_GRID (tetrahedra) is read");
   std::size_t tuples = 0;  // of the CELL_DATA or POINT_DATA section we are in
   bool cells = false, data = false;
-  for (auto w = f.next(); !w.empty(); w = f.next()) {
-    const std::string& k = w[0];
-    if (k == "POINTS" && w.size() == 3) {
-      const std::vector<double> p = f.values(w[2], 3 * count_of(f, w[1]));
-      for (std::size_t i = 0; i < p.size(); i += 3) m.points.push_back({p[i], p[i + 1], p[i + 2]});
-    } else if (k == "POLYGONS" || k == "VERTICES" || k == "LINES" || k == "TRIANGLE_STRIPS") {
-      for (const auto& c : read_cells(f, w, m.points.size())) {
-        if (k != "POLYGONS" || c.size() != 3) f.fail("a cell that is not a triangle: only triangles are read");
-        m.triangles.push_back({c[0], c[1], c[2]});
-      }
-    } else if ((k == "CELL_DATA" || k == "POINT_DATA") && w.size() == 2) {
-      cells = k == "CELL_DATA";
-      data = true;
-      tuples = count_of(f, w[1]);
-    } else if (k == "FIELD") {
-      read_field(f, w, data && cells, arrays);
-    } else if (k == "SCALARS" && data && w.size() >= 3) {
-      const std::size_t components = w.size() > 3 ? count_of(f, w[3]) : 1;
-      const auto lut = f.peek();
-      if (lut.size() == 2 && lut[0] == "LOOKUP_TABLE") f.next();
-      auto v = f.values(w[2], tuples * components);
-      if (cells && w[1] == "label" && components == 1) arrays.label = std::move(v);
-      if (cells && w[1] == "labels" && components == 2) arrays.labels = std::move(v);
-    } else if ((k == "NORMALS" || k == "VECTORS" || k == "TENSORS") && data && w.size() == 3) {
-      auto v = f.values(w[2], tuples * (k == "TENSORS" ? 9 : 3));
-      if (!cells && k == "NORMALS") arrays.normals = std::move(v);
-    } else if (k == "METADATA") {
-      while (!f.at_end() && !f.line().empty()) {
-      }
-    } else {
-      f.fail("unsupported legacy VTK keyword '" + k.substr(0, 40) + "'");
-    }
-  }
-  const std::size_t n = m.triangles.size();
-  if (!arrays.label.empty() && arrays.label.size() != n) f.fail("not one label a triangle");
-  if (!arrays.labels.empty() && arrays.labels.size() != 2 * n) f.fail("not two labels a triangle");
+  for (auto w = f.next(); !w.empty(); w = f.next()) read_section(f, w, d, tuples, cells, data);
+  const std::size_t n = d.cells.size();
+  if (d.grid && d.types.size() != n) f.fail("not one CELL_TYPES value a cell");
+  if (!d.arrays.label.empty() && d.arrays.label.size() != n) f.fail("not one label a cell");
+  if (!d.arrays.labels.empty() && d.arrays.labels.size() != 2 * n) f.fail("not two labels a cell");
+  if (!d.arrays.region.empty() && d.arrays.region.size() != n) f.fail("not one region a cell");
+  return d;
+}
+
+SurfaceMesh surface_of(LegacyDataset d, const std::string& path) {
+  if (d.grid) throw Error("a DATASET UNSTRUCTURED_GRID: a surface (DATASET POLYDATA) expected", path);
+  SurfaceMesh m;
+  m.points = std::move(d.points);
+  for (const auto& c : d.cells) m.triangles.push_back({c[0], c[1], c[2]});
+  const VtkArrays& arrays = d.arrays;
   for (double l : arrays.label) m.labels.push_back(int(l));
   for (std::size_t i = 0; i < arrays.labels.size(); i += 2)
     m.interfaces.push_back({int(arrays.labels[i]), int(arrays.labels[i + 1])});
@@ -292,6 +336,40 @@ SurfaceMesh read_vtk_legacy(const std::string& path) {
   for (std::size_t i = 0; i < arrays.label_values.size() && i < arrays.label_names.size(); ++i)
     m.label_names[int(arrays.label_values[i])] = arrays.label_names[i];
   check_extent(m.points, path);
+  return m;
+}
+
+// The grid's tetrahedra (VTK_TETRA, 10) and triangles (VTK_TRIANGLE, 5)
+// with their cell data "region" (1 without), the other cells left out, as
+// the .vtu reader does.
+TetMesh tets_of(LegacyDataset d, const std::string& path) {
+  TetMesh m;
+  m.points = std::move(d.points);
+  for (std::size_t c = 0; c < d.cells.size(); ++c) {
+    const int region = d.arrays.region.empty() ? 1 : int(d.arrays.region[c]);
+    const int type = d.types[c] == 10 && d.cells[c].size() == 4 ? 4 : d.types[c] == 5 && d.cells[c].size() == 3 ? 2 : 0;
+    mesh_detail::add_element(m, type, d.cells[c], region);
+  }
+  if (m.tets.empty()) throw Error("no tetrahedron", path);
+  check_extent(m.points, path);
+  return m;
+}
+
+} // namespace
+
+namespace mesh_detail {
+
+SurfaceMesh read_vtk_legacy(const std::string& path) {
+  LegacyVtk f(path);
+  return surface_of(read_dataset(f), path);
+}
+
+TetsOrSurface read_vtk_legacy_mesh(const std::string& path) {
+  LegacyVtk f(path);
+  LegacyDataset d = read_dataset(f);
+  TetsOrSurface m;
+  if (d.grid) m.tets = tets_of(std::move(d), path);
+  else m.surface = surface_of(std::move(d), path);
   return m;
 }
 

@@ -28,19 +28,22 @@ struct TetWriteOptions {
 // Throws Error on failure (no file left), UsageError on an unknown extension.
 void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWriteOptions& options = {});
 
-// .msh (2.2 and 4.1, ASCII or binary), .mesh, .vtu (ASCII or appended raw
-// data, zlib-compressed or not, as VTK and meshio write): tetrahedra and triangles
-// with their regions. Throws Error naming the file on anything malformed.
+// .msh (2.2 and 4.1, ASCII or binary), .mesh, .vtu (ASCII, inline binary
+// or appended raw or base64 data, zlib-compressed or not, either byte order:
+// as VTK and meshio write them), legacy .vtk (UNSTRUCTURED_GRID, ASCII or
+// BINARY, 4.2 or 5.1): tetrahedra and triangles with their regions. Throws
+// Error naming the file on anything malformed.
 TetMesh read_tet_mesh(const std::string& path);
 
-// A .msh of either kind, read once (meshinfo takes both): `tets` when it
-// holds tetrahedra (as read_tet_mesh reads them), else `surface`, its
-// triangles as read_surface reads them (label pairs or labels from its
-// physical groups). Throws Error as they do.
-struct MshMesh {
+// A .msh or a legacy .vtk of either kind, read once (meshinfo takes both):
+// `tets` when it holds tetrahedra (.msh) or is an UNSTRUCTURED_GRID (.vtk),
+// as read_tet_mesh reads them, else `surface`, its triangles as
+// read_surface reads them (label pairs or labels from a .msh's physical
+// groups, a .vtk's cell data). Throws Error as they do.
+struct TetsOrSurface {
   std::optional<TetMesh> tets;
   std::optional<SurfaceMesh> surface;
 };
-MshMesh read_msh_mesh(const std::string& path);
+TetsOrSurface read_tets_or_surface(const std::string& path);
 
 } // namespace imgmesh

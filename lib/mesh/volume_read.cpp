@@ -1,6 +1,7 @@
-// Reading tetrahedral meshes (.msh ASCII or binary, .mesh, .vtu ASCII or
-// appended): one reader per format over values that are text or binary, the
-// coordinates checked against util/coordinates.hpp's range either way.
+// Reading tetrahedral meshes (.msh ASCII or binary, .mesh; .vtu in
+// vtk_xml_read.cpp, legacy .vtk in surface_read.cpp): one reader per format
+// over values that are text or binary, the coordinates checked against
+// util/coordinates.hpp's range either way.
 #include "mesh/volume_io.hpp"
 
 #include "mesh/mesh_read_detail.hpp"
@@ -26,67 +27,8 @@
 namespace imgmesh {
 namespace {
 
-
-// Reading: a whitespace token stream, counting lines, with the file's name
-// and the line in its errors.
-struct Tokens {
-  std::istream& in;
-  const std::string& path;
-  int line = 1;  // of the last token read (or where reading stopped)
-
-  [[noreturn]] void fail(const std::string& what) const {
-    throw Error("line " + std::to_string(line) + ": " + what, path);
-  }
-  // Past the blanks; false at the end.
-  bool more() {
-    for (int c; (c = in.peek()) != EOF && std::isspace(c); in.get())
-      if (c == '\n') ++line;
-    return in.peek() != EOF;
-  }
-  bool read(std::string& s) {
-    if (!more()) return false;
-    s.clear();
-    for (int c; (c = in.peek()) != EOF && !std::isspace(c); in.get()) s.push_back(char(c));
-    return true;
-  }
-  std::string next() {
-    std::string s;
-    if (!read(s)) fail("unexpected end of file");
-    return s;
-  }
-  void skip_line() {
-    for (int c; (c = in.get()) != EOF && c != '\n';) {
-    }
-    ++line;
-  }
-  long long integer() {
-    const std::string s = next();
-    long long v;
-    if (!parse_integer(s, v)) fail("expected an integer, found '" + s.substr(0, 40) + "'");
-    return v;
-  }
-  double real() {
-    const std::string s = next();
-    double v;
-    if (!parse_real(s, v) || !std::isfinite(v)) fail("expected a finite number, found '" + s.substr(0, 40) + "'");
-    return v;
-  }
-  double coordinate() {
-    const std::string s = next();
-    double v;
-    if (!parse_coordinate(s, v)) fail(coordinate_error(s));
-    return v;
-  }
-  std::size_t count(const char* what) {
-    const long long n = integer();
-    if (n < 0 || n > 200000000) fail(std::string("bad ") + what + " count " + std::to_string(n));
-    return std::size_t(n);
-  }
-  void skip_to(const std::string& end) {
-    while (next() != end) {
-    }
-  }
-};
+using mesh_detail::add_element;
+using mesh_detail::Tokens;
 
 // Node tags to 0-based indices.
 struct NodeIds {
@@ -97,16 +39,6 @@ struct NodeIds {
     return it->second;
   }
 };
-
-void add_element(TetMesh& m, int type, const std::vector<int>& v, int region) {
-  if (type == 4) {
-    m.tets.push_back({v[0], v[1], v[2], v[3]});
-    m.tet_region.push_back(region);
-  } else if (type == 2) {
-    m.triangles.push_back({v[0], v[1], v[2]});
-    m.triangle_region.push_back(region);
-  }
-}
 
 int gmsh_nodes(int type) {
   switch (type) {
@@ -407,177 +339,6 @@ TetMesh read_medit(std::istream& in, const std::string& path) {
   return m;
 }
 
-// One DataArray's values and where they are, for errors.
-template <class T> struct VtuArray {
-  std::vector<T> values;
-  std::string label;                     // its Name, or its section's
-  std::size_t text = std::string::npos;  // ASCII: where its values start in the file
-};
-
-// A .vtu's DataArrays, ASCII inline or in the appended raw data
-// (zlib-compressed or not, UInt32 or UInt64 headers), as VTK writes them.
-// The real arrays read are coordinates (Points), in the range of
-// util/coordinates.hpp whichever the encoding.
-class VtuArrays {
-public:
-  VtuArrays(std::string text, std::string path) : x_(std::move(text)), path_(std::move(path)) {
-    const std::size_t file = x_.find("<VTKFile");
-    const std::string head = file == std::string::npos ? "" : x_.substr(file, x_.find('>', file) - file);
-    uint64_ = head.find("header_type=\"UInt64\"") != std::string::npos;
-    zlib_ = head.find("vtkZLibDataCompressor") != std::string::npos;
-    if (head.find("compressor=") != std::string::npos && !zlib_) throw Error("only zlib-compressed .vtu data is supported", path_);
-    if (head.find("BigEndian") != std::string::npos) throw Error("big-endian .vtu data is not supported", path_);
-    const std::size_t a = x_.find("<AppendedData");
-    if (a != std::string::npos) appended_ = x_.find('_', a);
-    if (a != std::string::npos && appended_ != std::string::npos) ++appended_;
-  }
-  // The values of the DataArray named `name` (or the first in `section`),
-  // as T (double or long long); empty when absent and not required.
-  template <class T> VtuArray<T> values(const std::string& section, const std::string& name, bool required = true) const {
-    std::size_t close = 0;
-    const std::string tag = find(section, name, required, close);
-    VtuArray<T> a{{}, name.empty() ? section : name};
-    if (tag.empty()) return a;
-    if (tag.find("format=\"appended\"") != std::string::npos) {
-      decode(tag, a);
-      return a;
-    }
-    if (tag.find("format=\"ascii\"") == std::string::npos)
-      throw Error("only ASCII and appended raw .vtu data are supported", path_);
-    a.text = close + 1;
-    std::istringstream text(ascii(a.text));
-    Tokens t{text, path_, line_at(a.text)};
-    while (t.more()) {
-      if constexpr (std::is_same_v<T, double>) a.values.push_back(t.coordinate());
-      else a.values.push_back(t.integer());
-    }
-    return a;
-  }
-  // Throws Error for value i of `a` (i = its size: where it ends): in ASCII
-  // naming the line it is on, in appended data the array and the index.
-  template <class T> [[noreturn]] void fail(const VtuArray<T>& a, std::size_t i, const std::string& what) const {
-    if (a.text == std::string::npos)
-      throw Error("appended DataArray " + a.label + ", value " + std::to_string(i) + ": " + what, path_);
-    std::istringstream text(ascii(a.text));
-    Tokens t{text, path_, line_at(a.text)};
-    std::string s;
-    for (std::size_t k = 0; k <= i && t.read(s); ++k) {
-    }
-    t.fail(what);
-  }
-
-private:
-  // The tag (up to its '>', at `close`) of the array.
-  std::string find(const std::string& section, const std::string& name, bool required, std::size_t& close) const {
-    std::size_t at = 0;
-    if (!section.empty()) {
-      at = x_.find("<" + section);
-      if (at == std::string::npos) {
-        if (required) throw Error("no <" + section + "> in the .vtu file", path_);
-        return {};
-      }
-    }
-    for (;;) {
-      at = x_.find("<DataArray", at);
-      if (at == std::string::npos) {
-        if (required) throw Error("no DataArray " + name + " in the .vtu file", path_);
-        return {};
-      }
-      close = x_.find('>', at);
-      if (close == std::string::npos) throw Error("a DataArray tag is not closed", path_);
-      const std::string tag = x_.substr(at, close - at);
-      if (name.empty() || tag.find("Name=\"" + name + "\"") != std::string::npos) return tag;
-      at = close;
-    }
-  }
-  // An ASCII array's text from `begin`, and the file's line there.
-  std::string ascii(std::size_t begin) const {
-    const std::size_t end = x_.find("</DataArray>", begin);
-    return x_.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
-  }
-  int line_at(std::size_t begin) const {
-    return 1 + int(std::count(x_.begin(), x_.begin() + std::ptrdiff_t(begin), '\n'));
-  }
-  static std::string attribute(const std::string& tag, const std::string& key) {
-    const std::size_t at = tag.find(" " + key + "=\"");
-    if (at == std::string::npos) return {};
-    const std::size_t begin = at + key.size() + 3;
-    return tag.substr(begin, tag.find('"', begin) - begin);
-  }
-  template <class T> void decode(const std::string& tag, VtuArray<T>& a) const {
-    if (appended_ == std::string::npos) throw Error("an appended DataArray without <AppendedData>", path_);
-    std::size_t offset = 0;
-    try {
-      offset = std::stoull(attribute(tag, "offset"));
-    } catch (const std::exception&) {
-      throw Error("an appended DataArray without a valid offset", path_);
-    }
-    if (offset > x_.size() - appended_) throw Error("an appended DataArray's offset beyond the file", path_);
-    const std::string raw = zlib_ ? vtk_zlib_decode(x_, appended_ + offset, uint64_, path_)
-                                  : vtk_raw_decode(x_, appended_ + offset, uint64_, path_);
-    const std::string type = attribute(tag, "type");
-    if (type == "Float64") return convert<T, double>(raw, a);
-    if (type == "Float32") return convert<T, float>(raw, a);
-    if (type == "Int64") return convert<T, std::int64_t>(raw, a);
-    if (type == "UInt64") return convert<T, std::uint64_t>(raw, a);
-    if (type == "Int32") return convert<T, std::int32_t>(raw, a);
-    if (type == "UInt32") return convert<T, std::uint32_t>(raw, a);
-    if (type == "UInt8") return convert<T, std::uint8_t>(raw, a);
-    if (type == "Int8") return convert<T, std::int8_t>(raw, a);
-    throw Error("unsupported .vtu DataArray type '" + type + "'", path_);
-  }
-  template <class T, class S> void convert(const std::string& raw, VtuArray<T>& a) const {
-    if (raw.size() % sizeof(S)) throw Error("an appended DataArray's size is not a multiple of its type's", path_);
-    a.values.resize(raw.size() / sizeof(S));
-    for (std::size_t i = 0; i < a.values.size(); ++i) {
-      const S v = get_bytes<S>(raw.data() + i * sizeof(S));
-      if constexpr (std::is_floating_point_v<S>) {
-        if constexpr (!std::is_floating_point_v<T>) throw Error("real numbers where integers are expected", path_);
-        if (!valid_coordinate(v)) fail(a, i, coordinate_error(double(v)));
-      }
-      if constexpr (std::is_same_v<S, std::uint64_t>)
-        if (v > std::uint64_t(1) << 62) fail(a, i, "an integer out of range");
-      a.values[i] = T(v);
-    }
-  }
-  std::string x_, path_;
-  std::size_t appended_ = std::string::npos;
-  bool uint64_ = false, zlib_ = false;
-};
-
-TetMesh read_vtu(const std::string& path) {
-  const VtuArrays f(read_all(path), path);
-  TetMesh m;
-  const VtuArray<double> xyz = f.values<double>("Points", "");
-  const VtuArray<long long> con = f.values<long long>("", "connectivity"), off = f.values<long long>("", "offsets"),
-                            types = f.values<long long>("", "types"), reg = f.values<long long>("CellData", "region", false);
-  const auto& p = xyz.values;
-  if (p.size() % 3) throw Error("the point count is not a multiple of 3", path);
-  for (std::size_t i = 0; i < p.size(); i += 3) m.points.push_back({p[i], p[i + 1], p[i + 2]});
-  const std::size_t cells = types.values.size();
-  if (off.values.size() < cells) f.fail(off, off.values.size(), "unexpected end of file");
-  if (!reg.values.empty() && reg.values.size() < cells) f.fail(reg, reg.values.size(), "unexpected end of file");
-  long long last = 0;
-  std::vector<int> v;
-  for (std::size_t c = 0; c < cells; ++c) {
-    const long long end = off.values[c];
-    if (end < last) f.fail(off, c, "decreasing offsets");
-    if (end > (long long)con.values.size()) f.fail(con, con.values.size(), "unexpected end of file");
-    v.clear();
-    for (long long k = last; k < end; ++k) {
-      const long long id = con.values[std::size_t(k)];
-      if (id < 0 || id >= (long long)m.points.size()) f.fail(con, std::size_t(k), "cell refers to unknown point " + std::to_string(id));
-      v.push_back(int(id));
-    }
-    last = end;
-    const int region = reg.values.empty() ? 1 : int(reg.values[c]);
-    const long long type = types.values[c];
-    if (type == 10 && v.size() == 4) add_element(m, 4, v, region);
-    else if (type == 5 && v.size() == 3) add_element(m, 2, v, region);
-  }
-  return m;
-}
-
 } // namespace
 
 namespace mesh_detail {
@@ -590,63 +351,33 @@ MshFile read_msh_file(const std::string& path) {
   return f;
 }
 
-SurfaceMesh read_vtp(const std::string& path) {
-  const VtuArrays f(read_all(path), path);
-  const VtuArray<double> xyz = f.values<double>("Points", "");
-  const VtuArray<long long> con = f.values<long long>("Polys", "connectivity"),
-                            off = f.values<long long>("Polys", "offsets"),
-                            label = f.values<long long>("CellData", "label", false),
-                            labels = f.values<long long>("CellData", "labels", false);
-  SurfaceMesh m;
-  const auto& p = xyz.values;
-  if (p.size() % 3) throw Error("the point count is not a multiple of 3", path);
-  for (std::size_t i = 0; i < p.size(); i += 3) m.points.push_back({p[i], p[i + 1], p[i + 2]});
-  const std::size_t cells = off.values.size();
-  long long last = 0;
-  for (std::size_t c = 0; c < cells; ++c) {
-    const long long end = off.values[c];
-    if (end != last + 3) f.fail(off, c, "a polygon that is not a triangle (or decreasing offsets)");
-    if (end > (long long)con.values.size()) f.fail(con, con.values.size(), "unexpected end of file");
-    std::array<int, 3> t{};
-    for (long long k = last; k < end; ++k) {
-      const long long id = con.values[std::size_t(k)];
-      if (id < 0 || id >= (long long)m.points.size()) f.fail(con, std::size_t(k), "cell refers to unknown point " + std::to_string(id));
-      t[std::size_t(k - last)] = int(id);
-    }
-    m.triangles.push_back(t);
-    last = end;
-  }
-  if (!label.values.empty() && label.values.size() != cells) f.fail(label, label.values.size(), "not one label a triangle");
-  if (!labels.values.empty() && labels.values.size() != 2 * cells)
-    f.fail(labels, labels.values.size(), "not two labels a triangle");
-  for (long long l : label.values) m.labels.push_back(int(l));
-  for (std::size_t c = 0; c < labels.values.size(); c += 2)
-    m.interfaces.push_back({int(labels.values[c]), int(labels.values[c + 1])});
-  check_extent(m.points, path);
-  return m;
-}
-
 } // namespace mesh_detail
 
 TetMesh read_tet_mesh(const std::string& path) {
   const std::string ext = extension_of(path);
   TetMesh m;
-  if (ext == ".vtu") m = read_vtu(path);
+  if (ext == ".vtu") m = mesh_detail::read_vtu(path);
   else {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open", path);
     if (ext == ".msh") m = read_msh(in, path).mesh;
     else if (ext == ".mesh") m = read_medit(in, path);
-    else throw Error("reading tetrahedral meshes: .msh, .mesh or .vtu", path);
+    else if (ext == ".vtk") {
+      TetsOrSurface v = mesh_detail::read_vtk_legacy_mesh(path);
+      if (!v.tets) throw Error("a DATASET POLYDATA: tetrahedra (DATASET UNSTRUCTURED_GRID) expected", path);
+      m = std::move(*v.tets);
+    }
+    else throw Error("reading tetrahedral meshes: .msh, .mesh, .vtu or .vtk", path);
   }
   if (m.tets.empty()) throw Error("no tetrahedron", path);
   check_extent(m.points, path);
   return m;
 }
 
-MshMesh read_msh_mesh(const std::string& path) {
+TetsOrSurface read_tets_or_surface(const std::string& path) {
+  if (extension_of(path) == ".vtk") return mesh_detail::read_vtk_legacy_mesh(path);
   mesh_detail::MshFile f = mesh_detail::read_msh_file(path);
-  MshMesh m;
+  TetsOrSurface m;
   if (!f.mesh.tets.empty()) m.tets = std::move(f.mesh);
   else m.surface = mesh_detail::msh_surface(std::move(f), path);
   return m;

@@ -1,7 +1,9 @@
 // Numbers as bytes in a fixed byte order whatever the machine's (PLY, STL,
 // Gmsh and VTK XML binary are little-endian, legacy VTK big-endian), legacy
-// VTK's value lines in either encoding, and the zlib framing of VTK XML's
-// compressed arrays (vtkXMLWriter's default: appended raw data, zlib).
+// VTK's value lines in either encoding, and VTK XML's binary arrays: the
+// zlib framing we write (appended raw data), and every layout
+// vtkXMLWriter writes read back (raw or base64, zlib or none, either byte
+// order and header size).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -79,11 +81,25 @@ template <class Out, class T> void vtk_legacy_values(Out& out, const std::vector
 // of blocks, block size 32768, the last block's size when partial else 0,
 // each block's compressed size), then the blocks, each zlib-compressed.
 std::string vtk_zlib_encode(const std::string& raw);
-// The raw bytes of the compressed array at data[offset], its header of
-// UInt64 or UInt32 words; throws Error (naming path) on a malformed array.
-std::string vtk_zlib_decode(const std::string& data, std::size_t offset, bool uint64_header, const std::string& path);
-// An uncompressed appended array at data[offset]: its byte count (UInt64
-// or UInt32) then the bytes.
-std::string vtk_raw_decode(const std::string& data, std::size_t offset, bool uint64_header, const std::string& path);
+
+// How a VTK XML file holds its binary arrays (vtkXMLWriter's choices):
+// base64 text (inline format="binary" always, appended data unless
+// encoding="raw") or the bytes themselves, zlib-compressed or not, header
+// words UInt32 or UInt64, header and values in `order`.
+struct VtkBinaryLayout {
+  bool base64 = false;
+  bool zlib = false;
+  bool uint64_header = false;
+  ByteOrder order = ByteOrder::Little;
+};
+// The bytes of the array that starts at data[offset], its values still in
+// layout.order. Uncompressed: one header word (the byte count), then the
+// bytes; compressed: the header words (blocks, block size, the last block's
+// size when partial else 0, each block's compressed size), then the blocks.
+// In base64 (vtkXMLWriter::WriteBinaryData) an uncompressed array is one
+// run of text, a compressed one two: its header, then its blocks together.
+// Throws Error("`what`: ...", path) on a malformed, cut or non-base64 array.
+std::string vtk_array_decode(std::string_view data, std::size_t offset, const VtkBinaryLayout& layout,
+                             const std::string& what, const std::string& path);
 
 } // namespace imgmesh

@@ -278,6 +278,46 @@ case_planar_labels_and_threshold_as_img2poly() {
   expect 2 meshinfo th.qs.ele --threshold 150 || fail "--threshold without --image"
 }
 
+# Files as VTK's own writers write them (vtk_variants.py: every layout of
+# the XML writers, legacy 5.1 and 4.2, ASCII and binary) read to the counts
+# VTK holds: seg2mesh's labelled surface certified against its image in
+# each (the labels read right), a grid of tetrahedra to its volume by
+# region; the surface with one triangle's labels swapped refused, LZ4 and
+# LZMA data refused naming the compressor.
+case_vtk_written_files_read_in_every_layout() {  # interop
+  local py; py=$(python_with vtk)
+  [[ -n $py ]] || { echo "skipped: no python with vtk (python3-vtk9)"; return; }
+  # $py for every script: it starts faster than a pyenv shim.
+  "$py" "$E2E/labels_image.py" labels.nrrd || die "cannot make labels.nrrd"
+  expect 0 seg2mesh labels.nrrd fast.vtp --fast -q || return
+  "$py" "$E2E/vtk_variants.py" fast.vtp > vtk.txt 2> vtk.err || die "VTK's writers: $(cat vtk.err)"
+  [[ $(wc -l < vtk.txt) == 24 ]] || fail "vtk_variants.py wrote $(wc -l < vtk.txt) files, 24 expected"
+  local f rest
+  while read -r f rest; do
+    if [[ $f == *.vtp || $f == surface-* ]]; then
+      OUT=$f.json expect 0 meshinfo "$f" --image labels.nrrd --json
+    else
+      OUT=$f.json expect 0 meshinfo "$f" --json
+    fi
+  done < vtk.txt
+  "$py" - > counts.txt 2>&1 <<'PY' || fail "not what VTK wrote: $(cat counts.txt)"
+import json
+for line in open('vtk.txt'):
+    f, points, cells, *volumes = line.split()
+    d = json.load(open(f + '.json'))
+    if volumes:
+        d = d['tetrahedra']
+        got, want = d['volume_by_region'], dict(rv.split(':') for rv in volumes)
+        assert got.keys() == want.keys() and all(abs(got[r] - float(v)) <= 1e-9 * float(v) for r, v in want.items()), \
+            '%s: volume by region %s, VTK wrote %s' % (f, got, want)
+    got = (d['vertices'], d['tetrahedra'] if volumes else d['triangles'])
+    assert got == (int(points), int(cells)), '%s: %s points and cells read, VTK wrote %s %s' % (f, got, points, cells)
+PY
+  OUT=wrong.txt expect 3 meshinfo wrong.vtp --image labels.nrrd || fail "wrong.vtp (one triangle's labels swapped) certified"
+  NAMED=lz4.vtp refused meshinfo "compressed by vtkLZ4DataCompressor" lz4.vtp
+  NAMED=lzma.vtp refused meshinfo "compressed by vtkLZMADataCompressor" lzma.vtp
+}
+
 case_bad_input_exit_1_2() {
   surfaces
 head -c 40 cube.off > trunc.off

@@ -1,7 +1,7 @@
-// Surface meshes as meshinfo reads them (OFF by
-// our own readers, PLY/OBJ/STL through OpenMesh), then meshinfo's report on
-// what it read (up to 200 faces): the first byte picks OFF, PLY, OBJ, STL or
-// OFF on standard input.
+// Surface meshes as meshinfo reads them (OFF, .vtp and .vtk by our own
+// readers, PLY/OBJ/STL through OpenMesh), then meshinfo's report on what it
+// read (up to 200 faces): the first byte picks OFF, PLY, OBJ, STL, OFF on
+// standard input, .vtp or .vtk.
 #include "fuzz.hpp"
 #include "mesh/surface_io.hpp"
 #include "meshinfo/meshinfo.hpp"
@@ -10,8 +10,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
-  static const char* const names[] = {"s.off", "s.ply", "s.obj", "s.stl", "stdin.off"};
-  const unsigned pick = data[0] % 5;
+  static const char* const names[] = {"s.off", "s.ply", "s.obj", "s.stl", "stdin.off", "s.vtp", "s.vtk"};
+  const unsigned pick = data[0] % 7;
   const std::string path = fuzz::write_file(names[pick], data + 1, size - 1);
   if (pick == 4) {
     if (!std::freopen(path.c_str(), "rb", stdin)) std::abort();

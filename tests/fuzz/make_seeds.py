@@ -4,7 +4,7 @@ anywhere; files found by fuzzing are added beside them by hand, named
 crash-*, leak-*, oom-* or timeout-*). Each seed is small: the fuzzer grows
 inputs from them. The first byte of a seed is the target's selector (see
 each fuzz_<target>.cpp)."""
-import gzip, os, struct, zlib
+import base64, gzip, os, struct, zlib
 
 root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "corpus")
 data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "share", "data")
@@ -120,7 +120,7 @@ put("quadsmooth", "grid-slide", "\2" + "\n".join(grid).replace("4 4 0", "4.3 3.8
 put("quadsmooth", "mixed", "\3OFF\n5 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 0.5 0\n4 0 1 2 3\n3 1 4 2\n")
 put("quadsmooth", "flipped", "\1OFF\n4 1 0\n0 0 0\n0 1 0\n1 1 0\n1 0 0\n4 0 1 2 3\n")
 
-# surfaces: selector 0 .off, 1 .ply, 2 .obj, 3 .stl, 4 OFF on standard input
+# surfaces: selector 0 .off, 1 .ply, 2 .obj, 3 .stl, 4 OFF on standard input, 5 .vtp, 6 .vtk
 tet = "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n"
 put("surface", "off", "\0" + tet)
 put("surface", "off-stdin", "\4" + tet)
@@ -138,7 +138,7 @@ put("surface", "stl-binary", b"\3" + b"\0" * 80 + struct.pack("<I", 1) + struct.
     + b"\0\0")
 put("surface", "stl-binary-huge-count", b"\3" + b"\0" * 80 + struct.pack("<I", 0xffffffff) + b"\0" * 50)
 
-# tetrahedral meshes: selector 0 .msh, 1 .mesh, 2 .vtu; one tetrahedron and its boundary
+# tetrahedral meshes: selector 0 .msh, 1 .mesh, 2 .vtu, 3 .vtk; one tetrahedron and its boundary
 pts = "0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
 put("volume", "msh22", "\0$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n"
     "$EndNodes\n$Elements\n2\n1 4 2 1 1 1 2 3 4\n2 2 2 1 1 1 3 2\n$EndElements\n")
@@ -182,3 +182,44 @@ put("volume", "vtu-appended-zlib", ("\2<?xml version=\"1.0\"?>\n<VTKFile type=\"
     "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">\n<Points>\n" + tags[0] + "</Points>\n<Cells>\n" + "".join(tags[1:4]) +
     "</Cells>\n<CellData>\n" + tags[4] + "</CellData>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n   _").encode()
     + appended + b"\n</AppendedData>\n</VTKFile>\n")
+
+# Layouts of VTK's own writers (vtkXMLWriter's default: appended base64
+# data, zlib, UInt32 header; the header one base64 run, the blocks the
+# next; inline binary always base64; big-endian with UInt64 headers
+# uncompressed) and legacy 5.1 / 4.2 grids and polydata.
+b64 = lambda b: base64.b64encode(b).decode()
+def vtk_zlib32(raw):
+    z = zlib.compress(raw)
+    return b64(struct.pack("<4I", 1, 32768, len(raw), len(z))) + b64(z)
+appended, tags = "", []
+for typ, name, raw in [("Int64", "connectivity", struct.pack("<4q", 0, 1, 2, 3)), ("Int64", "offsets", struct.pack("<q", 4)),
+                       ("UInt8", "types", b"\x0a"), ("Int32", "region", struct.pack("<i", 1))]:
+    tags.append('<DataArray type="%s" Name="%s" format="appended" offset="%d"/>\n' % (typ, name, len(appended)))
+    appended += vtk_zlib32(raw)
+put("volume", "vtu-base64-zlib", "\2<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" "
+    "byte_order=\"LittleEndian\" header_type=\"UInt32\" compressor=\"vtkZLibDataCompressor\">\n<UnstructuredGrid>\n"
+    "<Piece NumberOfPoints=\"4\" NumberOfCells=\"1\">\n<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+    "format=\"binary\">\n" + vtk_zlib32(struct.pack("<12d", *xyz)) + "\n</DataArray>\n</Points>\n<Cells>\n" +
+    "".join(tags[:3]) + "</Cells>\n<CellData>\n" + tags[3] + "</CellData>\n</Piece>\n</UnstructuredGrid>\n"
+    "<AppendedData encoding=\"base64\">\n   _" + appended + "\n</AppendedData>\n</VTKFile>\n")
+put("volume", "vtk-grid-5.1", "\3# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n" +
+    pts + "CELLS 3 7\nOFFSETS vtktypeint64\n0 4 7\nCONNECTIVITY vtktypeint64\n0 1 2 3 0 2 1\nCELL_TYPES 2\n10\n5\n"
+    "CELL_DATA 2\nFIELD FieldData 1\nregion 1 2 int\n1 1\n")
+put("volume", "vtk-grid-binary-4.2", b"\3# vtk DataFile Version 4.2\nvtk output\nBINARY\nDATASET UNSTRUCTURED_GRID\n"
+    b"POINTS 4 double\n" + struct.pack(">12d", *xyz) + b"\nCELLS 1 5\n" + struct.pack(">5i", 4, 0, 1, 2, 3) +
+    b"\nCELL_TYPES 1\n" + struct.pack(">i", 10) + b"\nCELL_DATA 1\nSCALARS region int 1\nLOOKUP_TABLE default\n" +
+    struct.pack(">i", 1) + b"\n")
+faces = [0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2]
+appended, tags = "", []
+for typ, name, comps, raw in [("Float64", "Points", 3, struct.pack(">12d", *xyz)), ("Int32", "connectivity", 1, struct.pack(">12i", *faces)),
+                              ("Int32", "offsets", 1, struct.pack(">4i", 3, 6, 9, 12)), ("Int32", "labels", 2, struct.pack(">8i", 1, 0, 1, 0, 1, 0, 1, 0))]:
+    tags.append('<DataArray type="%s" Name="%s" NumberOfComponents="%d" format="appended" offset="%d"/>\n' % (
+        typ, name, comps, len(appended)))
+    appended += b64(struct.pack(">Q", len(raw)) + raw)
+put("surface", "vtp-base64-big-endian", "\5<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+    "byte_order=\"BigEndian\" header_type=\"UInt64\">\n<PolyData>\n<Piece NumberOfPoints=\"4\" NumberOfPolys=\"4\">\n"
+    "<CellData>\n" + tags[3] + "</CellData>\n<Points>\n" + tags[0] + "</Points>\n<Polys>\n" + "".join(tags[1:3]) +
+    "</Polys>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"base64\">\n   _" + appended + "\n</AppendedData>\n</VTKFile>\n")
+put("surface", "vtk-polydata-5.1", "\6# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n" + pts +
+    "POLYGONS 5 12\nOFFSETS vtktypeint64\n0 3 6 9 12\nCONNECTIVITY vtktypeint64\n" + " ".join(map(str, faces)) +
+    "\nCELL_DATA 4\nFIELD FieldData 1\nlabels 2 4 int\n1 0 1 0 1 0 1 0\n")

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <sstream>
 #include <string>
+#include <vector>
 
 using namespace imgmesh;
 
@@ -113,12 +114,14 @@ TEST_CASE("binary .vtp: appended zlib arrays holding the exact doubles and ids; 
   CHECK(b.find("Name=\"label_names\" NumberOfTuples=\"1\" format=\"ascii\">\n        108 105 118 101 114 0\n") !=
         std::string::npos);
   const std::size_t data = b.find("<AppendedData encoding=\"raw\">\n   _") + 34;
+  VtkBinaryLayout zlib64;
+  zlib64.zlib = zlib64.uint64_header = true;
   REQUIRE(data > 34);
   // Each array by the offset its DataArray gives.
   auto array = [&](const std::string& name) {
     const std::size_t tag = b.find("Name=\"" + name + "\"");
     const std::size_t at = b.find("offset=\"", tag) + 8;
-    return vtk_zlib_decode(b, data + std::stoull(b.substr(at)), true, "t.vtp");
+    return vtk_array_decode(b, data + std::stoull(b.substr(at)), zlib64, name, "t.vtp");
   };
   const std::string points = array("Points"), ids = array("connectivity"), labels = array("label");
   REQUIRE(points.size() == 8 * 24);
@@ -139,7 +142,50 @@ TEST_CASE("vtk_zlib: arrays over several 32 KiB blocks decode to their bytes; a 
   const std::string z = vtk_zlib_encode(raw);
   CHECK(get_bytes<std::uint64_t>(z.data()) == 5);  // 160000 bytes: 4 full blocks and one of 28928
   CHECK(get_bytes<std::uint64_t>(z.data() + 16) == 160000 % 32768);
-  CHECK(vtk_zlib_decode("xy" + z, 2, true, "t") == raw);
-  CHECK_THROWS_AS(vtk_zlib_decode(z.substr(0, z.size() - 1), 0, true, "t"), Error);
-  CHECK(vtk_zlib_decode(vtk_zlib_encode(""), 0, true, "t").empty());
+  VtkBinaryLayout zlib64;
+  zlib64.zlib = zlib64.uint64_header = true;
+  CHECK(vtk_array_decode("xy" + z, 2, zlib64, "a", "t") == raw);
+  CHECK_THROWS_AS(vtk_array_decode(z.substr(0, z.size() - 1), 0, zlib64, "a", "t"), Error);
+  CHECK(vtk_array_decode(vtk_zlib_encode(""), 0, zlib64, "a", "t").empty());
+}
+
+// Arrays as vtkXMLWriter writes them in base64, made by hand: the bytes
+// packed little- or big-endian, zlib-compressed and base64-encoded by
+// Python's struct, zlib and base64 modules (not by our encoder); the values
+// are the numbers packed.
+TEST_CASE("vtk_array_decode: base64 arrays (uncompressed one run; zlib header and blocks two) to their values") {
+  const auto int32s = [](const std::string& raw) {
+    std::vector<std::int32_t> v;
+    for (std::size_t i = 0; i + 4 <= raw.size(); i += 4) v.push_back(get_bytes<std::int32_t>(raw.data() + i));
+    return v;
+  };
+  const std::vector<std::int32_t> want{1, -2, 258};
+  VtkBinaryLayout b64;
+  b64.base64 = true;
+  // UInt32 byte count 12, then Int32 1, -2, 258: one run, padded.
+  CHECK(int32s(vtk_array_decode("_DAAAAAEAAAD+////AgEAAA==", 1, b64, "a", "t")) == want);
+  // zlib: header (1 block of 32768, the last 12, compressed 20) one run,
+  // the block the next.
+  VtkBinaryLayout z = b64;
+  z.zlib = true;
+  CHECK(int32s(vtk_array_decode("AQAAAACAAAAMAAAAFAAAAA==eJxjZGBg+Pf//38mRgYGABoBBAA=", 0, z, "a", "t")) == want);
+  // Two blocks (8 bytes each, the last 4; compressed 16 and 12): the blocks
+  // together are one run.
+  CHECK(int32s(vtk_array_decode("AgAAAAgAAAAEAAAAEAAAAAwAAAA=eJxjZGBg+Pf//38ACgID/XicY2JkYAAAAA8ABA==", 0, z, "a", "t")) ==
+        want);
+  // Big-endian, UInt64 header: byte count 16, then Float64 0.5 and -3.25.
+  VtkBinaryLayout be = b64;
+  be.uint64_header = true;
+  be.order = ByteOrder::Big;
+  const std::string raw = vtk_array_decode("AAAAAAAAABA/4AAAAAAAAMAKAAAAAAAA", 0, be, "a", "t");
+  REQUIRE(raw.size() == 16);
+  CHECK(get_bytes<double>(raw.data(), ByteOrder::Big) == 0.5);
+  CHECK(get_bytes<double>(raw.data() + 8, ByteOrder::Big) == -3.25);
+  // Not base64, padding inside a run, cut short: an Error naming the array.
+  CHECK_THROWS_WITH(vtk_array_decode("DAAAAAEAAAD+//*/AgEAAA==", 0, b64, "DataArray x", "t"),
+                    Catch::Contains("DataArray x: its data is not base64"));
+  CHECK_THROWS_WITH(vtk_array_decode("DAAAAA==AAD+////AgEAAA==", 0, b64, "a", "t"), Catch::Contains("not base64"));
+  CHECK_THROWS_WITH(vtk_array_decode("DAAAAAEAAAD+////AgEA", 0, b64, "a", "t"), Catch::Contains("runs past the end"));
+  CHECK_THROWS_WITH(vtk_array_decode("AQAAAACAAAAMAAAAFAAAAA==eJxjZGBg+Pf//38mRgYGABo", 0, z, "a", "t"),
+                    Catch::Contains("runs past the end"));
 }

@@ -247,3 +247,36 @@ TEST_CASE("a legacy VTK 5.1 file (OFFSETS, CONNECTIVITY, METADATA) as VTK 9 writ
                          "CONNECTIVITY vtktypeint64\n0 1 2 3\n";
   CHECK_THROWS_WITH(read_surface(path), Catch::Contains("only triangles"));
 }
+
+// A .vtp in the layouts VTK writes (values packed, zlib-compressed and
+// base64-encoded by Python's struct, zlib, base64): points inline binary,
+// connectivity and labels in base64 appended data (VTK's default), offsets
+// ASCII followed by the InformationKey VTK writes after the values.
+TEST_CASE("a .vtp of inline binary, base64 appended and ASCII arrays as VTK writes them") {
+  const std::string path = temp_dir() + "/vtk.vtp";
+  auto vtp = [&](const std::string& compressor) {
+    std::ofstream(path)
+        << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\" "
+           "header_type=\"UInt32\" compressor=\""
+        << compressor
+        << "\">\n  <PolyData>\n    <Piece NumberOfPoints=\"4\" NumberOfPolys=\"2\">\n      <CellData>\n"
+           "        <DataArray type=\"Int32\" Name=\"labels\" NumberOfComponents=\"2\" format=\"appended\" offset=\"56\"/>\n"
+           "      </CellData>\n      <Points>\n        <DataArray type=\"Float32\" Name=\"Points\" "
+           "NumberOfComponents=\"3\" format=\"binary\">\n          AQAAAACAAAAwAAAAEAAAAA==eJxjYEAGDfYMBPgAJ70CPg==\n"
+           "        </DataArray>\n      </Points>\n      <Polys>\n"
+           "        <DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\"0\"/>\n"
+           "        <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n          3 6\n"
+           "          <InformationKey name=\"L2_NORM_RANGE\" location=\"vtkDataArray\" length=\"2\">\n"
+           "            <Value index=\"0\">\n              3\n            </Value>\n          </InformationKey>\n"
+           "        </DataArray>\n      </Polys>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"base64\">\n"
+           "   _AQAAAACAAAAYAAAAFgAAAA==eJxjYGBgYAJiRgYIANHMQAwAAGQACA==AQAAAACAAAAQAAAADgAAAA==eJxjZIAAJigNAAAwAAQ=\n"
+           "  </AppendedData>\n</VTKFile>\n";
+    return path;
+  };
+  const SurfaceMesh m = read_surface(vtp("vtkZLibDataCompressor"));
+  CHECK(m.points == std::vector<std::array<double, 3>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  CHECK(m.triangles == std::vector<std::array<int, 3>>{{0, 2, 1}, {0, 1, 3}});
+  CHECK(m.interfaces == std::vector<std::array<int, 2>>{{1, 0}, {2, 0}});
+  // Compressors we do not decode: refused naming the compressor.
+  CHECK_THROWS_WITH(read_surface(vtp("vtkLZ4DataCompressor")), Catch::Contains("compressed by vtkLZ4DataCompressor"));
+}

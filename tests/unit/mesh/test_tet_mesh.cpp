@@ -146,3 +146,41 @@ TEST_CASE("binary .vtu and .msh read back to the mesh their ASCII form holds, ex
     }
   }
 }
+
+TEST_CASE("a legacy .vtk UNSTRUCTURED_GRID (4.2 and 5.1) read as tetrahedra with their region") {
+  const std::string path = test::scratch_dir() + "/grid.vtk";
+  // Two tetrahedra, a triangle and a line (left out), regions 3 7 5 9.
+  const std::string points = "POINTS 5 double\n0 0 0 1 0 0 0 1 0 0 0 1 1 1 1\n";
+  const std::string data = "CELL_TYPES 4\n10 10 5 3\nCELL_DATA 4\nFIELD FieldData 1\nregion 1 4 int\n3 7 5 9\n";
+  for (const std::string cells : {"CELLS 4 17\n4 0 1 2 3\n4 1 2 3 4\n3 0 1 2\n2 0 4\n",
+                                  "CELLS 5 13\nOFFSETS vtktypeint64\n0 4 8 11 13\nCONNECTIVITY vtktypeint64\n"
+                                  "0 1 2 3 1 2 3 4 0 1 2 0 4\n"}) {
+    std::ofstream(path) << "# vtk DataFile Version 5.1\nvtk output\nASCII\nDATASET UNSTRUCTURED_GRID\n" << points << cells << data;
+    const TetMesh m = read_tet_mesh(path);
+    CHECK(m.points.size() == 5);
+    CHECK(m.tets == std::vector<std::array<int, 4>>{{0, 1, 2, 3}, {1, 2, 3, 4}});
+    CHECK(m.tet_region == std::vector<int>{3, 7});
+    CHECK(m.triangles == std::vector<std::array<int, 3>>{{0, 1, 2}});
+    CHECK(m.triangle_region == std::vector<int>{5});
+  }
+  // BINARY (big-endian, bytes by hand), with the type names of VTK 9 and
+  // meshio: vtkIdType 4 bytes, vtktypeint32.
+  const std::string f0(4, '\0'), f1("\x3f\x80\0\0", 4);
+  const auto be32 = [](char v) { return std::string(3, '\0') + v; };
+  std::ofstream(path, std::ios::binary)
+      << "# vtk DataFile Version 5.1\nvtk output\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 float\n"
+      << f0 + f0 + f0 + f1 + f0 + f0 + f0 + f1 + f0 + f0 + f0 + f1 << "\nCELLS 1 5\n"
+      << be32(4) + be32(0) + be32(1) + be32(2) + be32(3) << "\nCELL_TYPES 1\n" << be32(10)
+      << "\nCELL_DATA 1\nFIELD FieldData 2\nids 1 1 vtkIdType\n" << be32(42) << "\nregion 1 1 vtktypeint32\n" << be32(7)
+      << "\n";
+  const TetMesh b = read_tet_mesh(path);
+  CHECK(b.points == std::vector<std::array<double, 3>>{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  CHECK(b.tets == std::vector<std::array<int, 4>>{{0, 1, 2, 3}});
+  CHECK(b.tet_region == std::vector<int>{7});
+  std::ofstream(path) << "# vtk DataFile Version 4.2\nvtk output\nASCII\nDATASET UNSTRUCTURED_GRID\n" << points
+                      << "CELLS 1 5\n4 0 1 2 3\nCELL_TYPES 2\n10 10\n";
+  CHECK_THROWS_WITH(read_tet_mesh(path), Catch::Contains("not one CELL_TYPES value a cell"));
+  std::ofstream(path) << "# vtk DataFile Version 4.2\nvtk output\nASCII\nDATASET POLYDATA\n" << points
+                      << "POLYGONS 1 4\n3 0 1 2\n";
+  CHECK_THROWS_WITH(read_tet_mesh(path), Catch::Contains("DATASET UNSTRUCTURED_GRID"));
+}
