@@ -262,8 +262,7 @@ WellComposedCrop well_composed_crop(const Geometry& scan, const VoxelBox& box, c
 
 // ---- function_in_scan ----
 
-PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, Vec3 d, float clamp,
-                                  const SampleGrid::SliceReader& next_slice, bool* placed) {
+bool placed_in_scan(const Geometry& crop, const ScanFrame& frame, float clamp) {
   // A scan beyond 2^31 voxels would cost the crop more than its box (the
   // block table and the mesher's cube bits cover the scan: 3/16 byte a
   // voxel): the crop alone then.
@@ -277,6 +276,12 @@ PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, 
                 (last || std::ptrdiff_t(crop.size[a]) - 1 - frame.foreground.hi[a] >= std::ptrdiff_t(m[a]));
     }
   }
+  return in_scan;
+}
+
+PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, Vec3 d, float clamp,
+                                  const SampleGrid::SliceReader& next_slice, bool* placed) {
+  const bool in_scan = placed_in_scan(crop, frame, clamp);
   if (placed) *placed = in_scan;
   // The negative samples must lie in the frame's foreground box: the
   // margins above are measured from it.

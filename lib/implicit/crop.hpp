@@ -97,6 +97,10 @@ struct WellComposedCrop {
 WellComposedCrop well_composed_crop(const Geometry& scan, const VoxelBox& box, const ForegroundRows& rows,
                                     const WellComposedOptions& options);
 
+// Whether function_in_scan places a crop of this grid (after wc2implicit's
+// growth) in its frame's scan at clamp T (see there).
+bool placed_in_scan(const Geometry& crop, const ScanFrame& frame, float clamp);
+
 // f on g's samples clamped at T (infinite: not clamped), placed back in the
 // scan's grid when the frame is present, the scan has at most 2^31 voxels
 // and the frame's foreground box keeps crop_margin(spacing, T) from every
