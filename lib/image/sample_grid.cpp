@@ -57,14 +57,14 @@ SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<
 }
 
 SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
-                       Storage storage, const BandReader& next_band)
+                       Storage storage, const BandReader& next_band, std::size_t band_bytes)
     : Geometry(grid), clamp_(clamp) {
   set_box(lo, box_size);
   if (dense_chosen(storage)) {
-    band_dense(box_size, next_band);
+    band_dense(box_size, next_band, band_bytes);
     return;
   }
-  band_blocks(box_size, next_band);
+  band_blocks(box_size, next_band, band_bytes);
   after_blocks(storage);
 }
 
@@ -206,9 +206,9 @@ namespace {
 
 // The bands of x of a box (grid indices lo..hi of x, ny nz samples a
 // column): [first, last] each, whole blocks but at the box's sides.
-template <class F> void for_each_band(long lo, long hi, std::size_t column, F&& f) {
+template <class F> void for_each_band(long lo, long hi, std::size_t column, std::size_t bytes, F&& f) {
   const long kB = SampleGrid::kB;
-  const long width = std::max(kB, long(SampleGrid::kBandBytes / (sizeof(float) * std::max<std::size_t>(column, 1))) / kB * kB);
+  const long width = std::max(kB, long(bytes / (sizeof(float) * std::max<std::size_t>(column, 1))) / kB * kB);
   for (long x0 = lo; x0 <= hi;) {
     const long x1 = std::min(hi, (x0 + width) / kB * kB - 1);
     f(x0, x1);
@@ -218,14 +218,15 @@ template <class F> void for_each_band(long lo, long hi, std::size_t column, F&& 
 
 } // namespace
 
-void SampleGrid::band_dense(const std::array<std::size_t, 3>& box_size, const BandReader& next_band) {
+void SampleGrid::band_dense(const std::array<std::size_t, 3>& box_size, const BandReader& next_band,
+                            std::size_t band_bytes) {
   auto clamped = [this](float v) { return v < -clamp_ ? -clamp_ : v > clamp_ ? clamp_ : v; };  // NaN kept
   dense_.reserve(count());
   prefer_huge_pages(dense_);
   dense_.assign(count(), clamp_);
   std::vector<float> band;
   const std::size_t column = box_size[1] * box_size[2];
-  for_each_band(long(box_lo_[0]), long(box_hi_[0]), column, [&](long x0, long x1) {
+  for_each_band(long(box_lo_[0]), long(box_hi_[0]), column, band_bytes, [&](long x0, long x1) {
     const std::size_t w = std::size_t(x1 - x0 + 1);
     band.resize(w * column);
     next_band(std::size_t(x0 - box_lo_[0]), std::size_t(x1 + 1 - box_lo_[0]), band.data());
@@ -237,11 +238,12 @@ void SampleGrid::band_dense(const std::array<std::size_t, 3>& box_size, const Ba
   });
 }
 
-void SampleGrid::band_blocks(const std::array<std::size_t, 3>& box_size, const BandReader& next_band) {
+void SampleGrid::band_blocks(const std::array<std::size_t, 3>& box_size, const BandReader& next_band,
+                             std::size_t band_bytes) {
   start_blocks();
   std::vector<float> band;
   const std::size_t column = box_size[1] * box_size[2];
-  for_each_band(long(box_lo_[0]), long(box_hi_[0]), column, [&](long x0, long x1) {
+  for_each_band(long(box_lo_[0]), long(box_hi_[0]), column, band_bytes, [&](long x0, long x1) {
     band.resize(std::size_t(x1 - x0 + 1) * column);
     next_band(std::size_t(x0 - box_lo_[0]), std::size_t(x1 + 1 - box_lo_[0]), band.data());
     const long c0[3] = {x0, long(box_lo_[1]), long(box_lo_[2])}, c1[3] = {x1, long(box_hi_[1]), long(box_hi_[2])};

@@ -55,10 +55,11 @@ public:
   // blocks but at the box's sides, about kBandBytes each): what a producer
   // that cannot give z-slices (a distance transform, whose last pass runs
   // along z) gives without the dense box. The same grid as from slices,
-  // its blocks in the same order.
+  // its blocks in the same order. band_bytes: the bands' size (tests: many
+  // bands on a small grid).
   static constexpr std::size_t kBandBytes = std::size_t(8) << 20;
   SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
-             Storage storage, const BandReader& next_band);
+             Storage storage, const BandReader& next_band, std::size_t band_bytes = kBandBytes);
 
   float operator()(std::size_t x, std::size_t y, std::size_t z) const {
     if (dense()) return dense_[std::size_t(long(x) + s1_ * long(y) + s2_ * long(z))];
@@ -132,8 +133,8 @@ private:
   void set_box(const Index3& lo, const std::array<std::size_t, 3>& box_size);
   bool dense_chosen(Storage storage) const;
   void stream_blocks(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice);
-  void band_dense(const std::array<std::size_t, 3>& box_size, const BandReader& next_band);
-  void band_blocks(const std::array<std::size_t, 3>& box_size, const BandReader& next_band);
+  void band_dense(const std::array<std::size_t, 3>& box_size, const BandReader& next_band, std::size_t band_bytes);
+  void band_blocks(const std::array<std::size_t, 3>& box_size, const BandReader& next_band, std::size_t band_bytes);
   // Blocks: the table, the two constant blocks, room for every block the box meets.
   void start_blocks();
   // The blocks meeting the sub-box [c0, c1] of the box (grid indices; whole

@@ -303,14 +303,4 @@ PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, 
   return PartitionOfUnity::streamed(crop, {0, 0, 0}, crop, d, clamp, checked);
 }
 
-PartitionOfUnity function_in_scan(const PartitionOfUnity& f, const ScanFrame& frame, float clamp, bool* placed) {
-  const SampleGrid& g = f.samples();
-  std::size_t z = 0;
-  return function_in_scan(g.geometry(), frame, f.d(), clamp, [&](float* slice) {
-    for (std::size_t y = 0; y < g.size[1]; ++y)
-      for (std::size_t x = 0; x < g.size[0]; ++x) *slice++ = g(x, y, z);
-    ++z;
-  }, placed);
-}
-
 } // namespace imgmesh

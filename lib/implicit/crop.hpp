@@ -110,8 +110,5 @@ bool placed_in_scan(const Geometry& crop, const ScanFrame& frame, float clamp);
 // outside the frame's foreground box.
 PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, Vec3 d, float clamp,
                                   const SampleGrid::SliceReader& next_slice, bool* placed = nullptr);
-// The same from f's own samples (seg2mesh: f of the crop, then the
-// mesher's clamped copy).
-PartitionOfUnity function_in_scan(const PartitionOfUnity& f, const ScanFrame& frame, float clamp, bool* placed = nullptr);
 
 } // namespace imgmesh

@@ -57,8 +57,9 @@ PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitRepo
 // clamp), the same f to the last bit, built from g a band of x at a time
 // (signed_distance_band): never the dense float grid of the crop. frame:
 // the crop's (well_composed_crop's, its foreground box wc's), or none.
+// band_bytes: SampleGrid's.
 PartitionOfUnity implicit_in_scan(const BinaryImage& wc, ScanFrame frame, float clamp, unsigned threads = 1,
-                                  bool* placed = nullptr);
+                                  bool* placed = nullptr, std::size_t band_bytes = SampleGrid::kBandBytes);
 
 // The file's fields imgmesh_kind and imgmesh_version.
 inline constexpr const char* kImplicitKind = "pu-implicit";

@@ -366,7 +366,7 @@ PartitionOfUnity PartitionOfUnity::streamed(const Geometry& grid, const Index3& 
 PartitionOfUnity PartitionOfUnity::from_bands(const Geometry& grid, const Index3& lo, const Geometry& box,
                                               const Index3& fg_lo, const Index3& fg_hi, float clamp,
                                               const SampleGrid::BandReader& next_band, unsigned threads,
-                                              SampleGrid::Storage storage) {
+                                              SampleGrid::Storage storage, std::size_t band_bytes) {
   check_grid(box);
   check_grid(grid);
   if (grid.spacing != box.spacing || grid.direction != box.direction)
@@ -377,7 +377,7 @@ PartitionOfUnity PartitionOfUnity::from_bands(const Geometry& grid, const Index3
   f.g_ = SampleGrid(grid, lo, box.size, clamp, storage, [&](std::size_t x0, std::size_t x1, float* band) {
     next_band(x0, x1, band);
     bound.add(long(x0), long(x1), band);
-  });
+  }, band_bytes);
   // d as the constructor's (all the cells of the grown box), checked as
   // streamed() checks the file's (the cells near S): f's numbers are the
   // streamed f's.

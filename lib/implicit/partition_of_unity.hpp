@@ -50,7 +50,8 @@ public:
   // box's indices (every negative sample inside it; Error if not).
   static PartitionOfUnity from_bands(const Geometry& grid, const Index3& lo, const Geometry& box, const Index3& fg_lo,
                                      const Index3& fg_hi, float clamp, const SampleGrid::BandReader& next_band,
-                                     unsigned threads = 1, SampleGrid::Storage storage = SampleGrid::Storage::automatic);
+                                     unsigned threads = 1, SampleGrid::Storage storage = SampleGrid::Storage::automatic,
+                                     std::size_t band_bytes = SampleGrid::kBandBytes);
 
   // The clamp T for a mesher that compares |f| with bounds up to 2 e (its
   // --max-distance e): the stencil of a point (its 2-3 samples per axis) has
