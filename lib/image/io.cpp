@@ -314,7 +314,7 @@ Opened open_image(const std::string& path, const std::string& file) {
 // integer type up to 2^53), straight from ITK's buffer: no per-voxel copy
 // wider than the file's own type. Grey images stored as RGB(A) or palette
 // PNG (R = G = B) read as their grey value; real colour is refused.
-template <class F> void visit_values(const std::string& path, Opened& o, F&& f) {
+std::unique_ptr<char[]> read_raw(const std::string& path, Opened& o) {
   const unsigned n = o.io->GetNumberOfDimensions();
   itk::ImageIORegion region(n);
   for (unsigned i = 0; i < n; ++i) {
@@ -322,12 +322,10 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
     region.SetSize(i, o.io->GetDimensions(i));
   }
   o.io->SetIORegion(region);
-  const std::size_t count = o.info.geometry.count();
-  const std::size_t c = o.io->GetNumberOfComponents();
   check_nifti_complete(path, o.io->GetFileName(), o.io->GetImageSizeInBytes());
   // Not zero-filled first: ITK writes every byte (a whole scan is read for
   // one small label).
-  const std::unique_ptr<char[]> raw(new char[o.io->GetImageSizeInBytes()]);
+  std::unique_ptr<char[]> raw(new char[o.io->GetImageSizeInBytes()]);
   {
     const CerrCapture said;
     try {
@@ -337,9 +335,16 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
     }
     said.check_read(path);
   }
+  return raw;
+}
+
+// visit_values on the file's voxels read_raw gave (raw).
+template <class F> void visit_raw(const std::string& path, const Opened& o, const char* raw, F&& f) {
+  const std::size_t count = o.info.geometry.count();
+  const std::size_t c = o.io->GetNumberOfComponents();
   auto convert = [&](auto tag) {
     using T = decltype(tag);
-    const T* p = reinterpret_cast<const T*>(raw.get());
+    const T* p = reinterpret_cast<const T*>(raw);
     for (std::size_t i = 0; i < count; ++i) {
       const T* px = p + i * c;
       if (c > 1 && (px[0] != px[1] || px[0] != px[2]))
@@ -367,6 +372,11 @@ template <class F> void visit_values(const std::string& path, Opened& o, F&& f) 
     case itk::IOComponentEnum::DOUBLE: convert(double()); break;
     default: throw Error("unsupported pixel type " + o.info.component, path);
   }
+}
+
+template <class F> void visit_values(const std::string& path, Opened& o, F&& f) {
+  const std::unique_ptr<char[]> raw = read_raw(path, o);
+  visit_raw(path, o, raw.get(), f);
 }
 
 // Writes img's voxels as pixel type T (converted straight into ITK's buffer).
@@ -502,22 +512,49 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel, std::
 }
 
 namespace {
+// A voxel of a label image: a 32-bit integer.
+std::int32_t label_value(double v, const std::string& path) {
+  if (v != std::floor(v) || v < -2147483648.0 || v > 2147483647.0)
+    throw Error("not a label image: value " + std::to_string(v) + " is not a 32-bit integer", path);
+  return std::int32_t(v);
+}
+
 LabelImage read_labels_opened(const std::string& path, LabelNames* names, ImageInfo* info) {
   Spool spool(path);
   Opened o = open_image(path, spool.file());
   if (names) *names = o.names;
   if (info) *info = o.info;
   LabelImage out(o.info.geometry, 0);
-  visit_values(path, o, [&](std::size_t i, double v) {
-    if (v != std::floor(v) || v < -2147483648.0 || v > 2147483647.0)
-      throw Error("not a label image: value " + std::to_string(v) + " is not a 32-bit integer", path);
-    out.data[i] = std::int32_t(v);
-  });
+  visit_values(path, o, [&](std::size_t i, double v) { out.data[i] = label_value(v, path); });
   return out;
 }
 } // namespace
 
 LabelImage read_labels(const std::string& path, LabelNames* names) { return read_labels_opened(path, names, nullptr); }
+
+NarrowLabelImage read_labels_narrow(const std::string& path, LabelNames* names) {
+  Spool spool(path);
+  Opened o = open_image(path, spool.file());
+  if (names) *names = o.names;
+  const std::unique_ptr<char[]> raw = read_raw(path, o);
+  std::int32_t lo = 0, hi = 0;
+  visit_raw(path, o, raw.get(), [&](std::size_t, double v) {
+    const std::int32_t l = label_value(v, path);
+    lo = std::min(lo, l);
+    hi = std::max(hi, l);
+  });
+  NarrowLabelImage out;
+  auto fill = [&](auto& image) {
+    using T = typename std::decay_t<decltype(image.data)>::value_type;
+    image = Image<T>(o.info.geometry, 0);
+    visit_raw(path, o, raw.get(), [&](std::size_t i, double v) { image.data[i] = T(v); });
+  };
+  out.bytes = lo >= 0 && hi <= 255 ? 1 : lo >= 0 && hi <= 65535 ? 2 : 4;
+  if (out.bytes == 1) fill(out.u8);
+  else if (out.bytes == 2) fill(out.u16);
+  else fill(out.i32);
+  return out;
+}
 
 LabelImage read_labels(const std::string& path, const Selection& sel, ImageInfo* info) {
   if (sel.has_threshold) {

@@ -44,6 +44,22 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel,
 // Slicer segmentation of several layers (overlapping segments) or of a
 // fractional labelmap (slicer_segmentation.hpp).
 LabelImage read_labels(const std::string& path, LabelNames* names = nullptr);
+// A label image held in the narrowest of uint8, uint16 and int32 that its
+// values fit: one of u8, u16, i32 holds the voxels (bytes: 1, 2 or 4).
+// seg2mesh holds its input throughout: a CT's labels take 1 or 2 bytes a
+// voxel, not 4.
+struct NarrowLabelImage {
+  Image<std::uint8_t> u8;
+  Image<std::uint16_t> u16;
+  LabelImage i32;
+  int bytes = 4;
+  const Geometry& geometry() const { return bytes == 1 ? u8.geometry() : bytes == 2 ? u16.geometry() : i32.geometry(); }
+  // f(the image that holds the voxels); f returns the same type for each.
+  template <class F> auto visit(F&& f) const { return bytes == 1 ? f(u8) : bytes == 2 ? f(u16) : f(i32); }
+};
+// read_labels' values (and its errors), so held.
+NarrowLabelImage read_labels_narrow(const std::string& path, LabelNames* names = nullptr);
+
 // The same with a selection: a threshold gives the 0/1 foreground (as
 // read_foreground); labels keep those labels and make every other value 0
 // (Error when one does not occur); neither keeps every value. `info`, when

@@ -47,7 +47,29 @@ SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<
 SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
                        Storage storage, const SliceReader& next_slice, std::vector<float>* given)
     : Geometry(grid), clamp_(clamp) {
-  if (!(clamp > 0)) throw Error("internal: the samples' clamp must be positive");
+  set_box(lo, box_size);
+  if (dense_chosen(storage)) {
+    stream_dense(box_size, next_slice, given);
+    return;
+  }
+  stream_blocks(box_size, next_slice);
+  after_blocks(storage);
+}
+
+SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
+                       Storage storage, const BandReader& next_band, std::size_t band_bytes)
+    : Geometry(grid), clamp_(clamp) {
+  set_box(lo, box_size);
+  if (dense_chosen(storage)) {
+    band_dense(box_size, next_band, band_bytes);
+    return;
+  }
+  band_blocks(box_size, next_band, band_bytes);
+  after_blocks(storage);
+}
+
+void SampleGrid::set_box(const Index3& lo, const std::array<std::size_t, 3>& box_size) {
+  if (!(clamp_ > 0)) throw Error("internal: the samples' clamp must be positive");
   bool whole = true;
   for (int i = 0; i < 3; ++i) {
     if (lo[i] < 0 || box_size[i] == 0 || std::size_t(lo[i]) + box_size[i] > size[i])
@@ -57,18 +79,21 @@ SampleGrid::SampleGrid(const Geometry& grid, const Index3& lo, const std::array<
     box_hi_[i] = lo[i] + std::ptrdiff_t(box_size[i]) - 1;
     nb_[i] = (long(size[i]) + kB - 1) / kB;
   }
-  if (!whole && !std::isfinite(clamp)) throw Error("internal: the samples outside the box need a finite clamp");
+  if (!whole && !std::isfinite(clamp_)) throw Error("internal: the samples outside the box need a finite clamp");
   s1_ = long(size[0]);
   s2_ = long(size[0]) * long(size[1]);
   if (std::size_t(nb_[0] * nb_[1] * nb_[2]) > (std::size_t(1) << 31)) throw Error("grid too large");
-  // Unclamped samples all go in blocks: dense is smaller.
+}
+
+// Unclamped samples all go in blocks: dense is smaller.
+bool SampleGrid::dense_chosen(Storage storage) const {
   const std::size_t dense_bytes = count() * sizeof(float);
-  if (storage == Storage::dense ||
-      (storage == Storage::automatic && (dense_bytes < kBlocksWorth || !std::isfinite(clamp)))) {
-    stream_dense(box_size, next_slice, given);
-    return;
-  }
-  stream_blocks(box_size, next_slice);
+  return storage == Storage::dense ||
+         (storage == Storage::automatic && (dense_bytes < kBlocksWorth || !std::isfinite(clamp_)));
+}
+
+void SampleGrid::after_blocks(Storage storage) {
+  const std::size_t dense_bytes = count() * sizeof(float);
   const std::size_t block_bytes = (pool_.size() + table_.size()) * sizeof(float);
   if (storage == Storage::automatic && (dense_bytes < block_bytes || dense_bytes - block_bytes < kBlocksWorth))
     blocks_to_dense();
@@ -106,18 +131,10 @@ void SampleGrid::stream_dense(const std::array<std::size_t, 3>& box_size, const 
   }
 }
 
-// A layer of blocks (kB z-slices) at a time: which blocks clamp whole
-// (kept as the sign of their samples), which are stored, appended in order.
-void SampleGrid::stream_blocks(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice) {
-  auto clamped = [this](float v) { return v < -clamp_ ? -clamp_ : v > clamp_ ? clamp_ : v; };  // NaN kept
+void SampleGrid::start_blocks() {
   table_.assign(std::size_t(nb_[0] * nb_[1] * nb_[2]), 1);  // outside the box: +T
-  long bl[3], bh[3];
   std::size_t bound = 2;
-  for (int i = 0; i < 3; ++i) {
-    bl[i] = long(box_lo_[i]) >> kShift;
-    bh[i] = long(box_hi_[i]) >> kShift;
-    bound *= std::size_t(bh[i] - bl[i] + 1);
-  }
+  for (int i = 0; i < 3; ++i) bound *= std::size_t((long(box_hi_[i]) >> kShift) - (long(box_lo_[i]) >> kShift) + 1);
   // Room for every block the box meets: only the pages written take memory,
   // so the pool never moves (growing it would hold it twice).
   try {
@@ -127,20 +144,19 @@ void SampleGrid::stream_blocks(const std::array<std::size_t, 3>& box_size, const
   prefer_huge_pages(pool_);
   pool_.assign(2 * kBlockSamples, -clamp_);
   std::fill_n(pool_.begin() + kBlockSamples, kBlockSamples, clamp_);
-  const std::size_t n = box_size[0] * box_size[1];
-  std::vector<float> layer(n * std::size_t(std::min<long>(kB, long(box_size[2]))));
-  const long lo[3] = {long(box_lo_[0]), long(box_lo_[1]), long(box_lo_[2])};
-  const long hi[3] = {long(box_hi_[0]), long(box_hi_[1]), long(box_hi_[2])};
-  for (long bz = bl[2]; bz <= bh[2]; ++bz) {
-    const long z0 = std::max(bz * kB, lo[2]), z1 = std::min((bz + 1) * kB - 1, hi[2]);
-    for (long z = z0; z <= z1; ++z) next_slice(layer.data() + std::size_t(z - z0) * n);
-    auto at = [&](long x, long y, long z) {  // a sample of the layer's blocks
-      if (x < lo[0] || x > hi[0] || y < lo[1] || y > hi[1] || z < z0 || z > z1) return clamp_;
-      return layer[std::size_t(z - z0) * n + std::size_t(y - lo[1]) * box_size[0] + std::size_t(x - lo[0])];
-    };
+}
+
+void SampleGrid::add_blocks(const long c0[3], const long c1[3], const float* chunk) {
+  auto clamped = [this](float v) { return v < -clamp_ ? -clamp_ : v > clamp_ ? clamp_ : v; };  // NaN kept
+  const long nx = c1[0] - c0[0] + 1, nxy = nx * (c1[1] - c0[1] + 1);
+  auto at = [&](long x, long y, long z) {  // a sample of the sub-box's blocks
+    if (x < c0[0] || x > c1[0] || y < c0[1] || y > c1[1] || z < c0[2] || z > c1[2]) return clamp_;
+    return chunk[std::size_t((z - c0[2]) * nxy + (y - c0[1]) * nx + (x - c0[0]))];
+  };
+  for (long bz = c0[2] >> kShift; bz <= c1[2] >> kShift; ++bz) {
     const long ze = std::min(long(size[2]), (bz + 1) * kB);
-    for (long by = bl[1]; by <= bh[1]; ++by)
-      for (long bx = bl[0]; bx <= bh[0]; ++bx) {
+    for (long by = c0[1] >> kShift; by <= c1[1] >> kShift; ++by)
+      for (long bx = c0[0] >> kShift; bx <= c1[0] >> kShift; ++bx) {
         const long ye = std::min(long(size[1]), (by + 1) * kB), xe = std::min(long(size[0]), (bx + 1) * kB);
         bool keep = false, negative = false, positive = false;
         for (long z = bz * kB; z < ze && !keep; ++z)
@@ -169,6 +185,93 @@ void SampleGrid::stream_blocks(const std::array<std::size_t, 3>& box_size, const
             for (long x = bx * kB; x < xe; ++x) block[local(x, y, z)] = clamped(at(x, y, z));
       }
   }
+}
+
+// A layer of blocks (kB z-slices) at a time.
+void SampleGrid::stream_blocks(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice) {
+  start_blocks();
+  const std::size_t n = box_size[0] * box_size[1];
+  std::vector<float> layer(n * std::size_t(std::min<long>(kB, long(box_size[2]))));
+  const long lo[3] = {long(box_lo_[0]), long(box_lo_[1]), long(box_lo_[2])};
+  const long hi[3] = {long(box_hi_[0]), long(box_hi_[1]), long(box_hi_[2])};
+  for (long bz = lo[2] >> kShift; bz <= hi[2] >> kShift; ++bz) {
+    const long z0 = std::max(bz * kB, lo[2]), z1 = std::min((bz + 1) * kB - 1, hi[2]);
+    for (long z = z0; z <= z1; ++z) next_slice(layer.data() + std::size_t(z - z0) * n);
+    const long c0[3] = {lo[0], lo[1], z0}, c1[3] = {hi[0], hi[1], z1};
+    add_blocks(c0, c1, layer.data());
+  }
+}
+
+namespace {
+
+// The bands of x of a box (grid indices lo..hi of x, ny nz samples a
+// column): [first, last] each, whole blocks but at the box's sides.
+template <class F> void for_each_band(long lo, long hi, std::size_t column, std::size_t bytes, F&& f) {
+  const long kB = SampleGrid::kB;
+  const long width = std::max(kB, long(bytes / (sizeof(float) * std::max<std::size_t>(column, 1))) / kB * kB);
+  for (long x0 = lo; x0 <= hi;) {
+    const long x1 = std::min(hi, (x0 + width) / kB * kB - 1);
+    f(x0, x1);
+    x0 = x1 + 1;
+  }
+}
+
+} // namespace
+
+void SampleGrid::band_dense(const std::array<std::size_t, 3>& box_size, const BandReader& next_band,
+                            std::size_t band_bytes) {
+  auto clamped = [this](float v) { return v < -clamp_ ? -clamp_ : v > clamp_ ? clamp_ : v; };  // NaN kept
+  dense_.reserve(count());
+  prefer_huge_pages(dense_);
+  dense_.assign(count(), clamp_);
+  std::vector<float> band;
+  const std::size_t column = box_size[1] * box_size[2];
+  for_each_band(long(box_lo_[0]), long(box_hi_[0]), column, band_bytes, [&](long x0, long x1) {
+    const std::size_t w = std::size_t(x1 - x0 + 1);
+    band.resize(w * column);
+    next_band(std::size_t(x0 - box_lo_[0]), std::size_t(x1 + 1 - box_lo_[0]), band.data());
+    for (std::size_t z = 0; z < box_size[2]; ++z)
+      for (std::size_t y = 0; y < box_size[1]; ++y)
+        std::transform(band.data() + (z * box_size[1] + y) * w, band.data() + (z * box_size[1] + y + 1) * w,
+                       dense_.data() + index(std::size_t(x0), std::size_t(box_lo_[1]) + y, std::size_t(box_lo_[2]) + z),
+                       clamped);
+  });
+}
+
+void SampleGrid::band_blocks(const std::array<std::size_t, 3>& box_size, const BandReader& next_band,
+                             std::size_t band_bytes) {
+  start_blocks();
+  std::vector<float> band;
+  const std::size_t column = box_size[1] * box_size[2];
+  for_each_band(long(box_lo_[0]), long(box_hi_[0]), column, band_bytes, [&](long x0, long x1) {
+    band.resize(std::size_t(x1 - x0 + 1) * column);
+    next_band(std::size_t(x0 - box_lo_[0]), std::size_t(x1 + 1 - box_lo_[0]), band.data());
+    const long c0[3] = {x0, long(box_lo_[1]), long(box_lo_[2])}, c1[3] = {x1, long(box_hi_[1]), long(box_hi_[2])};
+    add_blocks(c0, c1, band.data());
+  });
+  sort_pool();
+}
+
+// Slot s of the pool goes to to[s]: the blocks in the order of their
+// numbers, as slices append them (the same memory, the same locality).
+void SampleGrid::sort_pool() {
+  std::vector<std::uint32_t> to(pool_.size() / kBlockSamples);
+  std::uint32_t next = 2;
+  to[0] = 0;
+  to[1] = 1;
+  for (std::uint32_t& entry : table_)
+    if (entry >= 2) {
+      to[entry] = next;
+      entry = next++;
+    }
+  for (std::size_t s = 2; s < to.size(); ++s)
+    while (to[s] != s) {
+      const std::uint32_t t = to[s];
+      std::swap_ranges(pool_.begin() + std::ptrdiff_t(s * kBlockSamples), pool_.begin() + std::ptrdiff_t((s + 1) * kBlockSamples),
+                       pool_.begin() + std::ptrdiff_t(std::size_t(t) * kBlockSamples));
+      to[s] = to[t];
+      to[t] = t;
+    }
 }
 
 void SampleGrid::blocks_to_dense() {

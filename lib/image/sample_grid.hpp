@@ -48,6 +48,19 @@ public:
   SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
              Storage storage, const SliceReader& next_slice);
 
+  // Fills `band` with the box's samples of x in [x0, x1) (box indices), x
+  // fastest, then y, then z.
+  using BandReader = std::function<void(std::size_t x0, std::size_t x1, float* band)>;
+  // The same samples a band of x at a time (x0 from 0 up, bands of whole
+  // blocks but at the box's sides, about kBandBytes each): what a producer
+  // that cannot give z-slices (a distance transform, whose last pass runs
+  // along z) gives without the dense box. The same grid as from slices,
+  // its blocks in the same order. band_bytes: the bands' size (tests: many
+  // bands on a small grid).
+  static constexpr std::size_t kBandBytes = std::size_t(8) << 20;
+  SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
+             Storage storage, const BandReader& next_band, std::size_t band_bytes = kBandBytes);
+
   float operator()(std::size_t x, std::size_t y, std::size_t z) const {
     if (dense()) return dense_[std::size_t(long(x) + s1_ * long(y) + s2_ * long(z))];
     return block(long(x) >> kShift, long(y) >> kShift, long(z) >> kShift)[local(long(x), long(y), long(z))];
@@ -116,7 +129,20 @@ private:
   SampleGrid(const Geometry& grid, const Index3& lo, const std::array<std::size_t, 3>& box_size, float clamp,
              Storage storage, const SliceReader& next_slice, std::vector<float>* given);
   void stream_dense(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice, std::vector<float>* given);
+  // The box checked and held, the block counts set.
+  void set_box(const Index3& lo, const std::array<std::size_t, 3>& box_size);
+  bool dense_chosen(Storage storage) const;
   void stream_blocks(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice);
+  void band_dense(const std::array<std::size_t, 3>& box_size, const BandReader& next_band, std::size_t band_bytes);
+  void band_blocks(const std::array<std::size_t, 3>& box_size, const BandReader& next_band, std::size_t band_bytes);
+  // Blocks: the table, the two constant blocks, room for every block the box meets.
+  void start_blocks();
+  // The blocks meeting the sub-box [c0, c1] of the box (grid indices; whole
+  // blocks but at the box's sides), its samples in chunk (x fastest).
+  void add_blocks(const long c0[3], const long c1[3], const float* chunk);
+  // The stored blocks put in the order of their numbers.
+  void sort_pool();
+  void after_blocks(Storage storage);
   void blocks_to_dense();
 };
 

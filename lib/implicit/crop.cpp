@@ -262,8 +262,7 @@ WellComposedCrop well_composed_crop(const Geometry& scan, const VoxelBox& box, c
 
 // ---- function_in_scan ----
 
-PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, Vec3 d, float clamp,
-                                  const SampleGrid::SliceReader& next_slice, bool* placed) {
+bool placed_in_scan(const Geometry& crop, const ScanFrame& frame, float clamp) {
   // A scan beyond 2^31 voxels would cost the crop more than its box (the
   // block table and the mesher's cube bits cover the scan: 3/16 byte a
   // voxel): the crop alone then.
@@ -277,6 +276,12 @@ PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, 
                 (last || std::ptrdiff_t(crop.size[a]) - 1 - frame.foreground.hi[a] >= std::ptrdiff_t(m[a]));
     }
   }
+  return in_scan;
+}
+
+PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, Vec3 d, float clamp,
+                                  const SampleGrid::SliceReader& next_slice, bool* placed) {
+  const bool in_scan = placed_in_scan(crop, frame, clamp);
   if (placed) *placed = in_scan;
   // The negative samples must lie in the frame's foreground box: the
   // margins above are measured from it.
@@ -296,16 +301,6 @@ PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, 
   };
   if (in_scan) return PartitionOfUnity::streamed(frame.scan(crop), frame.index, crop, d, clamp, checked);
   return PartitionOfUnity::streamed(crop, {0, 0, 0}, crop, d, clamp, checked);
-}
-
-PartitionOfUnity function_in_scan(const PartitionOfUnity& f, const ScanFrame& frame, float clamp, bool* placed) {
-  const SampleGrid& g = f.samples();
-  std::size_t z = 0;
-  return function_in_scan(g.geometry(), frame, f.d(), clamp, [&](float* slice) {
-    for (std::size_t y = 0; y < g.size[1]; ++y)
-      for (std::size_t x = 0; x < g.size[0]; ++x) *slice++ = g(x, y, z);
-    ++z;
-  }, placed);
 }
 
 } // namespace imgmesh

@@ -97,6 +97,10 @@ struct WellComposedCrop {
 WellComposedCrop well_composed_crop(const Geometry& scan, const VoxelBox& box, const ForegroundRows& rows,
                                     const WellComposedOptions& options);
 
+// Whether function_in_scan places a crop of this grid (after wc2implicit's
+// growth) in its frame's scan at clamp T (see there).
+bool placed_in_scan(const Geometry& crop, const ScanFrame& frame, float clamp);
+
 // f on g's samples clamped at T (infinite: not clamped), placed back in the
 // scan's grid when the frame is present, the scan has at most 2^31 voxels
 // and the frame's foreground box keeps crop_margin(spacing, T) from every
@@ -106,8 +110,5 @@ WellComposedCrop well_composed_crop(const Geometry& scan, const VoxelBox& box, c
 // outside the frame's foreground box.
 PartitionOfUnity function_in_scan(const Geometry& crop, const ScanFrame& frame, Vec3 d, float clamp,
                                   const SampleGrid::SliceReader& next_slice, bool* placed = nullptr);
-// The same from f's own samples (seg2mesh: f of the crop, then the
-// mesher's clamped copy).
-PartitionOfUnity function_in_scan(const PartitionOfUnity& f, const ScanFrame& frame, float clamp, bool* placed = nullptr);
 
 } // namespace imgmesh

@@ -133,67 +133,78 @@ void first_pass_line(double* val, const std::uint8_t* lab, long n, double delta2
 
 } // namespace
 
-FloatImage signed_distance_to_boundary(const BinaryImage& wc, unsigned threads) {
+void signed_distance_band(const BinaryImage& wc, std::size_t x0, std::size_t x1, float* band, unsigned threads) {
   if (wc.dimension != 3) throw Error("needs a 3D image");
   if (wc.data.size() != wc.count() || wc.count() == 0) throw Error("empty image");
+  if (x0 >= x1 || x1 > wc.size[0]) throw Error("internal: a band of x outside the grid");
   threads = resolve_threads(threads);
   const long n[3] = {long(wc.size[0]), long(wc.size[1]), long(wc.size[2])};
-  const long stride[3] = {1, n[0], n[0] * n[1]};
-  std::vector<std::uint8_t> lab(wc.count());
-  std::size_t fg = 0;
-  for (std::size_t i = 0; i < lab.size(); ++i) {
-    lab[i] = wc.data[i] != 0;
-    fg += lab[i];
-  }
-  if (fg == 0) throw Error("the foreground is empty");
-
-  FloatImage out(wc.geometry(), std::numeric_limits<float>::infinity());
-  float* buf = out.data.data();
+  const long w = long(x1 - x0);
+  // Strides of the image (labels) and of the band (values), whose x runs
+  // over [x0, x1) only.
+  const long stride[3] = {1, n[0], n[0] * n[1]}, bstride[3] = {1, w, w * n[1]};
+  const std::uint8_t* lab = wc.data.data();
+  float* buf = band;
   constexpr long kBatch = 16;  // neighbouring lines gathered together (cache lines)
   for (int a = 0; a < 3; ++a) {
+    // Along x every line is whole (the band's values depend on all of it);
+    // along y and z only the band's lines.
     const long len = n[a];
     const double delta2 = wc.spacing[a] * wc.spacing[a];
     // Lines along axis a: indexed by the other two coordinates; for a > 0 the
     // x coordinate is innermost so batches of kBatch lines are contiguous.
     const int b = a == 0 ? 1 : 0, c = a == 2 ? 1 : 2;
-    const long nb = n[b], nc = n[c];
+    const long nb = a == 0 ? n[1] : w, nc = n[c];
     const long batches_per_row = (nb + kBatch - 1) / kBatch;
     const long jobs = nc * batches_per_row;
     parallel_for(jobs, threads, [&](long j0, long j1, unsigned) {
-      LineWork w;
-      w.reserve(len);
+      LineWork work;
+      work.reserve(len);
       std::vector<double> vals(len * kBatch);
       std::vector<std::uint8_t> labs(len * kBatch);
       for (long job = j0; job < j1; ++job) {
         const long ic = job / batches_per_row, ib0 = (job % batches_per_row) * kBatch;
         const long m = std::min(kBatch, nb - ib0);
+        // Line q's voxel t: in the image, and in the band (when there).
+        auto image_at = [&](long q, long t) {
+          return (ib0 + q) * stride[b] + ic * stride[c] + t * stride[a] + (a == 0 ? 0 : long(x0));
+        };
+        auto band_at = [&](long q, long t) {
+          return (ib0 + q) * bstride[b] + ic * bstride[c] + (a == 0 ? t - long(x0) : t * bstride[a]);
+        };
         for (long t = 0; t < len; ++t)
           for (long q = 0; q < m; ++q) {
-            const long idx = (ib0 + q) * stride[b] + ic * stride[c] + t * stride[a];
-            vals[q * len + t] = buf[idx];
-            labs[q * len + t] = lab[idx];
+            labs[q * len + t] = lab[image_at(q, t)] != 0;
+            if (a > 0) vals[q * len + t] = buf[band_at(q, t)];
           }
         for (long q = 0; q < m; ++q) {
           if (a == 0) {
             first_pass_line(&vals[q * len], &labs[q * len], len, delta2);
           } else {
-            pass_line(&vals[q * len], &labs[q * len], len, delta2, 1, w);
-            pass_line(&vals[q * len], &labs[q * len], len, delta2, 0, w);
+            pass_line(&vals[q * len], &labs[q * len], len, delta2, 1, work);
+            pass_line(&vals[q * len], &labs[q * len], len, delta2, 0, work);
           }
         }
-        for (long t = 0; t < len; ++t)
-          for (long q = 0; q < m; ++q) {
-            const long idx = (ib0 + q) * stride[b] + ic * stride[c] + t * stride[a];
-            buf[idx] = float(vals[q * len + t]);
-          }
+        for (long t = a == 0 ? long(x0) : 0; t < (a == 0 ? long(x1) : len); ++t)
+          for (long q = 0; q < m; ++q) buf[band_at(q, t)] = float(vals[q * len + t]);
       }
     });
   }
-  for (std::size_t i = 0; i < out.data.size(); ++i) {
-    const float d2 = out.data[i];
-    if (!(d2 < std::numeric_limits<float>::infinity())) throw Error("the foreground is empty");
-    out.data[i] = lab[i] ? -std::sqrt(d2) : std::sqrt(d2);
-  }
+  for (long z = 0; z < n[2]; ++z)
+    for (long y = 0; y < n[1]; ++y)
+      for (long x = 0; x < w; ++x) {
+        float& v = buf[x + w * (y + n[1] * z)];
+        const float d2 = v;
+        if (!(d2 < std::numeric_limits<float>::infinity())) throw Error("the foreground is empty");
+        v = lab[std::size_t(x + long(x0) + n[0] * (y + n[1] * z))] ? -std::sqrt(d2) : std::sqrt(d2);
+      }
+}
+
+FloatImage signed_distance_to_boundary(const BinaryImage& wc, unsigned threads) {
+  if (wc.dimension != 3) throw Error("needs a 3D image");
+  if (wc.data.size() != wc.count() || wc.count() == 0) throw Error("empty image");
+  FloatImage out(wc.geometry(), std::numeric_limits<float>::infinity());
+  signed_distance_band(wc, 0, wc.size[0], out.data.data(), threads);
   return out;
 }
 

@@ -27,16 +27,17 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 } // namespace
 
-PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitReport* report, unsigned threads) {
+namespace {
+
+// implicit_from_well_composed's checks of its input, and where the grid
+// grows (rep's padded_*, foreground).
+void check_well_composed_sides(const BinaryImage& wc, ImplicitReport& rep) {
   if (wc.dimension != 3) throw Error("wc2implicit needs a 3D image (thesis chapter 6 is 3D)");
   if (wc.data.size() != wc.count() || wc.count() == 0) throw Error("empty image");
   const CriticalCounts cc = count_critical_configurations(wc);
   if (cc.total() != 0)
     throw Error("not well-composed (" + std::to_string(cc.c1) + " C1 and " + std::to_string(cc.c2) +
                 " C2 critical configurations); make it well-composed first: img2wc IN OUT.nrrd");
-  const auto t_start = std::chrono::steady_clock::now();
-  const double cpu_start = process_cpu_seconds();
-  ImplicitReport rep;
   // Restriction (2) of thesis 6.3: no foreground on the border of D.
   for (int a = 0; a < 3; ++a) {
     const std::size_t n = wc.size[a];
@@ -53,8 +54,21 @@ PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitRepo
   }
   for (std::uint8_t v : wc.data) rep.foreground += v != 0;
   if (rep.foreground == 0) throw Error("the foreground is empty");
-  const bool pad_needed = rep.padded_before != std::array<std::size_t, 3>{0, 0, 0} ||
-                          rep.padded_after != std::array<std::size_t, 3>{0, 0, 0};
+}
+
+bool padding_needed(const ImplicitReport& rep) {
+  return rep.padded_before != std::array<std::size_t, 3>{0, 0, 0} ||
+         rep.padded_after != std::array<std::size_t, 3>{0, 0, 0};
+}
+
+} // namespace
+
+PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitReport* report, unsigned threads) {
+  const auto t_start = std::chrono::steady_clock::now();
+  const double cpu_start = process_cpu_seconds();
+  ImplicitReport rep;
+  check_well_composed_sides(wc, rep);
+  const bool pad_needed = padding_needed(rep);
   auto t0 = std::chrono::steady_clock::now();
   FloatImage g = pad_needed ? signed_distance_to_boundary(pad(wc, rep.padded_before, rep.padded_after, std::uint8_t(0)), threads)
                             : signed_distance_to_boundary(wc, threads);
@@ -73,6 +87,25 @@ PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitRepo
   rep.construction_cpu_seconds = process_cpu_seconds() - cpu_start;
   if (report) *report = rep;
   return f;
+}
+
+PartitionOfUnity implicit_in_scan(const BinaryImage& wc, ScanFrame frame, float clamp, unsigned threads,
+                                  bool* placed, std::size_t band_bytes) {
+  ImplicitReport rep;
+  check_well_composed_sides(wc, rep);
+  BinaryImage padded;
+  if (padding_needed(rep)) padded = pad(wc, rep.padded_before, rep.padded_after, std::uint8_t(0));
+  const BinaryImage& image = padding_needed(rep) ? padded : wc;
+  if (frame.present() && !frame.grow(rep.padded_before, rep.padded_after, wc)) frame = ScanFrame();
+  const bool in_scan = placed_in_scan(image, frame, clamp);
+  if (placed) *placed = in_scan;
+  const VoxelBox fg = foreground_box(image);
+  return PartitionOfUnity::from_bands(in_scan ? frame.scan(image) : image.geometry(), in_scan ? frame.index : Index3{0, 0, 0},
+                                      image, fg.lo, fg.hi, clamp,
+                                      [&](std::size_t x0, std::size_t x1, float* band) {
+                                        signed_distance_band(image, x0, x1, band, threads);
+                                      },
+                                      threads, SampleGrid::Storage::automatic, band_bytes);
 }
 
 Json ImplicitReport::to_json() const {

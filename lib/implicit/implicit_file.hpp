@@ -22,6 +22,10 @@ namespace imgmesh {
 // lower-envelope passes, see distance.cpp). Throws Error on an empty
 // foreground or a grid that is not 3D.
 FloatImage signed_distance_to_boundary(const BinaryImage& wc, unsigned threads = 1);
+// The same values, to the last bit, for the voxels of x in [x0, x1) only,
+// into band (x fastest, then y, then z; (x1 - x0) size[1] size[2] floats):
+// g a band at a time, never the dense grid (seg2mesh's crops).
+void signed_distance_band(const BinaryImage& wc, std::size_t x0, std::size_t x1, float* band, unsigned threads = 1);
 
 // What implicit_from_well_composed did, and what f it made.
 struct ImplicitReport {
@@ -47,6 +51,15 @@ struct ImplicitReport {
 // world coordinates of the voxels stay exact.
 PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitReport* report = nullptr,
                                              unsigned threads = 1);
+
+// What seg2mesh meshes of a label's crop: implicit_from_well_composed(wc)
+// then function_in_scan(it, frame grown as wc2implicit grows the grid,
+// clamp), the same f to the last bit, built from g a band of x at a time
+// (signed_distance_band): never the dense float grid of the crop. frame:
+// the crop's (well_composed_crop's, its foreground box wc's), or none.
+// band_bytes: SampleGrid's.
+PartitionOfUnity implicit_in_scan(const BinaryImage& wc, ScanFrame frame, float clamp, unsigned threads = 1,
+                                  bool* placed = nullptr, std::size_t band_bytes = SampleGrid::kBandBytes);
 
 // The file's fields imgmesh_kind and imgmesh_version.
 inline constexpr const char* kImplicitKind = "pu-implicit";

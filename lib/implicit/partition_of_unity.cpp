@@ -184,6 +184,79 @@ private:
   std::size_t z_ = 0;
 };
 
+// The same of g a band of x at a time, and the largest L_k of the cells of
+// the foreground's box grown by weight_margin (weight_constant's): the
+// last column of the band before held for the cells across.
+class BandBound {
+public:
+  BandBound(const Geometry& box, const Index3& fg_lo, const Index3& fg_hi, unsigned threads)
+      : ny_(long(box.size[1])), nz_(long(box.size[2])), inv_{1 / box.spacing[0], 1 / box.spacing[1], 1 / box.spacing[2]},
+        r_(PartitionOfUnity::near_radius(box.spacing)), fg_lo_(fg_lo), fg_hi_(fg_hi),
+        threads_(implicit_detail::resolve_threads(threads)), prev_(std::size_t(ny_ * nz_)) {
+    const std::array<std::size_t, 3> m = PartitionOfUnity::weight_margin(box.spacing);
+    for (int a = 0; a < 3; ++a) {
+      const long n = long(box.size[a]);
+      long lo = long(fg_lo[a]), hi = long(fg_hi[a]);
+      if (hi < lo) lo = 0, hi = n - 1;  // no foreground: every cell
+      c0_[a] = std::max(0L, lo - long(m[a]));
+      c1_[a] = std::min(n - 2, hi + long(m[a]) - 1);
+    }
+  }
+  void add(long x0, long x1, const float* band) {
+    const long w = x1 - x0;
+    for (long z = 0; z < nz_; ++z)
+      for (long y = 0; y < ny_; ++y)
+        for (long x = 0; x < w; ++x) {
+          const float v = band[x + w * (y + ny_ * z)];
+          if (!std::isfinite(v) || v == 0) throw Error(kBadSamples);
+          g_min = std::min(g_min, double(std::fabs(v)));
+          if (v < 0 && (x + x0 < fg_lo_[0] || x + x0 > fg_hi_[0] || y < fg_lo_[1] || y > fg_hi_[1] || z < fg_lo_[2] ||
+                        z > fg_hi_[2]))
+            throw Error("internal: a foreground sample outside the foreground's box");
+        }
+    if (x0 > 0) {  // the cells across: the held column and the band's first
+      std::vector<float> pair(std::size_t(2 * ny_ * nz_));
+      for (std::size_t i = 0; i < prev_.size(); ++i) {
+        pair[2 * i] = prev_[i];
+        pair[2 * i + 1] = band[std::size_t(w) * i];
+      }
+      cells(pair.data(), 2, x0 - 1);
+    }
+    cells(band, w, x0);
+    for (std::size_t i = 0; i < prev_.size(); ++i) prev_[i] = band[std::size_t(w) * i + std::size_t(w - 1)];
+  }
+  double g_min = std::numeric_limits<double>::infinity(), l_all = 0, l_near = 0;
+
+private:
+  // The cells whose lowest corner lies in the w columns of v (x from x0).
+  void cells(const float* v, long w, long x0) {
+    const long s1 = w, s2 = w * ny_;
+    std::vector<double> all(threads_, 0.0), near(threads_, 0.0);
+    implicit_detail::parallel_for(nz_ - 1, threads_, [&](long z0, long z1, unsigned t) {
+      for (long z = z0; z < z1; ++z)
+        for (long y = 0; y + 1 < ny_; ++y)
+          for (long x = 0; x + 1 < w; ++x) {
+            const float* c = v + x + y * s1 + z * s2;
+            const bool in_box = x + x0 >= c0_[0] && x + x0 <= c1_[0] && y >= c0_[1] && y <= c1_[1] && z >= c0_[2] &&
+                                z <= c1_[2];
+            const bool near_s = cell_near(c, s1, s2, r_);
+            if (!in_box && !near_s) continue;
+            const double l = cell_lipschitz(c, s1, s2, inv_);
+            if (in_box) all[t] = std::max(all[t], l);
+            if (near_s) near[t] = std::max(near[t], l);
+          }
+    });
+    l_all = std::max(l_all, *std::max_element(all.begin(), all.end()));
+    l_near = std::max(l_near, *std::max_element(near.begin(), near.end()));
+  }
+  long ny_, nz_;
+  double inv_[3], r_;
+  Index3 fg_lo_, fg_hi_;
+  long c0_[3], c1_[3];
+  unsigned threads_;
+  std::vector<float> prev_;  // the last band's last column (y, z)
+};
+
 } // namespace
 
 double PartitionOfUnity::near_radius(const Vec3& spacing) { return 0.65 * (spacing[0] + spacing[1] + spacing[2]); }
@@ -286,6 +359,31 @@ PartitionOfUnity PartitionOfUnity::streamed(const Geometry& grid, const Index3& 
   });
   f.g_min_ = bound.g_min;
   f.l_max_ = bound.l_near;
+  f.finish(bound_of(box.spacing, bound.g_min, bound.l_near));
+  return f;
+}
+
+PartitionOfUnity PartitionOfUnity::from_bands(const Geometry& grid, const Index3& lo, const Geometry& box,
+                                              const Index3& fg_lo, const Index3& fg_hi, float clamp,
+                                              const SampleGrid::BandReader& next_band, unsigned threads,
+                                              SampleGrid::Storage storage, std::size_t band_bytes) {
+  check_grid(box);
+  check_grid(grid);
+  if (grid.spacing != box.spacing || grid.direction != box.direction)
+    throw Error("internal: a box placed in a grid of another spacing or direction");
+  if (clamp < clamp_for(box, 0)) throw Error("internal: the samples' clamp is under the stencil's diameter");
+  PartitionOfUnity f;
+  BandBound bound(box, fg_lo, fg_hi, threads);
+  f.g_ = SampleGrid(grid, lo, box.size, clamp, storage, [&](std::size_t x0, std::size_t x1, float* band) {
+    next_band(x0, x1, band);
+    bound.add(long(x0), long(x1), band);
+  }, band_bytes);
+  // d as the constructor's (all the cells of the grown box), checked as
+  // streamed() checks the file's (the cells near S): f's numbers are the
+  // streamed f's.
+  f.g_min_ = bound.g_min;
+  f.l_max_ = bound.l_near;
+  f.d_ = bound_of(box.spacing, bound.g_min, bound.l_all);
   f.finish(bound_of(box.spacing, bound.g_min, bound.l_near));
   return f;
 }

@@ -42,6 +42,17 @@ public:
                                    const SampleGrid::SliceReader& next_slice,
                                    SampleGrid::Storage storage = SampleGrid::Storage::automatic);
 
+  // The same f as PartitionOfUnity(g) then streamed() with its d (the
+  // clamped f of a crop that seg2mesh builds), from g's samples a band of x
+  // at a time (SampleGrid::BandReader): d computed as the constructor does
+  // (weight_constant), the cells of the foreground's box grown by
+  // weight_margin measured as the bands come; fg_lo, fg_hi: that box in
+  // box's indices (every negative sample inside it; Error if not).
+  static PartitionOfUnity from_bands(const Geometry& grid, const Index3& lo, const Geometry& box, const Index3& fg_lo,
+                                     const Index3& fg_hi, float clamp, const SampleGrid::BandReader& next_band,
+                                     unsigned threads = 1, SampleGrid::Storage storage = SampleGrid::Storage::automatic,
+                                     std::size_t band_bytes = SampleGrid::kBandBytes);
+
   // The clamp T for a mesher that compares |f| with bounds up to 2 e (its
   // --max-distance e): the stencil of a point (its 2-3 samples per axis) has
   // diameter D = 2 |delta|, and T = (D + 2 e)(1 + 1e-6). Where f' (on

@@ -9,6 +9,7 @@
 #include "implicit/implicit_file.hpp"
 #include "surface/implicit_surface.hpp"
 #include "util/error.hpp"
+#include "util/memory.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -25,8 +26,10 @@ namespace {
 
 // img2wc --label L (the label's box plus the margin), wc2implicit and
 // implicit2mesh's reading (f clamped, placed back in the scan's grid), in
-// memory: the pipeline's mesh, at the cost of the label's box.
-LabelSurface mesh_one_label(const LabelImage& image, long long label, std::size_t voxels, const VoxelBox& box,
+// memory: the pipeline's mesh, at the cost of the label's box (and of its
+// clamped blocks: f is built from g a band at a time, implicit_in_scan).
+template <class T>
+LabelSurface mesh_one_label(const Image<T>& image, long long label, std::size_t voxels, const VoxelBox& box,
                             const LabelSurfacesOptions& opt, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   LabelSurface out;
@@ -39,22 +42,19 @@ LabelSurface mesh_one_label(const LabelImage& image, long long label, std::size_
   WellComposedCrop wc = well_composed_crop(
       image, box,
       [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
-        const std::int32_t* v = &image(x0, y, z);
+        const T* v = &image(x0, y, z);
         for (std::size_t i = 0; i < n; ++i) row[i] = v[i] == label;
       },
       wco);
   out.changed = wc.result.changed;
   out.crop = wc.result.image.size;
   out.well_composed_failure = wc.result.failed_guarantee();
-  const PartitionOfUnity f = [&] {
-    ImplicitReport rep;
-    const PartitionOfUnity whole = implicit_from_well_composed(wc.result.image, &rep, unsigned(threads));
-    ScanFrame frame = wc.frame;
-    frame.foreground = foreground_box(wc.result.image);
-    if (!frame.grow(rep.padded_before, rep.padded_after, wc.result.image)) frame = ScanFrame();
-    std::vector<std::uint8_t>().swap(wc.result.image.data);
-    return function_in_scan(whole, frame, PartitionOfUnity::clamp_for(whole.samples(), opt.mesher.max_distance));
-  }();
+  wc.frame.foreground = foreground_box(wc.result.image);
+  const PartitionOfUnity f =
+      implicit_in_scan(wc.result.image, wc.frame, PartitionOfUnity::clamp_for(wc.result.image, opt.mesher.max_distance),
+                       unsigned(threads));
+  std::vector<std::uint8_t>().swap(wc.result.image.data);
+  release_free_memory();  // the crop's pages, before the mesher's peak
   const PartitionOfUnitySurface surface(f);
   RestrictedDelaunayOptions mo = opt.mesher;
   mo.threads = threads;
@@ -74,14 +74,15 @@ std::string list(const std::vector<long long>& v) {
 }
 
 // One pass over the image: the voxels and box of each of `labels` (ascending).
-void label_boxes(const LabelImage& image, const std::vector<long long>& labels, std::vector<std::size_t>& voxels,
+template <class T>
+void label_boxes(const Image<T>& image, const std::vector<long long>& labels, std::vector<std::size_t>& voxels,
                  std::vector<VoxelBox>& boxes) {
   // A run of one value looked up once.
   voxels.assign(labels.size(), 0);
   boxes.assign(labels.size(), VoxelBox());
   for (std::size_t z = 0; z < image.size[2]; ++z)
     for (std::size_t y = 0; y < image.size[1]; ++y) {
-      const std::int32_t* row = &image(0, y, z);
+      const T* row = &image(0, y, z);
       for (std::size_t x = 0; x < image.size[0];) {
         std::size_t end = x + 1;
         while (end < image.size[0] && row[end] == row[x]) ++end;
@@ -99,13 +100,13 @@ void label_boxes(const LabelImage& image, const std::vector<long long>& labels, 
 
 } // namespace
 
-std::vector<long long> labels_present(const LabelImage& image) {
+template <class T> std::vector<long long> labels_present(const Image<T>& image) {
   std::set<long long> s(image.data.begin(), image.data.end());
   s.erase(0);
   return {s.begin(), s.end()};
 }
 
-std::vector<long long> chosen_labels(const LabelImage& image, const std::vector<long long>& asked) {
+template <class T> std::vector<long long> chosen_labels(const Image<T>& image, const std::vector<long long>& asked) {
   if (image.dimension != 3) throw Error("a 3D label image is needed (seg2mesh meshes surfaces)");
   const std::vector<long long> present = labels_present(image);
   if (present.empty()) throw Error("no label: every voxel is 0");
@@ -118,7 +119,7 @@ std::vector<long long> chosen_labels(const LabelImage& image, const std::vector<
   return labels;
 }
 
-LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurfacesOptions& opt) {
+template <class T> LabelSurfacesResult mesh_label_surfaces(const Image<T>& image, const LabelSurfacesOptions& opt) {
   const std::vector<long long> labels = chosen_labels(image, opt.labels);
   std::vector<std::size_t> voxels;
   std::vector<VoxelBox> boxes;
@@ -183,6 +184,15 @@ LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurf
   }
   return res;
 }
+
+#define IMGMESH_LABEL_TYPE(T)                                                                             \
+  template std::vector<long long> labels_present(const Image<T>&);                                           \
+  template std::vector<long long> chosen_labels(const Image<T>&, const std::vector<long long>&);             \
+  template LabelSurfacesResult mesh_label_surfaces(const Image<T>&, const LabelSurfacesOptions&);
+IMGMESH_LABEL_TYPE(std::uint8_t)
+IMGMESH_LABEL_TYPE(std::uint16_t)
+IMGMESH_LABEL_TYPE(std::int32_t)
+#undef IMGMESH_LABEL_TYPE
 
 Json LabelSurfacesResult::to_json() const {
   Json st = Json::object();

@@ -55,16 +55,19 @@ struct LabelSurfacesResult {
   std::string failed_guarantee() const;
 };
 
+// The label images these take: held at 1, 2 or 4 bytes a voxel
+// (read_labels_narrow), T one of std::uint8_t, std::uint16_t, std::int32_t.
+
 // The nonzero values of an image, ascending.
-std::vector<long long> labels_present(const LabelImage& image);
+template <class T> std::vector<long long> labels_present(const Image<T>& image);
 // The labels to mesh: `asked` (every nonzero value when empty), ascending,
 // once each. Throws Error on a 2D image, an image without labels, or an
 // asked label absent from the image (naming those present).
-std::vector<long long> chosen_labels(const LabelImage& image, const std::vector<long long>& asked);
+template <class T> std::vector<long long> chosen_labels(const Image<T>& image, const std::vector<long long>& asked);
 
 // Throws Error on a label absent from the image (naming those present), an
 // image without labels, or a 2D image; an Error while meshing a label is
 // thrown again as "label L: ...".
-LabelSurfacesResult mesh_label_surfaces(const LabelImage& image, const LabelSurfacesOptions& options);
+template <class T> LabelSurfacesResult mesh_label_surfaces(const Image<T>& image, const LabelSurfacesOptions& options);
 
 } // namespace imgmesh

@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 #include <cstdio>
+#include <algorithm>
 #include <fstream>
 #include <random>
 #include <string>
@@ -139,4 +140,38 @@ TEST_CASE("bad files give an Error, never a crash") {
   CHECK_THROWS_AS(write_image(temp_dir() + "/x.jpg", img), UsageError);
   // A failed write leaves no file.
   CHECK(access((temp_dir() + "/x.jpg").c_str(), F_OK) != 0);
+}
+
+TEST_CASE("label images read narrow: the narrowest of 1, 2, 4 bytes their values fit, the same values") {
+  const BinaryImage base = sample(3);
+  // Values and the component type written: 1 byte for 0..255 whatever the
+  // file's type, 2 for 0..65535, 4 beyond or negative.
+  const struct {
+    std::int32_t top, bottom;
+    const char* component;
+    int bytes;
+  } cases[] = {{255, 0, "int", 1}, {200, 0, "unsigned_char", 1}, {256, 0, "short", 2}, {65535, 0, "unsigned_short", 2},
+               {65536, 0, "int", 4}, {7, -1, "short", 4}, {1000, 0, "float", 2}};
+  for (const auto& k : cases) {
+    LabelImage img(base.geometry(), 0);
+    std::mt19937 rng(3);
+    for (std::size_t i = 0; i < img.data.size(); ++i)
+      img.data[i] = base.data[i] ? std::int32_t(rng() % std::uint32_t(k.top)) : k.bottom;
+    img.data[0] = k.top;
+    const std::string path = temp_dir() + "/narrow.nrrd";
+    write_image(path, img, k.component);
+    INFO(k.component << " up to " << k.top);
+    const NarrowLabelImage n = read_labels_narrow(path);
+    REQUIRE(n.bytes == k.bytes);
+    const LabelImage wide = read_labels(path);
+    n.visit([&](const auto& narrow) {
+      REQUIRE(narrow.same_grid(wide));
+      REQUIRE(std::equal(narrow.data.begin(), narrow.data.end(), wide.data.begin(), wide.data.end()));
+      return 0;
+    });
+  }
+  const std::string path = temp_dir() + "/half.nrrd";
+  FloatImage f(base.geometry(), 0.5f);
+  write_image(path, f);
+  CHECK_THROWS_WITH(read_labels_narrow(path), Catch::Contains("not a 32-bit integer"));
 }

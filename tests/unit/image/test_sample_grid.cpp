@@ -130,3 +130,68 @@ TEST_CASE("SampleGrid streamed a slice at a time from a box of the grid: the box
                              [](float*) {}),
                   Error);
 }
+
+TEST_CASE("SampleGrid from bands of x is SampleGrid from slices: the same samples, blocks in the same order",
+          "[samples]") {
+  // Random distance-like samples with noise, a box placed at odd and at
+  // block-aligned indices of a larger grid, or the whole grid; bands of 1
+  // block and more, and the default (one band).
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int trial = 0; trial < 12; ++trial) {
+    Geometry geo;
+    geo.size = {std::size_t(20 + rng() % 30), std::size_t(9 + rng() % 20), std::size_t(6 + rng() % 14)};
+    geo.spacing = {0.5 + u(rng), 0.5 + u(rng), 0.5 + 2 * u(rng)};
+    const bool whole = trial % 4 == 0;
+    Index3 lo{0, 0, 0};
+    std::array<std::size_t, 3> box = geo.size;
+    for (int a = 0; a < 3 && !whole; ++a) {
+      lo[a] = trial % 3 == 1 ? 4 * std::ptrdiff_t(rng() % 2) : std::ptrdiff_t(rng() % 5);
+      box[a] = 2 + rng() % (geo.size[a] - std::size_t(lo[a]) - 1);
+    }
+    const double c[3] = {box[0] * u(rng), box[1] * u(rng), box[2] * u(rng)}, r = 1 + 4 * u(rng);
+    Geometry gb = geo;
+    gb.size = box;
+    FloatImage g(gb);
+    for (std::size_t z = 0; z < box[2]; ++z)
+      for (std::size_t y = 0; y < box[1]; ++y)
+        for (std::size_t x = 0; x < box[0]; ++x)
+          g(x, y, z) = float(std::hypot((x - c[0]) * geo.spacing[0], (y - c[1]) * geo.spacing[1], (z - c[2]) * geo.spacing[2]) -
+                             r + 0.3 * (u(rng) - 0.5));
+    const float t = float(1 + 2 * u(rng));
+    const std::size_t column = box[1] * box[2] * sizeof(float);
+    const std::size_t bytes = trial % 3 == 2 ? SampleGrid::kBandBytes : column * (1 + rng() % 9);
+    INFO("trial " << trial << " band bytes " << bytes);
+    for (const auto storage : {SampleGrid::Storage::dense, SampleGrid::Storage::blocks, SampleGrid::Storage::automatic}) {
+      std::size_t z = 0;
+      const SampleGrid slices(geo, lo, box, t, storage, [&](float* slice) {
+        std::copy_n(g.data.data() + z++ * box[0] * box[1], box[0] * box[1], slice);
+      });
+      std::size_t next = 0, bands = 0;
+      const SampleGrid banded(geo, lo, box, t, storage, [&](std::size_t x0, std::size_t x1, float* band) {
+        REQUIRE(x0 == next);  // in order, each x once, bands ending at blocks of the grid but at the box's sides
+        REQUIRE(x0 < x1);
+        REQUIRE((x1 == box[0] || (std::size_t(lo[0]) + x1) % SampleGrid::kB == 0));
+        next = x1;
+        ++bands;
+        for (std::size_t zz = 0; zz < box[2]; ++zz)
+          for (std::size_t y = 0; y < box[1]; ++y)
+            for (std::size_t x = x0; x < x1; ++x) *band++ = g(x, y, zz);
+      }, bytes);
+      REQUIRE(next == box[0]);
+      if (bytes < column * box[0] / 2) CHECK(bands > 1);
+      REQUIRE(banded.dense() == slices.dense());
+      REQUIRE(banded.stored_blocks() == slices.stored_blocks());
+      REQUIRE(banded.box_lo() == slices.box_lo());
+      REQUIRE(banded.box_hi() == slices.box_hi());
+      for (std::size_t zz = 0; zz < geo.size[2]; ++zz)
+        for (std::size_t y = 0; y < geo.size[1]; ++y)
+          for (std::size_t x = 0; x < geo.size[0]; ++x)
+            if (banded(x, y, zz) != slices(x, y, zz)) FAIL("sample " << x << " " << y << " " << zz << " differs");
+      if (!banded.dense())
+        for (long b = 0; b < long(banded.blocks()); ++b)
+          if (banded.block_at(b) - banded.block_at(0) != slices.block_at(b) - slices.block_at(0))
+            FAIL("block " << b << " is elsewhere in the pool");
+    }
+  }
+}

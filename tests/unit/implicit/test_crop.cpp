@@ -47,6 +47,17 @@ WellComposedCrop crop_of(const BinaryImage& im, const WellComposedOptions& opt) 
 
 template <class A> bool same_bits(const A& a, const A& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+// f's samples placed in the frame's scan as the meshers read a crop's file.
+PartitionOfUnity function_in_scan(const PartitionOfUnity& f, const ScanFrame& frame, float clamp, bool* placed) {
+  const SampleGrid& g = f.samples();
+  std::size_t z = 0;
+  return function_in_scan(g.geometry(), frame, f.d(), clamp, [&](float* slice) {
+    for (std::size_t y = 0; y < g.size[1]; ++y)
+      for (std::size_t x = 0; x < g.size[0]; ++x) *slice++ = g(x, y, z);
+    ++z;
+  }, placed);
+}
+
 } // namespace
 
 TEST_CASE("a crop is repaired as the whole grid: the same voxels, counts and padding", "[crop]") {
@@ -199,4 +210,46 @@ TEST_CASE("the scan frame travels in key/value fields and is checked", "[crop]")
   refused("imgmesh_scan_size", "5 5 5", "does not lie inside");
   refused("imgmesh_foreground_box", "0 0 0 999 1 1", "imgmesh_foreground_box");
   refused("imgmesh_scan_origin", "1 2", "bad imgmesh_scan_origin");
+}
+
+TEST_CASE("seg2mesh's f built a band at a time is the crop's f placed in its scan, bit for bit", "[crop]") {
+  // implicit_in_scan against implicit_from_well_composed then
+  // function_in_scan: anisotropic grids, foreground touching the scan's
+  // side (the grid grows), a clamp beyond the margin (not placed), bands
+  // of one block and more.
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const Vec3 sp = seed % 2 ? Vec3{1, 1, 1} : seed == 4 ? Vec3{0.617, 0.617, 1.333} : Vec3{1.4, 0.5, 0.9};
+    BinaryImage im = scattered(44, 40, 34, seed + 20, sp, seed >= 4);
+    if (seed == 3) rotate(im);
+    INFO("seed " << seed);
+    WellComposedCrop c = crop_of(im, WellComposedOptions());
+    c.frame.foreground = foreground_box(c.result.image);
+    const float t = PartitionOfUnity::clamp_for(c.result.image, 0.3 * std::min({sp[0], sp[1], sp[2]}));
+    for (const float clamp : {t, 4 * t}) {
+      ImplicitReport rep;
+      const PartitionOfUnity whole = implicit_from_well_composed(c.result.image, &rep);
+      ScanFrame frame = c.frame;
+      if (!frame.grow(rep.padded_before, rep.padded_after, c.result.image)) frame = ScanFrame();
+      bool placed = false, placed_bands = true;
+      const PartitionOfUnity a = function_in_scan(whole, frame, clamp, &placed);
+      const std::size_t column = whole.samples().size[1] * whole.samples().size[2] * sizeof(float);
+      const PartitionOfUnity b = implicit_in_scan(c.result.image, c.frame, clamp, 2, &placed_bands,
+                                                  seed % 2 ? column * 5 : SampleGrid::kBandBytes);
+      REQUIRE(placed_bands == placed);
+      CHECK(placed == (clamp == t));
+      REQUIRE(same_bits(b.d(), a.d()));
+      REQUIRE(b.g_min() == a.g_min());
+      REQUIRE(b.l_max() == a.l_max());
+      const SampleGrid &ga = a.samples(), &gb = b.samples();
+      REQUIRE(gb.size == ga.size);
+      REQUIRE(same_bits(gb.origin, ga.origin));
+      REQUIRE(gb.box_lo() == ga.box_lo());
+      REQUIRE(gb.dense() == ga.dense());
+      REQUIRE(gb.stored_blocks() == ga.stored_blocks());
+      for (std::size_t z = 0; z < ga.size[2]; ++z)
+        for (std::size_t y = 0; y < ga.size[1]; ++y)
+          for (std::size_t x = 0; x < ga.size[0]; ++x)
+            if (!same_bits(ga(x, y, z), gb(x, y, z))) FAIL("sample " << x << " " << y << " " << z << " differs");
+    }
+  }
 }

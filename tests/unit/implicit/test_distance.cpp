@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <random>
+#include <vector>
 
 using namespace imgmesh;
 using namespace imgmesh::test;
@@ -114,4 +116,28 @@ TEST_CASE("distance rejects empty foreground and 2D grids", "[distance]") {
   g2.dimension = 2;
   BinaryImage flat(g2, 1);
   REQUIRE_THROWS_AS(signed_distance_to_boundary(flat), Error);
+}
+
+TEST_CASE("g a band of x at a time is g, to the last bit", "[distance]") {
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 8; ++trial) {
+    const Vec3 sp = trial % 2 ? Vec3{1, 1, 1} : Vec3{0.6, 1.1, 2.3};
+    const std::size_t n0 = 5 + rng() % 30, n1 = 4 + rng() % 20, n2 = 3 + rng() % 15;
+    BinaryImage im(grid(n0, n1, n2, sp), 0);
+    for (auto& v : im.data) v = rng() % 7 == 0;  // touching every side too
+    const FloatImage g = signed_distance_to_boundary(im);
+    std::size_t compared = 0;
+    for (std::size_t x0 = 0, x1; x0 < n0; x0 = x1) {
+      x1 = std::min(n0, x0 + 1 + rng() % 6);
+      std::vector<float> band((x1 - x0) * n1 * n2);
+      signed_distance_band(im, x0, x1, band.data(), 1 + trial % 2);
+      for (std::size_t z = 0; z < n2; ++z)
+        for (std::size_t y = 0; y < n1; ++y)
+          for (std::size_t x = x0; x < x1; ++x)
+            if (std::memcmp(&band[(x - x0) + (x1 - x0) * (y + n1 * z)], &g(x, y, z), sizeof(float)) != 0)
+              FAIL("trial " << trial << ": voxel " << x << " " << y << " " << z << " differs");
+      compared += band.size();
+    }
+    REQUIRE(compared == im.count());
+  }
 }

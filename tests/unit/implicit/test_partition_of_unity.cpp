@@ -613,3 +613,48 @@ TEST_CASE("f streamed a slice at a time is the constructor's f, checks included"
                                                  }),
                       Catch::Contains("finite and nonzero"));
 }
+
+TEST_CASE("f from bands of x is the constructor's d and streamed f's numbers, the cells across bands included", "[pu]") {
+  // g steps only between x = 3 and x = 4, where the first band (one block)
+  // ends: the largest L_k is that of cells across two bands. No foreground
+  // sample: every cell counts for d.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (const Vec3 sp : {Vec3{1, 1, 1}, Vec3{0.6, 1.4, 0.9}}) {
+    FloatImage g(grid(13, 7, 6, sp));
+    for (std::size_t z = 0; z < 6; ++z)
+      for (std::size_t y = 0; y < 7; ++y)
+        for (std::size_t x = 0; x < 13; ++x) g(x, y, z) = float(0.5 + 0.05 * u(rng) + (x >= 4 ? 1.5 : 0));
+    const float t = PartitionOfUnity::clamp_for(g, 0.3);
+    const PartitionOfUnity whole(g, {0, 0, 0}, 1);
+    std::size_t z = 0;
+    const std::size_t n = g.size[0] * g.size[1];
+    const PartitionOfUnity streamed = PartitionOfUnity::streamed(g, {0, 0, 0}, g, whole.d(), t, [&](float* slice) {
+      std::copy_n(g.data.data() + z++ * n, n, slice);
+    });
+    const PartitionOfUnity bands = PartitionOfUnity::from_bands(
+        g, {0, 0, 0}, g, {0, 0, 0}, {-1, -1, -1}, t,
+        [&](std::size_t x0, std::size_t x1, float* band) {
+          for (std::size_t zz = 0; zz < 6; ++zz)
+            for (std::size_t y = 0; y < 7; ++y)
+              for (std::size_t x = x0; x < x1; ++x) *band++ = g(x, y, zz);
+        },
+        1, SampleGrid::Storage::automatic, 7 * 6 * sizeof(float));
+    REQUIRE(whole.d()[0] < sp[0] / 5);  // L_max, the step's, sets d
+    REQUIRE(bands.d() == whole.d());
+    REQUIRE(bands.g_min() == streamed.g_min());
+    REQUIRE(bands.l_max() == streamed.l_max());
+    REQUIRE(bands.samples().to_image().data == streamed.samples().to_image().data);
+  }
+  // A negative sample outside the foreground's box given is refused.
+  FloatImage g(grid(8, 5, 5));
+  g.data.assign(g.count(), 1.0f);
+  g(6, 2, 2) = -0.5f;
+  CHECK_THROWS_WITH(PartitionOfUnity::from_bands(g, {0, 0, 0}, g, {1, 1, 1}, {3, 3, 3}, 4.0f,
+                                                 [&](std::size_t x0, std::size_t x1, float* band) {
+                                                   for (std::size_t zz = 0; zz < 5; ++zz)
+                                                     for (std::size_t y = 0; y < 5; ++y)
+                                                       for (std::size_t x = x0; x < x1; ++x) *band++ = g(x, y, zz);
+                                                 }),
+                    Catch::Contains("outside the foreground's box"));
+}
