@@ -143,6 +143,7 @@ private:
     }
     Vh v = tr_.insert(pt(p), lt, c, li, lj);
     v->info() = int(points_++);
+    new_vertices_.push_back(v);
     hint_ = v->cell();
     ++inserted_[step];
     return true;
@@ -420,13 +421,25 @@ private:
       ++passes_;
       // The cells made since the last pass (numbered now, from
       // fresh_first_ on); their facets, each once, and their vertices.
+      // Every cell made since is incident to a vertex inserted since (an
+      // insertion makes only cells at its vertex); the first pass takes all.
       fresh_first_ = uid_ + 1;
       fresh_.clear();
-      for (auto c = tr_.all_cells_begin(); c != tr_.all_cells_end(); ++c)
-        if (c->info().uid == 0) {
-          c->info().uid = ++uid_;
-          if (!tr_.is_infinite(c)) fresh_.push_back(c);
+      auto take = [&](Ch c) {
+        if (c->info().uid != 0) return;
+        c->info().uid = ++uid_;
+        if (!tr_.is_infinite(c)) fresh_.push_back(c);
+      };
+      if (passes_ == 1) {
+        for (auto c = tr_.all_cells_begin(); c != tr_.all_cells_end(); ++c) take(c);
+      } else {
+        for (Vh v : new_vertices_) {
+          cells_.clear();
+          tr_.incident_cells(v, std::back_inserter(cells_));
+          for (Ch c : cells_) take(c);
         }
+      }
+      new_vertices_.clear();
       touched_.clear();
       for (Ch c : fresh_) {
         for (int i = 0; i < 4; ++i) {
@@ -511,7 +524,7 @@ private:
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
   std::vector<Ch> fresh_, cells_;
-  std::vector<Vh> touched_;
+  std::vector<Vh> touched_, new_vertices_;
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
   std::vector<LabelFunction::Change> changes_;

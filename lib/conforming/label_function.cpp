@@ -36,13 +36,8 @@ PartitionOfUnity indicator_function(const LabelImage& x, std::int32_t label, con
     throw Error(label < 0 ? std::string("the labels' union is not well-composed (repair it: img2wc --labels all)")
                           : "label " + std::to_string(label) +
                                 " is not well-composed (repair the map: img2wc --labels all)");
-  ImplicitReport rep;
-  const PartitionOfUnity whole = implicit_from_well_composed(wc.result.image, &rep, threads);
-  ScanFrame frame = wc.frame;
-  frame.foreground = foreground_box(wc.result.image);
-  if (!frame.grow(rep.padded_before, rep.padded_after, wc.result.image)) frame = ScanFrame();
-  std::vector<std::uint8_t>().swap(wc.result.image.data);
-  return function_in_scan(whole, frame, PartitionOfUnity::clamp_for(whole.samples(), max_distance));
+  wc.frame.foreground = foreground_box(wc.result.image);
+  return implicit_in_scan(wc.result.image, wc.frame, PartitionOfUnity::clamp_for(wc.result.image, max_distance), threads);
 }
 
 // Along one axis, each voxel's value replaced by op over the window
