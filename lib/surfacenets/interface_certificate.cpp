@@ -6,6 +6,7 @@
 
 #include "surfacenets/interface_certificate_detail.hpp"
 #include "util/error.hpp"
+#include "util/memory.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -13,6 +14,7 @@
 #include <mutex>
 #include <thread>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace imgmesh {
@@ -28,6 +30,8 @@ void validate(const std::vector<Vec3>& points, const std::vector<std::array<int,
     if (k.lattice[std::size_t(a)] != image.size[std::size_t(a)] + 1)
       throw Error("certify_interface_mesh: the interface complex is not the label image's");
   if (k.critical.total()) throw Error("certify_interface_mesh: " + k.failed_guarantee());
+  if (triangles.size() > std::numeric_limits<std::uint32_t>::max())
+    throw Error("certify_interface_mesh: more than 2^32 triangles");
   if (pairs.size() != triangles.size())
     throw Error("certify_interface_mesh: " + std::to_string(pairs.size()) + " label pairs for " +
                 std::to_string(triangles.size()) + " triangles");
@@ -97,14 +101,15 @@ BinaryImage crop_indicator(const LabelImage& img, std::int32_t label, const Labe
 
 // A label's triangles, oriented out of it (label 0: out of X != 0, into 0),
 // on its own vertices (renumbered through `local`, left all -1 again).
+// ts .. ts_end: its triangles' ids.
 void label_surface(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                   const std::vector<std::array<std::int32_t, 2>>& pairs, const std::vector<std::size_t>& ts,
-                   std::int32_t label, std::vector<int>& local, std::vector<Vec3>& p,
+                   const std::vector<std::array<std::int32_t, 2>>& pairs, const std::uint32_t* ts,
+                   const std::uint32_t* ts_end, std::int32_t label, std::vector<int>& local, std::vector<Vec3>& p,
                    std::vector<std::array<int, 3>>& tris) {
   std::vector<int> used;
   p.clear();
-  tris.resize(ts.size());
-  for (std::size_t i = 0; i < ts.size(); ++i) {
+  tris.resize(std::size_t(ts_end - ts));
+  for (std::size_t i = 0; i < tris.size(); ++i) {
     auto tri = triangles[ts[i]];
     const auto& pr = pairs[ts[i]];
     if (label == 0 ? pr[1] != 0 : pr[0] != label) std::swap(tri[1], tri[2]);
@@ -180,7 +185,8 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
   for (const auto& pr : pairs) labels.insert(labels.end(), pr.begin(), pr.end());
   std::sort(labels.begin(), labels.end());
   labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
-  // Per label, its triangles (CSR, ascending ids).
+  // Per label, its triangles (CSR, ascending ids; 4 bytes each: validate
+  // allows no more than 2^32 triangles).
   auto index = [&](std::int32_t v) { return std::size_t(std::lower_bound(labels.begin(), labels.end(), v) - labels.begin()); };
   std::vector<std::size_t> start(labels.size() + 1, 0);
   for (const auto& pr : pairs) {
@@ -188,18 +194,18 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
     if (pr[1] != pr[0]) ++start[index(pr[1]) + 1];
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::size_t> of(start.back()), next(start.begin(), start.end() - 1);
+  std::vector<std::uint32_t> of(start.back());
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
   for (std::size_t t = 0; t < pairs.size(); ++t) {
-    of[next[index(pairs[t][0])]++] = t;
-    if (pairs[t][1] != pairs[t][0]) of[next[index(pairs[t][1])]++] = t;
+    of[next[index(pairs[t][0])]++] = std::uint32_t(t);
+    if (pairs[t][1] != pairs[t][0]) of[next[index(pairs[t][1])]++] = std::uint32_t(t);
   }
   const std::vector<LabelBox> boxes = label_boxes(image, in_image);
   std::vector<Cert::Label> out(labels.size());
   auto certify_one = [&](std::size_t i, std::vector<int>& local, std::vector<Vec3>& p, std::vector<std::array<int, 3>>& tris) {
     Cert::Label& l = out[i];
     l.label = labels[i];
-    const std::vector<std::size_t> ts(of.begin() + std::ptrdiff_t(start[i]), of.begin() + std::ptrdiff_t(start[i + 1]));
-    label_surface(points, triangles, pairs, ts, l.label, local, p, tris);
+    label_surface(points, triangles, pairs, of.data() + start[i], of.data() + start[i + 1], l.label, local, p, tris);
     const auto b = std::lower_bound(in_image.begin(), in_image.end(), l.label);
     l.in_image = b != in_image.end() && *b == l.label;
     if (!l.in_image) {
@@ -394,6 +400,9 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
   const surfacenets_detail::NetCells cells =
       options.lattice ? surfacenets_detail::net_cells(points, triangles, pairs, image, k) : surfacenets_detail::NetCells();
   c.on_lattice = cells.holds;
+  // The pages the interfaces freed given back: the labels' threads take
+  // memory from arenas of their own, which would not reuse them.
+  release_free_memory();
   c.labels = certify_labels(points, triangles, pairs, image, k, co, options.threads, cells);
   check_labels(c);
   return c;
