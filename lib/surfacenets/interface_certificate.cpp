@@ -107,7 +107,7 @@ void label_surface(const std::vector<Vec3>& points, const std::vector<std::array
                    const std::uint32_t* ts_end, std::int32_t label, std::vector<int>& local, std::vector<Vec3>& p,
                    std::vector<std::array<int, 3>>& tris) {
   std::vector<int> used;
-  p.clear();
+  tris.clear();  // sized exactly below (the scratch holds its largest label's)
   tris.resize(std::size_t(ts_end - ts));
   for (std::size_t i = 0; i < tris.size(); ++i) {
     auto tri = triangles[ts[i]];
@@ -115,11 +115,16 @@ void label_surface(const std::vector<Vec3>& points, const std::vector<std::array
     if (label == 0 ? pr[1] != 0 : pr[0] != label) std::swap(tri[1], tri[2]);
     for (int c = 0; c < 3; ++c) {
       int& v = local[std::size_t(tri[std::size_t(c)])];
-      if (v < 0) v = int(used.size()), used.push_back(tri[std::size_t(c)]), p.push_back(points[std::size_t(tri[std::size_t(c)])]);
+      if (v < 0) v = int(used.size()), used.push_back(tri[std::size_t(c)]);
       tris[i][std::size_t(c)] = v;
     }
   }
-  for (int v : used) local[std::size_t(v)] = -1;
+  p.clear();
+  p.resize(used.size());
+  for (std::size_t v = 0; v < used.size(); ++v) {
+    p[v] = points[std::size_t(used[v])];
+    local[std::size_t(used[v])] = -1;
+  }
 }
 
 double area_of(const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& tris) {
@@ -143,20 +148,25 @@ void certify_label(Cert::Label& l, const std::vector<Vec3>& p, const std::vector
   l.area = area_of(p, tris);
   l.voxels = box.voxels;
   l.voxel_volume = double(box.voxels) * image.spacing[0] * image.spacing[1] * image.spacing[2];
-  const BinaryImage crop = crop_indicator(image, l.label, box);
+  BinaryImage crop = crop_indicator(image, l.label, box);
   const VoxelBoundary vb = voxel_boundary(crop);
   const MeshTopology bt = mesh_topology(vb);
+  const Geometry grid = crop.geometry();
+  // On the lattice the crop's last use is its voxel centres' count: freed
+  // before the surface's certificate (a label's peak).
+  const std::size_t centres = cells.holds ? centres_next_to_boundary(crop) : 0;
+  if (cells.holds) decltype(crop.data)().swap(crop.data);
   CertificateOptions o = options;
   if (cells.holds)
     o.nesting = [&](const MeshTopology& t) {
       return surfacenets_detail::net_depths(t, p, image, k.lattice, cells.slack, crop_lo(box), vb, bt);
     };
-  l.surface = certify_surface(p, tris, crop, vb, bt, o);
+  l.surface = certify_surface(p, tris, grid, vb, bt, o);
   for (double v : l.surface.volume) l.volume += v;
   if (l.surface.state[SurfaceCertificate::kIntersections] < 0) return;  // not closed, manifold, oriented
   l.sides_checked = true;
   if (cells.holds) {
-    l.sides.checked = centres_next_to_boundary(crop);  // every one on its side
+    l.sides.checked = centres;  // every one on its side
     return;
   }
   std::vector<int> component(tris.size());
@@ -182,9 +192,10 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
   for (const auto& lb : k.labels) in_image.push_back(lb.label);  // ascending, 0 among them
   for (const auto& lb : k.labels)
     if (lb.faces) labels.push_back(lb.label);
-  for (const auto& pr : pairs) labels.insert(labels.end(), pr.begin(), pr.end());
-  std::sort(labels.begin(), labels.end());
-  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+  // The mesh's labels added as found (a few, against two a triangle kept).
+  for (const auto& pr : pairs)
+    for (std::int32_t v : pr)
+      if (const auto at = std::lower_bound(labels.begin(), labels.end(), v); at == labels.end() || *at != v) labels.insert(at, v);
   // Per label, its triangles (CSR, ascending ids; 4 bytes each: validate
   // allows no more than 2^32 triangles).
   auto index = [&](std::int32_t v) { return std::size_t(std::lower_bound(labels.begin(), labels.end(), v) - labels.begin()); };
