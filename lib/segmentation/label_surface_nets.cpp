@@ -103,18 +103,18 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
 
   t0 = Clock::now();
   say("smoothing");
-  bool untangled = false;
-  if (opt.smooth_rounds > 0) {
+  const bool untangled = opt.smooth_rounds > 0;
+  if (untangled) {
     SmoothingOptions so;
     so.rounds = opt.smooth_rounds;
-    so.threads = std::max(1u, opt.threads);
+    so.untangle = false;  // below, once the relaxation graph is freed
     smooth_interface_mesh(m, so);
-    untangled = so.untangle;
   }
   // The relaxation graph served the smoothing only.
   release(m.kind);
   release(m.neighbour_offsets);
   release(m.neighbours);
+  if (untangled) untangle_interface_mesh(m, corner_points(m), std::max(1u, opt.threads));
   res.seconds.push_back({"smoothing", since(t0)});
 
   t0 = Clock::now();

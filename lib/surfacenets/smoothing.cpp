@@ -43,10 +43,9 @@ void relax(InterfaceMesh& m, const SmoothingOptions& o) {
 
 void smooth_interface_mesh(InterfaceMesh& m, const SmoothingOptions& o) {
   if (!(o.margin >= 0 && o.margin < 0.5)) throw Error("smooth_interface_mesh: the margin must be in [0, 0.5)");
-  const std::vector<Vec3> rest = m.points;
   relax(m, o);
   split_quads(m);
-  if (o.untangle) untangle_interface_mesh(m, rest, o.threads);
+  if (o.untangle) untangle_interface_mesh(m, corner_points(m), o.threads);
 }
 
 } // namespace imgmesh

@@ -81,6 +81,15 @@ std::array<std::size_t, 3> InterfaceMesh::corner(std::size_t vertex) const {
           std::size_t(id / lattice[0] / lattice[1])};
 }
 
+std::vector<Vec3> corner_points(const InterfaceMesh& m) {
+  std::vector<Vec3> p(m.corners.size());
+  for (std::size_t v = 0; v < p.size(); ++v) {
+    const auto c = m.corner(v);
+    p[v] = m.grid.world(double(c[0]) - 0.5, double(c[1]) - 0.5, double(c[2]) - 0.5);
+  }
+  return p;
+}
+
 InterfaceMesh interface_mesh(const Geometry& image, const InterfaceComplex& k) {
   if (k.dimension != 3) throw Error("interface_mesh: a 3D label image is needed");
   if (k.critical.total()) throw Error("interface_mesh: " + k.failed_guarantee());
@@ -96,11 +105,7 @@ InterfaceMesh interface_mesh(const Geometry& image, const InterfaceComplex& k) {
   ranks.rank();
   if (ranks.count() > 0x7fffffffu) throw Error("interface_mesh: more than 2^31 vertices");
   ranks.list(m.corners);
-  m.points.resize(m.corners.size());
-  for (std::size_t v = 0; v < m.corners.size(); ++v) {
-    const auto c = m.corner(v);
-    m.points[v] = image.world(double(c[0]) - 0.5, double(c[1]) - 0.5, double(c[2]) - 0.5);
-  }
+  m.points = corner_points(m);
   const bool reflect = surfacenets_detail::reflects(image);
   m.quads.resize(k.faces.size());
   m.labels.resize(k.faces.size());

@@ -56,6 +56,10 @@ struct InterfaceMesh {
   std::array<std::int32_t, 2> triangle_labels(std::size_t t) const { return labels[t / 2]; }
 };
 
+// Per vertex, its corner's world position (the unsmoothed mesh's points,
+// where the untangling moves vertices back to).
+std::vector<Vec3> corner_points(const InterfaceMesh& mesh);
+
 // The unsmoothed mesh of K(X) (k = interface_complex(image)); the image is
 // read for its geometry only. Throws Error when K(X) counts critical
 // configurations (the partition is not well-composed: some label's faces
@@ -83,7 +87,8 @@ struct SmoothingOptions {
 // Constrained smoothing (Frisken 2022): every round moves each surface and
 // curve vertex to the mean of its neighbours (positions of the previous
 // round), clamped into its cell shrunk by the margin; junctions stay. The
-// quads are then split again and the mesh untangled: on return, with
+// quads are then split again and the mesh untangled toward its corners'
+// positions (corner_points): on return, with
 // options.untangle, no two triangles cross and none is degenerate
 // (crossing_pairs(mesh) is empty; untangle_interface_mesh). Throws Error
 // on a margin outside [0, 0.5).
