@@ -127,7 +127,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   // with crossing_pairs' exact test, then after each move every pair at a
   // moved vertex, until none crossed (untangle.cpp: no pair is left
   // unseen); no vertex has moved since, so a second search of every pair
-  // would find none (it was a quarter of the run's time). Unsmoothed (K(X)'s
+  // would find none (it cost as much as the untangling's first). Unsmoothed (K(X)'s
   // faces) they are searched: local, every vertex in its cell.
   std::vector<std::array<std::size_t, 2>> crossings;
   if (!untangled) crossings = crossing_pairs(m, std::max(1u, opt.threads));
