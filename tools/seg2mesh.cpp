@@ -13,6 +13,7 @@
 #include "shared_options.hpp"
 #include "surface_options.hpp"
 #include "util/error.hpp"
+#include "util/memory.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -78,6 +79,7 @@ int run_fast(cli::Tool& tool, const std::string& in, const std::string& out, Lab
   LabelSurfaceNetsResult res = naming_input(in, [&] { return mesh_label_surface_nets(std::move(image), opt); });
   const auto t0 = std::chrono::steady_clock::now();
   tool.report_progress("writing " + out);
+  release_free_memory();  // the certificate's pages, before the writer's buffers
   write_surface(out, res.mesh, write_opt);
   res.seconds.push_back({"write", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
   tool.stats["input"] = in;

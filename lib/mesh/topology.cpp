@@ -3,6 +3,7 @@
 #include "mesh/topology_detail.hpp"
 
 #include "util/error.hpp"
+#include "util/ranked_bits.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -454,40 +455,52 @@ VoxelBoundary voxel_boundary_of(const std::array<std::size_t, 3>& size, const st
   vb.lattice = {nx + 1, ny + 1, size[2] + 1};
   const std::uint64_t W = nx + 1, H = ny + 1;
   auto id = [&](std::size_t i, std::size_t j, std::size_t k) { return (std::uint64_t(k) * H + j) * W + i; };
-  // Outward-oriented unit squares; corners as lattice ids, compacted below.
-  std::vector<std::uint64_t> lat;
-  std::vector<std::uint8_t> bits;  // per quad: VoxelBoundary::faces' bits for its first (lowest) corner
+  // Outward-oriented unit squares, each kept as its lowest corner and its
+  // side (8 bytes a quad); the corners they touch a bit each on the lattice
+  // of X's box, numbered by rank among them: ascending ids without sorting
+  // four a quad, in a quarter byte a corner of the box (the callers hold a
+  // byte a voxel of it or more).
+  const std::uint64_t BW = hi[0] - lo[0] + 2, BH = hi[1] - lo[1] + 2, BS = BW * BH;
+  auto local = [&](std::size_t i, std::size_t j, std::size_t k) {
+    return (std::uint64_t(k - lo[2]) * BH + (j - lo[1])) * BW + (i - lo[0]);
+  };
+  RankedBits touched(BS * (hi[2] - lo[2] + 2));
+  // Per side 2 axis + plus, a quad's other corners from its lowest,
+  // counter-clockwise seen from outside ((e_u x e_v) points outward).
+  const std::uint64_t step[6][3] = {{BS, BW + BS, BW}, {BW, BW + BS, BS}, {1, 1 + BS, BS},
+                                    {BS, 1 + BS, 1},   {BW, 1 + BW, 1},   {1, 1 + BW, BW}};
+  std::vector<std::uint64_t> quads;  // per quad: its lowest corner (local) * 8 + side
   for (std::size_t z = lo[2]; z <= hi[2]; ++z)
     for (std::size_t y = lo[1]; y <= hi[1]; ++y)
       for (std::size_t x = lo[0]; x <= hi[0]; ++x) {
         const std::ptrdiff_t X = std::ptrdiff_t(x), Y = std::ptrdiff_t(y), Z = std::ptrdiff_t(z);
         if (!in(X, Y, Z)) continue;
-        auto quad = [&](int axis, bool plus, std::uint64_t a, std::uint64_t b, std::uint64_t c, std::uint64_t d) {
-          lat.push_back(a); lat.push_back(b); lat.push_back(c); lat.push_back(d);
-          bits.push_back(std::uint8_t((VoxelBoundary::kNormalAxis | (plus ? VoxelBoundary::kPlus : 0)) << axis));
+        auto quad = [&](int side, std::uint64_t q) {
+          quads.push_back(q * 8 + std::uint64_t(side));
+          touched.set(q);
+          for (std::uint64_t d : step[side]) touched.set(q + d);
         };
-        // Counter-clockwise seen from outside: (e_u x e_v) points outward.
-        // The first corner is the lowest.
-        if (!in(X + 1, Y, Z)) quad(0, true, id(x + 1, y, z), id(x + 1, y + 1, z), id(x + 1, y + 1, z + 1), id(x + 1, y, z + 1));
-        if (!in(X - 1, Y, Z)) quad(0, false, id(x, y, z), id(x, y, z + 1), id(x, y + 1, z + 1), id(x, y + 1, z));
-        if (!in(X, Y + 1, Z)) quad(1, true, id(x, y + 1, z), id(x, y + 1, z + 1), id(x + 1, y + 1, z + 1), id(x + 1, y + 1, z));
-        if (!in(X, Y - 1, Z)) quad(1, false, id(x, y, z), id(x + 1, y, z), id(x + 1, y, z + 1), id(x, y, z + 1));
-        if (!in(X, Y, Z + 1)) quad(2, true, id(x, y, z + 1), id(x + 1, y, z + 1), id(x + 1, y + 1, z + 1), id(x, y + 1, z + 1));
-        if (!in(X, Y, Z - 1)) quad(2, false, id(x, y, z), id(x, y + 1, z), id(x + 1, y + 1, z), id(x + 1, y, z));
+        if (!in(X + 1, Y, Z)) quad(1, local(x + 1, y, z));
+        if (!in(X - 1, Y, Z)) quad(0, local(x, y, z));
+        if (!in(X, Y + 1, Z)) quad(3, local(x, y + 1, z));
+        if (!in(X, Y - 1, Z)) quad(2, local(x, y, z));
+        if (!in(X, Y, Z + 1)) quad(5, local(x, y, z + 1));
+        if (!in(X, Y, Z - 1)) quad(4, local(x, y, z));
       }
-  vb.lattice_ids = lat;
-  std::sort(vb.lattice_ids.begin(), vb.lattice_ids.end());
-  vb.lattice_ids.erase(std::unique(vb.lattice_ids.begin(), vb.lattice_ids.end()), vb.lattice_ids.end());
-  // The copy had room for every corner of every quad, about four times the
-  // distinct ones; the mesher holds this through its run.
-  vb.lattice_ids.shrink_to_fit();
-  vb.corners.resize(lat.size());
-  for (std::size_t i = 0; i < lat.size(); ++i)
-    vb.corners[i] = int(std::lower_bound(vb.lattice_ids.begin(), vb.lattice_ids.end(), lat[i]) - vb.lattice_ids.begin());
-  lat.clear();
-  lat.shrink_to_fit();
+  touched.rank();
+  touched.list(vb.lattice_ids);
+  for (std::uint64_t& c : vb.lattice_ids)  // box lattice -> grid lattice (the same order: z, y, x)
+    c = id(lo[0] + c % BW, lo[1] + c / BW % BH, lo[2] + c / BS);
+  vb.corners.resize(4 * quads.size());
   vb.faces.assign(vb.lattice_ids.size(), 0);
-  for (std::size_t f = 0; f < bits.size(); ++f) vb.faces[std::size_t(vb.corners[4 * f])] |= bits[f];
+  for (std::size_t f = 0; f < quads.size(); ++f) {
+    const std::uint64_t q = quads[f] / 8;
+    const int side = int(quads[f] % 8), axis = side / 2;
+    const int v = int(touched(q));
+    vb.corners[4 * f] = v;
+    for (std::size_t i = 0; i < 3; ++i) vb.corners[4 * f + i + 1] = int(touched(q + step[side][i]));
+    vb.faces[std::size_t(v)] |= std::uint8_t((VoxelBoundary::kNormalAxis | (side % 2 ? VoxelBoundary::kPlus : 0)) << axis);
+  }
   vb.offsets.resize(vb.corners.size() / 4 + 1);
   for (std::size_t f = 0; f < vb.offsets.size(); ++f) vb.offsets[f] = 4 * f;
   return vb;

@@ -7,6 +7,7 @@
 #include "surfacenets/interface_certificate.hpp"
 #include "surfacenets/surface_nets.hpp"
 #include "util/error.hpp"
+#include "util/memory.hpp"
 #include "wellcomposed/interface_complex.hpp"
 #include "wellcomposed/well_composed_partition.hpp"
 
@@ -19,6 +20,8 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+template <class T> void release(std::vector<T>& v) { std::vector<T>().swap(v); }
 
 // The chosen labels kept, every other value background.
 void keep_labels(LabelImage& image, const std::vector<long long>& labels) {
@@ -138,20 +141,40 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
 
     t0 = Clock::now();
     say("smoothing");
-    if (opt.smooth_rounds > 0) {
+    const bool untangled = opt.smooth_rounds > 0;
+    if (untangled) {
       SmoothingOptions so;
       so.rounds = opt.smooth_rounds;
-      so.threads = std::max(1u, opt.threads);
+      so.untangle = false;  // below, once the relaxation graph is freed
       smooth_interface_mesh(m, so);
     }
+    // The relaxation graph served the smoothing only.
+    release(m.kind);
+    release(m.neighbour_offsets);
+    release(m.neighbours);
+    if (untangled) untangle_interface_mesh(m, corner_points(m), std::max(1u, opt.threads));
     res.seconds.push_back({"smoothing", since(t0)});
 
     t0 = Clock::now();
     say("certificate");
     pairs.resize(m.triangles.size());
     for (std::size_t t = 0; t < pairs.size(); ++t) pairs[t] = m.triangle_labels(t);
-    co.crossings = [&] { return crossing_pairs(m, std::max(1u, opt.threads)); };  // local: every vertex in its cell
+    // The whole mesh's crossing pairs, found before the labels' surfaces
+    // are built, and what only their search needs (the quads, the corners)
+    // freed. Smoothed, there are none: the untangling searched every pair
+    // with crossing_pairs' exact test, then after each move every pair at a
+    // moved vertex, until none crossed (untangle.cpp: no pair is left
+    // unseen); no vertex has moved since, so a second search of every pair
+    // would find none (it cost as much as the untangling's first). Unsmoothed (K(X)'s
+    // faces) they are searched: local, every vertex in its cell.
+    std::vector<std::array<std::size_t, 2>> crossings;
+    if (!untangled) crossings = crossing_pairs(m, std::max(1u, opt.threads));
+    release(m.quads);
+    release(m.corners);
+    release_free_memory();  // the smoothing's and the search's pages, before the certificate's threads
+    co.crossings = [&] { return std::move(crossings); };
     res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k, co);
+    co.crossings = nullptr;
     points = std::move(m.points), triangles = std::move(m.triangles);
   }
   for (long long l : labels) {

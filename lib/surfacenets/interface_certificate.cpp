@@ -6,6 +6,7 @@
 
 #include "surfacenets/interface_certificate_detail.hpp"
 #include "util/error.hpp"
+#include "util/memory.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -13,6 +14,7 @@
 #include <mutex>
 #include <thread>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace imgmesh {
@@ -28,6 +30,8 @@ void validate(const std::vector<Vec3>& points, const std::vector<std::array<int,
     if (k.lattice[std::size_t(a)] != image.size[std::size_t(a)] + 1)
       throw Error("certify_interface_mesh: the interface complex is not the label image's");
   if (k.critical.total()) throw Error("certify_interface_mesh: " + k.failed_guarantee());
+  if (triangles.size() > std::numeric_limits<std::uint32_t>::max())
+    throw Error("certify_interface_mesh: more than 2^32 triangles");
   if (pairs.size() != triangles.size())
     throw Error("certify_interface_mesh: " + std::to_string(pairs.size()) + " label pairs for " +
                 std::to_string(triangles.size()) + " triangles");
@@ -97,24 +101,30 @@ BinaryImage crop_indicator(const LabelImage& img, std::int32_t label, const Labe
 
 // A label's triangles, oriented out of it (label 0: out of X != 0, into 0),
 // on its own vertices (renumbered through `local`, left all -1 again).
+// ts .. ts_end: its triangles' ids.
 void label_surface(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                   const std::vector<std::array<std::int32_t, 2>>& pairs, const std::vector<std::size_t>& ts,
-                   std::int32_t label, std::vector<int>& local, std::vector<Vec3>& p,
+                   const std::vector<std::array<std::int32_t, 2>>& pairs, const std::uint32_t* ts,
+                   const std::uint32_t* ts_end, std::int32_t label, std::vector<int>& local, std::vector<Vec3>& p,
                    std::vector<std::array<int, 3>>& tris) {
   std::vector<int> used;
-  p.clear();
-  tris.resize(ts.size());
-  for (std::size_t i = 0; i < ts.size(); ++i) {
+  tris.clear();  // sized exactly below (the scratch holds its largest label's)
+  tris.resize(std::size_t(ts_end - ts));
+  for (std::size_t i = 0; i < tris.size(); ++i) {
     auto tri = triangles[ts[i]];
     const auto& pr = pairs[ts[i]];
     if (label == 0 ? pr[1] != 0 : pr[0] != label) std::swap(tri[1], tri[2]);
     for (int c = 0; c < 3; ++c) {
       int& v = local[std::size_t(tri[std::size_t(c)])];
-      if (v < 0) v = int(used.size()), used.push_back(tri[std::size_t(c)]), p.push_back(points[std::size_t(tri[std::size_t(c)])]);
+      if (v < 0) v = int(used.size()), used.push_back(tri[std::size_t(c)]);
       tris[i][std::size_t(c)] = v;
     }
   }
-  for (int v : used) local[std::size_t(v)] = -1;
+  p.clear();
+  p.resize(used.size());
+  for (std::size_t v = 0; v < used.size(); ++v) {
+    p[v] = points[std::size_t(used[v])];
+    local[std::size_t(used[v])] = -1;
+  }
 }
 
 double area_of(const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& tris) {
@@ -138,20 +148,25 @@ void certify_label(Cert::Label& l, const std::vector<Vec3>& p, const std::vector
   l.area = area_of(p, tris);
   l.voxels = box.voxels;
   l.voxel_volume = double(box.voxels) * image.spacing[0] * image.spacing[1] * image.spacing[2];
-  const BinaryImage crop = crop_indicator(image, l.label, box);
+  BinaryImage crop = crop_indicator(image, l.label, box);
   const VoxelBoundary vb = voxel_boundary(crop);
   const MeshTopology bt = mesh_topology(vb);
+  const Geometry grid = crop.geometry();
+  // On the lattice the crop's last use is its voxel centres' count: freed
+  // before the surface's certificate (a label's peak).
+  const std::size_t centres = cells.holds ? centres_next_to_boundary(crop) : 0;
+  if (cells.holds) decltype(crop.data)().swap(crop.data);
   CertificateOptions o = options;
   if (cells.holds)
     o.nesting = [&](const MeshTopology& t) {
       return surfacenets_detail::net_depths(t, p, image, k.lattice, cells.slack, crop_lo(box), vb, bt);
     };
-  l.surface = certify_surface(p, tris, crop, vb, bt, o);
+  l.surface = certify_surface(p, tris, grid, vb, bt, o);
   for (double v : l.surface.volume) l.volume += v;
   if (l.surface.state[SurfaceCertificate::kIntersections] < 0) return;  // not closed, manifold, oriented
   l.sides_checked = true;
   if (cells.holds) {
-    l.sides.checked = centres_next_to_boundary(crop);  // every one on its side
+    l.sides.checked = centres;  // every one on its side
     return;
   }
   std::vector<int> component(tris.size());
@@ -177,10 +192,12 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
   for (const auto& lb : k.labels) in_image.push_back(lb.label);  // ascending, 0 among them
   for (const auto& lb : k.labels)
     if (lb.faces) labels.push_back(lb.label);
-  for (const auto& pr : pairs) labels.insert(labels.end(), pr.begin(), pr.end());
-  std::sort(labels.begin(), labels.end());
-  labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
-  // Per label, its triangles (CSR, ascending ids).
+  // The mesh's labels added as found (a few, against two a triangle kept).
+  for (const auto& pr : pairs)
+    for (std::int32_t v : pr)
+      if (const auto at = std::lower_bound(labels.begin(), labels.end(), v); at == labels.end() || *at != v) labels.insert(at, v);
+  // Per label, its triangles (CSR, ascending ids; 4 bytes each: validate
+  // allows no more than 2^32 triangles).
   auto index = [&](std::int32_t v) { return std::size_t(std::lower_bound(labels.begin(), labels.end(), v) - labels.begin()); };
   std::vector<std::size_t> start(labels.size() + 1, 0);
   for (const auto& pr : pairs) {
@@ -188,18 +205,18 @@ std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const s
     if (pr[1] != pr[0]) ++start[index(pr[1]) + 1];
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::size_t> of(start.back()), next(start.begin(), start.end() - 1);
+  std::vector<std::uint32_t> of(start.back());
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
   for (std::size_t t = 0; t < pairs.size(); ++t) {
-    of[next[index(pairs[t][0])]++] = t;
-    if (pairs[t][1] != pairs[t][0]) of[next[index(pairs[t][1])]++] = t;
+    of[next[index(pairs[t][0])]++] = std::uint32_t(t);
+    if (pairs[t][1] != pairs[t][0]) of[next[index(pairs[t][1])]++] = std::uint32_t(t);
   }
   const std::vector<LabelBox> boxes = label_boxes(image, in_image);
   std::vector<Cert::Label> out(labels.size());
   auto certify_one = [&](std::size_t i, std::vector<int>& local, std::vector<Vec3>& p, std::vector<std::array<int, 3>>& tris) {
     Cert::Label& l = out[i];
     l.label = labels[i];
-    const std::vector<std::size_t> ts(of.begin() + std::ptrdiff_t(start[i]), of.begin() + std::ptrdiff_t(start[i + 1]));
-    label_surface(points, triangles, pairs, ts, l.label, local, p, tris);
+    label_surface(points, triangles, pairs, of.data() + start[i], of.data() + start[i + 1], l.label, local, p, tris);
     const auto b = std::lower_bound(in_image.begin(), in_image.end(), l.label);
     l.in_image = b != in_image.end() && *b == l.label;
     if (!l.in_image) {
@@ -421,6 +438,9 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
   const surfacenets_detail::NetCells cells =
       options.lattice ? surfacenets_detail::net_cells(points, triangles, pairs, image, k) : surfacenets_detail::NetCells();
   c.on_lattice = cells.holds;
+  // The pages the interfaces freed given back: the labels' threads take
+  // memory from arenas of their own, which would not reuse them.
+  release_free_memory();
   c.labels = certify_labels(points, triangles, pairs, image, k, co, options.threads, cells);
   check_labels(c);
   return c;

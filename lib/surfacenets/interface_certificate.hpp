@@ -172,7 +172,8 @@ struct InterfaceCertificate {
 // 2D image, on K(X) not of `image` or counting critical configurations (not
 // well-composed: certify against img2wc --labels' output), on pairs not one
 // a triangle, on a triangle with an id out of range or a repeated corner,
-// and on a vertex of a triangle with a coordinate that is not finite.
+// on a vertex of a triangle with a coordinate that is not finite, and
+// beyond 2^32 triangles.
 InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
                                             const std::vector<std::array<int, 3>>& triangles,
                                             const std::vector<std::array<std::int32_t, 2>>& pairs,

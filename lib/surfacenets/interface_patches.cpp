@@ -26,6 +26,9 @@ namespace {
 
 using Cert = InterfaceCertificate;
 using Pair = std::array<std::int32_t, 2>;  // (higher, lower), as K(X)'s patches
+// A triangle's or vertex's id: 4 bytes (certify_interface_mesh takes no
+// more than 2^32 triangles), the interfaces' lists at half the size.
+using Id = std::uint32_t;
 
 Pair pair_key(const Pair& p) { return {std::max(p[0], p[1]), std::min(p[0], p[1])}; }
 
@@ -89,36 +92,36 @@ private:
 
 // The triangles ts (ascending ids) joined along edges: per triangle of ts
 // its patch, numbered in the order of their first triangles.
-std::vector<std::size_t> edge_components(const std::vector<std::array<int, 3>>& triangles,
-                                         const std::vector<std::size_t>& ts, std::size_t& count) {
-  std::vector<std::array<std::size_t, 3>> edges;  // (lo, hi, index in ts)
+std::vector<Id> edge_components(const std::vector<std::array<int, 3>>& triangles, const std::vector<Id>& ts,
+                                std::size_t& count) {
+  std::vector<std::array<Id, 3>> edges;  // (lo, hi, index in ts)
   edges.reserve(3 * ts.size());
   for (std::size_t i = 0; i < ts.size(); ++i)
     for (int e = 0; e < 3; ++e) {
       const int a = triangles[ts[i]][std::size_t(e)], b = triangles[ts[i]][std::size_t((e + 1) % 3)];
-      edges.push_back({std::size_t(std::min(a, b)), std::size_t(std::max(a, b)), i});
+      edges.push_back({Id(std::min(a, b)), Id(std::max(a, b)), Id(i)});
     }
   std::sort(edges.begin(), edges.end());
-  std::vector<std::size_t> parent(ts.size());
-  std::iota(parent.begin(), parent.end(), std::size_t(0));
-  auto find = [&](std::size_t x) {
+  std::vector<Id> parent(ts.size());
+  std::iota(parent.begin(), parent.end(), Id(0));
+  auto find = [&](Id x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
   for (std::size_t i = 1; i < edges.size(); ++i)
     if (edges[i][0] == edges[i - 1][0] && edges[i][1] == edges[i - 1][1]) {
-      const std::size_t a = find(edges[i][2]), b = find(edges[i - 1][2]);
+      const Id a = find(edges[i][2]), b = find(edges[i - 1][2]);
       parent[std::max(a, b)] = std::min(a, b);  // a root is its set's first triangle
     }
-  std::vector<std::size_t> id(ts.size()), of(ts.size());
+  std::vector<Id> id(ts.size()), of(ts.size());
   count = 0;
-  for (std::size_t i = 0; i < ts.size(); ++i) of[i] = find(i) == i ? (id[i] = count++) : id[find(i)];
+  for (Id i = 0; i < ts.size(); ++i) of[i] = find(i) == i ? (id[i] = Id(count++)) : id[find(i)];
   return of;
 }
 
 // The counts of one mesh patch (its triangles, vertices renumbered through
 // `local`, left all -1 again).
-void count_patch(const std::vector<std::array<int, 3>>& triangles, const std::vector<std::size_t>& ts,
+void count_patch(const std::vector<std::array<int, 3>>& triangles, const std::vector<Id>& ts,
                  std::vector<int>& local, Cert::Patch& p) {
   std::vector<int> used;
   std::vector<std::array<int, 3>> tris(ts.size());
@@ -191,12 +194,12 @@ void settle(Cert::Interface& in, const ComponentCorrespondence& r, const Interfa
 // One interface: the mesh's triangles of the pair (ts, ascending) against
 // K(X)'s patches of it.
 void certify_interface(Cert::Interface& in, const std::vector<Vec3>& points,
-                       const std::vector<std::array<int, 3>>& triangles, const std::vector<std::size_t>& ts,
+                       const std::vector<std::array<int, 3>>& triangles, const std::vector<Id>& ts,
                        const FaceSearch& search, const InterfaceComplex& k, double small, double tolerance,
                        std::vector<int>& local) {
   std::size_t n = 0;
-  const std::vector<std::size_t> of = edge_components(triangles, ts, n);
-  std::vector<std::vector<std::size_t>> members(n);
+  const std::vector<Id> of = edge_components(triangles, ts, n);
+  std::vector<std::vector<Id>> members(n);
   for (std::size_t i = 0; i < ts.size(); ++i) members[of[i]].push_back(ts[i]);
   in.patches.resize(n);
   ComponentCorrespondence r;
@@ -231,8 +234,9 @@ std::vector<InterfaceCertificate::Interface> certify_interfaces(const std::vecto
                                                                 const Geometry& grid, const InterfaceComplex& k,
                                                                 double tolerance, unsigned threads) {
   // (pair, id) of every triangle and of every K(X) patch, each by pair.
-  std::vector<std::pair<Pair, std::size_t>> mesh(triangles.size()), complex(k.patches.size());
-  for (std::size_t t = 0; t < triangles.size(); ++t) mesh[t] = {pair_key(pairs[t]), t};
+  std::vector<std::pair<Pair, Id>> mesh(triangles.size());
+  std::vector<std::pair<Pair, std::size_t>> complex(k.patches.size());
+  for (std::size_t t = 0; t < triangles.size(); ++t) mesh[t] = {pair_key(pairs[t]), Id(t)};
   for (std::size_t p = 0; p < k.patches.size(); ++p) complex[p] = {Pair{k.patches[p].behind, k.patches[p].front}, p};
   std::sort(mesh.begin(), mesh.end());
   std::sort(complex.begin(), complex.end());
@@ -262,7 +266,8 @@ std::vector<InterfaceCertificate::Interface> certify_interfaces(const std::vecto
     Cert::Interface& in = out[r];
     in.behind = run.pair[0];
     in.front = run.pair[1];
-    std::vector<std::size_t> ts;
+    std::vector<Id> ts;
+    ts.reserve(run.i1 - run.i0);
     for (std::size_t i = run.i0; i < run.i1; ++i) {
       ts.push_back(mesh[i].second);
       in.reversed += pairs[mesh[i].second][0] < pairs[mesh[i].second][1];

@@ -12,10 +12,12 @@
 
 namespace imgmesh {
 
-void smooth_interface_mesh(InterfaceMesh& m, const SmoothingOptions& o) {
-  if (!(o.margin >= 0 && o.margin < 0.5)) throw Error("smooth_interface_mesh: the margin must be in [0, 0.5)");
+namespace {
+
+// The rounds of relaxation; their two arrays of positions freed before the
+// untangling's search is built (they would share its peak).
+void relax(InterfaceMesh& m, const SmoothingOptions& o) {
   const std::size_t n = m.points.size();
-  const std::vector<Vec3> rest = m.points;
   std::vector<Vec3> p(n), next(n);
   for (std::size_t v = 0; v < n; ++v) p[v] = m.grid.continuous_index(m.points[v]);
   for (int round = 0; round < o.rounds; ++round) {
@@ -35,8 +37,15 @@ void smooth_interface_mesh(InterfaceMesh& m, const SmoothingOptions& o) {
     p.swap(next);
   }
   for (std::size_t v = 0; v < n; ++v) m.points[v] = m.grid.world(p[v][0], p[v][1], p[v][2]);
+}
+
+} // namespace
+
+void smooth_interface_mesh(InterfaceMesh& m, const SmoothingOptions& o) {
+  if (!(o.margin >= 0 && o.margin < 0.5)) throw Error("smooth_interface_mesh: the margin must be in [0, 0.5)");
+  relax(m, o);
   split_quads(m);
-  if (o.untangle) untangle_interface_mesh(m, rest, o.threads);
+  if (o.untangle) untangle_interface_mesh(m, corner_points(m), o.threads);
 }
 
 } // namespace imgmesh

@@ -4,6 +4,7 @@
 
 #include "surfacenets/surface_nets_detail.hpp"
 #include "util/error.hpp"
+#include "util/ranked_bits.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -26,33 +27,6 @@ std::array<std::uint64_t, 4> face_corners(std::uint64_t key, const std::array<st
   if (InterfaceComplex::face_plus(key)) return {q, q + b, q + b + c, q + c};
   return {q, q + c, q + b + c, q + b};
 }
-
-// The corners K(X)'s faces touch, a bit each on the lattice, and each
-// one's rank among them (its vertex id: vertices in ascending corner
-// order) in constant time: an eighth of a byte a lattice corner and a
-// count every 64, instead of sorting four ids a face.
-class CornerRanks {
-public:
-  explicit CornerRanks(std::uint64_t corners) : bits_((corners + 63) / 64, 0), before_(bits_.size() + 1, 0) {}
-  void set(std::uint64_t c) { bits_[c >> 6] |= std::uint64_t(1) << (c & 63); }
-  // After the last set: the counts before each word.
-  void rank() {
-    for (std::size_t w = 0; w < bits_.size(); ++w) before_[w + 1] = before_[w] + std::uint64_t(__builtin_popcountll(bits_[w]));
-  }
-  std::uint64_t count() const { return before_.back(); }
-  std::uint64_t operator()(std::uint64_t c) const {
-    return before_[c >> 6] + std::uint64_t(__builtin_popcountll(bits_[c >> 6] & ((std::uint64_t(1) << (c & 63)) - 1)));
-  }
-  // The corners set, ascending.
-  void list(std::vector<std::uint64_t>& out) const {
-    out.reserve(count());
-    for (std::size_t w = 0; w < bits_.size(); ++w)
-      for (std::uint64_t b = bits_[w]; b; b &= b - 1) out.push_back(64 * w + std::uint64_t(__builtin_ctzll(b)));
-  }
-
-private:
-  std::vector<std::uint64_t> bits_, before_;
-};
 
 int vertex_of(const std::vector<std::uint64_t>& corners, std::uint64_t c) {
   return int(std::lower_bound(corners.begin(), corners.end(), c) - corners.begin());
@@ -107,6 +81,15 @@ std::array<std::size_t, 3> InterfaceMesh::corner(std::size_t vertex) const {
           std::size_t(id / lattice[0] / lattice[1])};
 }
 
+std::vector<Vec3> corner_points(const InterfaceMesh& m) {
+  std::vector<Vec3> p(m.corners.size());
+  for (std::size_t v = 0; v < p.size(); ++v) {
+    const auto c = m.corner(v);
+    p[v] = m.grid.world(double(c[0]) - 0.5, double(c[1]) - 0.5, double(c[2]) - 0.5);
+  }
+  return p;
+}
+
 InterfaceMesh interface_mesh(const Geometry& image, const InterfaceComplex& k) {
   if (k.dimension != 3) throw Error("interface_mesh: a 3D label image is needed");
   if (k.critical.total()) throw Error("interface_mesh: " + k.failed_guarantee());
@@ -114,17 +97,15 @@ InterfaceMesh interface_mesh(const Geometry& image, const InterfaceComplex& k) {
   m.grid = image;
   m.lattice = k.lattice;
   const auto s = strides(m.lattice);
-  CornerRanks ranks(std::uint64_t(m.lattice[0]) * m.lattice[1] * m.lattice[2]);
+  // The corners K(X)'s faces touch, and each one's rank among them (its
+  // vertex id: vertices in ascending corner order).
+  RankedBits ranks(std::uint64_t(m.lattice[0]) * m.lattice[1] * m.lattice[2]);
   for (std::uint64_t f : k.faces)
     for (std::uint64_t c : face_corners(f, s)) ranks.set(c);
   ranks.rank();
   if (ranks.count() > 0x7fffffffu) throw Error("interface_mesh: more than 2^31 vertices");
   ranks.list(m.corners);
-  m.points.resize(m.corners.size());
-  for (std::size_t v = 0; v < m.corners.size(); ++v) {
-    const auto c = m.corner(v);
-    m.points[v] = image.world(double(c[0]) - 0.5, double(c[1]) - 0.5, double(c[2]) - 0.5);
-  }
+  m.points = corner_points(m);
   const bool reflect = surfacenets_detail::reflects(image);
   m.quads.resize(k.faces.size());
   m.labels.resize(k.faces.size());

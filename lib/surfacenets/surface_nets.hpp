@@ -56,6 +56,10 @@ struct InterfaceMesh {
   std::array<std::int32_t, 2> triangle_labels(std::size_t t) const { return labels[t / 2]; }
 };
 
+// Per vertex, its corner's world position (the unsmoothed mesh's points,
+// where the untangling moves vertices back to).
+std::vector<Vec3> corner_points(const InterfaceMesh& mesh);
+
 // The unsmoothed mesh of K(X) (k = interface_complex(image)); the image is
 // read for its geometry only. Throws Error when K(X) counts critical
 // configurations (the partition is not well-composed: some label's faces
@@ -83,8 +87,11 @@ struct SmoothingOptions {
 // Constrained smoothing (Frisken 2022): every round moves each surface and
 // curve vertex to the mean of its neighbours (positions of the previous
 // round), clamped into its cell shrunk by the margin; junctions stay. The
-// quads are then split again and the mesh untangled. Throws Error on a
-// margin outside [0, 0.5).
+// quads are then split again and the mesh untangled toward its corners'
+// positions (corner_points): on return, with
+// options.untangle, no two triangles cross and none is degenerate
+// (crossing_pairs(mesh) is empty; untangle_interface_mesh). Throws Error
+// on a margin outside [0, 0.5).
 void smooth_interface_mesh(InterfaceMesh& mesh, const SmoothingOptions& options = {});
 
 // The pairs of triangles of the mesh, whatever their labels, that meet
@@ -100,7 +107,10 @@ std::vector<std::array<std::size_t, 2>> crossing_pairs(const InterfaceMesh& mesh
 // to `rest` (the unsmoothed positions), onto it after a few halvings, and
 // their quads are split again; after the first search only the quads at a
 // moved vertex are tested again (by `threads` threads: the same result
-// whatever their number). Returns the vertex moves made.
+// whatever their number). Returns the vertex moves made, once its last
+// search found no pair: crossing_pairs(mesh) is then empty (untangle.cpp
+// says why the searches after the first, of the moved quads only, leave
+// no pair unseen).
 std::size_t untangle_interface_mesh(InterfaceMesh& mesh, const std::vector<Vec3>& rest, unsigned threads = 1);
 
 } // namespace imgmesh

@@ -506,3 +506,84 @@ TEST_CASE("triangle quality: closed forms, degenerate triangles", "[quality]") {
   CHECK(q.to_json().keys().size() == 2);
   CHECK(q.largest_radius_edge_ratio() == 0);
 }
+
+// The quads of voxel_boundary against the voxel faces counted here: every
+// face between a voxel of X and one not in X (or beyond the grid) once, a
+// unit square of the lattice with its lowest corner first, counter-clockwise
+// seen from outside; the vertices every corner used, ascending, none else;
+// faces' bits at each quad's first corner. Random sets in a box of a larger
+// grid of unequal sides, some touching the grid's sides; from the binary
+// image and from samples (whose box is X's).
+TEST_CASE("voxel_boundary: the faces of X, each once, oriented, on ascending corners", "[topology][bdca]") {
+  std::mt19937 rng(3939);
+  for (int trial = 0; trial < 60; ++trial) {
+    INFO("trial " << trial);
+    Geometry geo;
+    geo.size = {std::size_t(4 + trial % 5), std::size_t(3 + trial % 3), std::size_t(5 + trial % 4)};
+    BinaryImage x(geo, 0);
+    FloatImage g(geo, 1.0f);
+    std::array<std::size_t, 3> lo, hi;
+    for (std::size_t a = 0; a < 3; ++a) {
+      lo[a] = trial % 3 == 0 ? 0 : std::size_t(rng() % 2);
+      hi[a] = geo.size[a] - 1 - (trial % 4 == 0 ? 0 : std::size_t(rng() % 2));
+    }
+    std::bernoulli_distribution in(0.4);
+    for (std::size_t z = lo[2]; z <= hi[2]; ++z)
+      for (std::size_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::size_t i = lo[0]; i <= hi[0]; ++i)
+          if (in(rng)) x(i, y, z) = 1, g(i, y, z) = -1.0f;
+    const std::uint64_t W = geo.size[0] + 1, H = geo.size[1] + 1;
+    auto id = [&](long i, long j, long k) { return std::uint64_t((k * long(H) + j) * long(W) + i); };
+    auto inside = [&](long i, long j, long k) { return x.inside(i, j, k) && x(std::size_t(i), std::size_t(j), std::size_t(k)); };
+    // Each face as its corner ids (lowest first, then counter-clockwise
+    // about the outward normal), and its first corner's bit.
+    std::multiset<std::vector<std::uint64_t>> expected;
+    std::set<std::uint64_t> corners;
+    for (long k = 0; k < long(geo.size[2]); ++k)
+      for (long j = 0; j < long(geo.size[1]); ++j)
+        for (long i = 0; i < long(geo.size[0]); ++i) {
+          if (!inside(i, j, k)) continue;
+          for (int a = 0; a < 3; ++a)
+            for (int s : {-1, 1}) {
+              std::array<long, 3> n{i, j, k};
+              n[std::size_t(a)] += s;
+              if (inside(n[0], n[1], n[2])) continue;
+              // The face's corners: the plane at the side s, the other two axes u, v with e_u x e_v = e_a.
+              const int u = (a + 1) % 3, v = (a + 2) % 3;
+              std::array<long, 3> c{i, j, k};
+              c[std::size_t(a)] += s > 0 ? 1 : 0;
+              std::vector<std::array<long, 3>> q(4, c);
+              q[1][std::size_t(u)] += 1;
+              q[2][std::size_t(u)] += 1, q[2][std::size_t(v)] += 1;
+              q[3][std::size_t(v)] += 1;
+              if (s < 0) std::swap(q[1], q[3]);  // outward -e_a: clockwise about e_a
+              std::vector<std::uint64_t> ids;
+              for (const auto& p : q) ids.push_back(id(p[0], p[1], p[2])), corners.insert(ids.back());
+              ids.push_back(std::uint64_t((VoxelBoundary::kNormalAxis | (s > 0 ? VoxelBoundary::kPlus : 0)) << a));
+              expected.insert(ids);
+            }
+        }
+    for (const VoxelBoundary& vb : {voxel_boundary(x), voxel_boundary(SampleGrid(g))}) {
+      CHECK(vb.lattice_ids == std::vector<std::uint64_t>(corners.begin(), corners.end()));
+      REQUIRE(vb.corners.size() == 4 * expected.size());
+      REQUIRE(vb.offsets.size() == expected.size() + 1);
+      std::multiset<std::vector<std::uint64_t>> found;
+      std::vector<std::uint8_t> bits(vb.lattice_ids.size(), 0);
+      for (std::size_t f = 0; f + 1 < vb.offsets.size(); ++f) {
+        REQUIRE(vb.offsets[f + 1] - vb.offsets[f] == 4);
+        std::vector<std::uint64_t> ids;
+        for (std::size_t i = vb.offsets[f]; i < vb.offsets[f + 1]; ++i) ids.push_back(vb.lattice_ids[std::size_t(vb.corners[i])]);
+        CHECK(ids[0] == *std::min_element(ids.begin(), ids.end()));
+        const auto e = std::find_if(expected.begin(), expected.end(), [&](const std::vector<std::uint64_t>& w) {
+          return std::equal(ids.begin(), ids.end(), w.begin());
+        });
+        REQUIRE(e != expected.end());
+        bits[std::size_t(vb.corners[vb.offsets[f]])] |= std::uint8_t((*e)[4]);
+        ids.push_back((*e)[4]);
+        found.insert(ids);
+      }
+      CHECK(found == expected);
+      CHECK(vb.faces == bits);
+    }
+  }
+}
