@@ -476,7 +476,6 @@ private:
       if (added) out.points.push_back(vec(v->point()));
       return it->second;
     };
-    double min_angle = 180;
     const auto orient = GT().orientation_3_object();
     for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
       Ch c = f->first;
@@ -493,20 +492,12 @@ private:
         std::swap(v[1], v[2]);
       out.triangles.push_back({index(v[0]), index(v[1]), index(v[2])});
       out.pairs.push_back({std::max(lc, ln), std::min(lc, ln)});
-      const Vec3 a = vec(v[0]->point()), b = vec(v[1]->point()), cc = vec(v[2]->point());
-      const Vec3* p[3] = {&a, &b, &cc};
-      for (int m = 0; m < 3; ++m) {
-        const Vec3 u = sub(*p[(m + 1) % 3], *p[m]), w = sub(*p[(m + 2) % 3], *p[m]);
-        const double cosv = dot(u, w) / std::sqrt(dot(u, u) * dot(w, w));
-        min_angle = std::min(min_angle, std::acos(std::clamp(cosv, -1.0, 1.0)) * 180 / M_PI);
-      }
     }
     std::copy(inserted_.begin(), inserted_.end(), out.inserted.begin());
     out.refused = refused_;
     out.passes = passes_;
     out.certificate_rounds = rounds_;
     out.max_points_hit = max_hit_;
-    out.smallest_angle = out.triangles.empty() ? 0 : min_angle;
     return out;
   }
 
@@ -544,7 +535,6 @@ Json ConformingSurface::to_json() const {
   j["passes"] = passes;
   j["certificate_rounds"] = certificate_rounds;
   j["max_points_hit"] = max_points_hit;
-  j["smallest_angle"] = smallest_angle;
   return j;
 }
 

@@ -76,7 +76,6 @@ struct ConformingSurface {
   long long passes = 0;
   int certificate_rounds = 0;  // rounds that refined where the certificate failed
   bool max_points_hit = false;
-  double smallest_angle = 0;   // degrees, over the triangles
   Json to_json() const;
 };
 

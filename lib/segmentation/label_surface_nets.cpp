@@ -3,6 +3,7 @@
 #include "segmentation/label_surface_nets.hpp"
 
 #include "conforming/conforming_surface.hpp"
+#include "mesh/triangle_quality.hpp"
 #include "segmentation/label_surfaces.hpp"
 #include "surfacenets/interface_certificate.hpp"
 #include "surfacenets/surface_nets.hpp"
@@ -186,6 +187,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   auto names = std::move(res.mesh.label_names);
   res.mesh = output_mesh(points, triangles, pairs, labels, opt.separate);
   res.mesh.label_names = std::move(names);
+  if (opt.conforming) res.conforming["smallest_angle"] = triangle_quality_report(res.mesh).smallest_angle();
   return res;
 }
 
