@@ -80,9 +80,14 @@ public:
     seeds();
     refine();
     ConformingSurface out = output();
+    // A round that does not halve the failing patches ends them: where
+    // the labelling itself disagrees with K(X) (a noisy map) refining does
+    // not converge, and each round would double the points there.
+    std::size_t before = std::size_t(-1);
     for (int round = 0; o_.certificate && round < o_.certificate_rounds && !max_hit_; ++round) {
       const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
-      if (bad.empty() || !refine_patches(bad)) break;
+      if (bad.empty() || bad.size() > before / 2 || !refine_patches(bad)) break;
+      before = bad.size();
       ++rounds_;
       refine();
       out = output();
