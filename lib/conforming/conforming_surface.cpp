@@ -80,10 +80,12 @@ public:
     seeds();
     refine();
     ConformingSurface out = output();
-    // A round that does not halve the failing patches ends them: where
-    // the labelling itself disagrees with K(X) (a noisy map) refining does
-    // not converge, and each round would double the points there.
-    std::size_t before = std::size_t(-1);
+    // Rounds repair a patch sampled too coarsely, not a labelling that
+    // disagrees with K(X) (a noisy map: patches one voxel wide pinched off),
+    // where refining does not converge and each round doubles the points
+    // near the failures: they run while the failing patches are few (at
+    // most 16, or 1% of K(X)'s) and each round halves them.
+    std::size_t before = std::max<std::size_t>(16, k_.patches.size() / 100) * 2;
     for (int round = 0; o_.certificate && round < o_.certificate_rounds && !max_hit_; ++round) {
       const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
       if (bad.empty() || bad.size() > before / 2 || !refine_patches(bad)) break;

@@ -58,8 +58,8 @@ struct ConformingOptions {
   // the K(X) patches where it fails (failing_complex_patches), empty when
   // it holds. Each round the surface centres of the restricted facets
   // within a voxel of those patches' faces go in and REFINE runs again, at
-  // most `certificate_rounds` times, and only while each round halves the
-  // failing patches. Unset: no rounds.
+  // most `certificate_rounds` times, and only while the failing patches are
+  // few (16, or 1% of K(X)'s) and each round halves them. Unset: no rounds.
   std::function<std::vector<std::size_t>(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                                          const std::vector<std::array<std::int32_t, 2>>& pairs)>
       certificate;
