@@ -2,7 +2,9 @@
 // parallel, into one surface file with a label per face: for each label L,
 // what img2wc --label L | wc2implicit | implicit2mesh make, certified alike.
 // --fast: surface nets on the repaired partition's interface complex, each
-// interface once with its two labels (segmentation/label_surface_nets.hpp).
+// interface once with its two labels (segmentation/label_surface_nets.hpp);
+// --conforming (experimental): the restricted Delaunay surface of that
+// partition (conforming/conforming_surface.hpp).
 #include "cli/cli.hpp"
 #include "image/io.hpp"
 #include "mesh/surface_io.hpp"
@@ -47,14 +49,33 @@ std::vector<long long> parse_labels(const std::string& text) {
 const char* const kDelaunayOnly[] = {"--jobs",          "--mode",        "--ratio",      "--roughness", "--max-distance",
                                      "--fallback-rounds", "--voxel-sides", "--max-points", "--seed",      "--normals"};
 
+// The options of the per-label Delaunay mesher that --conforming does not
+// take (it takes --ratio, --max-distance, --max-points, --voxel-sides).
+const char* const kNotConforming[] = {"--jobs", "--mode", "--roughness", "--fallback-rounds", "--seed", "--normals",
+                                      "--smooth"};
+
 int run_fast(cli::Tool& tool, const std::string& in, const std::string& out, LabelSurfaceNetsOptions& opt,
-             const SurfaceWriteOptions& write_opt) {
-  for (const char* name : kDelaunayOnly)
-    if (const CLI::Option* o = tool.app.get_option_no_throw(name); o && o->count())
-      throw UsageError(std::string(name) + " is the Delaunay mesher's: --fast does not take it");
+             const SurfaceWriteOptions& write_opt, const SurfaceOptions& mesher) {
+  if (opt.conforming) {
+    for (const char* name : kNotConforming)
+      if (const CLI::Option* o = tool.app.get_option_no_throw(name); o && o->count())
+        throw UsageError(std::string(name) + ": --conforming does not take it");
+    mesher.check();
+  } else {
+    for (const char* name : kDelaunayOnly)
+      if (const CLI::Option* o = tool.app.get_option_no_throw(name); o && o->count())
+        throw UsageError(std::string(name) + " is the Delaunay mesher's: --fast does not take it");
+  }
   if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
   tool.report_progress("reading " + in);
   LabelImage image = read_labels(in, &opt.names);
+  if (opt.conforming) {
+    const RestrictedDelaunayOptions r = mesher.resolve(image.spacing);
+    opt.conforming_options.ratio = r.ratio;
+    opt.conforming_options.max_distance = r.max_distance;
+    opt.conforming_options.max_points = r.max_points;
+    opt.conforming_options.voxel_sides = r.voxel_sides;
+  }
   LabelSurfaceNetsResult res = naming_input(in, [&] { return mesh_label_surface_nets(std::move(image), opt); });
   const auto t0 = std::chrono::steady_clock::now();
   tool.report_progress("writing " + out);
@@ -120,10 +141,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1000).description(""))
       ->capture_default_str()
       ->needs(fast);
-  tool.app.add_flag("--separate", fast_opt.separate,
-                    "With --fast: each label's closed surface alone (interfaces written twice, a label per face) "
-                    "instead of each interface once with its two labels")
-      ->needs(fast);
+  auto* separate = tool.app.add_flag("--separate", fast_opt.separate,
+                                     "With --fast or --conforming: each label's closed surface alone (interfaces "
+                                     "written twice, a label per face) instead of each interface once with its two "
+                                     "labels");
+  auto* conforming =
+      tool.app
+          .add_flag("--conforming", fast_opt.conforming,
+                    "Experimental: the labels' partition repaired at once, then its restricted Delaunay surface "
+                    "(every interface once with its two labels, angles of asin(1/(2 --ratio)) or more, --max-distance), "
+                    "refined until the interface certificate holds; exit 3 when it does not")
+          ->excludes(fast);
 
   return tool.run(argc, argv, [&] {
     if (!is_surface_output(out))
@@ -131,10 +159,12 @@ int main(int argc, char** argv) {
     if (!surface_output_holds_labels(out))
       tool.info("warning: " + surface_format_name(out) +
                 " holds no labels: use .ply, .vtp, .vtk or .msh to tell the labels' surfaces apart");
-    if (fast->count()) {
+    if (separate->count() && !fast->count() && !conforming->count())
+      throw UsageError("--separate needs --fast or --conforming");
+    if (fast->count() || conforming->count()) {
       fast_opt.labels = parse_labels(labels_text);
       fast_opt.threads = std::max(1u, std::thread::hardware_concurrency());  // the same mesh whatever the count
-      return run_fast(tool, in, out, fast_opt, write_opt);
+      return run_fast(tool, in, out, fast_opt, write_opt, surface_options);
     }
     warn_normals_ignored(tool, opt.normals, out);
     opt.labels = parse_labels(labels_text);

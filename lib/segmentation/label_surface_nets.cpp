@@ -2,6 +2,8 @@
 // names; each stage is a library call of lib/wellcomposed or lib/surfacenets.
 #include "segmentation/label_surface_nets.hpp"
 
+#include "conforming/conforming_surface.hpp"
+#include "mesh/triangle_quality.hpp"
 #include "segmentation/label_surfaces.hpp"
 #include "surfacenets/interface_certificate.hpp"
 #include "surfacenets/surface_nets.hpp"
@@ -29,15 +31,19 @@ void keep_labels(LabelImage& image, const std::vector<long long>& labels) {
 }
 
 // One label's closed surface with its own vertices (numbered in order of
-// first use), oriented out of it.
-SurfaceMesh label_surface(const InterfaceMesh& m, std::int32_t label) {
+// first use), oriented out of it (label_triangles' order and orientation).
+SurfaceMesh label_surface(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                          const std::vector<std::array<std::int32_t, 2>>& pairs, std::int32_t label) {
   SurfaceMesh s;
-  std::vector<int> index(m.points.size(), -1);
-  for (auto t : label_triangles(m, label)) {
+  std::vector<int> index(points.size(), -1);
+  for (std::size_t f = 0; f < triangles.size(); ++f) {
+    if (pairs[f][0] != label && pairs[f][1] != label) continue;
+    auto t = triangles[f];
+    if (pairs[f][1] == label) std::swap(t[1], t[2]);
     for (int& v : t) {
       if (index[std::size_t(v)] < 0) {
         index[std::size_t(v)] = int(s.points.size());
-        s.points.push_back(m.points[std::size_t(v)]);
+        s.points.push_back(points[std::size_t(v)]);
       }
       v = index[std::size_t(v)];
     }
@@ -48,17 +54,18 @@ SurfaceMesh label_surface(const InterfaceMesh& m, std::int32_t label) {
 
 // The output: every triangle once with its pair, or each label's surface alone.
 // pairs: per triangle, its (behind, front).
-SurfaceMesh output_mesh(InterfaceMesh& m, const std::vector<std::array<std::int32_t, 2>>& pairs,
-                        const std::vector<long long>& labels, bool separate) {
+SurfaceMesh output_mesh(std::vector<Vec3>& points, std::vector<std::array<int, 3>>& triangles,
+                        const std::vector<std::array<std::int32_t, 2>>& pairs, const std::vector<long long>& labels,
+                        bool separate) {
   SurfaceMesh out;
   if (!separate) {
-    out.points = std::move(m.points);
-    out.triangles = std::move(m.triangles);
+    out.points = std::move(points);
+    out.triangles = std::move(triangles);
     out.interfaces.assign(pairs.begin(), pairs.end());
     return out;
   }
   for (long long label : labels) {
-    const SurfaceMesh s = label_surface(m, std::int32_t(label));
+    const SurfaceMesh s = label_surface(points, triangles, pairs, std::int32_t(label));
     const int base = int(out.points.size());
     out.points.insert(out.points.end(), s.points.begin(), s.points.end());
     for (const auto& t : s.triangles) out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
@@ -96,48 +103,81 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   res.complex = k.to_json();
   res.seconds.push_back({"complex", since(t0)});
 
-  t0 = Clock::now();
-  say("surface nets");
-  InterfaceMesh m = interface_mesh(wc, k);
-  res.seconds.push_back({"mesh", since(t0)});
-
-  t0 = Clock::now();
-  say("smoothing");
-  const bool untangled = opt.smooth_rounds > 0;
-  if (untangled) {
-    SmoothingOptions so;
-    so.rounds = opt.smooth_rounds;
-    so.untangle = false;  // below, once the relaxation graph is freed
-    smooth_interface_mesh(m, so);
-  }
-  // The relaxation graph served the smoothing only.
-  release(m.kind);
-  release(m.neighbour_offsets);
-  release(m.neighbours);
-  if (untangled) untangle_interface_mesh(m, corner_points(m), std::max(1u, opt.threads));
-  res.seconds.push_back({"smoothing", since(t0)});
-
-  t0 = Clock::now();
-  say("certificate");
-  std::vector<std::array<std::int32_t, 2>> pairs(m.triangles.size());
-  for (std::size_t t = 0; t < pairs.size(); ++t) pairs[t] = m.triangle_labels(t);
-  // The whole mesh's crossing pairs, found before the labels' surfaces
-  // are built, and what only their search needs (the quads, the corners)
-  // freed. Smoothed, there are none: the untangling searched every pair
-  // with crossing_pairs' exact test, then after each move every pair at a
-  // moved vertex, until none crossed (untangle.cpp: no pair is left
-  // unseen); no vertex has moved since, so a second search of every pair
-  // would find none (it cost as much as the untangling's first). Unsmoothed (K(X)'s
-  // faces) they are searched: local, every vertex in its cell.
-  std::vector<std::array<std::size_t, 2>> crossings;
-  if (!untangled) crossings = crossing_pairs(m, std::max(1u, opt.threads));
-  release(m.quads);
-  release(m.corners);
-  release_free_memory();  // the smoothing's and the search's pages, before the certificate's threads
+  std::vector<Vec3> points;
+  std::vector<std::array<int, 3>> triangles;
+  std::vector<std::array<std::int32_t, 2>> pairs;
   InterfaceCertificateOptions co;
-  co.crossings = [&] { return std::move(crossings); };
   co.threads = std::max(1u, opt.threads);
-  res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k, co);
+  if (opt.conforming) {
+    t0 = Clock::now();
+    say("labelling function");
+    const LabelFunction lambda(wc, opt.conforming_options.max_distance > 0
+                                       ? opt.conforming_options.max_distance
+                                       : 0.3 * std::min({wc.spacing[0], wc.spacing[1], wc.spacing[2]}),
+                               std::max(1u, opt.threads));
+    res.seconds.push_back({"function", since(t0)});
+    t0 = Clock::now();
+    say("conforming surface");
+    ConformingOptions o = opt.conforming_options;
+    o.progress = opt.progress;
+    o.certificate = [&](const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t,
+                        const std::vector<std::array<std::int32_t, 2>>& l) {
+      InterfaceCertificateOptions c = co;
+      c.lattice = false;
+      return certify_interface_mesh(p, t, l, wc, k, c).failing_complex_patches();
+    };
+    ConformingSurface c = conforming_surface(lambda, wc, k, o);
+    res.conforming = c.to_json();
+    points = std::move(c.points), triangles = std::move(c.triangles), pairs = std::move(c.pairs);
+    res.seconds.push_back({"mesh", since(t0)});
+    co.lattice = false;
+    t0 = Clock::now();
+    say("certificate");
+    res.certificate = certify_interface_mesh(points, triangles, pairs, wc, k, co);
+  } else {
+    t0 = Clock::now();
+    say("surface nets");
+    InterfaceMesh m = interface_mesh(wc, k);
+    res.seconds.push_back({"mesh", since(t0)});
+
+    t0 = Clock::now();
+    say("smoothing");
+    const bool untangled = opt.smooth_rounds > 0;
+    if (untangled) {
+      SmoothingOptions so;
+      so.rounds = opt.smooth_rounds;
+      so.untangle = false;  // below, once the relaxation graph is freed
+      smooth_interface_mesh(m, so);
+    }
+    // The relaxation graph served the smoothing only.
+    release(m.kind);
+    release(m.neighbour_offsets);
+    release(m.neighbours);
+    if (untangled) untangle_interface_mesh(m, corner_points(m), std::max(1u, opt.threads));
+    res.seconds.push_back({"smoothing", since(t0)});
+
+    t0 = Clock::now();
+    say("certificate");
+    pairs.resize(m.triangles.size());
+    for (std::size_t t = 0; t < pairs.size(); ++t) pairs[t] = m.triangle_labels(t);
+    // The whole mesh's crossing pairs, found before the labels' surfaces
+    // are built, and what only their search needs (the quads, the corners)
+    // freed. Smoothed, there are none: the untangling searched every pair
+    // with crossing_pairs' exact test, then after each move every pair at a
+    // moved vertex, until none crossed (untangle.cpp: no pair is left
+    // unseen); no vertex has moved since, so a second search of every pair
+    // would find none (it cost as much as the untangling's first). Unsmoothed (K(X)'s
+    // faces) they are searched: local, every vertex in its cell.
+    std::vector<std::array<std::size_t, 2>> crossings;
+    if (!untangled) crossings = crossing_pairs(m, std::max(1u, opt.threads));
+    release(m.quads);
+    release(m.corners);
+    release_free_memory();  // the smoothing's and the search's pages, before the certificate's threads
+    co.crossings = [&] { return std::move(crossings); };
+    res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k, co);
+    co.crossings = nullptr;
+    points = std::move(m.points), triangles = std::move(m.triangles);
+  }
   for (long long l : labels) {
     res.labels.push_back(std::int32_t(l));
     if (const auto it = opt.names.find(std::int32_t(l)); it != opt.names.end()) res.mesh.label_names[int(l)] = it->second;
@@ -145,20 +185,22 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   res.seconds.push_back({"certificate", since(t0)});
 
   auto names = std::move(res.mesh.label_names);
-  res.mesh = output_mesh(m, pairs, labels, opt.separate);
+  res.mesh = output_mesh(points, triangles, pairs, labels, opt.separate);
   res.mesh.label_names = std::move(names);
+  if (opt.conforming) res.conforming["smallest_angle"] = triangle_quality_report(res.mesh).smallest_angle();
   return res;
 }
 
 Json LabelSurfaceNetsResult::to_json() const {
   Json st = Json::object();
-  st["mode"] = separate ? "fast, separate" : "fast";
+  st["mode"] = std::string(conforming.kind() == Json::Kind::Object ? "conforming" : "fast") + (separate ? ", separate" : "");
   st["vertices"] = mesh.points.size();
   st["triangles"] = mesh.triangles.size();
   st["smooth_rounds"] = smooth_rounds;
   st["repair_changed"] = changed;
   st["grid"] = std::vector<std::size_t>{grid[0], grid[1], grid[2]};
   st["interface_complex"] = complex;
+  if (conforming.kind() == Json::Kind::Object) st["conforming"] = conforming;
   Json times = Json::object();
   for (const auto& [stage, s] : seconds) times[stage] = s;
   st["stage_seconds"] = times;

@@ -17,6 +17,7 @@
 // with a label per triangle.
 #pragma once
 #include "image/grid.hpp"
+#include "conforming/conforming_surface.hpp"
 #include "image/slicer_segmentation.hpp"
 #include "mesh/surface_io.hpp"
 #include "surfacenets/interface_certificate.hpp"
@@ -36,6 +37,11 @@ struct LabelSurfaceNetsOptions {
   LabelNames names;               // the labels' names where the image gives them
   int smooth_rounds = 5;          // >= 0
   bool separate = false;
+  // Issue 40 (experimental): the restricted Delaunay complex of the
+  // labelling function (conforming/conforming_surface.hpp) instead of
+  // surface nets; smooth_rounds unused.
+  bool conforming = false;
+  ConformingOptions conforming_options;
   unsigned threads = 1;           // for the crossing searches and the certificate (the same result whatever their number)
   std::function<void(const std::string&)> progress;
 };
@@ -46,6 +52,7 @@ struct LabelSurfaceNetsResult {
   std::size_t changed = 0;       // voxels the repair relabelled
   std::array<std::size_t, 3> grid{0, 0, 0};  // the repaired grid (grown by a voxel where labels touch the side)
   Json complex = Json::object(); // K(X)'s counts
+  Json conforming;                   // the conforming mesher's counts, when it ran (else null)
   int smooth_rounds = 0;
   bool separate = false;
   // Seconds of each stage, in order: repair, complex, mesh, smoothing, certificate.

@@ -320,6 +320,33 @@ std::string InterfaceCertificate::failure() const {
   return state[std::size_t(k)] < 0 ? std::string(name(k)) + ": not checked" : why[std::size_t(k)];
 }
 
+std::vector<std::size_t> InterfaceCertificate::failing_complex_patches() const {
+  std::vector<std::int32_t> bad;
+  for (const Label& l : labels)
+    if (!l.surface.ok() || (l.sides_checked && l.sides.wrong() > 0)) bad.push_back(l.label);
+  auto is_bad = [&](std::int32_t l) { return std::find(bad.begin(), bad.end(), l) != bad.end(); };
+  std::vector<std::size_t> out;
+  for (const Interface& i : interfaces) {
+    if (is_bad(i.behind) || is_bad(i.front)) {
+      out.insert(out.end(), i.complex_patches.begin(), i.complex_patches.end());
+      continue;
+    }
+    if (i.why.empty()) continue;
+    std::vector<std::size_t> good;  // matched once by a patch that holds
+    bool stray = false;
+    for (const Patch& p : i.patches) {
+      if (p.complex_patch < 0) stray = true;
+      else if (p.verdict == "ok") good.push_back(std::size_t(p.complex_patch));
+    }
+    std::sort(good.begin(), good.end());
+    for (std::size_t c : i.complex_patches)
+      if (stray || !std::binary_search(good.begin(), good.end(), c)) out.push_back(c);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 std::string InterfaceCertificate::summary() const {
   if (!ok()) return "interface certificate fails: " + failure();
   std::size_t patches = 0, centres = 0;

@@ -157,6 +157,12 @@ struct InterfaceCertificate {
   // crossings, 0 of 1234 voxel centres on the wrong side", or "interface
   // certificate fails: WHY".
   std::string summary() const;
+  // The K(X) patches (InterfaceComplex::patches ids, ascending) where it
+  // fails, for a mesher to refine near (conforming/conforming_surface.hpp):
+  // of a failed interface, each patch not matched by exactly one mesh
+  // patch that holds (all of the pair's when a mesh patch lies on none);
+  // every patch of a label whose surface or voxel sides fail.
+  std::vector<std::size_t> failing_complex_patches() const;
   Json to_json() const;
 };
 

@@ -283,6 +283,33 @@ PY
   grep -q '^2 [0-9]* "box touching the ball|ball"$' named.msh || fail "named.msh: no group 'box touching the ball|ball'"
 }
 
+# --conforming (issue 40): the restricted Delaunay surface of the repaired
+# partition on the rotated, anisotropic map: every pair once, each label
+# closed and outward (fast_check), certified again by meshinfo --image, its
+# triangles within --ratio 1.2 (angles >= 24.6 degrees).
+case_conforming_certified_every_pair_once() {
+  expect 0 seg2mesh "$(labels)" conf.ply --conforming --stats conf.json -q || return
+  fast_check conf.ply text "$PAIRS"
+  expect 0 meshinfo conf.ply --image "$(labels)" -q || return
+  python3 - conf.json > stats.txt 2>&1 <<'PY' || fail "stats: $(cat stats.txt)"
+import json, sys
+s = json.load(open(sys.argv[1]))
+assert s['all_certified'] is True and s['mode'] == 'conforming', s
+assert s['conforming']['smallest_angle'] >= 24.62, s['conforming']
+assert s['conforming']['triangles'] == s['triangles'] > 0, s
+PY
+}
+
+# The per-label mesher's options it does not take: one line, exit 2.
+case_conforming_refuses_other_options() {
+  local err
+  for opt in "--jobs 2" "--roughness 90" "--smooth 3" "--fast"; do
+    "$BIN/seg2mesh" "$(labels)" x.ply --conforming $opt 2> err > /dev/null
+    local rc=$?
+    [[ $rc == 2 && $(wc -l < err) == 1 && ! -e x.ply ]] || fail "--conforming $opt: exit $rc, $(cat err)"
+  done
+}
+
 # --separate: each label's closed surface alone, as seg2mesh writes without
 # --fast, certified against the label's own image.
 case_fast_separate_each_label_closed() {

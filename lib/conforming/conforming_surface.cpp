@@ -1,0 +1,555 @@
+#include "conforming/conforming_surface.hpp"
+
+#include "util/error.hpp"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Robust_weighted_circumcenter_filtered_traits_3.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+namespace imgmesh {
+namespace conforming_detail {
+
+using K0 = CGAL::Exact_predicates_inexact_constructions_kernel;
+using GT = CGAL::Robust_circumcenter_filtered_traits_3<K0>;
+using Point = GT::Point_3;
+constexpr std::int32_t kUnknown = std::numeric_limits<std::int32_t>::min();
+struct CInfo {
+  Vec3 centre{0, 0, 0};           // the circumcentre, with the label
+  std::int32_t label = kUnknown;  // lambda at the circumcentre
+  std::uint32_t uid = 0;          // 0: made since the last pass
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, GT>;  // id; -1: a corner of the bounding box
+using Cb = CGAL::Triangulation_cell_base_with_info_3<CInfo, GT, CGAL::Delaunay_triangulation_cell_base_3<GT>>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;
+using Vh = Tr::Vertex_handle;
+using Ch = Tr::Cell_handle;
+
+enum Step { kSeed, kVorEdge, kTopoDisk, kQuality, kDistance, kVoxelSide, kCertificate, kSteps };
+const char* const kStepName[kSteps] = {"seed", "vor_edge", "topo_disk", "quality", "max_distance", "voxel_side", "certificate"};
+
+inline Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
+inline Point pt(const Vec3& v) { return Point(v[0], v[1], v[2]); }
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double dist2(const Vec3& a, const Vec3& b) { return dot(sub(a, b), sub(a, b)); }
+
+// Circumradius over shortest edge.
+double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const double ab = dist2(a, b), bc = dist2(b, c), ca = dist2(c, a);
+  const Vec3 n = cross(sub(b, a), sub(c, a));
+  const double area2 = dot(n, n);  // (2 area)^2
+  if (!(area2 > 0)) return INFINITY;
+  const double r2 = ab * bc * ca / (4 * area2);
+  return std::sqrt(r2 / std::min({ab, bc, ca}));
+}
+
+// A point to insert, from a facet (v: its vertices, cells: the uids of its
+// two cells when found: it is stale once either changed) or a voxel centre.
+struct Candidate {
+  Vec3 x;
+  double priority = 0;  // the surface ball's squared radius: larger first
+  int step = kQuality;
+  std::array<Vh, 3> v{};
+  std::array<std::uint32_t, 2> cells{0, 0};
+};
+
+class Mesher {
+public:
+  Mesher(const LabelFunction& lambda, const LabelImage& x, const InterfaceComplex& k, const ConformingOptions& o)
+      : f_(lambda), x_(x), k_(k), o_(o) {
+    voxel_ = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
+    if (!(o_.max_distance > 0)) o_.max_distance = 0.3 * voxel_;
+  }
+
+  ConformingSurface run() {
+    tr_.infinite_vertex()->info() = -2;
+    bounding_box();
+    seeds();
+    refine();
+    ConformingSurface out = output();
+    // Rounds repair a patch sampled too coarsely, not a labelling that
+    // disagrees with K(X) (a noisy map: patches one voxel wide pinched off),
+    // where refining does not converge and each round doubles the points
+    // near the failures: they run while the failing patches are few (at
+    // most 16, or 1% of K(X)'s) and each round halves them.
+    std::size_t before = std::max<std::size_t>(16, k_.patches.size() / 100) * 2;
+    for (int round = 0; o_.certificate && round < o_.certificate_rounds && !max_hit_; ++round) {
+      const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
+      if (bad.empty() || bad.size() > before / 2 || !refine_patches(bad)) break;
+      before = bad.size();
+      ++rounds_;
+      refine();
+      out = output();
+    }
+    return out;
+  }
+
+private:
+  std::int32_t label(Ch c) {
+    if (tr_.is_infinite(c)) return 0;
+    known(c);
+    return c->info().label;
+  }
+  Vec3 centre(Ch c) {
+    known(c);
+    return c->info().centre;
+  }
+  void known(Ch c) {
+    if (c->info().label != kUnknown) return;
+    c->info().centre = vec(c->circumcenter());
+    c->info().label = f_.label(c->info().centre);
+  }
+
+  Vec3 voxel_centre(std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) const {
+    return x_.world(double(i), double(j), double(k));
+  }
+  std::int32_t voxel_label(std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) const { return x_.at(i, j, k, 0); }
+
+  // Eight corners two voxels and a half beyond the grid's box: every
+  // restricted facet's Voronoi edge is then finite (the cells around the
+  // corners lie outside, in 0).
+  void bounding_box() {
+    for (int c = 0; c < 8; ++c) {
+      const double i = (c & 1) ? double(x_.size[0]) + 2.5 : -3.5;
+      const double j = (c & 2) ? double(x_.size[1]) + 2.5 : -3.5;
+      const double k = (c & 4) ? double(x_.size[2]) + 2.5 : -3.5;
+      Vh v = tr_.insert(pt(x_.world(i, j, k)));
+      v->info() = -1;
+    }
+  }
+
+  bool insert(const Vec3& p, int step) {
+    if (points_ >= o_.max_points) {
+      max_hit_ = true;
+      return false;
+    }
+    Tr::Locate_type lt;
+    int li, lj;
+    Ch c = tr_.locate(pt(p), lt, li, lj, hint_);
+    if (lt == Tr::VERTEX) {
+      ++refused_;
+      return false;
+    }
+    Vh near = tr_.nearest_vertex(pt(p), c);
+    if (dist2(vec(near->point()), p) < 1e-12 * voxel_ * voxel_) {
+      ++refused_;
+      return false;
+    }
+    Vh v = tr_.insert(pt(p), lt, c, li, lj);
+    v->info() = int(points_++);
+    new_vertices_.push_back(v);
+    hint_ = v->cell();
+    ++inserted_[step];
+    return true;
+  }
+
+  // The two voxels of a face of K(X), and lambda's change between their centres.
+  bool face_point(std::uint64_t key, Vec3& p) const {
+    const auto q = k_.corner(InterfaceComplex::face_corner(key));
+    const int a = InterfaceComplex::face_axis(key);
+    std::array<std::ptrdiff_t, 3> v1{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])}, v0 = v1;
+    v0[a] -= 1;
+    // Off the planes of voxel centres (a seed on the segment between two
+    // centres lies in two of them: three such seeds made triangles through
+    // voxel centres): both ends moved by (0.13, 0.07) voxel across it.
+    const double u = 0.13, w = 0.07;
+    std::array<double, 3> o{0, 0, 0};
+    o[(a + 1) % 3] = u, o[(a + 2) % 3] = w;
+    const Vec3 p0 = x_.world(double(v0[0]) + o[0], double(v0[1]) + o[1], double(v0[2]) + o[2]);
+    const Vec3 p1 = x_.world(double(v1[0]) + o[0], double(v1[1]) + o[1], double(v1[2]) + o[2]);
+    if (f_.label(p0) == voxel_label(v0[0], v0[1], v0[2]) && f_.label(p1) == voxel_label(v1[0], v1[1], v1[2]))
+      return f_.first_change(p0, p1, p, o_.step);
+    return f_.first_change(voxel_centre(v0[0], v0[1], v0[2]), voxel_centre(v1[0], v1[1], v1[2]), p, o_.step);
+  }
+
+  // Per patch its faces at ranks 0, n/4, n/2, 3n/4, and every face whose
+  // corner lies on a lattice of seed_spacing in the face's plane.
+  void seeds() {
+    std::vector<std::size_t> count(k_.patches.size(), 0), seen(k_.patches.size(), 0);
+    for (std::uint32_t p : k_.face_patch) ++count[p];
+    const long s = std::max(1L, std::lround(o_.seed_spacing));
+    std::vector<Vec3> pts;
+    for (std::size_t i = 0; i < k_.faces.size(); ++i) {
+      const std::uint32_t p = k_.face_patch[i];
+      const std::size_t r = seen[p]++, n = count[p];
+      bool take = r == 0 || r == n / 4 || r == n / 2 || r == 3 * n / 4;
+      if (!take) {
+        const auto q = k_.corner(InterfaceComplex::face_corner(k_.faces[i]));
+        const int a = InterfaceComplex::face_axis(k_.faces[i]);
+        take = long(q[(a + 1) % 3]) % s == 0 && long(q[(a + 2) % 3]) % s == 0;
+      }
+      Vec3 x;
+      if (take && face_point(k_.faces[i], x)) pts.push_back(x);
+    }
+    for (const Vec3& x : pts) insert(x, kSeed);
+  }
+
+  std::array<Vh, 3> facet_vertices(Ch c, int i) const {
+    std::array<Vh, 3> v{c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+    std::sort(v.begin(), v.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
+    return v;
+  }
+
+  // The facet's surface centre and ball radius, when restricted (one change).
+  bool surface_centre(Ch c, int i, Vec3& x) {
+    Ch n = c->neighbor(i);
+    if (tr_.is_infinite(c) || tr_.is_infinite(n)) return false;
+    const std::int32_t ends[2] = {label(c), label(n)};
+    if (ends[0] == ends[1]) return false;
+    f_.changes(centre(c), centre(n), changes_, o_.step, 0, ends);
+    if (changes_.size() != 1) return false;
+    const Vec3 a = centre(c), b = centre(n);
+    for (int m = 0; m < 3; ++m) x[m] = a[m] + changes_[0].t * (b[m] - a[m]);
+    return true;
+  }
+
+  // VorEdge, QUALITY and the distance bound on facet (c, i).
+  void check_facet(Ch c, int i) {
+    Ch n = c->neighbor(i);
+    if (tr_.is_infinite(c) || tr_.is_infinite(n)) return;
+    const Vec3 a = centre(c), b = centre(n);
+    const std::int32_t la = label(c), lb = label(n);
+    const auto v = facet_vertices(c, i);
+    if (v[0]->info() < 0) return;  // a bounding-box corner: outside, in 0
+    const std::int32_t ends[2] = {la, lb};
+    f_.changes(a, b, changes_, o_.step, 0, ends);
+    if (changes_.empty()) return;
+    Candidate cand;
+    cand.v = v;
+    cand.cells = {c->info().uid, n->info().uid};
+    const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
+    auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
+    if (changes_.size() >= 2 || la == lb) {
+      const Vec3 first = at(changes_.front().t), last = at(changes_.back().t);
+      cand.x = dist2(first, p0) >= dist2(last, p0) ? first : last;
+      cand.step = kVorEdge;
+      cand.priority = dist2(cand.x, p0);
+      topology_.push_back(cand);
+      return;
+    }
+    ++restricted_;
+    cand.x = at(changes_[0].t);
+    cand.priority = dist2(cand.x, p0);
+    if (radius_edge_ratio(p0, p1, p2) > o_.ratio) {
+      cand.step = kQuality;
+      quality_.push_back(cand);
+      return;
+    }
+    const Vec3 nrm = cross(sub(p1, p0), sub(p2, p0));
+    const double nn = dot(nrm, nrm), h = dot(nrm, sub(cand.x, p0));
+    if (nn > 0 && h * h > o_.max_distance * o_.max_distance * nn) {
+      cand.step = kDistance;
+      quality_.push_back(cand);
+    }
+  }
+
+  // TopoDisk per label at v: for each label around v (not all one), the
+  // facets between its cells and the others' form one cycle in v's link.
+  void check_vertex(Vh v) {
+    cells_.clear();
+    tr_.incident_cells(v, std::back_inserter(cells_));
+    std::int32_t first = label(cells_[0]);
+    bool one = true;
+    for (Ch c : cells_) one = one && label(c) == first;
+    if (one) return;
+    labels_.clear();
+    for (Ch c : cells_) labels_.push_back(label(c));
+    std::sort(labels_.begin(), labels_.end());
+    labels_.erase(std::unique(labels_.begin(), labels_.end()), labels_.end());
+    for (std::int32_t l : labels_) {
+      link_.clear();
+      for (Ch c : cells_) {
+        if (label(c) != l) continue;
+        const int iv = c->index(v);
+        for (int j = 0; j < 4; ++j) {
+          if (j == iv || label(c->neighbor(j)) == l) continue;
+          int e[2], m = 0;
+          for (int q = 0; q < 4; ++q)
+            if (q != j && q != iv) e[m++] = tr_.is_infinite(c->vertex(q)) ? -2 : c->vertex(q)->info();
+          link_.push_back({e[0], e[1]});
+        }
+      }
+      if (one_cycle(link_)) continue;
+      // The surface centre of v's largest restricted facet with l on a side.
+      Candidate best;
+      best.priority = -1;
+      for (Ch c : cells_) {
+        if (label(c) != l) continue;
+        const int iv = c->index(v);
+        for (int j = 0; j < 4; ++j) {
+          if (j == iv || label(c->neighbor(j)) == l) continue;
+          Vec3 x;
+          if (!surface_centre(c, j, x)) continue;
+          const double r2 = dist2(x, vec(v->point()));
+          if (r2 > best.priority) {
+            best.x = x, best.priority = r2, best.v = facet_vertices(c, j);
+            best.cells = {c->info().uid, c->neighbor(j)->info().uid};
+          }
+        }
+      }
+      if (best.priority >= 0) {
+        best.step = kTopoDisk;
+        topology_.push_back(best);
+      }
+      return;
+    }
+  }
+
+  // Each link vertex in two link edges, the edges one closed walk.
+  static bool one_cycle(std::vector<std::array<int, 2>>& link) {
+    if (link.size() < 3) return false;
+    std::unordered_map<int, std::array<int, 3>> adj;  // up to two neighbours and a count
+    for (const auto& e : link)
+      for (int s = 0; s < 2; ++s) {
+        auto& a = adj.try_emplace(e[s], std::array<int, 3>{0, 0, 0}).first->second;
+        if (a[2] == 2) return false;
+        a[a[2]++] = e[1 - s];
+      }
+    for (const auto& kv : adj)
+      if (kv.second[2] != 2) return false;
+    int prev = link[0][0], cur = link[0][1];
+    std::size_t steps = 1;
+    while (cur != link[0][0]) {
+      const auto& a = adj[cur];
+      const int next = a[0] == prev ? a[1] : a[0];
+      prev = cur, cur = next;
+      if (++steps > link.size()) return false;
+    }
+    return steps == link.size();
+  }
+
+  // Every voxel centre next to an interface in a cell of its own label.
+  void voxel_sides() {
+    std::vector<char> seen(x_.count(), 0);
+    for (std::uint64_t key : k_.faces) {
+      const auto q = k_.corner(InterfaceComplex::face_corner(key));
+      const int a = InterfaceComplex::face_axis(key);
+      for (int s = 0; s < 2; ++s) {
+        std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])};
+        v[a] -= s;
+        if (!x_.inside(v[0], v[1], v[2])) continue;
+        char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
+        if (done) continue;
+        done = 1;
+        const Vec3 p = voxel_centre(v[0], v[1], v[2]);
+        Tr::Locate_type lt;
+        int li, lj;
+        Ch c = tr_.locate(pt(p), lt, li, lj, hint_);
+        hint_ = c;
+        const std::int32_t own = voxel_label(v[0], v[1], v[2]);
+        // On a facet, edge or vertex of W: every cell there must be its label.
+        if (lt != Tr::CELL && lt != Tr::OUTSIDE_CONVEX_HULL) {
+          cells_.clear();
+          if (lt == Tr::FACET) cells_ = {c, c->neighbor(li)};
+          else if (lt == Tr::EDGE) {
+            auto circ = tr_.incident_cells(c, li, lj), end = circ;
+            do cells_.push_back(circ); while (++circ != end);
+          } else tr_.incident_cells(c->vertex(li), std::back_inserter(cells_));
+          for (Ch n : cells_)
+            if (label(n) != own) c = n;
+        }
+        if (label(c) == own) continue;
+        Candidate cand;
+        if (!f_.first_change(p, centre(c), cand.x, o_.step)) continue;
+        cand.step = kVoxelSide;
+        cand.priority = dist2(cand.x, p);
+        sides_.push_back(cand);
+      }
+    }
+  }
+
+  // The surface centres of the restricted facets in the voxels next to the
+  // faces of K(X) patches `bad` (and one voxel around).
+  bool refine_patches(const std::vector<std::size_t>& bad) {
+    std::vector<char> near(x_.count(), 0);
+    for (std::size_t f = 0; f < k_.faces.size(); ++f) {
+      if (!std::binary_search(bad.begin(), bad.end(), std::size_t(k_.face_patch[f]))) continue;
+      const auto q = k_.corner(InterfaceComplex::face_corner(k_.faces[f]));
+      const int a = InterfaceComplex::face_axis(k_.faces[f]);
+      for (int s = 0; s < 2; ++s)
+        for (int dz = -1; dz <= 1; ++dz)
+          for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+              std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]) + dx, std::ptrdiff_t(q[1]) + dy, std::ptrdiff_t(q[2]) + dz};
+              v[a] -= s;
+              if (x_.inside(v[0], v[1], v[2])) near[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))] = 1;
+            }
+    }
+    std::vector<Vec3> pts;
+    for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
+      Vec3 x;
+      if (!surface_centre(f->first, f->second, x)) continue;
+      const Vec3 q = x_.continuous_index(x);
+      const auto i = std::ptrdiff_t(std::floor(q[0] + 0.5)), j = std::ptrdiff_t(std::floor(q[1] + 0.5)),
+                 k = std::ptrdiff_t(std::floor(q[2] + 0.5));
+      if (x_.inside(i, j, k) && near[x_.index(std::size_t(i), std::size_t(j), std::size_t(k))]) pts.push_back(x);
+    }
+    bool any = false;
+    for (const Vec3& x : pts) any = insert(x, kCertificate) || any;
+    return any;
+  }
+
+  // Still the facet it was found on (same vertices, same two cells)?
+  bool current(const Candidate& c) {
+    if (c.step == kVoxelSide) return true;
+    Ch cell;
+    int i, j, k;
+    if (!tr_.is_facet(c.v[0], c.v[1], c.v[2], cell, i, j, k)) return false;
+    Ch n = cell->neighbor(6 - i - j - k);
+    const std::uint32_t a = cell->info().uid, b = n->info().uid;
+    return a != 0 && b != 0 && ((a == c.cells[0] && b == c.cells[1]) || (a == c.cells[1] && b == c.cells[0]));
+  }
+
+  bool insert_all(std::vector<Candidate>& cands) {
+    std::stable_sort(cands.begin(), cands.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.priority > b.priority; });
+    bool any = false;
+    for (const Candidate& c : cands)
+      if (current(c) && insert(c.x, c.step)) any = true;
+    cands.clear();
+    return any;
+  }
+
+  void refine() {
+    for (;;) {
+      ++passes_;
+      // The cells made since the last pass (numbered now, from
+      // fresh_first_ on); their facets, each once, and their vertices.
+      // Every cell made since is incident to a vertex inserted since (an
+      // insertion makes only cells at its vertex); the first pass takes all.
+      fresh_first_ = uid_ + 1;
+      fresh_.clear();
+      auto take = [&](Ch c) {
+        if (c->info().uid != 0) return;
+        c->info().uid = ++uid_;
+        if (!tr_.is_infinite(c)) fresh_.push_back(c);
+      };
+      if (passes_ == 1) {
+        for (auto c = tr_.all_cells_begin(); c != tr_.all_cells_end(); ++c) take(c);
+      } else {
+        for (Vh v : new_vertices_) {
+          cells_.clear();
+          tr_.incident_cells(v, std::back_inserter(cells_));
+          for (Ch c : cells_) take(c);
+        }
+      }
+      new_vertices_.clear();
+      touched_.clear();
+      for (Ch c : fresh_) {
+        for (int i = 0; i < 4; ++i) {
+          Ch n = c->neighbor(i);
+          if (is_fresh(n) && n->info().uid < c->info().uid) continue;
+          check_facet(c, i);
+        }
+        for (int i = 0; i < 4; ++i)
+          if (c->vertex(i)->info() >= 0) touched_.push_back(c->vertex(i));
+      }
+      std::sort(touched_.begin(), touched_.end());
+      touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
+      for (Vh v : touched_) check_vertex(v);
+      if (o_.progress)
+        o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
+                    std::to_string(topology_.size()) + " topology, " + std::to_string(quality_.size()) + " quality");
+      if (max_hit_) break;
+      // QUALITY's candidates wait while TOPOLOGY inserts: each was found
+      // once (its facet fresh) and is dropped only when stale.
+      if (!topology_.empty() && insert_all(topology_)) continue;
+      if (!quality_.empty() && insert_all(quality_)) continue;
+      if (!o_.voxel_sides) break;
+      voxel_sides();
+      if (sides_.empty() || !insert_all(sides_)) break;
+    }
+  }
+  bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
+
+  ConformingSurface output() {
+    ConformingSurface out;
+    std::unordered_map<int, int> id;
+    auto index = [&](Vh v) {
+      auto [it, added] = id.try_emplace(v->info(), int(out.points.size()));
+      if (added) out.points.push_back(vec(v->point()));
+      return it->second;
+    };
+    const auto orient = GT().orientation_3_object();
+    for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
+      Ch c = f->first;
+      const int i = f->second;
+      Ch n = c->neighbor(i);
+      const std::int32_t lc = label(c), ln = label(n);
+      if (lc == ln) continue;
+      auto v = facet_vertices(c, i);
+      // Out of behind (the higher label): the normal points away from the
+      // behind cell's vertex opposite the facet.
+      Ch behind = lc > ln ? c : n;
+      Vh opposite = behind == c ? c->vertex(i) : n->vertex(n->index(c));
+      if (orient(v[0]->point(), v[1]->point(), v[2]->point(), opposite->point()) == CGAL::POSITIVE)
+        std::swap(v[1], v[2]);
+      out.triangles.push_back({index(v[0]), index(v[1]), index(v[2])});
+      out.pairs.push_back({std::max(lc, ln), std::min(lc, ln)});
+    }
+    std::copy(inserted_.begin(), inserted_.end(), out.inserted.begin());
+    out.refused = refused_;
+    out.passes = passes_;
+    out.certificate_rounds = rounds_;
+    out.max_points_hit = max_hit_;
+    return out;
+  }
+
+  const LabelFunction& f_;
+  const LabelImage& x_;
+  const InterfaceComplex& k_;
+  ConformingOptions o_;
+  double voxel_ = 1;
+  Tr tr_;
+  Ch hint_;
+  std::size_t points_ = 0;
+  std::array<long long, kSteps> inserted_{};
+  long long refused_ = 0, passes_ = 0, restricted_ = 0;
+  int rounds_ = 0;
+  bool max_hit_ = false;
+  std::uint32_t uid_ = 0, fresh_first_ = 0;
+  std::vector<Ch> fresh_, cells_;
+  std::vector<Vh> touched_, new_vertices_;
+  std::vector<std::int32_t> labels_;
+  std::vector<std::array<int, 2>> link_;
+  std::vector<LabelFunction::Change> changes_;
+  std::vector<Candidate> topology_, quality_, sides_;
+};
+
+} // namespace conforming_detail
+
+Json ConformingSurface::to_json() const {
+  Json j = Json::object();
+  j["points"] = points.size();
+  j["triangles"] = triangles.size();
+  Json ins = Json::object();
+  for (int s = 0; s < conforming_detail::kSteps; ++s) ins[conforming_detail::kStepName[s]] = inserted[std::size_t(s)];
+  j["points_inserted"] = ins;
+  j["points_refused"] = refused;
+  j["passes"] = passes;
+  j["certificate_rounds"] = certificate_rounds;
+  j["max_points_hit"] = max_points_hit;
+  return j;
+}
+
+ConformingSurface conforming_surface(const LabelFunction& lambda, const LabelImage& x, const InterfaceComplex& k,
+                                     const ConformingOptions& options) {
+  if (k.dimension != 3 || k.lattice != std::array<std::size_t, 3>{x.size[0] + 1, x.size[1] + 1, x.size[2] + 1})
+    throw Error("internal: the interface complex is not the label image's");
+  return conforming_detail::Mesher(lambda, x, k, options).run();
+}
+
+} // namespace imgmesh

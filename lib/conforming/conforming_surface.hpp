@@ -1,0 +1,87 @@
+// The conforming surface complex of a well-composed label image (issue 40,
+// route 1): the restricted Delaunay triangulation of the partition that the
+// labelling function lambda (label_function.hpp) makes of space, refined
+// as DELMESH refines one surface (thesis 7.6), every interface meshed once.
+//
+//   cells      each Delaunay cell carries lambda at its circumcentre; a facet
+//              is restricted when its two cells' labels differ (its dual
+//              Voronoi edge crosses the interface between them); its surface
+//              centre is where lambda changes along that edge.
+//   seeds      points of every patch of K(X): where lambda changes between
+//              the two voxel centres of a face, faces a few voxels apart and
+//              at least four per patch (thesis 8.1's role: every patch and
+//              every label's component sampled from the start).
+//   REFINE     in passes over the cells made since the last one, each
+//              candidate re-checked before it goes in, by priority:
+//     VorEdge    a Voronoi edge along which lambda changes twice or more:
+//                its change farthest from the facet's first vertex;
+//     TopoDisk   per label, at every vertex, the label's restricted facets
+//                around it form one disk (one cycle in the vertex's link):
+//                where not, the surface centre of its largest facet there.
+//                (Each label's surface is then a 2-manifold; at a curve the
+//                labels' disks make the "book" of half-disks.)
+//     QUALITY    a restricted facet's radius-edge ratio above rho_0;
+//     distance   a surface centre farther than E from its facet's plane;
+//     VoxelSides every voxel centre next to an interface in a cell of its
+//                own label, else the first change of lambda from the centre
+//                towards that cell's circumcentre.
+//   certificate  the caller's; where it fails, every restricted facet near
+//              the K(X) patches it names gets its surface centre, and REFINE
+//              again (a patch sampled too coarsely shows as split, merged or
+//              pinched).
+//   output     every restricted facet once, with (behind, front) = (higher,
+//              lower label), oriented out of behind (K(X)'s convention).
+// The Delaunay triangulation embeds the complex: no two triangles cross.
+// What the mesh is, against K(X), is the interface certificate's to say
+// (surfacenets/interface_certificate.hpp); this file certifies nothing.
+#pragma once
+#include "conforming/label_function.hpp"
+#include "util/json.hpp"
+#include "wellcomposed/interface_complex.hpp"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace imgmesh {
+
+struct ConformingOptions {
+  double ratio = 1.2;         // rho_0: angles >= asin(1 / (2 rho_0)) = 24.6 degrees
+  double max_distance = 0;    // E (world); 0: 0.3 of the smallest spacing
+  double seed_spacing = 4;    // voxels between the seeds of a patch
+  double step = 0.25;         // lambda's samples along a segment (voxels)
+  std::size_t max_points = 2000000;
+  bool voxel_sides = true;
+  // The certificate (surfacenets/interface_certificate.hpp, the caller's):
+  // the K(X) patches where it fails (failing_complex_patches), empty when
+  // it holds. Each round the surface centres of the restricted facets
+  // within a voxel of those patches' faces go in and REFINE runs again, at
+  // most `certificate_rounds` times, and only while the failing patches are
+  // few (16, or 1% of K(X)'s) and each round halves them. Unset: no rounds.
+  std::function<std::vector<std::size_t>(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                         const std::vector<std::array<std::int32_t, 2>>& pairs)>
+      certificate;
+  int certificate_rounds = 8;
+  std::function<void(const std::string&)> progress;
+};
+
+struct ConformingSurface {
+  std::vector<Vec3> points;                         // world
+  std::vector<std::array<int, 3>> triangles;        // oriented out of pairs[t][0]
+  std::vector<std::array<std::int32_t, 2>> pairs;   // (behind, front), behind > front
+  // Points inserted per step: seed, vor_edge, topo_disk, quality, distance, voxel_side, certificate.
+  std::array<long long, 7> inserted{};
+  long long refused = 0;       // candidates within 1e-6 voxel of a vertex
+  long long passes = 0;
+  int certificate_rounds = 0;  // rounds that refined where the certificate failed
+  bool max_points_hit = false;
+  Json to_json() const;
+};
+
+// Throws Error when K(X) is not that of `x`.
+ConformingSurface conforming_surface(const LabelFunction& lambda, const LabelImage& x, const InterfaceComplex& k,
+                                     const ConformingOptions& options = {});
+
+} // namespace imgmesh

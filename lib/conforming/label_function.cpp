@@ -1,0 +1,314 @@
+#include "conforming/label_function.hpp"
+
+#include "implicit/crop.hpp"
+#include "implicit/implicit_file.hpp"
+#include "util/error.hpp"
+#include "wellcomposed/well_composed.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace imgmesh {
+
+struct LabelFunction::Function {
+  PartitionOfUnity f;
+  double sign = 1;  // -1: the background's, -f of the union
+  Vec3 lo{0, 0, 0}, hi{0, 0, 0};  // its crop's box, in X's continuous indices (outside: f > 0, not read)
+};
+
+namespace {
+
+// The label's (or, label < 0, the union's) indicator made a function as
+// seg2mesh makes a label's: its box plus the crop margin, f clamped and
+// placed in X's grid.
+PartitionOfUnity indicator_function(const LabelImage& x, std::int32_t label, const VoxelBox& box, double max_distance,
+                                    unsigned threads) {
+  WellComposedCrop wc = well_composed_crop(
+      x, box,
+      [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
+        const std::int32_t* v = &x(x0, y, z);
+        for (std::size_t i = 0; i < n; ++i) row[i] = label < 0 ? v[i] != 0 : v[i] == label;
+      },
+      WellComposedOptions{});
+  if (wc.result.changed != 0)
+    throw Error(label < 0 ? std::string("the labels' union is not well-composed (repair it: img2wc --labels all)")
+                          : "label " + std::to_string(label) +
+                                " is not well-composed (repair the map: img2wc --labels all)");
+  wc.frame.foreground = foreground_box(wc.result.image);
+  return implicit_in_scan(wc.result.image, wc.frame, PartitionOfUnity::clamp_for(wc.result.image, max_distance), threads);
+}
+
+// Along one axis, each voxel's value replaced by op over the window
+// [i + lo, i + hi] (beyond the grid: `outside`).
+template <class T, class Op>
+void window(const Geometry& g, int axis, int lo, int hi, T outside, std::vector<T>& v, Op op) {
+  const std::size_t n = g.size[axis];
+  const std::size_t stride = axis == 0 ? 1 : axis == 1 ? g.size[0] : g.size[0] * g.size[1];
+  std::vector<T> line(n);
+  const std::size_t lines = g.count() / n;
+  for (std::size_t l = 0; l < lines; ++l) {
+    const std::size_t base = axis == 0 ? l * g.size[0]
+                             : axis == 1 ? (l % g.size[0]) + (l / g.size[0]) * g.size[0] * g.size[1]
+                                         : l;
+    for (std::size_t i = 0; i < n; ++i) line[i] = v[base + i * stride];
+    for (std::size_t i = 0; i < n; ++i) {
+      T r = line[i];
+      for (std::ptrdiff_t k = std::ptrdiff_t(i) + lo; k <= std::ptrdiff_t(i) + hi; ++k)
+        r = op(r, k >= 0 && std::size_t(k) < n ? line[std::size_t(k)] : outside);
+      v[base + i * stride] = r;
+    }
+  }
+}
+
+} // namespace
+
+LabelFunction::~LabelFunction() = default;
+LabelFunction::LabelFunction(LabelFunction&&) noexcept = default;
+
+LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned threads) : grid_(x.geometry()) {
+  if (x.dimension != 3) throw Error("the labelling function needs a 3D label image");
+  min_spacing_ = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
+  // Each label's box, and the union's.
+  std::vector<std::int32_t> present;
+  std::vector<std::size_t> counts;
+  std::vector<VoxelBox> boxes;
+  VoxelBox all;
+  for (std::size_t z = 0; z < x.size[2]; ++z)
+    for (std::size_t y = 0; y < x.size[1]; ++y)
+      for (std::size_t i = 0; i < x.size[0]; ++i) {
+        const std::int32_t v = x(i, y, z);
+        if (v == 0) continue;
+        auto it = std::lower_bound(present.begin(), present.end(), v);
+        const std::size_t k = std::size_t(it - present.begin());
+        if (it == present.end() || *it != v) {
+          present.insert(it, v);
+          counts.insert(counts.begin() + std::ptrdiff_t(k), 0);
+          boxes.insert(boxes.begin() + std::ptrdiff_t(k), VoxelBox());
+        }
+        ++counts[k];
+        boxes[k].add(std::ptrdiff_t(i), std::ptrdiff_t(y), std::ptrdiff_t(z));
+        all.add(std::ptrdiff_t(i), std::ptrdiff_t(y), std::ptrdiff_t(z));
+      }
+  if (present.empty()) throw Error("the label image has no label (every voxel is 0)");
+  labels_.push_back(0);
+  labels_.insert(labels_.end(), present.begin(), present.end());
+  // Ranks: 0 lowest, then from the most voxels to the fewest (ties: the
+  // larger label higher), as the partition repair ranks them by default.
+  {
+    std::vector<std::size_t> order(present.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return counts[a] > counts[b]; });
+    rank_.assign(labels_.size(), 0);
+    for (std::size_t r = 0; r < order.size(); ++r) rank_[order[r] + 1] = unsigned(r + 1);
+  }
+  const auto margin = crop_margin(x.geometry());
+  auto make = [&](std::int32_t label, const VoxelBox& box, double sign) {
+    auto fn = std::make_unique<Function>(Function{indicator_function(x, label, box, max_distance, threads), sign, {}, {}});
+    for (int i = 0; i < 3; ++i) {
+      fn->lo[i] = double(box.lo[i]) - double(margin[i]);
+      fn->hi[i] = double(box.hi[i]) + double(margin[i]);
+    }
+    f_.push_back(std::move(fn));
+  };
+  make(-1, all, -1);
+  for (std::size_t k = 0; k < present.size(); ++k) make(present[k], boxes[k], 1);
+  // Pure cubes: min == max of the labels over the 4x4x4 voxels around
+  // (window [-1, 2] per axis).
+  {
+    std::vector<std::int32_t> lo(x.data), hi(x.data);
+    for (int axis = 0; axis < 3; ++axis) {
+      window(x, axis, -1, 2, 0, lo, [](std::int32_t a, std::int32_t b) { return std::min(a, b); });
+      window(x, axis, -1, 2, 0, hi, [](std::int32_t a, std::int32_t b) { return std::max(a, b); });
+    }
+    pure_.assign(x.count(), 0);
+    for (std::size_t v = 0; v < x.count(); ++v)
+      if (lo[v] == hi[v]) pure_[v] = lo[v] + 1;
+  }
+  // Candidates: a label whose voxels all lie beyond the 6x6x6 voxels around
+  // a cube (window [-2, 3]) has g >= 1.5 voxels at every sample f reads in
+  // it, so f >= 1.3 voxels there (extension by d <= delta / 5, slope at
+  // most a voxel a voxel), where the label of the voxel holding the point
+  // has f under that: only the labels near a cube compete in it. Bit k % 64
+  // stands for label index k (a superset past 64 labels).
+  cand_.assign(x.count(), 0);
+  {
+    std::int32_t last = 0;
+    std::uint64_t bit = 1;
+    for (std::size_t v = 0; v < x.count(); ++v) {
+      if (x.data[v] != last) {
+        last = x.data[v];
+        bit = std::uint64_t(1) << (std::size_t(std::lower_bound(labels_.begin(), labels_.end(), last) - labels_.begin()) % 64);
+      }
+      cand_[v] = last == 0 ? 1 : bit;
+    }
+  }
+  for (int axis = 0; axis < 3; ++axis)
+    window(x, axis, -2, 3, std::uint64_t(1), cand_, [](std::uint64_t a, std::uint64_t b) { return a | b; });
+  bit_labels_.resize(64);
+  for (std::size_t k = 0; k < labels_.size(); ++k) bit_labels_[k % 64].push_back(k);
+}
+
+std::size_t LabelFunction::index_of(std::int32_t label) const {
+  const auto it = std::lower_bound(labels_.begin(), labels_.end(), label);
+  if (it == labels_.end() || *it != label) throw Error("internal: no such label in the labelling function");
+  return std::size_t(it - labels_.begin());
+}
+
+double LabelFunction::value(std::int32_t label, const Vec3& p) const {
+  const Function& fn = *f_[index_of(label)];
+  return fn.sign * fn.f.value(p);
+}
+
+std::int32_t LabelFunction::label(const Vec3& p) const {
+  const Vec3 q = grid_.continuous_index(p);
+  std::size_t c[3];
+  for (int i = 0; i < 3; ++i) {
+    if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
+    c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
+  }
+  std::size_t best = 0, inside = labels_.size();
+  double fbest = std::numeric_limits<double>::infinity();
+  for (std::uint64_t m = cand_[grid_.index(c[0], c[1], c[2])]; m; m &= m - 1)
+    for (const std::size_t k : bit_labels_[std::size_t(__builtin_ctzll(m))]) {
+      const Function& fn = *f_[k];
+      if (fn.sign > 0 && (q[0] < fn.lo[0] || q[0] > fn.hi[0] || q[1] < fn.lo[1] || q[1] > fn.hi[1] ||
+                          q[2] < fn.lo[2] || q[2] > fn.hi[2]))
+        continue;  // beyond the crop: f_L >= its clamp > 0
+      const double v = fn.sign * fn.f.value(p);
+      if (v < 0 && (inside == labels_.size() || rank_[k] > rank_[inside])) inside = k;
+      if (v < fbest || (v == fbest && k < best)) fbest = v, best = k;
+    }
+  return labels_[inside < labels_.size() ? inside : best];
+}
+
+bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
+  std::size_t c[3];
+  for (int i = 0; i < 3; ++i) {
+    if (!(q[i] >= 0 && q[i] < double(grid_.size[i] - 1))) return false;
+    c[i] = std::size_t(q[i]);
+  }
+  const std::int32_t p = pure_[grid_.index(c[0], c[1], c[2])];
+  if (p == 0) return false;
+  label = p - 1;
+  return true;
+}
+
+double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before,
+                             std::int32_t after) const {
+  const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / min_spacing_;  // voxels
+  auto at = [&](double t) { return Vec3{a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; };
+  // Where only `before` and `after` compete, lambda changes where
+  // h = f_before - f_after does: regula falsi (Illinois) on h, a few
+  // evaluations of two functions, then lambda checked on both sides of the
+  // root; else (a third label between) bisection on lambda itself.
+  // The function whose zero the change is: f_before where before wins by
+  // rank inside itself, -f_after likewise, else (a gap, where every f is
+  // positive) f_before - f_after.
+  double lo = t0, hi = t1;
+  const double rb = rank_[index_of(before)], ra = rank_[index_of(after)];
+  const double fb_lo = value(before, at(lo)), fa_hi = value(after, at(hi));
+  const int kind = fb_lo < 0 && rb > ra ? 0 : fa_hi < 0 && ra > rb ? 1 : 2;
+  auto h = [&](double t) {
+    const Vec3 p = at(t);
+    return kind == 0 ? value(before, p) : kind == 1 ? -value(after, p) : value(before, p) - value(after, p);
+  };
+  double hlo = h(lo), hhi = h(hi);
+  if (hlo < 0 && hhi > 0) {
+    int side = 0;
+    for (int it = 0; it < 60 && (hi - lo) * len > 1e-6; ++it) {
+      double t = (lo * hhi - hi * hlo) / (hhi - hlo);
+      if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+      const double ht = h(t);
+      if (ht < 0) {
+        lo = t, hlo = ht;
+        if (side == -1) hhi *= 0.5;
+        side = -1;
+      } else {
+        hi = t, hhi = ht;
+        if (side == 1) hlo *= 0.5;
+        side = 1;
+      }
+    }
+    if (label(at(lo)) == before && label(at(hi)) == after) return 0.5 * (lo + hi);
+  }
+  while ((t1 - t0) * len > 1e-6) {
+    const double t = 0.5 * (t0 + t1);
+    if (label(at(t)) == before) t0 = t;
+    else t1 = t;
+    if (!(t0 < t) && !(t < t1)) break;
+  }
+  return 0.5 * (t0 + t1);
+}
+
+void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& out, double step,
+                            std::size_t max_changes, const std::int32_t* ends) const {
+  out.clear();
+  const Vec3 d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  const Vec3 qa = grid_.continuous_index(a), qb = grid_.continuous_index(b);
+  const Vec3 dq{qb[0] - qa[0], qb[1] - qa[1], qb[2] - qa[2]};
+  double len = 0;  // in voxels of the smallest spacing
+  for (int i = 0; i < 3; ++i) len += d[i] * d[i];
+  len = std::sqrt(len) / min_spacing_;
+  if (!(len > 0) || !std::isfinite(len)) return;
+  // The part of the segment within a voxel of the box of centres: beyond,
+  // lambda is 0 (pure_cube's rule), like the segment's ends there.
+  double t0 = 0, t1 = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double lo = -1, hi = double(grid_.size[i]);
+    if (dq[i] == 0) {
+      if (qa[i] < lo || qa[i] > hi) t1 = -1;
+      continue;
+    }
+    double s0 = (lo - qa[i]) / dq[i], s1 = (hi - qa[i]) / dq[i];
+    if (s0 > s1) std::swap(s0, s1);
+    t0 = std::max(t0, s0), t1 = std::min(t1, s1);
+  }
+  const double dt = step / len;
+  std::int32_t prev = ends ? ends[0] : label(a);
+  double tprev = 0;
+  auto visit = [&](double t, std::int32_t l) {
+    if (l != prev) {
+      const double tc = bisect(a, d, tprev, t, prev, l);
+      out.push_back({tc, prev, l});
+      prev = l;
+    }
+    tprev = t;
+    return max_changes == 0 || out.size() < max_changes;
+  };
+  if (t0 <= t1) {
+    double t = t0;
+    while (t < t1) {
+      const Vec3 q{qa[0] + t * dq[0], qa[1] + t * dq[1], qa[2] + t * dq[2]};
+      std::int32_t l;
+      if (pure_cube(q, l)) {
+        if (!visit(t, l)) return;
+        // To the cube's exit (or the end): lambda is l all along.
+        double exit = t1;
+        for (int i = 0; i < 3; ++i) {
+          if (dq[i] == 0) continue;
+          const double c = std::floor(q[i]);
+          const double s = ((dq[i] > 0 ? c + 1 : c) - qa[i]) / dq[i];
+          if (s > t) exit = std::min(exit, s);
+        }
+        if (!visit(std::min(exit, t1), l)) return;
+        t = std::min(exit, t1) + 1e-12;
+        continue;
+      }
+      if (!visit(t, label({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}))) return;
+      t += dt;
+    }
+  }
+  visit(1, ends ? ends[1] : label(b));
+}
+
+bool LabelFunction::first_change(const Vec3& a, const Vec3& b, Vec3& x, double step) const {
+  std::vector<Change> c;
+  changes(a, b, c, step, 1);
+  if (c.empty()) return false;
+  for (int i = 0; i < 3; ++i) x[i] = a[i] + c[0].t * (b[i] - a[i]);
+  return true;
+}
+
+} // namespace imgmesh

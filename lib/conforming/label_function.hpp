@@ -1,0 +1,92 @@
+// The labelling function of a well-composed label image X (issue 40, route
+// 1): lambda(p) = the label L whose chapter 6 function f_L is smallest at p.
+//
+//   f_L    for a label L != 0: f of the indicator {X = L} (wc2implicit's
+//          construction on the label's box plus the crop margin, clamped as
+//          the meshers clamp it: crop.hpp), negative inside;
+//   f_0    the background's: -f of the union {X != 0}. Where 0 meets a
+//          label L alone, f_U = f_L there and 0|L is f_L^-1(0), implicit2mesh's
+//          surface of L; no pocket of 0 opens between two touching labels
+//          (f_0 is large there, the union's inside).
+//   lambda 0 outside the box of voxel centres (X's outer layer is 0 after
+//          img2wc --labels' growth), else argmin_L f_L (ties: the lower label).
+//
+// At a voxel centre f_L has the sign of {X = L} (f = g there, Thm 6.4.1):
+// only the voxel's own label is negative, so lambda is the voxel's label.
+// The interface between a and b is where lambda changes from a to b.
+//
+// A cube of the lattice of voxel centres whose 4x4x4 voxels around it (the
+// samples f reads there: its corners, and its neighbours' within d <
+// delta/5) all carry one label a is "pure": every f_L is a convex
+// combination of trilinear interpolants of g_L, extended at most d beyond
+// their cells, and g_L is 1-Lipschitz with |g_L| >= delta/2 at the centres,
+// so f_a < 0 < f_L (L != a; f_0 through the union likewise) on the whole
+// cube: lambda is a there. Segment walks skip pure cubes.
+#pragma once
+#include "image/grid.hpp"
+#include "implicit/partition_of_unity.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace imgmesh {
+
+class LabelFunction {
+public:
+  // X well-composed (every label's indicator and the union's: img2wc
+  // --labels' output); max_distance: the mesher's, for the clamp (world
+  // units). Throws Error on a 2D image, an image without labels, or a label
+  // whose indicator the chapter 5 repair would change.
+  LabelFunction(const LabelImage& x, double max_distance, unsigned threads = 1);
+  ~LabelFunction();
+  LabelFunction(LabelFunction&&) noexcept;
+
+  const Geometry& grid() const { return grid_; }
+  // The labels, ascending, 0 first.
+  const std::vector<std::int32_t>& labels() const { return labels_; }
+
+  // lambda at a world point.
+  std::int32_t label(const Vec3& p) const;
+  // f_L at a world point (a label of labels()).
+  double value(std::int32_t label, const Vec3& p) const;
+
+  // A change of lambda along a segment: t in [0, 1] and the labels before
+  // and after it.
+  struct Change {
+    double t = 0;
+    std::int32_t before = 0, after = 0;
+  };
+  // The changes of lambda along [a, b] (world), in order: lambda sampled at
+  // steps of at most `step` voxels (the smallest spacing) inside cubes that
+  // are not pure, each change then bisected to 1e-6 of a voxel. Changes
+  // closer than `step` may be missed: the certificate decides. Stops after
+  // `max_changes` (0: no limit). ends, when given: lambda(a) and lambda(b),
+  // known to the caller.
+  void changes(const Vec3& a, const Vec3& b, std::vector<Change>& out, double step = 0.25,
+               std::size_t max_changes = 0, const std::int32_t* ends = nullptr) const;
+  // The first change from a towards b, when lambda(a) != lambda(b) or some
+  // change was found: its point.
+  bool first_change(const Vec3& a, const Vec3& b, Vec3& x, double step = 0.25) const;
+
+private:
+  struct Function;
+  std::size_t index_of(std::int32_t label) const;
+  bool pure_cube(const Vec3& q, std::int32_t& label) const;
+  double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after) const;
+
+  Geometry grid_;
+  std::vector<std::int32_t> labels_;
+  std::vector<unsigned> rank_;  // per label index: 0 for the background, then fewest voxels highest
+  std::vector<std::unique_ptr<Function>> f_;  // per label (f_U for 0)
+  // Per cube (lower corner voxel (i, j, k), i < size - 1): its label + 1
+  // when pure, else 0.
+  std::vector<std::int32_t> pure_;
+  // Per cube the labels that can be lambda in it (bits: label index % 64),
+  // and per bit its label indices.
+  std::vector<std::uint64_t> cand_;
+  std::vector<std::vector<std::size_t>> bit_labels_;
+  double min_spacing_ = 1;
+};
+
+} // namespace imgmesh

@@ -1,0 +1,108 @@
+// The conforming surface complex (conforming/conforming_surface.hpp),
+// certified by the interface certificate against K(X) on hand-built
+// partitions: every interface meshed once, every label's surface of the
+// right topology, no crossing, every voxel centre on its label's side,
+// triangles within the ratio bound.
+#include "conforming/conforming_surface.hpp"
+#include "conforming/label_function.hpp"
+#include "label_maps.hpp"
+#include "mesh/triangle_quality.hpp"
+#include "surfacenets/interface_certificate.hpp"
+#include "wellcomposed/interface_complex.hpp"
+#include "wellcomposed/well_composed_partition.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace imgmesh;
+using namespace imgmesh::test;
+
+namespace {
+
+InterfaceCertificate mesh_and_certify(const LabelImage& x, ConformingSurface& m, const ConformingOptions& o = {}) {
+  const LabelFunction f(x, 0.3 * std::min({x.spacing[0], x.spacing[1], x.spacing[2]}));
+  const InterfaceComplex k = interface_complex(x);
+  InterfaceCertificateOptions co;
+  co.lattice = false;
+  ConformingOptions oc = o;
+  oc.certificate = [&](const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t,
+                       const std::vector<std::array<std::int32_t, 2>>& l) {
+    return certify_interface_mesh(p, t, l, x, k, co).failing_complex_patches();
+  };
+  m = conforming_surface(f, x, k, oc);
+  return certify_interface_mesh(m.points, m.triangles, m.pairs, x, k, co);
+}
+
+double smallest_angle(const ConformingSurface& m) {
+  SurfaceMesh s;
+  s.points = m.points;
+  s.triangles = m.triangles;
+  return triangle_quality_report(s).smallest_angle();
+}
+
+} // namespace
+
+TEST_CASE("conforming surfaces of hand-built partitions are certified", "[conforming]") {
+  const std::pair<const char*, LabelImage> maps[] = {{"nested shells", nested_shells()},
+                                                     {"three labels", three_labels()},
+                                                     {"four labels around an edge", four_labels_around_an_edge()}};
+  for (const auto& [name, x] : maps) {
+    INFO(name);
+    ConformingSurface m;
+    const InterfaceCertificate c = mesh_and_certify(x, m);
+    INFO(c.summary());
+    INFO(m.to_json().dump());
+    CHECK(!m.max_points_hit);
+    CHECK(c.ok());
+    CHECK(smallest_angle(m) >= std::asin(1 / (2 * 1.2)) * 180 / M_PI - 1e-9);
+  }
+}
+
+namespace {
+
+// A ball split in two by a helicoid: the curve where 1, 2 and the
+// background meet winds twice around the ball.
+LabelImage winding_curve(std::size_t n) {
+  LabelImage x = label_grid(n, n, n);
+  const double c = 0.5 * double(n - 1), r = 0.5 * double(n) - 2;
+  for (std::size_t z = 0; z < n; ++z)
+    for (std::size_t y = 0; y < n; ++y)
+      for (std::size_t i = 0; i < n; ++i) {
+        const double dx = double(i) - c, dy = double(y) - c, dz = double(z) - c;
+        if (dx * dx + dy * dy + dz * dz > r * r) continue;
+        const double a = std::atan2(dy, dx) + 2 * M_PI * dz / r;  // two turns over the height
+        x(i, y, z) = std::sin(a) >= 0 ? 1 : 2;
+      }
+  return make_well_composed_partition(x).image;
+}
+
+// Label 2 a layer one voxel thick between 1 below and 3 above.
+LabelImage thin_layer() {
+  LabelImage x = label_grid(14, 12, 12);
+  paint(x, {2, 2, 2}, {11, 9, 5}, 1);
+  paint(x, {2, 2, 6}, {11, 9, 6}, 2);
+  paint(x, {2, 2, 7}, {11, 9, 9}, 3);
+  return x;
+}
+
+} // namespace
+
+TEST_CASE("a winding triple curve and a one-voxel layer are certified", "[conforming]") {
+  const std::pair<const char*, LabelImage> maps[] = {{"winding curve", winding_curve(20)}, {"thin layer", thin_layer()}};
+  for (const auto& [name, x] : maps) {
+    INFO(name);
+    ConformingSurface m;
+    const InterfaceCertificate c = mesh_and_certify(x, m);
+    INFO(c.summary());
+    INFO(m.to_json().dump());
+    CHECK(c.ok());
+    CHECK(smallest_angle(m) >= std::asin(1 / (2 * 1.2)) * 180 / M_PI - 1e-9);
+    // Every interface of K(X) is meshed, once: its triangles carry its pair.
+    CHECK(c.interfaces.size() == std::size_t(std::count_if(c.interfaces.begin(), c.interfaces.end(), [](const auto& i) {
+            return i.triangles > 0 && !i.complex_patches.empty();
+          })));
+  }
+}
+
