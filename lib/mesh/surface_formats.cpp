@@ -324,11 +324,15 @@ void write_msh(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
       std::array<double, 3> lo, hi;
       lo.fill(std::numeric_limits<double>::infinity());
       hi.fill(-std::numeric_limits<double>::infinity());
-      for (std::size_t v : nodes[std::size_t(c)])
-        for (int a = 0; a < 3; ++a) {
-          lo[std::size_t(a)] = std::min(lo[std::size_t(a)], m.points[v][std::size_t(a)]);
-          hi[std::size_t(a)] = std::max(hi[std::size_t(a)], m.points[v][std::size_t(a)]);
-        }
+      // Over its faces' vertices: a pair's triangles may have every vertex
+      // in another entity's node block (a small patch of a conforming mesh,
+      // all its vertices on curves), which left the box empty (inf).
+      for (std::size_t f : faces[std::size_t(c)])
+        for (int v : m.triangles[f])
+          for (int a = 0; a < 3; ++a) {
+            lo[std::size_t(a)] = std::min(lo[std::size_t(a)], m.points[std::size_t(v)][std::size_t(a)]);
+            hi[std::size_t(a)] = std::max(hi[std::size_t(a)], m.points[std::size_t(v)][std::size_t(a)]);
+          }
       w.i(c + 1);
       point(lo);
       point(hi);

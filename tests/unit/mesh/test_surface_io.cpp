@@ -208,6 +208,32 @@ TEST_CASE("label pairs round-trip through .vtp, .vtk, .ply and .msh, each triang
   }
 }
 
+// A pair whose every vertex lies in another pair's node block (a small
+// patch of a conforming mesh, its vertices all on curves): its $Entities
+// box still holds its triangles (it was empty, written as inf).
+TEST_CASE("a .msh 4.1 entity with no node of its own gets its triangles' box") {
+  SurfaceMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.triangles = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}};
+  m.interfaces = {{2, 0}, {1, 0}, {1, 0}, {1, 0}};  // (2, 0)'s vertices all in (1, 0)'s faces after it
+  for (bool binary : {false, true}) {
+    SurfaceWriteOptions o;
+    o.msh_binary = binary;
+    const std::string path = temp_dir() + "/shared.msh";
+    write_surface(path, m, o);
+    const SurfaceMesh back = read_surface(path);
+    CHECK(labelled_shape(back) == labelled_shape(m));
+    if (binary) continue;
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line) && line != "$Entities") {}
+    std::getline(in, line);  // counts
+    std::getline(in, line);  // entity 1: pair (1, 0) (pairs in increasing order)
+    std::getline(in, line);  // entity 2: pair (2, 0), triangle {0, 2, 1}
+    CHECK(line == "2 0 0 0 1 1 0 1 2 0");
+  }
+}
+
 TEST_CASE("single labels read back from .vtp, .vtk and .msh; a .msh's groups named a|b are pairs") {
   SurfaceMesh m = three_sheets();
   m.interfaces.clear();
