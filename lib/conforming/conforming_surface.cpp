@@ -240,7 +240,6 @@ private:
       topology_.push_back(cand);
       return;
     }
-    ++restricted_;
     cand.x = at(changes_[0].t);
     cand.priority = dist2(cand.x, p0);
     if (radius_edge_ratio(p0, p1, p2) > o_.ratio) {
@@ -517,7 +516,7 @@ private:
   Ch hint_;
   std::size_t points_ = 0;
   std::array<long long, kSteps> inserted_{};
-  long long refused_ = 0, passes_ = 0, restricted_ = 0;
+  long long refused_ = 0, passes_ = 0;
   int rounds_ = 0;
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;

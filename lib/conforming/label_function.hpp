@@ -1,6 +1,5 @@
 // The labelling function of a well-composed label image X (issue 40, route
-// 1): lambda(p) = the label L whose chapter 6 function f_L is smallest at p.
-//
+// 1), from the labels' chapter 6 functions f_L:
 //   f_L    for a label L != 0: f of the indicator {X = L} (wc2implicit's
 //          construction on the label's box plus the crop margin, clamped as
 //          the meshers clamp it: crop.hpp), negative inside;
@@ -9,7 +8,11 @@
 //          surface of L; no pocket of 0 opens between two touching labels
 //          (f_0 is large there, the union's inside).
 //   lambda 0 outside the box of voxel centres (X's outer layer is 0 after
-//          img2wc --labels' growth), else argmin_L f_L (ties: the lower label).
+//          img2wc --labels' growth); else, where some f_L < 0, the one of
+//          highest rank among those (rank: 0 lowest, then from the most
+//          voxels to the fewest, as the partition repair ranks labels: a thin
+//          label keeps its own {f_L < 0}); elsewhere (a gap, every f_L >= 0)
+//          argmin_L f_L (ties: the lower label).
 //
 // At a voxel centre f_L has the sign of {X = L} (f = g there, Thm 6.4.1):
 // only the voxel's own label is negative, so lambda is the voxel's label.
@@ -42,10 +45,6 @@ public:
   ~LabelFunction();
   LabelFunction(LabelFunction&&) noexcept;
 
-  const Geometry& grid() const { return grid_; }
-  // The labels, ascending, 0 first.
-  const std::vector<std::int32_t>& labels() const { return labels_; }
-
   // lambda at a world point.
   std::int32_t label(const Vec3& p) const;
   // f_L at a world point (a label of labels()).
@@ -76,7 +75,7 @@ private:
   double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after) const;
 
   Geometry grid_;
-  std::vector<std::int32_t> labels_;
+  std::vector<std::int32_t> labels_;  // ascending, 0 first
   std::vector<unsigned> rank_;  // per label index: 0 for the background, then fewest voxels highest
   std::vector<std::unique_ptr<Function>> f_;  // per label (f_U for 0)
   // Per cube (lower corner voxel (i, j, k), i < size - 1): its label + 1
