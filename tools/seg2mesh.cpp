@@ -56,15 +56,16 @@ const char* const kNotConforming[] = {"--jobs", "--mode", "--roughness", "--fall
 
 int run_fast(cli::Tool& tool, const std::string& in, const std::string& out, LabelSurfaceNetsOptions& opt,
              const SurfaceWriteOptions& write_opt, const SurfaceOptions& mesher) {
-  if (opt.conforming) {
-    for (const char* name : kNotConforming)
+  auto refuse = [&](const auto& names, const std::string& why) {
+    for (const char* name : names)
       if (const CLI::Option* o = tool.app.get_option_no_throw(name); o && o->count())
-        throw UsageError(std::string(name) + ": --conforming does not take it");
+        throw UsageError(std::string(name) + why);
+  };
+  if (opt.conforming) {
+    refuse(kNotConforming, ": --conforming does not take it");
     mesher.check();
   } else {
-    for (const char* name : kDelaunayOnly)
-      if (const CLI::Option* o = tool.app.get_option_no_throw(name); o && o->count())
-        throw UsageError(std::string(name) + " is the Delaunay mesher's: --fast does not take it");
+    refuse(kDelaunayOnly, " is the Delaunay mesher's: --fast does not take it");
   }
   if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
   tool.report_progress("reading " + in);

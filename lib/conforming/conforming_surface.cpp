@@ -88,6 +88,7 @@ public:
     std::size_t before = std::max<std::size_t>(16, k_.patches.size() / 100) * 2;
     for (int round = 0; o_.certificate && round < o_.certificate_rounds && !max_hit_; ++round) {
       const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
+      out.certified_as_is = true;
       if (bad.empty() || bad.size() > before / 2 || !refine_patches(bad)) break;
       before = bad.size();
       ++rounds_;

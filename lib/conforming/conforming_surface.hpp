@@ -76,6 +76,9 @@ struct ConformingSurface {
   long long refused = 0;       // candidates within 1e-6 voxel of a vertex
   long long passes = 0;
   int certificate_rounds = 0;  // rounds that refined where the certificate failed
+  // This very mesh was the certificate callback's last input (the caller
+  // may keep that certificate rather than run it again).
+  bool certified_as_is = false;
   bool max_points_hit = false;
   Json to_json() const;
 };

@@ -109,31 +109,30 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   InterfaceCertificateOptions co;
   co.threads = std::max(1u, opt.threads);
   if (opt.conforming) {
+    ConformingOptions o = opt.conforming_options;
+    if (!(o.max_distance > 0)) o.max_distance = 0.3 * std::min({wc.spacing[0], wc.spacing[1], wc.spacing[2]});
     t0 = Clock::now();
     say("labelling function");
-    const LabelFunction lambda(wc, opt.conforming_options.max_distance > 0
-                                       ? opt.conforming_options.max_distance
-                                       : 0.3 * std::min({wc.spacing[0], wc.spacing[1], wc.spacing[2]}),
-                               std::max(1u, opt.threads));
+    const LabelFunction lambda(wc, o.max_distance, std::max(1u, opt.threads));
     res.seconds.push_back({"function", since(t0)});
     t0 = Clock::now();
     say("conforming surface");
-    ConformingOptions o = opt.conforming_options;
     o.progress = opt.progress;
+    co.lattice = false;  // not a surface-nets mesh
+    InterfaceCertificate last;
     o.certificate = [&](const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t,
                         const std::vector<std::array<std::int32_t, 2>>& l) {
-      InterfaceCertificateOptions c = co;
-      c.lattice = false;
-      return certify_interface_mesh(p, t, l, wc, k, c).failing_complex_patches();
+      last = certify_interface_mesh(p, t, l, wc, k, co);
+      return last.failing_complex_patches();
     };
     ConformingSurface c = conforming_surface(lambda, wc, k, o);
     res.conforming = c.to_json();
     points = std::move(c.points), triangles = std::move(c.triangles), pairs = std::move(c.pairs);
     res.seconds.push_back({"mesh", since(t0)});
-    co.lattice = false;
     t0 = Clock::now();
     say("certificate");
-    res.certificate = certify_interface_mesh(points, triangles, pairs, wc, k, co);
+    // The last round certified this very mesh already: its certificate is kept.
+    res.certificate = c.certified_as_is ? std::move(last) : certify_interface_mesh(points, triangles, pairs, wc, k, co);
   } else {
     t0 = Clock::now();
     say("surface nets");
