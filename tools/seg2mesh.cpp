@@ -23,27 +23,6 @@
 using namespace imgmesh;
 
 namespace {
-// "all" or "1,2,5".
-std::vector<long long> parse_labels(const std::string& text) {
-  std::vector<long long> out;
-  if (text == "all") return out;
-  std::istringstream in(text);
-  for (std::string item; std::getline(in, item, ',');) {
-    std::size_t used = 0;
-    long long v = 0;
-    try {
-      v = std::stoll(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size())
-      throw UsageError("--labels " + text + ": 'all' or a comma-separated list of integers expected");
-    out.push_back(v);
-  }
-  if (out.empty()) throw UsageError("--labels: no label given");
-  return out;
-}
-
 // The options of the Delaunay mesher, which --fast does not run.
 // (--voxel-sides is one option with --no-voxel-sides.)
 const char* const kDelaunayOnly[] = {"--jobs",          "--mode",        "--ratio",      "--roughness", "--max-distance",
@@ -163,12 +142,12 @@ int main(int argc, char** argv) {
     if (separate->count() && !fast->count() && !conforming->count())
       throw UsageError("--separate needs --fast or --conforming");
     if (fast->count() || conforming->count()) {
-      fast_opt.labels = parse_labels(labels_text);
+      fast_opt.labels = parse_label_list(labels_text);
       fast_opt.threads = std::max(1u, std::thread::hardware_concurrency());  // the same mesh whatever the count
       return run_fast(tool, in, out, fast_opt, write_opt, surface_options);
     }
     warn_normals_ignored(tool, opt.normals, out);
-    opt.labels = parse_labels(labels_text);
+    opt.labels = parse_label_list(labels_text);
     surface_options.check();
     opt.threads = opt.jobs;
     if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };

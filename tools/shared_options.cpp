@@ -3,6 +3,8 @@
 #include "util/error.hpp"
 #include "util/path.hpp"
 
+#include <exception>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -56,6 +58,26 @@ std::string planar_output_extension(const std::string& out) {
 
 void check_svg_path(const std::string& svg) {
   if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
+}
+
+std::vector<long long> parse_label_list(const std::string& text) {
+  std::vector<long long> out;
+  if (text == "all") return out;
+  std::istringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) {
+    std::size_t used = 0;
+    long long v = 0;
+    try {
+      v = std::stoll(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size())
+      throw UsageError("--labels " + text + ": 'all' or a comma-separated list of integers expected");
+    out.push_back(v);
+  }
+  if (out.empty()) throw UsageError("--labels: no label given");
+  return out;
 }
 
 } // namespace imgmesh

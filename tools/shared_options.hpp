@@ -7,6 +7,7 @@
 #include "wellcomposed/well_composed.hpp"
 
 #include <string>
+#include <vector>
 
 namespace imgmesh {
 
@@ -19,6 +20,10 @@ CLI::Option* add_msh_version_option(cli::Tool& tool, std::string& version, const
 // .vtk"); .msh ASCII unless --msh-binary. The two exclude each other.
 CLI::Option* add_ascii_option(cli::Tool& tool, bool& ascii, const std::string& binary_formats);
 void add_encoding_options(cli::Tool& tool, bool& ascii, bool& msh_binary, const std::string& binary_formats);
+
+// --labels: "all" (empty: every nonzero value) or a comma-separated list
+// of integers ("1,2,5"); UsageError otherwise (seg2mesh, seg2tet).
+std::vector<long long> parse_label_list(const std::string& text);
 
 // --mode: img2wc's repair, add, remove or min; its default is mode's value.
 void add_repair_mode_option(cli::Tool& tool, RepairMode& mode, const std::string& description);

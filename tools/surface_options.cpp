@@ -5,30 +5,34 @@
 
 namespace imgmesh {
 
-SurfaceOptions::SurfaceOptions(cli::Tool& tool, const std::string& what) {
+SurfaceOptions::SurfaceOptions(cli::Tool& tool, const std::string& what, bool roughness_and_fallbacks) {
   tool.app.add_option("--ratio", bounds_.ratio,
                       "Radius-edge ratio bound rho_0 of every " + what +
                           " (>= (1+k)^2 = 1.1236); 1.2 gives a smallest angle of 24.6 degrees, 2 (the thesis's) 14.5")
       ->type_name("R")
       ->capture_default_str();
-  tool.app.add_option("--roughness", bounds_.roughness,
-                      "Roughness bound g in degrees (radians as pi/3 or 1.05rad): largest angle between the normals "
-                      "of two " + what + "s sharing an edge (>= 14.8 degrees); 120 and 90 leave one-voxel features of "
-                      "noisy labels unresolved, 60 (the thesis's) resolves each")
-      ->type_name("G")
-      ->capture_default_str();
+  if (roughness_and_fallbacks) {
+    tool.app.add_option("--roughness", bounds_.roughness,
+                        "Roughness bound g in degrees (radians as pi/3 or 1.05rad): largest angle between the normals "
+                        "of two " + what + "s sharing an edge (>= 14.8 degrees); 120 and 90 leave one-voxel features "
+                        "of noisy labels unresolved, 60 (the thesis's) resolves each")
+        ->type_name("G")
+        ->capture_default_str();
+  }
   tool.app.add_option("--max-distance", bounds_.max_distance,
                       "Refine while a " + what + "'s surface Delaunay ball centre (a point of the surface) is farther "
                       "than E (world units) from the " + what + "'s plane, or |f| at its centroid is more than 2E; 0: off")
       ->type_name("E")
       ->capture_default_str();
-  tool.app.add_option("--fallback-rounds", bounds_.fallback_rounds,
-                      "Where the final certificate finds a component with the wrong topology (TOPOLOGY should "
-                      "leave none), at most this many rounds of HandleDetection and then denser sampling there; "
-                      "if it still differs, the mesh is written and the exit status is 3, naming the component")
-      ->type_name("N")
-      ->check(CLI::NonNegativeNumber.description(""))
-      ->capture_default_str();
+  if (roughness_and_fallbacks) {
+    tool.app.add_option("--fallback-rounds", bounds_.fallback_rounds,
+                        "Where the final certificate finds a component with the wrong topology (TOPOLOGY should "
+                        "leave none), at most this many rounds of HandleDetection and then denser sampling there; "
+                        "if it still differs, the mesh is written and the exit status is 3, naming the component")
+        ->type_name("N")
+        ->check(CLI::NonNegativeNumber.description(""))
+        ->capture_default_str();
+  }
   tool.app.add_flag("--voxel-sides,!--no-voxel-sides", bounds_.voxel_sides,
                     "Refine until every voxel centre next to the voxel boundary lies on its own side of the "
                     "surface (foreground inside, background outside), a point of the surface near it inserted "

@@ -17,7 +17,9 @@ public:
   // --voxel-sides / --no-voxel-sides and --max-points, described for
   // `what`, e.g. "triangle" or "boundary triangle". The options hold on to
   // this object: it must not move.
-  explicit SurfaceOptions(cli::Tool& tool, const std::string& what = "triangle");
+  // roughness_and_fallbacks false: --roughness and --fallback-rounds left
+  // out (the label partition's mesher, seg2tet, runs neither).
+  explicit SurfaceOptions(cli::Tool& tool, const std::string& what = "triangle", bool roughness_and_fallbacks = true);
   SurfaceOptions(const SurfaceOptions&) = delete;
   SurfaceOptions& operator=(const SurfaceOptions&) = delete;
 

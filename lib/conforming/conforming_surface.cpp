@@ -1,5 +1,6 @@
 #include "conforming/conforming_surface.hpp"
 
+#include "mesh/tet_mesh.hpp"
 #include "util/error.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -34,8 +35,9 @@ using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;
 using Vh = Tr::Vertex_handle;
 using Ch = Tr::Cell_handle;
 
-enum Step { kSeed, kVorEdge, kTopoDisk, kQuality, kDistance, kVoxelSide, kCertificate, kSteps };
-const char* const kStepName[kSteps] = {"seed", "vor_edge", "topo_disk", "quality", "max_distance", "voxel_side", "certificate"};
+enum Step { kSeed, kVorEdge, kTopoDisk, kQuality, kDistance, kVoxelSide, kCertificate, kCell, kCellFacet, kOffSurface, kSteps };
+const char* const kStepName[kSteps] = {"seed",        "vor_edge", "topo_disk",  "quality",    "max_distance",
+                                       "voxel_side",  "certificate", "cell",     "cell_facet", "off_surface"};
 
 inline Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
 inline Point pt(const Vec3& v) { return Point(v[0], v[1], v[2]); }
@@ -79,6 +81,25 @@ public:
     bounding_box();
     seeds();
     refine();
+    ConformingSurface out = certified_rounds();
+    if (o_.tets.on) {
+      // The cells, then the certificate's rounds again if they changed the
+      // surface, and the cells again if those rounds inserted.
+      for (int again = 0; again < 3 && !max_hit_; ++again) {
+        const std::size_t before = points_;
+        refine_cells();
+        if (points_ == before) break;
+        const int r = rounds_;
+        out = certified_rounds();
+        if (rounds_ == r) break;
+      }
+      tets_output(out);
+    }
+    return out;
+  }
+
+private:
+  ConformingSurface certified_rounds() {
     ConformingSurface out = output();
     // Rounds repair a patch sampled too coarsely, not a labelling that
     // disagrees with K(X) (a noisy map: patches one voxel wide pinched off),
@@ -98,7 +119,6 @@ public:
     return out;
   }
 
-private:
   std::int32_t label(Ch c) {
     if (tr_.is_infinite(c)) return 0;
     known(c);
@@ -151,6 +171,7 @@ private:
     }
     Vh v = tr_.insert(pt(p), lt, c, li, lj);
     v->info() = int(points_++);
+    on_surface_.push_back(step != kCell);
     new_vertices_.push_back(v);
     hint_ = v->cell();
     ++inserted_[step];
@@ -243,6 +264,14 @@ private:
     }
     cand.x = at(changes_[0].t);
     cand.priority = dist2(cand.x, p0);
+    // A vertex off the interfaces (a cell's circumcentre, seg2tet): the
+    // facet's surface centre goes in, so every surface vertex lies on one.
+    if (!on_surface_[std::size_t(v[0]->info())] || !on_surface_[std::size_t(v[1]->info())] ||
+        !on_surface_[std::size_t(v[2]->info())]) {
+      cand.step = kOffSurface;
+      quality_.push_back(cand);
+      return;
+    }
     if (radius_edge_ratio(p0, p1, p2) > o_.ratio) {
       cand.step = kQuality;
       quality_.push_back(cand);
@@ -475,6 +504,183 @@ private:
   }
   bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
 
+  // How far a labelled cell is beyond R and S (0: within); slivers (only a
+  // small dihedral angle, none under 1e-3 voxel) below every other bad cell.
+  double badness(Ch c, bool& sliver) {
+    sliver = false;
+    std::array<Vec3, 4> p;
+    for (int i = 0; i < 4; ++i) p[std::size_t(i)] = vec(c->vertex(i)->point());
+    const double r2 = dist2(centre(c), p[0]);
+    double lmin2 = INFINITY;
+    for (std::size_t i = 0; i < 4; ++i)
+      for (std::size_t j = i + 1; j < 4; ++j) lmin2 = std::min(lmin2, dist2(p[i], p[j]));
+    const double ratio = std::sqrt(r2 / lmin2), size = std::sqrt(r2);
+    const ConformingTetOptions& t = o_.tets;
+    double bad = 0;
+    if (ratio > t.cell_ratio) bad = 1 + ratio / t.cell_ratio;
+    if (t.cell_size > 0 && size > t.cell_size) bad = std::max(bad, 1 + size / t.cell_size);
+    if (bad == 0 && t.sliver_angle > 0 && size >= 1e-3 * voxel_) {
+      const auto cosines = tet_dihedral_cosines(p[0], p[1], p[2], p[3]);
+      const double top = *std::max_element(cosines.begin(), cosines.end());
+      if (top > std::cos(t.sliver_angle * M_PI / 180) - 1e-9) {
+        const double lo = dihedral_degrees(top);
+        if (lo < t.sliver_angle) {
+          bad = 1 - lo / t.sliver_angle;
+          sliver = true;
+        }
+      }
+    }
+    return bad;
+  }
+
+  struct BadCell {
+    double bad;
+    Ch c;
+    std::array<Vh, 4> v;
+    bool sliver;
+  };
+  bool alive(const BadCell& e) const {
+    if (!tr_.tds().cells().is_used(e.c)) return false;
+    for (int i = 0; i < 4; ++i)
+      if (e.c->vertex(i) != e.v[std::size_t(i)]) return false;
+    return true;
+  }
+
+  // Rounds of cell refinement (tets.on), REFINE after each: the bad
+  // labelled cells, worst first, each its circumcentre c or, when c lies in
+  // the surface Delaunay ball of a restricted facet (such a ball lies in
+  // the circumballs of the facet's cells, so the facet is one of c's
+  // conflict zone), that facet's surface centre: the surface is refined,
+  // never crossed.
+  void refine_cells() {
+    const ConformingTetOptions& t = o_.tets;
+    const double floor2 = 1e-6 * voxel_ * voxel_;
+    std::vector<BadCell> bad;
+    for (;;) {
+      bad.clear();
+      for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c) {
+        if (label(c) == 0) continue;
+        bool sliver;
+        const double b = badness(c, sliver);
+        if (b > 0) bad.push_back({b, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, sliver});
+      }
+      if (bad.empty()) return;
+      if (cell_rounds_ >= t.max_rounds) {
+        cell_rounds_exhausted_ = true;
+        return;
+      }
+      ++cell_rounds_;
+      std::stable_sort(bad.begin(), bad.end(), [](const BadCell& a, const BadCell& b) { return a.bad > b.bad; });
+      bool any = false;
+      for (const BadCell& e : bad) {
+        if (cell_points_ >= t.max_cell_points) {
+          cell_points_exhausted_ = true;
+          break;
+        }
+        if (max_hit_) break;
+        if (!alive(e)) continue;
+        const Vec3 cc = centre(e.c);
+        Tr::Locate_type lt;
+        int li, lj;
+        const Ch at = tr_.locate(pt(cc), lt, li, lj, e.c);
+        if (lt == Tr::VERTEX) continue;
+        zone_.clear();
+        tr_.find_conflicts(pt(cc), at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+        double worst = 0;
+        Vec3 wx{0, 0, 0};
+        for (Ch z : zone_)
+          for (int i = 0; i < 4; ++i) {
+            if (label(z) == label(z->neighbor(i))) continue;
+            Vec3 x;
+            if (!surface_centre(z, i, x)) continue;
+            const double r2 = dist2(x, vec(z->vertex((i + 1) & 3)->point()));
+            if (r2 > worst && dist2(cc, x) < r2) worst = r2, wx = x;
+          }
+        bool ok;
+        if (worst > 0) ok = worst >= floor2 && insert(wx, kCellFacet);
+        else {
+          ok = insert(cc, kCell);
+          sliver_points_ += ok && e.sliver;
+        }
+        if (ok) {
+          any = true;
+          ++cell_points_;
+        }
+      }
+      if (!any || max_hit_ || cell_points_exhausted_) return;
+      refine();
+    }
+  }
+
+  // The labelled cells and the interfaces (tets.on), and every voxel
+  // centre located: those in a cell of another label.
+  void tets_output(ConformingSurface& out) {
+    std::unordered_map<int, int> id;
+    TetMesh& m = out.tets;
+    auto index = [&](Vh v) {
+      auto [it, added] = id.try_emplace(v->info(), int(m.points.size()));
+      if (added) m.points.push_back(vec(v->point()));
+      return it->second;
+    };
+    std::vector<std::pair<std::int32_t, Ch>> cells;
+    for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c)
+      if (label(c) != 0) cells.emplace_back(label(c), c);
+    std::stable_sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [l, c] : cells) {  // CGAL's cells are positively oriented
+      m.tets.push_back({index(c->vertex(0)), index(c->vertex(1)), index(c->vertex(2)), index(c->vertex(3))});
+      m.tet_region.push_back(int(l));
+    }
+    const auto orient = GT().orientation_3_object();
+    std::vector<std::pair<std::int32_t, std::array<int, 3>>> faces;
+    for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
+      const Ch c = f->first, n = c->neighbor(f->second);
+      if (label(c) == label(n)) continue;
+      // Once, of the higher label (never 0), oriented out of it: the normal
+      // points away from its vertex opposite the facet.
+      const Ch side = label(c) > label(n) ? c : n;
+      const int i = side == c ? f->second : n->index(c);
+      std::array<Vh, 3> v{side->vertex((i + 1) & 3), side->vertex((i + 2) & 3), side->vertex((i + 3) & 3)};
+      if (orient(v[0]->point(), v[1]->point(), v[2]->point(), side->vertex(i)->point()) == CGAL::POSITIVE)
+        std::swap(v[1], v[2]);
+      faces.push_back({label(side), {index(v[0]), index(v[1]), index(v[2])}});
+    }
+    std::stable_sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& [l, t] : faces) {
+      m.triangles.push_back(t);
+      m.triangle_region.push_back(int(l));
+    }
+    out.cell_rounds = cell_rounds_;
+    out.cell_rounds_exhausted = cell_rounds_exhausted_;
+    out.cell_points_exhausted = cell_points_exhausted_;
+    out.sliver_points = sliver_points_;
+    out.max_points_hit = max_hit_;
+    std::copy(inserted_.begin(), inserted_.end(), out.inserted.begin());
+    // Every voxel centre: in a cell of its voxel's label (on a facet, edge
+    // or vertex of the triangulation: every cell there).
+    Ch hint = hint_;
+    for (std::size_t k = 0; k < x_.size[2]; ++k)
+      for (std::size_t j = 0; j < x_.size[1]; ++j)
+        for (std::size_t i = 0; i < x_.size[0]; ++i) {
+          const std::int32_t own = voxel_label(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k));
+          Tr::Locate_type lt;
+          int li, lj;
+          const Ch c = tr_.locate(pt(voxel_centre(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k))), lt, li, lj, hint);
+          hint = c;
+          bool wrong = label(c) != own;
+          if (lt == Tr::FACET) wrong = wrong || label(c->neighbor(li)) != own;
+          else if (lt == Tr::EDGE) {
+            auto circ = tr_.incident_cells(c, li, lj), end = circ;
+            do wrong = wrong || label(circ) != own; while (++circ != end);
+          } else if (lt == Tr::VERTEX) {
+            cells_.clear();
+            tr_.incident_cells(c->vertex(li), std::back_inserter(cells_));
+            for (Ch n : cells_) wrong = wrong || label(n) != own;
+          }
+          ++out.centres_checked;
+          out.centres_wrong += wrong;
+        }
+  }
+
   ConformingSurface output() {
     ConformingSurface out;
     std::unordered_map<int, int> id;
@@ -527,6 +733,11 @@ private:
   std::vector<std::array<int, 2>> link_;
   std::vector<LabelFunction::Change> changes_;
   std::vector<Candidate> topology_, quality_, sides_;
+  std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
+  std::vector<Ch> zone_;
+  long long cell_points_ = 0, sliver_points_ = 0;
+  int cell_rounds_ = 0;
+  bool cell_rounds_exhausted_ = false, cell_points_exhausted_ = false;
 };
 
 } // namespace conforming_detail
@@ -542,6 +753,14 @@ Json ConformingSurface::to_json() const {
   j["passes"] = passes;
   j["certificate_rounds"] = certificate_rounds;
   j["max_points_hit"] = max_points_hit;
+  if (!tets.tets.empty()) {
+    j["cell_rounds"] = cell_rounds;
+    j["cell_rounds_exhausted"] = cell_rounds_exhausted;
+    j["cell_points_exhausted"] = cell_points_exhausted;
+    j["sliver_points"] = sliver_points;
+    j["voxel_centres_checked"] = centres_checked;
+    j["voxel_centres_wrong"] = centres_wrong;
+  }
   return j;
 }
 

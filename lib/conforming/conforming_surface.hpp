@@ -29,13 +29,27 @@
 //              the K(X) patches it names gets its surface centre, and REFINE
 //              again (a patch sampled too coarsely shows as split, merged or
 //              pinched).
+//   cells      (tets.on, seg2tet) rounds until one inserts nothing: every
+//              cell of a label but 0 whose radius-edge ratio exceeds R (or
+//              circumradius S, or, after those, a dihedral angle under the
+//              sliver bound) gets its circumcentre, unless that lies in the
+//              surface Delaunay ball of a restricted facet (the facets of
+//              its conflict zone): then that facet's surface centre
+//              (Oudot-Rineau-Yvinec's rule, implicit2tet's); REFINE after
+//              each round, where a restricted facet with a vertex off the
+//              interfaces (a cell's circumcentre) gets its surface centre;
+//              then every voxel centre located (its cell's label).
 //   output     every restricted facet once, with (behind, front) = (higher,
-//              lower label), oriented out of behind (K(X)'s convention).
+//              lower label), oriented out of behind (K(X)'s convention);
+//              tets.on: the cells of every label but 0, region = label,
+//              and every restricted facet once as a triangle of the
+//              higher label (region = behind), oriented out of it.
 // The Delaunay triangulation embeds the complex: no two triangles cross.
 // What the mesh is, against K(X), is the interface certificate's to say
 // (surfacenets/interface_certificate.hpp); this file certifies nothing.
 #pragma once
 #include "conforming/label_function.hpp"
+#include "mesh/tet_mesh.hpp"
 #include "util/json.hpp"
 #include "wellcomposed/interface_complex.hpp"
 
@@ -46,6 +60,16 @@
 #include <vector>
 
 namespace imgmesh {
+
+// Tetrahedra of every label (seg2tet), implicit2tet's bounds.
+struct ConformingTetOptions {
+  bool on = false;
+  double cell_ratio = 2;      // R: radius-edge ratio bound of every labelled tetrahedron
+  double cell_size = 0;       // S: circumradius bound (world); 0: none
+  double sliver_angle = 10;   // degrees: smaller dihedral angles refined after R and S (best effort); 0: off
+  long long max_cell_points = 1000000;
+  int max_rounds = 100;
+};
 
 struct ConformingOptions {
   double ratio = 1.2;         // rho_0: angles >= asin(1 / (2 rho_0)) = 24.6 degrees
@@ -64,6 +88,7 @@ struct ConformingOptions {
                                          const std::vector<std::array<std::int32_t, 2>>& pairs)>
       certificate;
   int certificate_rounds = 8;
+  ConformingTetOptions tets;
   std::function<void(const std::string&)> progress;
 };
 
@@ -71,8 +96,10 @@ struct ConformingSurface {
   std::vector<Vec3> points;                         // world
   std::vector<std::array<int, 3>> triangles;        // oriented out of pairs[t][0]
   std::vector<std::array<std::int32_t, 2>> pairs;   // (behind, front), behind > front
-  // Points inserted per step: seed, vor_edge, topo_disk, quality, distance, voxel_side, certificate.
-  std::array<long long, 7> inserted{};
+  // Points inserted per step: seed, vor_edge, topo_disk, quality, distance,
+  // voxel_side, certificate, cell, cell_facet (an encroached facet's
+  // surface centre), off_surface.
+  std::array<long long, 10> inserted{};
   long long refused = 0;       // candidates within 1e-6 voxel of a vertex
   long long passes = 0;
   int certificate_rounds = 0;  // rounds that refined where the certificate failed
@@ -80,6 +107,14 @@ struct ConformingSurface {
   // may keep that certificate rather than run it again).
   bool certified_as_is = false;
   bool max_points_hit = false;
+  // tets.on: the tetrahedra (TetMesh: region = label; the interfaces, each
+  // once, with the higher label), the rounds, and every voxel centre
+  // located in the triangulation: those in a cell of another label.
+  TetMesh tets;
+  int cell_rounds = 0;
+  bool cell_rounds_exhausted = false, cell_points_exhausted = false;
+  long long sliver_points = 0;
+  std::size_t centres_checked = 0, centres_wrong = 0;
   Json to_json() const;
 };
 

@@ -168,19 +168,36 @@ std::int32_t LabelFunction::label(const Vec3& p) const {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
     c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
   }
-  std::size_t best = 0, inside = labels_.size();
-  double fbest = std::numeric_limits<double>::infinity();
+  // The candidates in decreasing rank: the first negative one is lambda
+  // (the rank rule), so the lower ones need no evaluation; when none is
+  // negative, argmin over all of them (ties: the lower label).
+  std::size_t cand[64], n = 0;
+  std::vector<std::size_t> more;  // past 64 candidates (maps of more than 64 labels)
   for (std::uint64_t m = cand_[grid_.index(c[0], c[1], c[2])]; m; m &= m - 1)
     for (const std::size_t k : bit_labels_[std::size_t(__builtin_ctzll(m))]) {
       const Function& fn = *f_[k];
       if (fn.sign > 0 && (q[0] < fn.lo[0] || q[0] > fn.hi[0] || q[1] < fn.lo[1] || q[1] > fn.hi[1] ||
                           q[2] < fn.lo[2] || q[2] > fn.hi[2]))
         continue;  // beyond the crop: f_L >= its clamp > 0
-      const double v = fn.sign * fn.f.value(p);
-      if (v < 0 && (inside == labels_.size() || rank_[k] > rank_[inside])) inside = k;
-      if (v < fbest || (v == fbest && k < best)) fbest = v, best = k;
+      if (n < 64) cand[n++] = k;
+      else more.push_back(k);
     }
-  return labels_[inside < labels_.size() ? inside : best];
+  std::size_t* first = cand;
+  std::size_t* last = cand + n;
+  if (!more.empty()) {
+    more.insert(more.begin(), cand, cand + n);
+    first = more.data(), last = more.data() + more.size();
+  }
+  std::sort(first, last, [&](std::size_t a, std::size_t b) { return rank_[a] > rank_[b]; });
+  std::size_t best = 0;
+  double fbest = std::numeric_limits<double>::infinity();
+  for (const std::size_t* it = first; it != last; ++it) {
+    const Function& fn = *f_[*it];
+    const double v = fn.sign * fn.f.value(p);
+    if (v < 0) return labels_[*it];
+    if (v < fbest || (v == fbest && *it < best)) fbest = v, best = *it;
+  }
+  return labels_[best];
 }
 
 bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {

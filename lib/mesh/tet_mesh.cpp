@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <set>
+#include <string>
 
 namespace imgmesh {
 
@@ -215,6 +218,42 @@ std::vector<std::array<int, 3>> tet_boundary(const TetMesh& m, int region) {
   });
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::string boundary_mismatch(const TetMesh& m) {
+  // A triangle up to rotation (its smallest vertex first, the cycle kept),
+  // and as a set of vertices.
+  auto oriented = [](std::array<int, 3> t) {
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    return t;
+  };
+  auto sorted = [](std::array<int, 3> t) {
+    std::sort(t.begin(), t.end());
+    return t;
+  };
+  auto region = [](const std::vector<int>& r, std::size_t k) { return k < r.size() ? r[k] : 1; };
+  std::set<int> regions;
+  for (std::size_t t = 0; t < m.tets.size(); ++t) regions.insert(region(m.tet_region, t));
+  // Every region's boundary faces, oriented out of it, and all of them as sets.
+  std::set<std::pair<int, std::array<int, 3>>> out_of;
+  std::set<std::array<int, 3>> faces;
+  for (const int r : regions)
+    for (const auto& f : tet_boundary(m, r)) {
+      out_of.insert({r, oriented(f)});
+      faces.insert(sorted(f));
+    }
+  std::set<std::array<int, 3>> stated;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const int r = region(m.triangle_region, t);
+    if (!out_of.count({r, oriented(m.triangles[t])}))
+      return "triangle " + std::to_string(t) + " (region " + std::to_string(r) +
+             ") is not a face of region " + std::to_string(r) + "'s boundary oriented out of it";
+    if (!stated.insert(sorted(m.triangles[t])).second)
+      return "triangle " + std::to_string(t) + " (region " + std::to_string(r) + ") states a boundary face twice";
+  }
+  if (stated.size() != faces.size())
+    return std::to_string(faces.size() - stated.size()) + " face(s) of the regions' boundaries not among the triangles";
+  return "";
 }
 
 } // namespace imgmesh

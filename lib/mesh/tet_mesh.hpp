@@ -69,4 +69,12 @@ TetConformity tet_conformity(const TetMesh& mesh);
 // any region), oriented outward from it, in a deterministic order.
 std::vector<std::array<int, 3>> tet_boundary(const TetMesh& mesh, int region = 0);
 
+// The boundary the mesh states (its triangles, each with the region it
+// bounds) against its tetrahedra's: every face on a region's boundary (a
+// face of one of its tetrahedra with none of it across) stated exactly
+// once, as a triangle of a region it bounds, oriented out of that region
+// (an interface between two regions once, on either side). "" when so,
+// else what differs first.
+std::string boundary_mismatch(const TetMesh& mesh);
+
 } // namespace imgmesh

@@ -127,6 +127,17 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
     };
     ConformingSurface c = conforming_surface(lambda, wc, k, o);
     res.conforming = c.to_json();
+    if (o.tets.on) {
+      res.tetrahedra = true;
+      res.tets = std::move(c.tets);
+      res.cell_ratio = o.tets.cell_ratio;
+      res.cell_refinement_stopped = c.cell_rounds_exhausted || c.cell_points_exhausted || c.max_points_hit;
+      res.centres_checked = c.centres_checked;
+      res.centres_wrong = c.centres_wrong;
+      res.tet_conformity = tet_conformity(res.tets);
+      res.tet_quality = tet_quality(res.tets);
+      res.tet_boundary_mismatch = boundary_mismatch(res.tets);
+    }
     points = std::move(c.points), triangles = std::move(c.triangles), pairs = std::move(c.pairs);
     res.seconds.push_back({"mesh", since(t0)});
     t0 = Clock::now();
@@ -232,6 +243,18 @@ Json LabelSurfaceNetsResult::to_json() const {
   cert["interfaces"] = certificate.interfaces.size();
   cert["intersecting_pairs"] = certificate.intersections.pairs - certificate.intersections.degenerate;
   st["certificate"] = cert;
+  if (tetrahedra) {
+    Json t = Json::object();
+    t["tetrahedra"] = tets.tets.size();
+    t["vertices"] = tets.points.size();
+    t["quality"] = tet_quality.to_json();
+    t["conformity"] = tet_conformity.to_json();
+    t["boundaries_match"] = tet_boundary_mismatch.empty();
+    t["voxel_centres_checked"] = centres_checked;
+    t["voxel_centres_wrong"] = centres_wrong;
+    st["tetrahedra"] = t;
+    st["all_certified"] = all && failed_guarantee().empty();
+  }
   return st;
 }
 
@@ -242,6 +265,23 @@ std::vector<const InterfaceCertificate::Label*> LabelSurfaceNetsResult::meshed_l
   return out;
 }
 
-std::string LabelSurfaceNetsResult::failed_guarantee() const { return certificate.failure(); }
+std::string LabelSurfaceNetsResult::failed_guarantee() const {
+  if (std::string why = certificate.failure(); !why.empty() || !tetrahedra) return why;
+  if (!tet_conformity.ok()) {
+    const TetConformity& c = tet_conformity;
+    return "tetrahedra: not conforming (" + std::to_string(c.nonpositive) + " not positively oriented, " +
+           std::to_string(c.duplicates) + " duplicated, " + std::to_string(c.overfull_faces) +
+           " faces in three or more, " + std::to_string(c.inconsistent_faces) + " faces traversed alike)";
+  }
+  if (!tet_boundary_mismatch.empty()) return "tetrahedra: " + tet_boundary_mismatch;
+  if (centres_wrong > 0)
+    return "tetrahedra: " + std::to_string(centres_wrong) + " of " + std::to_string(centres_checked) +
+           " voxel centres in a tetrahedron of another label";
+  if (cell_refinement_stopped) return "tetrahedra: cell refinement stopped at its cap (--max-cell-points, --max-points)";
+  if (tet_quality.max_radius_edge_ratio > cell_ratio * (1 + 1e-9))
+    return "tetrahedra: radius-edge ratio " + std::to_string(tet_quality.max_radius_edge_ratio) + " above " +
+           std::to_string(cell_ratio);
+  return "";
+}
 
 } // namespace imgmesh

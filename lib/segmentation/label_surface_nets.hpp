@@ -20,6 +20,7 @@
 #include "conforming/conforming_surface.hpp"
 #include "image/slicer_segmentation.hpp"
 #include "mesh/surface_io.hpp"
+#include "mesh/tet_mesh.hpp"
 #include "surfacenets/interface_certificate.hpp"
 #include "util/json.hpp"
 
@@ -41,7 +42,7 @@ struct LabelSurfaceNetsOptions {
   // labelling function (conforming/conforming_surface.hpp) instead of
   // surface nets; smooth_rounds unused.
   bool conforming = false;
-  ConformingOptions conforming_options;
+  ConformingOptions conforming_options;  // tets.on (seg2tet): the labels' tetrahedra too
   unsigned threads = 1;           // for the crossing searches and the certificate (the same result whatever their number)
   std::function<void(const std::string&)> progress;
 };
@@ -53,6 +54,20 @@ struct LabelSurfaceNetsResult {
   std::array<std::size_t, 3> grid{0, 0, 0};  // the repaired grid (grown by a voxel where labels touch the side)
   Json complex = Json::object(); // K(X)'s counts
   Json conforming;                   // the conforming mesher's counts, when it ran (else null)
+  // seg2tet (conforming_options.tets.on): the tetrahedra of every meshed
+  // label (region = label; the interfaces as triangles, each once, of the
+  // higher label, oriented out of it) and their certificate beside the
+  // interfaces': conforming, the triangles exactly the regions' boundary
+  // (boundary_mismatch), every tetrahedron's radius-edge ratio within R,
+  // every voxel centre in a tetrahedron of its own label (label 0: in none).
+  bool tetrahedra = false;
+  TetMesh tets;
+  TetConformity tet_conformity;
+  TetQualityReport tet_quality;
+  std::string tet_boundary_mismatch;
+  double cell_ratio = 0;
+  bool cell_refinement_stopped = false;  // rounds or points exhausted
+  std::size_t centres_checked = 0, centres_wrong = 0;
   int smooth_rounds = 0;
   bool separate = false;
   // Seconds of each stage, in order: repair, complex, mesh, smoothing, certificate.

@@ -8,7 +8,7 @@ source "$(dirname "$0")/lib.sh"
 case_every_tool_page_has_every_option() {
 pages=${PAGES:-$BIN/../man}
 count=0
-for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet seg2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
+for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet seg2mesh seg2tet img2poly poly2tri tri2quad quadsmooth meshinfo; do
   [[ -x "$BIN/$tool" ]] || continue
   count=$((count + 1))
   [[ -f "$MAN/$tool.1.in" ]] || fail "$tool has no hand-written page $MAN/$tool.1.in"
@@ -32,7 +32,7 @@ for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet seg2mesh
   done
   "$BIN/$tool" --version | grep -q "$tool" || fail "$tool --version does not name the tool"
 done
-[[ $count == 11 ]] || fail "$count tools checked, not 11"
+[[ $count == 12 ]] || fail "$count tools checked, not 12"
 }
 
 # Exit 3 (output written, a guarantee not met): every page either lists it
@@ -40,7 +40,7 @@ done
 # to check (their other tools' exit 3 is run in their own suites).
 case_exit_3_listed_or_said_absent() {
   pages=${PAGES:-$BIN/../man}
-  for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet seg2mesh img2poly poly2tri tri2quad quadsmooth meshinfo; do
+  for tool in img2wc wc2implicit implicit-eval implicit2mesh implicit2tet seg2mesh seg2tet img2poly poly2tri tri2quad quadsmooth meshinfo; do
     status=$(sed -n '/^\.SH "\?EXIT STATUS/,/^\.SH /p' "$pages/$tool.1" | sed 's/\\-/-/g; s/\\f[BIRP]//g')
     case $tool in
       wc2implicit | implicit-eval)

@@ -125,3 +125,51 @@ TEST_CASE("VoxelSides leaves no voxel centre on the wrong side", "[conforming]")
     CHECK(wrong == 0);
   }
 }
+
+// seg2tet's tetrahedra (tets.on): every label's cells, conforming, their
+// boundary stated once (each interface once, out of the higher label), every
+// ratio within R, every voxel centre in a cell of its own label, and the
+// interfaces still certified.
+TEST_CASE("the labels' tetrahedra conform, bound their labels and hold their voxel centres", "[conforming]") {
+  const std::pair<const char*, LabelImage> maps[] = {{"nested shells", nested_shells()},
+                                                     {"four labels around an edge", four_labels_around_an_edge()},
+                                                     {"thin layer", thin_layer()}};
+  for (const auto& [name, x] : maps) {
+    INFO(name);
+    ConformingOptions o;
+    o.tets.on = true;
+    ConformingSurface m;
+    const InterfaceCertificate c = mesh_and_certify(x, m, o);
+    INFO(c.summary());
+    INFO(m.to_json().dump());
+    CHECK(c.ok());
+    CHECK(!m.max_points_hit);
+    CHECK(!m.cell_rounds_exhausted);
+    const TetMesh& t = m.tets;
+    REQUIRE(!t.tets.empty());
+    CHECK(tet_conformity(t).ok());
+    CHECK(boundary_mismatch(t).empty());
+    const TetQualityReport q = tet_quality(t);
+    CHECK(q.max_radius_edge_ratio <= 2 + 1e-9);
+    CHECK(m.centres_checked == x.count());
+    CHECK(m.centres_wrong == 0);
+    // Every label of the map is a region, and the regions are its labels.
+    std::vector<int> regions(t.tet_region), labels;
+    std::sort(regions.begin(), regions.end());
+    regions.erase(std::unique(regions.begin(), regions.end()), regions.end());
+    for (std::int32_t v : x.data)
+      if (v != 0) labels.push_back(int(v));
+    std::sort(labels.begin(), labels.end());
+    labels.erase(std::unique(labels.begin(), labels.end()), labels.end());
+    CHECK(regions == labels);
+    // Each label's tetrahedra fill about its voxels' volume (the interfaces
+    // lie within a voxel of the voxel faces).
+    for (const int l : labels) {
+      std::size_t voxels = 0;
+      for (std::int32_t v : x.data) voxels += v == l;
+      const double volume = q.volume_by_region.at(l) / (x.spacing[0] * x.spacing[1] * x.spacing[2]);
+      INFO("label " << l << ": " << volume << " against " << voxels << " voxels");
+      CHECK(std::abs(volume - double(voxels)) < 0.5 * double(voxels));
+    }
+  }
+}

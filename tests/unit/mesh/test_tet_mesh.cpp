@@ -184,3 +184,49 @@ TEST_CASE("a legacy .vtk UNSTRUCTURED_GRID (4.2 and 5.1) read as tetrahedra with
                       << "POLYGONS 1 4\n3 0 1 2\n";
   CHECK_THROWS_WITH(read_tet_mesh(path), Catch::Contains("DATASET UNSTRUCTURED_GRID"));
 }
+
+TEST_CASE("the stated boundary against the tetrahedra's: a missing, flipped, doubled or misplaced triangle named") {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  m.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
+  m.tet_region = {1, 2};
+  // Region 1's boundary, then region 2's but the face they share (1 2 3).
+  for (const int r : {1, 2})
+    for (const auto& t : tet_boundary(m, r)) {
+      auto s = t;
+      std::sort(s.begin(), s.end());
+      if (r == 2 && s == std::array<int, 3>{1, 2, 3}) continue;
+      m.triangles.push_back({t[1], t[2], t[0]});  // rotated: the same oriented triangle
+      m.triangle_region.push_back(r);
+    }
+  REQUIRE(m.triangles.size() == 7);
+  CHECK(boundary_mismatch(m).empty());
+  {
+    TetMesh flipped = m;
+    std::swap(flipped.triangles[5][0], flipped.triangles[5][1]);
+    CHECK(boundary_mismatch(flipped).find("triangle 5 (region 2) is not a face") == 0);
+  }
+  {
+    TetMesh dropped = m;
+    dropped.triangles.pop_back();
+    dropped.triangle_region.pop_back();
+    CHECK(boundary_mismatch(dropped) == "1 face(s) of the regions' boundaries not among the triangles");
+  }
+  {
+    TetMesh doubled = m;  // the shared face stated on both sides
+    for (const auto& t : tet_boundary(m, 2)) {
+      auto s = t;
+      std::sort(s.begin(), s.end());
+      if (s != std::array<int, 3>{1, 2, 3}) continue;
+      doubled.triangles.push_back(t);
+      doubled.triangle_region.push_back(2);
+    }
+    REQUIRE(doubled.triangles.size() == 8);
+    CHECK(boundary_mismatch(doubled).find("states a boundary face twice") != std::string::npos);
+  }
+  {
+    TetMesh misplaced = m;
+    misplaced.triangle_region[0] = 2;  // region 1's outer face said to bound region 2
+    CHECK(boundary_mismatch(misplaced).find("triangle 0 (region 2) is not a face") == 0);
+  }
+}

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# seg2tet (issue 41, experimental): one conforming tetrahedral mesh of every
+# label of labels_image.py's rotated, anisotropic 3-label map (a ball, a box
+# touching it, a solid torus), certified by the tool; its regions read back
+# by meshio with the labels' volumes near their voxels'.
+source "$(dirname "$0")/lib.sh"
+
+labels() { shared labels.nrrd labels_image; }
+labels_image() { python3 "$E2E/labels_image.py" labels.nrrd; }
+
+case_every_label_a_region_certified() {
+  expect 0 seg2tet "$(labels)" all.msh --stats s.json -q || return
+  whole all.msh || return
+  python3 - s.json > stats.txt 2>&1 <<'PY' || fail "stats: $(cat stats.txt)"
+import json, sys
+s = json.load(open(sys.argv[1]))
+t = s['tetrahedra']
+assert s['all_certified'] is True and s['exit_status'] == 0, s
+assert t['boundaries_match'] is True and t['voxel_centres_wrong'] == 0, t
+assert t['voxel_centres_checked'] > 32 * 26 * 20 - 1, t
+assert t['quality']['max_radius_edge_ratio'] <= 2 + 1e-9, t['quality']
+PY
+  local py; py=$(python_with meshio)
+  [[ -n $py ]] || { echo "skipped: no python with meshio (python3-meshio)"; return; }
+  "$py" - all.msh > meshio.txt 2>&1 <<'PY' || fail "meshio: $(cat meshio.txt)"
+import sys, meshio, numpy as np
+m = meshio.read(sys.argv[1])
+tets = np.concatenate([c.data for c in m.cells if c.type == 'tetra'])
+region = np.concatenate([d for c, d in zip(m.cells, m.cell_data['gmsh:physical']) if c.type == 'tetra'])
+p = m.points[tets]
+vol = np.einsum('ij,ij->i', np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), p[:, 3] - p[:, 0]) / 6
+assert (vol > 0).all(), 'a tetrahedron not positively oriented'
+voxel = 0.6 * 0.7 * 0.8
+# Voxels per label of labels_image.py (before the repair, which moves a few).
+want = {1: 515, 2: 567, 5: 268}
+for L in (1, 2, 5):
+    got = vol[region == L].sum() / voxel
+    assert got > 0, 'label %d: no tetrahedra' % L
+    assert abs(got - want[L]) < 0.25 * want[L], (L, got, want[L])
+assert set(np.unique(region)) == {1, 2, 5}, np.unique(region)
+PY
+}
+
+# Refused in one line, nothing written: stdout, an unknown extension, a
+# ratio under 2, the per-label mesher's options.
+case_bad_options_refused() {
+  local args rc
+  for args in "-" "x.off" "x.msh --cell-ratio 1.5" "x.msh --roughness 90" "x.msh --fallback-rounds 3" "x.msh --sliver-angle 80"; do
+    # shellcheck disable=SC2086
+    "$BIN/seg2tet" "$(labels)" $args 2> err > /dev/null
+    rc=$?
+    [[ $rc == 2 && $(wc -l < err) == 1 && ! -e x.msh && ! -e x.off ]] || fail "seg2tet $args: exit $rc, $(cat err)"
+  done
+}
+
+run_cases "$@"

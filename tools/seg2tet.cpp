@@ -1,0 +1,109 @@
+// seg2tet (experimental, issue 41): tetrahedra of every label of a
+// segmentation in one conforming mesh, a region per label: seg2mesh
+// --conforming's restricted Delaunay complex of the repaired partition, its
+// labelled cells refined as implicit2tet refines one region
+// (conforming/conforming_surface.hpp), certified per interface and per label
+// (segmentation/label_surface_nets.hpp).
+#include "cli/cli.hpp"
+#include "image/io.hpp"
+#include "mesh/volume_io.hpp"
+#include "segmentation/label_surface_nets.hpp"
+#include "shared_options.hpp"
+#include "surface_options.hpp"
+#include "util/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+using namespace imgmesh;
+
+int main(int argc, char** argv) {
+  cli::Tool tool("seg2tet",
+                 "Experimental: mesh every label of a 3D segmentation (or those of --labels) by tetrahedra, one "
+                 "conforming mesh with a region per label: the labels' partition repaired at once, its interfaces "
+                 "meshed once (seg2mesh's experimental conforming mode), then each label's tetrahedra refined until "
+                 "every radius-edge ratio is within --cell-ratio; certified per interface and per label (each "
+                 "label's boundary the topology of its voxels, every voxel centre in a tetrahedron of its own "
+                 "label), exit 3 when it does not hold.");
+  std::string in, out, labels_text = "all";
+  LabelSurfaceNetsOptions opt;
+  opt.conforming = true;
+  ConformingTetOptions& tets = opt.conforming_options.tets;
+  tets.on = true;
+  TetWriteOptions wopt;
+  tool.app.add_option("IN", in, "Label image (NRRD, MetaImage, NIfTI, 3D Slicer's .seg.nrrd; - for stdin)")->required();
+  tool.app.add_option("OUT", out,
+                      "Output tetrahedral mesh in world (LPS) coordinates, region = label: .msh (Gmsh), .mesh "
+                      "(MEDIT), .vtu (VTK) or .inp (Abaqus)")
+      ->required();
+  tool.data_output(out);
+  tool.app.add_option("--labels", labels_text, "Labels to mesh: all (every nonzero value) or a list such as 1,2,5")
+      ->type_name("all|L,L,...")
+      ->capture_default_str();
+  tool.app.add_option("--cell-ratio", tets.cell_ratio, "Radius-edge ratio bound R of every tetrahedron (>= 2)")
+      ->type_name("R")
+      ->capture_default_str();
+  tool.app.add_option("--cell-size", tets.cell_size, "Circumradius bound of every tetrahedron (world units); 0: none")
+      ->type_name("S")
+      ->capture_default_str();
+  tool.app.add_option("--sliver-angle", tets.sliver_angle,
+                      "Slivers: refine every tetrahedron with a dihedral angle below A degrees too, after the ratio "
+                      "and size bounds; best effort, reported; 0: off")
+      ->type_name("A")
+      ->capture_default_str();
+  tool.app.add_option("--max-cell-points", tets.max_cell_points,
+                      "Stop cell refinement after inserting N points (exit 3, the mesh written)")
+      ->type_name("N")
+      ->capture_default_str();
+  add_msh_version_option(tool, wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")->type_name("V");
+  add_encoding_options(tool, wopt.ascii, wopt.msh_binary, ".vtu");
+  SurfaceOptions surface_options(tool, "interface triangle", false);
+
+  return tool.run(argc, argv, [&] {
+    if (out == "-") throw UsageError("tetrahedral meshes are written to a file (.msh, .mesh, .vtu or .inp), not to stdout");
+    if (!is_tet_mesh_path(out))
+      throw UsageError(std::string("output format is chosen by extension: ") + kTetMeshExtensions, out);
+    if (!(tets.cell_ratio >= 2) || !std::isfinite(tets.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
+    if (!(tets.cell_size >= 0) || !std::isfinite(tets.cell_size))
+      throw UsageError("--cell-size must be a finite number >= 0");
+    if (!(tets.sliver_angle >= 0 && tets.sliver_angle < 70.5))
+      throw UsageError("--sliver-angle must be at least 0 and below 70.5 degrees");
+    if (tets.max_cell_points < 1) throw UsageError("--max-cell-points must be at least 1");
+    surface_options.check();
+    opt.labels = parse_label_list(labels_text);
+    opt.threads = std::max(1u, std::thread::hardware_concurrency());  // the same mesh whatever the count
+    if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
+
+    tool.report_progress("reading " + in);
+    LabelImage image = read_labels(in, &opt.names);
+    if (std::any_of(image.data.begin(), image.data.end(), [](std::int32_t v) { return v < 0; }))
+      throw Error("negative label values: a region is a label above 0 (relabel the map)", in);
+    const RestrictedDelaunayOptions r = surface_options.resolve(image.spacing);
+    opt.conforming_options.ratio = r.ratio;
+    opt.conforming_options.max_distance = r.max_distance;
+    opt.conforming_options.max_points = r.max_points;
+    opt.conforming_options.voxel_sides = r.voxel_sides;
+    const LabelSurfaceNetsResult res = naming_input(in, [&] { return mesh_label_surface_nets(std::move(image), opt); });
+    tool.report_progress("writing " + out);
+    write_tet_mesh(out, res.tets, wopt);
+
+    tool.stats["input"] = in;
+    tool.stats["output"] = out;
+    for (const InterfaceCertificate::Label* l : res.meshed_labels()) {
+      const auto v = res.tet_quality.volume_by_region.find(int(l->label));
+      std::ostringstream msg;
+      msg << "label " << l->label << ": volume " << (v == res.tet_quality.volume_by_region.end() ? 0.0 : v->second)
+          << " against " << l->voxel_volume << " of voxels; its boundary "
+          << (l->surface.ok() ? "certified" : "NOT certified: " + l->surface.failure());
+      tool.debug(msg.str());
+    }
+    std::ostringstream msg;
+    msg << res.tets.tets.size() << " tetrahedra, " << res.tets.points.size() << " vertices, largest radius-edge ratio "
+        << res.tet_quality.max_radius_edge_ratio << ", smallest dihedral angle " << res.tet_quality.min_dihedral
+        << " degrees";
+    tool.debug(msg.str());
+    return tool.finish(res);
+  });
+}
