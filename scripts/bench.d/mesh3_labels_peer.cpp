@@ -3,6 +3,7 @@
 // with label pairs as seg2mesh writes interfaces, so that `meshinfo OUT
 // --image LABELS` certifies it per label and per interface.
 //   mesh3_labels_peer LABELS OUT.vtp [DISTANCE [SIZE]]
+//   mesh3_labels_peer LABELS OUT.msh|.vtu|.mesh [DISTANCE [SIZE]]   (seg2tet's peer, issue 41)
 // LABELS: any integer label image lib/image reads (labels 0..65535), padded
 // by one background voxel (a label touching the side gets a closed surface).
 // Labeled_mesh_domain_3::create_labeled_image_mesh_domain (labels
@@ -19,8 +20,15 @@
 // coordinates. Prints "seconds triangles smallest_angle_deg" on its last
 // line (CGAL prints progress on stdout before it); the seconds are Mesh_3's
 // (domain, seeding, refinement), not reading or writing.
+// A tetrahedral OUT: the same with cell radius-edge ratio 2 and Mesh_3's
+// default perturb and exude (issue 41's peer), every cell in the complex
+// written with its subdomain as region and the complex's facets as
+// triangles; prints "seconds tetrahedra smallest_dihedral_deg share_under_10
+// largest_ratio".
 #include "mesh3_image.hpp"
 #include "mesh/surface_io.hpp"
+#include "mesh/tet_mesh.hpp"
+#include "mesh/volume_io.hpp"
 #include "mesh/triangle_quality.hpp"
 
 #include <CGAL/Random.h>
@@ -82,8 +90,72 @@ imgmesh::SurfaceMesh surface_complex(const mesh3::C3t3& c3t3, const imgmesh::Geo
   return m;
 }
 
+// Every cell in the complex, region = its subdomain, positively oriented in
+// world coordinates; the complex's facets as the boundary (each once, of
+// the higher subdomain).
+imgmesh::TetMesh tetrahedra(const mesh3::C3t3& c3t3, const imgmesh::Geometry& g) {
+  using Tr = mesh3::Tr;
+  const Tr& tr = c3t3.triangulation();
+  imgmesh::TetMesh m;
+  std::map<Tr::Vertex_handle, int> id;
+  const auto vertex = [&](Tr::Vertex_handle v) {
+    const auto [it, added] = id.emplace(v, int(m.points.size()));
+    if (added) {
+      const auto& q = tr.point(v).point();
+      m.points.push_back(mesh3::world(g, {q.x(), q.y(), q.z()}));
+    }
+    return it->second;
+  };
+  for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c) {
+    std::array<int, 4> t{vertex(c->vertex(0)), vertex(c->vertex(1)), vertex(c->vertex(2)), vertex(c->vertex(3))};
+    if (imgmesh::tet_orient(m.points[std::size_t(t[0])], m.points[std::size_t(t[1])], m.points[std::size_t(t[2])],
+                            m.points[std::size_t(t[3])]) < 0)
+      std::swap(t[2], t[3]);  // a reflecting direction
+    m.tets.push_back(t);
+    m.tet_region.push_back(int(c3t3.subdomain_index(c)));
+  }
+  std::size_t same = 0;
+  const imgmesh::SurfaceMesh s = surface_complex(c3t3, g, same);
+  // The surface's vertices are cells' vertices: found by coordinates.
+  std::map<std::array<double, 3>, int> at;
+  for (std::size_t i = 0; i < m.points.size(); ++i) at.emplace(m.points[i], int(i));
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    std::array<int, 3> f;
+    for (int k = 0; k < 3; ++k) f[std::size_t(k)] = at.at(s.points[std::size_t(s.triangles[t][std::size_t(k)])]);
+    // Already out of behind (its normal points into front).
+    m.triangles.push_back(f);
+    m.triangle_region.push_back(s.interfaces[t][0]);
+  }
+  return m;
+}
+
+template <class Word>
+int run_tets(const imgmesh::LabelImage& x, const std::string& out, double distance, double size) {
+  const double h = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
+  const auto t0 = std::chrono::steady_clock::now();
+  const CGAL::Image_3 image = mesh3::cgal_image<Word>(x);
+  const mesh3::Domain domain = mesh3::Domain::create_labeled_image_mesh_domain(image);
+  namespace p = CGAL::parameters;
+  const mesh3::Criteria criteria =
+      size > 0 ? mesh3::Criteria(p::facet_angle = 30, p::facet_distance = distance * h, p::facet_size = size * h,
+                                 p::cell_radius_edge_ratio = 2)
+               : mesh3::Criteria(p::facet_angle = 30, p::facet_distance = distance * h, p::cell_radius_edge_ratio = 2);
+  mesh3::C3t3 c3t3;
+  initialize_triangulation_from_labeled_image(c3t3, domain, image, criteria, Word(0));
+  CGAL::refine_mesh_3(c3t3, domain, criteria);  // perturb and exude: Mesh_3's defaults
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const imgmesh::TetMesh m = tetrahedra(c3t3, x);
+  imgmesh::write_tet_mesh(out, m);
+  const imgmesh::TetQualityReport q = imgmesh::tet_quality(m);
+  std::cout << '\n'
+            << secs << ' ' << m.tets.size() << ' ' << q.min_dihedral << ' ' << q.share_under_10() << ' '
+            << q.max_radius_edge_ratio << '\n';
+  return 0;
+}
+
 template <class Word>
 int run(const imgmesh::LabelImage& x, const std::string& out, double distance, double size) {
+  if (imgmesh::is_tet_mesh_path(out)) return run_tets<Word>(x, out, distance, size);
   const double h = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
   const auto t0 = std::chrono::steady_clock::now();
   const CGAL::Image_3 image = mesh3::cgal_image<Word>(x);
@@ -116,7 +188,7 @@ int main(int argc, char** argv) {
     // CGAL's default random is seeded from the clock; the seeds' directions
     // come from it: the same mesh every run.
     CGAL::get_default_random() = CGAL::Random(0);
-    if (!imgmesh::is_surface_output(argv[2]))
+    if (!imgmesh::is_surface_output(argv[2]) && !imgmesh::is_tet_mesh_path(argv[2]))
       throw std::runtime_error(std::string(argv[2]) + ": not " + imgmesh::kSurfaceExtensions);
     const double distance = argc >= 4 ? std::atof(argv[3]) : 0.25;
     const double size = argc >= 5 ? std::atof(argv[4]) : 0;
