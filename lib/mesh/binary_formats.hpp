@@ -17,6 +17,22 @@
 
 namespace imgmesh::mesh_detail {
 
+// A Gmsh physical name: one line (control characters as spaces), no double
+// quote, at most 127 bytes (the format's limit), not cut inside a UTF-8
+// character. Surfaces and tetrahedra name their groups alike.
+inline std::string msh_name(std::string s) {
+  for (char& c : s) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = ' ';
+    if (c == '"') c = '\'';
+  }
+  if (s.size() > 127) {
+    std::size_t end = 127;
+    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xc0) == 0x80) --end;
+    s.resize(end);
+  }
+  return s;
+}
+
 class VtkXmlArrays {
 public:
   // tag_indent before each <DataArray>, value_indent before each ASCII line.

@@ -55,18 +55,6 @@ std::string one_line(std::string name) {
   return name;
 }
 
-// A Gmsh physical name: one line, no double quote, at most 127 bytes (the
-// format's limit), not cut inside a UTF-8 character.
-std::string msh_name(const std::string& name) {
-  std::string s = one_line(name);
-  std::replace(s.begin(), s.end(), '"', '\'');
-  if (s.size() > 127) {
-    std::size_t end = 127;
-    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xc0) == 0x80) --end;
-    s.resize(end);
-  }
-  return s;
-}
 
 // Legacy VTK's string values, one a line, with VTK's own escapes
 // (vtkDataWriter::EncodeString): %XX for a space, '"', '%' and every byte
@@ -246,7 +234,7 @@ MshEntities msh_entities(const SurfaceMesh& m, const std::vector<int>& component
       r = int(e.physical.size());
       e.physical.push_back(r + 1);
       e.pairs[r + 1] = pair;
-      e.names[r + 1] = msh_name(name(pair[0]) + "|" + name(pair[1]));
+      e.names[r + 1] = mesh_detail::msh_name(name(pair[0]) + "|" + name(pair[1]));
     }
     for (const auto& p : m.interfaces) e.of_face.push_back(rank[p]);
     return e;
@@ -258,7 +246,7 @@ MshEntities msh_entities(const SurfaceMesh& m, const std::vector<int>& component
     e.physical[std::size_t(component[i])] = labels ? m.labels[i] : component[i] + 1;
   for (std::size_t c = 0; c < e.physical.size(); ++c) {
     const int tag = e.physical[c];
-    e.names[tag] = labels ? (label_names.count(tag) ? msh_name(label_names.at(tag)) : "label " + std::to_string(tag))
+    e.names[tag] = labels ? (label_names.count(tag) ? mesh_detail::msh_name(label_names.at(tag)) : "label " + std::to_string(tag))
                           : "component " + std::to_string(c);
   }
   return e;

@@ -19,6 +19,9 @@ struct TetMesh {
   std::vector<int> tet_region;                 // per tetrahedron, >= 1
   std::vector<std::array<int, 3>> triangles;   // the boundary, counter-clockwise seen from outside
   std::vector<int> triangle_region;            // per triangle: the region it bounds
+  // Regions' names where they have one (seg2tet: the labels' names of a
+  // 3D Slicer segmentation): Gmsh physical names, Abaqus sets.
+  std::map<int, std::string> region_names;
 };
 
 // Six times the signed volume: positive for a positively oriented tetrahedron.

@@ -8,8 +8,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <map>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace imgmesh {
@@ -32,16 +34,34 @@ std::set<int> regions_of(const TetMesh& m) {
   return r;
 }
 
-void physical_names(std::ostream& o, const std::set<int>& regions) {
+// Region R's groups: "boundary_R" and "region_R", or "NAME boundary" and
+// "NAME" for a named region.
+void physical_names(std::ostream& o, const TetMesh& m, const std::set<int>& regions) {
   o << "$PhysicalNames\n" << 2 * regions.size() << '\n';
-  for (int r : regions) o << "2 " << r << " \"boundary_" << r << "\"\n3 " << r << " \"region_" << r << "\"\n";
+  for (int r : regions) {
+    const auto name = m.region_names.find(r);
+    if (name == m.region_names.end() || name->second.empty())
+      o << "2 " << r << " \"boundary_" << r << "\"\n3 " << r << " \"region_" << r << "\"\n";
+    else
+      o << "2 " << r << " \"" << mesh_detail::msh_name(name->second + " boundary") << "\"\n3 " << r << " \""
+        << mesh_detail::msh_name(name->second) << "\"\n";
+  }
   o << "$EndPhysicalNames\n";
+}
+
+// An Abaqus name of a named region: letters, digits and underscores,
+// starting with a letter, at most 80 characters (the others as '_').
+std::string abaqus_name(const std::string& name) {
+  std::string s;
+  for (const char c : name) s += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  if (s.empty() || !std::isalpha(static_cast<unsigned char>(s[0]))) s = "R_" + s;
+  return s.substr(0, 80);
 }
 
 void write_msh22(std::ostream& o, const TetMesh& m, bool binary) {
   mesh_detail::MshWriter w(o, binary);
   w.format("2.2");
-  physical_names(o, regions_of(m));
+  physical_names(o, m, regions_of(m));
   o << "$Nodes\n" << m.points.size() << '\n';
   for (std::size_t i = 0; i < m.points.size(); ++i) w.i((long long)(i + 1)).d(m.points[i][0]).d(m.points[i][1]).d(m.points[i][2]).eol();
   w.end("Nodes");
@@ -79,7 +99,7 @@ void write_msh41(std::ostream& o, const TetMesh& m, bool binary) {
       for (double x : *b) w.d(x, std::to_string(x));
   };
   w.format("4.1");
-  physical_names(o, regions);
+  physical_names(o, m, regions);
   o << "$Entities\n";
   w.z(0).z(0).z(regions.size()).z(regions.size()).eol();
   for (int r : regions) {
@@ -180,6 +200,7 @@ void write_inp(std::ostream& o, const TetMesh& m) {
   for (std::size_t i = 0; i < m.points.size(); ++i)
     o << i + 1 << ", " << m.points[i][0] << ", " << m.points[i][1] << ", " << m.points[i][2] << '\n';
   const std::set<int> regions = regions_of(m);
+  std::set<std::string> names;  // the named regions' set names, each once
   // C3D4 faces: S1 = 1-2-3, S2 = 1-4-2, S3 = 2-4-3, S4 = 3-4-1.
   constexpr int face[4][3] = {{0, 1, 2}, {0, 3, 1}, {1, 3, 2}, {2, 3, 0}};
   // (region, sorted face of a tet) -> (element, face): a triangle of
@@ -221,6 +242,13 @@ void write_inp(std::ostream& o, const TetMesh& m) {
       lines += name + ", S" + std::to_string(f + 1) + "\n";
     }
     if (!lines.empty()) o << "*SURFACE, TYPE=ELEMENT, NAME=BOUNDARY_" << r << '\n' << lines;
+    // A named region: its element set and surface under its name too.
+    const auto named = m.region_names.find(r);
+    if (named == m.region_names.end() || named->second.empty()) continue;
+    std::string name = abaqus_name(named->second);
+    if (!names.insert(name).second) name += "_" + std::to_string(r);
+    o << "*ELSET, ELSET=" << name << "\nREGION_" << r << '\n';
+    if (!lines.empty()) o << "*SURFACE, TYPE=ELEMENT, NAME=" << name << "_BOUNDARY\n" << lines;
   }
 }
 

@@ -190,7 +190,10 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   }
   for (long long l : labels) {
     res.labels.push_back(std::int32_t(l));
-    if (const auto it = opt.names.find(std::int32_t(l)); it != opt.names.end()) res.mesh.label_names[int(l)] = it->second;
+    if (const auto it = opt.names.find(std::int32_t(l)); it != opt.names.end()) {
+      res.mesh.label_names[int(l)] = it->second;
+      if (res.tetrahedra) res.tets.region_names[int(l)] = it->second;
+    }
   }
   res.seconds.push_back({"certificate", since(t0)});
 

@@ -41,6 +41,23 @@ assert set(np.unique(region)) == {1, 2, 5}, np.unique(region)
 PY
 }
 
+# A 3D Slicer segmentation's names (labels_image.py's .seg.nrrd: spaces, a
+# double quote, a non-ASCII letter) on the regions: Gmsh physical names (the
+# quote made ') and Abaqus element sets and surfaces (letters, digits, _).
+seg() { shared labels.seg.nrrd seg_nrrd; }
+seg_nrrd() { python3 "$E2E/labels_image.py" labels.seg.nrrd; }
+case_slicer_names_on_msh_and_inp() {
+  local s; s=$(seg) || return
+  expect 0 seg2tet "$s" named.msh -q || return
+  expect 0 seg2tet "$s" named.inp -q || return
+  grep -q '^3 1 "ball"$' named.msh || fail "named.msh: no volume 'ball'"
+  grep -q '^2 2 "box touching the ball boundary"$' named.msh || fail "named.msh: no surface 'box touching the ball boundary'"
+  grep -q "^3 5 \"solid 'torus' é 50%\"\$" named.msh || fail "named.msh: the torus's name not kept"
+  grep -q '^\*ELSET, ELSET=box_touching_the_ball$' named.inp || fail "named.inp: no element set box_touching_the_ball"
+  grep -A1 '^\*ELSET, ELSET=ball$' named.inp | grep -q '^REGION_1$' || fail "named.inp: set ball is not REGION_1"
+  grep -q '^\*SURFACE, TYPE=ELEMENT, NAME=solid__torus_____50__BOUNDARY$' named.inp || fail "named.inp: no torus surface"
+}
+
 # Refused in one line, nothing written: stdout, an unknown extension, a
 # ratio under 2, the per-label mesher's options.
 case_bad_options_refused() {
