@@ -152,14 +152,16 @@ private:
     }
   }
 
-  bool insert(const Vec3& p, int step) {
+  // start: a cell near p where the caller knows one (the walk starts there;
+  // the triangulation is the same whatever the start).
+  bool insert(const Vec3& p, int step, Ch start = Ch()) {
     if (points_ >= o_.max_points) {
       max_hit_ = true;
       return false;
     }
     Tr::Locate_type lt;
     int li, lj;
-    Ch c = tr_.locate(pt(p), lt, li, lj, hint_);
+    Ch c = tr_.locate(pt(p), lt, li, lj, start != Ch() ? start : hint_);
     if (lt == Tr::VERTEX) {
       ++refused_;
       return false;
@@ -432,9 +434,10 @@ private:
   }
 
   // Still the facet it was found on (same vertices, same two cells)?
-  bool current(const Candidate& c) {
+  // cell: one of the facet's two cells, when it is.
+  bool current(const Candidate& c, Ch& cell) {
+    cell = Ch();
     if (c.step == kVoxelSide) return true;
-    Ch cell;
     int i, j, k;
     if (!tr_.is_facet(c.v[0], c.v[1], c.v[2], cell, i, j, k)) return false;
     Ch n = cell->neighbor(6 - i - j - k);
@@ -446,8 +449,10 @@ private:
     std::stable_sort(cands.begin(), cands.end(),
                      [](const Candidate& a, const Candidate& b) { return a.priority > b.priority; });
     bool any = false;
-    for (const Candidate& c : cands)
-      if (current(c) && insert(c.x, c.step)) any = true;
+    for (const Candidate& c : cands) {
+      Ch near;
+      if (current(c, near) && insert(c.x, c.step, near)) any = true;
+    }
     cands.clear();
     return any;
   }
@@ -486,7 +491,8 @@ private:
         for (int i = 0; i < 4; ++i)
           if (c->vertex(i)->info() >= 0) touched_.push_back(c->vertex(i));
       }
-      std::sort(touched_.begin(), touched_.end());
+      // By id, not address: the same candidates in the same order every run.
+      std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
       touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
       for (Vh v : touched_) check_vertex(v);
       if (o_.progress)
@@ -588,18 +594,19 @@ private:
         tr_.find_conflicts(pt(cc), at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
         double worst = 0;
         Vec3 wx{0, 0, 0};
+        Ch wc;
         for (Ch z : zone_)
           for (int i = 0; i < 4; ++i) {
             if (label(z) == label(z->neighbor(i))) continue;
             Vec3 x;
             if (!surface_centre(z, i, x)) continue;
             const double r2 = dist2(x, vec(z->vertex((i + 1) & 3)->point()));
-            if (r2 > worst && dist2(cc, x) < r2) worst = r2, wx = x;
+            if (r2 > worst && dist2(cc, x) < r2) worst = r2, wx = x, wc = z;
           }
         bool ok;
-        if (worst > 0) ok = worst >= floor2 && insert(wx, kCellFacet);
+        if (worst > 0) ok = worst >= floor2 && insert(wx, kCellFacet, wc);
         else {
-          ok = insert(cc, kCell);
+          ok = insert(cc, kCell, at);
           sliver_points_ += ok && e.sliver;
         }
         if (ok) {
@@ -622,16 +629,21 @@ private:
       if (added) m.points.push_back(vec(v->point()));
       return it->second;
     };
-    std::vector<std::pair<std::int32_t, Ch>> cells;
-    for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c)
-      if (label(c) != 0) cells.emplace_back(label(c), c);
-    std::stable_sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& [l, c] : cells) {  // CGAL's cells are positively oriented
-      m.tets.push_back({index(c->vertex(0)), index(c->vertex(1)), index(c->vertex(2)), index(c->vertex(3))});
-      m.tet_region.push_back(int(l));
+    // Cells by label, then by their sorted vertex ids; the interfaces
+    // likewise (CGAL's storage order depends on addresses).
+    auto key = [](std::int32_t l, std::array<Vh, 4> v, int n) {
+      std::array<int, 5> k{int(l), 0, 0, 0, 0};
+      for (int i = 0; i < n; ++i) k[std::size_t(i + 1)] = v[std::size_t(i)]->info();
+      std::sort(k.begin() + 1, k.begin() + 1 + n);
+      return k;
+    };
+    std::vector<std::pair<std::array<int, 5>, std::array<Vh, 4>>> cells, faces;
+    for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c) {
+      if (label(c) == 0) continue;
+      const std::array<Vh, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};  // positively oriented
+      cells.emplace_back(key(label(c), v, 4), v);
     }
     const auto orient = GT().orientation_3_object();
-    std::vector<std::pair<std::int32_t, std::array<int, 3>>> faces;
     for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
       const Ch c = f->first, n = c->neighbor(f->second);
       if (label(c) == label(n)) continue;
@@ -639,15 +651,21 @@ private:
       // points away from its vertex opposite the facet.
       const Ch side = label(c) > label(n) ? c : n;
       const int i = side == c ? f->second : n->index(c);
-      std::array<Vh, 3> v{side->vertex((i + 1) & 3), side->vertex((i + 2) & 3), side->vertex((i + 3) & 3)};
+      std::array<Vh, 4> v{side->vertex((i + 1) & 3), side->vertex((i + 2) & 3), side->vertex((i + 3) & 3), Vh()};
       if (orient(v[0]->point(), v[1]->point(), v[2]->point(), side->vertex(i)->point()) == CGAL::POSITIVE)
         std::swap(v[1], v[2]);
-      faces.push_back({label(side), {index(v[0]), index(v[1]), index(v[2])}});
+      faces.emplace_back(key(label(side), v, 3), v);
     }
-    std::stable_sort(faces.begin(), faces.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& [l, t] : faces) {
-      m.triangles.push_back(t);
-      m.triangle_region.push_back(int(l));
+    auto by_key = [](const auto& a, const auto& b) { return a.first < b.first; };
+    std::sort(cells.begin(), cells.end(), by_key);
+    std::sort(faces.begin(), faces.end(), by_key);
+    for (const auto& [k, v] : cells) {
+      m.tets.push_back({index(v[0]), index(v[1]), index(v[2]), index(v[3])});
+      m.tet_region.push_back(k[0]);
+    }
+    for (const auto& [k, v] : faces) {
+      m.triangles.push_back({index(v[0]), index(v[1]), index(v[2])});
+      m.triangle_region.push_back(k[0]);
     }
     out.cell_rounds = cell_rounds_;
     out.cell_rounds_exhausted = cell_rounds_exhausted_;
@@ -657,15 +675,22 @@ private:
     std::copy(inserted_.begin(), inserted_.end(), out.inserted.begin());
     // Every voxel centre: in a cell of its voxel's label (on a facet, edge
     // or vertex of the triangulation: every cell there).
-    Ch hint = hint_;
+    // Each walk starts at the cell of the centre before it, a row's first at
+    // the previous row's first, a slice's at the previous slice's.
+    Ch slice = hint_, row, hint;
     for (std::size_t k = 0; k < x_.size[2]; ++k)
       for (std::size_t j = 0; j < x_.size[1]; ++j)
         for (std::size_t i = 0; i < x_.size[0]; ++i) {
           const std::int32_t own = voxel_label(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k));
           Tr::Locate_type lt;
           int li, lj;
-          const Ch c = tr_.locate(pt(voxel_centre(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k))), lt, li, lj, hint);
+          const Ch start = i > 0 ? hint : j > 0 ? row : slice;
+          const Ch c = tr_.locate(pt(voxel_centre(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k))), lt, li, lj, start);
           hint = c;
+          if (i == 0) {
+            row = c;
+            if (j == 0) slice = c;
+          }
           bool wrong = label(c) != own;
           if (lt == Tr::FACET) wrong = wrong || label(c->neighbor(li)) != own;
           else if (lt == Tr::EDGE) {
@@ -681,6 +706,8 @@ private:
         }
   }
 
+  // The facets in the order of their sorted vertex ids, the vertices
+  // numbered by first use: CGAL's storage order depends on addresses.
   ConformingSurface output() {
     ConformingSurface out;
     std::unordered_map<int, int> id;
@@ -689,6 +716,12 @@ private:
       if (added) out.points.push_back(vec(v->point()));
       return it->second;
     };
+    struct Face {
+      std::array<int, 3> key;  // sorted ids
+      std::array<Vh, 3> v;     // oriented
+      std::array<std::int32_t, 2> pair;
+    };
+    std::vector<Face> faces;
     const auto orient = GT().orientation_3_object();
     for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
       Ch c = f->first;
@@ -703,8 +736,14 @@ private:
       Vh opposite = behind == c ? c->vertex(i) : n->vertex(n->index(c));
       if (orient(v[0]->point(), v[1]->point(), v[2]->point(), opposite->point()) == CGAL::POSITIVE)
         std::swap(v[1], v[2]);
-      out.triangles.push_back({index(v[0]), index(v[1]), index(v[2])});
-      out.pairs.push_back({std::max(lc, ln), std::min(lc, ln)});
+      std::array<int, 3> key{v[0]->info(), v[1]->info(), v[2]->info()};
+      std::sort(key.begin(), key.end());
+      faces.push_back({key, v, {std::max(lc, ln), std::min(lc, ln)}});
+    }
+    std::sort(faces.begin(), faces.end(), [](const Face& a, const Face& b) { return a.key < b.key; });
+    for (const Face& f : faces) {
+      out.triangles.push_back({index(f.v[0]), index(f.v[1]), index(f.v[2])});
+      out.pairs.push_back(f.pair);
     }
     std::copy(inserted_.begin(), inserted_.end(), out.inserted.begin());
     out.refused = refused_;
