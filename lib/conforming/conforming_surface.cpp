@@ -654,7 +654,9 @@ private:
       std::array<Vh, 4> v{side->vertex((i + 1) & 3), side->vertex((i + 2) & 3), side->vertex((i + 3) & 3), Vh()};
       if (orient(v[0]->point(), v[1]->point(), v[2]->point(), side->vertex(i)->point()) == CGAL::POSITIVE)
         std::swap(v[1], v[2]);
-      faces.emplace_back(key(label(side), v, 3), v);
+      auto k = key(label(side), v, 3);
+      k[4] = int(std::min(label(c), label(n)));  // the front label, after the ids
+      faces.emplace_back(k, v);
     }
     auto by_key = [](const auto& a, const auto& b) { return a.first < b.first; };
     std::sort(cells.begin(), cells.end(), by_key);
@@ -666,6 +668,7 @@ private:
     for (const auto& [k, v] : faces) {
       m.triangles.push_back({index(v[0]), index(v[1]), index(v[2])});
       m.triangle_region.push_back(k[0]);
+      m.triangle_pair.push_back({k[0], k[4]});
     }
     out.cell_rounds = cell_rounds_;
     out.cell_rounds_exhausted = cell_rounds_exhausted_;

@@ -22,6 +22,12 @@ struct TetMesh {
   // Regions' names where they have one (seg2tet: the labels' names of a
   // 3D Slicer segmentation): Gmsh physical names, Abaqus sets.
   std::map<int, std::string> region_names;
+  // Optional, per triangle: the two regions it separates (its region
+  // first, 0 for none), seg2tet's label pairs. Gmsh 4.1 then gets a surface
+  // entity per pair, in its region's boundary group and in a group of its
+  // own ("a|b", by the regions' names where they have them); Gmsh 2.2 an
+  // elementary tag per pair; Abaqus a surface INTERFACE_a_b per pair.
+  std::vector<std::array<int, 2>> triangle_pair;
 };
 
 // Six times the signed volume: positive for a positively oriented tetrahedron.

@@ -34,10 +34,37 @@ std::set<int> regions_of(const TetMesh& m) {
   return r;
 }
 
+// The surface entities: one per region, or, with triangle pairs, one per
+// (region, pair); per triangle its entity's index.
+struct SurfaceEntities {
+  std::vector<std::pair<int, std::array<int, 2>>> of;  // (region, pair); pair {0, 0} without pairs
+  std::vector<std::size_t> of_triangle;
+  bool pairs = false;
+  int first_interface_tag = 0;  // pairs: entity k's own physical group is first_interface_tag + k
+};
+SurfaceEntities surface_entities(const TetMesh& m, const std::set<int>& regions) {
+  SurfaceEntities e;
+  e.pairs = !m.triangle_pair.empty();
+  std::map<std::pair<int, std::array<int, 2>>, std::size_t> index;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    index.emplace(std::make_pair(region_of(m.triangle_region, t),
+                                 e.pairs && t < m.triangle_pair.size() ? m.triangle_pair[t] : std::array<int, 2>{0, 0}),
+                  0);
+  for (auto& [key, k] : index) {
+    k = e.of.size();
+    e.of.push_back(key);
+  }
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    e.of_triangle.push_back(index.at({region_of(m.triangle_region, t),
+                                      e.pairs && t < m.triangle_pair.size() ? m.triangle_pair[t] : std::array<int, 2>{0, 0}}));
+  e.first_interface_tag = (regions.empty() ? 0 : std::max(0, *regions.rbegin())) + 1;
+  return e;
+}
+
 // Region R's groups: "boundary_R" and "region_R", or "NAME boundary" and
-// "NAME" for a named region.
-void physical_names(std::ostream& o, const TetMesh& m, const std::set<int>& regions) {
-  o << "$PhysicalNames\n" << 2 * regions.size() << '\n';
+// "NAME" for a named region; with pairs (4.1), each interface's "a|b".
+void physical_names(std::ostream& o, const TetMesh& m, const std::set<int>& regions, const SurfaceEntities* e) {
+  o << "$PhysicalNames\n" << 2 * regions.size() + (e && e->pairs ? e->of.size() : 0) << '\n';
   for (int r : regions) {
     const auto name = m.region_names.find(r);
     if (name == m.region_names.end() || name->second.empty())
@@ -46,6 +73,14 @@ void physical_names(std::ostream& o, const TetMesh& m, const std::set<int>& regi
       o << "2 " << r << " \"" << mesh_detail::msh_name(name->second + " boundary") << "\"\n3 " << r << " \""
         << mesh_detail::msh_name(name->second) << "\"\n";
   }
+  auto named = [&](int r) {
+    const auto name = m.region_names.find(r);
+    return name == m.region_names.end() || name->second.empty() ? std::to_string(r) : name->second;
+  };
+  if (e && e->pairs)
+    for (std::size_t k = 0; k < e->of.size(); ++k)
+      o << "2 " << e->first_interface_tag + int(k) << " \""
+        << mesh_detail::msh_name(named(e->of[k].second[0]) + "|" + named(e->of[k].second[1])) << "\"\n";
   o << "$EndPhysicalNames\n";
 }
 
@@ -61,7 +96,9 @@ std::string abaqus_name(const std::string& name) {
 void write_msh22(std::ostream& o, const TetMesh& m, bool binary) {
   mesh_detail::MshWriter w(o, binary);
   w.format("2.2");
-  physical_names(o, m, regions_of(m));
+  const std::set<int> regions = regions_of(m);
+  const SurfaceEntities entities = surface_entities(m, regions);
+  physical_names(o, m, regions, nullptr);
   o << "$Nodes\n" << m.points.size() << '\n';
   for (std::size_t i = 0; i < m.points.size(); ++i) w.i((long long)(i + 1)).d(m.points[i][0]).d(m.points[i][1]).d(m.points[i][2]).eol();
   w.end("Nodes");
@@ -70,7 +107,11 @@ void write_msh22(std::ostream& o, const TetMesh& m, bool binary) {
   w.block22(2, m.triangles.size(), 2);
   for (std::size_t t = 0; t < m.triangles.size(); ++t) {
     const int r = region_of(m.triangle_region, t);
-    w.element22(++id, 2, {r, r}, std::array<int, 3>{m.triangles[t][0] + 1, m.triangles[t][1] + 1, m.triangles[t][2] + 1});
+    // With pairs, the elementary tag tells the interfaces apart (2.2 gives
+    // an element one physical group: its region's boundary).
+    const int elementary = entities.pairs ? int(entities.of_triangle[t]) + 1 : r;
+    w.element22(++id, 2, {r, elementary},
+                std::array<int, 3>{m.triangles[t][0] + 1, m.triangles[t][1] + 1, m.triangles[t][2] + 1});
   }
   w.block22(4, m.tets.size(), 2);
   for (std::size_t t = 0; t < m.tets.size(); ++t) {
@@ -82,7 +123,8 @@ void write_msh22(std::ostream& o, const TetMesh& m, bool binary) {
 }
 
 // Gmsh 4.1: one surface entity (tag R) and one volume entity (tag R) per
-// region, each in the physical group R of its dimension.
+// region, each in the physical group R of its dimension; with pairs, a
+// surface entity per (region, pair), in R's group and its own.
 void write_msh41(std::ostream& o, const TetMesh& m, bool binary) {
   const std::set<int> regions = regions_of(m);
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
@@ -99,18 +141,41 @@ void write_msh41(std::ostream& o, const TetMesh& m, bool binary) {
       for (double x : *b) w.d(x, std::to_string(x));
   };
   w.format("4.1");
-  physical_names(o, m, regions);
+  const SurfaceEntities entities = surface_entities(m, regions);
+  physical_names(o, m, regions, &entities);
   o << "$Entities\n";
-  w.z(0).z(0).z(regions.size()).z(regions.size()).eol();
-  for (int r : regions) {
-    w.i(r);
-    box();
-    w.z(1).i(r).z(0).eol();
+  w.z(0).z(0).z(entities.pairs ? entities.of.size() : regions.size()).z(regions.size()).eol();
+  if (entities.pairs) {
+    for (std::size_t k = 0; k < entities.of.size(); ++k) {
+      w.i(int(k) + 1);
+      box();
+      w.z(2).i(entities.of[k].first).i(entities.first_interface_tag + int(k)).z(0).eol();
+    }
+  } else {
+    for (int r : regions) {
+      w.i(r);
+      box();
+      w.z(1).i(r).z(0).eol();
+    }
   }
   for (int r : regions) {
     w.i(r);
     box();
-    w.z(1).i(r).z(1).i(r).eol();
+    if (!entities.pairs) {
+      w.z(1).i(r).z(1).i(r).eol();
+      continue;
+    }
+    // Its bounding surfaces: the pairs' entities on its side (negative
+    // where it is the front).
+    std::vector<int> bounding;
+    for (std::size_t k = 0; k < entities.of.size(); ++k) {
+      const auto& pair = entities.of[k].second;
+      if (pair[0] == r) bounding.push_back(int(k) + 1);
+      else if (pair[1] == r) bounding.push_back(-int(k) - 1);
+    }
+    w.z(1).i(r).z(bounding.size());
+    for (const int b : bounding) w.i(b);
+    w.eol();
   }
   w.end("Entities");
   const std::size_t n = m.points.size();
@@ -120,8 +185,9 @@ void write_msh41(std::ostream& o, const TetMesh& m, bool binary) {
   for (std::size_t i = 0; i < n; ++i) w.z(i + 1).eol();
   for (const auto& p : m.points) w.d(p[0]).d(p[1]).d(p[2]).eol();
   w.end("Nodes");
-  std::map<std::pair<int, int>, std::vector<std::size_t>> blocks;  // (dim, region) -> elements
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) blocks[{2, region_of(m.triangle_region, t)}].push_back(t);
+  std::map<std::pair<int, int>, std::vector<std::size_t>> blocks;  // (dim, entity) -> elements
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    blocks[{2, entities.pairs ? int(entities.of_triangle[t]) + 1 : region_of(m.triangle_region, t)}].push_back(t);
   for (std::size_t t = 0; t < m.tets.size(); ++t) blocks[{3, region_of(m.tet_region, t)}].push_back(t);
   const std::size_t total = m.triangles.size() + m.tets.size();
   o << "$Elements\n";
@@ -222,10 +288,11 @@ void write_inp(std::ostream& o, const TetMesh& m) {
       std::sort(k.begin(), k.end());
       owner.emplace(std::make_pair(region_of(m.tet_region, t), k), std::make_pair(t, f));
     }
-  for (int r : regions) {
+  // An element-based surface NAME of the triangles `tris` of region r: an
+  // element set NAME_Sf per face f of r's tetrahedra that they are.
+  auto surface = [&](const std::string& name, const std::vector<std::size_t>& tris, int r) {
     std::vector<std::size_t> sides[4];
-    for (std::size_t t = 0; t < m.triangles.size(); ++t) {
-      if (region_of(m.triangle_region, t) != r) continue;
+    for (const std::size_t t : tris) {
       std::array<int, 3> k = m.triangles[t];
       std::sort(k.begin(), k.end());
       const auto it = owner.find({r, k});
@@ -235,13 +302,20 @@ void write_inp(std::ostream& o, const TetMesh& m) {
     std::string lines;
     for (int f = 0; f < 4; ++f) {
       if (sides[f].empty()) continue;
-      const std::string name = "BOUNDARY_" + std::to_string(r) + "_S" + std::to_string(f + 1);
-      o << "*ELSET, ELSET=" << name << '\n';
+      const std::string set = name + "_S" + std::to_string(f + 1);
+      o << "*ELSET, ELSET=" << set << '\n';
       for (std::size_t i = 0; i < sides[f].size(); ++i)
         o << sides[f][i] + 1 << (i + 1 == sides[f].size() || i % 16 == 15 ? "\n" : ", ");
-      lines += name + ", S" + std::to_string(f + 1) + "\n";
+      lines += set + ", S" + std::to_string(f + 1) + "\n";
     }
-    if (!lines.empty()) o << "*SURFACE, TYPE=ELEMENT, NAME=BOUNDARY_" << r << '\n' << lines;
+    if (!lines.empty()) o << "*SURFACE, TYPE=ELEMENT, NAME=" << name << '\n' << lines;
+    return lines;
+  };
+  for (int r : regions) {
+    std::vector<std::size_t> tris;
+    for (std::size_t t = 0; t < m.triangles.size(); ++t)
+      if (region_of(m.triangle_region, t) == r) tris.push_back(t);
+    const std::string lines = surface("BOUNDARY_" + std::to_string(r), tris, r);
     // A named region: its element set and surface under its name too.
     const auto named = m.region_names.find(r);
     if (named == m.region_names.end() || named->second.empty()) continue;
@@ -249,6 +323,15 @@ void write_inp(std::ostream& o, const TetMesh& m) {
     if (!names.insert(name).second) name += "_" + std::to_string(r);
     o << "*ELSET, ELSET=" << name << "\nREGION_" << r << '\n';
     if (!lines.empty()) o << "*SURFACE, TYPE=ELEMENT, NAME=" << name << "_BOUNDARY\n" << lines;
+  }
+  // Pairs: a surface per interface, INTERFACE_a_b (its region a first).
+  const SurfaceEntities e = surface_entities(m, regions);
+  if (!e.pairs) return;
+  std::vector<std::vector<std::size_t>> of(e.of.size());
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) of[e.of_triangle[t]].push_back(t);
+  for (std::size_t k = 0; k < e.of.size(); ++k) {
+    const auto& [r, pair] = e.of[k];
+    surface("INTERFACE_" + std::to_string(pair[0]) + "_" + std::to_string(pair[1]), of[k], r);
   }
 }
 

@@ -2,7 +2,8 @@
 # seg2tet (issue 41, experimental): one conforming tetrahedral mesh of every
 # label of labels_image.py's rotated, anisotropic 3-label map (a ball, a box
 # touching it, a solid torus), certified by the tool; its regions read back
-# by meshio with the labels' volumes near their voxels'.
+# by meshio with the labels' volumes near their voxels', a Gmsh group per
+# label and per interface.
 source "$(dirname "$0")/lib.sh"
 
 labels() { shared labels.nrrd labels_image; }
@@ -14,6 +15,11 @@ case_every_label_a_region_certified() {
   # Same input, same bytes (CGAL's storage order, which follows addresses, not used).
   expect 0 seg2tet "$(labels)" again.msh -q || return
   cmp -s all.msh again.msh || fail "two runs wrote different meshes"
+  # A physical surface per interface (label pair), beside each label's.
+  local g
+  for g in '1|0' '2|0' '2|1' '5|0' 'boundary_1' 'region_5'; do
+    grep -q "^[23] [0-9]* \"$g\"\$" all.msh || fail "all.msh: no physical group $g"
+  done
   python3 - s.json > stats.txt 2>&1 <<'PY' || fail "stats: $(cat stats.txt)"
 import json, sys
 s = json.load(open(sys.argv[1]))

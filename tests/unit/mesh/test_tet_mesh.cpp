@@ -230,3 +230,54 @@ TEST_CASE("the stated boundary against the tetrahedra's: a missing, flipped, dou
     CHECK(boundary_mismatch(misplaced).find("triangle 0 (region 2) is not a face") == 0);
   }
 }
+
+// Label pairs on the triangles (seg2tet): Gmsh 4.1 a group per pair beside
+// each region's boundary group, read back as the triangles' regions; 2.2
+// the same regions with an elementary tag per pair; Abaqus a surface per pair.
+TEST_CASE("triangles with label pairs: a group per pair, the regions read back") {
+  TetMesh m;
+  m.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 1}};
+  m.tets = {{0, 1, 2, 3}, {1, 2, 3, 4}};
+  m.tet_region = {7, 3};
+  // Region 7's boundary (its face shared with 3 once, out of 7), then 3's others.
+  for (const int r : {7, 3})
+    for (const auto& t : tet_boundary(m, r)) {
+      auto s = t;
+      std::sort(s.begin(), s.end());
+      const bool shared = s == std::array<int, 3>{1, 2, 3};
+      if (r == 3 && shared) continue;
+      m.triangles.push_back(t);
+      m.triangle_region.push_back(r);
+      m.triangle_pair.push_back({r, shared ? 3 : 0});
+    }
+  REQUIRE(boundary_mismatch(m).empty());
+  m.region_names[7] = "grey matter";
+  const std::string dir = test::scratch_dir();
+  auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  for (const std::string version : {"4.1", "2.2"}) {
+    TetWriteOptions o;
+    o.msh_version = version;
+    write_tet_mesh(dir + "/p.msh", m, o);
+    // The same triangles and tetrahedra with their regions (in blocks, so in another order).
+    auto with_regions = [](const TetMesh& t) {
+      std::vector<std::pair<int, std::array<int, 4>>> e;
+      for (std::size_t i = 0; i < t.triangles.size(); ++i)
+        e.push_back({t.triangle_region[i], {t.triangles[i][0], t.triangles[i][1], t.triangles[i][2], -1}});
+      for (std::size_t i = 0; i < t.tets.size(); ++i) e.push_back({t.tet_region[i], t.tets[i]});
+      std::sort(e.begin(), e.end());
+      return e;
+    };
+    CHECK(with_regions(read_tet_mesh(dir + "/p.msh")) == with_regions(m));
+    const std::string text = bytes(dir + "/p.msh");
+    CHECK((text.find("\"grey matter|3\"") != std::string::npos) == (version == "4.1"));
+    CHECK(text.find("\"grey matter boundary\"") != std::string::npos);
+  }
+  write_tet_mesh(dir + "/p.inp", m);
+  const std::string inp = bytes(dir + "/p.inp");
+  for (const char* s : {"NAME=INTERFACE_7_3\n", "NAME=INTERFACE_7_0\n", "NAME=INTERFACE_3_0\n", "NAME=BOUNDARY_7\n",
+                        "ELSET=grey_matter\nREGION_7\n"})
+    CHECK(inp.find(s) != std::string::npos);
+}
