@@ -44,47 +44,65 @@ public:
     return binary_ ? "version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\""
                    : "version=\"0.1\" byte_order=\"LittleEndian\"";
   }
-  // A DataArray of VTK type `type` (the C++ type T's); in ASCII its values
-  // in lines of line_sizes values.
-  template <class T>
-  void array(const char* type, const char* name, int components, const std::vector<T>& values,
-             const std::vector<std::size_t>& line_sizes) {
+  // A DataArray of VTK type `type` (the C++ type T's) of `count` values,
+  // value(i) the i-th; in ASCII in `lines` lines, line l of line_size(l)
+  // values. In binary each value goes to the compressor as it comes: no
+  // copy of the array is made, only its compressed blocks are held.
+  template <class T, class Value, class LineSize>
+  void array(const char* type, const char* name, int components, std::size_t count, const Value& value,
+             std::size_t lines, const LineSize& line_size) {
     out_ << tag_indent_ << "<DataArray type=\"" << type << "\"";
     if (name) out_ << " Name=\"" << name << "\"";
     if (components > 1) out_ << " NumberOfComponents=\"" << components << "\"";
     if (binary_) {
-      out_ << " format=\"appended\" offset=\"" << appended_.size() << "\"/>\n";
-      std::string raw;
-      raw.reserve(values.size() * sizeof(T));
-      for (T v : values) append_bytes(raw, v);
-      appended_ += vtk_zlib_encode(raw);
+      out_ << " format=\"appended\" offset=\"" << appended_size_ << "\"/>\n";
+      VtkZlibEncoder encoder;
+      for (std::size_t i = 0; i < count; ++i) encoder.add_value(T(value(i)));
+      for (std::string& piece : encoder.finish()) {
+        appended_size_ += piece.size();
+        appended_.push_back(std::move(piece));
+      }
       return;
     }
     out_ << " format=\"ascii\">\n";
     std::size_t i = 0;
-    for (std::size_t n : line_sizes) {
+    for (std::size_t l = 0; l < lines; ++l) {
       out_ << value_indent_;
-      for (std::size_t k = 0; k < n; ++k) out_ << (k ? " " : "") << +values[i++];
+      for (std::size_t k = 0, n = line_size(l); k < n; ++k) out_ << (k ? " " : "") << +T(value(i++));
       out_ << '\n';
     }
     out_ << tag_indent_ << "</DataArray>\n";
   }
   // `components` values a line.
+  template <class T, class Value>
+  void array(const char* type, const char* name, int components, std::size_t count, const Value& value) {
+    const std::size_t per_line = std::size_t(components);
+    array<T>(type, name, components, count, value, count / per_line, [per_line](std::size_t) { return per_line; });
+  }
+  // The values of a vector, in ASCII in lines of line_sizes values.
+  template <class T>
+  void array(const char* type, const char* name, int components, const std::vector<T>& values,
+             const std::vector<std::size_t>& line_sizes) {
+    array<T>(type, name, components, values.size(), [&](std::size_t i) { return values[i]; }, line_sizes.size(),
+             [&](std::size_t l) { return line_sizes[l]; });
+  }
   template <class T> void array(const char* type, const char* name, int components, const std::vector<T>& values) {
-    array(type, name, components, values, std::vector<std::size_t>(values.size() / std::size_t(components), std::size_t(components)));
+    array<T>(type, name, components, values.size(), [&](std::size_t i) { return values[i]; });
   }
   // The <AppendedData> element in binary (nothing in ASCII), before </VTKFile>.
   void appended_data() {
     if (!binary_) return;
     out_ << "  <AppendedData encoding=\"raw\">\n   _";
-    out_.write(appended_.data(), std::streamsize(appended_.size()));
+    for (const std::string& piece : appended_) out_.write(piece.data(), std::streamsize(piece.size()));
     out_ << "\n  </AppendedData>\n";
   }
 
 private:
   std::ostream& out_;
   bool binary_;
-  std::string tag_indent_, value_indent_, appended_;
+  std::string tag_indent_, value_indent_;
+  std::vector<std::string> appended_;  // the arrays' encodings, piece by piece
+  std::size_t appended_size_ = 0;
 };
 
 class MshWriter {

@@ -35,6 +35,11 @@ template <class T, class U, std::size_t N> std::vector<T> flat(const std::vector
   return out;
 }
 
+// Value i of `items` laid one after the other (flat's, without the copy).
+template <class U, std::size_t N> auto flat_value(const std::vector<std::array<U, N>>& items) {
+  return [&items](std::size_t i) { return items[i / N][i % N]; };
+}
+
 // The names of the labels the faces carry (empty names left out), by label.
 std::map<int, std::string> names_used(const SurfaceMesh& m) {
   std::map<int, std::string> out;
@@ -128,23 +133,23 @@ void write_vtp(std::ostream& out, const SurfaceMesh& m, const std::vector<int>& 
   vtp_field_data(out, names_used(m));
   out << "    <Piece NumberOfPoints=\"" << m.points.size() << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" "
       << "NumberOfStrips=\"0\" NumberOfPolys=\"" << m.triangles.size() << "\">\n";
+  // Every array straight from the mesh's vectors (flat_value): in binary
+  // only its compressed blocks are held.
   if (has_normals(m)) {
     out << "      <PointData Normals=\"Normals\">\n";
-    arrays.array("Float64", "Normals", 3, flat<double>(m.normals));
+    arrays.array<double>("Float64", "Normals", 3, 3 * m.normals.size(), flat_value(m.normals));
     out << "      </PointData>\n";
   }
   out << "      <CellData Scalars=\"" << (has_pairs(m) ? "labels" : has_labels(m) ? "label" : "component") << "\">\n";
   arrays.array("Int32", "component", 1, component);
   if (has_labels(m)) arrays.array("Int32", "label", 1, m.labels);
-  if (has_pairs(m)) arrays.array("Int32", "labels", 2, flat<int>(m.interfaces));
+  if (has_pairs(m)) arrays.array<std::int32_t>("Int32", "labels", 2, 2 * m.interfaces.size(), flat_value(m.interfaces));
   out << "      </CellData>\n      <Points>\n";
-  arrays.array("Float64", "Points", 3, flat<double>(m.points));
+  arrays.array<double>("Float64", "Points", 3, 3 * m.points.size(), flat_value(m.points));
   out << "      </Points>\n      <Polys>\n";
-  const std::vector<std::size_t> rows(m.triangles.size(), 3);
-  arrays.array("Int64", "connectivity", 1, flat<std::int64_t>(m.triangles), rows);
-  std::vector<std::int64_t> offsets(m.triangles.size());
-  for (std::size_t i = 0; i < offsets.size(); ++i) offsets[i] = std::int64_t(3 * (i + 1));
-  arrays.array("Int64", "offsets", 1, offsets);
+  const std::size_t n = m.triangles.size();
+  arrays.array<std::int64_t>("Int64", "connectivity", 1, 3 * n, flat_value(m.triangles), n, [](std::size_t) { return 3; });
+  arrays.array<std::int64_t>("Int64", "offsets", 1, n, [](std::size_t i) { return 3 * (i + 1); });
   out << "      </Polys>\n    </Piece>\n  </PolyData>\n";
   arrays.appended_data();
   out << "</VTKFile>\n";

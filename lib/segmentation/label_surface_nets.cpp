@@ -3,6 +3,7 @@
 #include "segmentation/label_surface_nets.hpp"
 
 #include "conforming/conforming_surface.hpp"
+#include "image/narrow_labels.hpp"
 #include "mesh/triangle_quality.hpp"
 #include "segmentation/label_surfaces.hpp"
 #include "surfacenets/interface_certificate.hpp"
@@ -145,9 +146,13 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
     // The last round certified this very mesh already: its certificate is kept.
     res.certificate = c.certified_as_is ? std::move(last) : certify_interface_mesh(points, triangles, pairs, wc, k, co);
   } else {
+    // Past K(X) the partition is only read, by the certificate: held in the
+    // narrowest type its labels fit (a byte a voxel for up to 255, not 4).
+    const Geometry grid = wc.geometry();
+    const NarrowLabelImage narrow = narrow_labels(std::move(partition.image));
     t0 = Clock::now();
     say("surface nets");
-    InterfaceMesh m = interface_mesh(wc, k);
+    InterfaceMesh m = interface_mesh(grid, k);
     res.seconds.push_back({"mesh", since(t0)});
 
     t0 = Clock::now();
@@ -170,6 +175,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
     say("certificate");
     pairs.resize(m.triangles.size());
     for (std::size_t t = 0; t < pairs.size(); ++t) pairs[t] = m.triangle_labels(t);
+    release(m.labels);  // per quad: pairs holds them per triangle
     // The whole mesh's crossing pairs, found before the labels' surfaces
     // are built, and what only their search needs (the quads, the corners)
     // freed. Smoothed, there are none: the untangling searched every pair
@@ -184,7 +190,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
     release(m.corners);
     release_free_memory();  // the smoothing's and the search's pages, before the certificate's threads
     co.crossings = [&] { return std::move(crossings); };
-    res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, wc, k, co);
+    res.certificate = certify_interface_mesh(m.points, m.triangles, pairs, narrow, k, co);
     co.crossings = nullptr;
     points = std::move(m.points), triangles = std::move(m.triangles);
   }

@@ -23,7 +23,7 @@ namespace {
 using Cert = InterfaceCertificate;
 
 void validate(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-              const std::vector<std::array<std::int32_t, 2>>& pairs, const LabelImage& image,
+              const std::vector<std::array<std::int32_t, 2>>& pairs, const Geometry& image,
               const InterfaceComplex& k) {
   if (image.dimension != 3 || k.dimension != 3) throw Error("certify_interface_mesh: a 3D label image is needed");
   for (int a = 0; a < 3; ++a)
@@ -62,15 +62,17 @@ struct LabelBox {
     ++voxels;
   }
 };
-// labels: ascending, 0 among them.
-std::vector<LabelBox> label_boxes(const LabelImage& img, const std::vector<std::int32_t>& labels) {
+// labels: ascending, 0 among them. T: the image's voxel type (int32, or
+// narrower: NarrowLabelImage).
+template <class T>
+std::vector<LabelBox> label_boxes(const Image<T>& img, const std::vector<std::int32_t>& labels) {
   std::vector<LabelBox> box(labels.size());
   const std::size_t zero = std::size_t(std::lower_bound(labels.begin(), labels.end(), 0) - labels.begin());
   std::size_t at = 0;
   for (std::size_t z = 0; z < img.size[2]; ++z)
     for (std::size_t y = 0; y < img.size[1]; ++y)
       for (std::size_t x = 0; x < img.size[0]; ++x) {
-        const std::int32_t v = img(x, y, z);
+        const std::int32_t v = std::int32_t(img(x, y, z));
         if (labels[at] != v) at = std::size_t(std::lower_bound(labels.begin(), labels.end(), v) - labels.begin());
         if (v != 0) box[at].add(x, y, z), box[zero].add(x, y, z);
       }
@@ -84,7 +86,7 @@ std::array<std::size_t, 3> crop_lo(const LabelBox& box) {
 
 // {X = label} (label 0: X != 0) on its box grown by a voxel within the
 // grid: every voxel with a face on its bdCA, and its neighbours across.
-BinaryImage crop_indicator(const LabelImage& img, std::int32_t label, const LabelBox& box) {
+template <class T> BinaryImage crop_indicator(const Image<T>& img, std::int32_t label, const LabelBox& box) {
   Geometry g = img.geometry();
   const std::array<std::size_t, 3> lo = crop_lo(box);
   for (std::size_t a = 0; a < 3; ++a) g.size[a] = std::min(box.hi[a] + 1, img.size[a] - 1) - lo[a] + 1;
@@ -93,7 +95,7 @@ BinaryImage crop_indicator(const LabelImage& img, std::int32_t label, const Labe
   for (std::size_t z = 0; z < g.size[2]; ++z)
     for (std::size_t y = 0; y < g.size[1]; ++y)
       for (std::size_t x = 0; x < g.size[0]; ++x) {
-        const std::int32_t v = img(lo[0] + x, lo[1] + y, lo[2] + z);
+        const std::int32_t v = std::int32_t(img(lo[0] + x, lo[1] + y, lo[2] + z));
         b(x, y, z) = label == 0 ? v != 0 : v == label;
       }
   return b;
@@ -141,8 +143,9 @@ double area_of(const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>
 // One label: its surface certified against the crop of its indicator, its
 // figures, its voxel centres' sides. On a mesh where `cells` holds, the
 // nesting and the sides from the lattice (interface_cells.cpp), else by rays.
+template <class T>
 void certify_label(Cert::Label& l, const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& tris,
-                   const LabelImage& image, const LabelBox& box, const CertificateOptions& options,
+                   const Image<T>& image, const LabelBox& box, const CertificateOptions& options,
                    const surfacenets_detail::NetCells& cells, const InterfaceComplex& k) {
   l.triangles = tris.size();
   l.area = area_of(p, tris);
@@ -184,8 +187,9 @@ struct Scratch {
 // Every label of K(X) with faces and every label of the mesh, ascending.
 // Labels are independent: `threads` threads take them in turn, each result
 // in its label's slot, so the certificate is the same whatever their number.
+template <class T>
 std::vector<Cert::Label> certify_labels(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                                        const std::vector<std::array<std::int32_t, 2>>& pairs, const LabelImage& image,
+                                        const std::vector<std::array<std::int32_t, 2>>& pairs, const Image<T>& image,
                                         const InterfaceComplex& k, const CertificateOptions& options, unsigned threads,
                                         const surfacenets_detail::NetCells& cells) {
   std::vector<std::int32_t> in_image, labels;
@@ -413,11 +417,11 @@ Json InterfaceCertificate::to_json() const {
   return j;
 }
 
-InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
-                                            const std::vector<std::array<int, 3>>& triangles,
-                                            const std::vector<std::array<std::int32_t, 2>>& pairs,
-                                            const LabelImage& image, const InterfaceComplex& k,
-                                            const InterfaceCertificateOptions& options) {
+namespace {
+template <class T>
+InterfaceCertificate certify(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                             const std::vector<std::array<std::int32_t, 2>>& pairs, const Image<T>& image,
+                             const InterfaceComplex& k, const InterfaceCertificateOptions& options) {
   validate(points, triangles, pairs, image, k);
   if (options.intersections_cap == 0) throw Error("certify_interface_mesh: the intersections cap must be positive");
   InterfaceCertificate c;
@@ -444,6 +448,23 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
   c.labels = certify_labels(points, triangles, pairs, image, k, co, options.threads, cells);
   check_labels(c);
   return c;
+}
+} // namespace
+
+InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
+                                            const std::vector<std::array<int, 3>>& triangles,
+                                            const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                            const LabelImage& image, const InterfaceComplex& k,
+                                            const InterfaceCertificateOptions& options) {
+  return certify(points, triangles, pairs, image, k, options);
+}
+
+InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
+                                            const std::vector<std::array<int, 3>>& triangles,
+                                            const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                            const NarrowLabelImage& image, const InterfaceComplex& k,
+                                            const InterfaceCertificateOptions& options) {
+  return image.visit([&](const auto& im) { return certify(points, triangles, pairs, im, k, options); });
 }
 
 InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,

@@ -66,6 +66,7 @@
 // caller's local search); labels and interfaces run on `threads` threads.
 #pragma once
 #include "image/grid.hpp"
+#include "image/io.hpp"
 #include "mesh/embedding.hpp"
 #include "mesh/surface_certificate.hpp"
 #include "mesh/voxel_sides.hpp"
@@ -178,6 +179,13 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
                                             const std::vector<std::array<int, 3>>& triangles,
                                             const std::vector<std::array<std::int32_t, 2>>& pairs,
                                             const LabelImage& image, const InterfaceComplex& k,
+                                            const InterfaceCertificateOptions& options = {});
+// The same on the image held narrower (image/narrow_labels.hpp): the same
+// certificate.
+InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
+                                            const std::vector<std::array<int, 3>>& triangles,
+                                            const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                            const NarrowLabelImage& image, const InterfaceComplex& k,
                                             const InterfaceCertificateOptions& options = {});
 // The same, K(X) built here.
 InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,

@@ -9,7 +9,7 @@
 namespace imgmesh {
 namespace {
 
-constexpr std::size_t kBlock = 32768;  // vtkZLibDataCompressor's block size
+constexpr std::size_t kBlock = VtkZlibEncoder::kBlock;
 
 // base64's value of c, -1 for '=' (padding), -2 for any other byte.
 int base64_value(char c) {
@@ -113,23 +113,49 @@ std::string zlib_array(const ArrayRuns& runs, std::size_t offset, const VtkBinar
 
 } // namespace
 
-std::string vtk_zlib_encode(const std::string& raw) {
-  const std::size_t blocks = (raw.size() + kBlock - 1) / kBlock;
-  std::string body, header;
-  std::vector<unsigned char> buf(compressBound(uLong(kBlock)));
-  append_bytes(header, std::uint64_t(blocks));
-  append_bytes(header, std::uint64_t(kBlock));
-  append_bytes(header, std::uint64_t(raw.size() % kBlock));
-  for (std::size_t b = 0; b < blocks; ++b) {
-    const std::size_t size = std::min(kBlock, raw.size() - b * kBlock);
-    uLongf out = uLongf(buf.size());
-    if (compress2(buf.data(), &out, reinterpret_cast<const Bytef*>(raw.data() + b * kBlock), uLong(size),
-                  Z_DEFAULT_COMPRESSION) != Z_OK)
-      throw Error("zlib cannot compress");
-    append_bytes(header, std::uint64_t(out));
-    body.append(reinterpret_cast<const char*>(buf.data()), out);
+void VtkZlibEncoder::compress(const char* bytes, std::size_t n) {
+  buf_.resize(compressBound(uLong(kBlock)));
+  uLongf size = uLongf(buf_.size());
+  if (compress2(buf_.data(), &size, reinterpret_cast<const Bytef*>(bytes), uLong(n), Z_DEFAULT_COMPRESSION) != Z_OK)
+    throw Error("zlib cannot compress");
+  blocks_.emplace_back(reinterpret_cast<const char*>(buf_.data()), size);  // its own size, not the bound's
+  raw_size_ += n;
+}
+
+void VtkZlibEncoder::compress_full_blocks() {
+  std::size_t at = 0;
+  for (; block_.size() - at >= kBlock; at += kBlock) compress(block_.data() + at, kBlock);
+  block_.erase(0, at);
+}
+
+void VtkZlibEncoder::add(const char* bytes, std::size_t n) {
+  while (n > 0) {
+    const std::size_t take = std::min(n, kBlock - block_.size());
+    block_.append(bytes, take);
+    bytes += take, n -= take;
+    if (block_.size() == kBlock) compress_full_blocks();
   }
-  return header + body;
+}
+
+std::vector<std::string> VtkZlibEncoder::finish() {
+  if (!block_.empty()) compress(block_.data(), block_.size());
+  std::string header;
+  append_bytes(header, std::uint64_t(blocks_.size()));
+  append_bytes(header, std::uint64_t(kBlock));
+  append_bytes(header, std::uint64_t(raw_size_ % kBlock));
+  for (const std::string& b : blocks_) append_bytes(header, std::uint64_t(b.size()));
+  std::vector<std::string> out{std::move(header)};
+  for (std::string& b : blocks_) out.push_back(std::move(b));
+  *this = VtkZlibEncoder();
+  return out;
+}
+
+std::string vtk_zlib_encode(const std::string& raw) {
+  VtkZlibEncoder e;
+  e.add(raw.data(), raw.size());
+  std::string out;
+  for (const std::string& piece : e.finish()) out += piece;
+  return out;
 }
 
 std::string vtk_array_decode(std::string_view data, std::size_t offset, const VtkBinaryLayout& layout,

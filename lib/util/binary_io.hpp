@@ -81,6 +81,30 @@ template <class Out, class T> void vtk_legacy_values(Out& out, const std::vector
 // of blocks, block size 32768, the last block's size when partial else 0,
 // each block's compressed size), then the blocks, each zlib-compressed.
 std::string vtk_zlib_encode(const std::string& raw);
+// The same bytes made as the raw bytes come, a block at a time: only the
+// compressed blocks are held, never the raw array (a writer streams an
+// array from the mesh's own vectors instead of copying it twice).
+class VtkZlibEncoder {
+public:
+  static constexpr std::size_t kBlock = 32768;  // vtkZLibDataCompressor's block size
+  void add(const char* bytes, std::size_t n);
+  template <class T> void add_value(T v) {  // its bytes, little-endian
+    append_bytes(block_, v);
+    if (block_.size() >= kBlock) compress_full_blocks();
+  }
+  // The encoding of every byte given: the header, then the compressed
+  // blocks, in order (pieces to write one after the other); the encoder is
+  // then empty.
+  std::vector<std::string> finish();
+
+private:
+  void compress_full_blocks();
+  void compress(const char* bytes, std::size_t n);
+  std::string block_;                // raw bytes not compressed yet, fewer than kBlock after each call
+  std::vector<std::string> blocks_;  // compressed
+  std::uint64_t raw_size_ = 0;       // of the blocks compressed
+  std::vector<unsigned char> buf_;   // a block's compression
+};
 
 // How a VTK XML file holds its binary arrays (vtkXMLWriter's choices):
 // base64 text (inline format="binary" always, appended data unless

@@ -149,6 +149,40 @@ TEST_CASE("vtk_zlib: arrays over several 32 KiB blocks decode to their bytes; a 
   CHECK(vtk_array_decode(vtk_zlib_encode(""), 0, zlib64, "a", "t").empty());
 }
 
+TEST_CASE("VtkZlibEncoder: the bytes given in any pieces encode as all at once, and decode back to them") {
+  for (const std::size_t n : {std::size_t(3 * 32768 + 100), std::size_t(2 * 32768)}) {
+    std::string raw;
+    for (std::size_t i = 0; raw.size() < n; ++i) raw += char((i * 7919) % 251);
+    std::string once;
+    for (const std::string& piece : [&] {
+           VtkZlibEncoder e;
+           e.add(raw.data(), raw.size());
+           return e.finish();
+         }())
+      once += piece;
+    CHECK(get_bytes<std::uint64_t>(once.data()) == (n + 32767) / 32768);
+    CHECK(get_bytes<std::uint64_t>(once.data() + 16) == n % 32768);
+    // Uneven pieces across the block boundaries, and single values.
+    VtkZlibEncoder e;
+    std::size_t at = 0;
+    for (const std::size_t size : {std::size_t(1), std::size_t(7), std::size_t(40000), std::size_t(20000)}) {
+      e.add(raw.data() + at, size);
+      at += size;
+    }
+    for (; at < raw.size(); ++at) e.add_value(raw[at]);
+    std::string pieces;
+    for (const std::string& piece : e.finish()) pieces += piece;
+    CHECK(pieces == once);
+    VtkBinaryLayout zlib64;
+    zlib64.zlib = zlib64.uint64_header = true;
+    CHECK(vtk_array_decode(pieces, 0, zlib64, "a", "t") == raw);
+    // Emptied by finish: the next array starts afresh.
+    std::string empty;
+    for (const std::string& piece : e.finish()) empty += piece;
+    CHECK(empty == vtk_zlib_encode(""));
+  }
+}
+
 // Arrays as vtkXMLWriter writes them in base64, made by hand: the bytes
 // packed little- or big-endian, zlib-compressed and base64-encoded by
 // Python's struct, zlib and base64 modules (not by our encoder); the values

@@ -5,6 +5,7 @@
 // or label that fails.
 #include "surfacenets/interface_certificate.hpp"
 
+#include "image/narrow_labels.hpp"
 #include "mesh/embedding.hpp"
 #include "surfacenets/label_maps.hpp"
 #include "surfacenets/soup.hpp"
@@ -113,6 +114,23 @@ TEST_CASE("interface certificate: a random map of 200 labels", "[surfacenets]") 
   const InterfaceCertificate one = certify_interface_mesh(s.points, s.triangles, s.pairs, r.image, k);
   CHECK(one.ok());
   CHECK(certify_interface_mesh(s.points, s.triangles, s.pairs, r.image, k, three).to_json().dump() == one.to_json().dump());
+  // The image held a byte a voxel (seg2mesh --fast): the same certificate.
+  const NarrowLabelImage u8 = narrow_labels(r.image);
+  REQUIRE(u8.bytes == 1);
+  CHECK(certify_interface_mesh(s.points, s.triangles, s.pairs, u8, k, three).to_json().dump() == one.to_json().dump());
+  // Labels past 255 (two bytes a voxel): the same as on the int32 image.
+  LabelImage wide = r.image;
+  for (std::int32_t& v : wide.data)
+    if (v != 0) v += 1000;
+  const InterfaceComplex kw = interface_complex(wide);
+  InterfaceMesh mw = interface_mesh(wide, kw);
+  smooth_interface_mesh(mw);
+  const Soup sw = soup_of(mw);
+  const InterfaceCertificate wide_cert = certify_interface_mesh(sw.points, sw.triangles, sw.pairs, wide, kw);
+  CHECK(wide_cert.ok());
+  const NarrowLabelImage u16 = narrow_labels(wide);
+  REQUIRE(u16.bytes == 2);
+  CHECK(certify_interface_mesh(sw.points, sw.triangles, sw.pairs, u16, kw).to_json().dump() == wide_cert.to_json().dump());
 }
 
 namespace {
