@@ -204,6 +204,13 @@ struct VoxelStream::Source {
     }
     return got == bytes;
   }
+  // After the last byte: the stream's end and its check (gzip's CRC,
+  // zlib's Adler-32) read, so that corrupt data is not taken as voxels;
+  // false when the input ends first (data beyond the voxels is let be).
+  bool finish(const std::string& path) {
+    unsigned char extra;
+    return ended || fill(&extra, 1, path) || ended;
+  }
 };
 
 VoxelStream::VoxelStream(const std::string& file, const VoxelLayout& layout, std::size_t values, const std::string& path)
@@ -231,6 +238,8 @@ void VoxelStream::read(void* out, std::size_t n) {
                     "data (the header declares " + std::to_string(total_) + " bytes of voxels)",
                 path_);
   done_ += bytes;
+  if (layout_.deflate && done_ == total_ && !in_->finish(path_))
+    throw Error("cannot read the image: truncated compressed data (it ends before its check)", path_);
   const std::uint16_t probe = 1;
   const bool little = *reinterpret_cast<const unsigned char*>(&probe) == 1;
   if (layout_.big_endian == !little || layout_.bytes == 1) return;
