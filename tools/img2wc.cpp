@@ -140,7 +140,17 @@ int main(int argc, char** argv) {
       return run_labels(tool, in, out, labels, popt, check);
     }
 
-    BinaryImage img = read_foreground(in, sel);
+    // A label: read as the runs of its rows (the scan's values not kept),
+    // cut to its box plus the margin, placed in the scan by its frame.
+    ForegroundRuns runs;
+    BinaryImage img;
+    if (!sel.labels.empty() && !full_grid && !check) {
+      runs = read_foreground_runs(in, sel);
+      if (runs.geometry().dimension != 3) img = runs.image();
+    } else {
+      img = read_foreground(in, sel);
+    }
+    const bool crop = runs.count() && runs.geometry().dimension == 3;
     tool.stats["input"] = in;
 
     if (check) {
@@ -154,16 +164,17 @@ int main(int argc, char** argv) {
     opt.seed = tool.seed();
     opt.greedy = !thesis_rules;
     opt.repair = !skip_repair;
-    tool.report_progress("repairing " + std::to_string(img.count()) + " voxels");
-    // A label: its box plus the margin, placed in the scan by its frame.
-    const bool crop = !sel.labels.empty() && !full_grid && img.dimension == 3;
+    tool.report_progress("repairing " + std::to_string(crop ? runs.geometry().count() : img.count()) + " voxels");
     ScanFrame frame;
     WellComposedResult res;
     if (crop) {
+      VoxelBox box;
+      box.lo = runs.lo();
+      box.hi = runs.hi();
       WellComposedCrop c = well_composed_crop(
-          img, foreground_box(img),
+          runs.geometry(), box,
           [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
-            std::copy_n(&img(x0, y, z), n, row);
+            runs.row(y, z, x0, n, row);
           },
           opt);
       res = std::move(c.result);
@@ -172,6 +183,7 @@ int main(int argc, char** argv) {
       res = make_well_composed(img, opt);
     }
     std::vector<std::uint8_t>().swap(img.data);  // the input is no longer needed: less memory while writing
+    runs = ForegroundRuns();
 
     if (res.padded_before != std::array<std::size_t, 3>{0, 0, 0} ||
         res.padded_after != std::array<std::size_t, 3>{0, 0, 0}) {

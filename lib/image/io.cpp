@@ -4,6 +4,7 @@
 #include "image/io.hpp"
 #include "image/file_checks.hpp"
 #include "image/slicer_segmentation.hpp"
+#include "image/voxel_stream.hpp"
 
 #include "util/atomic_file.hpp"
 #include "util/error.hpp"
@@ -30,6 +31,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <unistd.h>
@@ -213,7 +215,18 @@ std::map<std::string, std::string> string_fields(const itk::MetaDataDictionary& 
   return fields;
 }
 
-Opened open_image_itk(const std::string& path, const std::string& file) {
+// MetaIO reads data it cannot read as zeros: what the header points to is
+// checked first (metaimage_data_error), compressed data inflated once.
+void check_metaimage_data(const std::string& path, const std::string& file, const Opened& o) {
+  if (std::strcmp(o.io->GetNameOfClass(), "MetaImageIO") != 0) return;
+  const std::string e = metaimage_data_error(file, std::uintmax_t(o.info.geometry.count()) * std::uintmax_t(o.info.components) *
+                                                       o.io->GetComponentSize());
+  if (!e.empty()) throw Error("cannot read the image: " + e, path);
+}
+
+// check_data: false when the caller reads the voxels itself (VoxelStream,
+// which checks them as it reads) or calls check_metaimage_data.
+Opened open_image_itk(const std::string& path, const std::string& file, bool check_data) {
   register_factories();
   {
     std::ifstream probe(file, std::ios::binary);
@@ -290,10 +303,7 @@ Opened open_image_itk(const std::string& path, const std::string& file) {
     count *= s;
   }
   check_declared_size(path, file, std::uintmax_t(count) * comps * o.io->GetComponentSize());
-  if (std::strcmp(o.io->GetNameOfClass(), "MetaImageIO") == 0) {
-    const std::string e = metaimage_data_error(file, std::uintmax_t(count) * comps * o.io->GetComponentSize());
-    if (!e.empty()) throw Error("cannot read the image: " + e, path);
-  }
+  if (check_data) check_metaimage_data(path, file, o);
   for (int i = 0; i < 3; ++i)
     if (!(g.spacing[i] > 0) || !std::isfinite(g.spacing[i]))
       throw Error("spacing must be positive and finite", path);
@@ -302,9 +312,9 @@ Opened open_image_itk(const std::string& path, const std::string& file) {
 
 // ITK throws from its queries too (an unknown component type, ...): those
 // come out as Error naming the file, like the reader's own.
-Opened open_image(const std::string& path, const std::string& file) {
+Opened open_image(const std::string& path, const std::string& file, bool check_data = true) {
   try {
-    return open_image_itk(path, file);
+    return open_image_itk(path, file, check_data);
   } catch (const itk::ExceptionObject& e) {
     throw Error(itk_message(e), path);
   }
@@ -463,9 +473,9 @@ ImageInfo read_image_info(const std::string& path) {
   return open_image(path, spool.file()).info;
 }
 
-BinaryImage read_foreground(const std::string& path, const Selection& sel, std::map<std::string, std::string>* fields) {
-  Spool spool(path);
-  Opened o = open_image(path, spool.file());
+namespace {
+BinaryImage read_foreground_opened(const std::string& path, Opened& o, const Selection& sel,
+                                   std::map<std::string, std::string>* fields) {
   if (!sel.labels.empty() && sel.has_threshold)
     throw UsageError("give either --label or --threshold, not both");
   if (!sel.labels.empty() && !o.info.integer)
@@ -509,6 +519,47 @@ BinaryImage read_foreground(const std::string& path, const Selection& sel, std::
   if (count == 0) throw Error("the foreground is empty (check --label/--threshold)", path);
   if (fields) *fields = string_fields(o.io->GetMetaDataDictionary());
   return out;
+}
+
+// The integer types VoxelStream's values are compared in.
+std::optional<IntegerType> integer_type(itk::IOComponentEnum t) {
+  switch (t) {
+    case itk::IOComponentEnum::UCHAR: return IntegerType::u8;
+    case itk::IOComponentEnum::CHAR: return IntegerType::i8;
+    case itk::IOComponentEnum::USHORT: return IntegerType::u16;
+    case itk::IOComponentEnum::SHORT: return IntegerType::i16;
+    case itk::IOComponentEnum::UINT: return IntegerType::u32;
+    case itk::IOComponentEnum::INT: return IntegerType::i32;
+    default: return std::nullopt;
+  }
+}
+} // namespace
+
+BinaryImage read_foreground(const std::string& path, const Selection& sel, std::map<std::string, std::string>* fields) {
+  Spool spool(path);
+  Opened o = open_image(path, spool.file());
+  return read_foreground_opened(path, o, sel, fields);
+}
+
+ForegroundRuns read_foreground_runs(const std::string& path, const Selection& sel) {
+  if (sel.labels.empty() || sel.has_threshold) throw Error("internal: read_foreground_runs selects labels", path);
+  Spool spool(path);
+  const std::optional<VoxelLayout> layout = plain_voxel_layout(spool.file());
+  Opened o = open_image(path, spool.file(), !layout);
+  const std::optional<IntegerType> type = integer_type(o.io->GetComponentType());
+  if (layout && type && o.info.components == 1 && std::size_t(layout->bytes) == o.io->GetComponentSize() &&
+      layout->values == o.info.geometry.count()) {
+    LabelMatch match;
+    match.labels = sel.labels;
+    std::sort(match.labels.begin(), match.labels.end());
+    match.labels.erase(std::unique(match.labels.begin(), match.labels.end()), match.labels.end());
+    VoxelStream in(spool.file(), *layout, layout->values, path);
+    ForegroundRuns runs = label_runs(o.info.geometry, in, *type, match);
+    if (std::find(match.seen.begin(), match.seen.end(), 0) == match.seen.end()) return runs;
+    // A label absent: read_foreground's error names the labels present.
+  }
+  if (layout) check_metaimage_data(path, spool.file(), o);
+  return ForegroundRuns(read_foreground_opened(path, o, sel, nullptr));
 }
 
 namespace {

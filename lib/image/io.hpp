@@ -3,6 +3,7 @@
 // (spooled to a temporary file, format sniffed from the content) and writes
 // NRRD to stdout. Writers go through AtomicOutput: no partial files.
 #pragma once
+#include "image/foreground_runs.hpp"
 #include "image/grid.hpp"
 #include "image/slicer_segmentation.hpp"
 
@@ -37,6 +38,12 @@ ImageInfo read_image_info(const std::string& path);
 // fields ("key:=value"; none in other formats).
 BinaryImage read_foreground(const std::string& path, const Selection& sel,
                             std::map<std::string, std::string>* fields = nullptr);
+// The same voxels, geometry and errors for a selection of labels, held as
+// runs (img2wc --label: the scan's values are read once and not kept). A
+// file of a plain layout (voxel_stream.hpp: NRRD, NIfTI-1, MetaImage, raw
+// or compressed) is streamed without ITK's reader, its header still read
+// by ITK; any other file goes through read_foreground (streamed() false).
+ForegroundRuns read_foreground_runs(const std::string& path, const Selection& sel);
 
 // Read an integer label image (2D or 3D) and, when `names` is given, the
 // names its file gives its labels (3D Slicer's segment names, empty when

@@ -132,7 +132,7 @@ void SampleGrid::stream_dense(const std::array<std::size_t, 3>& box_size, const 
 }
 
 void SampleGrid::start_blocks() {
-  table_.assign(std::size_t(nb_[0] * nb_[1] * nb_[2]), 1);  // outside the box: +T
+  ZeroedVector<std::uint32_t>(std::size_t(nb_[0] * nb_[1] * nb_[2])).swap(table_);  // outside the box: +T
   std::size_t bound = 2;
   for (int i = 0; i < 3; ++i) bound *= std::size_t((long(box_hi_[i]) >> kShift) - (long(box_lo_[i]) >> kShift) + 1);
   // Room for every block the box meets: only the pages written take memory,
@@ -142,8 +142,8 @@ void SampleGrid::start_blocks() {
   } catch (const std::bad_alloc&) {
   }
   prefer_huge_pages(pool_);
-  pool_.assign(2 * kBlockSamples, -clamp_);
-  std::fill_n(pool_.begin() + kBlockSamples, kBlockSamples, clamp_);
+  pool_.assign(2 * kBlockSamples, clamp_);
+  std::fill_n(pool_.begin() + kBlockSamples, kBlockSamples, -clamp_);
 }
 
 void SampleGrid::add_blocks(const long c0[3], const long c1[3], const float* chunk) {
@@ -174,7 +174,7 @@ void SampleGrid::add_blocks(const long c0[3], const long c1[3], const float* chu
         keep = keep || (negative && positive);
         std::uint32_t& entry = table_[std::size_t(bx + nb_[0] * (by + nb_[1] * bz))];
         if (!keep) {
-          entry = negative ? 0 : 1;
+          entry = negative ? 1 : 0;
           continue;
         }
         entry = std::uint32_t(pool_.size() / kBlockSamples);
@@ -283,7 +283,7 @@ void SampleGrid::blocks_to_dense() {
     for (std::size_t y = 0; y < size[1]; ++y)
       for (std::size_t x = 0; x < size[0]; ++x) d[index(x, y, z)] = (*this)(x, y, z);
   std::vector<float>().swap(pool_);
-  std::vector<std::uint32_t>().swap(table_);
+  ZeroedVector<std::uint32_t>().swap(table_);
   dense_ = std::move(d);
 }
 

@@ -17,6 +17,7 @@
 // every sample outside that box then reads +T.
 #pragma once
 #include "image/grid.hpp"
+#include "util/zeroed.hpp"
 
 #include <cstdint>
 #include <functional>
@@ -118,9 +119,10 @@ public:
 private:
   std::vector<float> dense_;
   long s1_ = 0, s2_ = 0;  // dense strides along y and z
-  // Blocks 0 and 1: the constant -T and +T blocks; then the stored ones.
+  // Blocks 0 and 1: the constant +T and -T blocks; then the stored ones.
+  // The table's zeros (+T: every block outside the box) cost no memset.
   std::vector<float> pool_;
-  std::vector<std::uint32_t> table_;
+  ZeroedVector<std::uint32_t> table_;
   long nb_[3] = {0, 0, 0};
   float clamp_ = std::numeric_limits<float>::infinity();
   Index3 box_lo_{0, 0, 0}, box_hi_{-1, -1, -1};

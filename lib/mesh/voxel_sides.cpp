@@ -2,6 +2,8 @@
 
 #include "mesh/embedding.hpp"
 
+#include <algorithm>
+
 namespace imgmesh {
 
 Json VoxelSides::to_json() const {
@@ -23,13 +25,22 @@ VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::a
 namespace {
 // visit(i, j, k, in) for every voxel with a face on bdCA(X): a
 // face-neighbour (or the outside, for foreground) on the other side.
-template <class Visit> void for_each_centre_next_to_boundary(const Geometry& grid, const Foreground& foreground, Visit visit) {
+// Beyond box (grown by one voxel) no voxel has a foreground neighbour.
+template <class Visit>
+void for_each_centre_next_to_boundary(const Geometry& grid, const Foreground& foreground, Visit visit,
+                                      const std::array<Index3, 2>* box = nullptr) {
   const auto fg = [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
     return grid.inside(x, y, z) && foreground(std::size_t(x), std::size_t(y), std::size_t(z));
   };
-  for (std::size_t k = 0; k < grid.size[2]; ++k)
-    for (std::size_t j = 0; j < grid.size[1]; ++j)
-      for (std::size_t i = 0; i < grid.size[0]; ++i) {
+  std::size_t lo[3] = {0, 0, 0}, end[3] = {grid.size[0], grid.size[1], grid.size[2]};
+  if (box)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::size_t(std::clamp<std::ptrdiff_t>((*box)[0][a] - 1, 0, std::ptrdiff_t(grid.size[a])));
+      end[a] = std::size_t(std::clamp<std::ptrdiff_t>((*box)[1][a] + 2, 0, std::ptrdiff_t(grid.size[a])));
+    }
+  for (std::size_t k = lo[2]; k < end[2]; ++k)
+    for (std::size_t j = lo[1]; j < end[1]; ++j)
+      for (std::size_t i = lo[0]; i < end[0]; ++i) {
         const std::ptrdiff_t x = std::ptrdiff_t(i), y = std::ptrdiff_t(j), z = std::ptrdiff_t(k);
         const bool in = foreground(i, j, k);
         bool next = false;
@@ -50,16 +61,19 @@ std::size_t centres_next_to_boundary(const BinaryImage& img) {
 
 VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                        const std::vector<int>& component, std::size_t components, const Geometry& grid,
-                       const Foreground& foreground) {
+                       const Foreground& foreground, const std::array<Index3, 2>* box) {
   const SurfaceGeometry g(points, triangles, component, components);
   VoxelSides r;
-  for_each_centre_next_to_boundary(grid, foreground, [&](std::size_t i, std::size_t j, std::size_t k, bool in) {
-    ++r.checked;
-    const int side = g.side(grid.world(double(i), double(j), double(k)));
-    if (side == 0) ++r.on_surface;
-    else if (in && side > 0) ++r.foreground_outside;
-    else if (!in && side < 0) ++r.background_inside;
-  });
+  for_each_centre_next_to_boundary(
+      grid, foreground,
+      [&](std::size_t i, std::size_t j, std::size_t k, bool in) {
+        ++r.checked;
+        const int side = g.side(grid.world(double(i), double(j), double(k)));
+        if (side == 0) ++r.on_surface;
+        else if (in && side > 0) ++r.foreground_outside;
+        else if (!in && side < 0) ++r.background_inside;
+      },
+      box);
   return r;
 }
 

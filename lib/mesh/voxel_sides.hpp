@@ -35,9 +35,12 @@ VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::a
 std::size_t centres_next_to_boundary(const BinaryImage& img);
 // The same on a grid whose foreground is given per voxel (in the grid;
 // beyond it, background): the mesher's, from the signs of f's samples.
+// box, when given: inclusive corners outside which every voxel is
+// background (a crop placed in its scan): only the box and the voxels
+// around it are looked at, so a small label costs its box, not the scan.
 using Foreground = std::function<bool(std::size_t, std::size_t, std::size_t)>;
 VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                        const std::vector<int>& component, std::size_t components, const Geometry& grid,
-                       const Foreground& foreground);
+                       const Foreground& foreground, const std::array<Index3, 2>* box = nullptr);
 
 } // namespace imgmesh

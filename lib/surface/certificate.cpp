@@ -262,8 +262,10 @@ bool count_voxel_sides(const Certificate& cert, const CubeGrid& grid, VoxelSides
   std::vector<int> component;
   component.reserve(cert.mesh.triangles.size());
   for (const auto& tri : cert.mesh.triangles) component.push_back(t.component_of[std::size_t(tri[0])]);
+  // Outside the box of the samples given every sample is +T: background.
+  const std::array<Index3, 2> box{grid.g.box_lo(), grid.g.box_hi()};
   out = voxel_sides(cert.mesh.points, cert.mesh.triangles, component, t.components.size(), local,
-                    [&grid](std::size_t i, std::size_t j, std::size_t k) { return grid.g(i, j, k) < 0; });
+                    [&grid](std::size_t i, std::size_t j, std::size_t k) { return grid.g(i, j, k) < 0; }, &box);
   return true;
 }
 

@@ -15,7 +15,7 @@ CubeGrid::CubeGrid(const SampleGrid& img) : g(img) {
   }
   delta = std::min({s[0], s[1], s[2]});
   if (n[0] < 2 || n[1] < 2 || n[2] < 2) return;
-  cube_active.assign((std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)) + 63) / 64, 0);
+  cube_active.resize((std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)) + 63) / 64);  // zeros, no memset
   block_active.assign(std::size_t(nb[0] * nb[1] * nb[2]), 0);
   long c0[3], c1[3];
   sampled_cubes(c0, c1);
@@ -28,6 +28,7 @@ CubeGrid::CubeGrid(const SampleGrid& img) : g(img) {
         for (int k = 1; k < 8; ++k) mixed = mixed || ((c[k] < 0) != (c[0] < 0));
         if (!mixed) continue;
         set_bit(cube_active, cube_index(x, y, z));
+        ++active_cubes;
         block_active[std::size_t(x / kBlock + nb[0] * (y / kBlock + nb[1] * (z / kBlock)))] = 1;
       }
 }
@@ -36,14 +37,12 @@ CubeGrid::CubeGrid(const SampleGrid& img) : g(img) {
 // sorted by key at the end.
 void CubeGrid::label() {
   std::vector<std::array<long, 3>> stack;
-  std::vector<std::uint64_t> done(cube_active.size(), 0);
+  ZeroedVector<std::uint64_t> done(cube_active.size());
   auto labelled = [&](long x, long y, long z) { return test_bit(done, cube_index(x, y, z)); };
   auto set = [&](long x, long y, long z, int c) {
     set_bit(done, cube_index(x, y, z));
     comp.emplace_back(key(x, y, z), c);
   };
-  std::size_t active_cubes = 0;
-  for (std::uint64_t w : cube_active) active_cubes += std::size_t(__builtin_popcountll(w));
   comp.reserve(active_cubes);
   long c0[3], c1[3];
   sampled_cubes(c0, c1);

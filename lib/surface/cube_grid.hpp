@@ -4,6 +4,7 @@
 #pragma once
 #include "surface/implicit_surface.hpp"
 #include "surface/vec3.hpp"
+#include "util/zeroed.hpp"
 
 #include <algorithm>
 #include <array>
@@ -40,7 +41,8 @@ struct CubeGrid {
   // 13 MB as bytes) and of blocks of kBlock^3 cubes, so EdgeSurface crosses
   // empty space a block at a time.
   static constexpr long kBlock = 8;
-  std::vector<std::uint64_t> cube_active;
+  ZeroedVector<std::uint64_t> cube_active;
+  std::size_t active_cubes = 0;
   std::vector<std::uint8_t> block_active;
   long nb[3];
 
@@ -53,8 +55,8 @@ struct CubeGrid {
   }
   std::size_t cube_index(long x, long y, long z) const { return std::size_t(x + (n[0] - 1) * (y + (n[1] - 1) * z)); }
   // Bit i of a bit set of one bit a cube.
-  static bool test_bit(const std::vector<std::uint64_t>& bits, std::size_t i) { return (bits[i >> 6] >> (i & 63)) & 1; }
-  static void set_bit(std::vector<std::uint64_t>& bits, std::size_t i) { bits[i >> 6] |= std::uint64_t(1) << (i & 63); }
+  static bool test_bit(const ZeroedVector<std::uint64_t>& bits, std::size_t i) { return (bits[i >> 6] >> (i & 63)) & 1; }
+  static void set_bit(ZeroedVector<std::uint64_t>& bits, std::size_t i) { bits[i >> 6] |= std::uint64_t(1) << (i & 63); }
   bool block(long x, long y, long z) const {
     return block_active[std::size_t(x + nb[0] * (y + nb[1] * z))];
   }

@@ -11,21 +11,72 @@
       skull, CSF, grey and white matter as nested, bumpy shells (1..5), two
       ventricles (6) and a thin falx of CSF between the hemispheres.
 
-MetaImage with raw uint8 data beside the header (ElementDataFile LOCAL), which
-both the tools here and VTK's vtkMetaImageReader read; 1 mm voxels.
+OUT (or OUT,OUT2,...: the same map in each) by its extension picks how the
+uint8 voxels are written, the ways users have label maps: .mha (raw data after the header, ElementDataFile LOCAL, which
+both the tools here and VTK's vtkMetaImageReader read), .zip.mha (the same,
+CompressedData), .nrrd (raw), .gz.nrrd (gzip encoding), .nii (NIfTI-1) or
+.nii.gz; 1 mm voxels.
 """
+import gzip
+import struct
 import sys
+import zlib
 
 import numpy as np
 
 
-def write_mha(path, a):
+def write_mha(path, a, compressed=False):
     nz, ny, nx = a.shape
+    data = np.ascontiguousarray(a, dtype=np.uint8).tobytes()
+    if compressed:
+        data = zlib.compress(data, 6)
     with open(path, "wb") as f:
-        f.write(("ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+        f.write(("ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n%s"
                  "Offset = 0 0 0\nElementSpacing = 1 1 1\nDimSize = %d %d %d\nElementType = MET_UCHAR\n"
-                 "ElementDataFile = LOCAL\n" % (nx, ny, nz)).encode())
-        f.write(np.ascontiguousarray(a, dtype=np.uint8).tobytes())
+                 "ElementDataFile = LOCAL\n"
+                 % ("CompressedData = True\nCompressedDataSize = %d\n" % len(data) if compressed else "",
+                    nx, ny, nz)).encode())
+        f.write(data)
+
+
+def write_nrrd(path, a, gz):
+    nz, ny, nx = a.shape
+    data = np.ascontiguousarray(a, dtype=np.uint8).tobytes()
+    with open(path, "wb") as f:
+        f.write(("NRRD0004\ntype: uint8\ndimension: 3\nspace: left-posterior-superior\nsizes: %d %d %d\n"
+                 "space directions: (1,0,0) (0,1,0) (0,0,1)\nkinds: domain domain domain\nencoding: %s\n"
+                 "space origin: (0,0,0)\n\n" % (nx, ny, nz, "gzip" if gz else "raw")).encode())
+        f.write(gzip.compress(data, 6) if gz else data)
+
+
+def write_nifti(path, a):
+    """NIfTI-1, one file, uint8, qform (code 1, identity rotation): RAS."""
+    nz, ny, nx = a.shape
+    h = bytearray(352)
+    struct.pack_into("<i", h, 0, 348)
+    struct.pack_into("<8h", h, 40, 3, nx, ny, nz, 1, 1, 1, 1)
+    struct.pack_into("<hh", h, 70, 2, 8)  # datatype uint8, bitpix
+    struct.pack_into("<8f", h, 76, 1, 1, 1, 1, 0, 0, 0, 0)  # qfac, pixdim
+    struct.pack_into("<f", h, 108, 352)  # vox_offset
+    struct.pack_into("<f", h, 112, 1)  # scl_slope
+    struct.pack_into("<hh", h, 252, 1, 0)  # qform_code, sform_code
+    struct.pack_into("<4s", h, 344, b"n+1\0")
+    data = bytes(h) + np.ascontiguousarray(a, dtype=np.uint8).tobytes()
+    with (gzip.open(path, "wb", 6) if path.endswith(".gz") else open(path, "wb")) as f:
+        f.write(data)
+
+
+def write(path, a):
+    if path.endswith(".zip.mha"):
+        write_mha(path, a, True)
+    elif path.endswith(".mha"):
+        write_mha(path, a)
+    elif path.endswith(".nrrd"):
+        write_nrrd(path, a, path.endswith(".gz.nrrd"))
+    elif path.endswith(".nii") or path.endswith(".nii.gz"):
+        write_nifti(path, a)
+    else:
+        sys.exit("labelmap.py: OUT ends in .mha, .zip.mha, .nrrd, .gz.nrrd, .nii or .nii.gz")
 
 
 def rotation(rng):
@@ -111,15 +162,17 @@ def head(n):
 
 
 def main():
-    kind, out = sys.argv[1], sys.argv[2]
+    kind, outs = sys.argv[1], sys.argv[2].split(",")
     rest = [int(v) for v in sys.argv[3:]]
     if kind == "body":
         nx, ny, nz = rest if rest else (512, 512, 400)
-        write_mha(out, body(nx, ny, nz))
+        a = body(nx, ny, nz)
     elif kind == "head":
-        write_mha(out, head(rest[0] if rest else 256))
+        a = head(rest[0] if rest else 256)
     else:
         sys.exit("labelmap.py: body or head")
+    for out in outs:
+        write(out, a)
 
 
 if __name__ == "__main__":

@@ -31,5 +31,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::refuse_or_pass([&] { imgmesh::read_labels(path); });
   rewind_stdin();
   fuzz::refuse_or_pass([&] { imgmesh::read_float(path); });
+  rewind_stdin();
+  imgmesh::Selection one;  // img2wc --label: the voxels streamed (voxel_stream.hpp)
+  one.labels = {1};
+  fuzz::refuse_or_pass([&] { imgmesh::read_foreground_runs(path, one); });
   return 0;
 }
