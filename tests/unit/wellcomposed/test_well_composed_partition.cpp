@@ -238,6 +238,34 @@ TEST_CASE("min_voxels lets small labels go; none is lost without it", "[wellcomp
   std::cout << "min_voxels 1000: " << lost << " labels lost over 60 noisy images\n";
 }
 
+TEST_CASE("a configuration is resolved by a relabelling that creates none where one exists", "[wellcomposed][labels]") {
+  // 2D, label 1 everywhere but nine voxels (rows y = 0..6; digits are labels).
+  // The first critical square in scan order, S at (2,2): a C1 of 1 (1 at
+  // (2,2) and (3,3), 2 at (3,2), 3 at (2,3)). Labels 2 and 3 have fewer
+  // voxels, so they rank above 1: the up moves give (2,2) or (3,3) label 2
+  // or 3, and each creates a configuration (a C1 of 1 with the 6 at (1,1);
+  // of 2 with the 2 at (2,4); of 3 with the 3 at (4,2)), those of (3,3)
+  // while also removing the C1 of 1 in the square at (3,3) (4 and 5 on its
+  // other diagonal). The down moves (3,2) or (2,3) -> 1 remove S alone and
+  // create nothing: the one to take (the thesis's rule (1)), though it
+  // removes fewer.
+  const char* rows[] = {"1111111", "1611111", "1112311", "1131411", "1125111", "1111111", "1111111"};
+  LabelImage img = make_image(2, 7, 7, 1);
+  for (std::size_t y = 0; y < 7; ++y)
+    for (std::size_t x = 0; x < 7; ++x) img(x, y, 0) = rows[y][x] - '0';
+  PartitionOptions one;
+  one.max_steps = 1;
+  one.prune = false;
+  const PartitionResult r = make_well_composed_partition(img, one);
+  REQUIRE(r.input.total() == 2);
+  REQUIRE(r.steps == 1);
+  REQUIRE(r.changed == 1);
+  // The relabelling created no configuration: no label has more than before.
+  for (std::size_t i = 0; i < r.input.counts.size(); ++i) REQUIRE(r.output.counts[i].total() <= r.input.counts[i].total());
+  REQUIRE(r.output.total() == 1);
+  check_result(img, make_well_composed_partition(img));
+}
+
 TEST_CASE("a partition with one configuration left is refused", "[wellcomposed][labels]") {
   // Labels 1 and 2 well apart, plus one C1 of label 5 (two voxels sharing an
   // edge only, in a square whose other two are 1 and 2).
