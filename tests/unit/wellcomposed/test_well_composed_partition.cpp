@@ -115,6 +115,8 @@ void check_result(const LabelImage& in, const PartitionResult& r) {
       }
   REQUIRE(diff == r.changes);
   REQUIRE(n == r.changed);
+  // Labels only grow into the background (the binary add mode's rule).
+  for (const auto& [ab, count] : r.changes) REQUIRE(ab.second != 0);
   std::size_t border = 0;
   for (std::int32_t v : out.data) border += v != 0;
   std::size_t inner = 0;
@@ -264,6 +266,23 @@ TEST_CASE("a configuration is resolved by a relabelling that creates none where 
   for (std::size_t i = 0; i < r.input.counts.size(); ++i) REQUIRE(r.output.counts[i].total() <= r.input.counts[i].total());
   REQUIRE(r.output.total() == 1);
   check_result(img, make_well_composed_partition(img));
+}
+
+TEST_CASE("a small label is not thinned at its own configuration, even where that would create none", "[wellcomposed][labels]") {
+  // 2D, label 1 everywhere but four voxels of label 2 (the fewest voxels:
+  // the higher priority): a diagonal pair at (2,2), (3,3), a C1 of 1 and of
+  // 2. Taking a voxel of the pair (2 -> 1) creates nothing; the up moves
+  // ((3,2) or (2,3) -> 2) each create a C1 of 2 with the 2 at (4,1) or
+  // (1,4). The pair must still grow: every voxel of 2 stays 2.
+  const char* rows[] = {"111111", "111121", "112111", "111211", "121111", "111111"};
+  LabelImage img = make_image(2, 6, 6, 1);
+  for (std::size_t y = 0; y < 6; ++y)
+    for (std::size_t x = 0; x < 6; ++x) img(x, y, 0) = rows[y][x] - '0';
+  const PartitionResult r = make_well_composed_partition(img);
+  check_result(img, r);
+  for (std::size_t y = 0; y < 6; ++y)
+    for (std::size_t x = 0; x < 6; ++x)
+      if (img(x, y, 0) == 2) REQUIRE(r.image(x + r.padded_before[0], y + r.padded_before[1], 0) == 2);
 }
 
 TEST_CASE("a partition with one configuration left is refused", "[wellcomposed][labels]") {
