@@ -307,29 +307,6 @@ TEST_CASE("labels: random blobs, repair of two-label diagonals") {
   check_pipeline(img, 1.0);
 }
 
-TEST_CASE("labels: the image traced is img2wc --labels' repair of it, cropped to the grid") {
-  // Noisy blobs of four labels, some on the border: the label repair is
-  // make_well_composed_partition's (one function for img2poly, meshinfo and
-  // img2wc --labels); its grid grows by a background pixel where a label
-  // touches a side, img2poly keeps the image's rectangle.
-  std::mt19937 rng(36);
-  std::uniform_int_distribution<int> u(0, 3);
-  const std::size_t W = 30, H = 22;
-  std::vector<int> v(W * H);
-  for (auto& x : v) x = u(rng);
-  const LabelImage img = make_image(W, H, [&](int x, int y) {
-    const int blob = v[std::size_t((x / 3) * 3) + W * std::size_t((y / 3) * 3)];
-    return (x * 7 + y * 3) % 11 == 0 ? v[std::size_t(x) + W * std::size_t(y)] : blob;
-  });
-  const ImagePslgResult r = image_to_pslg(img, {});
-  const PartitionResult p = make_well_composed_partition(img);
-  REQUIRE(p.changed > 0);
-  REQUIRE(r.changed_pixels == p.changed);
-  for (std::size_t y = 0; y < H; ++y)
-    for (std::size_t x = 0; x < W; ++x) REQUIRE(r.labels(x, y) == p.image(x + p.padded_before[0], y + p.padded_before[1]));
-  check_pipeline(img, 1.0);
-}
-
 TEST_CASE("a single label: the rectangle and one region") {
   const LabelImage img = make_image(5, 4, [](int, int) { return 7; });
   const ImagePslgResult r = image_to_pslg(img, {});
