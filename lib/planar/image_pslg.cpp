@@ -1,12 +1,18 @@
 // img2poly's engine (thesis 2.3 and 3.3.3).
 //
 // Well-composedness. A binary image (two values) goes through
-// lib/wellcomposed's repair (background -> foreground only, as img2wc); a
-// label image through its partition repair (img2wc --labels): no label's
-// region and not the background's holds a diagonal 2x2 block (a b / b a,
-// nor a b / c a), every pixel keeps a label of the input and every label
-// is kept. The blocks left with three or four labels are junctions
-// (vertices of degree 3 or 4, fine for a PSLG).
+// lib/wellcomposed's repair (background -> foreground only). A label image is
+// repaired here with the same rule generalised: a 2x2 block whose diagonals
+// hold two different labels (a b / b a) is the one configuration where the
+// pixel boundary is ambiguous (a vertex of degree 4 between two regions); we
+// give one of the lower-labelled pixels the higher label, and look again at
+// the four blocks around it. Every change raises the sum of the labels, so
+// the repair ends; blocks with three or four labels are junctions and stay
+// (vertices of degree 3 or 4 are fine for a PSLG).
+// Not wellcomposed/well_composed_partition.hpp's repair (img2wc --labels),
+// which also resolves a b / c a (a C1 of a) and lets the label of fewer
+// pixels win, not the higher value: it would change img2poly's outputs on
+// label images and their "labels only raised" property (test_image_pslg).
 //
 // The rectangle Omega is the image's extent (the union of its pixel squares).
 // Thesis 2.3 takes conv(D), the hull of the pixel centres, and assumes no
@@ -33,7 +39,6 @@
 #include "planar/image_pslg_detail.hpp"
 #include "util/error.hpp"
 #include "wellcomposed/well_composed.hpp"
-#include "wellcomposed/well_composed_partition.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -41,6 +46,44 @@
 #include <map>
 
 namespace imgmesh {
+namespace {
+
+bool two_label_diagonal(const LabelImage& L, std::size_t x, std::size_t y) {
+  const auto p = L(x, y), q = L(x + 1, y);
+  return p != q && L(x + 1, y + 1) == p && L(x, y + 1) == q;
+}
+
+// The label repair described at the top. Returns the number of changes.
+std::size_t repair_labels(LabelImage& L, std::size_t* initial) {
+  const std::size_t W = L.size[0], H = L.size[1];
+  std::vector<std::array<std::size_t, 2>> work;
+  if (W < 2 || H < 2) return 0;
+  for (std::size_t y = 0; y + 1 < H; ++y)
+    for (std::size_t x = 0; x + 1 < W; ++x)
+      if (two_label_diagonal(L, x, y)) work.push_back({x, y});
+  *initial = work.size();
+  std::size_t changed = 0;
+  while (!work.empty()) {
+    const auto [x, y] = work.back();
+    work.pop_back();
+    if (!two_label_diagonal(L, x, y)) continue;
+    const auto p = L(x, y), q = L(x + 1, y);
+    std::size_t cx = x, cy = y;
+    if (p > q) {
+      cx = x + 1;
+      L(cx, cy) = p;
+    } else {
+      L(cx, cy) = q;
+    }
+    ++changed;
+    for (std::size_t by = cy ? cy - 1 : 0; by <= cy && by + 1 < H; ++by)
+      for (std::size_t bx = cx ? cx - 1 : 0; bx <= cx && bx + 1 < W; ++bx) work.push_back({bx, by});
+  }
+  return changed;
+}
+
+} // namespace
+
 LabelImage well_composed_labels(const LabelImage& img, std::uint64_t seed, std::size_t* critical,
                                 std::size_t* changed) {
   std::size_t crit = 0, chg = 0;
@@ -67,18 +110,8 @@ LabelImage well_composed_labels(const LabelImage& img, std::uint64_t seed, std::
     crit = wc.input.total();
     chg = wc.changed;
   } else {
-    // The partition repair grows the grid by a background pixel where a
-    // label touches a side; those pixels stay background, and the squares
-    // they share with the image hold no configuration: crop back as above.
-    LabelImage flat = img;
-    flat.dimension = 2;
-    flat.size[2] = 1;
-    const PartitionResult wc = make_well_composed_partition(std::move(flat));
-    L = LabelImage(img.geometry());
-    for (std::size_t y = 0; y < L.size[1]; ++y)
-      for (std::size_t x = 0; x < L.size[0]; ++x) L(x, y) = wc.image(x + wc.padded_before[0], y + wc.padded_before[1]);
-    crit = wc.input.total();
-    chg = wc.changed;
+    L = img;
+    chg = repair_labels(L, &crit);
   }
   L.dimension = 2;
   if (critical) *critical = crit;

@@ -60,18 +60,16 @@ struct ImagePslgResult {
 };
 
 // `img` must be 2D (or one slice). Labels are the pixel values; two distinct
-// values make a binary image, more a label image, both made well-composed by
-// well_composed_labels() below. Throws Error.
+// values make a binary image (well-composed by lib/wellcomposed's repair);
+// more make a label image (repaired here, see image_pslg.cpp). Throws Error.
 ImagePslgResult image_to_pslg(const LabelImage& img, const ImagePslgOptions& opt = {});
 
 // The well-composed label image img2poly traces (ImagePslgResult::labels):
 // two values go through lib/wellcomposed's repair with `seed` (foreground =
-// the higher value), more through its partition repair (img2wc --labels,
-// make_well_composed_partition), both cropped back to the image's grid. A
-// 2D image (or one slice); dimension 2 on return. Optional counts: critical
-// configurations in the input (with labels, each label's and the
-// background's), pixels changed. meshinfo repeats it to check a planar mesh
-// against the image it came from.
+// the higher value), more through the label repair of image_pslg.cpp. A 2D
+// image (or one slice); dimension 2 on return. Optional counts: two-label
+// diagonal 2x2 blocks in the input, pixels changed. meshinfo repeats it to
+// check a planar mesh against the image it came from.
 LabelImage well_composed_labels(const LabelImage& img, std::uint64_t seed = 0, std::size_t* critical = nullptr,
                                 std::size_t* changed = nullptr);
 
