@@ -13,6 +13,10 @@
 // which also resolves a b / c a (a C1 of a) and lets the label of fewer
 // pixels win, not the higher value: it would change img2poly's outputs on
 // label images and their "labels only raised" property (test_image_pslg).
+// Tried (branch partition, 2026-12-06): 61 of the brain map's 62 slices
+// gave other PSLGs, all meshed and matched by meshinfo, but the quads of
+// slice 30 miss pipeline2d's bars (mean mu 29.95 < 30, neighbour size ratio
+// 3.27 > 3).
 //
 // The rectangle Omega is the image's extent (the union of its pixel squares).
 // Thesis 2.3 takes conv(D), the hull of the pixel centres, and assumes no

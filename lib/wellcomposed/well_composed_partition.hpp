@@ -55,8 +55,10 @@ struct PartitionOptions {
   // Prune: after the repair, every changed voxel goes back to its input
   // label when that creates no configuration (fewer changes).
   bool prune = true;
-  // Tests only: false pads but does not repair (img2wc's hidden --skip-repair).
+  // Tests only: false pads but does not repair (img2wc's hidden --skip-repair);
+  // max_steps stops the repair after that many relabellings.
   bool repair = true;
+  std::size_t max_steps = std::size_t(-1);
 };
 
 struct PartitionResult {

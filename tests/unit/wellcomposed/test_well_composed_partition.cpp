@@ -115,6 +115,8 @@ void check_result(const LabelImage& in, const PartitionResult& r) {
       }
   REQUIRE(diff == r.changes);
   REQUIRE(n == r.changed);
+  // Labels only grow into the background (the binary add mode's rule).
+  for (const auto& [ab, count] : r.changes) REQUIRE(ab.second != 0);
   std::size_t border = 0;
   for (std::int32_t v : out.data) border += v != 0;
   std::size_t inner = 0;
@@ -236,6 +238,51 @@ TEST_CASE("min_voxels lets small labels go; none is lost without it", "[wellcomp
     for (std::int32_t l : r.lost) REQUIRE(values_of(r.image).count(l) == 0);
   }
   std::cout << "min_voxels 1000: " << lost << " labels lost over 60 noisy images\n";
+}
+
+TEST_CASE("a configuration is resolved by a relabelling that creates none where one exists", "[wellcomposed][labels]") {
+  // 2D, label 1 everywhere but nine voxels (rows y = 0..6; digits are labels).
+  // The first critical square in scan order, S at (2,2): a C1 of 1 (1 at
+  // (2,2) and (3,3), 2 at (3,2), 3 at (2,3)). Labels 2 and 3 have fewer
+  // voxels, so they rank above 1: the up moves give (2,2) or (3,3) label 2
+  // or 3, and each creates a configuration (a C1 of 1 with the 6 at (1,1);
+  // of 2 with the 2 at (2,4); of 3 with the 3 at (4,2)), those of (3,3)
+  // while also removing the C1 of 1 in the square at (3,3) (4 and 5 on its
+  // other diagonal). The down moves (3,2) or (2,3) -> 1 remove S alone and
+  // create nothing: the one to take (the thesis's rule (1)), though it
+  // removes fewer.
+  const char* rows[] = {"1111111", "1611111", "1112311", "1131411", "1125111", "1111111", "1111111"};
+  LabelImage img = make_image(2, 7, 7, 1);
+  for (std::size_t y = 0; y < 7; ++y)
+    for (std::size_t x = 0; x < 7; ++x) img(x, y, 0) = rows[y][x] - '0';
+  PartitionOptions one;
+  one.max_steps = 1;
+  one.prune = false;
+  const PartitionResult r = make_well_composed_partition(img, one);
+  REQUIRE(r.input.total() == 2);
+  REQUIRE(r.steps == 1);
+  REQUIRE(r.changed == 1);
+  // The relabelling created no configuration: no label has more than before.
+  for (std::size_t i = 0; i < r.input.counts.size(); ++i) REQUIRE(r.output.counts[i].total() <= r.input.counts[i].total());
+  REQUIRE(r.output.total() == 1);
+  check_result(img, make_well_composed_partition(img));
+}
+
+TEST_CASE("a small label is not thinned at its own configuration, even where that would create none", "[wellcomposed][labels]") {
+  // 2D, label 1 everywhere but four voxels of label 2 (the fewest voxels:
+  // the higher priority): a diagonal pair at (2,2), (3,3), a C1 of 1 and of
+  // 2. Taking a voxel of the pair (2 -> 1) creates nothing; the up moves
+  // ((3,2) or (2,3) -> 2) each create a C1 of 2 with the 2 at (4,1) or
+  // (1,4). The pair must still grow: every voxel of 2 stays 2.
+  const char* rows[] = {"111111", "111121", "112111", "111211", "121111", "111111"};
+  LabelImage img = make_image(2, 6, 6, 1);
+  for (std::size_t y = 0; y < 6; ++y)
+    for (std::size_t x = 0; x < 6; ++x) img(x, y, 0) = rows[y][x] - '0';
+  const PartitionResult r = make_well_composed_partition(img);
+  check_result(img, r);
+  for (std::size_t y = 0; y < 6; ++y)
+    for (std::size_t x = 0; x < 6; ++x)
+      if (img(x, y, 0) == 2) REQUIRE(r.image(x + r.padded_before[0], y + r.padded_before[1], 0) == 2);
 }
 
 TEST_CASE("a partition with one configuration left is refused", "[wellcomposed][labels]") {
