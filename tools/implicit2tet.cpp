@@ -11,7 +11,6 @@
 #include "util/error.hpp"
 #include "volume/tet_refinement.hpp"
 
-#include <cmath>
 #include <sstream>
 
 using namespace imgmesh;
@@ -29,25 +28,10 @@ int main(int argc, char** argv) {
   tool.app.add_option("OUT", out, "Output tetrahedral mesh: .msh (Gmsh), .mesh (MEDIT), .vtu (VTK) or .inp (Abaqus)")
       ->required();
   tool.data_output(out);
-  tool.app.add_option("--cell-ratio", opt.cell_ratio, "Radius-edge ratio bound R of every tetrahedron (>= 2)")
-      ->type_name("R")
-      ->capture_default_str();
-  tool.app.add_option("--cell-size", opt.cell_size, "Circumradius bound of every tetrahedron (world units); 0: none")
-      ->type_name("S")
-      ->capture_default_str();
-  tool.app.add_option("--sliver-angle", opt.sliver_angle,
-                      "Slivers: refine every inside tetrahedron with a dihedral angle below A degrees too (its "
-                      "circumcentre, or the surface triangle it encroaches on), after the ratio and size bounds; "
-                      "best effort, counted in --stats (slivers_left); 0: off")
-      ->type_name("A")
-      ->capture_default_str();
+  add_cell_options(tool, opt.cell_ratio, opt.cell_size, opt.sliver_angle, opt.max_cell_points);
   tool.app.add_flag("--outside", opt.outside,
                     "Also mesh the outside of the surface up to the image box (the voxels' extent) as region 2; "
                     "region 1 is the inside, the box's faces are boundary group 2");
-  tool.app.add_option("--max-cell-points", opt.max_cell_points,
-                      "Stop cell refinement after inserting N points (exit 3, the mesh written)")
-      ->type_name("N")
-      ->capture_default_str();
   add_msh_version_option(tool, wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")->type_name("V");
   add_encoding_options(tool, wopt.ascii, wopt.msh_binary, ".vtu");
   SurfaceOptions surface_options(tool, "boundary triangle");
@@ -58,9 +42,7 @@ int main(int argc, char** argv) {
     if (out == "-") throw UsageError("tetrahedral meshes are written to a file (.msh, .mesh, .vtu or .inp), not to stdout");
     if (!is_tet_mesh_path(out))
       throw UsageError(std::string("output format is chosen by extension: ") + kTetMeshExtensions, out);
-    if (!(opt.cell_ratio >= 2) || !std::isfinite(opt.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
-    if (!(opt.cell_size >= 0) || !std::isfinite(opt.cell_size)) throw UsageError("--cell-size must be a finite number >= 0");
-    if (opt.max_cell_points < 1) throw UsageError("--max-cell-points must be at least 1");
+    check_cell_options(opt.cell_ratio, opt.cell_size, opt.sliver_angle, opt.max_cell_points);
     const MesherInput input = read_mesher_input(tool, in, surface_options);
     opt.surface = input.options;
     opt.surface.seed = tool.seed();

@@ -13,7 +13,6 @@
 #include "util/error.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <sstream>
 #include <thread>
 
@@ -42,21 +41,7 @@ int main(int argc, char** argv) {
   tool.app.add_option("--labels", labels_text, "Labels to mesh: all (every nonzero value) or a list such as 1,2,5")
       ->type_name("all|L,L,...")
       ->capture_default_str();
-  tool.app.add_option("--cell-ratio", tets.cell_ratio, "Radius-edge ratio bound R of every tetrahedron (>= 2)")
-      ->type_name("R")
-      ->capture_default_str();
-  tool.app.add_option("--cell-size", tets.cell_size, "Circumradius bound of every tetrahedron (world units); 0: none")
-      ->type_name("S")
-      ->capture_default_str();
-  tool.app.add_option("--sliver-angle", tets.sliver_angle,
-                      "Slivers: refine every tetrahedron with a dihedral angle below A degrees too, after the ratio "
-                      "and size bounds; best effort, reported; 0: off")
-      ->type_name("A")
-      ->capture_default_str();
-  tool.app.add_option("--max-cell-points", tets.max_cell_points,
-                      "Stop cell refinement after inserting N points (exit 3, the mesh written)")
-      ->type_name("N")
-      ->capture_default_str();
+  add_cell_options(tool, tets.cell_ratio, tets.cell_size, tets.sliver_angle, tets.max_cell_points);
   add_msh_version_option(tool, wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")->type_name("V");
   add_encoding_options(tool, wopt.ascii, wopt.msh_binary, ".vtu");
   SurfaceOptions surface_options(tool, "interface triangle", false);
@@ -65,12 +50,7 @@ int main(int argc, char** argv) {
     if (out == "-") throw UsageError("tetrahedral meshes are written to a file (.msh, .mesh, .vtu or .inp), not to stdout");
     if (!is_tet_mesh_path(out))
       throw UsageError(std::string("output format is chosen by extension: ") + kTetMeshExtensions, out);
-    if (!(tets.cell_ratio >= 2) || !std::isfinite(tets.cell_ratio)) throw UsageError("--cell-ratio must be at least 2");
-    if (!(tets.cell_size >= 0) || !std::isfinite(tets.cell_size))
-      throw UsageError("--cell-size must be a finite number >= 0");
-    if (!(tets.sliver_angle >= 0 && tets.sliver_angle < 70.5))
-      throw UsageError("--sliver-angle must be at least 0 and below 70.5 degrees");
-    if (tets.max_cell_points < 1) throw UsageError("--max-cell-points must be at least 1");
+    check_cell_options(tets.cell_ratio, tets.cell_size, tets.sliver_angle, tets.max_cell_points);
     surface_options.check();
     opt.labels = parse_label_list(labels_text);
     opt.threads = std::max(1u, std::thread::hardware_concurrency());  // the same mesh whatever the count

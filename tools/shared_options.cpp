@@ -3,6 +3,7 @@
 #include "util/error.hpp"
 #include "util/path.hpp"
 
+#include <cmath>
 #include <exception>
 #include <sstream>
 #include <utility>
@@ -78,6 +79,32 @@ std::vector<long long> parse_label_list(const std::string& text) {
   }
   if (out.empty()) throw UsageError("--labels: no label given");
   return out;
+}
+
+void add_cell_options(cli::Tool& tool, double& ratio, double& size, double& sliver_angle, long long& max_points) {
+  tool.app.add_option("--cell-ratio", ratio, "Radius-edge ratio bound R of every tetrahedron (>= 2)")
+      ->type_name("R")
+      ->capture_default_str();
+  tool.app.add_option("--cell-size", size, "Circumradius bound of every tetrahedron (world units); 0: none")
+      ->type_name("S")
+      ->capture_default_str();
+  tool.app.add_option("--sliver-angle", sliver_angle,
+                      "Slivers: refine every tetrahedron with a dihedral angle below A degrees too (its "
+                      "circumcentre, or the surface triangle it encroaches on), after the ratio and size bounds; "
+                      "best effort, counted in --stats; 0: off; below 30")
+      ->type_name("A")
+      ->capture_default_str();
+  tool.app.add_option("--max-cell-points", max_points,
+                      "Stop cell refinement after inserting N points (exit 3, the mesh written)")
+      ->type_name("N")
+      ->capture_default_str();
+}
+
+void check_cell_options(double ratio, double size, double sliver_angle, long long max_points) {
+  if (!(ratio >= 2) || !std::isfinite(ratio)) throw UsageError("--cell-ratio must be at least 2");
+  if (!(size >= 0) || !std::isfinite(size)) throw UsageError("--cell-size must be a finite number >= 0");
+  if (!(sliver_angle >= 0 && sliver_angle < 30)) throw UsageError("--sliver-angle must be in [0, 30) degrees");
+  if (max_points < 1) throw UsageError("--max-cell-points must be at least 1");
 }
 
 } // namespace imgmesh

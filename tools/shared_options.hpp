@@ -21,6 +21,12 @@ CLI::Option* add_msh_version_option(cli::Tool& tool, std::string& version, const
 CLI::Option* add_ascii_option(cli::Tool& tool, bool& ascii, const std::string& binary_formats);
 void add_encoding_options(cli::Tool& tool, bool& ascii, bool& msh_binary, const std::string& binary_formats);
 
+// --cell-ratio, --cell-size, --sliver-angle, --max-cell-points: the bounds
+// of cell refinement (implicit2tet, seg2tet), and their check after
+// parsing (UsageError naming the option).
+void add_cell_options(cli::Tool& tool, double& ratio, double& size, double& sliver_angle, long long& max_points);
+void check_cell_options(double ratio, double size, double sliver_angle, long long max_points);
+
 // --labels: "all" (empty: every nonzero value) or a comma-separated list
 // of integers ("1,2,5"); UsageError otherwise (seg2mesh, seg2tet).
 std::vector<long long> parse_label_list(const std::string& text);

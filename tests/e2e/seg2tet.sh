@@ -71,7 +71,7 @@ case_slicer_names_on_msh_and_inp() {
 # ratio under 2, the per-label mesher's options.
 case_bad_options_refused() {
   local args rc
-  for args in "-" "x.off" "x.msh --cell-ratio 1.5" "x.msh --roughness 90" "x.msh --fallback-rounds 3" "x.msh --sliver-angle 80"; do
+  for args in "-" "x.off" "x.msh --cell-ratio 1.5" "x.msh --roughness 90" "x.msh --fallback-rounds 3" "x.msh --sliver-angle 30"; do
     # shellcheck disable=SC2086
     "$BIN/seg2tet" "$(labels)" $args 2> err > /dev/null
     rc=$?
