@@ -513,30 +513,11 @@ private:
   // How far a labelled cell is beyond R and S (0: within); slivers (only a
   // small dihedral angle, none under 1e-3 voxel) below every other bad cell.
   double badness(Ch c, bool& sliver) {
-    sliver = false;
     std::array<Vec3, 4> p;
     for (int i = 0; i < 4; ++i) p[std::size_t(i)] = vec(c->vertex(i)->point());
-    const double r2 = dist2(centre(c), p[0]);
-    double lmin2 = INFINITY;
-    for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t j = i + 1; j < 4; ++j) lmin2 = std::min(lmin2, dist2(p[i], p[j]));
-    const double ratio = std::sqrt(r2 / lmin2), size = std::sqrt(r2);
     const ConformingTetOptions& t = o_.tets;
-    double bad = 0;
-    if (ratio > t.cell_ratio) bad = 1 + ratio / t.cell_ratio;
-    if (t.cell_size > 0 && size > t.cell_size) bad = std::max(bad, 1 + size / t.cell_size);
-    if (bad == 0 && t.sliver_angle > 0 && size >= 1e-3 * voxel_) {
-      const auto cosines = tet_dihedral_cosines(p[0], p[1], p[2], p[3]);
-      const double top = *std::max_element(cosines.begin(), cosines.end());
-      if (top > std::cos(t.sliver_angle * M_PI / 180) - 1e-9) {
-        const double lo = dihedral_degrees(top);
-        if (lo < t.sliver_angle) {
-          bad = 1 - lo / t.sliver_angle;
-          sliver = true;
-        }
-      }
-    }
-    return bad;
+    return refinement_badness(p, dist2(centre(c), p[0]), t.cell_ratio, t.cell_size, t.sliver_angle, 1e-3 * voxel_,
+                              sliver);
   }
 
   struct BadCell {
@@ -674,8 +655,7 @@ private:
     out.cell_rounds_exhausted = cell_rounds_exhausted_;
     out.cell_points_exhausted = cell_points_exhausted_;
     out.sliver_points = sliver_points_;
-    out.max_points_hit = max_hit_;
-    std::copy(inserted_.begin(), inserted_.end(), out.inserted.begin());
+    out.max_points_hit = max_hit_;  // the cap may refuse a cell's point after the last output()
     // Every voxel centre: in a cell of its voxel's label (on a facet, edge
     // or vertex of the triangulation: every cell there).
     // Each walk starts at the cell of the centre before it, a row's first at

@@ -101,6 +101,37 @@ std::array<double, 6> tet_dihedral_cosines(const P& a, const P& b, const P& c, c
 
 double dihedral_degrees(double cosine) { return std::acos(cosine) * 180 / M_PI; }
 
+double smallest_dihedral_below(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                               const std::array<double, 3>& c, const std::array<double, 3>& d, double bound) {
+  const auto cosines = tet_dihedral_cosines(a, b, c, d);
+  const double top = *std::max_element(cosines.begin(), cosines.end());
+  return top > std::cos(bound * M_PI / 180) - 1e-9 ? dihedral_degrees(top) : bound;
+}
+
+double refinement_badness(const std::array<std::array<double, 3>, 4>& p, double r2, double ratio_bound,
+                          double size_bound, double sliver_angle, double floor, bool& sliver) {
+  sliver = false;
+  auto d2 = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    const double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+    return x * x + y * y + z * z;
+  };
+  double lmin2 = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = i + 1; j < 4; ++j) lmin2 = std::min(lmin2, d2(p[i], p[j]));
+  const double ratio = std::sqrt(r2 / lmin2), size = std::sqrt(r2);
+  double bad = 0;
+  if (ratio > ratio_bound) bad = 1 + ratio / ratio_bound;
+  if (size_bound > 0 && size > size_bound) bad = std::max(bad, 1 + size / size_bound);
+  if (bad == 0 && sliver_angle > 0 && size >= floor) {
+    const double lo = smallest_dihedral_below(p[0], p[1], p[2], p[3], sliver_angle);
+    if (lo < sliver_angle) {
+      bad = 1 - lo / sliver_angle;
+      sliver = true;
+    }
+  }
+  return bad;
+}
+
 std::array<double, 6> tet_dihedral_angles(const P& a, const P& b, const P& c, const P& d) {
   std::array<double, 6> angles = tet_dihedral_cosines(a, b, c, d);
   for (double& x : angles) x = dihedral_degrees(x);

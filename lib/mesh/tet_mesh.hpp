@@ -48,6 +48,22 @@ std::array<double, 6> tet_dihedral_cosines(const std::array<double, 3>& a, const
                                            const std::array<double, 3>& c, const std::array<double, 3>& d);
 double dihedral_degrees(double cosine);
 
+// The smallest dihedral angle (degrees) when it is below `bound`, else
+// some angle >= bound: acos only near or under the bound (the cosine test
+// has room for acos's rounding), not for every cell of every scan.
+double smallest_dihedral_below(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                               const std::array<double, 3>& c, const std::array<double, 3>& d, double bound);
+
+// How far a tetrahedron is beyond Delaunay refinement's bounds, 0 when
+// within them (implicit2tet's and seg2tet's cell refinement): above the
+// radius-edge bound R, 1 + ratio / R; above the circumradius bound S (> 0),
+// 1 + circumradius / S; the larger. Else, for a sliver (a dihedral angle
+// under sliver_angle > 0, circumradius at least `floor`: smaller ones have
+// no insertion floor), 1 - angle / sliver_angle in (0, 1], below every
+// other bad one. r2: its squared circumradius (from the caller's centre).
+double refinement_badness(const std::array<std::array<double, 3>, 4>& p, double r2, double ratio_bound,
+                          double size_bound, double sliver_angle, double floor, bool& sliver);
+
 struct TetQualityReport {
   std::size_t tetrahedra = 0;
   double max_radius_edge_ratio = 0, mean_radius_edge_ratio = 0;

@@ -19,16 +19,6 @@ namespace {
 
 double d2(const Point& a, const Point& b) { return CGAL::to_double(CGAL::squared_distance(a, b)); }
 
-// The tetrahedron's smallest dihedral angle (degrees, as tet_dihedral_angles)
-// when it is below `bound`, else some angle >= bound: acos only for the
-// cells near or under the bound (the cosine test has room for acos's
-// rounding), not for every cell of every scan.
-double smallest_dihedral(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, double bound) {
-  const auto cosines = tet_dihedral_cosines(a, b, c, d);
-  const double top = *std::max_element(cosines.begin(), cosines.end());
-  return top > std::cos(bound * M_PI / 180) - 1e-9 ? dihedral_degrees(top) : bound;
-}
-
 // One round of cell refinement, run by DELMESH once the certificate holds,
 // round after round with REFINE between (DelMesh::set_after_certificate).
 class CellRefinement {
@@ -42,26 +32,12 @@ public:
   // How far a finite cell is beyond the bounds (0: within them); slivers
   // (only a small dihedral angle) come after every other bad cell.
   double badness(Ch c, const Point& cc, bool& sliver) const {
-    sliver = false;
-    const double r2 = d2(cc, c->vertex(0)->point());
-    double lmin2 = std::numeric_limits<double>::infinity();
-    for (int i = 0; i < 4; ++i)
-      for (int j = i + 1; j < 4; ++j) lmin2 = std::min(lmin2, d2(c->vertex(i)->point(), c->vertex(j)->point()));
-    const double ratio = std::sqrt(r2 / lmin2), size = std::sqrt(r2);
-    double bad = 0;
-    if (ratio > opt_.cell_ratio) bad = 1 + ratio / opt_.cell_ratio;
-    if (opt_.cell_size > 0 && size > opt_.cell_size) bad = std::max(bad, 1 + size / opt_.cell_size);
+    std::array<std::array<double, 3>, 4> p;
+    for (int i = 0; i < 4; ++i) p[std::size_t(i)] = vec(c->vertex(i)->point());
     // Slivers under 1e-3 voxel are left: their circumcentres have no other
     // floor (box_refinement.hpp, termination).
-    if (bad == 0 && opt_.sliver_angle > 0 && size >= guard_) {
-      std::array<double, 3> p[4];
-      for (int i = 0; i < 4; ++i) p[i] = vec(c->vertex(i)->point());
-      const double lo = smallest_dihedral(p[0], p[1], p[2], p[3], opt_.sliver_angle);
-      if (lo < opt_.sliver_angle) {
-        bad = 1 - lo / opt_.sliver_angle;  // in (0, 1]: below every other
-        sliver = true;
-      }
-    }
+    const double bad = refinement_badness(p, d2(cc, c->vertex(0)->point()), opt_.cell_ratio, opt_.cell_size,
+                                          opt_.sliver_angle, guard_, sliver);
     if (bad == 0) return 0;
     // --outside: every cell is meshed.
     if (box_) return bad;
@@ -446,8 +422,8 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   r.ratio_ok = r.quality.max_radius_edge_ratio <= opt.cell_ratio * (1 + 1e-9);
   for (const auto& t : r.mesh.tets) {
     const auto& p = r.mesh.points;
-    r.slivers_left += smallest_dihedral(p[std::size_t(t[0])], p[std::size_t(t[1])], p[std::size_t(t[2])], p[std::size_t(t[3])],
-                                        opt.sliver_angle) < opt.sliver_angle;
+    r.slivers_left += smallest_dihedral_below(p[std::size_t(t[0])], p[std::size_t(t[1])], p[std::size_t(t[2])], p[std::size_t(t[3])],
+                                              opt.sliver_angle) < opt.sliver_angle;
   }
   r.size_ok = opt.cell_size <= 0 || r.quality.max_circumradius <= opt.cell_size * (1 + 1e-9);
   return r;
