@@ -46,7 +46,26 @@ namespace {
 // The complex's facets, each between the subdomains of its two cells (a
 // cell out of the complex is subdomain 0). A facet whose cells agree (its
 // patch index says otherwise) is counted in `same` and skipped.
-imgmesh::SurfaceMesh surface_complex(const mesh3::C3t3& c3t3, const imgmesh::Geometry& g, std::size_t& same) {
+// The complex's vertices numbered by first use, in world coordinates.
+struct VertexIndex {
+  const mesh3::Tr& tr;
+  const imgmesh::Geometry& g;
+  std::vector<std::array<double, 3>>& points;
+  std::map<mesh3::Tr::Vertex_handle, int> id;
+  int operator()(mesh3::Tr::Vertex_handle v) {
+    const auto [it, added] = id.emplace(v, int(points.size()));
+    if (added) {
+      const auto& q = tr.point(v).point();
+      points.push_back(mesh3::world(g, {q.x(), q.y(), q.z()}));
+    }
+    return it->second;
+  }
+};
+
+// The complex's facets as triangles numbered by `vertex`, with their pairs.
+void complex_facets(const mesh3::C3t3& c3t3, const imgmesh::Geometry& g, VertexIndex& vertex,
+                    std::vector<std::array<int, 3>>& triangles, std::vector<std::array<int, 2>>& pairs,
+                    std::size_t& same) {
   using Tr = mesh3::Tr;
   const Tr& tr = c3t3.triangulation();
   const auto label = [&](Tr::Cell_handle c) { return c3t3.is_in_complex(c) ? int(c3t3.subdomain_index(c)) : 0; };
@@ -54,16 +73,6 @@ imgmesh::SurfaceMesh surface_complex(const mesh3::C3t3& c3t3, const imgmesh::Geo
   const auto& d = g.direction;
   const double det = d[0] * (d[4] * d[8] - d[5] * d[7]) - d[1] * (d[3] * d[8] - d[5] * d[6]) +
                      d[2] * (d[3] * d[7] - d[4] * d[6]);
-  imgmesh::SurfaceMesh m;
-  std::map<Tr::Vertex_handle, int> id;
-  const auto vertex = [&](Tr::Vertex_handle v) {
-    const auto [it, added] = id.emplace(v, int(m.points.size()));
-    if (added) {
-      const auto& q = tr.point(v).point();
-      m.points.push_back(mesh3::world(g, {q.x(), q.y(), q.z()}));
-    }
-    return it->second;
-  };
   same = 0;
   for (auto f = c3t3.facets_in_complex_begin(); f != c3t3.facets_in_complex_end(); ++f) {
     Tr::Facet front = *f, behind = tr.mirror_facet(*f);
@@ -84,9 +93,15 @@ imgmesh::SurfaceMesh surface_complex(const mesh3::C3t3& c3t3, const imgmesh::Geo
     if ((side == CGAL::POSITIVE) != finite) std::swap(v[1], v[2]);
     std::array<int, 3> t{vertex(v[0]), vertex(v[1]), vertex(v[2])};
     if (det < 0) std::swap(t[1], t[2]);
-    m.triangles.push_back(t);
-    m.interfaces.push_back({hi, lo});
+    triangles.push_back(t);
+    pairs.push_back({hi, lo});
   }
+}
+
+imgmesh::SurfaceMesh surface_complex(const mesh3::C3t3& c3t3, const imgmesh::Geometry& g, std::size_t& same) {
+  imgmesh::SurfaceMesh m;
+  VertexIndex vertex{c3t3.triangulation(), g, m.points, {}};
+  complex_facets(c3t3, g, vertex, m.triangles, m.interfaces, same);
   return m;
 }
 
@@ -94,18 +109,8 @@ imgmesh::SurfaceMesh surface_complex(const mesh3::C3t3& c3t3, const imgmesh::Geo
 // world coordinates; the complex's facets as the boundary (each once, of
 // the higher subdomain).
 imgmesh::TetMesh tetrahedra(const mesh3::C3t3& c3t3, const imgmesh::Geometry& g) {
-  using Tr = mesh3::Tr;
-  const Tr& tr = c3t3.triangulation();
   imgmesh::TetMesh m;
-  std::map<Tr::Vertex_handle, int> id;
-  const auto vertex = [&](Tr::Vertex_handle v) {
-    const auto [it, added] = id.emplace(v, int(m.points.size()));
-    if (added) {
-      const auto& q = tr.point(v).point();
-      m.points.push_back(mesh3::world(g, {q.x(), q.y(), q.z()}));
-    }
-    return it->second;
-  };
+  VertexIndex vertex{c3t3.triangulation(), g, m.points, {}};
   for (auto c = c3t3.cells_in_complex_begin(); c != c3t3.cells_in_complex_end(); ++c) {
     std::array<int, 4> t{vertex(c->vertex(0)), vertex(c->vertex(1)), vertex(c->vertex(2)), vertex(c->vertex(3))};
     if (imgmesh::tet_orient(m.points[std::size_t(t[0])], m.points[std::size_t(t[1])], m.points[std::size_t(t[2])],
@@ -114,18 +119,11 @@ imgmesh::TetMesh tetrahedra(const mesh3::C3t3& c3t3, const imgmesh::Geometry& g)
     m.tets.push_back(t);
     m.tet_region.push_back(int(c3t3.subdomain_index(c)));
   }
+  // The facets, each out of its higher subdomain (its normal points into
+  // the lower), as the boundary of that region.
   std::size_t same = 0;
-  const imgmesh::SurfaceMesh s = surface_complex(c3t3, g, same);
-  // The surface's vertices are cells' vertices: found by coordinates.
-  std::map<std::array<double, 3>, int> at;
-  for (std::size_t i = 0; i < m.points.size(); ++i) at.emplace(m.points[i], int(i));
-  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
-    std::array<int, 3> f;
-    for (int k = 0; k < 3; ++k) f[std::size_t(k)] = at.at(s.points[std::size_t(s.triangles[t][std::size_t(k)])]);
-    // Already out of behind (its normal points into front).
-    m.triangles.push_back(f);
-    m.triangle_region.push_back(s.interfaces[t][0]);
-  }
+  complex_facets(c3t3, g, vertex, m.triangles, m.triangle_pair, same);
+  for (const auto& p : m.triangle_pair) m.triangle_region.push_back(p[0]);
   return m;
 }
 
