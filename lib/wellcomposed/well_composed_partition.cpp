@@ -60,6 +60,22 @@
 // move ever involves a side voxel: the border stays background, and blocks
 // reaching outside the grid are never critical.
 //
+// Then, in 3D (PartitionOptions::generic), a second scan for the
+// configurations a well-composed partition may keep but no smooth partition
+// has, so no conforming mesh can match them (issue 40: on the noisy brain
+// map they were 300 of the 427 K(X) patches its conforming mesh got wrong):
+// a square of four labels (a voxel edge where four labels meet: any smooth
+// partition there lets one diagonal pair touch, an extra patch) and a block
+// whose centre corner pinches a patch (two fans of one pair's faces there:
+// a smooth partition opens or splits it). Each is ended by one voxel of
+// the square (block) taking a neighbour's label there, among the moves
+// that end it, create no C1 or C2, keep every kept label and are up or
+// allowed down moves, chosen as above. The first phase's result stays
+// well-composed and every move still raises the rank sum (or is a voxel's
+// one down move): it terminates. A configuration no such move ends is
+// left, the block retried after the moves near it while any are made; the
+// few left are counted by K(X) (its pinches, its curves of four labels).
+//
 // Last, every changed voxel goes back to its input label when that creates
 // no configuration in its 8 blocks (and keeps every kept label), once, in
 // the order of the changes: fewer changes, still none left.
@@ -86,8 +102,67 @@ constexpr unsigned kFace[3] = {0x55u, 0x33u, 0x0fu};  // N_x(r), N_y(r), N_z(r) 
 inline int popcount(unsigned v) { return __builtin_popcount(v); }
 inline std::uint8_t flags(unsigned mask) { return critical_configurations(std::uint8_t(mask)); }
 
+// The generic configurations of a block (3D; see the header): bit a (0-2)
+// when its square N_a(r) holds four labels (a voxel edge where four labels
+// meet), bit 3 when some label pair's faces at the block's centre corner,
+// joined through the corner's six edges, fall in two classes or more (a
+// pinched patch).
+template <class T> unsigned generic_configurations(const T b[8]) {
+  unsigned out = 0;
+  for (int a = 0; a < 3; ++a) {
+    T q[4];
+    int n = 0;
+    for (int k = 0; k < 8; ++k)
+      if (kFace[a] >> k & 1u) q[n++] = b[k];
+    if (q[0] != q[1] && q[0] != q[2] && q[0] != q[3] && q[1] != q[2] && q[1] != q[3] && q[2] != q[3]) out |= 1u << a;
+  }
+  // The 12 faces (k, k | bit) with bit k clear; two faces of one pair are
+  // joined when both lie around one of the corner's half edges (the four
+  // voxels on one side of the block along one axis).
+  int face_of[8][8];
+  int fk[12], fl[12], nf = 0;
+  for (int bit = 1; bit < 8; bit <<= 1)
+    for (int k = 0; k < 8; ++k)
+      if (!(k & bit)) {
+        face_of[k][k | bit] = face_of[k | bit][k] = nf;
+        fk[nf] = k, fl[nf++] = k | bit;
+      }
+  int parent[12];
+  for (int f = 0; f < 12; ++f) parent[f] = f;
+  auto find = [&](int f) {
+    while (parent[f] != f) f = parent[f] = parent[parent[f]];
+    return f;
+  };
+  auto same_pair = [&](int f, int g) {
+    return (b[fk[f]] == b[fk[g]] && b[fl[f]] == b[fl[g]]) || (b[fk[f]] == b[fl[g]] && b[fl[f]] == b[fk[g]]);
+  };
+  int faces = 0;
+  for (int f = 0; f < 12; ++f) faces += b[fk[f]] != b[fl[f]];
+  if (faces < 4) return out;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side = 0; side < 2; ++side) {
+      // The four voxels with bit `axis` == side, in cyclic order around the half edge.
+      const int u = 1 << ((axis + 1) % 3), w = 1 << ((axis + 2) % 3), base = side << axis;
+      const int ring[4] = {base, base | u, base | u | w, base | w};
+      for (int i = 0; i < 4; ++i) {
+        const int f = face_of[ring[i]][ring[(i + 1) % 4]];
+        if (b[fk[f]] == b[fl[f]]) continue;
+        for (int j = i + 1; j < 4; ++j) {
+          const int g = face_of[ring[j]][ring[(j + 1) % 4]];
+          if (b[fk[g]] != b[fl[g]] && same_pair(f, g)) parent[find(f)] = find(g);
+        }
+      }
+    }
+  for (int f = 0; f < 12; ++f) {
+    if (b[fk[f]] == b[fl[f]]) continue;
+    for (int g = f + 1; g < 12; ++g)
+      if (b[fk[g]] != b[fl[g]] && same_pair(f, g) && find(f) != find(g)) return out | 8u;
+  }
+  return out;
+}
+
 // One configuration: label l's code m in block r, and which (0-2: C1 on
-// N_x, N_y, N_z; 3: C2).
+// N_x, N_y, N_z; 3: C2; 4-6: four labels on N_x, N_y, N_z; 7: a pinch).
 struct Instance {
   std::size_t r;
   unsigned label, m;
@@ -100,6 +175,7 @@ struct Move {
   int created = 0, removed = 0;
   bool kills = false;  // takes the last voxel of a kept label
   bool down = false;   // to a label of lower rank
+  bool critical = false;  // creates a C1 or C2
   bool better_than(const Move& o) const {
     return std::make_tuple(kills, created > 0, -removed, created) <
            std::make_tuple(o.kills, o.created > 0, -o.removed, o.created);
@@ -110,9 +186,11 @@ template <class T> class PartitionRepair {
 public:
   // grid: nx x ny x nz label indices whose side layers are 0; 2D: nz == 2,
   // the image in layer 0, layer 1 background.
-  PartitionRepair(T* grid, std::size_t nx, std::size_t ny, std::size_t nz, bool planar, std::vector<unsigned> rank,
-                  std::vector<std::size_t> count, std::vector<char> keep, std::size_t max_steps)
-      : v_(grid), n_{nx, ny, nz}, sy_(nx), sz_(nx * ny), blocks_(planar ? 4 : 8), rank_(std::move(rank)),
+  PartitionRepair(T* grid, std::size_t nx, std::size_t ny, std::size_t nz, bool planar, bool generic,
+                  std::vector<unsigned> rank, std::vector<std::size_t> count, std::vector<char> keep,
+                  std::size_t max_steps)
+      : v_(grid), n_{nx, ny, nz}, sy_(nx), sz_(nx * ny), blocks_(planar ? 4 : 8), want_generic_(generic && !planar),
+        rank_(std::move(rank)),
         top_(unsigned(rank_.size())), count_(std::move(count)), keep_(std::move(keep)), raised_(rank_.size(), 0),
         max_steps_(max_steps) {
     for (int k = 0; k < 8; ++k) off_[k] = std::size_t(k & 1) + std::size_t((k >> 1) & 1) * sy_ + std::size_t((k >> 2) & 1) * sz_;
@@ -122,6 +200,28 @@ public:
   // drain R (blocks made critical by the moves) before the scan goes on.
   void run() {
     if (n_[0] < 2 || n_[1] < 2 || n_[2] < 2 || max_steps_ == 0) return;
+    scan();
+    if (!want_generic_) return;
+    generic_ = true;
+    scan();
+    // A configuration left for want of a move may have one after the moves
+    // near it: again over those, while any moves.
+    for (std::size_t before = steps + 1; before != steps && !stuck_.empty();) {
+      before = steps;
+      std::vector<std::size_t> left(stuck_.begin(), stuck_.end());
+      std::sort(left.begin(), left.end());
+      stuck_.clear();
+      for (std::size_t r : left) {
+        resolve(r);
+        for (std::size_t head = 0; head < queue_.size(); ++head) resolve(queue_[head]);
+        queue_.clear();
+      }
+    }
+  }
+
+  // One scan over the blocks (phase 1: C1 and C2; phase 2: the generic
+  // configurations, by moves that create no C1 or C2).
+  void scan() {
     for (std::size_t z = 0; z + 1 < n_[2]; ++z)
       for (std::size_t y = 0; y + 1 < n_[1]; ++y) {
         const std::size_t row = sy_ * y + sz_ * z;
@@ -157,8 +257,9 @@ public:
       for (int k = 0; k < blocks_ && ok; ++k) {
         T b[8];
         load(i - off_[k], b);
+        const unsigned g0 = generic(b);
         b[k] = T(input);
-        ok = !flags(mask_of(b, T(input))) && !flags(mask_of(b, T(now)));
+        ok = !flags(mask_of(b, T(input))) && !flags(mask_of(b, T(now))) && !(generic(b) & ~g0);
       }
       if (ok) set(i, input);
     }
@@ -189,7 +290,17 @@ private:
         return true;
       }
     }
+    if (const unsigned g = generic(b); g && !stuck_.count(r)) {
+      in = {r, 0, 0, 4 + __builtin_ctz(g)};
+      return true;
+    }
     return false;
+  }
+
+  unsigned generic(const T b[8]) const { return generic_ ? generic_configurations(b) : 0u; }
+  bool on_side(std::size_t i) const {
+    const std::size_t x = i % sy_, y = i / sy_ % n_[1], z = i / sz_;
+    return x == 0 || y == 0 || z == 0 || x + 1 == n_[0] || y + 1 == n_[1] || z + 1 == n_[2];
   }
 
   void resolve(std::size_t r) {
@@ -207,7 +318,15 @@ private:
       const unsigned bit = 1u << k, ma = mask_of(b, T(mv.from)), mb = mask_of(b, T(to));
       const unsigned fa0 = flags(ma), fa1 = flags(ma & ~bit), fb0 = flags(mb), fb1 = flags(mb | bit);
       mv.created += popcount(fa1 & ~fa0) + popcount(fb1 & ~fb0);
+      mv.critical = mv.critical || (fa1 & ~fa0) || (fb1 & ~fb0);
       mv.removed += popcount(fa0 & ~fa1) + popcount(fb0 & ~fb1);
+      if (generic_) {
+        const unsigned g0 = generic_configurations(b);
+        b[k] = T(to);
+        const unsigned g1 = generic_configurations(b);
+        mv.created += popcount(g1 & ~g0);
+        mv.removed += popcount(g0 & ~g1);
+      }
     }
     mv.kills = keep_[mv.from] && count_[mv.from] == 1;
     return mv;
@@ -248,6 +367,32 @@ private:
       return c;
     };
     unsigned ls[6];
+    if (in.kind >= 4) {
+      // Four labels on a square: a voxel takes the label of one of its two
+      // neighbours there; a pinch: a voxel takes one of its three
+      // neighbours' in the block, where that ends the pinch. The lowest
+      // ranked of a square has an up move to each; a pinch may have none
+      // (then it is left, and counted).
+      const unsigned set = in.kind < 7 ? kFace[in.kind - 4] : 0xffu;
+      for (unsigned s = set; s; s &= s - 1) {
+        const int k = __builtin_ctz(s);
+        if (on_side(in.r + off_[k])) continue;
+        for (int bit = 1; bit < 8; bit <<= 1) {
+          if (!(set >> (k ^ bit) & 1u)) continue;
+          const unsigned to = v_[in.r + off_[k ^ bit]];
+          if (to == v_[in.r + off_[k]]) continue;
+          const int before = n;
+          consider(k, to);
+          if (n > before && in.kind == 7) {
+            T b[8];
+            load(in.r, b);
+            b[k] = T(to);
+            if (generic_configurations(b) & 8u) --n;
+          }
+        }
+      }
+      return n;
+    }
     if (in.kind < 3) {  // C1: L on one diagonal of the face, two others on the other
       const unsigned face = kFace[in.kind], diag = in.m & face, other = face & ~in.m;
       const int c = labels_of(other, ls);
@@ -272,7 +417,17 @@ private:
 
   void fix(const Instance& in) {
     Move mv[24];
-    const int n = moves(in, mv);
+    int n = moves(in, mv);
+    if (in.kind >= 4) {
+      // A generic configuration is ended by a move that creates no C1 or
+      // C2 and keeps every kept label: one that no such move ends is left
+      // (and counted on the output).
+      n = int(std::remove_if(mv, mv + n, [](const Move& m) { return m.kills || m.critical; }) - mv);
+      if (n == 0) {
+        stuck_.insert(in.r);
+        return;
+      }
+    }
     if (n == 0) throw Error("internal: no upward move for a critical configuration");  // see the header
     int best = 0;
     for (int i = 1; i < n; ++i)
@@ -301,12 +456,15 @@ private:
   T* v_;
   std::size_t n_[3], sy_, sz_, off_[8];
   int blocks_;  // blocks holding a voxel: 8, or 4 in 2D (those below the image see only background)
+  bool want_generic_;     // 3D and asked for: a second phase for the generic configurations
+  bool generic_ = false;  // in that phase: four-label squares and pinches are configurations too
   std::vector<unsigned> rank_;
   unsigned top_;
   std::vector<std::size_t> count_;
   std::vector<char> keep_, raised_;
   std::size_t max_steps_;
   std::unordered_set<std::size_t> fell_;          // voxels that made their down move
+  std::unordered_set<std::size_t> stuck_;         // blocks with a pinch no move ends
   std::vector<std::size_t> queue_;                // R
   std::vector<std::pair<std::size_t, T>> log_;    // (voxel, label before) of every move
 };
@@ -363,8 +521,8 @@ void repair_dense(LabelImage& in, const wellcomposed_detail::LabelValues& lv,
   res.input.labels = lv.values;
   res.input.counts.assign(K, {});
   wellcomposed_detail::count_dense(grid.data(), nx, ny, nz, res.input.counts);  // outside = 0: the input's counts
-  PartitionRepair<T> rep(grid.data(), nx, ny, nz, planar, label_ranks(lv.voxels, opt.priority), count, keep,
-                         opt.max_steps);
+  PartitionRepair<T> rep(grid.data(), nx, ny, nz, planar, opt.generic, label_ranks(lv.voxels, opt.priority), count,
+                         keep, opt.max_steps);
   if (opt.repair) {
     rep.run();
     if (opt.prune) rep.prune();

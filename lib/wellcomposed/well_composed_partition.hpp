@@ -55,6 +55,11 @@ struct PartitionOptions {
   // Prune: after the repair, every changed voxel goes back to its input
   // label when that creates no configuration (fewer changes).
   bool prune = true;
+  // 3D: then, as far as single moves creating no C1/C2 reach, no voxel edge
+  // with four labels around it and no patch of K(X) pinched at a corner
+  // (configurations no smooth partition has: well_composed_partition.cpp),
+  // so the conforming meshers can match K(X).
+  bool generic = true;
   // Tests only: false pads but does not repair (img2wc's hidden --skip-repair);
   // max_steps stops the repair after that many relabellings.
   bool repair = true;
