@@ -35,9 +35,10 @@ using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;
 using Vh = Tr::Vertex_handle;
 using Ch = Tr::Cell_handle;
 
-enum Step { kSeed, kVorEdge, kTopoDisk, kQuality, kDistance, kVoxelSide, kCertificate, kCell, kCellFacet, kOffSurface, kSteps };
-const char* const kStepName[kSteps] = {"seed",        "vor_edge", "topo_disk",  "quality",    "max_distance",
+enum Step { kSeed, kVorEdge, kTopoDisk, kPatchFan, kQuality, kDistance, kVoxelSide, kCertificate, kCell, kCellFacet, kOffSurface, kSteps };
+const char* const kStepName[kSteps] = {"seed",        "vor_edge", "topo_disk",  "patch_fan", "quality",    "max_distance",
                                        "voxel_side",  "certificate", "cell",     "cell_facet", "off_surface"};
+static_assert(kSteps == std::tuple_size<decltype(ConformingSurface::inserted)>::value, "one count a step");
 
 inline Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
 inline Point pt(const Vec3& v) { return Point(v[0], v[1], v[2]); }
@@ -101,16 +102,16 @@ public:
 private:
   ConformingSurface certified_rounds() {
     ConformingSurface out = output();
-    // Rounds repair a patch sampled too coarsely, not a labelling that
-    // disagrees with K(X) (a noisy map: patches one voxel wide pinched off),
-    // where refining does not converge and each round doubles the points
-    // near the failures: they run while the failing patches are few (at
-    // most 16, or 1% of K(X)'s) and each round halves them.
-    std::size_t before = std::max<std::size_t>(16, k_.patches.size() / 100) * 2;
+    // Rounds repair a patch sampled too coarsely (a small patch in pieces
+    // where the curves around it are), not a labelling that disagrees with
+    // K(X), where refining does not converge (and grades the mesh around
+    // ever finer: the brain map's third round tripled its points): they
+    // run while each round halves the failing places.
+    std::size_t before = std::size_t(-1);
     for (int round = 0; o_.certificate && round < o_.certificate_rounds && !max_hit_; ++round) {
       const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
       out.certified_as_is = true;
-      if (bad.empty() || bad.size() > before / 2 || !refine_patches(bad)) break;
+      if (bad.empty() || bad.size() > before / 2 || !refine_near(bad)) break;
       before = bad.size();
       ++rounds_;
       refine();
@@ -302,6 +303,7 @@ private:
     labels_.erase(std::unique(labels_.begin(), labels_.end()), labels_.end());
     for (std::int32_t l : labels_) {
       link_.clear();
+      other_.clear();
       for (Ch c : cells_) {
         if (label(c) != l) continue;
         const int iv = c->index(v);
@@ -311,10 +313,17 @@ private:
           for (int q = 0; q < 4; ++q)
             if (q != j && q != iv) e[m++] = tr_.is_infinite(c->vertex(q)) ? -2 : c->vertex(q)->info();
           link_.push_back({e[0], e[1]});
+          other_.push_back(label(c->neighbor(j)));
         }
       }
-      if (one_cycle(link_)) continue;
-      // The surface centre of v's largest restricted facet with l on a side.
+      // Each label's facets around v one disk, and within it each pair's
+      // facets one fan: a patch that comes back to v after other patches
+      // is two fans there (the mesh's patch pinched or split where K(X)'s
+      // is not, on a tiny patch: the curves sampled too coarsely).
+      std::int32_t pair = kUnknown;
+      if (one_cycle(link_) && (pair = split_pair(link_, other_)) == kUnknown) continue;
+      // The surface centre of v's largest restricted facet with l on a side
+      // (of the pair l|pair when that is what failed).
       Candidate best;
       best.priority = -1;
       for (Ch c : cells_) {
@@ -322,6 +331,7 @@ private:
         const int iv = c->index(v);
         for (int j = 0; j < 4; ++j) {
           if (j == iv || label(c->neighbor(j)) == l) continue;
+          if (pair != kUnknown && label(c->neighbor(j)) != pair) continue;
           Vec3 x;
           if (!surface_centre(c, j, x)) continue;
           const double r2 = dist2(x, vec(v->point()));
@@ -332,7 +342,7 @@ private:
         }
       }
       if (best.priority >= 0) {
-        best.step = kTopoDisk;
+        best.step = pair == kUnknown ? kTopoDisk : kPatchFan;
         topology_.push_back(best);
       }
       return;
@@ -360,6 +370,35 @@ private:
       if (++steps > link.size()) return false;
     }
     return steps == link.size();
+  }
+
+  // The link's edges (one cycle) in cyclic order: a label of `other` (the
+  // label across each edge's facet) in two runs or more, else kUnknown.
+  static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other) {
+    std::unordered_map<int, std::array<std::size_t, 2>> at;
+    const std::size_t none = std::size_t(-1);
+    for (std::size_t e = 0; e < link.size(); ++e)
+      for (int s = 0; s < 2; ++s) {
+        auto& a = at.try_emplace(link[e][s], std::array<std::size_t, 2>{none, none}).first->second;
+        (a[0] == none ? a[0] : a[1]) = e;
+      }
+    std::vector<std::int32_t> seq;
+    seq.reserve(link.size());
+    std::size_t e = 0;
+    int cur = link[0][1];
+    for (std::size_t n = 0; n < link.size(); ++n) {
+      seq.push_back(other[e]);
+      const auto& a = at[cur];
+      e = a[0] == e ? a[1] : a[0];
+      cur = link[e][0] == cur ? link[e][1] : link[e][0];
+    }
+    std::vector<std::int32_t> starts;
+    for (std::size_t i = 0; i < seq.size(); ++i)
+      if (seq[i] != seq[(i + seq.size() - 1) % seq.size()]) starts.push_back(seq[i]);
+    std::sort(starts.begin(), starts.end());
+    for (std::size_t i = 1; i < starts.size(); ++i)
+      if (starts[i] == starts[i - 1]) return starts[i];
+    return kUnknown;
   }
 
   // Every voxel centre next to an interface in a cell of its own label.
@@ -402,22 +441,19 @@ private:
     }
   }
 
-  // The surface centres of the restricted facets in the voxels next to the
-  // faces of K(X) patches `bad` (and one voxel around).
-  bool refine_patches(const std::vector<std::size_t>& bad) {
+  // The surface centres of the restricted facets in the voxels within one
+  // of the voxel holding each place.
+  bool refine_near(const std::vector<Vec3>& places) {
     std::vector<char> near(x_.count(), 0);
-    for (std::size_t f = 0; f < k_.faces.size(); ++f) {
-      if (!std::binary_search(bad.begin(), bad.end(), std::size_t(k_.face_patch[f]))) continue;
-      const auto q = k_.corner(InterfaceComplex::face_corner(k_.faces[f]));
-      const int a = InterfaceComplex::face_axis(k_.faces[f]);
-      for (int s = 0; s < 2; ++s)
-        for (int dz = -1; dz <= 1; ++dz)
-          for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-              std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]) + dx, std::ptrdiff_t(q[1]) + dy, std::ptrdiff_t(q[2]) + dz};
-              v[a] -= s;
-              if (x_.inside(v[0], v[1], v[2])) near[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))] = 1;
-            }
+    for (const Vec3& p : places) {
+      const Vec3 q = x_.continuous_index(p);
+      const auto i = std::ptrdiff_t(std::floor(q[0] + 0.5)), j = std::ptrdiff_t(std::floor(q[1] + 0.5)),
+                 k = std::ptrdiff_t(std::floor(q[2] + 0.5));
+      for (std::ptrdiff_t dz = -1; dz <= 1; ++dz)
+        for (std::ptrdiff_t dy = -1; dy <= 1; ++dy)
+          for (std::ptrdiff_t dx = -1; dx <= 1; ++dx)
+            if (x_.inside(i + dx, j + dy, k + dz))
+              near[x_.index(std::size_t(i + dx), std::size_t(j + dy), std::size_t(k + dz))] = 1;
     }
     std::vector<Vec3> pts;
     for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
@@ -753,6 +789,7 @@ private:
   std::vector<Vh> touched_, new_vertices_;
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
+  std::vector<std::int32_t> other_;
   std::vector<LabelFunction::Change> changes_;
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)

@@ -79,13 +79,13 @@ struct ConformingOptions {
   std::size_t max_points = 2000000;
   bool voxel_sides = true;
   // The certificate (surfacenets/interface_certificate.hpp, the caller's):
-  // the K(X) patches where it fails (failing_complex_patches), empty when
-  // it holds. Each round the surface centres of the restricted facets
-  // within a voxel of those patches' faces go in and REFINE runs again, at
-  // most `certificate_rounds` times, and only while the failing patches are
-  // few (16, or 1% of K(X)'s) and each round halves them. Unset: no rounds.
-  std::function<std::vector<std::size_t>(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                                         const std::vector<std::array<std::int32_t, 2>>& pairs)>
+  // the places where it fails (InterfaceCertificate::failing_places: world
+  // points on the wrong pieces), empty when it holds. Each round the
+  // surface centres of the restricted facets within a voxel of those places
+  // go in and REFINE runs again, at most `certificate_rounds` times, and
+  // only while each round halves the places. Unset: no rounds.
+  std::function<std::vector<Vec3>(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                  const std::vector<std::array<std::int32_t, 2>>& pairs)>
       certificate;
   int certificate_rounds = 8;
   ConformingTetOptions tets;
@@ -96,10 +96,10 @@ struct ConformingSurface {
   std::vector<Vec3> points;                         // world
   std::vector<std::array<int, 3>> triangles;        // oriented out of pairs[t][0]
   std::vector<std::array<std::int32_t, 2>> pairs;   // (behind, front), behind > front
-  // Points inserted per step: seed, vor_edge, topo_disk, quality, distance,
-  // voxel_side, certificate, cell, cell_facet (an encroached facet's
-  // surface centre), off_surface.
-  std::array<long long, 10> inserted{};
+  // Points inserted per step: seed, vor_edge, topo_disk, patch_fan,
+  // quality, distance, voxel_side, certificate, cell, cell_facet (an
+  // encroached facet's surface centre), off_surface.
+  std::array<long long, 11> inserted{};
   long long refused = 0;       // candidates within 1e-6 voxel of a vertex
   long long passes = 0;
   int certificate_rounds = 0;  // rounds that refined where the certificate failed

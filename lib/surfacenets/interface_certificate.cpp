@@ -9,6 +9,7 @@
 #include "util/memory.hpp"
 
 #include <algorithm>
+#include <map>
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -324,30 +325,68 @@ std::string InterfaceCertificate::failure() const {
   return state[std::size_t(k)] < 0 ? std::string(name(k)) + ": not checked" : why[std::size_t(k)];
 }
 
-std::vector<std::size_t> InterfaceCertificate::failing_complex_patches() const {
+namespace {
+constexpr std::size_t kWholePatchFaces = 256;
+} // namespace
+
+std::vector<Vec3> InterfaceCertificate::failing_places(const std::vector<Vec3>& points,
+                                                       const std::vector<std::array<int, 3>>& triangles,
+                                                       const InterfaceComplex& k, const Geometry& grid) const {
   std::vector<std::int32_t> bad;
   for (const Label& l : labels)
     if (!l.surface.ok() || (l.sides_checked && l.sides.wrong() > 0)) bad.push_back(l.label);
   auto is_bad = [&](std::int32_t l) { return std::find(bad.begin(), bad.end(), l) != bad.end(); };
-  std::vector<std::size_t> out;
+  auto centroid = [&](std::size_t t) {
+    Vec3 c{0, 0, 0};
+    for (int v : triangles[t])
+      for (int a = 0; a < 3; ++a) c[a] += points[std::size_t(v)][a] / 3;
+    return c;
+  };
+  std::vector<Vec3> out;
+  std::vector<std::size_t> whole;
   for (const Interface& i : interfaces) {
-    if (is_bad(i.behind) || is_bad(i.front)) {
-      out.insert(out.end(), i.complex_patches.begin(), i.complex_patches.end());
-      continue;
+    const bool all = is_bad(i.behind) || is_bad(i.front);
+    if (!all && i.why.empty()) continue;
+    std::map<long long, std::size_t> largest;  // per K(X) patch, its largest mesh patch
+    for (std::size_t p = 0; p < i.patches.size(); ++p) {
+      const long long c = i.patches[p].complex_patch;
+      if (c < 0) continue;
+      auto it = largest.try_emplace(c, p).first;
+      if (i.patches[p].triangles > i.patches[it->second].triangles) it->second = p;
     }
-    if (i.why.empty()) continue;
-    std::vector<std::size_t> good;  // matched once by a patch that holds
-    bool stray = false;
-    for (const Patch& p : i.patches) {
-      if (p.complex_patch < 0) stray = true;
-      else if (p.verdict == "ok") good.push_back(std::size_t(p.complex_patch));
+    for (std::size_t p = 0; p < i.patches.size(); ++p) {
+      const Patch& q = i.patches[p];
+      if (!all && q.verdict == "ok") continue;
+      if (q.verdict == "matched twice" && largest[q.complex_patch] != p) {
+        out.push_back(centroid(q.first_triangle));  // a stray piece
+        continue;
+      }
+      out.push_back(centroid(q.first_triangle));
+      if (q.complex_patch >= 0) whole.push_back(std::size_t(q.complex_patch));
     }
-    std::sort(good.begin(), good.end());
     for (std::size_t c : i.complex_patches)
-      if (stray || !std::binary_search(good.begin(), good.end(), c)) out.push_back(c);
+      if (!largest.count((long long)c)) whole.push_back(c);  // no mesh patch on it
   }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  // Every face of the K(X) patches wrong as a whole (Euler characteristic,
+  // loops, pinches, missing): where, the certificate does not say. Not of
+  // a large patch: refining all over it grades the mesh around it for a
+  // difference somewhere (the noisy brain map's first round quintupled its
+  // points so).
+  whole.erase(std::remove_if(whole.begin(), whole.end(), [&](std::size_t c) { return k.patches[c].faces > kWholePatchFaces; }),
+              whole.end());
+  std::sort(whole.begin(), whole.end());
+  whole.erase(std::unique(whole.begin(), whole.end()), whole.end());
+  if (!whole.empty())
+    for (std::size_t f = 0; f < k.faces.size(); ++f) {
+      if (!std::binary_search(whole.begin(), whole.end(), std::size_t(k.face_patch[f]))) continue;
+      const auto q = k.corner(InterfaceComplex::face_corner(k.faces[f]));
+      const int a = InterfaceComplex::face_axis(k.faces[f]);
+      // Corner q is where voxels q - 1 and q meet; the face's centre.
+      Vec3 c{double(q[0]) - 0.5, double(q[1]) - 0.5, double(q[2]) - 0.5};
+      for (int b = 0; b < 3; ++b)
+        if (b != a) c[b] += 0.5;
+      out.push_back(grid.world(c[0], c[1], c[2]));
+    }
   return out;
 }
 

@@ -158,12 +158,18 @@ struct InterfaceCertificate {
   // crossings, 0 of 1234 voxel centres on the wrong side", or "interface
   // certificate fails: WHY".
   std::string summary() const;
-  // The K(X) patches (InterfaceComplex::patches ids, ascending) where it
-  // fails, for a mesher to refine near (conforming/conforming_surface.hpp):
-  // of a failed interface, each patch not matched by exactly one mesh
-  // patch that holds (all of the pair's when a mesh patch lies on none);
-  // every patch of a label whose surface or voxel sides fail.
-  std::vector<std::size_t> failing_complex_patches() const;
+  // Where it fails, for a mesher to refine near (conforming/
+  // conforming_surface.hpp), world points: of a failed interface, a
+  // triangle of each stray piece (of the mesh patches placed on one K(X)
+  // patch, all but the largest), and the faces of each K(X) patch wrong as
+  // a whole (its mesh patch's Euler characteristic, loops or pinches
+  // differ; no mesh patch on it; up to 256 faces) with a triangle of its
+  // mesh patch; of a
+  // label whose surface or voxel sides fail, the same for each of its
+  // patches. points, triangles: the mesh certified; k, grid: K(X) and its
+  // image's.
+  std::vector<Vec3> failing_places(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                   const InterfaceComplex& k, const Geometry& grid) const;
   Json to_json() const;
 };
 
