@@ -10,6 +10,21 @@
 #include <iostream>
 #include <optional>
 
+namespace {
+
+// Two nonzero values or more.
+bool several_labels(const imgmesh::LabelImage& x) {
+  std::int32_t first = 0;
+  for (std::int32_t v : x.data)
+    if (v != 0) {
+      if (first == 0) first = v;
+      else if (v != first) return true;
+    }
+  return false;
+}
+
+} // namespace
+
 int main(int argc, char** argv) {
   imgmesh::cli::Tool tool("meshinfo", "Report the topology and quality of a mesh (surface or planar)");
   std::string in, image;
@@ -81,6 +96,22 @@ int main(int argc, char** argv) {
       if (json) tool.print_json(info.report);
       else std::cout << imgmesh::format_report(info.report);
       return tool.finish(info);
+    }
+    // Tetrahedra against a 3D label map of several labels: a region per
+    // label, certified as seg2tet certifies its own.
+    if (tets && !image.empty() && image != "-" && !sel.has_threshold) {
+      const imgmesh::ImageInfo ii = imgmesh::read_image_info(image);
+      if (ii.integer && ii.geometry.dimension == 3 && ii.geometry.size[2] > 1) {
+        imgmesh::LabelImage labels = imgmesh::read_labels(image, sel);
+        if (several_labels(labels)) {
+          imgmesh::InterfaceCertificateOptions icert;
+          icert.place_tolerance = cert.place_tolerance;
+          const imgmesh::MeshInfo info = imgmesh::label_tet_mesh_info(*tm, in, std::move(labels), image, icert);
+          if (json) tool.print_json(info.report);
+          else std::cout << imgmesh::format_report(info.report);
+          return tool.finish(info);
+        }
+      }
     }
     std::optional<imgmesh::BinaryImage> img;
     std::optional<imgmesh::LabelImage> labels;
