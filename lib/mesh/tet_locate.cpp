@@ -63,7 +63,7 @@ VoxelCentreLocation locate_voxel_centres(const TetMesh& m, const LabelImage& x) 
   r.checked = x.data.size();
   std::size_t first = x.data.size();
   for (std::size_t v = 0; v < in.size(); ++v) {
-    const bool outside = x.data[v] != 0 && !(in[v] & 1), other = in[v] & 2;
+    const bool other = in[v] & 2, outside = x.data[v] != 0 && !in[v];
     r.outside += outside;
     r.in_other += other;
     if ((outside || other) && first == x.data.size()) first = v;

@@ -19,7 +19,7 @@ namespace imgmesh {
 struct VoxelCentreLocation {
   std::size_t checked = 0;          // every voxel of the image
   std::size_t outside = 0;          // of a label but 0, in no tetrahedron
-  std::size_t in_other = 0;         // in a tetrahedron of another region (label 0: of a region but 0)
+  std::size_t in_other = 0;         // in a tetrahedron of another region (label 0: of a region but 0); not in outside
   std::size_t wrong() const { return outside + in_other; }
   // The first wrong one in the image's order: its voxel, label, and the
   // region of a tetrahedron of another region it lies in (-1: none).

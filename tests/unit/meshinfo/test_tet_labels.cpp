@@ -134,6 +134,14 @@ TEST_CASE("a voxel centre in a tetrahedron of another label: refused on voxel ce
   CHECK(c.centres.in_other == 1);
   CHECK(c.centres.first == std::array<std::size_t, 3>{1, 1, 1});
   CHECK(c.centres.first_region == 2);
+  // That cube's six tetrahedra gone: its centre in none.
+  m.tets.erase(m.tets.begin(), m.tets.begin() + 6);
+  m.tet_region.erase(m.tet_region.begin(), m.tet_region.begin() + 6);
+  const TetLabelCertificate gone = certify_tet_labels(m, x);
+  CHECK(gone.first_failed() == TetLabelCertificate::kVoxelCentres);
+  CHECK(gone.centres.outside == 1);
+  CHECK(gone.centres.in_other == 0);
+  CHECK(gone.centres.first_region == -1);
 }
 
 TEST_CASE("two regions apart (a gap where they should touch): refused on interfaces", "[meshinfo][tet_labels]") {
