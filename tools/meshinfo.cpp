@@ -40,7 +40,10 @@ int main(int argc, char** argv) {
                       "img2poly read (repaired as img2poly does); match each region of the planar mesh to a pixel "
                       "region (exit 3 if not). A surface with a label pair per face (seg2mesh's fast mode): the label "
                       "image, repaired as that mode does; the interface certificate (every pair's patches, no "
-                      "crossing, each label's surface, voxel sides)")
+                      "crossing, each label's surface, voxel sides). Tetrahedra with a region per label against a "
+                      "label image of two labels or more: repaired as seg2tet does; orientation, conformity, a region "
+                      "per label, every voxel centre in a tetrahedron of its label, the regions' interfaces through "
+                      "the interface certificate")
       ->type_name("FILE");
   imgmesh::CertificateOptions cert;
   auto* place = tool.app.add_option("--place-tolerance", cert.place_tolerance,
