@@ -277,6 +277,12 @@ std::string format_report(const Json& r) {
     o << buf << "  smallest dihedral histogram (10 deg bins):";
     for (const Json& n : q.at("min_dihedral_histogram_10deg").items()) o << ' ' << n.integer();
     o << "\n";
+    if (q.contains("volume_by_region") && q.at("volume_by_region").keys().size() > 1) {
+      const Json& v = q.at("volume_by_region");
+      o << "  volume by region:";
+      for (std::size_t i = 0; i < v.keys().size(); ++i) o << ' ' << v.keys()[i] << ": " << v.items()[i].number();
+      o << "\n";
+    }
     if (q.contains("regions")) {
       for (const Json& g : q.at("regions").items()) {
         std::snprintf(buf, sizeof buf, "  region %lld: %lld tetrahedra, volume %.6g", g.at("region").integer(),
@@ -291,11 +297,6 @@ std::string format_report(const Json& r) {
                       g.at("max_radius_edge_ratio").number(), g.at("min_dihedral_degrees").number());
         o << buf;
       }
-    } else if (q.contains("volume_by_region") && q.at("volume_by_region").keys().size() > 1) {
-      const Json& v = q.at("volume_by_region");
-      o << "  volume by region:";
-      for (std::size_t i = 0; i < v.keys().size(); ++i) o << ' ' << v.keys()[i] << ": " << v.items()[i].number();
-      o << "\n";
     }
     if (q.contains("foreground_voxel_volume")) o << "  foreground voxel volume " << q.at("foreground_voxel_volume").number() << "\n";
   }
