@@ -9,18 +9,24 @@
 
 #include <iostream>
 #include <optional>
+#include <set>
 
 namespace {
 
-// Two nonzero values or more.
-bool several_labels(const imgmesh::LabelImage& x) {
-  std::int32_t first = 0;
-  for (std::int32_t v : x.data)
-    if (v != 0) {
-      if (first == 0) first = v;
-      else if (v != first) return true;
-    }
-  return false;
+// The label map holds two nonzero values or more (after --label): held a
+// byte a voxel where its values fit, as read_foreground holds a mask, so a
+// large binary image costs a second read, not four bytes a voxel.
+bool several_labels(const std::string& image, const imgmesh::Selection& sel) {
+  if (!sel.labels.empty()) return std::set<long long>(sel.labels.begin(), sel.labels.end()).size() > 1;
+  return imgmesh::read_labels_narrow(image).visit([](const auto& x) {
+    long long first = 0;
+    for (const auto v : x.data)
+      if (v != 0) {
+        if (first == 0) first = v;
+        else if (v != first) return true;
+      }
+    return false;
+  });
 }
 
 } // namespace
@@ -104,16 +110,13 @@ int main(int argc, char** argv) {
     // label, certified as seg2tet certifies its own.
     if (tets && !image.empty() && image != "-" && !sel.has_threshold) {
       const imgmesh::ImageInfo ii = imgmesh::read_image_info(image);
-      if (ii.integer && ii.geometry.dimension == 3 && ii.geometry.size[2] > 1) {
-        imgmesh::LabelImage labels = imgmesh::read_labels(image, sel);
-        if (several_labels(labels)) {
-          imgmesh::InterfaceCertificateOptions icert;
-          icert.place_tolerance = cert.place_tolerance;
-          const imgmesh::MeshInfo info = imgmesh::label_tet_mesh_info(*tm, in, std::move(labels), image, icert);
-          if (json) tool.print_json(info.report);
-          else std::cout << imgmesh::format_report(info.report);
-          return tool.finish(info);
-        }
+      if (ii.integer && ii.geometry.dimension == 3 && ii.geometry.size[2] > 1 && several_labels(image, sel)) {
+        imgmesh::InterfaceCertificateOptions icert;
+        icert.place_tolerance = cert.place_tolerance;
+        const imgmesh::MeshInfo info = imgmesh::label_tet_mesh_info(*tm, in, imgmesh::read_labels(image, sel), image, icert);
+        if (json) tool.print_json(info.report);
+        else std::cout << imgmesh::format_report(info.report);
+        return tool.finish(info);
       }
     }
     std::optional<imgmesh::BinaryImage> img;
