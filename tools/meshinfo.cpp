@@ -9,6 +9,27 @@
 
 #include <iostream>
 #include <optional>
+#include <set>
+
+namespace {
+
+// The label map holds two nonzero values or more (after --label): held a
+// byte a voxel where its values fit, as read_foreground holds a mask, so a
+// large binary image costs a second read, not four bytes a voxel.
+bool several_labels(const std::string& image, const imgmesh::Selection& sel) {
+  if (!sel.labels.empty()) return std::set<long long>(sel.labels.begin(), sel.labels.end()).size() > 1;
+  return imgmesh::read_labels_narrow(image).visit([](const auto& x) {
+    long long first = 0;
+    for (const auto v : x.data)
+      if (v != 0) {
+        if (first == 0) first = v;
+        else if (v != first) return true;
+      }
+    return false;
+  });
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
   imgmesh::cli::Tool tool("meshinfo", "Report the topology and quality of a mesh (surface or planar)");
@@ -25,7 +46,10 @@ int main(int argc, char** argv) {
                       "img2poly read (repaired as img2poly does); match each region of the planar mesh to a pixel "
                       "region (exit 3 if not). A surface with a label pair per face (seg2mesh's fast mode): the label "
                       "image, repaired as that mode does; the interface certificate (every pair's patches, no "
-                      "crossing, each label's surface, voxel sides)")
+                      "crossing, each label's surface, voxel sides). Tetrahedra with a region per label against a "
+                      "label image of two labels or more: repaired as seg2tet does; orientation, conformity, a region "
+                      "per label, every voxel centre in a tetrahedron of its label, the regions' interfaces through "
+                      "the interface certificate")
       ->type_name("FILE");
   imgmesh::CertificateOptions cert;
   auto* place = tool.app.add_option("--place-tolerance", cert.place_tolerance,
@@ -81,6 +105,19 @@ int main(int argc, char** argv) {
       if (json) tool.print_json(info.report);
       else std::cout << imgmesh::format_report(info.report);
       return tool.finish(info);
+    }
+    // Tetrahedra against a 3D label map of several labels: a region per
+    // label, certified as seg2tet certifies its own.
+    if (tets && !image.empty() && image != "-" && !sel.has_threshold) {
+      const imgmesh::ImageInfo ii = imgmesh::read_image_info(image);
+      if (ii.integer && ii.geometry.dimension == 3 && ii.geometry.size[2] > 1 && several_labels(image, sel)) {
+        imgmesh::InterfaceCertificateOptions icert;
+        icert.place_tolerance = cert.place_tolerance;
+        const imgmesh::MeshInfo info = imgmesh::label_tet_mesh_info(*tm, in, imgmesh::read_labels(image, sel), image, icert);
+        if (json) tool.print_json(info.report);
+        else std::cout << imgmesh::format_report(info.report);
+        return tool.finish(info);
+      }
     }
     std::optional<imgmesh::BinaryImage> img;
     std::optional<imgmesh::LabelImage> labels;

@@ -25,11 +25,12 @@ constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
 struct Face {
   std::array<int, 3> key;  // sorted
   std::array<int, 3> tri;
+  int region = 0;          // its tetrahedron's (region_interfaces)
   bool operator<(const Face& o) const { return key < o.key; }
 };
-void add_faces(const std::array<int, 4>& q, std::vector<Face>& faces) {
+void add_faces(const std::array<int, 4>& q, std::vector<Face>& faces, int region = 0) {
   for (const auto& f : kFace) {
-    Face face{{}, {q[std::size_t(f[0])], q[std::size_t(f[1])], q[std::size_t(f[2])]}};
+    Face face{{}, {q[std::size_t(f[0])], q[std::size_t(f[1])], q[std::size_t(f[2])]}, region};
     face.key = face.tri;
     std::sort(face.key.begin(), face.key.end());
     faces.push_back(face);
@@ -164,7 +165,12 @@ TetQualityReport tet_quality(const TetMesh& m) {
     if (lo < 10) ++r.under_10_degrees;
     ++r.min_dihedral_histogram[std::min<std::size_t>(8, std::size_t(lo / 10))];
     const double vol = tet_orient(a, b, c, d) / 6;
-    r.volume_by_region[t < m.tet_region.size() ? m.tet_region[t] : 1] += vol;
+    const int region = t < m.tet_region.size() ? m.tet_region[t] : 1;
+    r.volume_by_region[region] += vol;
+    TetQualityReport::Region& g = r.by_region[region];
+    ++g.tetrahedra;
+    g.max_radius_edge_ratio = std::max(g.max_radius_edge_ratio, ratio);
+    g.min_dihedral = std::min(g.min_dihedral, lo);
     r.total_volume += vol;
   }
   r.mean_radius_edge_ratio = sum_ratio / double(m.tets.size());
@@ -249,6 +255,21 @@ std::vector<std::array<int, 3>> tet_boundary(const TetMesh& m, int region) {
   });
   std::sort(out.begin(), out.end());
   return out;
+}
+
+void region_interfaces(const TetMesh& m, std::vector<std::array<int, 3>>& triangles,
+                       std::vector<std::array<std::int32_t, 2>>& pairs) {
+  std::vector<Face> faces;
+  faces.reserve(m.tets.size() * 4);
+  for (std::size_t t = 0; t < m.tets.size(); ++t) add_faces(m.tets[t], faces, t < m.tet_region.size() ? m.tet_region[t] : 1);
+  for_each_face(faces, [&](const Face* f, std::size_t count) {
+    if (count > 2) return;
+    const Face& hi = count == 1 || f[0].region > f[1].region ? f[0] : f[1];  // tri: outward from its tetrahedron
+    const int lo = count == 1 ? 0 : std::min(f[0].region, f[1].region);
+    if (hi.region == lo) return;
+    triangles.push_back(hi.tri);
+    pairs.push_back({std::int32_t(hi.region), std::int32_t(lo)});
+  });
 }
 
 std::string boundary_mismatch(const TetMesh& m) {

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -74,6 +75,13 @@ struct TetQualityReport {
   std::array<std::size_t, 6> ratio_histogram{};         // radius-edge ratio in [0.6,1), [1,1.5), [1.5,2), [2,3), [3,5), >= 5
   std::map<int, double> volume_by_region;
   double total_volume = 0;
+  // Per region, for meshinfo's report of several regions (not in to_json:
+  // a one-region mesh's report stays as it was).
+  struct Region {
+    std::size_t tetrahedra = 0;
+    double max_radius_edge_ratio = 0, min_dihedral = 180;  // degrees
+  };
+  std::map<int, Region> by_region;
   double share_under_10() const { return tetrahedra ? double(under_10_degrees) / double(tetrahedra) : 0; }
   Json to_json() const;
 };
@@ -93,6 +101,16 @@ TetConformity tet_conformity(const TetMesh& mesh);
 // The faces with a tetrahedron of `region` on one side only (region 0: of
 // any region), oriented outward from it, in a deterministic order.
 std::vector<std::array<int, 3>> tet_boundary(const TetMesh& mesh, int region = 0);
+
+// The faces between its regions, each once, as a surface with a label
+// pair per triangle (the interface certificate's input,
+// surfacenets/interface_certificate.hpp): a face of tetrahedra of two
+// regions, or of one region (not 0) and nothing, oriented out of the higher
+// region, pair (higher, lower), nothing being region 0. Faces in three
+// tetrahedra or more are left out (tet_conformity counts them). In the
+// order of their sorted vertex ids.
+void region_interfaces(const TetMesh& mesh, std::vector<std::array<int, 3>>& triangles,
+                       std::vector<std::array<std::int32_t, 2>>& pairs);
 
 // The boundary the mesh states (its triangles, each with the region it
 // bounds) against its tetrahedra's: every face on a region's boundary (a

@@ -3,6 +3,7 @@
 #include "mesh/surface_io.hpp"
 #include "mesh/triangle_quality.hpp"
 #include "mesh/voxel_sides.hpp"
+#include "meshinfo/tet_labels.hpp"
 #include "planar/image_pslg.hpp"
 #include "planar/planar_formats.hpp"
 #include "quad/quality.hpp"
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <sstream>
 
 namespace imgmesh {
@@ -281,6 +283,21 @@ std::string format_report(const Json& r) {
       for (std::size_t i = 0; i < v.keys().size(); ++i) o << ' ' << v.keys()[i] << ": " << v.items()[i].number();
       o << "\n";
     }
+    if (q.contains("regions")) {
+      for (const Json& g : q.at("regions").items()) {
+        std::snprintf(buf, sizeof buf, "  region %lld: %lld tetrahedra, volume %.6g", g.at("region").integer(),
+                      g.at("tetrahedra").integer(), g.at("volume").number());
+        o << buf;
+        if (g.contains("voxel_volume")) {
+          std::snprintf(buf, sizeof buf, " against %.6g of voxels (%.4f)", g.at("voxel_volume").number(),
+                        g.at("volume_ratio").number());
+          o << buf;
+        }
+        std::snprintf(buf, sizeof buf, ", radius-edge max %.3f, smallest dihedral %.2f deg\n",
+                      g.at("max_radius_edge_ratio").number(), g.at("min_dihedral_degrees").number());
+        o << buf;
+      }
+    }
     if (q.contains("foreground_voxel_volume")) o << "  foreground voxel volume " << q.at("foreground_voxel_volume").number() << "\n";
   }
   if (r.contains("interface_image")) {
@@ -288,6 +305,20 @@ std::string format_report(const Json& r) {
     o << "labels      " << im.at("labels").items().size() << " (0 the background), interfaces " << im.at("interfaces").items().size()
       << ", repaired voxels " << im.at("repaired_voxels").integer() << "; interface certificate "
       << (im.at("verdict").string() == "ok" ? "HOLDS" : "FAILS: " + im.at("failure").string()) << "\n";
+  }
+  if (r.contains("certificate")) {  // tetrahedra against a label map
+    const Json& c = r.at("certificate");
+    const bool ok = c.at("verdict").string() == "ok";
+    o << "regions     " << c.at("regions").items().size() << " against " << c.at("labels").items().size()
+      << " labels; tetrahedra " << (ok ? "CERTIFIED" : "NOT CERTIFIED") << " against the label map\n";
+    o << "certificate";
+    const Json& checks = c.at("checks");
+    for (std::size_t i = 0; i < checks.keys().size(); ++i) {
+      const Json& v = checks.items()[i];
+      o << ' ' << checks.keys()[i] << (v.kind() == Json::Kind::Null ? " -" : v.boolean() ? " yes" : " NO")
+        << (i + 1 < checks.keys().size() ? "," : "\n");
+    }
+    if (!ok) o << "  first failure: " << c.at("failure").string() << "\n";
   }
   if (r.contains("image")) {
     const Json& im = r.at("image");
@@ -407,17 +438,15 @@ MeshInfo interface_mesh_info(const PolyMesh& mesh, const std::string& mesh_name,
   return r;
 }
 
-MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
-                       const std::string& image_name, const CertificateOptions& options) {
-  // The boundary on its own vertices (interior ones would count as isolated).
-  // With region 1 among others (implicit2tet --outside: region 2 fills the
-  // box around it), region 1's boundary: the surface of the foreground.
-  const bool others = std::any_of(mesh.tet_region.begin(), mesh.tet_region.end(), [](int r) { return r != 1; });
-  const bool has1 = std::find(mesh.tet_region.begin(), mesh.tet_region.end(), 1) != mesh.tet_region.end();
+namespace {
+
+// The boundary triangles on their own vertices (interior ones would count
+// as isolated), as a surface for mesh_report.
+PolyMesh boundary_surface(const TetMesh& mesh, const std::vector<std::array<int, 3>>& triangles) {
   PolyMesh b;
   b.format = "tetrahedra";
   std::vector<int> index(mesh.points.size(), -1);
-  for (const auto& t : tet_boundary(mesh, others && has1 ? 1 : 0)) {
+  for (const auto& t : triangles) {
     std::vector<int> f;
     for (int v : t) {
       int& k = index[std::size_t(v)];
@@ -429,20 +458,102 @@ MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const 
     }
     b.faces.push_back(f);
   }
-  MeshInfo r = mesh_info(b, mesh_name, image, image_name, options);
-  const TetConformity c = tet_conformity(mesh);
-  r.conforming = c.ok();
-  Json tj = tet_quality(mesh).to_json();
+  return b;
+}
+
+// The "tetrahedra" section: quality, counts, conformity.
+Json tetrahedra_section(const TetMesh& mesh, const TetQualityReport& q, const TetConformity& c) {
+  Json tj = q.to_json();
   tj["vertices"] = mesh.points.size();
   tj["boundary_triangles_in_file"] = mesh.triangles.size();
   tj["conformity"] = c.to_json();
+  return tj;
+}
+
+// Per region: tetrahedra, volume, largest radius-edge ratio, smallest
+// dihedral; with `voxels` (per label, its voxel volume) that too.
+Json regions_section(const TetQualityReport& q, const std::map<std::int32_t, double>* voxels) {
+  Json a = Json::array();
+  for (const auto& [region, g] : q.by_region) {
+    Json j = Json::object();
+    j["region"] = region;
+    j["tetrahedra"] = g.tetrahedra;
+    const double volume = q.volume_by_region.at(region);
+    j["volume"] = volume;
+    if (voxels) {
+      const auto v = voxels->find(region);
+      const double vv = v == voxels->end() ? 0.0 : v->second;
+      j["voxel_volume"] = vv;
+      j["volume_ratio"] = vv > 0 ? volume / vv : 0.0;
+    }
+    j["max_radius_edge_ratio"] = g.max_radius_edge_ratio;
+    j["min_dihedral_degrees"] = g.min_dihedral;
+    a.push_back(j);
+  }
+  return a;
+}
+
+} // namespace
+
+MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image,
+                       const std::string& image_name, const CertificateOptions& options) {
+  // With region 1 among others (implicit2tet --outside: region 2 fills the
+  // box around it), region 1's boundary: the surface of the foreground.
+  const bool others = std::any_of(mesh.tet_region.begin(), mesh.tet_region.end(), [](int r) { return r != 1; });
+  const bool has1 = std::find(mesh.tet_region.begin(), mesh.tet_region.end(), 1) != mesh.tet_region.end();
+  MeshInfo r = mesh_info(boundary_surface(mesh, tet_boundary(mesh, others && has1 ? 1 : 0)), mesh_name, image,
+                         image_name, options);
+  const TetConformity c = tet_conformity(mesh);
+  r.conforming = c.ok();
+  const TetQualityReport q = tet_quality(mesh);
+  Json tj = tetrahedra_section(mesh, q, c);
   if (image) {
     std::size_t n = 0;
     for (auto v : image->data) n += v != 0;
     const double voxel = image->spacing[0] * image->spacing[1] * (image->dimension == 3 ? image->spacing[2] : 1);
     tj["foreground_voxel_volume"] = double(n) * voxel;
+  } else if (q.by_region.size() > 1) {
+    tj["regions"] = regions_section(q, nullptr);
   }
   r.report["tetrahedra"] = tj;
+  return r;
+}
+
+MeshInfo label_tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, LabelImage labels,
+                             const std::string& image_name, const InterfaceCertificateOptions& options) {
+  if (mesh.tets.empty()) throw Error("mesh has no tetrahedra", mesh_name);
+  if (labels.dimension == 2 || labels.size[2] == 1) throw Error("regions are certified against a 3D label image", image_name);
+  const PartitionResult p = naming_input(image_name, [&] { return make_well_composed_partition(std::move(labels)); });
+  if (const std::string why = p.failed_guarantee(); !why.empty()) throw Error("the partition repair failed: " + why, image_name);
+  const LabelImage& x = p.image;
+  MeshInfo r;
+  r.compared = r.by_tet_labels = true;
+  r.image_name = image_name;
+  const TetLabelCertificate cert = certify_tet_labels(mesh, x, options);
+  // The report's surface: the regions' interfaces (those the certificate
+  // judged, when it could build them).
+  std::vector<std::array<int, 3>> triangles = cert.triangles;
+  if (triangles.empty()) {
+    std::vector<std::array<std::int32_t, 2>> pairs;
+    region_interfaces(mesh, triangles, pairs);
+  }
+  r.report = naming_input(mesh_name, [&] { return mesh_report(boundary_surface(mesh, triangles)); });
+  const TetQualityReport q = tet_quality(mesh);
+  Json tj = tetrahedra_section(mesh, q, cert.conformity);
+  std::map<std::int32_t, double> voxels;
+  const double voxel = x.spacing[0] * x.spacing[1] * x.spacing[2];
+  for (std::int32_t v : x.data)
+    if (v != 0) voxels[v] += voxel;
+  tj["regions"] = regions_section(q, &voxels);
+  r.report["tetrahedra"] = tj;
+  if (cert.state[TetLabelCertificate::kInterfaces] >= 0 && !cert.triangles.empty()) {
+    Json j = cert.interfaces.to_json();
+    j["repaired_voxels"] = p.changed;
+    r.report["interface_image"] = j;
+  }
+  r.report["certificate"] = cert.to_json();
+  r.matches = cert.ok();
+  r.tet_labels_failure = cert.failure();
   return r;
 }
 
@@ -454,6 +565,8 @@ Json MeshInfo::to_json() const {
 }
 
 std::string MeshInfo::failed_guarantee() const {
+  if (by_tet_labels)
+    return matches ? "" : "the tetrahedra are not certified against the partition of " + image_name + ": " + tet_labels_failure;
   if (!conforming) return "the tetrahedra are not all positively oriented and conforming";
   if (matches) return "";
   if (by_interfaces) return "the mesh is not certified against the partition of " + image_name + ": " + interfaces.failure();

@@ -60,6 +60,8 @@ struct MeshInfo {
   ComponentCorrespondence by_place;  // 2D: the certificate by correspondence of regions (planar)
   bool by_interfaces = false;        // 3D label pairs: the interface certificate decides
   InterfaceCertificate interfaces;
+  bool by_tet_labels = false;        // tetrahedra against a label map: label_tet_mesh_info's certificate decides
+  std::string tet_labels_failure;    // its first failed check, "CHECK: why"
   Json to_json() const;  // vertices, faces, components, euler; matches_image when compared
   std::string failed_guarantee() const;
 };
@@ -98,8 +100,20 @@ MeshInfo interface_mesh_info(const PolyMesh& mesh, const std::string& mesh_name,
 // bdCA(X) when `image` is given), with a
 // "tetrahedra" section: conformity and orientation, radius-edge ratios,
 // dihedral angles (smallest, histogram), volume per region, and with an
-// image the foreground's voxel volume.
+// image the foreground's voxel volume. Without an image, a mesh of several
+// regions gets a line per region (tetrahedra, volume, largest radius-edge
+// ratio, smallest dihedral angle).
 MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const BinaryImage* image = nullptr,
                        const std::string& image_name = "", const CertificateOptions& options = {});
+
+// A tetrahedral mesh with a region per label against a 3D label map
+// (several labels), the map repaired as seg2tet and seg2mesh repair it
+// (make_well_composed_partition): certify_tet_labels (meshinfo/tet_labels.hpp)
+// in "certificate", the interface certificate of the regions' interfaces in
+// "interface_image"; the report's surface is those interfaces, and the
+// "tetrahedra" section has a line per region with its label's voxel volume.
+// Throws Error as interface_mesh_info, and on a mesh without tetrahedra.
+MeshInfo label_tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, LabelImage labels,
+                             const std::string& image_name, const InterfaceCertificateOptions& options = {});
 
 } // namespace imgmesh

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# implicit2mesh at its defaults beside its peers, one table in one run:
+# implicit2mesh at its defaults beside its peers, one table in one run
+# (and beside itself with --no-voxel-sides, issue 38's cost):
 # CGAL Mesh_3 on the labeled (well-composed) image, seeded from every
 # component (initialize_triangulation_from_labeled_image, then refine_mesh_3)
 # and plain make_mesh_3 (facet angle 30, distance 1/4 voxel, manifold), CGAL
@@ -87,18 +88,21 @@ for img in $images; do
   /usr/bin/time -f '%e' -o "$work/time" "$tools/wc2implicit" -q "$work/wc.nrrd" "$work/f.nrrd"
   echo "$img f $(tail -1 "$work/time")" >> "$work/summary"
   run ours "implicit2mesh (defaults)" "$work/ours.off" "$tools/implicit2mesh" -q "$work/f.nrrd" "$work/ours.off"
+  run off "implicit2mesh --no-voxel-sides" "$work/off.off" "$tools/implicit2mesh" -q --no-voxel-sides "$work/f.nrrd" "$work/off.off"
   run m3s "CGAL Mesh_3, seeded from every component" "$work/m3s.off" "$peers/mesh3_peer" "$work/wc.nrrd" "$work/m3s.off" seeded
   run m3p "CGAL make_mesh_3" "$work/m3p.off" "$peers/mesh3_peer" "$work/wc.nrrd" "$work/m3p.off" plain
   run sm "CGAL Surface_mesher, same f" "$work/sm.off" "$peers/surface_mesher_peer" "$work/f.nrrd" "$work/sm.off" 0 0.25
   run mc "ITK marching cubes" "$work/mc.off" "$peers/marching_cubes_peer" "$work/wc.nrrd" "$work/mc.off"
 done
-# Per image: ours against the Done-when marks of issue 17.
+# Per image: ours against the Done-when marks of issues 17 and 38 (the
+# last two columns: the defaults over --no-voxel-sides).
 echo
-echo "| image | wc2implicit s | CPU time / Mesh_3 seeded | triangles / marching cubes | peak bytes per triangle |"
-echo "|---|---|---|---|---|"
-awk '$2 == "f" { f[$1] = $3; order[++n] = $1 } $2 == "ours" { os[$1] = $3; ot[$1] = $4; ok[$1] = $5 }
-     $2 == "m3s" { ms[$1] = $3 } $2 == "mc" { mt[$1] = $4 }
+echo "| image | wc2implicit s | CPU time / Mesh_3 seeded | triangles / marching cubes | peak bytes per triangle | triangles / --no-voxel-sides | CPU / --no-voxel-sides |"
+echo "|---|---|---|---|---|---|---|"
+awk 'function r(a, b) { return (a != "" && b) ? sprintf("%.2f", a / b) : "-" }
+     $2 == "f" { f[$1] = $3; order[++n] = $1 } $2 == "ours" { os[$1] = $3; ot[$1] = $4; ok[$1] = $5 }
+     $2 == "off" { fs[$1] = $3; ft[$1] = $4 } $2 == "m3s" { ms[$1] = $3 } $2 == "mc" { mt[$1] = $4 }
      END { for (i = 1; i <= n; ++i) { k = order[i]
-       printf "| %s | %.1f | %s | %s | %s |\n", k, f[k], (ms[k] && os[k] != "") ? sprintf("%.2f", os[k] / ms[k]) : "-",
-         (mt[k] && ot[k]) ? sprintf("%.2f", ot[k] / mt[k]) : "-", ot[k] ? sprintf("%.0f", ok[k] * 1024 / ot[k]) : "-" } }' \
+       printf "| %s | %.1f | %s | %s | %s | %s | %s |\n", k, f[k], r(os[k], ms[k]), r(ot[k], mt[k]),
+         ot[k] ? sprintf("%.0f", ok[k] * 1024 / ot[k]) : "-", (ot[k] && ft[k]) ? sprintf("%.3f", ot[k] / ft[k]) : "-", r(os[k], fs[k]) } }' \
   "$work/summary"

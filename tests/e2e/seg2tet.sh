@@ -67,6 +67,22 @@ case_slicer_names_on_msh_and_inp() {
   grep -q '^\*SURFACE, TYPE=ELEMENT, NAME=solid__torus_____50__BOUNDARY$' named.inp || fail "named.inp: no torus surface"
 }
 
+# meshinfo certifies a multi-region mesh against the label map (issue 41:
+# any mesher's, here seg2tet's): seg2tet's passes every check; a copy with
+# one tetrahedron moved to another label's region is refused (exit 3),
+# naming the check that fails.
+case_meshinfo_certifies_the_regions_against_the_map() {
+  expect 0 seg2tet "$(labels)" all22.msh --msh-version 2.2 -q || return
+  OUT=report.json expect 0 meshinfo all22.msh --image "$(labels)" --json || return
+  [[ $(json report.json certificate.verdict) == ok ]] || fail "seg2tet's mesh not certified: $(json report.json certificate)"
+  [[ $(json report.json tetrahedra.regions.2.region) == 5 ]] || fail "no line for region 5"
+  # The first tetrahedron (region 1; Gmsh 2.2: id type ntags physical elementary nodes) into region 2.
+  awk '$2 == 4 && !done { $4 = 2; $5 = 2; done = 1 } { print }' all22.msh > moved.msh
+  [[ $(cmp -l all22.msh moved.msh | wc -l) == 2 ]] || fail "moved.msh: not one region changed"
+  OUT=moved.txt expect 3 meshinfo moved.msh --image "$(labels)" || return
+  grep -q "^meshinfo: guarantee not met: .*: \(voxel centres\|interfaces\): " err.txt || fail "refused without naming the check: $(cat err.txt)"
+}
+
 # Refused in one line, nothing written: stdout, an unknown extension, a
 # ratio under 2, the per-label mesher's options.
 case_bad_options_refused() {
