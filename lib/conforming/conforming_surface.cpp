@@ -106,13 +106,16 @@ private:
     // where the curves around it are), not a labelling that disagrees with
     // K(X), where refining does not converge (and grades the mesh around
     // ever finer: the brain map's third round tripled its points): they
-    // run while each round halves the failing places.
-    std::size_t before = std::size_t(-1);
-    for (int round = 0; o_.certificate && round < o_.certificate_rounds && !max_hit_; ++round) {
+    // run while each round halves the failing places, counted across calls
+    // (seg2tet calls again after its cells: a fresh count there let each
+    // call refine once more, and the brain map's tetrahedra ran to the
+    // point cap).
+    while (o_.certificate && rounds_ < o_.certificate_rounds && !max_hit_) {
       const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
       out.certified_as_is = true;
+      const std::size_t before = places_;
+      places_ = bad.size();
       if (bad.empty() || bad.size() > before / 2 || !refine_near(bad)) break;
-      before = bad.size();
       ++rounds_;
       refine();
       out = output();
@@ -783,6 +786,7 @@ private:
   std::array<long long, kSteps> inserted_{};
   long long refused_ = 0, passes_ = 0;
   int rounds_ = 0;
+  std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
   std::vector<Ch> fresh_, cells_;
