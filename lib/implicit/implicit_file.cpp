@@ -90,7 +90,7 @@ PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitRepo
 }
 
 PartitionOfUnity implicit_in_scan(const BinaryImage& wc, ScanFrame frame, float clamp, unsigned threads,
-                                  bool* placed, std::size_t band_bytes) {
+                                  bool* placed, std::size_t band_bytes, SampleGrid::Storage storage) {
   ImplicitReport rep;
   check_well_composed_sides(wc, rep);
   BinaryImage padded;
@@ -105,7 +105,7 @@ PartitionOfUnity implicit_in_scan(const BinaryImage& wc, ScanFrame frame, float 
                                       [&](std::size_t x0, std::size_t x1, float* band) {
                                         signed_distance_band(image, x0, x1, band, threads);
                                       },
-                                      threads, SampleGrid::Storage::automatic, band_bytes);
+                                      threads, storage, band_bytes);
 }
 
 Json ImplicitReport::to_json() const {

@@ -58,8 +58,11 @@ PartitionOfUnity implicit_from_well_composed(const BinaryImage& wc, ImplicitRepo
 // (signed_distance_band): never the dense float grid of the crop. frame:
 // the crop's (well_composed_crop's, its foreground box wc's), or none.
 // band_bytes: SampleGrid's.
+// storage: SampleGrid's (automatic keeps a scan under 32 MB dense: a map's
+// many labels each want blocks, the labelling function's).
 PartitionOfUnity implicit_in_scan(const BinaryImage& wc, ScanFrame frame, float clamp, unsigned threads = 1,
-                                  bool* placed = nullptr, std::size_t band_bytes = SampleGrid::kBandBytes);
+                                  bool* placed = nullptr, std::size_t band_bytes = SampleGrid::kBandBytes,
+                                  SampleGrid::Storage storage = SampleGrid::Storage::automatic);
 
 // The file's fields imgmesh_kind and imgmesh_version.
 inline constexpr const char* kImplicitKind = "pu-implicit";
