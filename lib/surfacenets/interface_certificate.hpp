@@ -164,10 +164,9 @@ struct InterfaceCertificate {
   // patch, all but the largest), and the faces of each K(X) patch wrong as
   // a whole (its mesh patch's Euler characteristic, loops or pinches
   // differ; no mesh patch on it; up to 256 faces) with a triangle of its
-  // mesh patch; of a
-  // label whose surface or voxel sides fail, the same for each of its
-  // patches. points, triangles: the mesh certified; k, grid: K(X) and its
-  // image's.
+  // mesh patch; of a label whose surface or voxel sides fail, the same for
+  // each of its patches. points, triangles: the mesh certified; k, grid:
+  // K(X) and its image's.
   std::vector<Vec3> failing_places(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                                    const InterfaceComplex& k, const Geometry& grid) const;
   Json to_json() const;

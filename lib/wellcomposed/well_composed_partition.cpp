@@ -118,15 +118,24 @@ template <class T> unsigned generic_configurations(const T b[8]) {
   }
   // The 12 faces (k, k | bit) with bit k clear; two faces of one pair are
   // joined when both lie around one of the corner's half edges (the four
-  // voxels on one side of the block along one axis).
-  int face_of[8][8];
-  int fk[12], fl[12], nf = 0;
-  for (int bit = 1; bit < 8; bit <<= 1)
-    for (int k = 0; k < 8; ++k)
-      if (!(k & bit)) {
-        face_of[k][k | bit] = face_of[k | bit][k] = nf;
-        fk[nf] = k, fl[nf++] = k | bit;
-      }
+  // voxels on one side of the block along one axis). The tables once.
+  struct Faces {
+    int face_of[8][8];
+    int fk[12], fl[12];
+    Faces() {
+      int nf = 0;
+      for (int bit = 1; bit < 8; bit <<= 1)
+        for (int k = 0; k < 8; ++k)
+          if (!(k & bit)) {
+            face_of[k][k | bit] = face_of[k | bit][k] = nf;
+            fk[nf] = k, fl[nf++] = k | bit;
+          }
+    }
+  };
+  static const Faces tables;
+  const auto& face_of = tables.face_of;
+  const int* fk = tables.fk;
+  const int* fl = tables.fl;
   int parent[12];
   for (int f = 0; f < 12; ++f) parent[f] = f;
   auto find = [&](int f) {
@@ -211,11 +220,7 @@ public:
       std::vector<std::size_t> left(stuck_.begin(), stuck_.end());
       std::sort(left.begin(), left.end());
       stuck_.clear();
-      for (std::size_t r : left) {
-        resolve(r);
-        for (std::size_t head = 0; head < queue_.size(); ++head) resolve(queue_[head]);
-        queue_.clear();
-      }
+      for (std::size_t r : left) resolve_and_drain(r);
     }
   }
 
@@ -231,9 +236,7 @@ public:
             x += 6;  // blocks x .. x+6 hold one label
             continue;
           }
-          resolve(r);
-          for (std::size_t head = 0; head < queue_.size(); ++head) resolve(queue_[head]);
-          queue_.clear();
+          resolve_and_drain(r);
           if (steps >= max_steps_) return;
         }
       }
@@ -306,6 +309,12 @@ private:
   void resolve(std::size_t r) {
     Instance in;
     while (steps < max_steps_ && first_instance(r, in)) fix(in);
+  }
+  // Block r, then R (the blocks its moves made critical) until empty.
+  void resolve_and_drain(std::size_t r) {
+    resolve(r);
+    for (std::size_t head = 0; head < queue_.size(); ++head) resolve(queue_[head]);
+    queue_.clear();
   }
 
   // Configurations created and removed by voxel i taking label `to`: only
