@@ -329,6 +329,87 @@ std::string InterfaceCertificate::failure() const {
 namespace {
 constexpr std::size_t kWholePatchFaces = 256;
 constexpr std::size_t kStrayPieceTriangles = 4096;
+
+// A large mesh patch whose Euler characteristic or loops differ from its
+// K(X) patch's: where? Each of the K(X) patch's boundary loops goes with
+// the mesh patch's boundary loop nearest most of its curve edges; the
+// curve edges of K(X) loops that share a mesh loop (a strip of the patch
+// between two holes cut) or have none near are the places. piece: the mesh
+// patch's triangles.
+void merged_loop_places(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                        const std::vector<std::size_t>& piece, std::size_t patch, const InterfaceComplex& k,
+                        const Geometry& grid, std::vector<Vec3>& out) {
+  // The mesh patch's boundary edges, joined into loops at their vertices.
+  std::map<std::pair<int, int>, int> uses;
+  for (std::size_t t : piece)
+    for (int e = 0; e < 3; ++e) {
+      const int a = triangles[t][std::size_t(e)], b = triangles[t][std::size_t((e + 1) % 3)];
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::map<int, int> parent;
+  auto find = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  std::vector<std::pair<int, int>> border;
+  for (const auto& [e, n] : uses)
+    if (n == 1) {
+      border.push_back(e);
+      parent.try_emplace(e.first, e.first);
+      parent.try_emplace(e.second, e.second);
+      parent[find(e.first)] = find(e.second);
+    }
+  // Their midpoints by lattice cell.
+  auto cell = [&](const Vec3& w) {
+    const Vec3 q = grid.continuous_index(w);
+    return std::array<long, 3>{long(std::floor(q[0])), long(std::floor(q[1])), long(std::floor(q[2]))};
+  };
+  std::map<std::array<long, 3>, std::vector<std::pair<Vec3, int>>> near;
+  for (const auto& [a, b] : border) {
+    const Vec3& p = points[std::size_t(a)];
+    const Vec3& q = points[std::size_t(b)];
+    const Vec3 m{(p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2};
+    near[cell(m)].push_back({m, find(a)});
+  }
+  // K(X)'s loops of the patch: their curve edges' midpoints, and the mesh
+  // loop nearest each.
+  std::map<std::uint32_t, std::vector<Vec3>> kloop;
+  std::map<std::uint32_t, std::map<int, std::size_t>> votes;
+  for (std::size_t e = 0; e < k.curve_edges.size(); ++e)
+    for (int s = 0; s < 4; ++s) {
+      const std::uint32_t l = k.curve_edge_loop[4 * e + std::size_t(s)];
+      if (l == InterfaceComplex::kNoLoop || k.loops[l].patch != patch) continue;
+      const auto q = k.corner(k.curve_edges[e] / 3);
+      const int a = int(k.curve_edges[e] % 3);
+      // Corner q is where voxels q - 1 and q meet.
+      Vec3 c{double(q[0]) - 0.5, double(q[1]) - 0.5, double(q[2]) - 0.5};
+      c[std::size_t(a)] += 0.5;
+      const Vec3 w = grid.world(c[0], c[1], c[2]);
+      kloop[l].push_back(w);
+      const auto at = cell(w);
+      double best = INFINITY;
+      int loop = -1;
+      for (long dz = -1; dz <= 1; ++dz)
+        for (long dy = -1; dy <= 1; ++dy)
+          for (long dx = -1; dx <= 1; ++dx) {
+            const auto it = near.find({at[0] + dx, at[1] + dy, at[2] + dz});
+            if (it == near.end()) continue;
+            for (const auto& [m, id] : it->second) {
+              const double d = (m[0] - w[0]) * (m[0] - w[0]) + (m[1] - w[1]) * (m[1] - w[1]) + (m[2] - w[2]) * (m[2] - w[2]);
+              if (d < best) best = d, loop = id;
+            }
+          }
+      ++votes[l][loop];
+    }
+  std::map<int, std::vector<std::uint32_t>> of_mesh_loop;
+  for (const auto& [l, v] : votes) {
+    const auto top = std::max_element(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
+    of_mesh_loop[top->first].push_back(l);
+  }
+  for (const auto& [m, ls] : of_mesh_loop)
+    if (m < 0 || ls.size() > 1)
+      for (std::uint32_t l : ls) out.insert(out.end(), kloop[l].begin(), kloop[l].end());
+}
 } // namespace
 
 std::vector<Vec3> InterfaceCertificate::failing_places(const std::vector<Vec3>& points,
@@ -390,7 +471,10 @@ std::vector<Vec3> InterfaceCertificate::failing_places(const std::vector<Vec3>& 
         continue;
       }
       out.push_back(centroid(q.first_triangle));
-      if (q.complex_patch >= 0) whole.push_back(std::size_t(q.complex_patch));
+      if (q.complex_patch < 0) continue;
+      if (k.patches[std::size_t(q.complex_patch)].faces <= kWholePatchFaces) whole.push_back(std::size_t(q.complex_patch));
+      else if (q.verdict == "euler differs" || q.verdict == "loops differ")
+        merged_loop_places(points, triangles, piece(i, q.first_triangle), std::size_t(q.complex_patch), k, grid, out);
     }
     for (std::size_t c : i.complex_patches)
       if (!largest.count((long long)c)) whole.push_back(c);  // no mesh patch on it

@@ -161,11 +161,15 @@ struct InterfaceCertificate {
   // Where it fails, for a mesher to refine near (conforming/
   // conforming_surface.hpp), world points: of a failed interface, every
   // triangle of each stray piece (of the mesh patches placed on one K(X)
-  // patch, all but the largest; one triangle of a piece over 4096), and the faces of each K(X) patch wrong as
-  // a whole (its mesh patch's Euler characteristic, loops or pinches
-  // differ; no mesh patch on it; up to 256 faces) with a triangle of its
-  // mesh patch; of a label whose surface or voxel sides fail, the same for
-  // each of its patches. points, triangles: the mesh certified; k, grid:
+  // patch, all but the largest; one triangle of a piece over 4096 of them);
+  // a triangle of each mesh patch wrong as a whole (its Euler
+  // characteristic, loops or pinches differ from its K(X) patch's, or no
+  // mesh patch on a K(X) patch) and, for a K(X) patch of up to 256 faces,
+  // all its faces; for a larger one whose Euler characteristic or loops
+  // differ, the curve edges of its boundary loops that share their nearest
+  // mesh loop with another (a strip between two holes cut) or have none
+  // near; of a label whose surface or voxel sides fail, the same for each
+  // of its patches. points, triangles, pairs: the mesh certified; k, grid:
   // K(X) and its image's.
   std::vector<Vec3> failing_places(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                                    const std::vector<std::array<std::int32_t, 2>>& pairs, const InterfaceComplex& k,

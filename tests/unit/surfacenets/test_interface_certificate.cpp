@@ -259,6 +259,43 @@ TEST_CASE("interface certificate: wrong meshes refused, naming the check", "[sur
   }
 }
 
+TEST_CASE("interface certificate: where a large patch's holes merged, their curves are the places", "[surfacenets]") {
+  // A plane of 2|1 (20 x 20 faces: too large to refine all over) with two
+  // one-face holes, where single voxels of 3 touch 1, two faces apart.
+  LabelImage img = label_grid(24, 24, 12);
+  paint(img, {2, 2, 2}, {21, 21, 5}, 1);
+  paint(img, {2, 2, 6}, {21, 21, 9}, 2);
+  paint(img, {8, 11, 6}, {8, 11, 6}, 3);
+  paint(img, {11, 11, 6}, {11, 11, 6}, 3);
+  const InterfaceComplex k = interface_complex(img);
+  REQUIRE(k.failed_guarantee().empty());
+  Soup s = soup_of(interface_mesh(img, k));
+  REQUIRE(certify(s, img).ok());
+  // The strip of 2|1 between the holes cut: their two loops one.
+  std::vector<std::size_t> strip;
+  for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+    Vec3 m{0, 0, 0};
+    for (int v : s.triangles[t])
+      for (int a = 0; a < 3; ++a) m[a] += s.points[std::size_t(v)][a] / 3;
+    if (s.pairs[t] == std::array<std::int32_t, 2>{2, 1} && m[0] > 8.5 && m[0] < 10.5 && m[1] > 10.5 && m[1] < 11.5)
+      strip.push_back(t);
+  }
+  REQUIRE(strip.size() == 4);
+  erase(s, strip);
+  const Cert c = certify(s, img);
+  REQUIRE(!c.ok());
+  const auto places = c.failing_places(s.points, s.triangles, s.pairs, k, img);
+  // The midpoints of both holes' four edges (world = voxel coordinates here).
+  for (double x : {8.0, 11.0})
+    for (const auto& d : {std::array<double, 2>{-0.5, 0}, {0.5, 0}, {0, -0.5}, {0, 0.5}}) {
+      const Vec3 w{x + d[0], 11 + d[1], 5.5};
+      INFO("x " << w[0] << " y " << w[1]);
+      CHECK(std::any_of(places.begin(), places.end(), [&](const Vec3& p) {
+        return std::abs(p[0] - w[0]) + std::abs(p[1] - w[1]) + std::abs(p[2] - w[2]) < 1e-9;
+      }));
+    }
+}
+
 TEST_CASE("interface certificate: a vertex moved out of its cell, a|b crossing c|d", "[surfacenets]") {
   const LabelImage img = four_labels_around_an_edge();
   const InterfaceComplex k = interface_complex(img);
