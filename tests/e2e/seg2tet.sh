@@ -76,6 +76,20 @@ case_meshinfo_certifies_the_regions_against_the_map() {
   OUT=report.json expect 0 meshinfo all22.msh --image "$(labels)" --json || return
   [[ $(json report.json certificate.verdict) == ok ]] || fail "seg2tet's mesh not certified: $(json report.json certificate)"
   [[ $(json report.json tetrahedra.regions.2.region) == 5 ]] || fail "no line for region 5"
+  # Each region's boundary topology beside its label's bdCA: the torus (5) a
+  # component of Euler characteristic 0, the ball (1) one of 2; the same
+  # boundary from the tetrahedra alone (no --image).
+  local r want
+  for r in "0 [2]" "2 [0]"; do
+    want=${r#* }; r=${r%% *}
+    [[ $(json report.json tetrahedra.regions.$r.boundary.euler) == "$want" &&
+       $(json report.json tetrahedra.regions.$r.boundary.voxel_euler) == "$want" &&
+       $(json report.json tetrahedra.regions.$r.boundary.verdict) == ok ]] ||
+      fail "region $(json report.json tetrahedra.regions.$r.region): $(json report.json tetrahedra.regions.$r.boundary)"
+  done
+  OUT=plain.json expect 0 meshinfo all22.msh --json || return
+  [[ $(json plain.json tetrahedra.regions.2.boundary) == "$(json report.json tetrahedra.regions.2.boundary |
+       sed "s/, 'voxel_components'.*/}/")" ]] || fail "region 5 without --image: $(json plain.json tetrahedra.regions.2.boundary)"
   # The first tetrahedron (region 1; Gmsh 2.2: id type ntags physical elementary nodes) into region 2.
   awk '$2 == 4 && !done { $4 = 2; $5 = 2; done = 1 } { print }' all22.msh > moved.msh
   [[ $(cmp -l all22.msh moved.msh | wc -l) == 2 ]] || fail "moved.msh: not one region changed"
