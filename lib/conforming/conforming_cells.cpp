@@ -1,0 +1,187 @@
+// seg2tet's cell stage of the mesher (tets.on): the labelled cells
+// refined to the radius-edge, size and sliver bounds without crossing the
+// surface, and the tetrahedra with their interfaces written out.
+#include "conforming/mesher.hpp"
+
+#include "mesh/tet_mesh.hpp"
+
+#include <unordered_map>
+
+namespace imgmesh {
+namespace conforming_detail {
+
+// How far a labelled cell is beyond R and S (0: within); slivers (only a
+// small dihedral angle, none under 1e-3 voxel) below every other bad cell.
+double Mesher::badness(Ch c, bool& sliver) {
+  std::array<Vec3, 4> p;
+  for (int i = 0; i < 4; ++i) p[std::size_t(i)] = vec(c->vertex(i)->point());
+  const ConformingTetOptions& t = o_.tets;
+  return refinement_badness(p, dist2(centre(c), p[0]), t.cell_ratio, t.cell_size, t.sliver_angle, 1e-3 * voxel_,
+                            sliver);
+}
+
+bool Mesher::alive(const BadCell& e) const {
+  if (!tr_.tds().cells().is_used(e.c)) return false;
+  for (int i = 0; i < 4; ++i)
+    if (e.c->vertex(i) != e.v[std::size_t(i)]) return false;
+  return true;
+}
+
+// Rounds of cell refinement (tets.on), REFINE after each: the bad
+// labelled cells, worst first, each its circumcentre c or, when c lies in
+// the surface Delaunay ball of a restricted facet (such a ball lies in
+// the circumballs of the facet's cells, so the facet is one of c's
+// conflict zone), that facet's surface centre: the surface is refined,
+// never crossed.
+void Mesher::refine_cells() {
+  const ConformingTetOptions& t = o_.tets;
+  const double floor2 = 1e-6 * voxel_ * voxel_;
+  std::vector<BadCell> bad;
+  for (;;) {
+    bad.clear();
+    for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c) {
+      if (label(c) == 0) continue;
+      bool sliver;
+      const double b = badness(c, sliver);
+      if (b > 0) bad.push_back({b, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, sliver});
+    }
+    if (bad.empty()) return;
+    if (cell_rounds_ >= t.max_rounds) {
+      cell_rounds_exhausted_ = true;
+      return;
+    }
+    ++cell_rounds_;
+    std::stable_sort(bad.begin(), bad.end(), [](const BadCell& a, const BadCell& b) { return a.bad > b.bad; });
+    bool any = false;
+    for (const BadCell& e : bad) {
+      if (cell_points_ >= t.max_cell_points) {
+        cell_points_exhausted_ = true;
+        break;
+      }
+      if (max_hit_) break;
+      if (!alive(e)) continue;
+      const Vec3 cc = centre(e.c);
+      Tr::Locate_type lt;
+      int li, lj;
+      const Ch at = tr_.locate(pt(cc), lt, li, lj, e.c);
+      if (lt == Tr::VERTEX) continue;
+      zone_.clear();
+      tr_.find_conflicts(pt(cc), at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      double worst = 0;
+      Vec3 wx{0, 0, 0};
+      Ch wc;
+      for (Ch z : zone_)
+        for (int i = 0; i < 4; ++i) {
+          if (label(z) == label(z->neighbor(i))) continue;
+          Vec3 x;
+          if (!surface_centre(z, i, x)) continue;
+          const double r2 = dist2(x, vec(z->vertex((i + 1) & 3)->point()));
+          if (r2 > worst && dist2(cc, x) < r2) worst = r2, wx = x, wc = z;
+        }
+      bool ok;
+      if (worst > 0) ok = worst >= floor2 && insert(wx, kCellFacet, wc);
+      else {
+        ok = insert(cc, kCell, at);
+        sliver_points_ += ok && e.sliver;
+      }
+      if (ok) {
+        any = true;
+        ++cell_points_;
+      }
+    }
+    if (!any || max_hit_ || cell_points_exhausted_) return;
+    refine();
+  }
+}
+
+// The labelled cells and the interfaces (tets.on), and every voxel
+// centre located: those in a cell of another label.
+void Mesher::tets_output(ConformingSurface& out) {
+  std::unordered_map<int, int> id;
+  TetMesh& m = out.tets;
+  auto index = [&](Vh v) {
+    auto [it, added] = id.try_emplace(v->info(), int(m.points.size()));
+    if (added) m.points.push_back(vec(v->point()));
+    return it->second;
+  };
+  // Cells by label, then by their sorted vertex ids; the interfaces
+  // likewise (CGAL's storage order depends on addresses).
+  auto key = [](std::int32_t l, std::array<Vh, 4> v, int n) {
+    std::array<int, 5> k{int(l), 0, 0, 0, 0};
+    for (int i = 0; i < n; ++i) k[std::size_t(i + 1)] = v[std::size_t(i)]->info();
+    std::sort(k.begin() + 1, k.begin() + 1 + n);
+    return k;
+  };
+  std::vector<std::pair<std::array<int, 5>, std::array<Vh, 4>>> cells, faces;
+  for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c) {
+    if (label(c) == 0) continue;
+    const std::array<Vh, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};  // positively oriented
+    cells.emplace_back(key(label(c), v, 4), v);
+  }
+  const auto orient = GT().orientation_3_object();
+  for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
+    const Ch c = f->first, n = c->neighbor(f->second);
+    if (label(c) == label(n)) continue;
+    // Once, of the higher label (never 0), oriented out of it: the normal
+    // points away from its vertex opposite the facet.
+    const Ch side = label(c) > label(n) ? c : n;
+    const int i = side == c ? f->second : n->index(c);
+    std::array<Vh, 4> v{side->vertex((i + 1) & 3), side->vertex((i + 2) & 3), side->vertex((i + 3) & 3), Vh()};
+    if (orient(v[0]->point(), v[1]->point(), v[2]->point(), side->vertex(i)->point()) == CGAL::POSITIVE)
+      std::swap(v[1], v[2]);
+    auto k = key(label(side), v, 3);
+    k[4] = int(std::min(label(c), label(n)));  // the front label, after the ids
+    faces.emplace_back(k, v);
+  }
+  auto by_key = [](const auto& a, const auto& b) { return a.first < b.first; };
+  std::sort(cells.begin(), cells.end(), by_key);
+  std::sort(faces.begin(), faces.end(), by_key);
+  for (const auto& [k, v] : cells) {
+    m.tets.push_back({index(v[0]), index(v[1]), index(v[2]), index(v[3])});
+    m.tet_region.push_back(k[0]);
+  }
+  for (const auto& [k, v] : faces) {
+    m.triangles.push_back({index(v[0]), index(v[1]), index(v[2])});
+    m.triangle_region.push_back(k[0]);
+    m.triangle_pair.push_back({k[0], k[4]});
+  }
+  out.cell_rounds = cell_rounds_;
+  out.cell_rounds_exhausted = cell_rounds_exhausted_;
+  out.cell_points_exhausted = cell_points_exhausted_;
+  out.sliver_points = sliver_points_;
+  out.max_points_hit = max_hit_;  // the cap may refuse a cell's point after the last output()
+  // Every voxel centre: in a cell of its voxel's label (on a facet, edge
+  // or vertex of the triangulation: every cell there).
+  // Each walk starts at the cell of the centre before it, a row's first at
+  // the previous row's first, a slice's at the previous slice's.
+  Ch slice = hint_, row, hint;
+  for (std::size_t k = 0; k < x_.size[2]; ++k)
+    for (std::size_t j = 0; j < x_.size[1]; ++j)
+      for (std::size_t i = 0; i < x_.size[0]; ++i) {
+        const std::int32_t own = voxel_label(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k));
+        Tr::Locate_type lt;
+        int li, lj;
+        const Ch start = i > 0 ? hint : j > 0 ? row : slice;
+        const Ch c = tr_.locate(pt(voxel_centre(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k))), lt, li, lj, start);
+        hint = c;
+        if (i == 0) {
+          row = c;
+          if (j == 0) slice = c;
+        }
+        bool wrong = label(c) != own;
+        if (lt == Tr::FACET) wrong = wrong || label(c->neighbor(li)) != own;
+        else if (lt == Tr::EDGE) {
+          auto circ = tr_.incident_cells(c, li, lj), end = circ;
+          do wrong = wrong || label(circ) != own; while (++circ != end);
+        } else if (lt == Tr::VERTEX) {
+          cells_.clear();
+          tr_.incident_cells(c->vertex(li), std::back_inserter(cells_));
+          for (Ch n : cells_) wrong = wrong || label(n) != own;
+        }
+        ++out.centres_checked;
+        out.centres_wrong += wrong;
+      }
+}
+
+} // namespace conforming_detail
+} // namespace imgmesh

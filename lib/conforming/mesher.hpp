@@ -1,0 +1,155 @@
+// The restricted Delaunay mesher of a label map's partition (private to
+// lib/conforming): the triangulation and its state, shared by the surface
+// stage (conforming_surface.cpp: seeds, REFINE, the certificate's rounds,
+// the surface output) and seg2tet's cell stage (conforming_cells.cpp: the
+// labelled cells refined, the tetrahedra output). One CGAL header set.
+#pragma once
+
+#include "conforming/conforming_surface.hpp"
+
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_3.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Robust_weighted_circumcenter_filtered_traits_3.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace imgmesh {
+namespace conforming_detail {
+
+using K0 = CGAL::Exact_predicates_inexact_constructions_kernel;
+using GT = CGAL::Robust_circumcenter_filtered_traits_3<K0>;
+using Point = GT::Point_3;
+constexpr std::int32_t kUnknown = std::numeric_limits<std::int32_t>::min();
+struct CInfo {
+  Vec3 centre{0, 0, 0};           // the circumcentre, with the label
+  std::int32_t label = kUnknown;  // lambda at the circumcentre
+  std::uint32_t uid = 0;          // 0: made since the last pass
+};
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, GT>;  // id; -1: a corner of the bounding box
+using Cb = CGAL::Triangulation_cell_base_with_info_3<CInfo, GT, CGAL::Delaunay_triangulation_cell_base_3<GT>>;
+using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;
+using Vh = Tr::Vertex_handle;
+using Ch = Tr::Cell_handle;
+
+enum Step { kSeed, kVorEdge, kTopoDisk, kPatchFan, kQuality, kDistance, kVoxelSide, kCertificate, kCell, kCellFacet, kOffSurface, kSteps };
+
+inline Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
+inline Point pt(const Vec3& v) { return Point(v[0], v[1], v[2]); }
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline double dist2(const Vec3& a, const Vec3& b) { return dot(sub(a, b), sub(a, b)); }
+
+// A point to insert, from a facet (v: its vertices, cells: the uids of its
+// two cells when found: it is stale once either changed) or a voxel centre.
+struct Candidate {
+  Vec3 x;
+  double priority = 0;  // the surface ball's squared radius: larger first
+  int step = kQuality;
+  std::array<Vh, 3> v{};
+  std::array<std::uint32_t, 2> cells{0, 0};
+};
+
+class Mesher {
+public:
+  Mesher(const LabelFunction& lambda, const LabelImage& x, const InterfaceComplex& k, const ConformingOptions& o)
+      : f_(lambda), x_(x), k_(k), o_(o) {
+    voxel_ = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
+    if (!(o_.max_distance > 0)) o_.max_distance = 0.3 * voxel_;
+  }
+  ConformingSurface run();
+
+private:
+  // A cell's label (lambda at its circumcentre; 0 outside) and circumcentre,
+  // computed once.
+  std::int32_t label(Ch c) {
+    if (tr_.is_infinite(c)) return 0;
+    known(c);
+    return c->info().label;
+  }
+  Vec3 centre(Ch c) {
+    known(c);
+    return c->info().centre;
+  }
+  void known(Ch c);
+  Vec3 voxel_centre(std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) const {
+    return x_.world(double(i), double(j), double(k));
+  }
+  std::int32_t voxel_label(std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) const { return x_.at(i, j, k, 0); }
+  std::array<Vh, 3> facet_vertices(Ch c, int i) const {  // sorted by id
+    std::array<Vh, 3> v{c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
+    std::sort(v.begin(), v.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
+    return v;
+  }
+  bool insert(const Vec3& p, int step, Ch start = Ch());
+  bool surface_centre(Ch c, int i, Vec3& x);
+
+  // The surface stage (conforming_surface.cpp).
+  void bounding_box();
+  bool face_point(std::uint64_t key, Vec3& p) const;
+  void seeds();
+  void refine();
+  bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
+  void check_facet(Ch c, int i);
+  void check_vertex(Vh v);
+  static bool one_cycle(std::vector<std::array<int, 2>>& link);
+  static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other);
+  void voxel_sides();
+  bool current(const Candidate& c, Ch& cell);
+  bool insert_all(std::vector<Candidate>& cands);
+  ConformingSurface certified_rounds();
+  bool refine_near(const std::vector<Vec3>& places);
+  ConformingSurface output();
+
+  // The cell stage (conforming_cells.cpp).
+  struct BadCell {
+    double bad;
+    Ch c;
+    std::array<Vh, 4> v;
+    bool sliver;
+  };
+  double badness(Ch c, bool& sliver);
+  bool alive(const BadCell& e) const;
+  void refine_cells();
+  void tets_output(ConformingSurface& out);
+
+  const LabelFunction& f_;
+  const LabelImage& x_;
+  const InterfaceComplex& k_;
+  ConformingOptions o_;
+  double voxel_ = 1;
+  Tr tr_;
+  Ch hint_;
+  std::size_t points_ = 0;
+  std::array<long long, kSteps> inserted_{};
+  long long refused_ = 0, passes_ = 0;
+  int rounds_ = 0;
+  std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
+  bool max_hit_ = false;
+  std::uint32_t uid_ = 0, fresh_first_ = 0;
+  std::vector<Ch> fresh_, cells_;
+  std::vector<Vh> touched_, new_vertices_;
+  std::vector<std::int32_t> labels_;
+  std::vector<std::array<int, 2>> link_;
+  std::vector<std::int32_t> other_;
+  std::vector<LabelFunction::Change> changes_;
+  std::vector<Candidate> topology_, quality_, sides_;
+  std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
+  std::vector<Ch> zone_;
+  long long cell_points_ = 0, sliver_points_ = 0;
+  int cell_rounds_ = 0;
+  bool cell_rounds_exhausted_ = false, cell_points_exhausted_ = false;
+};
+
+} // namespace conforming_detail
+} // namespace imgmesh
