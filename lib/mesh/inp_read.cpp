@@ -12,7 +12,6 @@
 #include "util/error.hpp"
 #include "util/parse.hpp"
 
-#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <functional>
