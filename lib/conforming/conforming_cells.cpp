@@ -20,16 +20,6 @@ double Mesher::badness(Ch c, bool& sliver) {
                             sliver);
 }
 
-bool Mesher::on_interface(Ch c) {
-  for (int i = 0; i < 4; ++i) {
-    const int id = c->vertex(i)->info();
-    if (id < 0 || !on_surface_[std::size_t(id)]) return false;
-  }
-  for (int i = 0; i < 4; ++i)
-    if (label(c->neighbor(i)) != label(c)) return true;
-  return false;
-}
-
 bool Mesher::alive(const BadCell& e) const {
   if (!tr_.tds().cells().is_used(e.c)) return false;
   for (int i = 0; i < 4; ++i)
@@ -88,16 +78,6 @@ void Mesher::refine_cells() {
           const double r2 = dist2(x, vec(z->vertex((i + 1) & 3)->point()));
           if (r2 > worst && dist2(cc, x) < r2) worst = r2, wx = x, wc = z;
         }
-      // A sliver lying on an interface (its four vertices on the surfaces,
-      // a facet of its own restricted) is four nearly cocircular surface
-      // vertices: a surface centre in its circumball is one more such
-      // vertex. Where that centre is within a quarter voxel of the facet's
-      // vertices (the surface needs no sample that close: its distance
-      // bound is 0.3 voxel), it can make a smaller sliver of the same
-      // kind, and so on down to the facet floor (labelmap.py head2 at
-      // 128^3: 34,000 tetrahedra of 0.002 voxel in one spot). Left as it
-      // is (the quality report counts it).
-      if (worst > 0 && worst < 0.0625 * voxel_ * voxel_ && e.sliver && on_interface(e.c)) continue;
       bool ok;
       if (worst > 0) ok = worst >= floor2 && insert(wx, kCellFacet, wc);
       else {

@@ -120,7 +120,6 @@ private:
   };
   double badness(Ch c, bool& sliver);
   bool alive(const BadCell& e) const;
-  bool on_interface(Ch c);
   void refine_cells();
   void tets_output(ConformingSurface& out);
 
