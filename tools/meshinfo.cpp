@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   imgmesh::cli::Tool tool("meshinfo", "Report the topology and quality of a mesh (surface or planar)");
   std::string in, image;
   bool json = false;
-  tool.app.add_option("MESH", in, "mesh: .off .ply .obj .stl .vtp .vtk (surface), .ele/.node, .off (planar), .mesh .vtu (tetrahedra) or .msh (tetrahedra, else its triangles); - = OFF on stdin")
+  tool.app.add_option("MESH", in, "mesh: .off .ply .obj .stl .vtp .vtk (surface), .ele/.node, .off (planar), .mesh .vtu .inp (tetrahedra) or .msh (tetrahedra, else its triangles); - = OFF on stdin")
       ->required();
   tool.data_output(imgmesh::cli::Tool::kStdout, imgmesh::cli::Stream::Text, [&] { return !json; });  // --json: one object
   tool.app.add_flag("--json", json, "print one JSON object (keys 'components' and 'euler' first) instead of text");
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
       imgmesh::TetsOrSurface m = imgmesh::read_tets_or_surface(in);
       if (m.tets) tm = std::move(*m.tets);
       else pm = imgmesh::poly_mesh(*m.surface, ext.substr(1));
-    } else if (ext == ".mesh" || ext == ".vtu") {
+    } else if (ext == ".mesh" || ext == ".vtu" || ext == ".inp") {
       tm = imgmesh::read_tet_mesh(in);
     } else {
       pm = imgmesh::read_poly_mesh(in);

@@ -110,6 +110,10 @@ MshFile read_msh_file(const std::string& path);
 // and triangles, cell data "region".
 SurfaceMesh read_vtp(const std::string& path);
 TetMesh read_vtu(const std::string& path);
+// Abaqus .inp (inp_read.cpp): C3D4 tetrahedra, a region per element set
+// REGION_R or PhysicalVolumeR, the triangles of surfaces BOUNDARY_R (faces
+// of tetrahedra) and 3-node triangle elements.
+TetMesh read_inp(const std::string& path);
 // Legacy .vtk POLYDATA (ASCII or BINARY; 4.2's POLYGONS or 5.1's OFFSETS
 // and CONNECTIVITY), the same arrays.
 SurfaceMesh read_vtk_legacy(const std::string& path);

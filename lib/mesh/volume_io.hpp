@@ -31,7 +31,10 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
 // .msh (2.2 and 4.1, ASCII or binary), .mesh, .vtu (ASCII, inline binary
 // or appended raw or base64 data, zlib-compressed or not, either byte order:
 // as VTK and meshio write them), legacy .vtk (UNSTRUCTURED_GRID, ASCII or
-// BINARY, 4.2 or 5.1): tetrahedra and triangles with their regions. Throws
+// BINARY, 4.2 or 5.1), Abaqus .inp (write_inp's and Gmsh's: a tetrahedron's
+// region the R of its element set REGION_R or PhysicalVolumeR, the
+// triangles those of surfaces BOUNDARY_R and triangle elements):
+// tetrahedra and triangles with their regions. Throws
 // Error naming the file on anything malformed.
 TetMesh read_tet_mesh(const std::string& path);
 

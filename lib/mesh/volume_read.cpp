@@ -1,5 +1,5 @@
 // Reading tetrahedral meshes (.msh ASCII or binary, .mesh; .vtu in
-// vtk_xml_read.cpp, legacy .vtk in surface_read.cpp): one reader per format
+// vtk_xml_read.cpp, legacy .vtk in surface_read.cpp, .inp in inp_read.cpp): one reader per format
 // over values that are text or binary, the coordinates checked against
 // util/coordinates.hpp's range either way.
 #include "mesh/volume_io.hpp"
@@ -357,6 +357,7 @@ TetMesh read_tet_mesh(const std::string& path) {
   const std::string ext = extension_of(path);
   TetMesh m;
   if (ext == ".vtu") m = mesh_detail::read_vtu(path);
+  else if (ext == ".inp") m = mesh_detail::read_inp(path);
   else {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error("cannot open", path);
@@ -367,7 +368,7 @@ TetMesh read_tet_mesh(const std::string& path) {
       if (!v.tets) throw Error("a DATASET POLYDATA: tetrahedra (DATASET UNSTRUCTURED_GRID) expected", path);
       m = std::move(*v.tets);
     }
-    else throw Error("reading tetrahedral meshes: .msh, .mesh, .vtu or .vtk", path);
+    else throw Error("reading tetrahedral meshes: .msh, .mesh, .vtu, .inp or .vtk", path);
   }
   if (m.tets.empty()) throw Error("no tetrahedron", path);
   check_extent(m.points, path);

@@ -296,6 +296,18 @@ std::string format_report(const Json& r) {
         std::snprintf(buf, sizeof buf, ", radius-edge max %.3f, smallest dihedral %.2f deg\n",
                       g.at("max_radius_edge_ratio").number(), g.at("min_dihedral_degrees").number());
         o << buf;
+        const Json& b = g.at("boundary");
+        auto list = [](const Json& e) {
+          std::string s;
+          for (const Json& x : e.items()) s += (s.empty() ? "" : " ") + std::to_string(x.integer());
+          return s;
+        };
+        o << "    boundary " << b.at("triangles").integer() << " triangles, " << b.at("components").integer()
+          << " component(s), euler " << list(b.at("euler"));
+        if (b.contains("voxel_euler"))
+          o << "; bdCA " << b.at("voxel_components").integer() << " component(s), euler " << list(b.at("voxel_euler"))
+            << ": " << b.at("verdict").string();
+        o << "\n";
       }
     }
     if (q.contains("foreground_voxel_volume")) o << "  foreground voxel volume " << q.at("foreground_voxel_volume").number() << "\n";
@@ -470,9 +482,46 @@ Json tetrahedra_section(const TetMesh& mesh, const TetQualityReport& q, const Te
   return tj;
 }
 
+std::vector<long long> descending(std::vector<long long> v) {
+  std::sort(v.rbegin(), v.rend());
+  return v;
+}
+
+// A region's boundary (the faces of its tetrahedra with none of it
+// across): triangles, components, their Euler characteristics. With a
+// label certificate, from its surface of that label (the same faces: the
+// interfaces out of the label), beside bdCA of the label's voxels and the
+// verdict of the label's surface certificate; else from the tetrahedra.
+Json region_boundary(const TetMesh& mesh, int region, const InterfaceCertificate* ic) {
+  Json b = Json::object();
+  const InterfaceCertificate::Label* l = nullptr;
+  if (ic && region != 0)  // region 0 (--outside) also bounds the box: not label 0's surface
+    for (const auto& x : ic->labels)
+      if (x.label == region && x.in_image && x.surface.state[SurfaceCertificate::kClosed] >= 0) l = &x;
+  if (!l) {
+    const auto triangles = tet_boundary(mesh, region);
+    const MeshTopology t = mesh_topology(mesh.points.size(), triangles);
+    b["triangles"] = triangles.size();
+    b["components"] = t.components.size();
+    b["euler"] = descending(t.euler_list());
+    return b;
+  }
+  b["triangles"] = l->triangles;
+  b["components"] = l->surface.topology.components.size();
+  b["euler"] = descending(l->surface.topology.euler_list());
+  std::vector<long long> voxel_euler;
+  for (const auto& c : l->surface.correspondence.boundary) voxel_euler.push_back(c.euler);
+  b["voxel_components"] = voxel_euler.size();
+  b["voxel_euler"] = descending(voxel_euler);
+  b["verdict"] = l->surface.ok() ? "ok" : SurfaceCertificate::name(l->surface.first_failed());
+  return b;
+}
+
 // Per region: tetrahedra, volume, largest radius-edge ratio, smallest
-// dihedral; with `voxels` (per label, its voxel volume) that too.
-Json regions_section(const TetQualityReport& q, const std::map<std::int32_t, double>* voxels) {
+// dihedral, its boundary's topology; with `voxels` (per label, its voxel
+// volume) that too.
+Json regions_section(const TetMesh& mesh, const TetQualityReport& q, const std::map<std::int32_t, double>* voxels,
+                     const InterfaceCertificate* ic) {
   Json a = Json::array();
   for (const auto& [region, g] : q.by_region) {
     Json j = Json::object();
@@ -488,6 +537,7 @@ Json regions_section(const TetQualityReport& q, const std::map<std::int32_t, dou
     }
     j["max_radius_edge_ratio"] = g.max_radius_edge_ratio;
     j["min_dihedral_degrees"] = g.min_dihedral;
+    j["boundary"] = region_boundary(mesh, region, ic);
     a.push_back(j);
   }
   return a;
@@ -513,7 +563,7 @@ MeshInfo tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, const 
     const double voxel = image->spacing[0] * image->spacing[1] * (image->dimension == 3 ? image->spacing[2] : 1);
     tj["foreground_voxel_volume"] = double(n) * voxel;
   } else if (q.by_region.size() > 1) {
-    tj["regions"] = regions_section(q, nullptr);
+    tj["regions"] = regions_section(mesh, q, nullptr, nullptr);
   }
   r.report["tetrahedra"] = tj;
   return r;
@@ -544,7 +594,8 @@ MeshInfo label_tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, 
   const double voxel = x.spacing[0] * x.spacing[1] * x.spacing[2];
   for (std::int32_t v : x.data)
     if (v != 0) voxels[v] += voxel;
-  tj["regions"] = regions_section(q, &voxels);
+  tj["regions"] = regions_section(mesh, q, &voxels,
+                                  cert.state[TetLabelCertificate::kInterfaces] >= 0 ? &cert.interfaces : nullptr);
   r.report["tetrahedra"] = tj;
   if (cert.state[TetLabelCertificate::kInterfaces] >= 0 && !cert.triangles.empty()) {
     Json j = cert.interfaces.to_json();

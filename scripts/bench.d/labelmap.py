@@ -10,6 +10,11 @@
   labelmap.py head OUT.mha [N]          a head-like map (default 256^3): scalp,
       skull, CSF, grey and white matter as nested, bumpy shells (1..5), two
       ventricles (6) and a thin falx of CSF between the hemispheres.
+  labelmap.py head2 OUT.mha [N]         head's map (the same voxels), then three
+      holes through the skull filled by the scalp (the skull's surface of
+      genus 2, the scalp touching the CSF) and a straight tube (7, radius
+      max(2, 0.03 N) voxels, an electrode's lead) from the white matter out
+      of the head, crossing the grey matter, the CSF, the skull and the scalp.
 
 OUT (or OUT,OUT2,...: the same map in each) by its extension picks how the
 uint8 voxels are written, the ways users have label maps: .mha (raw data after the header, ElementDataFile LOCAL, which
@@ -161,6 +166,53 @@ def head(n):
     return a
 
 
+def paint_cylinder(a, p0, p1, radius, label, where=None):
+    """Set `label` within `radius` of the segment p0-p1 (index space, voxel
+    centres at i + 0.5; where `where(old labels)` holds). A slice at a time."""
+    p0, p1 = np.asarray(p0, float), np.asarray(p1, float)
+    d = p1 - p0
+    length2 = d @ d
+    lo = [max(0, int(np.floor(min(u, v) - radius)) - 1) for u, v in zip(p0, p1)]
+    hi = [min(n, int(np.ceil(max(u, v) + radius)) + 2) for u, v, n in zip(p0, p1, a.shape)]
+    y, x = np.meshgrid(np.arange(lo[1], hi[1]) + 0.5, np.arange(lo[2], hi[2]) + 0.5, indexing="ij")
+    for z in range(lo[0], hi[0]):
+        q = np.stack([np.full_like(x, z + 0.5), y, x], axis=-1) - p0
+        t = np.clip((q @ d) / length2, 0, 1)
+        dist = np.linalg.norm(q - t[..., None] * d, axis=-1)
+        row = a[z, lo[1]:hi[1], lo[2]:hi[2]]
+        sel = dist <= radius
+        if where is not None:
+            sel &= where(row)
+        row[sel] = label
+
+
+def along(a, c, d, test):
+    """The largest t (voxels, steps of 1/4) with test(label at c + t d)."""
+    best = None
+    for k in range(4 * max(a.shape)):
+        p = c + 0.25 * k * d
+        i = np.floor(p).astype(int)
+        if (i < 0).any() or (i >= a.shape).any():
+            break
+        if test(a[tuple(i)]):
+            best = 0.25 * k
+    return best
+
+
+def head2(n):
+    a = head(n)
+    c = np.full(3, n / 2)
+    unit = lambda v: np.asarray(v, float) / np.linalg.norm(v)
+    for d in (unit((1, 0.3, 0.5)), unit((0.4, -0.8, 0.6)), unit((-0.2, 0.5, -0.9))):  # (z, y, x)
+        far = c + 0.6 * n * d
+        paint_cylinder(a, c, far, max(2.0, 0.04 * n), 1, lambda t: t == 2)
+    d = unit((0.35, 0.45, 0.8))
+    inner = along(a, c, d, lambda v: v == 5) - 2  # inside the white matter
+    outer = along(a, c, d, lambda v: v == 1) + 3  # out of the head
+    paint_cylinder(a, c + inner * d, c + outer * d, max(2.0, 0.03 * n), 7)
+    return a
+
+
 def main():
     kind, outs = sys.argv[1], sys.argv[2].split(",")
     rest = [int(v) for v in sys.argv[3:]]
@@ -169,8 +221,10 @@ def main():
         a = body(nx, ny, nz)
     elif kind == "head":
         a = head(rest[0] if rest else 256)
+    elif kind == "head2":
+        a = head2(rest[0] if rest else 256)
     else:
-        sys.exit("labelmap.py: body or head")
+        sys.exit("labelmap.py: body, head or head2")
     for out in outs:
         write(out, a)
 

@@ -4,7 +4,8 @@
 # (mesh3_labels_peer.cpp with a tetrahedral OUT: seeded from every component
 # of every label, facet angle 30, facet distance 1/4 voxel, cell radius-edge
 # ratio 2, Mesh_3's default perturb and exude). Maps: the bundled brain map
-# and a synthetic head (labelmap.py head, fixed seed) of HEAD_SIZE^3 voxels
+# and a synthetic head (labelmap.py head, fixed seed; head2: with holes
+# through the skull and a tube through four tissues) of HEAD_SIZE^3 voxels
 # (default 64). Per mesher: wall and CPU seconds, peak memory, tetrahedra,
 # smallest dihedral angle, share of tetrahedra with one under 10 degrees,
 # largest radius-edge ratio, and the certificate's verdict: ours its own
@@ -53,7 +54,7 @@ printf "  %-6s %-22s %7s %7s %7s %11s %9s %8s %9s  %s\n" map mesher wall_s cpu_s
 for m in $maps; do
   case $m in
     brain) img=$src/share/data/brain-kmeans-labels.nii.gz ;;
-    head) img=$work/head.mha; /usr/bin/python3 "$here/labelmap.py" head "$img" "${HEAD_SIZE:-64}" ;;
+    head|head2) img=$work/$m.mha; /usr/bin/python3 "$here/labelmap.py" "$m" "$img" "${HEAD_SIZE:-64}" ;;
     *) echo "seg2tet.sh: unknown map $m" >&2; exit 2 ;;
   esac
   t=$(timed "$tools/seg2tet" -q "$img" "$work/$m.msh" --stats "$work/$m.json")

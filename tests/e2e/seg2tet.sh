@@ -68,19 +68,46 @@ case_slicer_names_on_msh_and_inp() {
 }
 
 # meshinfo certifies a multi-region mesh against the label map (issue 41:
-# any mesher's, here seg2tet's): seg2tet's passes every check; a copy with
-# one tetrahedron moved to another label's region is refused (exit 3),
-# naming the check that fails.
+# any mesher's, here seg2tet's, .msh and .inp): seg2tet's passes every
+# check; a copy with one tetrahedron moved to another label's region, or a
+# region renamed, is refused (exit 3), naming the check that fails.
 case_meshinfo_certifies_the_regions_against_the_map() {
   expect 0 seg2tet "$(labels)" all22.msh --msh-version 2.2 -q || return
   OUT=report.json expect 0 meshinfo all22.msh --image "$(labels)" --json || return
   [[ $(json report.json certificate.verdict) == ok ]] || fail "seg2tet's mesh not certified: $(json report.json certificate)"
   [[ $(json report.json tetrahedra.regions.2.region) == 5 ]] || fail "no line for region 5"
+  # Each region's boundary topology beside its label's bdCA: the torus (5) a
+  # component of Euler characteristic 0, the ball (1) one of 2; the same
+  # boundary from the tetrahedra alone (no --image).
+  local r want
+  for r in "0 [2]" "2 [0]"; do
+    want=${r#* }; r=${r%% *}
+    [[ $(json report.json tetrahedra.regions.$r.boundary.euler) == "$want" &&
+       $(json report.json tetrahedra.regions.$r.boundary.voxel_euler) == "$want" &&
+       $(json report.json tetrahedra.regions.$r.boundary.verdict) == ok ]] ||
+      fail "region $(json report.json tetrahedra.regions.$r.region): $(json report.json tetrahedra.regions.$r.boundary)"
+  done
+  OUT=plain.json expect 0 meshinfo all22.msh --json || return
+  [[ $(json plain.json tetrahedra.regions.2.boundary) == "$(json report.json tetrahedra.regions.2.boundary |
+       sed "s/, 'voxel_components'.*/}/")" ]] || fail "region 5 without --image: $(json plain.json tetrahedra.regions.2.boundary)"
   # The first tetrahedron (region 1; Gmsh 2.2: id type ntags physical elementary nodes) into region 2.
   awk '$2 == 4 && !done { $4 = 2; $5 = 2; done = 1 } { print }' all22.msh > moved.msh
   [[ $(cmp -l all22.msh moved.msh | wc -l) == 2 ]] || fail "moved.msh: not one region changed"
   OUT=moved.txt expect 3 meshinfo moved.msh --image "$(labels)" || return
   grep -q "^meshinfo: guarantee not met: .*: \(voxel centres\|interfaces\): " err.txt || fail "refused without naming the check: $(cat err.txt)"
+  # The .inp the same: certified; region 5's set renamed 4 refused (no label
+  # 4); a tetrahedron on an unknown node refused in one line.
+  expect 0 seg2tet "$(labels)" all.inp -q || return
+  OUT=inp.json expect 0 meshinfo all.inp --image "$(labels)" --json || return
+  [[ $(json inp.json certificate.verdict) == ok ]] || fail "seg2tet's .inp not certified: $(json inp.json certificate)"
+  [[ $(json inp.json tetrahedra.tetrahedra) == $(json report.json tetrahedra.tetrahedra) ]] || fail "the .inp and the .msh differ"
+  sed 's/ELSET=REGION_5$/ELSET=REGION_4/' all.inp > renamed.inp
+  OUT=renamed.txt expect 3 meshinfo renamed.inp --image "$(labels)" || return
+  grep -q "^meshinfo: guarantee not met: .*: regions: .*region(s) 4 not a label" err.txt || fail "renamed.inp: $(cat err.txt)"
+  awk '/^\*ELEMENT/ { e = 1; print; next } e == 1 { $3 = "999999,"; e = 2 } { print }' all.inp > broken.inp
+  OUT=broken.txt expect 1 meshinfo broken.inp || return
+  [[ $(wc -l < err.txt) == 1 ]] && grep -q "broken.inp: line [0-9]*: element 1 refers to unknown node 999999" err.txt ||
+    fail "broken.inp: $(cat err.txt)"
 }
 
 # Refused in one line, nothing written: stdout, an unknown extension, a

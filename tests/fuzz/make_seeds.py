@@ -209,6 +209,10 @@ put("volume", "vtk-grid-binary-4.2", b"\3# vtk DataFile Version 4.2\nvtk output\
     b"POINTS 4 double\n" + struct.pack(">12d", *xyz) + b"\nCELLS 1 5\n" + struct.pack(">5i", 4, 0, 1, 2, 3) +
     b"\nCELL_TYPES 1\n" + struct.pack(">i", 10) + b"\nCELL_DATA 1\nSCALARS region int 1\nLOOKUP_TABLE default\n" +
     struct.pack(">i", 1) + b"\n")
+put("volume", "inp", "\4*HEADING\nx\n*NODE\n1, 0, 0, 0\n2, 1, 0, 0\n3, 0, 1, 0\n4, 0, 0, 1\n"
+    "*ELEMENT, TYPE=C3D4, ELSET=REGION_1\n1, 1, 2, 3, 4\n*ELEMENT, type=CPS3, ELSET=Surface1\n2, 1, 3, 2\n"
+    "*ELSET, ELSET=BOUNDARY_1_S1\n1\n*SURFACE, TYPE=ELEMENT, NAME=BOUNDARY_1\nBOUNDARY_1_S1, S1\n"
+    "*ELSET,ELSET=PhysicalVolume1, GENERATE\n1, 1, 1\n")
 faces = [0, 2, 1, 0, 1, 3, 1, 2, 3, 0, 3, 2]
 appended, tags = "", []
 for typ, name, comps, raw in [("Float64", "Points", 3, struct.pack(">12d", *xyz)), ("Int32", "connectivity", 1, struct.pack(">12i", *faces)),
