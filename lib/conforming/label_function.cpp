@@ -130,6 +130,18 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
     for (std::size_t v = 0; v < x.count(); ++v)
       if (lo[v] == hi[v]) pure_[v] = lo[v] + 1;
   }
+  // Cubes of one label at their corners: min == max over their 2x2x2 voxels.
+  corners_.assign(x.count(), 0);
+  if (labels_.size() < 65535) {
+    std::vector<std::int32_t> lo(x.data), hi(x.data);
+    for (int axis = 0; axis < 3; ++axis) {
+      window(x, axis, 0, 1, 0, lo, [](std::int32_t a, std::int32_t b) { return std::min(a, b); });
+      window(x, axis, 0, 1, 0, hi, [](std::int32_t a, std::int32_t b) { return std::max(a, b); });
+    }
+    for (std::size_t v = 0; v < x.count(); ++v)
+      if (lo[v] == hi[v])
+        corners_[v] = std::uint16_t(std::lower_bound(labels_.begin(), labels_.end(), lo[v]) - labels_.begin() + 1);
+  }
   // Candidates: a label whose voxels all lie beyond the 6x6x6 voxels around
   // a cube (window [-2, 3]) has g >= 1.5 voxels at every sample f reads in
   // it, so f >= 1.3 voxels there (extension by d <= delta / 5, slope at
@@ -171,6 +183,27 @@ std::int32_t LabelFunction::label(const Vec3& p) const {
   for (int i = 0; i < 3; ++i) {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
     c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
+  }
+  // The voxels every f reads at p all of one label: lambda is that label,
+  // by the pure cubes' argument (header) at p alone. Per axis those are the
+  // cube's two and, within a quarter voxel of a plane (where two cells may
+  // blend: d <= delta / 5), the one beyond it. Most samples of a segment
+  // near an interface, each without evaluating an f.
+  {
+    std::ptrdiff_t lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {
+      const double r = q[i] - double(c[i]);
+      lo[i] = r < 0.25 && c[i] > 0 ? -1 : 0;
+      hi[i] = r > 0.75 && c[i] + 2 < grid_.size[i] ? 1 : 0;
+    }
+    std::uint16_t u = corners_[grid_.index(c[0], c[1], c[2])];
+    for (std::ptrdiff_t dz = lo[2]; u != 0 && dz <= hi[2]; ++dz)
+      for (std::ptrdiff_t dy = lo[1]; u != 0 && dy <= hi[1]; ++dy)
+        for (std::ptrdiff_t dx = lo[0]; u != 0 && dx <= hi[0]; ++dx)
+          if (corners_[grid_.index(std::size_t(std::ptrdiff_t(c[0]) + dx), std::size_t(std::ptrdiff_t(c[1]) + dy),
+                                   std::size_t(std::ptrdiff_t(c[2]) + dz))] != u)
+            u = 0;
+    if (u != 0) return labels_[u - 1u];
   }
   // The candidates in decreasing rank: the first negative one is lambda
   // (the rank rule), so the lower ones need no evaluation; when none is

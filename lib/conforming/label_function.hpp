@@ -81,6 +81,9 @@ private:
   // Per cube (lower corner voxel (i, j, k), i < size - 1): its label + 1
   // when pure, else 0.
   std::vector<std::int32_t> pure_;
+  // Per cube its corners' label index + 1 when its eight voxels carry one
+  // label, else 0 (0 everywhere past 65,534 labels: no shortcut).
+  std::vector<std::uint16_t> corners_;
   // Per cube the labels that can be lambda in it (bits: label index % 64),
   // and per bit its label indices.
   std::vector<std::uint64_t> cand_;
