@@ -332,23 +332,43 @@ std::int32_t Mesher::split_pair(const std::vector<std::array<int, 2>>& link, con
 
 // Every voxel centre next to an interface in a cell of its own label.
 void Mesher::voxel_sides() {
-  std::vector<char> seen(x_.count(), 0);
-  for (std::uint64_t key : k_.faces) {
-    const auto q = k_.corner(InterfaceComplex::face_corner(key));
-    const int a = InterfaceComplex::face_axis(key);
-    for (int s = 0; s < 2; ++s) {
-      std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])};
-      v[a] -= s;
-      if (!x_.inside(v[0], v[1], v[2])) continue;
-      char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
-      if (done) continue;
-      done = 1;
-      const Vec3 p = voxel_centre(v[0], v[1], v[2]);
+  // The voxels next to an interface, each once, in the faces' order: the
+  // same list every call.
+  if (side_voxels_.empty()) {
+    std::vector<char> seen(x_.count(), 0);
+    for (std::uint64_t key : k_.faces) {
+      const auto q = k_.corner(InterfaceComplex::face_corner(key));
+      const int a = InterfaceComplex::face_axis(key);
+      for (int s = 0; s < 2; ++s) {
+        std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])};
+        v[a] -= s;
+        if (!x_.inside(v[0], v[1], v[2])) continue;
+        char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
+        if (done) continue;
+        done = 1;
+        side_voxels_.push_back({{std::int32_t(v[0]), std::int32_t(v[1]), std::int32_t(v[2])}, Ch(), 0});
+      }
+    }
+  }
+  const auto& cells = tr_.tds().cells();
+  for (SideVoxel& sv : side_voxels_) {
+    const std::ptrdiff_t i = sv.v[0], j = sv.v[1], k = sv.v[2];
+    const Vec3 p = voxel_centre(i, j, k);
+    Ch c;
+    // The cell that held the centre strictly inside at the last call, still
+    // there (its uid unchanged: uids are never reused): the one locate would
+    // find, and hint_ as locate leaves it, without the walk. Else locate.
+    if (sv.cell != Ch() && cells.is_used(sv.cell) && sv.cell->info().uid == sv.uid) {
+      c = sv.cell;
+      hint_ = c;
+    } else {
       Tr::Locate_type lt;
       int li, lj;
-      Ch c = tr_.locate(pt(p), lt, li, lj, hint_);
+      c = tr_.locate(pt(p), lt, li, lj, hint_);
       hint_ = c;
-      const std::int32_t own = voxel_label(v[0], v[1], v[2]);
+      const bool keep = lt == Tr::CELL && c->info().uid != 0;
+      sv.cell = keep ? c : Ch();
+      sv.uid = keep ? c->info().uid : 0;
       // On a facet, edge or vertex of W: every cell there must be its label.
       if (lt != Tr::CELL && lt != Tr::OUTSIDE_CONVEX_HULL) {
         cells_.clear();
@@ -357,16 +377,18 @@ void Mesher::voxel_sides() {
           auto circ = tr_.incident_cells(c, li, lj), end = circ;
           do cells_.push_back(circ); while (++circ != end);
         } else tr_.incident_cells(c->vertex(li), std::back_inserter(cells_));
+        const std::int32_t own = voxel_label(i, j, k);
         for (Ch n : cells_)
           if (label(n) != own) c = n;
       }
-      if (label(c) == own) continue;
-      Candidate cand;
-      if (!f_.first_change(p, centre(c), cand.x, o_.step)) continue;
-      cand.step = kVoxelSide;
-      cand.priority = dist2(cand.x, p);
-      sides_.push_back(cand);
     }
+    const std::int32_t own = voxel_label(i, j, k);
+    if (label(c) == own) continue;
+    Candidate cand;
+    if (!f_.first_change(p, centre(c), cand.x, o_.step)) continue;
+    cand.step = kVoxelSide;
+    cand.priority = dist2(cand.x, p);
+    sides_.push_back(cand);
   }
 }
 

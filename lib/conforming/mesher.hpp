@@ -146,6 +146,14 @@ private:
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
   std::vector<Ch> zone_;
+  // voxel_sides' voxels, each with the cell that held its centre (and that
+  // cell's uid) at the last call; Ch() when on a face of the triangulation.
+  struct SideVoxel {
+    std::array<std::int32_t, 3> v;
+    Ch cell;
+    std::uint32_t uid;
+  };
+  std::vector<SideVoxel> side_voxels_;
   long long cell_points_ = 0, sliver_points_ = 0;
   int cell_rounds_ = 0;
   bool cell_rounds_exhausted_ = false, cell_points_exhausted_ = false;
