@@ -250,7 +250,11 @@ void Mesher::check_vertex(Vh v) {
     // is two fans there (the mesh's patch pinched or split where K(X)'s
     // is not, on a tiny patch: the curves sampled too coarsely).
     std::int32_t pair = kUnknown;
-    if (one_cycle(link_) && (pair = split_pair(link_, other_)) == kUnknown) continue;
+    if (one_cycle(link_, at_) && (pair = split_pair(link_, other_, at_, seq_)) == kUnknown) {
+      // Two labels: the other's facets around v are these.
+      if (labels_.size() == 2) return;
+      continue;
+    }
     // The surface centre of v's largest restricted facet with l on a side
     // (of the pair l|pair when that is what failed).
     Candidate best;
@@ -278,52 +282,51 @@ void Mesher::check_vertex(Vh v) {
   }
 }
 
-// Each link vertex in two link edges, the edges one closed walk.
-bool Mesher::one_cycle(std::vector<std::array<int, 2>>& link) {
+// Each link vertex in two link edges, the edges one closed walk. at: per
+// link vertex its two (vertex, edge) entries, sorted (split_pair's too).
+bool Mesher::one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at) {
   if (link.size() < 3) return false;
-  std::unordered_map<int, std::array<int, 3>> adj;  // up to two neighbours and a count
-  for (const auto& e : link)
-    for (int s = 0; s < 2; ++s) {
-      auto& a = adj.try_emplace(e[s], std::array<int, 3>{0, 0, 0}).first->second;
-      if (a[2] == 2) return false;
-      a[a[2]++] = e[1 - s];
-    }
-  for (const auto& kv : adj)
-    if (kv.second[2] != 2) return false;
+  at.clear();
+  for (std::size_t e = 0; e < link.size(); ++e)
+    for (int s = 0; s < 2; ++s) at.push_back({link[e][s], int(e)});
+  std::sort(at.begin(), at.end());
+  for (std::size_t i = 0; i < at.size(); i += 2)
+    if (at[i + 1][0] != at[i][0] || (i + 2 < at.size() && at[i + 2][0] == at[i][0])) return false;
+  // The walk from link[0][0] along link[0], each step to the vertex's other
+  // neighbour, back to link[0][0] after every edge.
   int prev = link[0][0], cur = link[0][1];
   std::size_t steps = 1;
   while (cur != link[0][0]) {
-    const auto& a = adj[cur];
-    const int next = a[0] == prev ? a[1] : a[0];
+    const std::array<int, 2>* a = &*std::lower_bound(at.begin(), at.end(), std::array<int, 2>{cur, -1});
+    auto other_end = [&](int e) { return link[std::size_t(e)][0] == cur ? link[std::size_t(e)][1] : link[std::size_t(e)][0]; };
+    const int n0 = other_end(a[0][1]), n1 = other_end(a[1][1]);
+    const int next = n0 == prev ? n1 : n0;
     prev = cur, cur = next;
     if (++steps > link.size()) return false;
   }
   return steps == link.size();
 }
 
-// The link's edges (one cycle) in cyclic order: a label of `other` (the
-// label across each edge's facet) in two runs or more, else kUnknown.
-std::int32_t Mesher::split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other) {
-  std::unordered_map<int, std::array<std::size_t, 2>> at;
-  const std::size_t none = std::size_t(-1);
-  for (std::size_t e = 0; e < link.size(); ++e)
-    for (int s = 0; s < 2; ++s) {
-      auto& a = at.try_emplace(link[e][s], std::array<std::size_t, 2>{none, none}).first->second;
-      (a[0] == none ? a[0] : a[1]) = e;
-    }
-  std::vector<std::int32_t> seq;
-  seq.reserve(link.size());
+// The link's edges (one cycle: one_cycle's `at`) in cyclic order: a label
+// of `other` (the label across each edge's facet) in two runs or more (the
+// smallest such), else kUnknown.
+std::int32_t Mesher::split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
+                                const std::vector<std::array<int, 2>>& at, std::vector<std::int32_t>& seq) {
+  seq.clear();
   std::size_t e = 0;
   int cur = link[0][1];
   for (std::size_t n = 0; n < link.size(); ++n) {
     seq.push_back(other[e]);
-    const auto& a = at[cur];
-    e = a[0] == e ? a[1] : a[0];
+    const std::array<int, 2>* a = &*std::lower_bound(at.begin(), at.end(), std::array<int, 2>{cur, -1});
+    e = std::size_t(a[0][1]) == e ? std::size_t(a[1][1]) : std::size_t(a[0][1]);
     cur = link[e][0] == cur ? link[e][1] : link[e][0];
   }
-  std::vector<std::int32_t> starts;
+  std::vector<std::int32_t>& starts = seq;  // in place: each run's label once
+  std::size_t m = 0;
+  const std::int32_t last = seq.back();
   for (std::size_t i = 0; i < seq.size(); ++i)
-    if (seq[i] != seq[(i + seq.size() - 1) % seq.size()]) starts.push_back(seq[i]);
+    if (seq[i] != (i == 0 ? last : seq[i - 1])) starts[m++] = seq[i];
+  starts.resize(m);
   std::sort(starts.begin(), starts.end());
   for (std::size_t i = 1; i < starts.size(); ++i)
     if (starts[i] == starts[i - 1]) return starts[i];
@@ -406,10 +409,33 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
           if (x_.inside(i + dx, j + dy, k + dz))
             near[x_.index(std::size_t(i + dx), std::size_t(j + dy), std::size_t(k + dz))] = 1;
   }
+  // A facet's surface centre lies on its Voronoi edge, whose ends' voxel
+  // box (rounded as the centre is) holds its voxel: facets with no near
+  // voxel in that box are passed over without the walk along the edge.
+  auto may_be_near = [&](const Vec3& a, const Vec3& b) {
+    const Vec3 qa = x_.continuous_index(a), qb = x_.continuous_index(b);
+    std::ptrdiff_t lo[3], hi[3];
+    std::size_t volume = 1;
+    for (int m = 0; m < 3; ++m) {
+      lo[m] = std::max<std::ptrdiff_t>(0, std::ptrdiff_t(std::floor(std::min(qa[m], qb[m]) + 0.5)));
+      hi[m] = std::min<std::ptrdiff_t>(std::ptrdiff_t(x_.size[m]) - 1, std::ptrdiff_t(std::floor(std::max(qa[m], qb[m]) + 0.5)));
+      if (!(lo[m] <= hi[m])) return false;
+      volume *= std::size_t(hi[m] - lo[m] + 1);
+    }
+    if (volume > 512) return true;
+    for (std::ptrdiff_t k = lo[2]; k <= hi[2]; ++k)
+      for (std::ptrdiff_t j = lo[1]; j <= hi[1]; ++j)
+        for (std::ptrdiff_t i = lo[0]; i <= hi[0]; ++i)
+          if (near[x_.index(std::size_t(i), std::size_t(j), std::size_t(k))]) return true;
+    return false;
+  };
   std::vector<Vec3> pts;
   for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
+    const Ch c = f->first, n = c->neighbor(f->second);
+    if (tr_.is_infinite(c) || tr_.is_infinite(n) || label(c) == label(n) || !may_be_near(centre(c), centre(n)))
+      continue;
     Vec3 x;
-    if (!surface_centre(f->first, f->second, x)) continue;
+    if (!surface_centre(c, f->second, x)) continue;
     const Vec3 q = x_.continuous_index(x);
     const auto i = std::ptrdiff_t(std::floor(q[0] + 0.5)), j = std::ptrdiff_t(std::floor(q[1] + 0.5)),
                k = std::ptrdiff_t(std::floor(q[2] + 0.5));

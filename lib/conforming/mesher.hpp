@@ -102,8 +102,9 @@ private:
   bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
   void check_facet(Ch c, int i);
   void check_vertex(Vh v);
-  static bool one_cycle(std::vector<std::array<int, 2>>& link);
-  static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other);
+  static bool one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at);
+  static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
+                                 const std::vector<std::array<int, 2>>& at, std::vector<std::int32_t>& seq);
   void voxel_sides();
   bool current(const Candidate& c, Ch& cell);
   bool insert_all(std::vector<Candidate>& cands);
@@ -141,7 +142,8 @@ private:
   std::vector<Vh> touched_, new_vertices_;
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
-  std::vector<std::int32_t> other_;
+  std::vector<std::int32_t> other_, seq_;
+  std::vector<std::array<int, 2>> at_;
   std::vector<LabelFunction::Change> changes_;
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
