@@ -502,12 +502,12 @@ void Mesher::refine() {
         check_facet(c, i);
       }
       for (int i = 0; i < 4; ++i)
-        if (c->vertex(i)->info() >= 0) touched_.push_back(c->vertex(i));
+        if (c->vertex(i)->info() >= 0) touched_.push_back({c->vertex(i)->info(), c->vertex(i)});
     }
     // By id, not address: the same candidates in the same order every run.
-    std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
+    std::sort(touched_.begin(), touched_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-    for (Vh v : touched_) check_vertex(v);
+    for (const auto& t : touched_) check_vertex(t.second);
     if (o_.progress)
       o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
                   std::to_string(topology_.size()) + " topology, " + std::to_string(quality_.size()) + " quality");

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace imgmesh {
@@ -139,7 +140,8 @@ private:
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
   std::vector<Ch> fresh_, cells_;
-  std::vector<Vh> touched_, new_vertices_;
+  std::vector<Vh> new_vertices_;
+  std::vector<std::pair<int, Vh>> touched_;  // (id, vertex)
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
   std::vector<std::int32_t> other_, seq_;
