@@ -1,5 +1,6 @@
 #include "conforming/mesher.hpp"
 
+#include "implicit/parallel.hpp"
 #include "util/error.hpp"
 
 #include <cmath>
@@ -170,31 +171,66 @@ bool Mesher::surface_centre(Ch c, int i, Vec3& x) {
   return true;
 }
 
-// VorEdge, QUALITY and the distance bound on facet (c, i).
-void Mesher::check_facet(Ch c, int i) {
-  Ch n = c->neighbor(i);
-  if (tr_.is_infinite(c) || tr_.is_infinite(n)) return;
+// The facets of a pass and lambda's changes along their Voronoi edges: the
+// walks (most of a pass's lambda) in parallel, the cells' labels first
+// (each cell by one thread), each walk into its own slot; the candidates
+// then made from them in the facets' order, as one thread makes them.
+void Mesher::walk_facets() {
+  pending_.clear();
+  for (Ch c : fresh_)
+    if (c->info().label == kUnknown) pending_.push_back(c);
+  for (const FacetWalk& w : walks_) {
+    Ch n = w.c->neighbor(w.i);
+    if (!tr_.is_infinite(n) && !is_fresh(n) && n->info().label == kUnknown) pending_.push_back(n);
+  }
+  std::sort(pending_.begin() + std::ptrdiff_t(fresh_.size()), pending_.end());
+  pending_.erase(std::unique(pending_.begin() + std::ptrdiff_t(fresh_.size()), pending_.end()), pending_.end());
+  const unsigned threads = implicit_detail::resolve_threads(o_.threads);
+  implicit_detail::parallel_for(long(pending_.size()), threads, [&](long lo, long hi, unsigned) {
+    for (long j = lo; j < hi; ++j) known(pending_[std::size_t(j)]);
+  });
+  walk_changes_.resize(threads);
+  implicit_detail::parallel_for(long(walks_.size()), threads, [&](long lo, long hi, unsigned t) {
+    std::vector<LabelFunction::Change>& ch = walk_changes_[t];
+    for (long j = lo; j < hi; ++j) {
+      FacetWalk& w = walks_[std::size_t(j)];
+      w.changes = 0;
+      Ch c = w.c, n = c->neighbor(w.i);
+      if (tr_.is_infinite(c) || tr_.is_infinite(n)) continue;
+      bool corner = false;  // a bounding-box corner: outside, in 0
+      for (int q = 1; q < 4; ++q) corner = corner || c->vertex((w.i + q) & 3)->info() < 0;
+      if (corner) continue;
+      const std::int32_t ends[2] = {c->info().label, n->info().label};
+      f_.changes(c->info().centre, n->info().centre, ch, o_.step, 0, ends);
+      w.changes = ch.size();
+      if (!ch.empty()) w.first = ch.front().t, w.last = ch.back().t;
+    }
+  });
+  for (const FacetWalk& w : walks_)
+    if (w.changes > 0) check_facet(w);
+}
+
+// VorEdge, QUALITY and the distance bound on a facet whose Voronoi edge
+// lambda changes along.
+void Mesher::check_facet(const FacetWalk& w) {
+  Ch c = w.c, n = c->neighbor(w.i);
   const Vec3 a = centre(c), b = centre(n);
   const std::int32_t la = label(c), lb = label(n);
-  const auto v = facet_vertices(c, i);
-  if (v[0]->info() < 0) return;  // a bounding-box corner: outside, in 0
-  const std::int32_t ends[2] = {la, lb};
-  f_.changes(a, b, changes_, o_.step, 0, ends);
-  if (changes_.empty()) return;
+  const auto v = facet_vertices(c, w.i);
   Candidate cand;
   cand.v = v;
   cand.cells = {c->info().uid, n->info().uid};
   const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
   auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
-  if (changes_.size() >= 2 || la == lb) {
-    const Vec3 first = at(changes_.front().t), last = at(changes_.back().t);
+  if (w.changes >= 2 || la == lb) {
+    const Vec3 first = at(w.first), last = at(w.last);
     cand.x = dist2(first, p0) >= dist2(last, p0) ? first : last;
     cand.step = kVorEdge;
     cand.priority = dist2(cand.x, p0);
     topology_.push_back(cand);
     return;
   }
-  cand.x = at(changes_[0].t);
+  cand.x = at(w.first);
   cand.priority = dist2(cand.x, p0);
   // A vertex off the interfaces (a cell's circumcentre, seg2tet): the
   // facet's surface centre goes in, so every surface vertex lies on one.
@@ -495,15 +531,17 @@ void Mesher::refine() {
     }
     new_vertices_.clear();
     touched_.clear();
+    walks_.clear();
     for (Ch c : fresh_) {
       for (int i = 0; i < 4; ++i) {
         Ch n = c->neighbor(i);
         if (is_fresh(n) && n->info().uid < c->info().uid) continue;
-        check_facet(c, i);
+        walks_.push_back({c, i, 0, 0, 0});
       }
       for (int i = 0; i < 4; ++i)
         if (c->vertex(i)->info() >= 0) touched_.push_back({c->vertex(i)->info(), c->vertex(i)});
     }
+    walk_facets();
     // By id, not address: the same candidates in the same order every run.
     std::sort(touched_.begin(), touched_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());

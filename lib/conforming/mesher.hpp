@@ -101,7 +101,16 @@ private:
   void seeds();
   void refine();
   bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
-  void check_facet(Ch c, int i);
+  // A facet of the pass and lambda's changes along its Voronoi edge: how
+  // many (0 also for a facet not walked), the first's and the last's t.
+  struct FacetWalk {
+    Ch c;
+    int i;
+    std::size_t changes;
+    double first, last;
+  };
+  void walk_facets();
+  void check_facet(const FacetWalk& w);
   void check_vertex(Vh v);
   static bool one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at);
   static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
@@ -139,7 +148,9 @@ private:
   std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
-  std::vector<Ch> fresh_, cells_;
+  std::vector<Ch> fresh_, cells_, pending_;
+  std::vector<FacetWalk> walks_;
+  std::vector<std::vector<LabelFunction::Change>> walk_changes_;  // per thread
   std::vector<Vh> new_vertices_;
   std::vector<std::pair<int, Vh>> touched_;  // (id, vertex)
   std::vector<std::int32_t> labels_;
