@@ -176,15 +176,18 @@ bool Mesher::surface_centre(Ch c, int i, Vec3& x) {
 // (each cell by one thread), each walk into its own slot; the candidates
 // then made from them in the facets' order, as one thread makes them.
 void Mesher::walk_facets() {
+  // The new cells (seg2tet's cell stage knows some already) and the older
+  // neighbours not yet known, each once.
   pending_.clear();
   for (Ch c : fresh_)
     if (c->info().label == kUnknown) pending_.push_back(c);
+  const auto older = std::ptrdiff_t(pending_.size());
   for (const FacetWalk& w : walks_) {
     Ch n = w.c->neighbor(w.i);
     if (!tr_.is_infinite(n) && !is_fresh(n) && n->info().label == kUnknown) pending_.push_back(n);
   }
-  std::sort(pending_.begin() + std::ptrdiff_t(fresh_.size()), pending_.end());
-  pending_.erase(std::unique(pending_.begin() + std::ptrdiff_t(fresh_.size()), pending_.end()), pending_.end());
+  std::sort(pending_.begin() + older, pending_.end());
+  pending_.erase(std::unique(pending_.begin() + older, pending_.end()), pending_.end());
   const unsigned threads = implicit_detail::resolve_threads(o_.threads);
   implicit_detail::parallel_for(long(pending_.size()), threads, [&](long lo, long hi, unsigned) {
     for (long j = lo; j < hi; ++j) known(pending_[std::size_t(j)]);
