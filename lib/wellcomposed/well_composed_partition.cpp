@@ -73,8 +73,13 @@
 // allowed down moves, chosen as above. The first phase's result stays
 // well-composed and every move still raises the rank sum (or is a voxel's
 // one down move): it terminates. A configuration no such move ends is
-// left, the block retried after the moves near it while any are made; the
-// few left are counted by K(X) (its pinches, its curves of four labels).
+// left, the block retried after the moves near it while any are made; then
+// retried once more allowing moves that create C1 or C2, which the drain
+// ends as in the first phase (still up or allowed down moves: it
+// terminates; on the noisy brain map this ends the last 27 four-label
+// edges and 6 pinches for 72 more changes). Those left (every move takes a
+// kept label's last voxel) are counted by K(X) (its pinches, its curves
+// of four labels).
 //
 // Last, every changed voxel goes back to its input label when that creates
 // no configuration in its 8 blocks (and keeps every kept label), once, in
@@ -214,13 +219,18 @@ public:
     generic_ = true;
     scan();
     // A configuration left for want of a move may have one after the moves
-    // near it: again over those, while any moves.
-    for (std::size_t before = steps + 1; before != steps && !stuck_.empty();) {
+    // near it: again over those, while any moves; once none does, again
+    // letting the moves create C1 or C2 (the drain then ends those).
+    for (std::size_t before = steps + 1; !stuck_.empty() && steps < max_steps_;) {
+      if (before == steps) {
+        if (lenient_) break;
+        lenient_ = true;
+      }
       before = steps;
       std::vector<std::size_t> left(stuck_.begin(), stuck_.end());
       std::sort(left.begin(), left.end());
       stuck_.clear();
-      for (std::size_t r : left) resolve_and_drain(r);
+      for (std::size_t r : left) lenient_ ? try_undoably(r) : resolve_and_drain(r);
     }
   }
 
@@ -315,6 +325,23 @@ private:
     resolve(r);
     for (std::size_t head = 0; head < queue_.size(); ++head) resolve(queue_[head]);
     queue_.clear();
+  }
+
+  // Block r and the drain, undone when a move took a kept label's last
+  // voxel (the drain of a C1 the lenient move made can, where the first
+  // phase could not) or the step cap cut the drain short.
+  void try_undoably(std::size_t r) {
+    const std::size_t mark = log_.size(), steps0 = steps, raised0 = raised;
+    const unsigned top0 = top_;
+    undo_ = {};
+    resolve_and_drain(r);
+    if (!undo_.killed && steps < max_steps_) return;
+    for (std::size_t i = log_.size(); i-- > mark;) set(log_[i].first, log_[i].second);
+    log_.resize(mark);
+    for (std::size_t i : undo_.fell) fell_.erase(i);
+    for (auto it = undo_.ranks.rbegin(); it != undo_.ranks.rend(); ++it) rank_[it->first] = it->second, raised_[it->first] = 0;
+    steps = steps0, raised = raised0, top_ = top0;
+    stuck_.insert(r);
   }
 
   // Configurations created and removed by voxel i taking label `to`: only
@@ -428,10 +455,11 @@ private:
     Move mv[24];
     int n = moves(in, mv);
     if (in.kind >= 4) {
-      // A generic configuration is ended by a move that creates no C1 or
-      // C2 and keeps every kept label: one that no such move ends is left
-      // (and counted on the output).
-      n = int(std::remove_if(mv, mv + n, [](const Move& m) { return m.kills || m.critical; }) - mv);
+      // A generic configuration is ended by a move that keeps every kept
+      // label and (but in the last retries) creates no C1 or C2: one that
+      // no such move ends is left (and counted on the output).
+      const bool lenient = lenient_;
+      n = int(std::remove_if(mv, mv + n, [lenient](const Move& m) { return m.kills || (m.critical && !lenient); }) - mv);
       if (n == 0) {
         stuck_.insert(in.r);
         return;
@@ -445,11 +473,13 @@ private:
       // Every move takes a kept label's last voxel: raise that label to the
       // top once, then moves keeping it exist (see the header).
       raised_[mv[best].from] = 1;
+      if (lenient_) undo_.ranks.emplace_back(mv[best].from, rank_[mv[best].from]);
       rank_[mv[best].from] = top_++;
       ++raised;
       return;
     }
-    if (mv[best].down) fell_.insert(mv[best].voxel);
+    if (mv[best].down && fell_.insert(mv[best].voxel).second && lenient_) undo_.fell.push_back(mv[best].voxel);
+    undo_.killed = undo_.killed || mv[best].kills;
     set(mv[best].voxel, mv[best].to);
     log_.emplace_back(mv[best].voxel, T(mv[best].from));
     ++steps;
@@ -467,6 +497,7 @@ private:
   int blocks_;  // blocks holding a voxel: 8, or 4 in 2D (those below the image see only background)
   bool want_generic_;     // 3D and asked for: a second phase for the generic configurations
   bool generic_ = false;  // in that phase: four-label squares and pinches are configurations too
+  bool lenient_ = false;  // in its last retries: a move may create C1 or C2
   std::vector<unsigned> rank_;
   unsigned top_;
   std::vector<std::size_t> count_;
@@ -476,6 +507,11 @@ private:
   std::unordered_set<std::size_t> stuck_;         // blocks with a pinch no move ends
   std::vector<std::size_t> queue_;                // R
   std::vector<std::pair<std::size_t, T>> log_;    // (voxel, label before) of every move
+  struct Undo {  // what try_undoably restores besides the moves
+    bool killed = false;
+    std::vector<std::size_t> fell;
+    std::vector<std::pair<unsigned, unsigned>> ranks;  // (label, rank before its raise)
+  } undo_;
 };
 
 // Ranks: background 0, then the labels from the most input voxels to the

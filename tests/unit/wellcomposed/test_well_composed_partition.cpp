@@ -351,8 +351,10 @@ TEST_CASE("the repair leaves no edge of four labels and no pinched patch", "[wel
     plain.generic = false;
     REQUIRE(make_well_composed_partition(*x, plain).changed == 0);
   }
-  // Random maps: nearly all of them gone (a move that would create a C1 or
-  // C2 or take a label's last voxel is not made: some may stay).
+  // Random maps: nearly all of them gone (a move that takes a label's last
+  // voxel is not made, nor one whose drain does: some may stay; without
+  // the lenient retries, which let a move create a C1 or C2 and drain it,
+  // 16 of these maps' 996 stay).
   std::mt19937_64 rng(4040);
   std::size_t before = 0, after = 0;
   for (int k : {3, 8, 20})
@@ -368,5 +370,5 @@ TEST_CASE("the repair leaves no edge of four labels and no pinched patch", "[wel
       }
   std::cout << "generic configurations: " << before << " after the plain repair, " << after << " after the generic one\n";
   REQUIRE(before > 100);
-  REQUIRE(after * 20 <= before);
+  REQUIRE(after * 100 <= before);
 }
