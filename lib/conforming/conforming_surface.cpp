@@ -388,13 +388,13 @@ void Mesher::voxel_sides() {
         char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
         if (done) continue;
         done = 1;
-        side_voxels_.push_back({{std::int32_t(v[0]), std::int32_t(v[1]), std::int32_t(v[2])}, Ch(), 0});
+        side_voxels_.push_back({Ch(), 0, std::uint32_t(v[0]), std::uint32_t(v[1]), std::uint32_t(v[2])});
       }
     }
   }
   const auto& cells = tr_.tds().cells();
   for (SideVoxel& sv : side_voxels_) {
-    const std::ptrdiff_t i = sv.v[0], j = sv.v[1], k = sv.v[2];
+    const std::ptrdiff_t i = sv.i, j = sv.j, k = sv.k;
     const Vec3 p = voxel_centre(i, j, k);
     Ch c;
     // The cell that held the centre strictly inside at the last call, still
@@ -561,6 +561,10 @@ void Mesher::refine() {
     voxel_sides();
     if (sides_.empty() || !insert_all(sides_)) break;
   }
+  // The first pass's lists (every cell's) not kept past REFINE.
+  std::vector<FacetWalk>().swap(walks_);
+  std::vector<Ch>().swap(pending_);
+  std::vector<Ch>().swap(fresh_);
 }
 
 // The facets in the order of their sorted vertex ids, the vertices

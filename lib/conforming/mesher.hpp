@@ -164,9 +164,9 @@ private:
   // voxel_sides' voxels, each with the cell that held its centre (and that
   // cell's uid) at the last call; Ch() when on a face of the triangulation.
   struct SideVoxel {
-    std::array<std::int32_t, 3> v;
     Ch cell;
     std::uint32_t uid;
+    std::uint32_t i, j, k;
   };
   std::vector<SideVoxel> side_voxels_;
   long long cell_points_ = 0, sliver_points_ = 0;
