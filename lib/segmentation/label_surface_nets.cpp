@@ -125,7 +125,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
     o.certificate = [&](const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t,
                         const std::vector<std::array<std::int32_t, 2>>& l) {
       last = certify_interface_mesh(p, t, l, wc, k, co);
-      return last.failing_places(p, t, k, wc);
+      return last.failing_places(p, t, l, k, wc);
     };
     ConformingSurface c = conforming_surface(lambda, wc, k, o);
     res.conforming = c.to_json();

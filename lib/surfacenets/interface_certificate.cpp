@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -327,10 +328,12 @@ std::string InterfaceCertificate::failure() const {
 
 namespace {
 constexpr std::size_t kWholePatchFaces = 256;
+constexpr std::size_t kStrayPieceTriangles = 4096;
 } // namespace
 
 std::vector<Vec3> InterfaceCertificate::failing_places(const std::vector<Vec3>& points,
                                                        const std::vector<std::array<int, 3>>& triangles,
+                                                       const std::vector<std::array<std::int32_t, 2>>& pairs,
                                                        const InterfaceComplex& k, const Geometry& grid) const {
   std::vector<std::int32_t> bad;
   for (const Label& l : labels)
@@ -341,6 +344,27 @@ std::vector<Vec3> InterfaceCertificate::failing_places(const std::vector<Vec3>& 
     for (int v : triangles[t])
       for (int a = 0; a < 3; ++a) c[a] += points[std::size_t(v)][a] / 3;
     return c;
+  };
+  // The triangles of interface i's mesh patch holding triangle `first`
+  // (joined through the pair's edges, as the certificate joins them).
+  auto piece = [&](const Interface& i, std::size_t first) {
+    std::map<std::pair<int, int>, std::vector<std::size_t>> by_edge;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+      if (std::max(pairs[t][0], pairs[t][1]) != i.behind || std::min(pairs[t][0], pairs[t][1]) != i.front) continue;
+      for (int e = 0; e < 3; ++e) {
+        const int a = triangles[t][std::size_t(e)], b = triangles[t][std::size_t((e + 1) % 3)];
+        by_edge[{std::min(a, b), std::max(a, b)}].push_back(t);
+      }
+    }
+    std::vector<std::size_t> got{first};
+    std::set<std::size_t> seen{first};
+    for (std::size_t h = 0; h < got.size(); ++h)
+      for (int e = 0; e < 3; ++e) {
+        const int a = triangles[got[h]][std::size_t(e)], b = triangles[got[h]][std::size_t((e + 1) % 3)];
+        for (std::size_t n : by_edge[{std::min(a, b), std::max(a, b)}])
+          if (seen.insert(n).second) got.push_back(n);
+      }
+    return got;
   };
   std::vector<Vec3> out;
   std::vector<std::size_t> whole;
@@ -358,7 +382,11 @@ std::vector<Vec3> InterfaceCertificate::failing_places(const std::vector<Vec3>& 
       const Patch& q = i.patches[p];
       if (!all && q.verdict == "ok") continue;
       if (q.verdict == "matched twice" && largest[q.complex_patch] != p) {
-        out.push_back(centroid(q.first_triangle));  // a stray piece
+        // A stray piece: where it parted from the rest (a neck one voxel
+        // wide) lies along its border, so all of it when not large.
+        if (q.triangles > kStrayPieceTriangles) out.push_back(centroid(q.first_triangle));
+        else
+          for (std::size_t t : piece(i, q.first_triangle)) out.push_back(centroid(t));
         continue;
       }
       out.push_back(centroid(q.first_triangle));

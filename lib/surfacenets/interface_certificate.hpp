@@ -159,16 +159,17 @@ struct InterfaceCertificate {
   // certificate fails: WHY".
   std::string summary() const;
   // Where it fails, for a mesher to refine near (conforming/
-  // conforming_surface.hpp), world points: of a failed interface, a
+  // conforming_surface.hpp), world points: of a failed interface, every
   // triangle of each stray piece (of the mesh patches placed on one K(X)
-  // patch, all but the largest), and the faces of each K(X) patch wrong as
+  // patch, all but the largest; one triangle of a piece over 4096), and the faces of each K(X) patch wrong as
   // a whole (its mesh patch's Euler characteristic, loops or pinches
   // differ; no mesh patch on it; up to 256 faces) with a triangle of its
   // mesh patch; of a label whose surface or voxel sides fail, the same for
   // each of its patches. points, triangles: the mesh certified; k, grid:
   // K(X) and its image's.
   std::vector<Vec3> failing_places(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                                   const InterfaceComplex& k, const Geometry& grid) const;
+                                   const std::vector<std::array<std::int32_t, 2>>& pairs, const InterfaceComplex& k,
+                                   const Geometry& grid) const;
   Json to_json() const;
 };
 

@@ -30,7 +30,7 @@ InterfaceCertificate mesh_and_certify(const LabelImage& x, ConformingSurface& m,
   ConformingOptions oc = o;
   oc.certificate = [&](const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t,
                        const std::vector<std::array<std::int32_t, 2>>& l) {
-    return certify_interface_mesh(p, t, l, x, k, co).failing_places(p, t, k, x);
+    return certify_interface_mesh(p, t, l, x, k, co).failing_places(p, t, l, k, x);
   };
   m = conforming_surface(f, x, k, oc);
   return certify_interface_mesh(m.points, m.triangles, m.pairs, x, k, co);

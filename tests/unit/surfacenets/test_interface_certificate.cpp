@@ -216,6 +216,26 @@ TEST_CASE("interface certificate: wrong meshes refused, naming the check", "[sur
       return c[1] == 5 && c[2] > 2 && c[2] < 7;
     });
     check_refused(s, f.img, Cert::kInterfaces, "interface 2|1: 2 patches, K(X) has 1");
+    // A mesher refines where it fails: on every triangle of the stray
+    // piece (where it parted from the rest lies on its border).
+    const Cert c = certify(s, f.img);
+    const auto places = c.failing_places(s.points, s.triangles, s.pairs, interface_complex(f.img), f.img);
+    const auto in = std::find_if(c.interfaces.begin(), c.interfaces.end(), [](const Cert::Interface& i) { return i.name() == "2|1"; });
+    REQUIRE(in != c.interfaces.end());
+    REQUIRE(in->patches.size() == 2);
+    const std::size_t stray_first = in->patches[in->patches[0].triangles >= in->patches[1].triangles ? 1 : 0].first_triangle;
+    std::vector<std::size_t> lower;
+    for (std::size_t t : p21)
+      if (std::find(upper.begin(), upper.end(), t) == upper.end()) lower.push_back(t);
+    const std::vector<std::size_t>& piece =
+        std::find(upper.begin(), upper.end(), stray_first) != upper.end() ? upper : lower;
+    REQUIRE(piece.size() > 1);
+    for (std::size_t t : piece) {
+      Vec3 m{0, 0, 0};
+      for (int v : s.triangles[t])
+        for (int a = 0; a < 3; ++a) m[a] += s.points[std::size_t(v)][a] / 3;
+      CHECK(std::find(places.begin(), places.end(), m) != places.end());
+    }
   }
   SECTION("two labels swapped on a patch") {
     Soup s = f.s;
