@@ -1,5 +1,6 @@
 #include "conforming/mesher.hpp"
 
+#include "implicit/parallel.hpp"
 #include "util/error.hpp"
 
 #include <cmath>
@@ -170,31 +171,69 @@ bool Mesher::surface_centre(Ch c, int i, Vec3& x) {
   return true;
 }
 
-// VorEdge, QUALITY and the distance bound on facet (c, i).
-void Mesher::check_facet(Ch c, int i) {
-  Ch n = c->neighbor(i);
-  if (tr_.is_infinite(c) || tr_.is_infinite(n)) return;
+// The facets of a pass and lambda's changes along their Voronoi edges: the
+// walks (most of a pass's lambda) in parallel, the cells' labels first
+// (each cell by one thread), each walk into its own slot; the candidates
+// then made from them in the facets' order, as one thread makes them.
+void Mesher::walk_facets() {
+  // The new cells (seg2tet's cell stage knows some already) and the older
+  // neighbours not yet known, each once.
+  pending_.clear();
+  for (Ch c : fresh_)
+    if (c->info().label == kUnknown) pending_.push_back(c);
+  const auto older = std::ptrdiff_t(pending_.size());
+  for (const FacetWalk& w : walks_) {
+    Ch n = w.c->neighbor(w.i);
+    if (!tr_.is_infinite(n) && !is_fresh(n) && n->info().label == kUnknown) pending_.push_back(n);
+  }
+  std::sort(pending_.begin() + older, pending_.end());
+  pending_.erase(std::unique(pending_.begin() + older, pending_.end()), pending_.end());
+  const unsigned threads = implicit_detail::resolve_threads(o_.threads);
+  implicit_detail::parallel_for(long(pending_.size()), threads, [&](long lo, long hi, unsigned) {
+    for (long j = lo; j < hi; ++j) known(pending_[std::size_t(j)]);
+  });
+  walk_changes_.resize(threads);
+  implicit_detail::parallel_for(long(walks_.size()), threads, [&](long lo, long hi, unsigned t) {
+    std::vector<LabelFunction::Change>& ch = walk_changes_[t];
+    for (long j = lo; j < hi; ++j) {
+      FacetWalk& w = walks_[std::size_t(j)];
+      w.changes = 0;
+      Ch c = w.c, n = c->neighbor(w.i);
+      if (tr_.is_infinite(c) || tr_.is_infinite(n)) continue;
+      bool corner = false;  // a bounding-box corner: outside, in 0
+      for (int q = 1; q < 4; ++q) corner = corner || c->vertex((w.i + q) & 3)->info() < 0;
+      if (corner) continue;
+      const std::int32_t ends[2] = {c->info().label, n->info().label};
+      f_.changes(c->info().centre, n->info().centre, ch, o_.step, 0, ends);
+      w.changes = ch.size();
+      if (!ch.empty()) w.first = ch.front().t, w.last = ch.back().t;
+    }
+  });
+  for (const FacetWalk& w : walks_)
+    if (w.changes > 0) check_facet(w);
+}
+
+// VorEdge, QUALITY and the distance bound on a facet whose Voronoi edge
+// lambda changes along.
+void Mesher::check_facet(const FacetWalk& w) {
+  Ch c = w.c, n = c->neighbor(w.i);
   const Vec3 a = centre(c), b = centre(n);
   const std::int32_t la = label(c), lb = label(n);
-  const auto v = facet_vertices(c, i);
-  if (v[0]->info() < 0) return;  // a bounding-box corner: outside, in 0
-  const std::int32_t ends[2] = {la, lb};
-  f_.changes(a, b, changes_, o_.step, 0, ends);
-  if (changes_.empty()) return;
+  const auto v = facet_vertices(c, w.i);
   Candidate cand;
   cand.v = v;
   cand.cells = {c->info().uid, n->info().uid};
   const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
   auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
-  if (changes_.size() >= 2 || la == lb) {
-    const Vec3 first = at(changes_.front().t), last = at(changes_.back().t);
+  if (w.changes >= 2 || la == lb) {
+    const Vec3 first = at(w.first), last = at(w.last);
     cand.x = dist2(first, p0) >= dist2(last, p0) ? first : last;
     cand.step = kVorEdge;
     cand.priority = dist2(cand.x, p0);
     topology_.push_back(cand);
     return;
   }
-  cand.x = at(changes_[0].t);
+  cand.x = at(w.first);
   cand.priority = dist2(cand.x, p0);
   // A vertex off the interfaces (a cell's circumcentre, seg2tet): the
   // facet's surface centre goes in, so every surface vertex lies on one.
@@ -250,7 +289,11 @@ void Mesher::check_vertex(Vh v) {
     // is two fans there (the mesh's patch pinched or split where K(X)'s
     // is not, on a tiny patch: the curves sampled too coarsely).
     std::int32_t pair = kUnknown;
-    if (one_cycle(link_) && (pair = split_pair(link_, other_)) == kUnknown) continue;
+    if (one_cycle(link_, at_) && (pair = split_pair(link_, other_, at_, seq_)) == kUnknown) {
+      // Two labels: the other's facets around v are these.
+      if (labels_.size() == 2) return;
+      continue;
+    }
     // The surface centre of v's largest restricted facet with l on a side
     // (of the pair l|pair when that is what failed).
     Candidate best;
@@ -278,52 +321,51 @@ void Mesher::check_vertex(Vh v) {
   }
 }
 
-// Each link vertex in two link edges, the edges one closed walk.
-bool Mesher::one_cycle(std::vector<std::array<int, 2>>& link) {
+// Each link vertex in two link edges, the edges one closed walk. at: per
+// link vertex its two (vertex, edge) entries, sorted (split_pair's too).
+bool Mesher::one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at) {
   if (link.size() < 3) return false;
-  std::unordered_map<int, std::array<int, 3>> adj;  // up to two neighbours and a count
-  for (const auto& e : link)
-    for (int s = 0; s < 2; ++s) {
-      auto& a = adj.try_emplace(e[s], std::array<int, 3>{0, 0, 0}).first->second;
-      if (a[2] == 2) return false;
-      a[a[2]++] = e[1 - s];
-    }
-  for (const auto& kv : adj)
-    if (kv.second[2] != 2) return false;
+  at.clear();
+  for (std::size_t e = 0; e < link.size(); ++e)
+    for (int s = 0; s < 2; ++s) at.push_back({link[e][s], int(e)});
+  std::sort(at.begin(), at.end());
+  for (std::size_t i = 0; i < at.size(); i += 2)
+    if (at[i + 1][0] != at[i][0] || (i + 2 < at.size() && at[i + 2][0] == at[i][0])) return false;
+  // The walk from link[0][0] along link[0], each step to the vertex's other
+  // neighbour, back to link[0][0] after every edge.
   int prev = link[0][0], cur = link[0][1];
   std::size_t steps = 1;
   while (cur != link[0][0]) {
-    const auto& a = adj[cur];
-    const int next = a[0] == prev ? a[1] : a[0];
+    const std::array<int, 2>* a = &*std::lower_bound(at.begin(), at.end(), std::array<int, 2>{cur, -1});
+    auto other_end = [&](int e) { return link[std::size_t(e)][0] == cur ? link[std::size_t(e)][1] : link[std::size_t(e)][0]; };
+    const int n0 = other_end(a[0][1]), n1 = other_end(a[1][1]);
+    const int next = n0 == prev ? n1 : n0;
     prev = cur, cur = next;
     if (++steps > link.size()) return false;
   }
   return steps == link.size();
 }
 
-// The link's edges (one cycle) in cyclic order: a label of `other` (the
-// label across each edge's facet) in two runs or more, else kUnknown.
-std::int32_t Mesher::split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other) {
-  std::unordered_map<int, std::array<std::size_t, 2>> at;
-  const std::size_t none = std::size_t(-1);
-  for (std::size_t e = 0; e < link.size(); ++e)
-    for (int s = 0; s < 2; ++s) {
-      auto& a = at.try_emplace(link[e][s], std::array<std::size_t, 2>{none, none}).first->second;
-      (a[0] == none ? a[0] : a[1]) = e;
-    }
-  std::vector<std::int32_t> seq;
-  seq.reserve(link.size());
+// The link's edges (one cycle: one_cycle's `at`) in cyclic order: a label
+// of `other` (the label across each edge's facet) in two runs or more (the
+// smallest such), else kUnknown.
+std::int32_t Mesher::split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
+                                const std::vector<std::array<int, 2>>& at, std::vector<std::int32_t>& seq) {
+  seq.clear();
   std::size_t e = 0;
   int cur = link[0][1];
   for (std::size_t n = 0; n < link.size(); ++n) {
     seq.push_back(other[e]);
-    const auto& a = at[cur];
-    e = a[0] == e ? a[1] : a[0];
+    const std::array<int, 2>* a = &*std::lower_bound(at.begin(), at.end(), std::array<int, 2>{cur, -1});
+    e = std::size_t(a[0][1]) == e ? std::size_t(a[1][1]) : std::size_t(a[0][1]);
     cur = link[e][0] == cur ? link[e][1] : link[e][0];
   }
-  std::vector<std::int32_t> starts;
+  std::vector<std::int32_t>& starts = seq;  // in place: each run's label once
+  std::size_t m = 0;
+  const std::int32_t last = seq.back();
   for (std::size_t i = 0; i < seq.size(); ++i)
-    if (seq[i] != seq[(i + seq.size() - 1) % seq.size()]) starts.push_back(seq[i]);
+    if (seq[i] != (i == 0 ? last : seq[i - 1])) starts[m++] = seq[i];
+  starts.resize(m);
   std::sort(starts.begin(), starts.end());
   for (std::size_t i = 1; i < starts.size(); ++i)
     if (starts[i] == starts[i - 1]) return starts[i];
@@ -332,23 +374,43 @@ std::int32_t Mesher::split_pair(const std::vector<std::array<int, 2>>& link, con
 
 // Every voxel centre next to an interface in a cell of its own label.
 void Mesher::voxel_sides() {
-  std::vector<char> seen(x_.count(), 0);
-  for (std::uint64_t key : k_.faces) {
-    const auto q = k_.corner(InterfaceComplex::face_corner(key));
-    const int a = InterfaceComplex::face_axis(key);
-    for (int s = 0; s < 2; ++s) {
-      std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])};
-      v[a] -= s;
-      if (!x_.inside(v[0], v[1], v[2])) continue;
-      char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
-      if (done) continue;
-      done = 1;
-      const Vec3 p = voxel_centre(v[0], v[1], v[2]);
+  // The voxels next to an interface, each once, in the faces' order: the
+  // same list every call.
+  if (side_voxels_.empty()) {
+    std::vector<char> seen(x_.count(), 0);
+    for (std::uint64_t key : k_.faces) {
+      const auto q = k_.corner(InterfaceComplex::face_corner(key));
+      const int a = InterfaceComplex::face_axis(key);
+      for (int s = 0; s < 2; ++s) {
+        std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])};
+        v[a] -= s;
+        if (!x_.inside(v[0], v[1], v[2])) continue;
+        char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
+        if (done) continue;
+        done = 1;
+        side_voxels_.push_back({Ch(), 0, std::uint32_t(v[0]), std::uint32_t(v[1]), std::uint32_t(v[2])});
+      }
+    }
+  }
+  const auto& cells = tr_.tds().cells();
+  for (SideVoxel& sv : side_voxels_) {
+    const std::ptrdiff_t i = sv.i, j = sv.j, k = sv.k;
+    const Vec3 p = voxel_centre(i, j, k);
+    Ch c;
+    // The cell that held the centre strictly inside at the last call, still
+    // there (its uid unchanged: uids are never reused): the one locate would
+    // find, and hint_ as locate leaves it, without the walk. Else locate.
+    if (sv.cell != Ch() && cells.is_used(sv.cell) && sv.cell->info().uid == sv.uid) {
+      c = sv.cell;
+      hint_ = c;
+    } else {
       Tr::Locate_type lt;
       int li, lj;
-      Ch c = tr_.locate(pt(p), lt, li, lj, hint_);
+      c = tr_.locate(pt(p), lt, li, lj, hint_);
       hint_ = c;
-      const std::int32_t own = voxel_label(v[0], v[1], v[2]);
+      const bool keep = lt == Tr::CELL && c->info().uid != 0;
+      sv.cell = keep ? c : Ch();
+      sv.uid = keep ? c->info().uid : 0;
       // On a facet, edge or vertex of W: every cell there must be its label.
       if (lt != Tr::CELL && lt != Tr::OUTSIDE_CONVEX_HULL) {
         cells_.clear();
@@ -357,16 +419,18 @@ void Mesher::voxel_sides() {
           auto circ = tr_.incident_cells(c, li, lj), end = circ;
           do cells_.push_back(circ); while (++circ != end);
         } else tr_.incident_cells(c->vertex(li), std::back_inserter(cells_));
+        const std::int32_t own = voxel_label(i, j, k);
         for (Ch n : cells_)
           if (label(n) != own) c = n;
       }
-      if (label(c) == own) continue;
-      Candidate cand;
-      if (!f_.first_change(p, centre(c), cand.x, o_.step)) continue;
-      cand.step = kVoxelSide;
-      cand.priority = dist2(cand.x, p);
-      sides_.push_back(cand);
     }
+    const std::int32_t own = voxel_label(i, j, k);
+    if (label(c) == own) continue;
+    Candidate cand;
+    if (!f_.first_change(p, centre(c), cand.x, o_.step)) continue;
+    cand.step = kVoxelSide;
+    cand.priority = dist2(cand.x, p);
+    sides_.push_back(cand);
   }
 }
 
@@ -384,10 +448,33 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
           if (x_.inside(i + dx, j + dy, k + dz))
             near[x_.index(std::size_t(i + dx), std::size_t(j + dy), std::size_t(k + dz))] = 1;
   }
+  // A facet's surface centre lies on its Voronoi edge, whose ends' voxel
+  // box (rounded as the centre is) holds its voxel: facets with no near
+  // voxel in that box are passed over without the walk along the edge.
+  auto may_be_near = [&](const Vec3& a, const Vec3& b) {
+    const Vec3 qa = x_.continuous_index(a), qb = x_.continuous_index(b);
+    std::ptrdiff_t lo[3], hi[3];
+    std::size_t volume = 1;
+    for (int m = 0; m < 3; ++m) {
+      lo[m] = std::max<std::ptrdiff_t>(0, std::ptrdiff_t(std::floor(std::min(qa[m], qb[m]) + 0.5)));
+      hi[m] = std::min<std::ptrdiff_t>(std::ptrdiff_t(x_.size[m]) - 1, std::ptrdiff_t(std::floor(std::max(qa[m], qb[m]) + 0.5)));
+      if (!(lo[m] <= hi[m])) return false;
+      volume *= std::size_t(hi[m] - lo[m] + 1);
+    }
+    if (volume > 512) return true;
+    for (std::ptrdiff_t k = lo[2]; k <= hi[2]; ++k)
+      for (std::ptrdiff_t j = lo[1]; j <= hi[1]; ++j)
+        for (std::ptrdiff_t i = lo[0]; i <= hi[0]; ++i)
+          if (near[x_.index(std::size_t(i), std::size_t(j), std::size_t(k))]) return true;
+    return false;
+  };
   std::vector<Vec3> pts;
   for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
+    const Ch c = f->first, n = c->neighbor(f->second);
+    if (tr_.is_infinite(c) || tr_.is_infinite(n) || label(c) == label(n) || !may_be_near(centre(c), centre(n)))
+      continue;
     Vec3 x;
-    if (!surface_centre(f->first, f->second, x)) continue;
+    if (!surface_centre(c, f->second, x)) continue;
     const Vec3 q = x_.continuous_index(x);
     const auto i = std::ptrdiff_t(std::floor(q[0] + 0.5)), j = std::ptrdiff_t(std::floor(q[1] + 0.5)),
                k = std::ptrdiff_t(std::floor(q[2] + 0.5));
@@ -447,19 +534,21 @@ void Mesher::refine() {
     }
     new_vertices_.clear();
     touched_.clear();
+    walks_.clear();
     for (Ch c : fresh_) {
       for (int i = 0; i < 4; ++i) {
         Ch n = c->neighbor(i);
         if (is_fresh(n) && n->info().uid < c->info().uid) continue;
-        check_facet(c, i);
+        walks_.push_back({c, i, 0, 0, 0});
       }
       for (int i = 0; i < 4; ++i)
-        if (c->vertex(i)->info() >= 0) touched_.push_back(c->vertex(i));
+        if (c->vertex(i)->info() >= 0) touched_.push_back({c->vertex(i)->info(), c->vertex(i)});
     }
+    walk_facets();
     // By id, not address: the same candidates in the same order every run.
-    std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
+    std::sort(touched_.begin(), touched_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-    for (Vh v : touched_) check_vertex(v);
+    for (const auto& t : touched_) check_vertex(t.second);
     if (o_.progress)
       o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
                   std::to_string(topology_.size()) + " topology, " + std::to_string(quality_.size()) + " quality");
@@ -472,6 +561,10 @@ void Mesher::refine() {
     voxel_sides();
     if (sides_.empty() || !insert_all(sides_)) break;
   }
+  // The first pass's lists (every cell's) not kept past REFINE.
+  std::vector<FacetWalk>().swap(walks_);
+  std::vector<Ch>().swap(pending_);
+  std::vector<Ch>().swap(fresh_);
 }
 
 // The facets in the order of their sorted vertex ids, the vertices

@@ -90,6 +90,7 @@ struct ConformingOptions {
   int certificate_rounds = 8;
   ConformingTetOptions tets;
   std::function<void(const std::string&)> progress;
+  unsigned threads = 1;  // lambda's walks along a pass's Voronoi edges (the same mesh whatever the number; 0: all cores)
 };
 
 struct ConformingSurface {

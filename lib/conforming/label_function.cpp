@@ -118,17 +118,26 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   };
   make(-1, all, -1);
   for (std::size_t k = 0; k < present.size(); ++k) make(present[k], boxes[k], 1);
-  // Pure cubes: min == max of the labels over the 4x4x4 voxels around
-  // (window [-1, 2] per axis).
-  {
+  // Per cube its corners' label (min == max over its 2x2x2 voxels), and
+  // whether it is pure (min == max over the 4x4x4 around: window [-1, 2]
+  // per axis), a 16-bit word a cube.
+  cubes_.assign(x.count(), 0);
+  if (labels_.size() <= kCubeLabel) {
     std::vector<std::int32_t> lo(x.data), hi(x.data);
+    for (int axis = 0; axis < 3; ++axis) {
+      window(x, axis, 0, 1, 0, lo, [](std::int32_t a, std::int32_t b) { return std::min(a, b); });
+      window(x, axis, 0, 1, 0, hi, [](std::int32_t a, std::int32_t b) { return std::max(a, b); });
+    }
+    for (std::size_t v = 0; v < x.count(); ++v)
+      if (lo[v] == hi[v])
+        cubes_[v] = std::uint16_t(std::lower_bound(labels_.begin(), labels_.end(), lo[v]) - labels_.begin() + 1);
+    lo = x.data, hi = x.data;
     for (int axis = 0; axis < 3; ++axis) {
       window(x, axis, -1, 2, 0, lo, [](std::int32_t a, std::int32_t b) { return std::min(a, b); });
       window(x, axis, -1, 2, 0, hi, [](std::int32_t a, std::int32_t b) { return std::max(a, b); });
     }
-    pure_.assign(x.count(), 0);
     for (std::size_t v = 0; v < x.count(); ++v)
-      if (lo[v] == hi[v]) pure_[v] = lo[v] + 1;
+      if (lo[v] == hi[v]) cubes_[v] |= kPure;
   }
   // Candidates: a label whose voxels all lie beyond the 6x6x6 voxels around
   // a cube (window [-2, 3]) has g >= 1.5 voxels at every sample f reads in
@@ -172,6 +181,27 @@ std::int32_t LabelFunction::label(const Vec3& p) const {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
     c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
   }
+  // The voxels every f reads at p all of one label: lambda is that label,
+  // by the pure cubes' argument (header) at p alone. Per axis those are the
+  // cube's two and, within a quarter voxel of a plane (where two cells may
+  // blend: d <= delta / 5), the one beyond it. Most samples of a segment
+  // near an interface, each without evaluating an f.
+  {
+    std::ptrdiff_t lo[3], hi[3];
+    for (int i = 0; i < 3; ++i) {
+      const double r = q[i] - double(c[i]);
+      lo[i] = r < 0.25 && c[i] > 0 ? -1 : 0;
+      hi[i] = r > 0.75 && c[i] + 2 < grid_.size[i] ? 1 : 0;
+    }
+    std::uint16_t u = cubes_[grid_.index(c[0], c[1], c[2])] & kCubeLabel;
+    for (std::ptrdiff_t dz = lo[2]; u != 0 && dz <= hi[2]; ++dz)
+      for (std::ptrdiff_t dy = lo[1]; u != 0 && dy <= hi[1]; ++dy)
+        for (std::ptrdiff_t dx = lo[0]; u != 0 && dx <= hi[0]; ++dx)
+          if ((cubes_[grid_.index(std::size_t(std::ptrdiff_t(c[0]) + dx), std::size_t(std::ptrdiff_t(c[1]) + dy),
+                                  std::size_t(std::ptrdiff_t(c[2]) + dz))] & kCubeLabel) != u)
+            u = 0;
+    if (u != 0) return labels_[u - 1u];
+  }
   // The candidates in decreasing rank: the first negative one is lambda
   // (the rank rule), so the lower ones need no evaluation; when none is
   // negative, argmin over all of them (ties: the lower label).
@@ -210,9 +240,9 @@ bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
     if (!(q[i] >= 0 && q[i] < double(grid_.size[i] - 1))) return false;
     c[i] = std::size_t(q[i]);
   }
-  const std::int32_t p = pure_[grid_.index(c[0], c[1], c[2])];
-  if (p == 0) return false;
-  label = p - 1;
+  const std::uint16_t u = cubes_[grid_.index(c[0], c[1], c[2])];
+  if (!(u & kPure)) return false;
+  label = labels_[(u & kCubeLabel) - 1u];
   return true;
 }
 

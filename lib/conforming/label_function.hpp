@@ -78,9 +78,12 @@ private:
   std::vector<std::int32_t> labels_;  // ascending, 0 first
   std::vector<unsigned> rank_;  // per label index: 0 for the background, then fewest voxels highest
   std::vector<std::unique_ptr<Function>> f_;  // per label (f_U for 0)
-  // Per cube (lower corner voxel (i, j, k), i < size - 1): its label + 1
-  // when pure, else 0.
-  std::vector<std::int32_t> pure_;
+  // Per cube (lower corner voxel (i, j, k), i < size - 1): its corners'
+  // label index + 1 when its eight voxels carry one label, else 0 (bits
+  // kCubeLabel), and kPure when pure (then its corners are of its label).
+  // Past kCubeLabel labels all 0: no cube pure, no shortcut.
+  static constexpr std::uint16_t kCubeLabel = 0x7fff, kPure = 0x8000;
+  std::vector<std::uint16_t> cubes_;
   // Per cube the labels that can be lambda in it (bits: label index % 64),
   // and per bit its label indices.
   std::vector<std::uint64_t> cand_;

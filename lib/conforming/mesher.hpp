@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace imgmesh {
@@ -100,10 +101,20 @@ private:
   void seeds();
   void refine();
   bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
-  void check_facet(Ch c, int i);
+  // A facet of the pass and lambda's changes along its Voronoi edge: how
+  // many (0 also for a facet not walked), the first's and the last's t.
+  struct FacetWalk {
+    Ch c;
+    int i;
+    std::size_t changes;
+    double first, last;
+  };
+  void walk_facets();
+  void check_facet(const FacetWalk& w);
   void check_vertex(Vh v);
-  static bool one_cycle(std::vector<std::array<int, 2>>& link);
-  static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other);
+  static bool one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at);
+  static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
+                                 const std::vector<std::array<int, 2>>& at, std::vector<std::int32_t>& seq);
   void voxel_sides();
   bool current(const Candidate& c, Ch& cell);
   bool insert_all(std::vector<Candidate>& cands);
@@ -137,15 +148,27 @@ private:
   std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
-  std::vector<Ch> fresh_, cells_;
-  std::vector<Vh> touched_, new_vertices_;
+  std::vector<Ch> fresh_, cells_, pending_;
+  std::vector<FacetWalk> walks_;
+  std::vector<std::vector<LabelFunction::Change>> walk_changes_;  // per thread
+  std::vector<Vh> new_vertices_;
+  std::vector<std::pair<int, Vh>> touched_;  // (id, vertex)
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
-  std::vector<std::int32_t> other_;
+  std::vector<std::int32_t> other_, seq_;
+  std::vector<std::array<int, 2>> at_;
   std::vector<LabelFunction::Change> changes_;
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
   std::vector<Ch> zone_;
+  // voxel_sides' voxels, each with the cell that held its centre (and that
+  // cell's uid) at the last call; Ch() when on a face of the triangulation.
+  struct SideVoxel {
+    Ch cell;
+    std::uint32_t uid;
+    std::uint32_t i, j, k;
+  };
+  std::vector<SideVoxel> side_voxels_;
   long long cell_points_ = 0, sliver_points_ = 0;
   int cell_rounds_ = 0;
   bool cell_rounds_exhausted_ = false, cell_points_exhausted_ = false;

@@ -119,6 +119,7 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
     t0 = Clock::now();
     say("conforming surface");
     o.progress = opt.progress;
+    o.threads = std::max(1u, opt.threads);
     co.lattice = false;  // not a surface-nets mesh
     InterfaceCertificate last;
     o.certificate = [&](const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t,

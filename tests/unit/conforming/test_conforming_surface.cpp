@@ -138,6 +138,22 @@ TEST_CASE("a winding triple curve and a one-voxel layer are certified", "[confor
 }
 
 
+// The pass's walks along the Voronoi edges run on `threads` threads, each
+// into its facet's slot: the same mesh whatever their number.
+TEST_CASE("the same mesh whatever the number of threads", "[conforming]") {
+  const LabelImage x = noisy_map(2);
+  const LabelFunction f(x, 0.3);
+  const InterfaceComplex k = interface_complex(x);
+  ConformingOptions o;
+  const ConformingSurface one = conforming_surface(f, x, k, o);
+  o.threads = 3;
+  const ConformingSurface three = conforming_surface(f, x, k, o);
+  CHECK(one.passes == three.passes);
+  CHECK(one.pairs == three.pairs);
+  CHECK(one.triangles == three.triangles);
+  CHECK(one.points == three.points);
+}
+
 // VoxelSides alone (no certificate rounds): every voxel centre next to an
 // interface ends in a cell of its own label, so none is on the wrong side
 // of its label's surface.

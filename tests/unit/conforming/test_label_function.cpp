@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 using namespace imgmesh;
@@ -63,4 +65,37 @@ TEST_CASE("lambda refuses a map that is not well-composed", "[conforming]") {
   paint(x, {2, 2, 2}, {3, 3, 3}, 1);
   paint(x, {4, 4, 4}, {5, 5, 5}, 1);  // touches the first box along an edge: a C1 of label 1
   CHECK_THROWS_WITH(LabelFunction(x, 0.3), Catch::Contains("not well-composed"));
+}
+
+// lambda by its definition from the labels' f at random points (those where
+// at most one f is negative: the rank decides the others): where the voxels
+// f reads are all one label, label() answers without evaluating f.
+TEST_CASE("lambda at random points is its definition from the labels' f", "[conforming]") {
+  std::mt19937_64 rng(11);
+  std::size_t checked = 0;
+  for (int rep = 0; rep < 3; ++rep) {
+    LabelImage x = make_well_composed_partition(voronoi_map(rng, 12, 5)).image;
+    x.spacing = {0.8, 1.0, 1.3};
+    x.origin = {3, -2, 1};
+    const LabelFunction f(x, 0.3 * 0.8);
+    std::vector<std::int32_t> labels{0};
+    for (std::int32_t v : x.data)
+      if (std::find(labels.begin(), labels.end(), v) == labels.end()) labels.push_back(v);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int n = 0; n < 4000; ++n) {
+      const Vec3 p = x.world(u(rng) * double(x.size[0] - 1), u(rng) * double(x.size[1] - 1), u(rng) * double(x.size[2] - 1));
+      std::int32_t best = 0, negative = 0;
+      double fbest = INFINITY;
+      int negatives = 0;
+      for (std::int32_t l : labels) {
+        const double v = f.value(l, p);
+        if (v < 0) ++negatives, negative = l;
+        if (v < fbest || (v == fbest && l < best)) fbest = v, best = l;
+      }
+      if (negatives > 1) continue;
+      REQUIRE(f.label(p) == (negatives == 1 ? negative : best));
+      ++checked;
+    }
+  }
+  CHECK(checked > 10000);
 }
