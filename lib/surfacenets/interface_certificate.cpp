@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <map>
-#include <set>
 #include <atomic>
 #include <exception>
 #include <mutex>
@@ -337,11 +336,11 @@ constexpr std::size_t kStrayPieceTriangles = 4096;
 // between two holes cut) or have none near are the places. piece: the mesh
 // patch's triangles.
 void merged_loop_places(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
-                        const std::vector<std::size_t>& piece, std::size_t patch, const InterfaceComplex& k,
+                        const std::vector<std::uint32_t>& piece, std::size_t patch, const InterfaceComplex& k,
                         const Geometry& grid, std::vector<Vec3>& out) {
   // The mesh patch's boundary edges, joined into loops at their vertices.
   std::map<std::pair<int, int>, int> uses;
-  for (std::size_t t : piece)
+  for (std::uint32_t t : piece)
     for (int e = 0; e < 3; ++e) {
       const int a = triangles[t][std::size_t(e)], b = triangles[t][std::size_t((e + 1) % 3)];
       ++uses[{std::min(a, b), std::max(a, b)}];
@@ -426,32 +425,17 @@ std::vector<Vec3> InterfaceCertificate::failing_places(const std::vector<Vec3>& 
       for (int a = 0; a < 3; ++a) c[a] += points[std::size_t(v)][a] / 3;
     return c;
   };
-  // The triangles of interface i's mesh patch holding triangle `first`
-  // (joined through the pair's edges, as the certificate joins them).
-  auto piece = [&](const Interface& i, std::size_t first) {
-    std::map<std::pair<int, int>, std::vector<std::size_t>> by_edge;
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-      if (std::max(pairs[t][0], pairs[t][1]) != i.behind || std::min(pairs[t][0], pairs[t][1]) != i.front) continue;
-      for (int e = 0; e < 3; ++e) {
-        const int a = triangles[t][std::size_t(e)], b = triangles[t][std::size_t((e + 1) % 3)];
-        by_edge[{std::min(a, b), std::max(a, b)}].push_back(t);
-      }
-    }
-    std::vector<std::size_t> got{first};
-    std::set<std::size_t> seen{first};
-    for (std::size_t h = 0; h < got.size(); ++h)
-      for (int e = 0; e < 3; ++e) {
-        const int a = triangles[got[h]][std::size_t(e)], b = triangles[got[h]][std::size_t((e + 1) % 3)];
-        for (std::size_t n : by_edge[{std::min(a, b), std::max(a, b)}])
-          if (seen.insert(n).second) got.push_back(n);
-      }
-    return got;
-  };
   std::vector<Vec3> out;
   std::vector<std::size_t> whole;
   for (const Interface& i : interfaces) {
     const bool all = is_bad(i.behind) || is_bad(i.front);
     if (!all && i.why.empty()) continue;
+    // Its mesh patches' triangles, when a place finder needs them: once.
+    std::vector<std::vector<std::uint32_t>> members;
+    auto piece = [&](std::size_t p) -> const std::vector<std::uint32_t>& {
+      if (members.empty()) members = surfacenets_detail::interface_patch_triangles(triangles, pairs, i.behind, i.front);
+      return members.at(p);
+    };
     std::map<long long, std::size_t> largest;  // per K(X) patch, its largest mesh patch
     for (std::size_t p = 0; p < i.patches.size(); ++p) {
       const long long c = i.patches[p].complex_patch;
@@ -467,14 +451,14 @@ std::vector<Vec3> InterfaceCertificate::failing_places(const std::vector<Vec3>& 
         // wide) lies along its border, so all of it when not large.
         if (q.triangles > kStrayPieceTriangles) out.push_back(centroid(q.first_triangle));
         else
-          for (std::size_t t : piece(i, q.first_triangle)) out.push_back(centroid(t));
+          for (std::uint32_t t : piece(p)) out.push_back(centroid(t));
         continue;
       }
       out.push_back(centroid(q.first_triangle));
       if (q.complex_patch < 0) continue;
       if (k.patches[std::size_t(q.complex_patch)].faces <= kWholePatchFaces) whole.push_back(std::size_t(q.complex_patch));
       else if (q.verdict == "euler differs" || q.verdict == "loops differ")
-        merged_loop_places(points, triangles, piece(i, q.first_triangle), std::size_t(q.complex_patch), k, grid, out);
+        merged_loop_places(points, triangles, piece(p), std::size_t(q.complex_patch), k, grid, out);
     }
     for (std::size_t c : i.complex_patches)
       if (!largest.count((long long)c)) whole.push_back(c);  // no mesh patch on it

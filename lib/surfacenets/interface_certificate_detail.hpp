@@ -24,6 +24,13 @@ void for_each_index(std::size_t n, unsigned threads, const std::function<void(st
 // patches matched to K(X)'s and `why` set when it fails, the pairs taken
 // by `threads` threads (the same whatever their number). tolerance > 0,
 // world units.
+// The triangles of the mesh patches of interface behind|front as the
+// interfaces check joins them (along edges): entry p is patch p of its
+// Interface (the order of their first triangles).
+std::vector<std::vector<std::uint32_t>> interface_patch_triangles(const std::vector<std::array<int, 3>>& triangles,
+                                                                  const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                                                  std::int32_t behind, std::int32_t front);
+
 std::vector<InterfaceCertificate::Interface> certify_interfaces(const std::vector<Vec3>& points,
                                                                 const std::vector<std::array<int, 3>>& triangles,
                                                                 const std::vector<std::array<std::int32_t, 2>>& pairs,

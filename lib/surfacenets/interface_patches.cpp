@@ -193,14 +193,24 @@ void settle(Cert::Interface& in, const ComponentCorrespondence& r, const Interfa
 
 // One interface: the mesh's triangles of the pair (ts, ascending) against
 // K(X)'s patches of it.
+// The triangles ts (ascending ids) of one pair as its mesh patches: per
+// patch its triangles, in the order of their first triangles.
+std::vector<std::vector<Id>> patch_members(const std::vector<std::array<int, 3>>& triangles, const std::vector<Id>& ts,
+                                           std::vector<Id>& of) {
+  std::size_t n = 0;
+  of = edge_components(triangles, ts, n);
+  std::vector<std::vector<Id>> members(n);
+  for (std::size_t i = 0; i < ts.size(); ++i) members[of[i]].push_back(ts[i]);
+  return members;
+}
+
 void certify_interface(Cert::Interface& in, const std::vector<Vec3>& points,
                        const std::vector<std::array<int, 3>>& triangles, const std::vector<Id>& ts,
                        const FaceSearch& search, const InterfaceComplex& k, double small, double tolerance,
                        std::vector<int>& local) {
-  std::size_t n = 0;
-  const std::vector<Id> of = edge_components(triangles, ts, n);
-  std::vector<std::vector<Id>> members(n);
-  for (std::size_t i = 0; i < ts.size(); ++i) members[of[i]].push_back(ts[i]);
+  std::vector<Id> of;
+  const std::vector<std::vector<Id>> members = patch_members(triangles, ts, of);
+  const std::size_t n = members.size();
   in.patches.resize(n);
   ComponentCorrespondence r;
   r.mesh.resize(n);
@@ -227,6 +237,15 @@ void certify_interface(Cert::Interface& in, const std::vector<Vec3>& points,
 }
 
 } // namespace
+
+std::vector<std::vector<std::uint32_t>> interface_patch_triangles(const std::vector<std::array<int, 3>>& triangles,
+                                                                  const std::vector<std::array<std::int32_t, 2>>& pairs,
+                                                                  std::int32_t behind, std::int32_t front) {
+  std::vector<Id> ts, of;
+  for (std::size_t t = 0; t < triangles.size(); ++t)
+    if (pair_key(pairs[t]) == Pair{behind, front}) ts.push_back(Id(t));
+  return patch_members(triangles, ts, of);
+}
 
 std::vector<InterfaceCertificate::Interface> certify_interfaces(const std::vector<Vec3>& points,
                                                                 const std::vector<std::array<int, 3>>& triangles,
