@@ -468,18 +468,25 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
           if (near[x_.index(std::size_t(i), std::size_t(j), std::size_t(k))]) return true;
     return false;
   };
+  // CGAL gives each facet from the cell of the lower address: the walk
+  // goes from the smaller circumcentre (uid on a tie) and the points go in
+  // sorted, the same every run (the walk's bisection depends on its
+  // direction, the vertex ids on the order).
   std::vector<Vec3> pts;
   for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
-    const Ch c = f->first, n = c->neighbor(f->second);
+    Ch c = f->first, n = c->neighbor(f->second);
     if (tr_.is_infinite(c) || tr_.is_infinite(n) || label(c) == label(n) || !may_be_near(centre(c), centre(n)))
       continue;
+    if (std::make_pair(centre(n), n->info().uid) < std::make_pair(centre(c), c->info().uid)) std::swap(c, n);
     Vec3 x;
-    if (!surface_centre(c, f->second, x)) continue;
+    if (!surface_centre(c, c->index(n), x)) continue;
     const Vec3 q = x_.continuous_index(x);
     const auto i = std::ptrdiff_t(std::floor(q[0] + 0.5)), j = std::ptrdiff_t(std::floor(q[1] + 0.5)),
                k = std::ptrdiff_t(std::floor(q[2] + 0.5));
     if (x_.inside(i, j, k) && near[x_.index(std::size_t(i), std::size_t(j), std::size_t(k))]) pts.push_back(x);
   }
+  std::sort(pts.begin(), pts.end());
+  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
   bool any = false;
   for (const Vec3& x : pts) any = insert(x, kCertificate) || any;
   return any;

@@ -154,6 +154,20 @@ TEST_CASE("the same mesh whatever the number of threads", "[conforming]") {
   CHECK(one.points == three.points);
 }
 
+// The certificate's rounds insert where it fails, in an order of their
+// own (not the triangulation's storage order): the same mesh every run.
+TEST_CASE("the same mesh every run, the certificate's rounds included", "[conforming]") {
+  const LabelImage x = noisy_map(2);
+  ConformingSurface a, b;
+  mesh_and_certify(x, a);
+  mesh_and_certify(x, b);
+  REQUIRE(a.certificate_rounds > 0);
+  CHECK(a.passes == b.passes);
+  CHECK(a.pairs == b.pairs);
+  CHECK(a.triangles == b.triangles);
+  CHECK(a.points == b.points);
+}
+
 // VoxelSides alone (no certificate rounds): every voxel centre next to an
 // interface ends in a cell of its own label, so none is on the wrong side
 // of its label's surface.
