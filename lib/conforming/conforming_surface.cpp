@@ -377,18 +377,24 @@ void Mesher::voxel_sides() {
   // The voxels next to an interface, each once, in the faces' order: the
   // same list every call.
   if (side_voxels_.empty()) {
+    // Two sweeps: the count (seen 1), then the list (seen 2), of one size.
     std::vector<char> seen(x_.count(), 0);
-    for (std::uint64_t key : k_.faces) {
-      const auto q = k_.corner(InterfaceComplex::face_corner(key));
-      const int a = InterfaceComplex::face_axis(key);
-      for (int s = 0; s < 2; ++s) {
-        std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])};
-        v[a] -= s;
-        if (!x_.inside(v[0], v[1], v[2])) continue;
-        char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
-        if (done) continue;
-        done = 1;
-        side_voxels_.push_back({Ch(), 0, std::uint32_t(v[0]), std::uint32_t(v[1]), std::uint32_t(v[2])});
+    std::size_t count = 0;
+    for (int sweep = 1; sweep <= 2; ++sweep) {
+      if (sweep == 2) side_voxels_.reserve(count);
+      for (std::uint64_t key : k_.faces) {
+        const auto q = k_.corner(InterfaceComplex::face_corner(key));
+        const int a = InterfaceComplex::face_axis(key);
+        for (int s = 0; s < 2; ++s) {
+          std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])};
+          v[a] -= s;
+          if (!x_.inside(v[0], v[1], v[2])) continue;
+          char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
+          if (done == sweep) continue;
+          done = char(sweep);
+          if (sweep == 1) ++count;
+          else side_voxels_.push_back({Ch(), 0, std::uint32_t(v[0]), std::uint32_t(v[1]), std::uint32_t(v[2])});
+        }
       }
     }
   }
@@ -541,6 +547,7 @@ void Mesher::refine() {
     }
     new_vertices_.clear();
     touched_.clear();
+    touched_mark_.resize(points_, 0);
     walks_.clear();
     for (Ch c : fresh_) {
       for (int i = 0; i < 4; ++i) {
@@ -548,14 +555,20 @@ void Mesher::refine() {
         if (is_fresh(n) && n->info().uid < c->info().uid) continue;
         walks_.push_back({c, i, 0, 0, 0});
       }
-      for (int i = 0; i < 4; ++i)
-        if (c->vertex(i)->info() >= 0) touched_.push_back({c->vertex(i)->info(), c->vertex(i)});
+      for (int i = 0; i < 4; ++i) {
+        const int id = c->vertex(i)->info();
+        if (id < 0 || touched_mark_[std::size_t(id)]) continue;
+        touched_mark_[std::size_t(id)] = 1;  // each vertex once (the first pass: all)
+        touched_.push_back({id, c->vertex(i)});
+      }
     }
     walk_facets();
     // By id, not address: the same candidates in the same order every run.
     std::sort(touched_.begin(), touched_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    touched_.erase(std::unique(touched_.begin(), touched_.end()), touched_.end());
-    for (const auto& t : touched_) check_vertex(t.second);
+    for (const auto& t : touched_) {
+      touched_mark_[std::size_t(t.first)] = 0;
+      check_vertex(t.second);
+    }
     if (o_.progress)
       o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
                   std::to_string(topology_.size()) + " topology, " + std::to_string(quality_.size()) + " quality");

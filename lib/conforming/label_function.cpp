@@ -66,6 +66,24 @@ void window(const Geometry& g, int axis, int lo, int hi, T outside, std::vector<
   }
 }
 
+// Per cube the bits of the labels near it (candidates, below), in words of
+// W bits: bit k % 64 for label index k (W holds every label up to 64).
+template <class W>
+std::vector<W> candidate_words(const LabelImage& x, const std::vector<std::int32_t>& labels) {
+  std::vector<W> cand(x.count(), 0);
+  std::int32_t last = 0;
+  W bit = 1;
+  for (std::size_t v = 0; v < x.count(); ++v) {
+    if (x.data[v] != last) {
+      last = x.data[v];
+      bit = W(W(1) << (std::size_t(std::lower_bound(labels.begin(), labels.end(), last) - labels.begin()) % 64));
+    }
+    cand[v] = last == 0 ? 1 : bit;
+  }
+  for (int axis = 0; axis < 3; ++axis) window(x, axis, -2, 3, W(1), cand, [](W a, W b) { return W(a | b); });
+  return cand;
+}
+
 } // namespace
 
 LabelFunction::~LabelFunction() = default;
@@ -145,20 +163,17 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   // most a voxel a voxel), where the label of the voxel holding the point
   // has f under that: only the labels near a cube compete in it. Bit k % 64
   // stands for label index k (a superset past 64 labels).
-  cand_.assign(x.count(), 0);
-  {
-    std::int32_t last = 0;
-    std::uint64_t bit = 1;
-    for (std::size_t v = 0; v < x.count(); ++v) {
-      if (x.data[v] != last) {
-        last = x.data[v];
-        bit = std::uint64_t(1) << (std::size_t(std::lower_bound(labels_.begin(), labels_.end(), last) - labels_.begin()) % 64);
-      }
-      cand_[v] = last == 0 ? 1 : bit;
-    }
+  cand_bytes_ = labels_.size() <= 8 ? 1 : labels_.size() <= 16 ? 2 : labels_.size() <= 32 ? 4 : 8;
+  auto keep = [&](const auto& words) {
+    cand_.resize(words.size() * sizeof(words[0]));
+    std::memcpy(cand_.data(), words.data(), cand_.size());
+  };
+  switch (cand_bytes_) {
+  case 1: keep(candidate_words<std::uint8_t>(x, labels_)); break;
+  case 2: keep(candidate_words<std::uint16_t>(x, labels_)); break;
+  case 4: keep(candidate_words<std::uint32_t>(x, labels_)); break;
+  default: keep(candidate_words<std::uint64_t>(x, labels_));
   }
-  for (int axis = 0; axis < 3; ++axis)
-    window(x, axis, -2, 3, std::uint64_t(1), cand_, [](std::uint64_t a, std::uint64_t b) { return a | b; });
   bit_labels_.resize(64);
   for (std::size_t k = 0; k < labels_.size(); ++k) bit_labels_[k % 64].push_back(k);
 }
@@ -207,7 +222,7 @@ std::int32_t LabelFunction::label(const Vec3& p) const {
   // negative, argmin over all of them (ties: the lower label).
   std::size_t cand[64], n = 0;
   std::vector<std::size_t> more;  // past 64 candidates (maps of more than 64 labels)
-  for (std::uint64_t m = cand_[grid_.index(c[0], c[1], c[2])]; m; m &= m - 1)
+  for (std::uint64_t m = candidates(grid_.index(c[0], c[1], c[2])); m; m &= m - 1)
     for (const std::size_t k : bit_labels_[std::size_t(__builtin_ctzll(m))]) {
       const Function& fn = *f_[k];
       if (fn.sign > 0 && (q[0] < fn.lo[0] || q[0] > fn.hi[0] || q[1] < fn.lo[1] || q[1] > fn.hi[1] ||

@@ -30,6 +30,7 @@
 #include "implicit/partition_of_unity.hpp"
 
 #include <cstdint>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -85,8 +86,19 @@ private:
   static constexpr std::uint16_t kCubeLabel = 0x7fff, kPure = 0x8000;
   std::vector<std::uint16_t> cubes_;
   // Per cube the labels that can be lambda in it (bits: label index % 64),
-  // and per bit its label indices.
-  std::vector<std::uint64_t> cand_;
+  // in words of cand_bytes_ (the fewest that hold every label's bit, up to
+  // 8), and per bit its label indices.
+  std::vector<std::uint8_t> cand_;
+  std::size_t cand_bytes_ = 8;
+  std::uint64_t candidates(std::size_t cube) const {
+    const std::uint8_t* p = cand_.data() + cube * cand_bytes_;
+    switch (cand_bytes_) {
+    case 1: return p[0];
+    case 2: { std::uint16_t w; std::memcpy(&w, p, 2); return w; }
+    case 4: { std::uint32_t w; std::memcpy(&w, p, 4); return w; }
+    default: { std::uint64_t w; std::memcpy(&w, p, 8); return w; }
+    }
+  }
   std::vector<std::vector<std::size_t>> bit_labels_;
   double min_spacing_ = 1;
 };

@@ -152,7 +152,8 @@ private:
   std::vector<FacetWalk> walks_;
   std::vector<std::vector<LabelFunction::Change>> walk_changes_;  // per thread
   std::vector<Vh> new_vertices_;
-  std::vector<std::pair<int, Vh>> touched_;  // (id, vertex)
+  std::vector<std::pair<int, Vh>> touched_;  // (id, vertex), each once
+  std::vector<char> touched_mark_;           // per vertex id: in touched_
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
   std::vector<std::int32_t> other_, seq_;
