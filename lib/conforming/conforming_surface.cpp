@@ -2,6 +2,7 @@
 
 #include "implicit/parallel.hpp"
 #include "util/error.hpp"
+#include "util/memory.hpp"
 
 #include <cmath>
 #include <numeric>
@@ -581,10 +582,14 @@ void Mesher::refine() {
     voxel_sides();
     if (sides_.empty() || !insert_all(sides_)) break;
   }
-  // The first pass's lists (every cell's) not kept past REFINE.
+  // The first pass's lists (every cell's) and the candidates' (empty now,
+  // or past the point cap) not kept past REFINE, their pages given back
+  // before the certificate's.
   std::vector<FacetWalk>().swap(walks_);
   std::vector<Ch>().swap(pending_);
   std::vector<Ch>().swap(fresh_);
+  for (auto* cands : {&topology_, &quality_, &sides_}) std::vector<Candidate>().swap(*cands);
+  release_free_memory();
 }
 
 // The facets in the order of their sorted vertex ids, the vertices
