@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -165,8 +166,25 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   // stands for label index k (a superset past 64 labels).
   cand_bytes_ = labels_.size() <= 8 ? 1 : labels_.size() <= 16 ? 2 : labels_.size() <= 32 ? 4 : 8;
   auto keep = [&](const auto& words) {
-    cand_.resize(words.size() * sizeof(words[0]));
-    std::memcpy(cand_.data(), words.data(), cand_.size());
+    const std::size_t w = sizeof(words[0]);
+    for (int a = 0; a < 3; ++a) cand_blocks_[std::size_t(a)] = (x.size[a] + 3) / 4;
+    cand_block_.assign(cand_blocks_[0] * cand_blocks_[1] * cand_blocks_[2], 0);
+    std::uint32_t slots = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+      if (pass == 1) cand_.assign(std::size_t(slots) * 64 * w, 0);
+      for (std::size_t k = 0; k < x.size[2]; ++k)
+        for (std::size_t j = 0; j < x.size[1]; ++j)
+          for (std::size_t i = 0; i < x.size[0]; ++i) {
+            const std::size_t v = x.index(i, j, k);
+            std::uint32_t& slot = cand_block_[(k / 4 * cand_blocks_[1] + j / 4) * cand_blocks_[0] + i / 4];
+            if (pass == 0) {
+              if (slot == 0 && !(cubes_[v] & kPure)) slot = ++slots;
+            } else if (slot != 0) {
+              const std::size_t at = (std::size_t(slot - 1) * 64 + (k % 4) * 16 + (j % 4) * 4 + i % 4) * w;
+              std::memcpy(cand_.data() + at, &words[v], w);
+            }
+          }
+    }
   };
   switch (cand_bytes_) {
   case 1: keep(candidate_words<std::uint8_t>(x, labels_)); break;
@@ -176,6 +194,20 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   }
   bit_labels_.resize(64);
   for (std::size_t k = 0; k < labels_.size(); ++k) bit_labels_[k % 64].push_back(k);
+}
+
+// A block not kept holds only pure cubes, where label() does not ask: all
+// labels there (a superset) all the same.
+std::uint64_t LabelFunction::candidates(std::size_t i, std::size_t j, std::size_t k) const {
+  const std::uint32_t slot = cand_block_[(k / 4 * cand_blocks_[1] + j / 4) * cand_blocks_[0] + i / 4];
+  if (slot == 0) return ~std::uint64_t(0);
+  const std::uint8_t* p = cand_.data() + (std::size_t(slot - 1) * 64 + (k % 4) * 16 + (j % 4) * 4 + i % 4) * cand_bytes_;
+  switch (cand_bytes_) {
+  case 1: return p[0];
+  case 2: { std::uint16_t w; std::memcpy(&w, p, 2); return w; }
+  case 4: { std::uint32_t w; std::memcpy(&w, p, 4); return w; }
+  default: { std::uint64_t w; std::memcpy(&w, p, 8); return w; }
+  }
 }
 
 std::size_t LabelFunction::index_of(std::int32_t label) const {
@@ -222,7 +254,7 @@ std::int32_t LabelFunction::label(const Vec3& p) const {
   // negative, argmin over all of them (ties: the lower label).
   std::size_t cand[64], n = 0;
   std::vector<std::size_t> more;  // past 64 candidates (maps of more than 64 labels)
-  for (std::uint64_t m = candidates(grid_.index(c[0], c[1], c[2])); m; m &= m - 1)
+  for (std::uint64_t m = candidates(c[0], c[1], c[2]); m; m &= m - 1)
     for (const std::size_t k : bit_labels_[std::size_t(__builtin_ctzll(m))]) {
       const Function& fn = *f_[k];
       if (fn.sign > 0 && (q[0] < fn.lo[0] || q[0] > fn.hi[0] || q[1] < fn.lo[1] || q[1] > fn.hi[1] ||

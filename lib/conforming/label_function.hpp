@@ -29,8 +29,8 @@
 #include "image/grid.hpp"
 #include "implicit/partition_of_unity.hpp"
 
+#include <array>
 #include <cstdint>
-#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -87,18 +87,14 @@ private:
   std::vector<std::uint16_t> cubes_;
   // Per cube the labels that can be lambda in it (bits: label index % 64),
   // in words of cand_bytes_ (the fewest that hold every label's bit, up to
-  // 8), and per bit its label indices.
+  // 8), kept for the blocks of 4x4x4 cubes that hold a cube not pure
+  // (label() answers in a pure cube without them): per block its slot + 1
+  // in cand_ (0: none kept), and per bit its label indices.
   std::vector<std::uint8_t> cand_;
+  std::vector<std::uint32_t> cand_block_;
+  std::array<std::size_t, 3> cand_blocks_{0, 0, 0};
   std::size_t cand_bytes_ = 8;
-  std::uint64_t candidates(std::size_t cube) const {
-    const std::uint8_t* p = cand_.data() + cube * cand_bytes_;
-    switch (cand_bytes_) {
-    case 1: return p[0];
-    case 2: { std::uint16_t w; std::memcpy(&w, p, 2); return w; }
-    case 4: { std::uint32_t w; std::memcpy(&w, p, 4); return w; }
-    default: { std::uint64_t w; std::memcpy(&w, p, 8); return w; }
-    }
-  }
+  std::uint64_t candidates(std::size_t i, std::size_t j, std::size_t k) const;
   std::vector<std::vector<std::size_t>> bit_labels_;
   double min_spacing_ = 1;
 };
