@@ -473,8 +473,9 @@ bool DelMesh::handle_vertex_pass() {
   return insert_batch(pts, kHandle);
 }
 
-// VoxelSides (issue 38), once TOPOLOGY has nothing left: a point of S for
-// every voxel centre whose cell lies on the other side. Each goes in at
+// VoxelSides (issue 38), once the queues have drained (VorEdge has
+// nothing left): a point of S for every voxel centre whose cell lies on
+// the other side. Each goes in at
 // least half the centre's distance to W from W (doc/implicit2mesh.md 4.9),
 // and at least QUALITY's guard. True if one went in.
 bool DelMesh::voxel_sides_pass() {
