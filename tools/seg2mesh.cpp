@@ -50,7 +50,7 @@ int run_fast(cli::Tool& tool, const std::string& in, const std::string& out, Lab
   tool.report_progress("reading " + in);
   LabelImage image = read_labels(in, &opt.names);
   if (opt.conforming) {
-    const RestrictedDelaunayOptions r = mesher.resolve(image.spacing);
+    const RestrictedDelaunayOptions r = mesher.resolve(image.spacing, MesherBounds::Mesher::kConforming);
     opt.conforming_options.ratio = r.ratio;
     opt.conforming_options.max_distance = r.max_distance;
     opt.conforming_options.max_points = r.max_points;

@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
     LabelImage image = read_labels(in, &opt.names);
     if (std::any_of(image.data.begin(), image.data.end(), [](std::int32_t v) { return v < 0; }))
       throw Error("negative label values: a region is a label above 0 (relabel the map)", in);
-    const RestrictedDelaunayOptions r = surface_options.resolve(image.spacing);
+    const RestrictedDelaunayOptions r = surface_options.resolve(image.spacing, MesherBounds::Mesher::kConforming);
     opt.conforming_options.ratio = r.ratio;
     opt.conforming_options.max_distance = r.max_distance;
     opt.conforming_options.max_points = r.max_points;

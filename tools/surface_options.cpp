@@ -21,7 +21,9 @@ SurfaceOptions::SurfaceOptions(cli::Tool& tool, const std::string& what, bool ro
   }
   tool.app.add_option("--max-distance", bounds_.max_distance,
                       "Refine while a " + what + "'s surface Delaunay ball centre (a point of the surface) is farther "
-                      "than E (world units) from the " + what + "'s plane, or |f| at its centroid is more than 2E; 0: off")
+                      "than E (world units) from the " + what + "'s plane, or |f| at its centroid is more than 2E; 0: off. "
+                      "The default is 0.4 voxel with --voxel-sides (which bounds the error at the voxel centres), "
+                      "0.3 voxel with --no-voxel-sides and for the conforming mesher (seg2mesh --conforming, seg2tet)")
       ->type_name("E")
       ->capture_default_str();
   if (roughness_and_fallbacks) {

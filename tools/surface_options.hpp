@@ -26,8 +26,11 @@ public:
   // After parsing, before the grid is known: UsageError naming a bad option.
   void check() const { bounds_.check(); }
   // After parsing: the options, checked, with their units resolved and the
-  // distance's default from the grid's voxel spacing.
-  RestrictedDelaunayOptions resolve(const Vec3& spacing) const { return bounds_.resolve(spacing); }
+  // distance's default from the grid's voxel spacing (and the mesher).
+  RestrictedDelaunayOptions resolve(const Vec3& spacing,
+                                    MesherBounds::Mesher mesher = MesherBounds::Mesher::kDelaunay) const {
+    return bounds_.resolve(spacing, mesher);
+  }
 
 private:
   MesherBounds bounds_;

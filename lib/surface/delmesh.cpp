@@ -194,8 +194,12 @@ void DelMesh::requeue_grown() {
   grown_.clear();
 }
 
-// TOPOLOGY and the other queues until they drain, then FacetCycle and
-// HandleDetection passes over what changed, until none inserts.
+// TOPOLOGY and the other queues until they drain, then VoxelSides,
+// FacetCycle and HandleDetection passes over what changed, until none
+// inserts. VoxelSides goes first: its side test needs only VorEdge's
+// answer (doc/implicit2mesh.md 4.9), and its passes then change the cells
+// before the two costlier passes look at them once, not after each of its
+// passes.
 void DelMesh::refine() {
   for (;;) {
     drain();
@@ -203,9 +207,9 @@ void DelMesh::refine() {
     // through the passes and the certificate (brain label 4: 3.7 MB).
     if (queue_.empty()) std::vector<Item>().swap(queue_.c);
     if (max_hit_ || !opt_.topology_steps) break;
+    if (opt_.voxel_sides && !topology_only_ && voxel_sides_pass()) continue;
     if (opt_.facet_cycle && facet_cycle_pass()) continue;
-    if (handle_vertex_pass()) continue;
-    if (!opt_.voxel_sides || topology_only_ || !voxel_sides_pass()) break;
+    if (!handle_vertex_pass()) break;
   }
 }
 
@@ -469,8 +473,9 @@ bool DelMesh::handle_vertex_pass() {
   return insert_batch(pts, kHandle);
 }
 
-// VoxelSides (issue 38), once TOPOLOGY has nothing left: a point of S for
-// every voxel centre whose cell lies on the other side. Each goes in at
+// VoxelSides (issue 38), once the queues have drained (VorEdge has
+// nothing left): a point of S for every voxel centre whose cell lies on
+// the other side. Each goes in at
 // least half the centre's distance to W from W (doc/implicit2mesh.md 4.9),
 // and at least QUALITY's guard. True if one went in.
 bool DelMesh::voxel_sides_pass() {

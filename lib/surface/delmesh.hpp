@@ -17,13 +17,13 @@
 //         QUALITY: a restricted facet's ratio > rho_0              criteria.cpp (7.6.3)
 //         SMOOTH: an edge's roughness > g                          criteria.cpp (7.6.4)
 //         --max-distance: a surface centre far from its facet      criteria.cpp
-//       then, over what changed since the last pass:
+//       then (VorEdge has nothing left):
+//         VoxelSides: a voxel centre next to S in a cell on the
+//           other side of S (its circumcentre's)                   voxel_side_points.cpp (issue 38)
+//       then, once it finds nothing, over what changed since the last pass:
 //         FacetCycle: S closed inside a Voronoi facet              facet_cycle.cpp (8.2),
 //           its raster of the facet                                facet_cycle_raster.cpp
 //         HandleDetection: S inside a Voronoi cell not a disk      handle_detection.cpp (8.3)
-//       then, once those find nothing (the closed ball property):
-//         VoxelSides: a voxel centre next to S in a cell on the
-//           other side of S (its circumcentre's)                   voxel_side_points.cpp (issue 38)
 //     certificate: components and Euler characteristics against
 //       bdCA(X), per component and by place                        certificate.cpp
 //     while a component differs (at most --fallback-rounds rounds):

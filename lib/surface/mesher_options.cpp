@@ -61,11 +61,12 @@ double parse_angle(std::string s) {
   return number(s, NAN) * M_PI / 180;
 }
 
-RestrictedDelaunayOptions MesherBounds::resolve(const Vec3& spacing) const {
+RestrictedDelaunayOptions MesherBounds::resolve(const Vec3& spacing, Mesher mesher) const {
   RestrictedDelaunayOptions o;
   o.ratio = ratio;
   o.roughness = parse_angle(roughness);
-  o.max_distance = max_distance == kVoxelDistance ? 0.3 * std::min({spacing[0], spacing[1], spacing[2]})
+  const double fraction = voxel_sides && mesher == Mesher::kDelaunay ? kVoxelSidesFraction : kPlainFraction;
+  o.max_distance = max_distance == kVoxelDistance ? fraction * std::min({spacing[0], spacing[1], spacing[2]})
                                                   : surface_detail::parse_number(max_distance);
   o.fallback_rounds = fallback_rounds;
   o.max_points = max_points;

@@ -1,6 +1,6 @@
 // VoxelSides (issue 38): the voxel centres next to S whose Delaunay cell
 // lies on the other side of S, and the points of S that refine them. Once
-// no Voronoi edge meets S twice (VorEdge) and TOPOLOGY has nothing left,
+// no Voronoi edge meets S twice (VorEdge has nothing left),
 // the restricted facets are exactly the facets between a cell whose
 // circumcentre f calls inside and one it calls outside (EdgeSurface sees
 // every sign change of f along a Voronoi edge, and a Voronoi edge with one

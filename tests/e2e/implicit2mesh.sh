@@ -61,7 +61,8 @@ case_stdout_is_the_file_output() {
 }
 
 # At the defaults: ratio 1.2, roughness 120 degrees, every triangle's surface
-# centre within 0.3 of the smallest voxel spacing of its plane.
+# centre within 0.4 of the smallest voxel spacing of its plane (0.3 with
+# --no-voxel-sides).
 case_bunny_defaults_hold_each_bound() {
   local f; f=$(shared bunny-f.nrrd bunny_f)
   expect 0 implicit2mesh "$f" bunny.ply --stats stats.json
@@ -75,13 +76,13 @@ assert abs(s['max_roughness_degrees'] - read) < 0.01, (s['max_roughness_degrees'
 head = open(sys.argv[2], 'rb').read().split(b'\n\n')[0].decode()
 dirs = re.search(r'space directions: (.*)', head).group(1)
 h = min(sum(float(x) ** 2 for x in v.strip('()').split(',')) ** 0.5 for v in dirs.split())
-assert s['max_distance_to_plane'] <= 0.3 * h * (1 + 1e-9), (s['max_distance_to_plane'], h)
+assert s['max_distance_to_plane'] <= 0.4 * h * (1 + 1e-9), (s['max_distance_to_plane'], h)
 assert s['max_roughness_degrees'] <= 120 + 1e-9 and abs(s['roughness_bound_degrees'] - 120) < 1e-9, s['max_roughness_degrees']
 assert s['min_angle_degrees'] >= 24.6, s['min_angle_degrees']
 PY
-  # The distance bound measured, not read from --stats: E = 0.3 of the
+  # The distance bound measured, not read from --stats: E = 0.4 of the
   # smallest spacing (the README's default).
-  python3 "$DIST" bunny.ply "$f" "$(spacing "$f" 0.3)" "$BIN/implicit-eval" --centroids > dist.txt 2>&1 ||
+  python3 "$DIST" bunny.ply "$f" "$(spacing "$f" 0.4)" "$BIN/implicit-eval" --centroids > dist.txt 2>&1 ||
     fail "bunny at the defaults: $(cat dist.txt)"
 }
 
@@ -100,12 +101,13 @@ case_bunny_every_voxel_centre_on_its_side() {
 
 # The distance bound's centroid half on brain tissue at the defaults: with
 # the surface centres alone within E = 0.3 voxel of their planes, a
-# triangle of brain label 1 had |f| = 0.63 voxel at its centroid.
+# triangle of brain label 1 had |f| = 0.63 voxel at its centroid (E is 0.4
+# voxel at the defaults now, with VoxelSides).
 case_brain_label1_centroids_within_twice_the_bound() {  # scale
   expect 0 img2wc "$DATA/brain-kmeans-labels.nii.gz" --label 1 b1-wc.nrrd -q
   expect 0 wc2implicit b1-wc.nrrd b1-f.nrrd -q
   expect 0 implicit2mesh b1-f.nrrd b1.off
-  python3 "$DIST" b1.off b1-f.nrrd "$(spacing b1-f.nrrd 0.3)" "$BIN/implicit-eval" --centroids > dist.txt 2>&1 ||
+  python3 "$DIST" b1.off b1-f.nrrd "$(spacing b1-f.nrrd 0.4)" "$BIN/implicit-eval" --centroids > dist.txt 2>&1 ||
     fail "brain label 1 at the defaults: $(cat dist.txt)"
 }
 
@@ -113,11 +115,14 @@ case_brain_label1_centroids_within_twice_the_bound() {  # scale
 # coarser mesh; radians and degrees are one angle (pi/3 = 60 =
 # 1.0471975511965976rad); an old radian value without unit is refused.
 LOOSE=(--ratio 2 --max-distance 0)
+# Both without VoxelSides: with it, the step alone keeps the mesh near the
+# voxel centres, and the thesis's bounds then give more triangles than the
+# defaults (the bunny: 13,484 against 12,104).
 case_loosened_bounds_and_angle_units() {
   local f; f=$(shared bunny-f.nrrd bunny_f)
-  expect 0 implicit2mesh "$f" loose.off "${LOOSE[@]}" --roughness pi/3 --stats loose.json
+  expect 0 implicit2mesh "$f" loose.off "${LOOSE[@]}" --roughness pi/3 --no-voxel-sides --stats loose.json
   surface loose.off "$(shared bunny-wc.nrrd bunny_wc)" 2
-  expect 0 implicit2mesh "$f" tight.off --stats tight.json
+  expect 0 implicit2mesh "$f" tight.off --no-voxel-sides --stats tight.json
   python3 - loose.json tight.json <<'PY' || fail "loosened bounds: still acting, or not fewer triangles"
 import json, sys
 s, d = (json.load(open(a)) for a in sys.argv[1:3])
@@ -128,8 +133,8 @@ PY
   # voxel (so distance_check.py can fail).
   python3 "$DIST" loose.off "$f" "$(spacing "$f" 0.25)" "$BIN/implicit-eval" > dist.txt 2>&1 &&
     fail "--max-distance 0: every triangle within a quarter voxel: $(cat dist.txt)"
-  expect 0 implicit2mesh "$f" loose-deg.off "${LOOSE[@]}" --roughness 60
-  expect 0 implicit2mesh "$f" loose-rad.off "${LOOSE[@]}" --roughness 1.0471975511965976rad
+  expect 0 implicit2mesh "$f" loose-deg.off "${LOOSE[@]}" --roughness 60 --no-voxel-sides
+  expect 0 implicit2mesh "$f" loose-rad.off "${LOOSE[@]}" --roughness 1.0471975511965976rad --no-voxel-sides
   cmp -s loose.off loose-deg.off && cmp -s loose.off loose-rad.off || fail "--roughness pi/3, 60 and 1.047...rad differ"
   expect 2 implicit2mesh "$f" out.off --roughness 1.5708     # degrees: below the limit
   grep -q "degrees" err.txt || fail "--roughness 1.5708: the message does not name the unit"

@@ -42,7 +42,11 @@ TEST_CASE("MesherBounds::resolve: units, the distance's default, the other field
   RestrictedDelaunayOptions o = b.resolve({0.5, 2, 0.8});
   CHECK(o.ratio == 1.2);
   CHECK(o.roughness == Approx(2 * M_PI / 3));
-  CHECK(o.max_distance == Approx(0.15));  // 0.3 of the smallest spacing
+  CHECK(o.max_distance == Approx(0.2));  // 0.4 of the smallest spacing, with VoxelSides
+  CHECK(b.resolve({0.5, 2, 0.8}, MesherBounds::Mesher::kConforming).max_distance == Approx(0.15));  // 0.3
+  b.voxel_sides = false;
+  CHECK(b.resolve({0.5, 2, 0.8}).max_distance == Approx(0.15));  // 0.3 without it
+  CHECK(!b.resolve({0.5, 2, 0.8}).voxel_sides);
   CHECK(o.max_points == RestrictedDelaunayOptions().max_points);
   CHECK(o.seed == 0);
   b.roughness = "pi/3";

@@ -149,9 +149,10 @@ TEST_CASE("pipeline: degenerate and symmetric inputs (single voxel, 1-voxel rod 
 }
 
 TEST_CASE("VoxelSides: every voxel centre next to bdCA(X) on its own side at the tools' defaults (a ball, a thin shell, random blobs)") {
-  // At the tools' bounds (--ratio 1.2, --roughness 120, --max-distance 0.3
-  // voxel) the mesh cuts centres off without VoxelSides: 16 of the ball's
-  // foreground centres outside, and the shell's both ways (measured).
+  // At the tools' bounds with --no-voxel-sides (--ratio 1.2, --roughness
+  // 120, --max-distance 0.3 voxel) the mesh cuts centres off: 16 of the
+  // ball's foreground centres outside, and the shell's both ways (measured);
+  // with it (--max-distance 0.4 voxel), none.
   using In = std::function<bool(double, double, double)>;
   std::vector<In> shapes{[](double x, double y, double z) { return std::hypot(x - 9.6, y - 9.3, z - 9.8) < 5.3; },
                          [](double x, double y, double z) {
@@ -184,16 +185,16 @@ TEST_CASE("VoxelSides: every voxel centre next to bdCA(X) on its own side at the
       for (const auto& tri : r.mesh.triangles) comp.push_back(t.component_of[std::size_t(tri[0])]);
       return voxel_sides(r.mesh.points, r.mesh.triangles, comp, t.components.size(), wc).wrong();
     };
-    RestrictedDelaunayOptions o = MesherBounds().resolve(pu.samples().spacing);
-    REQUIRE(o.voxel_sides);  // on by default
-    o.voxel_sides = false;
-    const RestrictedDelaunayResult off = restricted_delaunay_mesh(s, o);
+    MesherBounds bounds;
+    REQUIRE(bounds.voxel_sides);  // on by default
+    const RestrictedDelaunayOptions o = bounds.resolve(pu.samples().spacing);
+    bounds.voxel_sides = false;
+    const RestrictedDelaunayResult off = restricted_delaunay_mesh(s, bounds.resolve(pu.samples().spacing));
     CHECK(wrong(off) > 0);  // measured: 2 to 16 without VoxelSides
     CHECK(off.voxel_sides_counted);
     CHECK(off.voxel_sides.wrong() == wrong(off));  // counted, not failed, when off
     CHECK(off.failed_guarantee().empty());
     CHECK(off.inserted("voxel_side") == 0);
-    o.voxel_sides = true;
     const RestrictedDelaunayResult on = restricted_delaunay_mesh(s, o);
     INFO("failure: " << on.failed_guarantee());
     CHECK(on.failed_guarantee().empty());
