@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
   add_msh_version_option(tool, wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")->type_name("V");
   add_encoding_options(tool, wopt.ascii, wopt.msh_binary, ".vtu");
   SurfaceOptions surface_options(tool, "interface triangle", false);
+  // The conforming mesher's distance default, not the Delaunay mesher's with VoxelSides.
+  tool.app.get_option("--max-distance")->default_str("0.3 voxel");
 
   return tool.run(argc, argv, [&] {
     if (out == "-") throw UsageError("tetrahedral meshes are written to a file (.msh, .mesh, .vtu or .inp), not to stdout");
