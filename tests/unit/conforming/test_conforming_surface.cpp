@@ -244,8 +244,9 @@ TEST_CASE("the labels' tetrahedra conform, bound their labels and hold their vox
 // four cocircular) with tetrahedra of circumradius at most one voxel: a
 // sliver's encroached facet took its surface centre, a lattice as fine
 // again, and the slivers ran down to the insertion floor (seg2tet before
-// the off-centre rule, capped at 30,000 cell points: 10,430 under 10 degrees). Its
-// surface point off the centre: every dihedral angle at least the bound.
+// the off-centre rule, capped at 30,000 cell points: 10,430 under 10
+// degrees). Its surface point off the centre: every dihedral angle at
+// least the bound.
 TEST_CASE("slivers on a flat interface refined away without smaller ones", "[conforming]") {
   LabelImage x = label_grid(24, 24, 10);
   paint(x, {2, 2, 2}, {21, 21, 4}, 1);
