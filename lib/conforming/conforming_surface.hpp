@@ -35,7 +35,10 @@
 //              sliver bound) gets its circumcentre, unless that lies in the
 //              surface Delaunay ball of a restricted facet (the facets of
 //              its conflict zone): then that facet's surface centre
-//              (Oudot-Rineau-Yvinec's rule, implicit2tet's); REFINE after
+//              (Oudot-Rineau-Yvinec's rule, implicit2tet's), for a sliver
+//              a point of the interface an eighth of the ball's radius off
+//              it (a flat patch's cocircular points made no finer lattice
+//              of cocircular points); REFINE after
 //              each round, where a restricted facet with a vertex off the
 //              interfaces (a cell's circumcentre) gets its surface centre;
 //              then every voxel centre located (its cell's label).

@@ -131,6 +131,7 @@ private:
   };
   double badness(Ch c, bool& sliver);
   bool alive(const BadCell& e) const;
+  void off_centre(const std::array<Vh, 4>& v, Ch c, int i, double r2, Vec3& x);
   void refine_cells();
   void tets_output(ConformingSurface& out);
 

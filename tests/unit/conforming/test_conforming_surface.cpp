@@ -239,3 +239,35 @@ TEST_CASE("the labels' tetrahedra conform, bound their labels and hold their vox
     }
   }
 }
+
+// Two slabs on each other (a flat interface, its seeds a square lattice,
+// four cocircular) with tetrahedra of circumradius at most one voxel: a
+// sliver's encroached facet took its surface centre, a lattice as fine
+// again, and the slivers ran down to the insertion floor (seg2tet before
+// the off-centre rule, capped at 30,000 cell points: 10,430 under 10
+// degrees). Its surface point off the centre: every dihedral angle at
+// least the bound.
+TEST_CASE("slivers on a flat interface refined away without smaller ones", "[conforming]") {
+  LabelImage x = label_grid(24, 24, 10);
+  paint(x, {2, 2, 2}, {21, 21, 4}, 1);
+  paint(x, {2, 2, 5}, {21, 21, 7}, 2);
+  ConformingOptions o;
+  o.tets.on = true;
+  o.tets.cell_size = 1;
+  o.tets.max_cell_points = 30000;
+  ConformingSurface m;
+  const InterfaceCertificate c = mesh_and_certify(x, m, o);
+  INFO(c.summary());
+  INFO(m.to_json().dump());
+  CHECK(c.ok());
+  CHECK(!m.cell_points_exhausted);
+  CHECK(!m.cell_rounds_exhausted);
+  const TetQualityReport q = tet_quality(m.tets);
+  CHECK(q.max_radius_edge_ratio <= 2 + 1e-9);
+  CHECK(q.min_dihedral >= o.tets.sliver_angle);
+  // The direction off the centre drawn from vertex ids: the same mesh again.
+  ConformingSurface again;
+  mesh_and_certify(x, again, o);
+  CHECK(again.tets.points == m.tets.points);
+  CHECK(again.tets.tets == m.tets.tets);
+}
