@@ -475,9 +475,9 @@ bool DelMesh::handle_vertex_pass() {
 
 // VoxelSides (issue 38), once the queues have drained (VorEdge has
 // nothing left): a point of S for every voxel centre whose cell lies on
-// the other side. Each goes in at
-// least half the centre's distance to W from W (doc/implicit2mesh.md 4.9),
-// and at least QUALITY's guard. True if one went in.
+// the other side. Each goes in at least half the centre's distance to W
+// from W (doc/implicit2mesh.md 4.9), and at least QUALITY's guard. True if
+// one went in.
 bool DelMesh::voxel_sides_pass() {
   phase_ = "voxel sides";
   const Candidates pts = voxel_side_points_(tr_, sampler_, walk_start_, 1e-3 * grid_.delta, voxel_sides_wrong_, refused_);
