@@ -4,6 +4,7 @@
 #include "conforming/mesher.hpp"
 
 #include "mesh/tet_mesh.hpp"
+#include "util/hash.hpp"
 
 #include <cmath>
 #include <unordered_map>
@@ -49,13 +50,8 @@ void Mesher::off_centre(const std::array<Vh, 4>& v, Ch c, int i, double r2, Vec3
   std::array<int, 4> id{v[0]->info(), v[1]->info(), v[2]->info(), v[3]->info()};
   std::sort(id.begin(), id.end());
   std::uint64_t h = 0x9e3779b97f4a7c15ull;  // splitmix64 over the ids
-  for (int k : id) {
-    h += std::uint64_t(std::uint32_t(k)) + 0x9e3779b97f4a7c15ull;
-    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
-    h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
-    h ^= h >> 31;
-  }
-  const double angle = 2 * M_PI * double(h >> 11) / 9007199254740992.0, r = std::sqrt(r2);
+  for (int k : id) h = splitmix64(h + std::uint64_t(std::uint32_t(k)));
+  const double angle = 2 * M_PI * unit01(h), r = std::sqrt(r2);
   Vec3 a, b;
   for (int m = 0; m < 3; ++m) {
     const double y = x[m] + r / 8 * (std::cos(angle) * u[m] + std::sin(angle) * w[m]);

@@ -2,6 +2,8 @@
 // restricted Delaunay surface and the points of S that refine them.
 #include "surface/voxel_side_points.hpp"
 
+#include "util/hash.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_set>
@@ -28,16 +30,10 @@ template <class F> void for_each_centre(const CubeGrid& g, F&& visit) {
   }
 }
 
-std::uint64_t mix(std::uint64_t z) {  // splitmix64's finaliser
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-
 // A cell's vertices as one number, whatever their order.
 std::uint64_t vertices_of(const Tr& tr, Ch c) {
   std::uint64_t h = 0;
-  for (int i = 0; i < 4; ++i) h += mix(std::uint64_t(tr.is_infinite(c->vertex(i)) ? 0 : c->vertex(i)->info().id + 1));
+  for (int i = 0; i < 4; ++i) h += mix64(std::uint64_t(tr.is_infinite(c->vertex(i)) ? 0 : c->vertex(i)->info().id + 1));
   return h;
 }
 
