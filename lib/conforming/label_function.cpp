@@ -176,12 +176,11 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
         for (std::size_t j = 0; j < x.size[1]; ++j)
           for (std::size_t i = 0; i < x.size[0]; ++i) {
             const std::size_t v = x.index(i, j, k);
-            std::uint32_t& slot = cand_block_[(k / 4 * cand_blocks_[1] + j / 4) * cand_blocks_[0] + i / 4];
+            std::uint32_t& slot = cand_block_[cand_block_of(i, j, k)];
             if (pass == 0) {
               if (slot == 0 && !(cubes_[v] & kPure)) slot = ++slots;
             } else if (slot != 0) {
-              const std::size_t at = (std::size_t(slot - 1) * 64 + (k % 4) * 16 + (j % 4) * 4 + i % 4) * w;
-              std::memcpy(cand_.data() + at, &words[v], w);
+              std::memcpy(cand_.data() + cand_word_of(slot, i, j, k) * w, &words[v], w);
             }
           }
     }
@@ -199,9 +198,9 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
 // A block not kept holds only pure cubes, where label() does not ask: all
 // labels there (a superset) all the same.
 std::uint64_t LabelFunction::candidates(std::size_t i, std::size_t j, std::size_t k) const {
-  const std::uint32_t slot = cand_block_[(k / 4 * cand_blocks_[1] + j / 4) * cand_blocks_[0] + i / 4];
+  const std::uint32_t slot = cand_block_[cand_block_of(i, j, k)];
   if (slot == 0) return ~std::uint64_t(0);
-  const std::uint8_t* p = cand_.data() + (std::size_t(slot - 1) * 64 + (k % 4) * 16 + (j % 4) * 4 + i % 4) * cand_bytes_;
+  const std::uint8_t* p = cand_.data() + cand_word_of(slot, i, j, k) * cand_bytes_;
   switch (cand_bytes_) {
   case 1: return p[0];
   case 2: { std::uint16_t w; std::memcpy(&w, p, 2); return w; }

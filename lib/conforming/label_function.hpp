@@ -95,6 +95,14 @@ private:
   std::array<std::size_t, 3> cand_blocks_{0, 0, 0};
   std::size_t cand_bytes_ = 8;
   std::uint64_t candidates(std::size_t i, std::size_t j, std::size_t k) const;
+  // Cube (i, j, k)'s block, and its word's index in cand_ (x fastest in a
+  // block; slot: the block's entry, 1 or more).
+  std::size_t cand_block_of(std::size_t i, std::size_t j, std::size_t k) const {
+    return (k / 4 * cand_blocks_[1] + j / 4) * cand_blocks_[0] + i / 4;
+  }
+  static std::size_t cand_word_of(std::uint32_t slot, std::size_t i, std::size_t j, std::size_t k) {
+    return std::size_t(slot - 1) * 64 + (k % 4) * 16 + (j % 4) * 4 + i % 4;
+  }
   std::vector<std::vector<std::size_t>> bit_labels_;
   double min_spacing_ = 1;
 };
