@@ -1,8 +1,9 @@
 // DELMESH (thesis 7.6.5) on CGAL's Delaunay_triangulation_3, kept
 // incremental: every insertion recomputes only the facets of the new cells
 // (all incident to the new vertex) and re-checks only the vertices whose
-// restricted facets changed. The only code that changes the triangulation;
-// every subroutine is a query in a file of its own:
+// restricted facets changed. The only code that changes the triangulation
+// (delmesh.cpp: upkeep, queues, insertion; delmesh_run.cpp: the passes past
+// the queues and the run); every subroutine is a query in a file of its own:
 //
 //   DELMESH(S, rho_0, g):
 //     check f; the cube grid, its components, bdCA(X)'s topology   cube_grid.cpp, certificate.cpp
