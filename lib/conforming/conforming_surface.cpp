@@ -52,18 +52,21 @@ ConformingSurface Mesher::certified_rounds() {
   ConformingSurface out = output();
   // Rounds repair a patch sampled too coarsely (a small patch in pieces
   // where the curves around it are), not a labelling that disagrees with
-  // K(X), where refining does not converge (and grades the mesh around
-  // ever finer: the brain map's third round tripled its points): they
-  // run while each round halves the failing places, counted across calls
-  // (seg2tet calls again after its cells: a fresh count there let each
-  // call refine once more, and the brain map's tetrahedra ran to the
-  // point cap).
+  // K(X), where refining does not converge: they run while each round
+  // leaves fewer failing places (a large patch's places are all its curve
+  // edges: the brain map's went 4,986, 4,709, none), counted across calls (seg2tet calls again after its cells:
+  // a fresh count there let each call refine once more, and the brain
+  // map's tetrahedra ran to the point cap).
   while (o_.certificate && rounds_ < o_.certificate_rounds && !max_hit_) {
     const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
     out.certified_as_is = true;
-    const std::size_t before = places_;
+    // A certified surface that seg2tet's cells broke starts a fresh count.
+    const std::size_t before = places_ == 0 ? std::size_t(-1) : places_;
     places_ = bad.size();
-    if (bad.empty() || bad.size() > before / 2 || !refine_near(bad)) break;
+    if (o_.progress && !bad.empty())
+      o_.progress("certificate: " + std::to_string(bad.size()) + " failing places after " + std::to_string(rounds_) +
+                  " rounds");
+    if (bad.empty() || bad.size() >= before || !refine_near(bad)) break;
     ++rounds_;
     refine();
     out = output();
@@ -92,7 +95,7 @@ void Mesher::bounding_box() {
 
 // start: a cell near p where the caller knows one (the walk starts there;
 // the triangulation is the same whatever the start).
-bool Mesher::insert(const Vec3& p, int step, Ch start) {
+bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
   if (points_ >= o_.max_points) {
     max_hit_ = true;
     return false;
@@ -105,7 +108,7 @@ bool Mesher::insert(const Vec3& p, int step, Ch start) {
     return false;
   }
   Vh near = tr_.nearest_vertex(pt(p), c);
-  if (dist2(vec(near->point()), p) < 1e-12 * voxel_ * voxel_) {
+  if (dist2(vec(near->point()), p) < std::max(gap2, 1e-12 * voxel_ * voxel_)) {
     ++refused_;
     return false;
   }
@@ -476,26 +479,33 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
     return false;
   };
   // CGAL gives each facet from the cell of the lower address: the walk
-  // goes from the smaller circumcentre (uid on a tie) and the points go in
+  // goes from the smaller circumcentre (uid on a tie) and the centres are
   // sorted, the same every run (the walk's bisection depends on its
-  // direction, the vertex ids on the order).
-  std::vector<Vec3> pts;
+  // direction, the vertex ids on the order). They go in larger surface
+  // balls first, each unless a vertex is already within a quarter of its
+  // ball's radius: the centres of two neighbouring facets can lie 1e-4
+  // voxel apart, and QUALITY would then grade the mesh down to them
+  // (hundreds of triangles, and seg2tet's slivers, in a thousandth of a voxel).
+  std::vector<std::pair<double, Vec3>> centres;  // (squared radius, centre)
   for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
     Ch c = f->first, n = c->neighbor(f->second);
     if (tr_.is_infinite(c) || tr_.is_infinite(n) || label(c) == label(n) || !may_be_near(centre(c), centre(n)))
       continue;
     if (std::make_pair(centre(n), n->info().uid) < std::make_pair(centre(c), c->info().uid)) std::swap(c, n);
+    const int i = c->index(n);
     Vec3 x;
-    if (!surface_centre(c, c->index(n), x)) continue;
+    if (!surface_centre(c, i, x)) continue;
     const Vec3 q = x_.continuous_index(x);
-    const auto i = std::ptrdiff_t(std::floor(q[0] + 0.5)), j = std::ptrdiff_t(std::floor(q[1] + 0.5)),
-               k = std::ptrdiff_t(std::floor(q[2] + 0.5));
-    if (x_.inside(i, j, k) && near[x_.index(std::size_t(i), std::size_t(j), std::size_t(k))]) pts.push_back(x);
+    const auto vi = std::ptrdiff_t(std::floor(q[0] + 0.5)), vj = std::ptrdiff_t(std::floor(q[1] + 0.5)),
+               vk = std::ptrdiff_t(std::floor(q[2] + 0.5));
+    if (x_.inside(vi, vj, vk) && near[x_.index(std::size_t(vi), std::size_t(vj), std::size_t(vk))])
+      centres.emplace_back(dist2(x, vec(c->vertex((i + 1) & 3)->point())), x);
   }
-  std::sort(pts.begin(), pts.end());
-  pts.erase(std::unique(pts.begin(), pts.end()), pts.end());
+  std::sort(centres.begin(), centres.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
   bool any = false;
-  for (const Vec3& x : pts) any = insert(x, kCertificate) || any;
+  for (const auto& [r2, x] : centres) any = insert(x, kCertificate, Ch(), r2 / 16) || any;
   return any;
 }
 

@@ -92,7 +92,7 @@ private:
     std::sort(v.begin(), v.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
     return v;
   }
-  bool insert(const Vec3& p, int step, Ch start = Ch());
+  bool insert(const Vec3& p, int step, Ch start = Ch(), double gap2 = 0);
   bool surface_centre(Ch c, int i, Vec3& x);
 
   // The surface stage (conforming_surface.cpp).

@@ -271,3 +271,25 @@ TEST_CASE("slivers on a flat interface refined away without smaller ones", "[con
   CHECK(again.tets.points == m.tets.points);
   CHECK(again.tets.tets == m.tets.tets);
 }
+
+// The certificate's rounds insert the surface centres near a failing place
+// as REFINE does, each only while its facet is still there: two centres of
+// neighbouring facets would land 1e-4 voxel apart, and QUALITY would grade
+// the mesh down to them (hundreds of triangles in a thousandth of a voxel).
+TEST_CASE("the certificate's rounds put no two vertices a hair apart", "[conforming]") {
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    const LabelImage x = noisy_map(seed);
+    ConformingSurface m;
+    const InterfaceCertificate c = mesh_and_certify(x, m);
+    INFO("seed " << seed << ": " << m.to_json().dump());
+    REQUIRE(c.ok());
+    double shortest = 1e9;
+    for (const auto& t : m.triangles)
+      for (int e = 0; e < 3; ++e) {
+        const Vec3 &a = m.points[std::size_t(t[e])], &b = m.points[std::size_t(t[(e + 1) % 3])];
+        shortest = std::min(shortest, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+      }
+    INFO("shortest edge " << shortest);
+    CHECK(shortest > 0.01);
+  }
+}
