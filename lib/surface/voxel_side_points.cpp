@@ -98,17 +98,8 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     const Point pp(p[0], p[1], p[2]);
     Tr::Locate_type lt;
     int li, lj;
-    // From a vertex of the cell the centre was last found in (a few cells
-    // away, where the last walk's cell is often far): the same cell when
-    // the centre lies inside one. Else (on a facet, an edge, a vertex,
-    // outside W's hull) the walk's end depends on its start: again from the
-    // last walk's cell, so the answer does not depend on the shortcut.
-    const Ch start = s.near != Vh() && tr.tds().vertices().is_used(s.near) ? s.near->cell() : hint;
-    Ch c = tr.locate(pp, lt, li, lj, start);
-    if (lt != Tr::CELL && start != hint) c = tr.locate(pp, lt, li, lj, hint);
+    const Ch c = tr.locate(pp, lt, li, lj, hint);
     hint = c;
-    for (int i = 0; i < 4; ++i)
-      if (!tr.is_infinite(c->vertex(i))) s.near = c->vertex(i);
     // The cells holding p: one, or those around the facet, edge or vertex it lies on.
     cells.assign(1, c);
     if (lt == Tr::FACET) cells.push_back(c->neighbor(li));

@@ -44,7 +44,6 @@ private:
     Ch cell;
     std::uint64_t vertices = 0;
     std::uint64_t key = 0;
-    Vh near;  // a vertex of the cell the centre was last found in
   };
   std::vector<Seen> seen_;
 };
