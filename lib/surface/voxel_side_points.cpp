@@ -78,12 +78,16 @@ bool crossing(const SurfaceSampler& f, Vec3 a, Vec3 b, Vec3& x) {
 Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh near, double guard, long long& wrong,
                                         long long& refused) {
   const CubeGrid& g = f.grid();
-  if (seen_.empty())
+  if (seen_.empty()) {  // counted first: sized exactly
+    std::size_t n = 0;
+    for_each_centre(g, [&n](long, long, long) { ++n; });
+    seen_.reserve(n);
     for_each_centre(g, [this, &g](long x, long y, long z) {
       Seen s;
       s.key = std::uint64_t(g.key(x, y, z));
       seen_.push_back(s);
     });
+  }
   Candidates pts;
   Ch hint = near->cell();
   std::vector<Ch> cells;
