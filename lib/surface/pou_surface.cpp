@@ -94,7 +94,11 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
     const long p0 = std::max(1L, surface_detail::ceil_long((a[i] - d[i]) / s)), p1 = std::min(cells - 1, surface_detail::floor_long((b[i] + d[i]) / s));
     blend[i] = p0 <= p1;
   }
-  double slo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, shi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  // The slopes' ranges as ranges of the differences e1 - e0 below, each
+  // divided by its spacing only when used: division by s > 0 is monotone,
+  // so the quotient of the least difference is the least quotient (the
+  // same bits as dividing every one, at a 24th of the divisions).
+  double dlo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, dhi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   // [lo, hi] from the slopes' ranges so far: it only widens as they do
   // (every step is monotone), so until_zero stops once it holds 0. In
   // locals, as in range().
@@ -102,7 +106,7 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
   auto enclose = [&] {
     elo = ehi = 0;
     for (int i = 0; i < 3; ++i) {
-      double l = slo[i], h = shi[i];
+      double l = dlo[i] / g.spacing[i], h = dhi[i] / g.spacing[i];
       if (blend[i]) {
         const double w = kBlendSlope * (h - l);
         l -= w;
@@ -112,27 +116,32 @@ bool PartitionOfUnitySurface::slope_range(const Vec3& a, const Vec3& b, const Ve
       ehi += std::max(v[i] * l, v[i] * h);
     }
   };
+  // The box's corners in index units, as in range().
+  double ta[3], tb[3];
+  for (int i = 0; i < 3; ++i) ta[i] = a[i] / g.spacing[i], tb[i] = b[i] / g.spacing[i];
   [&] {
     for (long z = k0[2]; z <= k1[2]; ++z)
       for (long y = k0[1]; y <= k1[1]; ++y)
         for (long x = k0[0]; x <= k1[0]; ++x) {
-          const long k[3] = {x, y, z};
+          const double k[3] = {double(x), double(y), double(z)};
           double c[8];
           g.cube(x, y, z, c);
-          for (int m = 0; m < 8; ++m) {  // d f_j / d x_i at the box's corner m
-            double t[3];
-            for (int i = 0; i < 3; ++i) t[i] = ((m >> i) & 1 ? b[i] : a[i]) / g.spacing[i] - double(k[i]);
-            for (int i = 0; i < 3; ++i) {
-              const int j = (i + 1) % 3, l = (i + 2) % 3;
+          // d f_j / d x_i at the box's corner m does not depend on m's bit
+          // i: the four corners with it clear, in the order of m.
+          for (int i = 0; i < 3; ++i) {
+            const int j = (i + 1) % 3, l = (i + 2) % 3;
+            for (int m = 0; m < 8; ++m) {
+              if ((m >> i) & 1) continue;
+              const double tj = ((m >> j) & 1 ? tb[j] : ta[j]) - k[j], tl = ((m >> l) & 1 ? tb[l] : ta[l]) - k[l];
               double e[2];  // f_j on the faces t_i = 0 and 1, bilinear in t_j, t_l
               for (int side = 0; side < 2; ++side) {
                 auto at = [&](int bj, int bl) { return c[(side << i) | (bj << j) | (bl << l)]; };
-                const double e0 = at(0, 0) + t[j] * (at(1, 0) - at(0, 0)), e1 = at(0, 1) + t[j] * (at(1, 1) - at(0, 1));
-                e[side] = e0 + t[l] * (e1 - e0);
+                const double e0 = at(0, 0) + tj * (at(1, 0) - at(0, 0)), e1 = at(0, 1) + tj * (at(1, 1) - at(0, 1));
+                e[side] = e0 + tl * (e1 - e0);
               }
-              const double sl = (e[1] - e[0]) / g.spacing[i];
-              slo[i] = std::min(slo[i], sl);
-              shi[i] = std::max(shi[i], sl);
+              const double sl = e[1] - e[0];
+              dlo[i] = std::min(dlo[i], sl);
+              dhi[i] = std::max(dhi[i], sl);
             }
           }
           if (until_zero) {

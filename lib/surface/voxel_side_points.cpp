@@ -78,19 +78,26 @@ bool crossing(const SurfaceSampler& f, Vec3 a, Vec3 b, Vec3& x) {
 Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh near, double guard, long long& wrong,
                                         long long& refused) {
   const CubeGrid& g = f.grid();
-  if (seen_.empty()) {
+  if (seen_.empty()) {  // counted first: sized exactly
     std::size_t n = 0;
     for_each_centre(g, [&n](long, long, long) { ++n; });
-    seen_.resize(n);
+    seen_.reserve(n);
+    for_each_centre(g, [this, &g](long x, long y, long z) {
+      Seen s;
+      s.key = std::uint64_t(g.key(x, y, z));
+      seen_.push_back(s);
+    });
   }
   Candidates pts;
   Ch hint = near->cell();
   std::vector<Ch> cells;
   std::unordered_set<const void*> refined;  // membership only: the order is the centres'
-  std::size_t k = 0;
-  for_each_centre(g, [&](long x, long y, long z) {
-    Seen& s = seen_[k++];
-    if (s.cell != Ch() && tr.tds().cells().is_used(s.cell) && vertices_of(tr, s.cell) == s.vertices) return;
+  for (Seen& s : seen_) {
+    // A centre still in the cell it was found right in is right. (The walk
+    // starts from the last cell a walk found: a centre outside W's hull or
+    // on a facet may be found in another cell from another start.)
+    if (s.cell != Ch() && tr.tds().cells().is_used(s.cell) && vertices_of(tr, s.cell) == s.vertices) continue;
+    const auto [x, y, z] = g.cube_of_key((long long)s.key);
     const Vec3 p{double(x) * g.s[0], double(y) * g.s[1], double(z) * g.s[2]};
     const Point pp(p[0], p[1], p[2]);
     Tr::Locate_type lt;
@@ -115,13 +122,13 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
         bad = h;
         break;
       }
+    s.cell = Ch(), s.vertices = 0;
     if (bad == Ch()) {
-      s = cells.size() == 1 ? Seen{c, vertices_of(tr, c)} : Seen{};  // on a facet: looked at again
-      return;
+      if (cells.size() == 1) s.cell = c, s.vertices = vertices_of(tr, c);  // on a facet: looked at again
+      continue;
     }
-    s = Seen{};
     ++wrong;
-    if (!refined.insert(&*bad).second) return;  // one point per cell and pass
+    if (!refined.insert(&*bad).second) continue;  // one point per cell and pass
     // The surface centre of the cell's restricted facet with the largest
     // ball, if that is at least half p's distance to W (DELMESH's usual
     // point, well spaced) and the guard; else the point of S towards the
@@ -133,15 +140,15 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
       if (bad->facet.restricted(i) && bad->facet[i].r2 >= least && (best < 0 || bad->facet[i].r2 > bad->facet[best].r2)) best = i;
     if (best >= 0) {
       pts.emplace_back(facet_center(Facet(bad, best)), bad->facet[best].r2);
-      return;
+      continue;
     }
     Vec3 q;
-    if (!crossing(f, p, far_end(tr, g, bad, p), q)) return;
+    if (!crossing(f, p, far_end(tr, g, bad, p), q)) continue;
     const Vh nv = tr.nearest_vertex(Point(q[0], q[1], q[2]), bad);
     const double clearance2 = dist2(q, vec(nv->point()));
     if (clearance2 < guard * guard) ++refused;
     else pts.emplace_back(q, clearance2);
-  });
+  }
   return pts;
 }
 

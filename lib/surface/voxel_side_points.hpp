@@ -36,11 +36,14 @@ public:
   void release() { std::vector<Seen>().swap(seen_); }
 
 private:
-  // Per centre (grid order), the cell it was last found right in and the
-  // cell's vertices (a hash of their ids: a cell's memory is reused).
+  // Per centre (grid order, found once: a walk over the active cubes took
+  // 7% of the bunny's instructions a run): the cell it was last found right
+  // in, the cell's vertices (a hash of their ids: a cell's memory is
+  // reused) and the centre's grid key.
   struct Seen {
     Ch cell;
     std::uint64_t vertices = 0;
+    std::uint64_t key = 0;
   };
   std::vector<Seen> seen_;
 };

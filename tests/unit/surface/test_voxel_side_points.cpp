@@ -1,0 +1,81 @@
+// VoxelSides' query (issue 38): the centres it calls wrong are those whose
+// Delaunay cell lies on the other side of S, whatever it remembers from
+// earlier passes (the centres found right, where their walks start).
+#include "shapes.hpp"
+#include "surface/delmesh.hpp"
+#include "surface/voxel_side_points.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <set>
+#include <vector>
+
+using namespace imgmesh;
+using namespace imgmesh::surface_detail;
+
+namespace {
+// The corners of the active cubes on the wrong side of W's cells, each
+// located anew from the infinite cell: on a facet, edge or vertex, wrong
+// if any cell holding it is; outside W's hull, outside.
+long long wrong_by_walks(const DelMesh& m) {
+  const Tr& tr = m.triangulation();
+  const CubeGrid& g = m.grid();
+  std::set<long long> centres;
+  for (const ActiveCube& kc : g.sorted_cubes()) {
+    const auto [x, y, z] = g.cube_of_key(kc.key());
+    for (int e = 0; e < 8; ++e) centres.insert(g.key(x + (e & 1), y + (e >> 1 & 1), z + (e >> 2 & 1)));
+  }
+  long long wrong = 0;
+  for (long long k : centres) {
+    const auto [x, y, z] = g.cube_of_key(k);
+    const Point p(double(x) * g.s[0], double(y) * g.s[1], double(z) * g.s[2]);
+    Tr::Locate_type lt;
+    int li, lj;
+    const Ch c = tr.locate(p, lt, li, lj);
+    std::vector<Ch> cells{c};
+    if (lt == Tr::FACET) cells.push_back(c->neighbor(li));
+    else if (lt == Tr::EDGE) {
+      Tr::Cell_circulator cc = tr.incident_cells(c, li, lj), done = cc;
+      cells.clear();
+      do cells.push_back(cc); while (++cc != done);
+    } else if (lt == Tr::VERTEX) {
+      cells.clear();
+      tr.incident_cells(c->vertex(li), std::back_inserter(cells));
+    }
+    bool bad = false;
+    for (Ch h : cells) bad = bad || (!tr.is_infinite(h) && m.sampler().inside_at(vec(tr.dual(h)))) != g.neg(x, y, z);
+    wrong += bad;
+  }
+  return wrong;
+}
+} // namespace
+
+TEST_CASE("VoxelSides: the wrong centres of a pass that remembers the last are those a walk to each finds") {
+  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
+  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
+    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
+  });
+  RestrictedDelaunayOptions o;
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  const double guard = 1e-3 * m.grid().delta;
+  VoxelSidePoints kept;
+  long long wrong = 0, refused = 0;
+  // The seeds alone: most foreground centres lie outside W's hull.
+  Candidates pts = kept(m.triangulation(), m.sampler(), m.vertices()[0], guard, wrong, refused);
+  CHECK(wrong == wrong_by_walks(m));
+  REQUIRE(wrong > 10);
+  // Passes on a changing W: each remembers the last.
+  for (int pass = 0; pass < 4 && !pts.empty(); ++pass) {
+    for (std::size_t k = 0; k < pts.size(); k += 2) m.insert(pts[k].first, kVoxelSide);
+    wrong = 0;
+    pts = kept(m.triangulation(), m.sampler(), m.vertices().back(), guard, wrong, refused);
+    CHECK(wrong == wrong_by_walks(m));
+  }
+  // Every point found lies on S.
+  for (const auto& [x, clearance2] : pts) {
+    CHECK(std::abs(s.value(x)) < 1e-6);
+    CHECK(clearance2 > 0);
+  }
+}
