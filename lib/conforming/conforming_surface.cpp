@@ -222,7 +222,7 @@ void Mesher::check_facet(const FacetWalk& w) {
   const std::int32_t la = label(c), lb = label(n);
   const auto v = facet_vertices(c, w.i);
   Candidate cand;
-  cand.v = v;
+  cand.cell = c, cand.facet = w.i;
   cand.cells = {c->info().uid, n->info().uid};
   const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
   auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
@@ -260,8 +260,7 @@ void Mesher::check_facet(const FacetWalk& w) {
 // TopoDisk per label at v: for each label around v (not all one), the
 // facets between its cells and the others' form one cycle in v's link.
 void Mesher::check_vertex(Vh v) {
-  cells_.clear();
-  tr_.incident_cells(v, std::back_inserter(cells_));
+  star(v, cells_);
   std::int32_t first = label(cells_[0]);
   bool one = true;
   for (Ch c : cells_) one = one && label(c) == first;
@@ -309,7 +308,7 @@ void Mesher::check_vertex(Vh v) {
         if (!surface_centre(c, j, x)) continue;
         const double r2 = dist2(x, vec(v->point()));
         if (r2 > best.priority) {
-          best.x = x, best.priority = r2, best.v = facet_vertices(c, j);
+          best.x = x, best.priority = r2, best.cell = c, best.facet = j;
           best.cells = {c->info().uid, c->neighbor(j)->info().uid};
         }
       }
@@ -499,16 +498,18 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
   return any;
 }
 
-// Still the facet it was found on (same vertices, same two cells)?
-// cell: one of the facet's two cells, when it is.
+// Still the facet it was found on (the same two cells)? Its cell still in
+// use with its uid (uids are never reused; a freed cell keeps its info, a
+// reused one is 0 until numbered) and the same neighbour across it: no
+// walk around a vertex as is_facet's. cell: the facet's cell, when it is.
 bool Mesher::current(const Candidate& c, Ch& cell) {
   cell = Ch();
   if (c.step == kVoxelSide) return true;
-  int i, j, k;
-  if (!tr_.is_facet(c.v[0], c.v[1], c.v[2], cell, i, j, k)) return false;
-  Ch n = cell->neighbor(6 - i - j - k);
-  const std::uint32_t a = cell->info().uid, b = n->info().uid;
-  return a != 0 && b != 0 && ((a == c.cells[0] && b == c.cells[1]) || (a == c.cells[1] && b == c.cells[0]));
+  if (!tr_.tds().cells().is_used(c.cell) || c.cell->info().uid != c.cells[0]) return false;
+  const Ch n = c.cell->neighbor(c.facet);
+  if (!tr_.tds().cells().is_used(n) || n->info().uid != c.cells[1]) return false;
+  cell = c.cell;
+  return true;
 }
 
 bool Mesher::insert_all(std::vector<Candidate>& cands) {
@@ -541,8 +542,7 @@ void Mesher::refine() {
       for (auto c = tr_.all_cells_begin(); c != tr_.all_cells_end(); ++c) take(c);
     } else {
       for (Vh v : new_vertices_) {
-        cells_.clear();
-        tr_.incident_cells(v, std::back_inserter(cells_));
+        star(v, cells_);
         for (Ch c : cells_) take(c);
       }
     }

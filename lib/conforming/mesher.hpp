@@ -51,13 +51,15 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double dist2(const Vec3& a, const Vec3& b) { return dot(sub(a, b), sub(a, b)); }
 
-// A point to insert, from a facet (v: its vertices, cells: the uids of its
-// two cells when found: it is stale once either changed) or a voxel centre.
+// A point to insert, from a facet (cell, facet: the facet as found, cells:
+// the uids of its two cells then: it is stale once either changed) or a
+// voxel centre.
 struct Candidate {
   Vec3 x;
   double priority = 0;  // the surface ball's squared radius: larger first
   int step = kQuality;
-  std::array<Vh, 3> v{};
+  int facet = 0;
+  Ch cell;
   std::array<std::uint32_t, 2> cells{0, 0};
 };
 
@@ -93,6 +95,29 @@ private:
     return v;
   }
   bool insert(const Vec3& p, int step, Ch start = Ch());
+  // v's cells into `out` (cleared first), in incident_cells' order (depth
+  // first from v->cell(): TopoDisk's largest facet takes the first of equal
+  // ones), on a stack kept across calls instead of incident_cells' own.
+  void star(Vh v, std::vector<Ch>& out) {
+    out.clear();
+    stack_.clear();
+    out.push_back(v->cell());
+    stack_.push_back(v->cell());
+    v->cell()->tds_data().mark_in_conflict();
+    while (!stack_.empty()) {
+      const Ch c = stack_.back();
+      stack_.pop_back();
+      for (int i = 0; i < 4; ++i) {
+        if (c->vertex(i) == v) continue;
+        const Ch n = c->neighbor(i);
+        if (!n->tds_data().is_clear()) continue;
+        n->tds_data().mark_in_conflict();
+        stack_.push_back(n);
+        out.push_back(n);
+      }
+    }
+    for (Ch c : out) c->tds_data().clear();
+  }
   bool surface_centre(Ch c, int i, Vec3& x);
 
   // The surface stage (conforming_surface.cpp).
@@ -149,7 +174,7 @@ private:
   std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
-  std::vector<Ch> fresh_, cells_, pending_;
+  std::vector<Ch> fresh_, cells_, pending_, stack_;
   std::vector<FacetWalk> walks_;
   std::vector<std::vector<LabelFunction::Change>> walk_changes_;  // per thread
   std::vector<Vh> new_vertices_;
