@@ -377,6 +377,8 @@ void Mesher::voxel_sides() {
   // The voxels next to an interface, each once, in the faces' order: the
   // same list every call.
   if (side_voxels_.empty()) {
+    if (x_.count() > std::numeric_limits<std::uint32_t>::max())
+      throw Error("the conforming mesher takes label maps of at most 2^32 voxels");
     // Two sweeps: the count (seen 1), then the list (seen 2), of one size.
     std::vector<char> seen(x_.count(), 0);
     std::size_t count = 0;
@@ -393,14 +395,15 @@ void Mesher::voxel_sides() {
           if (done == sweep) continue;
           done = char(sweep);
           if (sweep == 1) ++count;
-          else side_voxels_.push_back({Ch(), 0, std::uint32_t(v[0]), std::uint32_t(v[1]), std::uint32_t(v[2])});
+          else side_voxels_.push_back({Ch(), 0, std::uint32_t(x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2])))});
         }
       }
     }
   }
   const auto& cells = tr_.tds().cells();
   for (SideVoxel& sv : side_voxels_) {
-    const std::ptrdiff_t i = sv.i, j = sv.j, k = sv.k;
+    const auto i = std::ptrdiff_t(sv.voxel % x_.size[0]), j = std::ptrdiff_t(sv.voxel / x_.size[0] % x_.size[1]),
+               k = std::ptrdiff_t(sv.voxel / x_.size[0] / x_.size[1]);
     const Vec3 p = voxel_centre(i, j, k);
     Ch c;
     // The cell that held the centre strictly inside at the last call, still

@@ -188,12 +188,13 @@ private:
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
   std::vector<Ch> zone_;
-  // voxel_sides' voxels, each with the cell that held its centre (and that
-  // cell's uid) at the last call; Ch() when on a face of the triangulation.
+  // voxel_sides' voxels (their index in X), each with the cell that held
+  // its centre (and that cell's uid) at the last call; Ch() when on a face
+  // of the triangulation. 16 bytes.
   struct SideVoxel {
     Ch cell;
     std::uint32_t uid;
-    std::uint32_t i, j, k;
+    std::uint32_t voxel;
   };
   std::vector<SideVoxel> side_voxels_;
   long long cell_points_ = 0, sliver_points_ = 0;
