@@ -59,6 +59,13 @@ ConformingSurface Mesher::certified_rounds() {
   // call refine once more, and the brain map's tetrahedra ran to the
   // point cap).
   while (o_.certificate && rounds_ < o_.certificate_rounds && !max_hit_) {
+    // VoxelSides' cached cells (16 bytes a voxel next to an interface) not
+    // held beside the certificate's peak: a round after it locates them
+    // again (the same cells). seg2tet's cell stage refines again anyway.
+    if (!o_.tets.on) {
+      std::vector<SideVoxel>().swap(side_voxels_);
+      release_free_memory();
+    }
     const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
     out.certified_as_is = true;
     const std::size_t before = places_;
