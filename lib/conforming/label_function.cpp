@@ -231,8 +231,9 @@ double LabelFunction::value(std::int32_t label, const Vec3& p) const {
   return fn.sign * fn.f.value(p);
 }
 
-std::int32_t LabelFunction::label(const Vec3& p) const {
-  const Vec3 q = grid_.continuous_index(p);
+std::int32_t LabelFunction::label(const Vec3& p) const { return label_at(p, grid_.continuous_index(p)); }
+
+std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q) const {
   std::size_t c[3];
   for (int i = 0; i < 3; ++i) {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
@@ -433,7 +434,7 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
         t = std::min(exit, t1) + 1e-12;
         continue;
       }
-      if (!visit(t, label({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}))) return;
+      if (!visit(t, label_at({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}, q))) return;
       t += dt;
     }
   }

@@ -73,6 +73,7 @@ private:
   struct Function;
   std::size_t index_of(std::int32_t label) const;
   bool pure_cube(const Vec3& q, std::int32_t& label) const;
+  std::int32_t label_at(const Vec3& p, const Vec3& q) const;  // q: p's continuous index
   double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after) const;
 
   Geometry grid_;

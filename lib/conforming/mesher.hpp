@@ -76,6 +76,7 @@ private:
   // A cell's label (lambda at its circumcentre; 0 outside) and circumcentre,
   // computed once.
   std::int32_t label(Ch c) {
+    if (c->info().label != kUnknown) return c->info().label;  // never set on an infinite cell
     if (tr_.is_infinite(c)) return 0;
     known(c);
     return c->info().label;
