@@ -510,15 +510,17 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
 
 // Still the facet it was found on (the same two cells)? Its cell still in
 // use with its uid (uids are never reused; a freed cell keeps its info, a
-// reused one is 0 until numbered) and the same neighbour across it: no
-// walk around a vertex as is_facet's. cell: the facet's cell, when it is.
+// reused one is 0 until numbered) and the same neighbour across it: a
+// stale one without a walk. cell: the one of its two cells is_facet finds
+// (the first around the vertex of lowest id): the insertion's start, whose
+// cells' order a point on a facet (a flat patch's) depends on.
 bool Mesher::current(const Candidate& c, Ch& cell) {
   cell = Ch();
   if (c.step == kVoxelSide) return true;
   if (!tr_.tds().cells().is_used(c.cell) || c.cell->info().uid != c.cells[0]) return false;
   const Ch n = c.cell->neighbor(c.facet);
   if (!tr_.tds().cells().is_used(n) || n->info().uid != c.cells[1]) return false;
-  cell = c.cell;
+  cell = star(facet_vertices(c.cell, c.facet)[0], cells_, c.cell, n);
   return true;
 }
 

@@ -99,25 +99,27 @@ private:
   // v's cells into `out` (cleared first), in incident_cells' order (depth
   // first from v->cell(): TopoDisk's largest facet takes the first of equal
   // ones), on a stack kept across calls instead of incident_cells' own.
-  void star(Vh v, std::vector<Ch>& out) {
+  // stop: when not Ch(), the walk ends at the first of `stop` and `or_stop`
+  // it reaches, and returns it (is_facet's choice between a facet's cells).
+  Ch star(Vh v, std::vector<Ch>& out, Ch stop = Ch(), Ch or_stop = Ch()) {
     out.clear();
     stack_.clear();
-    out.push_back(v->cell());
-    stack_.push_back(v->cell());
-    v->cell()->tds_data().mark_in_conflict();
-    while (!stack_.empty()) {
+    Ch found;
+    auto reach = [&](Ch c) {
+      c->tds_data().mark_in_conflict();
+      out.push_back(c);
+      stack_.push_back(c);
+      if (stop != Ch() && (c == stop || c == or_stop)) found = c;
+    };
+    reach(v->cell());
+    while (!stack_.empty() && found == Ch()) {
       const Ch c = stack_.back();
       stack_.pop_back();
-      for (int i = 0; i < 4; ++i) {
-        if (c->vertex(i) == v) continue;
-        const Ch n = c->neighbor(i);
-        if (!n->tds_data().is_clear()) continue;
-        n->tds_data().mark_in_conflict();
-        stack_.push_back(n);
-        out.push_back(n);
-      }
+      for (int i = 0; i < 4 && found == Ch(); ++i)
+        if (c->vertex(i) != v && c->neighbor(i)->tds_data().is_clear()) reach(c->neighbor(i));
     }
     for (Ch c : out) c->tds_data().clear();
+    return found;
   }
   bool surface_centre(Ch c, int i, Vec3& x);
 
