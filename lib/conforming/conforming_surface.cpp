@@ -58,6 +58,13 @@ ConformingSurface Mesher::certified_rounds() {
   // a fresh count there let each call refine once more, and the brain
   // map's tetrahedra ran to the point cap).
   while (o_.certificate && rounds_ < o_.certificate_rounds && !max_hit_) {
+    // VoxelSides' cached cells (16 bytes a voxel next to an interface) not
+    // held beside the certificate's peak: a round after it locates them
+    // again (the same cells). seg2tet's cell stage refines again anyway.
+    if (!o_.tets.on) {
+      std::vector<SideVoxel>().swap(side_voxels_);
+      release_free_memory();
+    }
     const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
     out.certified_as_is = true;
     // A certified surface that seg2tet's cells broke starts a fresh count.
@@ -225,7 +232,7 @@ void Mesher::check_facet(const FacetWalk& w) {
   const std::int32_t la = label(c), lb = label(n);
   const auto v = facet_vertices(c, w.i);
   Candidate cand;
-  cand.v = v;
+  cand.cell = c, cand.facet = w.i;
   cand.cells = {c->info().uid, n->info().uid};
   const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
   auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
@@ -263,8 +270,7 @@ void Mesher::check_facet(const FacetWalk& w) {
 // TopoDisk per label at v: for each label around v (not all one), the
 // facets between its cells and the others' form one cycle in v's link.
 void Mesher::check_vertex(Vh v) {
-  cells_.clear();
-  tr_.incident_cells(v, std::back_inserter(cells_));
+  star(v, cells_);
   std::int32_t first = label(cells_[0]);
   bool one = true;
   for (Ch c : cells_) one = one && label(c) == first;
@@ -312,7 +318,7 @@ void Mesher::check_vertex(Vh v) {
         if (!surface_centre(c, j, x)) continue;
         const double r2 = dist2(x, vec(v->point()));
         if (r2 > best.priority) {
-          best.x = x, best.priority = r2, best.v = facet_vertices(c, j);
+          best.x = x, best.priority = r2, best.cell = c, best.facet = j;
           best.cells = {c->info().uid, c->neighbor(j)->info().uid};
         }
       }
@@ -381,6 +387,8 @@ void Mesher::voxel_sides() {
   // The voxels next to an interface, each once, in the faces' order: the
   // same list every call.
   if (side_voxels_.empty()) {
+    if (x_.count() > std::numeric_limits<std::uint32_t>::max())
+      throw Error("the conforming mesher takes label maps of at most 2^32 voxels");
     // Two sweeps: the count (seen 1), then the list (seen 2), of one size.
     std::vector<char> seen(x_.count(), 0);
     std::size_t count = 0;
@@ -397,14 +405,15 @@ void Mesher::voxel_sides() {
           if (done == sweep) continue;
           done = char(sweep);
           if (sweep == 1) ++count;
-          else side_voxels_.push_back({Ch(), 0, std::uint32_t(v[0]), std::uint32_t(v[1]), std::uint32_t(v[2])});
+          else side_voxels_.push_back({Ch(), 0, std::uint32_t(x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2])))});
         }
       }
     }
   }
   const auto& cells = tr_.tds().cells();
   for (SideVoxel& sv : side_voxels_) {
-    const std::ptrdiff_t i = sv.i, j = sv.j, k = sv.k;
+    const auto i = std::ptrdiff_t(sv.voxel % x_.size[0]), j = std::ptrdiff_t(sv.voxel / x_.size[0] % x_.size[1]),
+               k = std::ptrdiff_t(sv.voxel / x_.size[0] / x_.size[1]);
     const Vec3 p = voxel_centre(i, j, k);
     Ch c;
     // The cell that held the centre strictly inside at the last call, still
@@ -509,16 +518,20 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
   return any;
 }
 
-// Still the facet it was found on (same vertices, same two cells)?
-// cell: one of the facet's two cells, when it is.
+// Still the facet it was found on (the same two cells)? Its cell still in
+// use with its uid (uids are never reused; a freed cell keeps its info, a
+// reused one is 0 until numbered) and the same neighbour across it: a
+// stale one without a walk. cell: the one of its two cells is_facet finds
+// (the first around the vertex of lowest id): the insertion's start, whose
+// cells' order a point on a facet (a flat patch's) depends on.
 bool Mesher::current(const Candidate& c, Ch& cell) {
   cell = Ch();
   if (c.step == kVoxelSide) return true;
-  int i, j, k;
-  if (!tr_.is_facet(c.v[0], c.v[1], c.v[2], cell, i, j, k)) return false;
-  Ch n = cell->neighbor(6 - i - j - k);
-  const std::uint32_t a = cell->info().uid, b = n->info().uid;
-  return a != 0 && b != 0 && ((a == c.cells[0] && b == c.cells[1]) || (a == c.cells[1] && b == c.cells[0]));
+  if (!tr_.tds().cells().is_used(c.cell) || c.cell->info().uid != c.cells[0]) return false;
+  const Ch n = c.cell->neighbor(c.facet);
+  if (!tr_.tds().cells().is_used(n) || n->info().uid != c.cells[1]) return false;
+  cell = star(facet_vertices(c.cell, c.facet)[0], cells_, c.cell, n);
+  return true;
 }
 
 bool Mesher::insert_all(std::vector<Candidate>& cands) {
@@ -551,8 +564,7 @@ void Mesher::refine() {
       for (auto c = tr_.all_cells_begin(); c != tr_.all_cells_end(); ++c) take(c);
     } else {
       for (Vh v : new_vertices_) {
-        cells_.clear();
-        tr_.incident_cells(v, std::back_inserter(cells_));
+        star(v, cells_);
         for (Ch c : cells_) take(c);
       }
     }

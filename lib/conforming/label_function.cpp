@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 namespace imgmesh {
 
@@ -125,6 +126,10 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return counts[a] > counts[b]; });
     rank_.assign(labels_.size(), 0);
     for (std::size_t r = 0; r < order.size(); ++r) rank_[order[r] + 1] = unsigned(r + 1);
+    by_rank_.resize(labels_.size());
+    for (std::size_t k = 0; k < labels_.size(); ++k) by_rank_[labels_.size() - 1 - rank_[k]] = k;
+    pos_.resize(labels_.size());
+    for (std::size_t r = 0; r < by_rank_.size(); ++r) pos_[by_rank_[r]] = r;
   }
   const auto margin = crop_margin(x.geometry());
   auto make = [&](std::int32_t label, const VoxelBox& box, double sign) {
@@ -137,26 +142,32 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   };
   make(-1, all, -1);
   for (std::size_t k = 0; k < present.size(); ++k) make(present[k], boxes[k], 1);
-  // Per cube its corners' label (min == max over its 2x2x2 voxels), and
-  // whether it is pure (min == max over the 4x4x4 around: window [-1, 2]
-  // per axis), a 16-bit word a cube.
-  cubes_.assign(x.count(), 0);
-  if (labels_.size() <= kCubeLabel) {
+  // Per voxel its label's place by rank, and whether the cube at it is
+  // pure (min == max over the 4x4x4 voxels around: window [-1, 2] per
+  // axis, 0 beyond the grid).
+  if (labels_.size() <= 0x7fff && x.size[0] > 1 && x.size[1] > 1 && x.size[2] > 1) {
     std::vector<std::int32_t> lo(x.data), hi(x.data);
-    for (int axis = 0; axis < 3; ++axis) {
-      window(x, axis, 0, 1, 0, lo, [](std::int32_t a, std::int32_t b) { return std::min(a, b); });
-      window(x, axis, 0, 1, 0, hi, [](std::int32_t a, std::int32_t b) { return std::max(a, b); });
-    }
-    for (std::size_t v = 0; v < x.count(); ++v)
-      if (lo[v] == hi[v])
-        cubes_[v] = std::uint16_t(std::lower_bound(labels_.begin(), labels_.end(), lo[v]) - labels_.begin() + 1);
-    lo = x.data, hi = x.data;
     for (int axis = 0; axis < 3; ++axis) {
       window(x, axis, -1, 2, 0, lo, [](std::int32_t a, std::int32_t b) { return std::min(a, b); });
       window(x, axis, -1, 2, 0, hi, [](std::int32_t a, std::int32_t b) { return std::max(a, b); });
     }
-    for (std::size_t v = 0; v < x.count(); ++v)
-      if (lo[v] == hi[v]) cubes_[v] |= kPure;
+    const bool narrow = labels_.size() <= 0x7f;
+    code_pure_ = narrow ? 0x80 : 0x8000;
+    code_place_ = code_pure_ - 1;
+    auto fill = [&](auto& codes) {
+      codes.resize(x.count());
+      std::int32_t last = 0;
+      unsigned place = unsigned(pos_[0]);
+      for (std::size_t v = 0; v < x.count(); ++v) {
+        if (x.data[v] != last) {
+          last = x.data[v];
+          place = unsigned(pos_[std::size_t(std::lower_bound(labels_.begin(), labels_.end(), last) - labels_.begin())]);
+        }
+        codes[v] = static_cast<std::remove_reference_t<decltype(codes[v])>>(place | (lo[v] == hi[v] ? code_pure_ : 0));
+      }
+    };
+    if (narrow) fill(codes8_);
+    else fill(codes16_);
   }
   // Candidates: a label whose voxels all lie beyond the 6x6x6 voxels around
   // a cube (window [-2, 3]) has g >= 1.5 voxels at every sample f reads in
@@ -178,7 +189,7 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
             const std::size_t v = x.index(i, j, k);
             std::uint32_t& slot = cand_block_[cand_block_of(i, j, k)];
             if (pass == 0) {
-              if (slot == 0 && !(cubes_[v] & kPure)) slot = ++slots;
+              if (slot == 0 && !(coded() && (code(v) & code_pure_))) slot = ++slots;
             } else if (slot != 0) {
               std::memcpy(cand_.data() + cand_word_of(slot, i, j, k) * w, &words[v], w);
             }
@@ -220,75 +231,105 @@ double LabelFunction::value(std::int32_t label, const Vec3& p) const {
   return fn.sign * fn.f.value(p);
 }
 
-std::int32_t LabelFunction::label(const Vec3& p) const {
-  const Vec3 q = grid_.continuous_index(p);
+std::int32_t LabelFunction::label(const Vec3& p) const { return label_at(p, grid_.continuous_index(p)); }
+
+std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q) const {
   std::size_t c[3];
   for (int i = 0; i < 3; ++i) {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
     c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
   }
-  // The voxels every f reads at p all of one label: lambda is that label,
-  // by the pure cubes' argument (header) at p alone. Per axis those are the
-  // cube's two and, within a quarter voxel of a plane (where two cells may
-  // blend: d <= delta / 5), the one beyond it. Most samples of a segment
-  // near an interface, each without evaluating an f.
-  {
-    std::ptrdiff_t lo[3], hi[3];
+  // The voxels every f reads at p: per axis the cube's two and, within a
+  // quarter voxel of a plane (where two cells may blend: d <= delta / 5),
+  // the one beyond it. A label none of them carries has f > 0 at p, by the
+  // pure cubes' argument (header) at p alone; all of one label, lambda is
+  // that label, without evaluating an f (most samples of a segment near an
+  // interface). near: the places by rank (% 64) of the labels they carry.
+  std::uint64_t near = ~std::uint64_t(0);
+  if (coded()) {
+    std::size_t lo[3], hi[3];
     for (int i = 0; i < 3; ++i) {
       const double r = q[i] - double(c[i]);
-      lo[i] = r < 0.25 && c[i] > 0 ? -1 : 0;
-      hi[i] = r > 0.75 && c[i] + 2 < grid_.size[i] ? 1 : 0;
+      lo[i] = r < 0.25 && c[i] > 0 ? c[i] - 1 : c[i];
+      hi[i] = r > 0.75 && c[i] + 2 < grid_.size[i] ? c[i] + 2 : c[i] + 1;
     }
-    std::uint16_t u = cubes_[grid_.index(c[0], c[1], c[2])] & kCubeLabel;
-    for (std::ptrdiff_t dz = lo[2]; u != 0 && dz <= hi[2]; ++dz)
-      for (std::ptrdiff_t dy = lo[1]; u != 0 && dy <= hi[1]; ++dy)
-        for (std::ptrdiff_t dx = lo[0]; u != 0 && dx <= hi[0]; ++dx)
-          if ((cubes_[grid_.index(std::size_t(std::ptrdiff_t(c[0]) + dx), std::size_t(std::ptrdiff_t(c[1]) + dy),
-                                  std::size_t(std::ptrdiff_t(c[2]) + dz))] & kCubeLabel) != u)
-            u = 0;
-    if (u != 0) return labels_[u - 1u];
+    const unsigned first = code(grid_.index(lo[0], lo[1], lo[2])) & code_place_;
+    bool one = true;
+    near = 0;
+    for (std::size_t z = lo[2]; z <= hi[2]; ++z)
+      for (std::size_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::size_t i = lo[0]; i <= hi[0]; ++i) {
+          const unsigned place = code(grid_.index(i, y, z)) & code_place_;
+          one = one && place == first;
+          near |= std::uint64_t(1) << (place % 64);
+        }
+    if (one) return labels_[by_rank_[first]];
   }
-  // The candidates in decreasing rank: the first negative one is lambda
-  // (the rank rule), so the lower ones need no evaluation; when none is
-  // negative, argmin over all of them (ties: the lower label).
-  std::size_t cand[64], n = 0;
+  // First those labels in decreasing rank: the first negative one is lambda
+  // (the rank rule). When none is (a gap, every f >= 0), argmin over all
+  // the cube's candidates (ties: the lower label); without `near`, all of
+  // them in decreasing rank.
+  const std::uint64_t cand = candidates(c[0], c[1], c[2]);
+  auto in_crop = [&](std::size_t k) {
+    const Function& fn = *f_[k];
+    return fn.sign < 0 || (q[0] >= fn.lo[0] && q[0] <= fn.hi[0] && q[1] >= fn.lo[1] && q[1] <= fn.hi[1] &&
+                           q[2] >= fn.lo[2] && q[2] <= fn.hi[2]);  // beyond: f_L >= its clamp > 0
+  };
+  std::size_t best = 0;
+  double fbest = std::numeric_limits<double>::infinity();
+  auto evaluate = [&](std::size_t k) {
+    const Function& fn = *f_[k];
+    const double v = fn.sign * fn.f.value(p);
+    if (v < fbest || (v == fbest && k < best)) fbest = v, best = k;
+    return v < 0;
+  };
+  if (~near != 0) {
+    if (labels_.size() <= 64) {
+      for (std::uint64_t m = near; m; m &= m - 1) {
+        const std::size_t k = by_rank_[std::size_t(__builtin_ctzll(m))];
+        if ((cand >> (k % 64) & 1) && in_crop(k) && evaluate(k)) return labels_[k];
+      }
+    } else {
+      std::vector<std::size_t> ks;
+      for (std::uint64_t m = near; m; m &= m - 1)
+        for (std::size_t r = std::size_t(__builtin_ctzll(m)); r < by_rank_.size(); r += 64)
+          if (cand >> (by_rank_[r] % 64) & 1) ks.push_back(by_rank_[r]);
+      std::sort(ks.begin(), ks.end(), [&](std::size_t a, std::size_t b) { return pos_[a] < pos_[b]; });
+      for (const std::size_t k : ks)
+        if (in_crop(k) && evaluate(k)) return labels_[k];
+    }
+  }
+  std::size_t rest[64], n = 0;
   std::vector<std::size_t> more;  // past 64 candidates (maps of more than 64 labels)
-  for (std::uint64_t m = candidates(c[0], c[1], c[2]); m; m &= m - 1)
+  for (std::uint64_t m = cand; m; m &= m - 1)
     for (const std::size_t k : bit_labels_[std::size_t(__builtin_ctzll(m))]) {
-      const Function& fn = *f_[k];
-      if (fn.sign > 0 && (q[0] < fn.lo[0] || q[0] > fn.hi[0] || q[1] < fn.lo[1] || q[1] > fn.hi[1] ||
-                          q[2] < fn.lo[2] || q[2] > fn.hi[2]))
-        continue;  // beyond the crop: f_L >= its clamp > 0
-      if (n < 64) cand[n++] = k;
+      if ((near >> (pos_[k] % 64) & 1) && ~near != 0) continue;  // evaluated above
+      if (!in_crop(k)) continue;
+      if (n < 64) rest[n++] = k;
       else more.push_back(k);
     }
-  std::size_t* first = cand;
-  std::size_t* last = cand + n;
+  std::size_t* first = rest;
+  std::size_t* last = rest + n;
   if (!more.empty()) {
-    more.insert(more.begin(), cand, cand + n);
+    more.insert(more.begin(), rest, rest + n);
     first = more.data(), last = more.data() + more.size();
   }
   std::sort(first, last, [&](std::size_t a, std::size_t b) { return rank_[a] > rank_[b]; });
-  std::size_t best = 0;
-  double fbest = std::numeric_limits<double>::infinity();
-  for (const std::size_t* it = first; it != last; ++it) {
-    const Function& fn = *f_[*it];
-    const double v = fn.sign * fn.f.value(p);
-    if (v < 0) return labels_[*it];
-    if (v < fbest || (v == fbest && *it < best)) fbest = v, best = *it;
-  }
+  for (const std::size_t* it = first; it != last; ++it)
+    if (evaluate(*it)) return labels_[*it];
   return labels_[best];
 }
 
 bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
+  if (!coded()) return false;
   std::size_t c[3];
   for (int i = 0; i < 3; ++i) {
     if (!(q[i] >= 0 && q[i] < double(grid_.size[i] - 1))) return false;
     c[i] = std::size_t(q[i]);
   }
-  const std::uint16_t u = cubes_[grid_.index(c[0], c[1], c[2])];
-  if (!(u & kPure)) return false;
-  label = labels_[(u & kCubeLabel) - 1u];
+  const unsigned u = code(grid_.index(c[0], c[1], c[2]));
+  if (!(u & code_pure_)) return false;
+  label = labels_[by_rank_[u & code_place_]];
   return true;
 }
 
@@ -393,7 +434,7 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
         t = std::min(exit, t1) + 1e-12;
         continue;
       }
-      if (!visit(t, label({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}))) return;
+      if (!visit(t, label_at({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}, q))) return;
       t += dt;
     }
   }

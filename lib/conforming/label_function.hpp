@@ -73,18 +73,24 @@ private:
   struct Function;
   std::size_t index_of(std::int32_t label) const;
   bool pure_cube(const Vec3& q, std::int32_t& label) const;
+  std::int32_t label_at(const Vec3& p, const Vec3& q) const;  // q: p's continuous index
   double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after) const;
 
   Geometry grid_;
   std::vector<std::int32_t> labels_;  // ascending, 0 first
   std::vector<unsigned> rank_;  // per label index: 0 for the background, then fewest voxels highest
+  std::vector<std::size_t> by_rank_, pos_;  // label indices from the highest rank down; each one's place there
   std::vector<std::unique_ptr<Function>> f_;  // per label (f_U for 0)
-  // Per cube (lower corner voxel (i, j, k), i < size - 1): its corners'
-  // label index + 1 when its eight voxels carry one label, else 0 (bits
-  // kCubeLabel), and kPure when pure (then its corners are of its label).
-  // Past kCubeLabel labels all 0: no cube pure, no shortcut.
-  static constexpr std::uint16_t kCubeLabel = 0x7fff, kPure = 0x8000;
-  std::vector<std::uint16_t> cubes_;
+  // Per voxel its code: its label's place in by_rank_ (bits code_place_),
+  // and code_pure_ when the cube whose lower corner it is (i < size - 1)
+  // is pure (then that cube's voxels are of its label): a byte a voxel up
+  // to 127 labels (codes8_), else two (codes16_); past 0x7fff labels
+  // neither, and no shortcut.
+  std::vector<std::uint8_t> codes8_;
+  std::vector<std::uint16_t> codes16_;
+  unsigned code_pure_ = 0, code_place_ = 0;  // the two parts' bits
+  bool coded() const { return !codes8_.empty() || !codes16_.empty(); }
+  unsigned code(std::size_t v) const { return codes8_.empty() ? codes16_[v] : codes8_[v]; }
   // Per cube the labels that can be lambda in it (bits: label index % 64),
   // in words of cand_bytes_ (the fewest that hold every label's bit, up to
   // 8), kept for the blocks of 4x4x4 cubes that hold a cube not pure

@@ -51,13 +51,15 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double dist2(const Vec3& a, const Vec3& b) { return dot(sub(a, b), sub(a, b)); }
 
-// A point to insert, from a facet (v: its vertices, cells: the uids of its
-// two cells when found: it is stale once either changed) or a voxel centre.
+// A point to insert, from a facet (cell, facet: the facet as found, cells:
+// the uids of its two cells then: it is stale once either changed) or a
+// voxel centre.
 struct Candidate {
   Vec3 x;
   double priority = 0;  // the surface ball's squared radius: larger first
   int step = kQuality;
-  std::array<Vh, 3> v{};
+  int facet = 0;
+  Ch cell;
   std::array<std::uint32_t, 2> cells{0, 0};
 };
 
@@ -74,6 +76,7 @@ private:
   // A cell's label (lambda at its circumcentre; 0 outside) and circumcentre,
   // computed once.
   std::int32_t label(Ch c) {
+    if (c->info().label != kUnknown) return c->info().label;  // never set on an infinite cell
     if (tr_.is_infinite(c)) return 0;
     known(c);
     return c->info().label;
@@ -93,6 +96,31 @@ private:
     return v;
   }
   bool insert(const Vec3& p, int step, Ch start = Ch(), double gap2 = 0);
+  // v's cells into `out` (cleared first), in incident_cells' order (depth
+  // first from v->cell(): TopoDisk's largest facet takes the first of equal
+  // ones), on a stack kept across calls instead of incident_cells' own.
+  // stop: when not Ch(), the walk ends at the first of `stop` and `or_stop`
+  // it reaches, and returns it (is_facet's choice between a facet's cells).
+  Ch star(Vh v, std::vector<Ch>& out, Ch stop = Ch(), Ch or_stop = Ch()) {
+    out.clear();
+    stack_.clear();
+    Ch found;
+    auto reach = [&](Ch c) {
+      c->tds_data().mark_in_conflict();
+      out.push_back(c);
+      stack_.push_back(c);
+      if (stop != Ch() && (c == stop || c == or_stop)) found = c;
+    };
+    reach(v->cell());
+    while (!stack_.empty() && found == Ch()) {
+      const Ch c = stack_.back();
+      stack_.pop_back();
+      for (int i = 0; i < 4 && found == Ch(); ++i)
+        if (c->vertex(i) != v && c->neighbor(i)->tds_data().is_clear()) reach(c->neighbor(i));
+    }
+    for (Ch c : out) c->tds_data().clear();
+    return found;
+  }
   bool surface_centre(Ch c, int i, Vec3& x);
 
   // The surface stage (conforming_surface.cpp).
@@ -149,7 +177,7 @@ private:
   std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
-  std::vector<Ch> fresh_, cells_, pending_;
+  std::vector<Ch> fresh_, cells_, pending_, stack_;
   std::vector<FacetWalk> walks_;
   std::vector<std::vector<LabelFunction::Change>> walk_changes_;  // per thread
   std::vector<Vh> new_vertices_;
@@ -163,12 +191,13 @@ private:
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
   std::vector<Ch> zone_;
-  // voxel_sides' voxels, each with the cell that held its centre (and that
-  // cell's uid) at the last call; Ch() when on a face of the triangulation.
+  // voxel_sides' voxels (their index in X), each with the cell that held
+  // its centre (and that cell's uid) at the last call; Ch() when on a face
+  // of the triangulation. 16 bytes.
   struct SideVoxel {
     Ch cell;
     std::uint32_t uid;
-    std::uint32_t i, j, k;
+    std::uint32_t voxel;
   };
   std::vector<SideVoxel> side_voxels_;
   long long cell_points_ = 0, sliver_points_ = 0;

@@ -8,7 +8,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <random>
 
 using namespace imgmesh;
@@ -67,36 +69,78 @@ TEST_CASE("lambda refuses a map that is not well-composed", "[conforming]") {
   CHECK_THROWS_WITH(LabelFunction(x, 0.3), Catch::Contains("not well-composed"));
 }
 
-// lambda by its definition from the labels' f at random points (those where
-// at most one f is negative: the rank decides the others): where the voxels
-// f reads are all one label, label() answers without evaluating f. Maps of
-// 5 to 60 labels: the candidates' words of 1, 2, 4 and 8 bytes.
+// lambda by its definition from the labels' f at random points: where
+// some f is negative, the label of highest rank among those (0 lowest, then
+// from the most voxels to the fewest, ties: the larger label higher), else
+// argmin (ties: the lower label). Where the voxels f reads are all one
+// label, label() answers without evaluating f, and elsewhere evaluates first
+// the labels those voxels carry. Maps of 5 to 60 labels: the candidates'
+// words of 1, 2, 4 and 8 bytes; of 90 and 200: more labels than bits, and
+// (past 127) two bytes a voxel.
 TEST_CASE("lambda at random points is its definition from the labels' f", "[conforming]") {
   std::mt19937_64 rng(11);
-  std::size_t checked = 0;
-  for (int count : {5, 5, 12, 24, 60}) {
+  std::size_t checked = 0, ranked = 0, gaps = 0, most = 0;
+  for (int count : {5, 5, 12, 24, 60, 90, 200}) {
     LabelImage x = make_well_composed_partition(voronoi_map(rng, 12, count)).image;
     x.spacing = {0.8, 1.0, 1.3};
     x.origin = {3, -2, 1};
     const LabelFunction f(x, 0.3 * 0.8);
-    std::vector<std::int32_t> labels{0};
-    for (std::int32_t v : x.data)
-      if (std::find(labels.begin(), labels.end(), v) == labels.end()) labels.push_back(v);
+    std::map<std::int32_t, std::size_t> voxels{{0, 0}};
+    for (std::int32_t v : x.data) ++voxels[v];
+    most = std::max(most, voxels.size());
+    auto outranks = [&](std::int32_t a, std::int32_t b) {
+      if (a == 0 || b == 0) return b == 0 && a != 0;
+      return voxels[a] < voxels[b] || (voxels[a] == voxels[b] && a > b);
+    };
+    // Half the points anywhere, half between the zeros of f_a and f_b
+    // along a segment across a face between a and b: where both are
+    // negative (the rank decides) or both positive (argmin decides).
     std::uniform_real_distribution<double> u(0, 1);
+    std::uniform_int_distribution<std::size_t> voxel(0, x.count() - 1);
     for (int n = 0; n < 4000; ++n) {
-      const Vec3 p = x.world(u(rng) * double(x.size[0] - 1), u(rng) * double(x.size[1] - 1), u(rng) * double(x.size[2] - 1));
+      Vec3 q{u(rng) * double(x.size[0] - 1), u(rng) * double(x.size[1] - 1), u(rng) * double(x.size[2] - 1)};
+      for (int tries = 0; n % 2 == 1 && tries < 100; ++tries) {
+        const std::size_t v = voxel(rng);
+        const std::array<std::size_t, 3> w0{v % x.size[0], v / x.size[0] % x.size[1], v / x.size[0] / x.size[1]};
+        const std::size_t ax = v % 3;
+        std::array<std::size_t, 3> w1 = w0;
+        if (++w1[ax] >= x.size[ax] || x(w0[0], w0[1], w0[2]) == x(w1[0], w1[1], w1[2])) continue;
+        Vec3 q0, q1;
+        for (std::size_t m = 0; m < 3; ++m) {
+          const double off = m == ax ? 0 : std::clamp(double(w0[m]) + u(rng) - 0.5, 0.0, double(x.size[m] - 1)) - double(w0[m]);
+          q0[m] = double(w0[m]) + off, q1[m] = double(w1[m]) + off;
+        }
+        auto zero = [&](std::int32_t l) {  // f_l's change of sign from q0 to q1
+          double lo = 0, hi = 1;
+          const double s0 = f.value(l, x.world(q0[0], q0[1], q0[2]));
+          for (int it = 0; it < 40; ++it) {
+            const double t = 0.5 * (lo + hi);
+            const double s = f.value(l, x.world(q0[0] + t * (q1[0] - q0[0]), q0[1] + t * (q1[1] - q0[1]), q0[2] + t * (q1[2] - q0[2])));
+            ((s < 0) == (s0 < 0) ? lo : hi) = t;
+          }
+          return lo;
+        };
+        const double t = 0.5 * (zero(x(w0[0], w0[1], w0[2])) + zero(x(w1[0], w1[1], w1[2])));
+        for (std::size_t m = 0; m < 3; ++m) q[m] = q0[m] + t * (q1[m] - q0[m]);
+        break;
+      }
+      const Vec3 p = x.world(q[0], q[1], q[2]);
       std::int32_t best = 0, negative = 0;
       double fbest = INFINITY;
       int negatives = 0;
-      for (std::int32_t l : labels) {
+      for (const auto& [l, count_l] : voxels) {
         const double v = f.value(l, p);
-        if (v < 0) ++negatives, negative = l;
+        if (v < 0 && (negatives++ == 0 || outranks(l, negative))) negative = l;
         if (v < fbest || (v == fbest && l < best)) fbest = v, best = l;
       }
-      if (negatives > 1) continue;
-      REQUIRE(f.label(p) == (negatives == 1 ? negative : best));
+      REQUIRE(f.label(p) == (negatives > 0 ? negative : best));
       ++checked;
+      if (negatives > 1) ++ranked;
+      if (negatives == 0) ++gaps;
     }
   }
-  CHECK(checked > 15000);
+  CHECK(checked == 28000);
+  CHECK(ranked > 100);
+  CHECK(gaps > 100);
+  CHECK(most > 128);
 }
