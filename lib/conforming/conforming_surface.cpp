@@ -54,9 +54,9 @@ ConformingSurface Mesher::certified_rounds() {
   // where the curves around it are), not a labelling that disagrees with
   // K(X), where refining does not converge: they run while each round
   // leaves fewer failing places (a large patch's places are all its curve
-  // edges: the brain map's went 4,986, 4,709, none), counted across calls (seg2tet calls again after its cells:
-  // a fresh count there let each call refine once more, and the brain
-  // map's tetrahedra ran to the point cap).
+  // edges: the brain map's went 4,986, 4,709, none), at most
+  // certificate_rounds counted across calls; seg2tet calls again after its
+  // cells, and a surface certified before them starts a fresh count there.
   while (o_.certificate && rounds_ < o_.certificate_rounds && !max_hit_) {
     // VoxelSides' cached cells (16 bytes a voxel next to an interface) not
     // held beside the certificate's peak: a round after it locates them
@@ -270,7 +270,8 @@ void Mesher::check_facet(const FacetWalk& w) {
 // TopoDisk per label at v: for each label around v (not all one), the
 // facets between its cells and the others' form one cycle in v's link.
 void Mesher::check_vertex(Vh v) {
-  star(v, cells_);
+  cells_.clear();
+  tr_.incident_cells(v, std::back_inserter(cells_));
   std::int32_t first = label(cells_[0]);
   bool one = true;
   for (Ch c : cells_) one = one && label(c) == first;
@@ -521,17 +522,18 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
 // Still the facet it was found on (the same two cells)? Its cell still in
 // use with its uid (uids are never reused; a freed cell keeps its info, a
 // reused one is 0 until numbered) and the same neighbour across it: a
-// stale one without a walk. cell: the one of its two cells is_facet finds
-// (the first around the vertex of lowest id): the insertion's start, whose
-// cells' order a point on a facet (a flat patch's) depends on.
+// stale one without a walk. cell: the one of its two cells is_facet finds,
+// the insertion's start (a point on a facet, a flat patch's, gets its
+// cells in an order that depends on it).
 bool Mesher::current(const Candidate& c, Ch& cell) {
   cell = Ch();
   if (c.step == kVoxelSide) return true;
-  if (!tr_.tds().cells().is_used(c.cell) || c.cell->info().uid != c.cells[0]) return false;
-  const Ch n = c.cell->neighbor(c.facet);
-  if (!tr_.tds().cells().is_used(n) || n->info().uid != c.cells[1]) return false;
-  cell = star(facet_vertices(c.cell, c.facet)[0], cells_, c.cell, n);
-  return true;
+  if (!tr_.tds().cells().is_used(c.cell) || c.cell->info().uid != c.cells[0] ||
+      c.cell->neighbor(c.facet)->info().uid != c.cells[1])
+    return false;
+  const auto v = facet_vertices(c.cell, c.facet);
+  int i, j, k;
+  return tr_.is_facet(v[0], v[1], v[2], cell, i, j, k);
 }
 
 bool Mesher::insert_all(std::vector<Candidate>& cands) {
@@ -564,7 +566,8 @@ void Mesher::refine() {
       for (auto c = tr_.all_cells_begin(); c != tr_.all_cells_end(); ++c) take(c);
     } else {
       for (Vh v : new_vertices_) {
-        star(v, cells_);
+        cells_.clear();
+        tr_.incident_cells(v, std::back_inserter(cells_));
         for (Ch c : cells_) take(c);
       }
     }

@@ -96,31 +96,6 @@ private:
     return v;
   }
   bool insert(const Vec3& p, int step, Ch start = Ch(), double gap2 = 0);
-  // v's cells into `out` (cleared first), in incident_cells' order (depth
-  // first from v->cell(): TopoDisk's largest facet takes the first of equal
-  // ones), on a stack kept across calls instead of incident_cells' own.
-  // stop: when not Ch(), the walk ends at the first of `stop` and `or_stop`
-  // it reaches, and returns it (is_facet's choice between a facet's cells).
-  Ch star(Vh v, std::vector<Ch>& out, Ch stop = Ch(), Ch or_stop = Ch()) {
-    out.clear();
-    stack_.clear();
-    Ch found;
-    auto reach = [&](Ch c) {
-      c->tds_data().mark_in_conflict();
-      out.push_back(c);
-      stack_.push_back(c);
-      if (stop != Ch() && (c == stop || c == or_stop)) found = c;
-    };
-    reach(v->cell());
-    while (!stack_.empty() && found == Ch()) {
-      const Ch c = stack_.back();
-      stack_.pop_back();
-      for (int i = 0; i < 4 && found == Ch(); ++i)
-        if (c->vertex(i) != v && c->neighbor(i)->tds_data().is_clear()) reach(c->neighbor(i));
-    }
-    for (Ch c : out) c->tds_data().clear();
-    return found;
-  }
   bool surface_centre(Ch c, int i, Vec3& x);
 
   // The surface stage (conforming_surface.cpp).
@@ -177,7 +152,7 @@ private:
   std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
-  std::vector<Ch> fresh_, cells_, pending_, stack_;
+  std::vector<Ch> fresh_, cells_, pending_;
   std::vector<FacetWalk> walks_;
   std::vector<std::vector<LabelFunction::Change>> walk_changes_;  // per thread
   std::vector<Vh> new_vertices_;
