@@ -6,6 +6,7 @@
 namespace imgmesh {
 
 SurfaceOptions::SurfaceOptions(cli::Tool& tool, const std::string& what, bool roughness_and_fallbacks) {
+  const std::string article = std::string("aeiou").find(what.front()) != std::string::npos ? "an " : "a ";
   tool.app.add_option("--ratio", bounds_.ratio,
                       "Radius-edge ratio bound rho_0 of every " + what +
                           " (>= (1+k)^2 = 1.1236); 1.2 gives a smallest angle of 24.6 degrees, 2 (the thesis's) 14.5")
@@ -20,7 +21,7 @@ SurfaceOptions::SurfaceOptions(cli::Tool& tool, const std::string& what, bool ro
         ->capture_default_str();
   }
   tool.app.add_option("--max-distance", bounds_.max_distance,
-                      "Refine while a " + what + "'s surface Delaunay ball centre (a point of the surface) is farther "
+                      "Refine while " + article + what + "'s surface Delaunay ball centre (a point of the surface) is farther "
                       "than E (world units) from the " + what + "'s plane, or |f| at its centroid is more than 2E; 0: off. "
                       "The default is 0.4 voxel with --voxel-sides (which bounds the error at the voxel centres), "
                       "0.3 voxel with --no-voxel-sides and for the conforming mesher (seg2mesh --conforming, seg2tet)")
