@@ -148,8 +148,8 @@ TEST_CASE("lambda at random points is its definition from the labels' f", "[conf
 // Each change changes() reports lies within 1e-4 voxel of lambda's: a
 // fine scan within half that before it finds its `before`, after it another
 // label, nearly always its `after` (else a third label lies between, closer
-// than the walk's step: random segments through interfaces of noisy maps, anisotropic:
-// overlaps, gaps, ties on the voxel faces, three labels).
+// than the walk's step). Random segments through interfaces of noisy,
+// anisotropic maps: overlaps, gaps, ties on the voxel faces, three labels.
 TEST_CASE("lambda's changes are placed within 1e-4 voxel", "[conforming]") {
   std::mt19937_64 rng(5);
   std::size_t changes = 0, afters = 0, segments = 0;
