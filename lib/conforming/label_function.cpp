@@ -233,7 +233,7 @@ double LabelFunction::value(std::int32_t label, const Vec3& p) const {
 
 std::int32_t LabelFunction::label(const Vec3& p) const { return label_at(p, grid_.continuous_index(p)); }
 
-std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q) const {
+std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* known) const {
   std::size_t c[3];
   for (int i = 0; i < 3; ++i) {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
@@ -279,7 +279,10 @@ std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q) const {
   double fbest = std::numeric_limits<double>::infinity();
   auto evaluate = [&](std::size_t k) {
     const Function& fn = *f_[k];
-    const double v = fn.sign * fn.f.value(p);
+    double v;
+    if (known && known->k[0] == k && !std::isnan(known->v[0])) v = known->v[0];
+    else if (known && known->k[1] == k && !std::isnan(known->v[1])) v = known->v[1];
+    else v = fn.sign * fn.f.value(p);
     if (v < fbest || (v == fbest && k < best)) fbest = v, best = k;
     return v < 0;
   };
@@ -333,45 +336,65 @@ bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
   return true;
 }
 
+// A change's place along a segment: within this many voxels (the mesh's
+// vertices need no more; 1e-6 took a third more of f's evaluations).
+constexpr double kChangeTolerance = 1e-4;
+
 double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before,
                              std::int32_t after) const {
   const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / min_spacing_;  // voxels
   auto at = [&](double t) { return Vec3{a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; };
-  // Where only `before` and `after` compete, lambda changes where
-  // h = f_before - f_after does: regula falsi (Illinois) on h, a few
-  // evaluations of two functions, then lambda checked on both sides of the
-  // root; else (a third label between) bisection on lambda itself.
-  // The function whose zero the change is: f_before where before wins by
-  // rank inside itself, -f_after likewise, else (a gap, where every f is
-  // positive) f_before - f_after.
-  double lo = t0, hi = t1;
-  const double rb = rank_[index_of(before)], ra = rank_[index_of(after)];
-  const double fb_lo = value(before, at(lo)), fa_hi = value(after, at(hi));
-  const int kind = fb_lo < 0 && rb > ra ? 0 : fa_hi < 0 && ra > rb ? 1 : 2;
-  auto h = [&](double t) {
+  // Between `before` and `after` alone lambda is the higher ranked one (hi)
+  // where f_hi < max(0, f_lo) (negative, or the argmin in a gap), so it
+  // changes where h = f_hi - max(0, f_lo) (its sign turned to make before
+  // negative) does: regula falsi (Illinois) on h, f_lo read only where
+  // f_hi >= 0, then lambda checked on both sides of the root, with the f
+  // already read there; else (a third label between) bisection on lambda.
+  const std::size_t kb = index_of(before), ka = index_of(after);
+  const bool before_high = rank_[kb] > rank_[ka];
+  const std::size_t fh_index = before_high ? kb : ka, fl_index = before_high ? ka : kb;
+  const Function& fh = *f_[fh_index];
+  const Function& fl = *f_[fl_index];
+  Known klo{{fh_index, fl_index}, {NAN, NAN}}, khi = klo;
+  auto h = [&](double t, Known& k) {
     const Vec3 p = at(t);
-    return kind == 0 ? value(before, p) : kind == 1 ? -value(after, p) : value(before, p) - value(after, p);
+    const double vh = fh.sign * fh.f.value(p);
+    k.v[0] = vh, k.v[1] = NAN;
+    double r = vh;
+    if (vh >= 0) {
+      const double vl = k.v[1] = fl.sign * fl.f.value(p);
+      r = vh - std::max(0.0, vl);
+      // On the root itself lambda's ties decide (0 is not negative; equal
+      // in a gap: the lower label), as label() will.
+      if (r == 0) r = vl < 0 || (vh == vl && fl_index < fh_index) ? 1e-300 : -1e-300;
+    }
+    return before_high ? r : -r;
   };
-  double hlo = h(lo), hhi = h(hi);
+  double lo = t0, hi = t1;
+  double hlo = h(lo, klo), hhi = h(hi, khi);
   if (hlo < 0 && hhi > 0) {
+    Known kt = klo;
     int side = 0;
-    for (int it = 0; it < 60 && (hi - lo) * len > 1e-6; ++it) {
+    for (int it = 0; it < 60 && (hi - lo) * len > kChangeTolerance; ++it) {
       double t = (lo * hhi - hi * hlo) / (hhi - hlo);
       if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-      const double ht = h(t);
+      const double ht = h(t, kt);
       if (ht < 0) {
-        lo = t, hlo = ht;
+        lo = t, hlo = ht, klo = kt;
         if (side == -1) hhi *= 0.5;
         side = -1;
       } else {
-        hi = t, hhi = ht;
+        hi = t, hhi = ht, khi = kt;
         if (side == 1) hlo *= 0.5;
         side = 1;
       }
     }
-    if (label(at(lo)) == before && label(at(hi)) == after) return 0.5 * (lo + hi);
+    const Vec3 plo = at(lo), phi = at(hi);
+    if (label_at(plo, grid_.continuous_index(plo), &klo) == before &&
+        label_at(phi, grid_.continuous_index(phi), &khi) == after)
+      return 0.5 * (lo + hi);
   }
-  while ((t1 - t0) * len > 1e-6) {
+  while ((t1 - t0) * len > kChangeTolerance) {
     const double t = 0.5 * (t0 + t1);
     if (label(at(t)) == before) t0 = t;
     else t1 = t;

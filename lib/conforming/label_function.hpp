@@ -59,7 +59,7 @@ public:
   };
   // The changes of lambda along [a, b] (world), in order: lambda sampled at
   // steps of at most `step` voxels (the smallest spacing) inside cubes that
-  // are not pure, each change then bisected to 1e-6 of a voxel. Changes
+  // are not pure, each change then bisected to 1e-4 of a voxel. Changes
   // closer than `step` may be missed: the certificate decides. Stops after
   // `max_changes` (0: no limit). ends, when given: lambda(a) and lambda(b),
   // known to the caller.
@@ -73,7 +73,13 @@ private:
   struct Function;
   std::size_t index_of(std::int32_t label) const;
   bool pure_cube(const Vec3& q, std::int32_t& label) const;
-  std::int32_t label_at(const Vec3& p, const Vec3& q) const;  // q: p's continuous index
+  // f of up to two labels (indices) at a point, read already (NaN: not).
+  struct Known {
+    std::size_t k[2];
+    double v[2];
+  };
+  // q: p's continuous index; known: f values at p to use, not read again.
+  std::int32_t label_at(const Vec3& p, const Vec3& q, const Known* known = nullptr) const;
   double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after) const;
 
   Geometry grid_;

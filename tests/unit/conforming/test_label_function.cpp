@@ -144,3 +144,61 @@ TEST_CASE("lambda at random points is its definition from the labels' f", "[conf
   CHECK(gaps > 100);
   CHECK(most > 128);
 }
+
+// Each change changes() reports lies within 1e-4 voxel of lambda's: a
+// fine scan within half that before it finds its `before`, after it another
+// label, nearly always its `after` (else a third label lies between, closer
+// than the walk's step). Random segments through interfaces of noisy,
+// anisotropic maps: overlaps, gaps, ties on the voxel faces, three labels.
+TEST_CASE("lambda's changes are placed within 1e-4 voxel", "[conforming]") {
+  std::mt19937_64 rng(5);
+  std::size_t changes = 0, afters = 0, segments = 0;
+  for (int count : {4, 12, 30}) {
+    LabelImage x = make_well_composed_partition(voronoi_map(rng, 12, count)).image;
+    x.spacing = {0.8, 1.0, 1.3};
+    x.origin = {3, -2, 1};
+    const LabelFunction f(x, 0.3 * 0.8);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<LabelFunction::Change> ch;
+    for (int n = 0; n < 1500; ++n) {
+      // Half the segments from a voxel centre to a face neighbour's (the
+      // seeds' and VoxelSides' walks), half between random points.
+      Vec3 a, b;
+      if (n % 2 == 0) {
+        const std::array<std::size_t, 3> w{std::size_t(u(rng) * double(x.size[0] - 1)),
+                                           std::size_t(u(rng) * double(x.size[1] - 1)),
+                                           std::size_t(u(rng) * double(x.size[2] - 1))};
+        const int ax = n / 2 % 3;
+        a = x.world(double(w[0]), double(w[1]), double(w[2]));
+        b = x.world(double(w[0] + (ax == 0)), double(w[1] + (ax == 1)), double(w[2] + (ax == 2)));
+      } else {
+        const Vec3 c{u(rng) * double(x.size[0] - 1), u(rng) * double(x.size[1] - 1), u(rng) * double(x.size[2] - 1)};
+        a = x.world(c[0], c[1], c[2]);
+        b = x.world(c[0] + 3 * u(rng) - 1.5, c[1] + 3 * u(rng) - 1.5, c[2] + 3 * u(rng) - 1.5);
+      }
+      f.changes(a, b, ch);
+      ++segments;
+      double len = 0;
+      for (int m = 0; m < 3; ++m) len += (b[m] - a[m]) * (b[m] - a[m]);
+      len = std::sqrt(len) / 0.8;  // voxels of the smallest spacing
+      const double dt = 0.5e-4 / len;
+      auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
+      for (const auto& c : ch) {
+        bool before = false, other = false, after = false;
+        for (int j = 1; j <= 20; ++j) {
+          before = before || f.label(at(std::max(0.0, c.t - dt * j / 20))) == c.before;
+          const std::int32_t l = f.label(at(std::min(1.0, c.t + dt * j / 20)));
+          other = other || l != c.before;
+          after = after || l == c.after;
+        }
+        REQUIRE(before);
+        REQUIRE(other);
+        ++changes;
+        if (after) ++afters;
+      }
+    }
+  }
+  CHECK(segments == 4500);
+  CHECK(changes > 1000);
+  CHECK(afters >= changes * 98 / 100);
+}
