@@ -103,6 +103,8 @@ private:
   bool face_point(std::uint64_t key, Vec3& p) const;
   void seeds();
   void refine();
+  void release_lists();
+  bool keep_lists_ = false;  // seg2tet's cell rounds: REFINE's lists kept for the next
   bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
   // A facet of the pass and lambda's changes along its Voronoi edge: how
   // many (0 also for a facet not walked), the first's and the last's t.
@@ -129,7 +131,9 @@ private:
   struct BadCell {
     double bad;
     Ch c;
+    std::uint32_t uid;
     std::array<Vh, 4> v;
+    std::array<int, 4> id;  // the vertices' ids, sorted
     bool sliver;
   };
   double badness(Ch c, bool& sliver);
