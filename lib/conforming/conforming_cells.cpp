@@ -130,10 +130,16 @@ void Mesher::refine_cells() {
       int wi = 0;
       for (Ch z : zone_)
         for (int i = 0; i < 4; ++i) {
-          if (label(z) == label(z->neighbor(i))) continue;
+          const Ch n = z->neighbor(i);
+          if (label(z) == label(n) || tr_.is_infinite(z) || tr_.is_infinite(n)) continue;
+          // The surface ball no larger than the larger circumball (both
+          // through the facet's vertices): a smaller one than the worst
+          // so far without the walk.
+          const Vec3 p = vec(z->vertex((i + 1) & 3)->point());
+          if (std::max(dist2(centre(z), p), dist2(centre(n), p)) * (1 + 1e-9) < worst) continue;
           Vec3 x;
           if (!surface_centre(z, i, x)) continue;
-          const double r2 = dist2(x, vec(z->vertex((i + 1) & 3)->point()));
+          const double r2 = dist2(x, p);
           if (r2 > worst && dist2(cc, x) < r2) worst = r2, wx = x, wc = z, wi = i;
         }
       bool ok;

@@ -315,9 +315,15 @@ void Mesher::check_vertex(Vh v) {
       for (int j = 0; j < 4; ++j) {
         if (j == iv || label(c->neighbor(j)) == l) continue;
         if (pair != kUnknown && label(c->neighbor(j)) != pair) continue;
+        // The ball's radius along the Voronoi edge at most the larger of
+        // its ends' (both circumballs through v): no larger one, no walk.
+        const Ch n = c->neighbor(j);
+        if (tr_.is_infinite(c) || tr_.is_infinite(n)) continue;
+        const Vec3 p = vec(v->point());
+        if (std::max(dist2(centre(c), p), dist2(centre(n), p)) * (1 + 1e-9) < best.priority) continue;
         Vec3 x;
         if (!surface_centre(c, j, x)) continue;
-        const double r2 = dist2(x, vec(v->point()));
+        const double r2 = dist2(x, p);
         if (r2 > best.priority) {
           best.x = x, best.priority = r2, best.cell = c, best.facet = j;
           best.cells = {c->info().uid, c->neighbor(j)->info().uid};
