@@ -275,6 +275,7 @@ void Mesher::check_vertex(Vh v) {
   std::int32_t first = label(cells_[0]);
   bool one = true;
   for (Ch c : cells_) one = one && label(c) == first;
+  if (v->info() >= 0) inner_[std::size_t(v->info())] = one ? first : kUnknown;
   if (one) return;
   labels_.clear();
   for (Ch c : cells_) labels_.push_back(label(c));
@@ -595,11 +596,20 @@ void Mesher::refine() {
       }
     }
     walk_facets();
+    // A vertex whose cells were all of one label at its last check, its
+    // new cells (the fresh ones at it) of that label too: still one label,
+    // nothing for check_vertex to do (seg2tet's cells inside a label).
+    inner_.resize(points_, kUnknown);
+    for (Ch c : fresh_)
+      for (int i = 0; i < 4; ++i) {
+        const int id = c->vertex(i)->info();
+        if (id >= 0 && inner_[std::size_t(id)] != c->info().label) inner_[std::size_t(id)] = kUnknown;
+      }
     // By id, not address: the same candidates in the same order every run.
     std::sort(touched_.begin(), touched_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& t : touched_) {
       touched_mark_[std::size_t(t.first)] = 0;
-      check_vertex(t.second);
+      if (inner_[std::size_t(t.first)] == kUnknown) check_vertex(t.second);
     }
     if (o_.progress)
       o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +

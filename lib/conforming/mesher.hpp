@@ -162,6 +162,7 @@ private:
   std::vector<Vh> new_vertices_;
   std::vector<std::pair<int, Vh>> touched_;  // (id, vertex), each once
   std::vector<char> touched_mark_;           // per vertex id: in touched_
+  std::vector<std::int32_t> inner_;          // per vertex id: its cells' one label, else kUnknown
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
   std::vector<std::int32_t> other_, seq_;
