@@ -124,6 +124,9 @@ void Mesher::refine_cells() {
       if (lt == Tr::VERTEX) continue;
       zone_.clear();
       tr_.find_conflicts(pt(cc), at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      // A facet inside the zone once, from the cell of the smaller centre.
+      in_zone_ = zone_;
+      std::sort(in_zone_.begin(), in_zone_.end());
       double worst = 0;
       Vec3 wx{0, 0, 0};
       Ch wc;
@@ -132,6 +135,7 @@ void Mesher::refine_cells() {
         for (int i = 0; i < 4; ++i) {
           const Ch n = z->neighbor(i);
           if (label(z) == label(n) || tr_.is_infinite(z) || tr_.is_infinite(n)) continue;
+          if (centre(n) < centre(z) && std::binary_search(in_zone_.begin(), in_zone_.end(), n)) continue;
           // The surface ball no larger than the larger circumball (both
           // through the facet's vertices): a smaller one than the worst
           // so far without the walk.

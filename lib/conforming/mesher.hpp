@@ -170,7 +170,7 @@ private:
   std::vector<LabelFunction::Change> changes_;
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
-  std::vector<Ch> zone_;
+  std::vector<Ch> zone_, in_zone_;  // a conflict zone; sorted by address (membership only)
   // voxel_sides' voxels (their index in X), each with the cell that held
   // its centre (and that cell's uid) at the last call; Ch() when on a face
   // of the triangulation. 16 bytes.
