@@ -22,11 +22,10 @@ double Mesher::badness(Ch c, bool& sliver) {
                             sliver);
 }
 
+// Still the cell it was (uids are never reused; a cell made since is 0
+// until REFINE numbers it).
 bool Mesher::alive(const BadCell& e) const {
-  if (!tr_.tds().cells().is_used(e.c)) return false;
-  for (int i = 0; i < 4; ++i)
-    if (e.c->vertex(i) != e.v[std::size_t(i)]) return false;
-  return true;
+  return tr_.tds().cells().is_used(e.c) && e.c->info().uid == e.uid;
 }
 
 // A sliver's encroached facet (c, i: surface centre x, ball radius^2 r2):
@@ -76,22 +75,39 @@ void Mesher::off_centre(const std::array<Vh, 4>& v, Ch c, int i, double r2, Vec3
 void Mesher::refine_cells() {
   const ConformingTetOptions& t = o_.tets;
   const double floor2 = 1e-6 * voxel_ * voxel_;
-  std::vector<BadCell> bad;
+  std::vector<BadCell> bad, left;
+  // A cell's badness is its vertices' (its label and centre too): the bad
+  // cells of a round are the last round's still there and those made since
+  // (numbered after `seen`: REFINE numbers every cell); every cell is
+  // numbered when the stage starts.
+  std::uint32_t seen = 0;
+  keep_lists_ = true;  // REFINE's lists kept between the rounds
   for (;;) {
     bad.clear();
+    for (const BadCell& e : left)
+      if (alive(e)) bad.push_back(e);
     for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c) {
-      if (label(c) == 0) continue;
+      if (c->info().uid <= seen || label(c) == 0) continue;
       bool sliver;
       const double b = badness(c, sliver);
-      if (b > 0) bad.push_back({b, c, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, sliver});
+      if (b > 0) {
+        BadCell e{b, c, c->info().uid, {c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)}, {}, sliver};
+        for (int i = 0; i < 4; ++i) e.id[std::size_t(i)] = e.v[std::size_t(i)]->info();
+        std::sort(e.id.begin(), e.id.end());
+        bad.push_back(e);
+      }
     }
-    if (bad.empty()) return;
-    if (cell_rounds_ >= t.max_rounds) {
-      cell_rounds_exhausted_ = true;
-      return;
+    seen = uid_;
+    if (bad.empty() || cell_rounds_ >= t.max_rounds) {
+      cell_rounds_exhausted_ = !bad.empty();
+      break;
     }
     ++cell_rounds_;
-    std::stable_sort(bad.begin(), bad.end(), [](const BadCell& a, const BadCell& b) { return a.bad > b.bad; });
+    // Worst first; ties by the sorted vertex ids (not by address: the same
+    // order every run).
+    std::sort(bad.begin(), bad.end(),
+              [](const BadCell& a, const BadCell& b) { return a.bad != b.bad ? a.bad > b.bad : a.id < b.id; });
+    left.clear();
     bool any = false;
     for (const BadCell& e : bad) {
       if (cell_points_ >= t.max_cell_points) {
@@ -100,6 +116,7 @@ void Mesher::refine_cells() {
       }
       if (max_hit_) break;
       if (!alive(e)) continue;
+      left.push_back(e);  // dropped next round unless it survives
       const Vec3 cc = centre(e.c);
       Tr::Locate_type lt;
       int li, lj;
@@ -107,16 +124,26 @@ void Mesher::refine_cells() {
       if (lt == Tr::VERTEX) continue;
       zone_.clear();
       tr_.find_conflicts(pt(cc), at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      // A facet inside the zone once, from the cell of the smaller centre.
+      in_zone_ = zone_;
+      std::sort(in_zone_.begin(), in_zone_.end());
       double worst = 0;
       Vec3 wx{0, 0, 0};
       Ch wc;
       int wi = 0;
       for (Ch z : zone_)
         for (int i = 0; i < 4; ++i) {
-          if (label(z) == label(z->neighbor(i))) continue;
+          const Ch n = z->neighbor(i);
+          if (label(z) == label(n) || tr_.is_infinite(z) || tr_.is_infinite(n)) continue;
+          if (centre(n) < centre(z) && std::binary_search(in_zone_.begin(), in_zone_.end(), n)) continue;
+          // The surface ball no larger than the larger circumball (both
+          // through the facet's vertices): a smaller one than the worst
+          // so far without the walk.
+          const Vec3 p = vec(z->vertex((i + 1) & 3)->point());
+          if (std::max(dist2(centre(z), p), dist2(centre(n), p)) * (1 + 1e-9) < worst) continue;
           Vec3 x;
           if (!surface_centre(z, i, x)) continue;
-          const double r2 = dist2(x, vec(z->vertex((i + 1) & 3)->point()));
+          const double r2 = dist2(x, p);
           if (r2 > worst && dist2(cc, x) < r2) worst = r2, wx = x, wc = z, wi = i;
         }
       bool ok;
@@ -132,9 +159,11 @@ void Mesher::refine_cells() {
         ++cell_points_;
       }
     }
-    if (!any || max_hit_ || cell_points_exhausted_) return;
+    if (!any || max_hit_ || cell_points_exhausted_) break;
     refine();
   }
+  keep_lists_ = false;
+  release_lists();
 }
 
 // The labelled cells and the interfaces (tets.on), and every voxel

@@ -275,6 +275,7 @@ void Mesher::check_vertex(Vh v) {
   std::int32_t first = label(cells_[0]);
   bool one = true;
   for (Ch c : cells_) one = one && label(c) == first;
+  if (v->info() >= 0) inner_[std::size_t(v->info())] = one ? first : kUnknown;
   if (one) return;
   labels_.clear();
   for (Ch c : cells_) labels_.push_back(label(c));
@@ -315,9 +316,15 @@ void Mesher::check_vertex(Vh v) {
       for (int j = 0; j < 4; ++j) {
         if (j == iv || label(c->neighbor(j)) == l) continue;
         if (pair != kUnknown && label(c->neighbor(j)) != pair) continue;
+        // The ball's radius along the Voronoi edge at most the larger of
+        // its ends' (both circumballs through v): no larger one, no walk.
+        const Ch n = c->neighbor(j);
+        if (tr_.is_infinite(c) || tr_.is_infinite(n)) continue;
+        const Vec3 p = vec(v->point());
+        if (std::max(dist2(centre(c), p), dist2(centre(n), p)) * (1 + 1e-9) < best.priority) continue;
         Vec3 x;
         if (!surface_centre(c, j, x)) continue;
-        const double r2 = dist2(x, vec(v->point()));
+        const double r2 = dist2(x, p);
         if (r2 > best.priority) {
           best.x = x, best.priority = r2, best.cell = c, best.facet = j;
           best.cells = {c->info().uid, c->neighbor(j)->info().uid};
@@ -589,11 +596,20 @@ void Mesher::refine() {
       }
     }
     walk_facets();
+    // A vertex whose cells were all of one label at its last check, its
+    // new cells (the fresh ones at it) of that label too: still one label,
+    // nothing for check_vertex to do (seg2tet's cells inside a label).
+    inner_.resize(points_, kUnknown);
+    for (Ch c : fresh_)
+      for (int i = 0; i < 4; ++i) {
+        const int id = c->vertex(i)->info();
+        if (id >= 0 && inner_[std::size_t(id)] != c->info().label) inner_[std::size_t(id)] = kUnknown;
+      }
     // By id, not address: the same candidates in the same order every run.
     std::sort(touched_.begin(), touched_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
     for (const auto& t : touched_) {
       touched_mark_[std::size_t(t.first)] = 0;
-      check_vertex(t.second);
+      if (inner_[std::size_t(t.first)] == kUnknown) check_vertex(t.second);
     }
     if (o_.progress)
       o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
@@ -607,9 +623,14 @@ void Mesher::refine() {
     voxel_sides();
     if (sides_.empty() || !insert_all(sides_)) break;
   }
-  // The first pass's lists (every cell's) and the candidates' (empty now,
-  // or past the point cap) not kept past REFINE, their pages given back
-  // before the certificate's.
+  if (!keep_lists_) return release_lists();
+  for (auto* cands : {&topology_, &quality_, &sides_}) cands->clear();
+}
+
+// The first pass's lists (every cell's) and the candidates' (empty now,
+// or past the point cap) not kept past REFINE, their pages given back
+// before the certificate's.
+void Mesher::release_lists() {
   std::vector<FacetWalk>().swap(walks_);
   std::vector<Ch>().swap(pending_);
   std::vector<Ch>().swap(fresh_);

@@ -29,7 +29,9 @@
 //              the K(X) patches it names gets its surface centre, and REFINE
 //              again (a patch sampled too coarsely shows as split, merged or
 //              pinched).
-//   cells      (tets.on, seg2tet) rounds until one inserts nothing: every
+//   cells      (tets.on, seg2tet) rounds until one inserts nothing, worst
+//              first (ties by sorted vertex ids; a round's bad cells the
+//              last round's still there and those made since): every
 //              cell of a label but 0 whose radius-edge ratio exceeds R (or
 //              circumradius S, or, after those, a dihedral angle under the
 //              sliver bound) gets its circumcentre, unless that lies in the

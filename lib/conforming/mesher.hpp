@@ -103,6 +103,8 @@ private:
   bool face_point(std::uint64_t key, Vec3& p) const;
   void seeds();
   void refine();
+  void release_lists();
+  bool keep_lists_ = false;  // seg2tet's cell rounds: REFINE's lists kept for the next
   bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
   // A facet of the pass and lambda's changes along its Voronoi edge: how
   // many (0 also for a facet not walked), the first's and the last's t.
@@ -129,7 +131,9 @@ private:
   struct BadCell {
     double bad;
     Ch c;
+    std::uint32_t uid;
     std::array<Vh, 4> v;
+    std::array<int, 4> id;  // the vertices' ids, sorted
     bool sliver;
   };
   double badness(Ch c, bool& sliver);
@@ -158,6 +162,7 @@ private:
   std::vector<Vh> new_vertices_;
   std::vector<std::pair<int, Vh>> touched_;  // (id, vertex), each once
   std::vector<char> touched_mark_;           // per vertex id: in touched_
+  std::vector<std::int32_t> inner_;          // per vertex id: its cells' one label, else kUnknown
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
   std::vector<std::int32_t> other_, seq_;
@@ -165,7 +170,7 @@ private:
   std::vector<LabelFunction::Change> changes_;
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
-  std::vector<Ch> zone_;
+  std::vector<Ch> zone_, in_zone_;  // a conflict zone; sorted by address (membership only)
   // voxel_sides' voxels (their index in X), each with the cell that held
   // its centre (and that cell's uid) at the last call; Ch() when on a face
   // of the triangulation. 16 bytes.
