@@ -31,20 +31,20 @@ ConformingSurface Mesher::run() {
   bounding_box();
   seeds();
   refine();
-  ConformingSurface out = certified_rounds();
-  if (o_.tets.on) {
-    // The cells, then the certificate's rounds again if they changed the
-    // surface, and the cells again if those rounds inserted.
-    for (int again = 0; again < 3 && !max_hit_; ++again) {
-      const std::size_t before = points_;
-      refine_cells();
-      if (points_ == before) break;
-      const int r = rounds_;
-      out = certified_rounds();
-      if (rounds_ == r) break;
-    }
-    tets_output(out);
+  if (!o_.tets.on) return certified_rounds();
+  // seg2tet: the cells, then the certificate's rounds (once, on the surface
+  // the cells leave: their encroached facets' points change it), and the
+  // cells again if those rounds inserted.
+  ConformingSurface out;
+  for (int again = 0; again < 3; ++again) {
+    const std::size_t before = points_;
+    if (!max_hit_) refine_cells();
+    if (again > 0 && points_ == before) break;
+    const int r = rounds_;
+    out = certified_rounds();
+    if (rounds_ == r) break;
   }
+  tets_output(out);
   return out;
 }
 

@@ -43,6 +43,10 @@
 //              of cocircular points); REFINE after
 //              each round, where a restricted facet with a vertex off the
 //              interfaces (a cell's circumcentre) gets its surface centre;
+//              with tets.on the certificate runs after the cells (their
+//              encroached facets' points refine the surface where it would;
+//              before them its rounds put in 3x the points on the brain),
+//              the cells again if its rounds inserted (three times at most);
 //              then every voxel centre located (its cell's label).
 //   output     every restricted facet once, with (behind, front) = (higher,
 //              lower label), oriented out of behind (K(X)'s convention);
