@@ -34,7 +34,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 if ! /usr/bin/python3 -c 'import vtk' 2> /dev/null; then echo "  python3-vtk9 not installed: no metrics" >&2; exit 1; fi
 conforming=no
-"$tools/seg2mesh" --help | grep -q -- '--conforming' && conforming=yes
+# (grep -q would close the pipe early: seg2mesh's SIGPIPE fails it under pipefail)
+grep -- '--conforming' > /dev/null < <("$tools/seg2mesh" --help) && conforming=yes
 
 row() {  # row MAP NAME OUT.vtp IMAGE CMD...: time CMD, certify OUT against IMAGE, print a row
   local map=$1 name=$2 out=$3 image=$4 rc=0
