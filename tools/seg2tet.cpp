@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
   tool.app.add_option("--labels", labels_text, "Labels to mesh: all (every nonzero value) or a list such as 1,2,5")
       ->type_name("all|L,L,...")
       ->capture_default_str();
-  add_cell_options(tool, tets.cell_ratio, tets.cell_size, tets.sliver_angle, tets.max_cell_points);
+  std::string sizes = "0";
+  add_cell_options(tool, tets.cell_ratio, sizes, tets.sliver_angle, tets.max_cell_points);
   add_msh_version_option(tool, wopt.msh_version, "Gmsh format version of a .msh output: 4.1 or 2.2")->type_name("V");
   add_encoding_options(tool, wopt.ascii, wopt.msh_binary, ".vtu");
   SurfaceOptions surface_options(tool, "interface triangle", false);
@@ -52,6 +53,9 @@ int main(int argc, char** argv) {
     if (out == "-") throw UsageError("tetrahedral meshes are written to a file (.msh, .mesh, .vtu or .inp), not to stdout");
     if (!is_tet_mesh_path(out))
       throw UsageError(std::string("output format is chosen by extension: ") + kTetMeshExtensions, out);
+    const CellSizes cell_sizes = parse_cell_sizes(sizes);
+    tets.cell_size = cell_sizes.all;
+    tets.cell_size_by_label = cell_sizes.by_label;
     check_cell_options(tets.cell_ratio, tets.cell_size, tets.sliver_angle, tets.max_cell_points);
     surface_options.check();
     opt.labels = parse_label_list(labels_text);
@@ -62,6 +66,9 @@ int main(int argc, char** argv) {
     LabelImage image = read_labels(in, &opt.names);
     if (std::any_of(image.data.begin(), image.data.end(), [](std::int32_t v) { return v < 0; }))
       throw Error("negative label values: a region is a label above 0 (relabel the map)", in);
+    for (const auto& e : tets.cell_size_by_label)  // a typo would bound nothing, silently
+      if (std::find(image.data.begin(), image.data.end(), e.first) == image.data.end())
+        throw UsageError("--cell-size: label " + std::to_string(e.first) + " is not in the map");
     const RestrictedDelaunayOptions r = surface_options.resolve(image.spacing, MesherBounds::Mesher::kConforming);
     opt.conforming_options.ratio = r.ratio;
     opt.conforming_options.max_distance = r.max_distance;

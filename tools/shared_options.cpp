@@ -81,13 +81,15 @@ std::vector<long long> parse_label_list(const std::string& text) {
   return out;
 }
 
-void add_cell_options(cli::Tool& tool, double& ratio, double& size, double& sliver_angle, long long& max_points) {
+namespace {
+// --cell-ratio, then --cell-size (add_size), then the rest, in --help's order.
+template <class AddSize>
+void add_cell_options_with(cli::Tool& tool, double& ratio, AddSize add_size, double& sliver_angle,
+                           long long& max_points) {
   tool.app.add_option("--cell-ratio", ratio, "Radius-edge ratio bound R of every tetrahedron (>= 2)")
       ->type_name("R")
       ->capture_default_str();
-  tool.app.add_option("--cell-size", size, "Circumradius bound of every tetrahedron (world units); 0: none")
-      ->type_name("S")
-      ->capture_default_str();
+  add_size();
   tool.app.add_option("--sliver-angle", sliver_angle,
                       "Slivers: refine every tetrahedron with a dihedral angle below A degrees too (its "
                       "circumcentre, or the surface triangle it encroaches on), after the ratio and size bounds; "
@@ -98,6 +100,79 @@ void add_cell_options(cli::Tool& tool, double& ratio, double& size, double& sliv
                       "Stop cell refinement after inserting N points (exit 3, the mesh written)")
       ->type_name("N")
       ->capture_default_str();
+}
+} // namespace
+
+void add_cell_options(cli::Tool& tool, double& ratio, double& size, double& sliver_angle, long long& max_points) {
+  add_cell_options_with(
+      tool, ratio,
+      [&] {
+        tool.app.add_option("--cell-size", size, "Circumradius bound of every tetrahedron (world units); 0: none")
+            ->type_name("S")
+            ->capture_default_str();
+      },
+      sliver_angle, max_points);
+}
+
+void add_cell_options(cli::Tool& tool, double& ratio, std::string& sizes, double& sliver_angle,
+                      long long& max_points) {
+  add_cell_options_with(
+      tool, ratio,
+      [&] {
+        tool.app
+            .add_option("--cell-size", sizes,
+                        "Circumradius bound of every tetrahedron (world units), or per label: 3=0.5,5=2 (a bare S "
+                        "beside them: the other labels'); 0: none")
+            ->type_name("S|L=S,...")
+            ->capture_default_str();
+      },
+      sliver_angle, max_points);
+}
+
+CellSizes parse_cell_sizes(const std::string& text) {
+  CellSizes out;
+  bool bare = false;
+  std::size_t start = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const std::size_t eq = item.find('=');
+    auto number = [&](const std::string& t) {
+      std::size_t used = 0;
+      double v = -1;
+      try {
+        v = std::stod(t, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (t.empty() || used != t.size() || !(v >= 0) || !std::isfinite(v))
+        throw UsageError("--cell-size: '" + item + "' is not S or L=S (S a finite number >= 0, L a label above 0)");
+      return v;
+    };
+    if (eq == std::string::npos) {
+      if (bare) throw UsageError("--cell-size: more than one bound for the other labels");
+      bare = true;
+      out.all = number(item);
+    } else {
+      const std::string l = item.substr(0, eq);
+      std::size_t used = 0;
+      long long label = 0;
+      try {
+        label = std::stoll(l, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (l.empty() || used != l.size() || label < 1 || label > 2147483647)
+        throw UsageError("--cell-size: '" + item + "' is not S or L=S (S a finite number >= 0, L a label above 0)");
+      const double v = number(item.substr(eq + 1));
+      for (const auto& e : out.by_label)
+        if (e.first == label) throw UsageError("--cell-size: label " + l + " given twice");
+      out.by_label.emplace_back(std::int32_t(label), v);
+    }
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
 }
 
 void check_cell_options(double ratio, double size, double sliver_angle, long long max_points) {

@@ -6,7 +6,9 @@
 #include "cli/cli.hpp"
 #include "wellcomposed/well_composed.hpp"
 
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace imgmesh {
@@ -25,6 +27,15 @@ void add_encoding_options(cli::Tool& tool, bool& ascii, bool& msh_binary, const 
 // of cell refinement (implicit2tet, seg2tet), and their check after
 // parsing (UsageError naming the option).
 void add_cell_options(cli::Tool& tool, double& ratio, double& size, double& sliver_angle, long long& max_points);
+// seg2tet's: --cell-size as text, "S" or per label "L=S,L=S[,S]" (parse_cell_sizes).
+void add_cell_options(cli::Tool& tool, double& ratio, std::string& sizes, double& sliver_angle, long long& max_points);
+struct CellSizes {
+  double all = 0;                                      // the labels not named
+  std::vector<std::pair<std::int32_t, double>> by_label;  // in the order given
+};
+// UsageError naming the item unless every item is S or L=S (S finite >= 0,
+// L > 0), at most one bare S, no label twice.
+CellSizes parse_cell_sizes(const std::string& text);
 void check_cell_options(double ratio, double size, double sliver_angle, long long max_points);
 
 // --labels: "all" (empty: every nonzero value) or a comma-separated list

@@ -18,7 +18,7 @@ double Mesher::badness(Ch c, bool& sliver) {
   std::array<Vec3, 4> p;
   for (int i = 0; i < 4; ++i) p[std::size_t(i)] = vec(c->vertex(i)->point());
   const ConformingTetOptions& t = o_.tets;
-  return refinement_badness(p, dist2(centre(c), p[0]), t.cell_ratio, t.cell_size, t.sliver_angle, 1e-3 * voxel_,
+  return refinement_badness(p, dist2(centre(c), p[0]), t.cell_ratio, t.size_of(label(c)), t.sliver_angle, 1e-3 * voxel_,
                             sliver);
 }
 

@@ -66,6 +66,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace imgmesh {
@@ -75,6 +76,12 @@ struct ConformingTetOptions {
   bool on = false;
   double cell_ratio = 2;      // R: radius-edge ratio bound of every labelled tetrahedron
   double cell_size = 0;       // S: circumradius bound (world); 0: none
+  std::vector<std::pair<std::int32_t, double>> cell_size_by_label;  // S of these labels instead
+  double size_of(std::int32_t label) const {
+    for (const auto& e : cell_size_by_label)
+      if (e.first == label) return e.second;
+    return cell_size;
+  }
   double sliver_angle = 10;   // degrees: smaller dihedral angles refined after R and S (best effort); 0: off
   long long max_cell_points = 1000000;
   int max_rounds = 100;

@@ -110,11 +110,35 @@ case_meshinfo_certifies_the_regions_against_the_map() {
     fail "broken.inp: $(cat err.txt)"
 }
 
+# --cell-size L=S bounds label L's tetrahedra alone: every circumradius of
+# region 2 within 1 (the default mesh has 1.77 there), region 1's still
+# above it (1.49 by default), the certificate holding.
+case_cell_size_per_label() {
+  expect 0 seg2tet "$(labels)" s.msh --cell-size 2=1 -q || return
+  local py; py=$(python_with meshio)
+  [[ -n $py ]] || { echo "skipped: no python with meshio (python3-meshio)"; return; }
+  "$py" - s.msh > radii.txt 2>&1 <<'PY' || fail "circumradii: $(cat radii.txt)"
+import sys, meshio, numpy as np
+m = meshio.read(sys.argv[1])
+tets = np.concatenate([c.data for c in m.cells if c.type == 'tetra'])
+region = np.concatenate([d for c, d in zip(m.cells, m.cell_data['gmsh:physical']) if c.type == 'tetra'])
+p = m.points[tets]
+e = p[:, 1:] - p[:, :1]  # circumcentre offset x: e x = |e|^2 / 2, row by row
+x = np.linalg.solve(e, 0.5 * (e * e).sum(2)[..., None])[..., 0]
+r = np.sqrt((x * x).sum(1))
+assert r[region == 2].max() <= 1 + 1e-9, r[region == 2].max()
+assert r[region == 1].max() > 1.2, r[region == 1].max()
+PY
+}
+
 # Refused in one line, nothing written: stdout, an unknown extension, a
-# ratio under 2, the per-label mesher's options.
+# ratio under 2, the per-label mesher's options, --cell-size items that are
+# not S or L=S, twice, or name a label not in the map.
 case_bad_options_refused() {
   local args rc
-  for args in "-" "x.off" "x.msh --cell-ratio 1.5" "x.msh --roughness 90" "x.msh --fallback-rounds 3" "x.msh --sliver-angle 30"; do
+  for args in "-" "x.off" "x.msh --cell-ratio 1.5" "x.msh --roughness 90" "x.msh --fallback-rounds 3" "x.msh --sliver-angle 30" \
+    "x.msh --cell-size 2=" "x.msh --cell-size 2=-1" "x.msh --cell-size 2=1,2=3" "x.msh --cell-size 1,2" \
+    "x.msh --cell-size 0=1" "x.msh --cell-size 9=1"; do
     # shellcheck disable=SC2086
     "$BIN/seg2tet" "$(labels)" $args 2> err > /dev/null
     rc=$?
