@@ -6,6 +6,7 @@
 #include <cmath>
 #include <exception>
 #include <sstream>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -61,19 +62,28 @@ void check_svg_path(const std::string& svg) {
   if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
 }
 
+namespace {
+// The whole of text as one number (std::stoll / std::stod), else false.
+template <class T>
+bool whole_number(const std::string& text, T& v) {
+  std::size_t used = 0;
+  try {
+    if constexpr (std::is_integral_v<T>) v = std::stoll(text, &used);
+    else v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return false;
+  }
+  return used != 0 && used == text.size();
+}
+} // namespace
+
 std::vector<long long> parse_label_list(const std::string& text) {
   std::vector<long long> out;
   if (text == "all") return out;
   std::istringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
-    std::size_t used = 0;
     long long v = 0;
-    try {
-      v = std::stoll(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size())
+    if (!whole_number(item, v))
       throw UsageError("--labels " + text + ": 'all' or a comma-separated list of integers expected");
     out.push_back(v);
   }
@@ -137,16 +147,12 @@ CellSizes parse_cell_sizes(const std::string& text) {
     const std::size_t comma = text.find(',', start);
     const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     const std::size_t eq = item.find('=');
+    auto refuse = [&] {
+      return UsageError("--cell-size: '" + item + "' is not S or L=S (S a finite number >= 0, L a label above 0)");
+    };
     auto number = [&](const std::string& t) {
-      std::size_t used = 0;
       double v = -1;
-      try {
-        v = std::stod(t, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (t.empty() || used != t.size() || !(v >= 0) || !std::isfinite(v))
-        throw UsageError("--cell-size: '" + item + "' is not S or L=S (S a finite number >= 0, L a label above 0)");
+      if (!whole_number(t, v) || !(v >= 0) || !std::isfinite(v)) throw refuse();
       return v;
     };
     if (eq == std::string::npos) {
@@ -155,15 +161,8 @@ CellSizes parse_cell_sizes(const std::string& text) {
       out.all = number(item);
     } else {
       const std::string l = item.substr(0, eq);
-      std::size_t used = 0;
       long long label = 0;
-      try {
-        label = std::stoll(l, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (l.empty() || used != l.size() || label < 1 || label > 2147483647)
-        throw UsageError("--cell-size: '" + item + "' is not S or L=S (S a finite number >= 0, L a label above 0)");
+      if (!whole_number(l, label) || label < 1 || label > 2147483647) throw refuse();
       const double v = number(item.substr(eq + 1));
       for (const auto& e : out.by_label)
         if (e.first == label) throw UsageError("--cell-size: label " + l + " given twice");
