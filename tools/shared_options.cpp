@@ -1,12 +1,11 @@
 #include "shared_options.hpp"
 
 #include "util/error.hpp"
+#include "util/parse.hpp"
 #include "util/path.hpp"
 
 #include <cmath>
-#include <exception>
 #include <sstream>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -62,28 +61,13 @@ void check_svg_path(const std::string& svg) {
   if (!svg.empty() && extension_of(svg) != ".svg") throw UsageError("--svg needs a .svg file name", svg);
 }
 
-namespace {
-// The whole of text as one number (std::stoll / std::stod), else false.
-template <class T>
-bool whole_number(const std::string& text, T& v) {
-  std::size_t used = 0;
-  try {
-    if constexpr (std::is_integral_v<T>) v = std::stoll(text, &used);
-    else v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    return false;
-  }
-  return used != 0 && used == text.size();
-}
-} // namespace
-
 std::vector<long long> parse_label_list(const std::string& text) {
   std::vector<long long> out;
   if (text == "all") return out;
   std::istringstream in(text);
   for (std::string item; std::getline(in, item, ',');) {
     long long v = 0;
-    if (!whole_number(item, v))
+    if (!parse_integer(item, v))
       throw UsageError("--labels " + text + ": 'all' or a comma-separated list of integers expected");
     out.push_back(v);
   }
@@ -152,7 +136,7 @@ CellSizes parse_cell_sizes(const std::string& text) {
     };
     auto number = [&](const std::string& t) {
       double v = -1;
-      if (!whole_number(t, v) || !(v >= 0) || !std::isfinite(v)) throw refuse();
+      if (!parse_real(t, v) || !(v >= 0) || !std::isfinite(v)) throw refuse();
       return v;
     };
     if (eq == std::string::npos) {
@@ -162,7 +146,7 @@ CellSizes parse_cell_sizes(const std::string& text) {
     } else {
       const std::string l = item.substr(0, eq);
       long long label = 0;
-      if (!whole_number(l, label) || label < 1 || label > 2147483647) throw refuse();
+      if (!parse_integer(l, label) || label < 1 || label > 2147483647) throw refuse();
       const double v = number(item.substr(eq + 1));
       for (const auto& e : out.by_label)
         if (e.first == label) throw UsageError("--cell-size: label " + l + " given twice");
