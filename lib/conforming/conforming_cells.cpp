@@ -3,6 +3,7 @@
 // surface, and the tetrahedra with their interfaces written out.
 #include "conforming/mesher.hpp"
 
+#include "mesh/located_cells.hpp"
 #include "mesh/tet_mesh.hpp"
 #include "util/hash.hpp"
 
@@ -240,16 +241,9 @@ void Mesher::tets_output(ConformingSurface& out) {
           row = c;
           if (j == 0) slice = c;
         }
-        bool wrong = label(c) != own;
-        if (lt == Tr::FACET) wrong = wrong || label(c->neighbor(li)) != own;
-        else if (lt == Tr::EDGE) {
-          auto circ = tr_.incident_cells(c, li, lj), end = circ;
-          do wrong = wrong || label(circ) != own; while (++circ != end);
-        } else if (lt == Tr::VERTEX) {
-          cells_.clear();
-          tr_.incident_cells(c->vertex(li), std::back_inserter(cells_));
-          for (Ch n : cells_) wrong = wrong || label(n) != own;
-        }
+        located_cells(tr_, c, lt, li, lj, cells_);
+        bool wrong = false;
+        for (Ch n : cells_) wrong = wrong || label(n) != own;
         ++out.centres_checked;
         out.centres_wrong += wrong;
       }

@@ -1,6 +1,7 @@
 #include "conforming/mesher.hpp"
 
 #include "implicit/parallel.hpp"
+#include "mesh/located_cells.hpp"
 #include "util/error.hpp"
 #include "util/memory.hpp"
 
@@ -440,12 +441,7 @@ void Mesher::voxel_sides() {
       sv.uid = keep ? c->info().uid : 0;
       // On a facet, edge or vertex of W: every cell there must be its label.
       if (lt != Tr::CELL && lt != Tr::OUTSIDE_CONVEX_HULL) {
-        cells_.clear();
-        if (lt == Tr::FACET) cells_ = {c, c->neighbor(li)};
-        else if (lt == Tr::EDGE) {
-          auto circ = tr_.incident_cells(c, li, lj), end = circ;
-          do cells_.push_back(circ); while (++circ != end);
-        } else tr_.incident_cells(c->vertex(li), std::back_inserter(cells_));
+        located_cells(tr_, c, lt, li, lj, cells_);
         const std::int32_t own = voxel_label(i, j, k);
         for (Ch n : cells_)
           if (label(n) != own) c = n;

@@ -2,6 +2,7 @@
 // restricted Delaunay surface and the points of S that refine them.
 #include "surface/voxel_side_points.hpp"
 
+#include "mesh/located_cells.hpp"
 #include "util/hash.hpp"
 
 #include <algorithm>
@@ -105,16 +106,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     const Ch c = tr.locate(pp, lt, li, lj, hint);
     hint = c;
     // The cells holding p: one, or those around the facet, edge or vertex it lies on.
-    cells.assign(1, c);
-    if (lt == Tr::FACET) cells.push_back(c->neighbor(li));
-    else if (lt == Tr::EDGE) {
-      Tr::Cell_circulator cc = tr.incident_cells(c, li, lj), done = cc;
-      cells.clear();
-      do cells.push_back(cc); while (++cc != done);
-    } else if (lt == Tr::VERTEX) {
-      cells.clear();
-      tr.incident_cells(c->vertex(li), std::back_inserter(cells));
-    }
+    located_cells(tr, c, lt, li, lj, cells);
     const bool in = g.neg(x, y, z);
     Ch bad;
     for (Ch h : cells)

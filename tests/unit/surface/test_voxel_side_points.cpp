@@ -2,6 +2,7 @@
 // Delaunay cell lies on the other side of S, whatever it remembers from
 // earlier passes (the centres found right, where their walks start).
 #include "shapes.hpp"
+#include "mesh/located_cells.hpp"
 #include "surface/delmesh.hpp"
 #include "surface/voxel_side_points.hpp"
 
@@ -32,16 +33,8 @@ long long wrong_by_walks(const DelMesh& m) {
     Tr::Locate_type lt;
     int li, lj;
     const Ch c = tr.locate(p, lt, li, lj);
-    std::vector<Ch> cells{c};
-    if (lt == Tr::FACET) cells.push_back(c->neighbor(li));
-    else if (lt == Tr::EDGE) {
-      Tr::Cell_circulator cc = tr.incident_cells(c, li, lj), done = cc;
-      cells.clear();
-      do cells.push_back(cc); while (++cc != done);
-    } else if (lt == Tr::VERTEX) {
-      cells.clear();
-      tr.incident_cells(c->vertex(li), std::back_inserter(cells));
-    }
+    std::vector<Ch> cells;
+    located_cells(tr, c, lt, li, lj, cells);
     bool bad = false;
     for (Ch h : cells) bad = bad || (!tr.is_infinite(h) && m.sampler().inside_at(vec(tr.dual(h)))) != g.neg(x, y, z);
     wrong += bad;
