@@ -98,8 +98,9 @@ struct ConformingOptions {
   // the places where it fails (InterfaceCertificate::failing_places: world
   // points on the wrong pieces), empty when it holds. Each round the
   // surface centres of the restricted facets within a voxel of those places
-  // go in and REFINE runs again, at most `certificate_rounds` times, and
-  // only while each round halves the places. Unset: no rounds.
+  // go in and REFINE runs again, at most `certificate_rounds` times, while
+  // each round leaves fewer places, and not after a round that more than
+  // doubled the points and left more than half of them. Unset: no rounds.
   std::function<std::vector<Vec3>(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                                   const std::vector<std::array<std::int32_t, 2>>& pairs)>
       certificate;
