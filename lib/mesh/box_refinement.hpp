@@ -31,6 +31,7 @@
 // `floor`). So within a round every point goes in at least min(m, floors)
 // > 0 from the others, inside bounded B: finitely many; rounds are capped.
 #pragma once
+#include <CGAL/Kernel/global_functions.h>
 #include <CGAL/iterator.h>
 
 #include <algorithm>
