@@ -96,8 +96,10 @@ bool Mesher::box_split(const Point& cc, bool beyond, bool& inserted) {
   inserted = false;
   const Box::Split s = box_->split_for(tr_, cc, zone_);
   if (!beyond && s.kind == Box::kNone) return false;
+  // As a cell's point (off the interfaces: REFINE gives a restricted facet
+  // at it its surface centre), counted as a box point.
   if ((s.kind == Box::kSegment || s.kind == Box::kFacet) && insert(s.x, kCell, s.near)) {
-    --inserted_[kCell];  // counted as box points
+    --inserted_[kCell];
     ++box_points_;
     inserted = true;
   } else {

@@ -127,7 +127,7 @@ bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
   }
   Vh v = tr_.insert(pt(p), lt, c, li, lj);
   v->info() = int(points_++);
-  on_surface_.push_back(step != kCell);  // B's points (seg2tet --outside) go in as kCell
+  on_surface_.push_back(step != kCell);
   new_vertices_.push_back(v);
   hint_ = v->cell();
   ++inserted_[step];
