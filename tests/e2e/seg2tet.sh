@@ -178,9 +178,13 @@ label = np.concatenate([d for c, d in zip(v.cells, v.cell_data['label']) if c.ty
 assert sorted(set(label.tolist())) == [0, 1, 2, 5] and (label == 0).sum() == (region == 6).sum(), np.unique(label)
 PY
   else echo "no python with meshio (python3-meshio): the files unchecked"; fi
-  # Any mesher's regions against the map (meshinfo reads "background" as 0).
-  OUT=report.txt expect 0 meshinfo out.msh --image "$(labels)" || return
-  grep -q "tetrahedra CERTIFIED against the label map" report.txt || fail "meshinfo: $(tail -3 report.txt)"
+  # Any mesher's regions against the map (meshinfo reads the .msh's
+  # "background" and the .vtu's label 0 as region 0).
+  local f
+  for f in out.msh out.vtu; do
+    OUT=report.txt expect 0 meshinfo $f --image "$(labels)" || return
+    grep -q "tetrahedra CERTIFIED against the label map" report.txt || fail "meshinfo $f: $(tail -3 report.txt)"
+  done
 }
 
 # Refused in one line, nothing written: stdout, an unknown extension, a
