@@ -123,7 +123,7 @@ void add_cell_options(cli::Tool& tool, double& ratio, std::string& sizes, double
       sliver_angle, max_points);
 }
 
-CellSizes parse_cell_sizes(const std::string& text) {
+CellSizes parse_cell_sizes(const std::string& text, bool background) {
   CellSizes out;
   bool bare = false;
   std::size_t start = 0;
@@ -132,7 +132,8 @@ CellSizes parse_cell_sizes(const std::string& text) {
     const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
     const std::size_t eq = item.find('=');
     auto refuse = [&] {
-      return UsageError("--cell-size: '" + item + "' is not S or L=S (S a finite number >= 0, L a label above 0)");
+      return UsageError("--cell-size: '" + item + "' is not S or L=S (S a finite number >= 0, L a label above 0" +
+                        (background ? std::string(" or 0, the background)") : std::string("; 0, the background, with --outside)")));
     };
     auto number = [&](const std::string& t) {
       double v = -1;
@@ -146,7 +147,7 @@ CellSizes parse_cell_sizes(const std::string& text) {
     } else {
       const std::string l = item.substr(0, eq);
       long long label = 0;
-      if (!parse_integer(l, label) || label < 1 || label > 2147483647) throw refuse();
+      if (!parse_integer(l, label) || label < (background ? 0 : 1) || label > 2147483647) throw refuse();
       const double v = number(item.substr(eq + 1));
       for (const auto& e : out.by_label)
         if (e.first == label) throw UsageError("--cell-size: label " + l + " given twice");

@@ -35,7 +35,8 @@ struct CellSizes {
 };
 // UsageError naming the item unless every item is S or L=S (S finite >= 0,
 // L > 0), at most one bare S, no label twice.
-CellSizes parse_cell_sizes(const std::string& text);
+// background: label 0 (the background, seg2tet --outside) may be given too.
+CellSizes parse_cell_sizes(const std::string& text, bool background = false);
 void check_cell_options(double ratio, double size, double sliver_angle, long long max_points);
 
 // --labels: "all" (empty: every nonzero value) or a comma-separated list

@@ -67,6 +67,47 @@ void Mesher::off_centre(const std::array<Vh, 4>& v, Ch c, int i, double r2, Vec3
   if (dist2(y, x) < r2 / 4) x = y;
 }
 
+// seg2tet --outside: B, the voxels' extent (half a voxel beyond the
+// centres; an image whose axes are not the world's: the world box around
+// it). X's outer layer is background (the repair grows the grid where a
+// label touches its side), so every interface lies at least half a voxel
+// inside B: implicit2tet's termination argument (mesh/box_refinement.hpp),
+// and its insertion floor, an eighth of that.
+Box Mesher::outside_box() const {
+  Vec3 lo, hi;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 p = x_.world((c & 1) ? double(x_.size[0]) - 0.5 : -0.5, (c & 2) ? double(x_.size[1]) - 0.5 : -0.5,
+                            (c & 4) ? double(x_.size[2]) - 0.5 : -0.5);
+    for (int m = 0; m < 3; ++m) {
+      lo[m] = c == 0 ? p[m] : std::min(lo[m], p[m]);
+      hi[m] = c == 0 ? p[m] : std::max(hi[m], p[m]);
+    }
+  }
+  return Box(lo, hi, voxel_ / 16);
+}
+
+// Shewchuk's boundary rule for a bad cell (tets.outside), given the
+// conflict zone (zone_) of its circumcentre cc or, cc beyond B, of cc's
+// projection onto B: cc beyond B, or encroaching a box subsegment or
+// subfacet of the zone, splits the box instead (implicit2tet's rule,
+// box_refinement.hpp). False when cc stays (in B, encroaching nothing);
+// else inserted says whether the split went in.
+bool Mesher::box_split(const Point& cc, bool beyond, bool& inserted) {
+  inserted = false;
+  const Box::Split s = box_->split_for(tr_, cc, zone_);
+  if (!beyond && s.kind == Box::kNone) return false;
+  // As a cell's point (off the interfaces: REFINE gives a restricted facet
+  // at it its surface centre), counted as a box point.
+  if ((s.kind == Box::kSegment || s.kind == Box::kFacet) && insert(s.x, kCell, s.near)) {
+    --inserted_[kCell];
+    ++box_points_;
+    inserted = true;
+  } else {
+    ++box_refused_;
+  }
+  return true;
+}
+
 // Rounds of cell refinement (tets.on), REFINE after each: the bad
 // labelled cells, worst first, each its circumcentre c or, when c lies in
 // the surface Delaunay ball of a restricted facet (such a ball lies in
@@ -88,7 +129,7 @@ void Mesher::refine_cells() {
     for (const BadCell& e : left)
       if (alive(e)) bad.push_back(e);
     for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c) {
-      if (c->info().uid <= seen || label(c) == 0) continue;
+      if (c->info().uid <= seen || (label(c) == 0 && !box_)) continue;
       bool sliver;
       const double b = badness(c, sliver);
       if (b > 0) {
@@ -119,12 +160,25 @@ void Mesher::refine_cells() {
       if (!alive(e)) continue;
       left.push_back(e);  // dropped next round unless it survives
       const Vec3 cc = centre(e.c);
+      // --outside: cc beyond B, its projection's zone (cc's own would hold
+      // every hull triangle cc sees).
+      const bool beyond = box_ && !box_->contains(pt(cc));
+      const Point q = beyond ? box_->project(pt(cc)) : pt(cc);
       Tr::Locate_type lt;
       int li, lj;
-      const Ch at = tr_.locate(pt(cc), lt, li, lj, e.c);
-      if (lt == Tr::VERTEX) continue;
+      const Ch at = tr_.locate(q, lt, li, lj, e.c);
       zone_.clear();
-      tr_.find_conflicts(pt(cc), at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      if (lt == Tr::VERTEX) {
+        if (!beyond) continue;
+        tr_.incident_cells(at->vertex(li), std::back_inserter(zone_));
+      } else {
+        tr_.find_conflicts(q, at, CGAL::Emptyset_iterator(), std::back_inserter(zone_));
+      }
+      bool split;
+      if (box_ && box_split(pt(cc), beyond, split)) {
+        if (split) any = true, ++cell_points_;
+        continue;
+      }
       // A facet inside the zone once, from the cell of the smaller centre.
       in_zone_ = zone_;
       std::sort(in_zone_.begin(), in_zone_.end());
@@ -187,13 +241,22 @@ void Mesher::tets_output(ConformingSurface& out) {
   };
   std::vector<std::pair<std::array<int, 5>, std::array<Vh, 4>>> cells, faces;
   for (auto c = tr_.finite_cells_begin(); c != tr_.finite_cells_end(); ++c) {
-    if (label(c) == 0) continue;
+    if (label(c) == 0 && !box_) continue;
     const std::array<Vh, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};  // positively oriented
     cells.emplace_back(key(label(c), v, 4), v);
   }
   const auto orient = GT().orientation_3_object();
   for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
     const Ch c = f->first, n = c->neighbor(f->second);
+    if (box_ && (tr_.is_infinite(c) || tr_.is_infinite(n))) {  // on B: a box face of region 0
+      const Ch side = tr_.is_infinite(c) ? n : c;
+      const int i = side == c ? f->second : n->index(c);
+      std::array<Vh, 4> v{side->vertex((i + 1) & 3), side->vertex((i + 2) & 3), side->vertex((i + 3) & 3), Vh()};
+      if (orient(v[0]->point(), v[1]->point(), v[2]->point(), side->vertex(i)->point()) == CGAL::POSITIVE)
+        std::swap(v[1], v[2]);
+      faces.emplace_back(key(label(side), v, 3), v);  // front 0: {0, 0}, B's
+      continue;
+    }
     if (label(c) == label(n)) continue;
     // Once, of the higher label (never 0), oriented out of it: the normal
     // points away from its vertex opposite the facet.
@@ -223,6 +286,7 @@ void Mesher::tets_output(ConformingSurface& out) {
   out.cell_points_exhausted = cell_points_exhausted_;
   out.sliver_points = sliver_points_;
   out.max_points_hit = max_hit_;  // the cap may refuse a cell's point after the last output()
+  if (box_) box_output(out);
   // Every voxel centre: in a cell of its voxel's label (on a facet, edge
   // or vertex of the triangulation: every cell there).
   // Each walk starts at the cell of the centre before it, a row's first at
@@ -247,6 +311,29 @@ void Mesher::tets_output(ConformingSurface& out) {
         ++out.centres_checked;
         out.centres_wrong += wrong;
       }
+}
+
+// tets.outside: B's volume and points, and whether the box triangles (the
+// region-0 triangles with pair {0, 0}) lie on B's faces (exactly: box
+// points carry B's coordinates) and add up to its area.
+void Mesher::box_output(ConformingSurface& out) {
+  const Vec3 &lo = box_->lo(), &hi = box_->hi();
+  const double a = hi[0] - lo[0], b = hi[1] - lo[1], c = hi[2] - lo[2];
+  out.box_volume = a * b * c;
+  out.box_points = box_points_;
+  out.box_refused = box_refused_;
+  const TetMesh& m = out.tets;
+  double area = 0;
+  bool on = true;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    if (m.triangle_pair[t] != std::array<int, 2>{0, 0}) continue;
+    const Vec3 &p = m.points[std::size_t(m.triangles[t][0])], &q = m.points[std::size_t(m.triangles[t][1])],
+               &r = m.points[std::size_t(m.triangles[t][2])];
+    on = on && box_->on_face(p, q, r);
+    const Vec3 n = cross(sub(q, p), sub(r, p));
+    area += std::sqrt(dot(n, n)) / 2;
+  }
+  out.box_covered = on && std::abs(area - 2 * (a * b + b * c + c * a)) <= 1e-9 * area;
 }
 
 } // namespace conforming_detail

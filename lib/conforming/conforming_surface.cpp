@@ -101,6 +101,11 @@ void Mesher::known(Ch c) {
 // restricted facet's Voronoi edge is then finite (the cells around the
 // corners lie outside, in 0).
 void Mesher::bounding_box() {
+  if (o_.tets.on && o_.tets.outside) {  // seg2tet --outside: B's corners instead, the hull B
+    box_.emplace(outside_box());
+    for (int c = 0; c < 8; ++c) tr_.insert(pt(box_->corners()[std::size_t(c)]))->info() = -3 - c;
+    return;
+  }
   for (int c = 0; c < 8; ++c) {
     const double i = (c & 1) ? double(x_.size[0]) + 2.5 : -3.5;
     const double j = (c & 2) ? double(x_.size[1]) + 2.5 : -3.5;
@@ -711,6 +716,12 @@ Json ConformingSurface::to_json() const {
     j["sliver_points"] = sliver_points;
     j["voxel_centres_checked"] = centres_checked;
     j["voxel_centres_wrong"] = centres_wrong;
+  }
+  if (box_volume > 0) {
+    j["box_volume"] = box_volume;
+    j["box_points"] = box_points;
+    j["box_refused"] = box_refused;
+    j["box_covered"] = box_covered;
   }
   return j;
 }

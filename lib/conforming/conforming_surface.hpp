@@ -52,7 +52,9 @@
 //              lower label), oriented out of behind (K(X)'s convention);
 //              tets.on: the cells of every label but 0, region = label,
 //              and every restricted facet once as a triangle of the
-//              higher label (region = behind), oriented out of it.
+//              higher label (region = behind), oriented out of it;
+//              tets.outside: the background's cells too, region 0, B's
+//              faces triangles of region 0 (pair {0, 0}).
 // The Delaunay triangulation embeds the complex: no two triangles cross.
 // What the mesh is, against K(X), is the interface certificate's to say
 // (surfacenets/interface_certificate.hpp); this file certifies nothing.
@@ -85,6 +87,9 @@ struct ConformingTetOptions {
   double sliver_angle = 10;   // degrees: smaller dihedral angles refined after R and S (best effort); 0: off
   long long max_cell_points = 1000000;
   int max_rounds = 100;
+  // seg2tet --outside: the background's cells too (label 0) up to the
+  // image box B (conforming_cells.cpp), B's faces their boundary.
+  bool outside = false;
 };
 
 struct ConformingOptions {
@@ -133,6 +138,12 @@ struct ConformingSurface {
   bool cell_rounds_exhausted = false, cell_points_exhausted = false;
   long long sliver_points = 0;
   std::size_t centres_checked = 0, centres_wrong = 0;
+  // tets.outside: B's volume, the box points (splits of B's edges and
+  // faces; refused: within the insertion floor), and whether the box
+  // triangles lie on B's faces and add up to its area.
+  double box_volume = 0;
+  long long box_points = 0, box_refused = 0;
+  bool box_covered = false;
   Json to_json() const;
 };
 

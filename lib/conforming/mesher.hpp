@@ -6,6 +6,7 @@
 #pragma once
 
 #include "conforming/conforming_surface.hpp"
+#include "mesh/box_refinement.hpp"
 
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Delaunay_triangulation_cell_base_3.h>
@@ -18,6 +19,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -33,12 +35,16 @@ struct CInfo {
   std::int32_t label = kUnknown;  // lambda at the circumcentre
   std::uint32_t uid = 0;          // 0: made since the last pass
 };
-using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, GT>;  // id; -1: a corner of the bounding box
+using Vb = CGAL::Triangulation_vertex_base_with_info_3<int, GT>;  // id; -1: a corner of the bounding box (-3 - k: B's corner k)
 using Cb = CGAL::Triangulation_cell_base_with_info_3<CInfo, GT, CGAL::Delaunay_triangulation_cell_base_3<GT>>;
 using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
 using Tr = CGAL::Delaunay_triangulation_3<GT, Tds>;
 using Vh = Tr::Vertex_handle;
 using Ch = Tr::Cell_handle;
+struct VertexId {
+  int operator()(Vh v) const { return v->info(); }
+};
+using Box = BoxRefinement<Tr, VertexId>;
 
 // TopoDisk's and PatchFan's points go in at least this many voxels (the
 // smallest spacing) from every vertex, else are refused: a packing, so the
@@ -147,8 +153,11 @@ private:
   double badness(Ch c, bool& sliver);
   bool alive(const BadCell& e) const;
   void off_centre(const std::array<Vh, 4>& v, Ch c, int i, double r2, Vec3& x);
+  Box outside_box() const;
+  bool box_split(const Point& cc, bool beyond, bool& inserted);
   void refine_cells();
   void tets_output(ConformingSurface& out);
+  void box_output(ConformingSurface& out);
 
   const LabelFunction& f_;
   const LabelImage& x_;
@@ -191,6 +200,8 @@ private:
   long long cell_points_ = 0, sliver_points_ = 0;
   int cell_rounds_ = 0;
   bool cell_rounds_exhausted_ = false, cell_points_exhausted_ = false;
+  std::optional<Box> box_;  // tets.outside: B, the triangulation's hull
+  long long box_points_ = 0, box_refused_ = 0;
 };
 
 } // namespace conforming_detail

@@ -17,7 +17,7 @@ namespace imgmesh {
 struct TetMesh {
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<int, 4>> tets;        // 0-based, det(b-a, c-a, d-a) > 0
-  std::vector<int> tet_region;                 // per tetrahedron, >= 1
+  std::vector<int> tet_region;                 // per tetrahedron, >= 1 (seg2tet --outside: 0 the background)
   std::vector<std::array<int, 3>> triangles;   // the boundary, counter-clockwise seen from outside
   std::vector<int> triangle_region;            // per triangle: the region it bounds
   // Regions' names where they have one (seg2tet: the labels' names of a

@@ -10,6 +10,7 @@
 #include <array>
 #include <cctype>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -78,9 +79,11 @@ void physical_names(std::ostream& o, const TetMesh& m, const std::set<int>& regi
     return name == m.region_names.end() || name->second.empty() ? std::to_string(r) : name->second;
   };
   if (e && e->pairs)
-    for (std::size_t k = 0; k < e->of.size(); ++k)
+    for (std::size_t k = 0; k < e->of.size(); ++k) {
+      const auto& p = e->of[k].second;
       o << "2 " << e->first_interface_tag + int(k) << " \""
-        << mesh_detail::msh_name(named(e->of[k].second[0]) + "|" + named(e->of[k].second[1])) << "\"\n";
+        << mesh_detail::msh_name(p == std::array<int, 2>{0, 0} ? "box" : named(p[0]) + "|" + named(p[1])) << "\"\n";
+    }
   o << "$EndPhysicalNames\n";
 }
 
@@ -170,7 +173,7 @@ void write_msh41(std::ostream& o, const TetMesh& m, bool binary) {
     std::vector<int> bounding;
     for (std::size_t k = 0; k < entities.of.size(); ++k) {
       const auto& pair = entities.of[k].second;
-      if (pair[0] == r) bounding.push_back(int(k) + 1);
+      if (entities.of[k].first == r) bounding.push_back(int(k) + 1);  // its region (the box's: the background's)
       else if (pair[1] == r) bounding.push_back(-int(k) - 1);
     }
     w.z(1).i(r).z(bounding.size());
@@ -223,7 +226,7 @@ void write_medit(std::ostream& o, const TetMesh& m) {
 }
 
 // Tetrahedra first, then the boundary triangles, as cells.
-void write_vtu(std::ostream& o, const TetMesh& m, bool binary) {
+void write_vtu(std::ostream& o, const TetMesh& m, bool binary, const std::string& name) {
   const std::size_t cells = m.tets.size() + m.triangles.size();
   mesh_detail::VtkXmlArrays arrays(o, binary, "", "");
   o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" " << arrays.file_attributes() << ">\n"
@@ -250,8 +253,8 @@ void write_vtu(std::ostream& o, const TetMesh& m, bool binary) {
   arrays.array("Int64", "connectivity", 1, connectivity, rows);
   arrays.array("Int64", "offsets", 1, offsets);
   arrays.array("UInt8", "types", 1, types);
-  o << "</Cells>\n<CellData Scalars=\"region\">\n";
-  arrays.array("Int32", "region", 1, region);
+  o << "</Cells>\n<CellData Scalars=\"" << name << "\">\n";
+  arrays.array("Int32", name.c_str(), 1, region);
   arrays.array("Int32", "boundary", 1, boundary);
   o << "</CellData>\n</Piece>\n</UnstructuredGrid>\n";
   arrays.appended_data();
@@ -331,8 +334,22 @@ void write_inp(std::ostream& o, const TetMesh& m) {
   for (std::size_t t = 0; t < m.triangles.size(); ++t) of[e.of_triangle[t]].push_back(t);
   for (std::size_t k = 0; k < e.of.size(); ++k) {
     const auto& [r, pair] = e.of[k];
-    surface("INTERFACE_" + std::to_string(pair[0]) + "_" + std::to_string(pair[1]), of[k], r);
+    surface(pair == std::array<int, 2>{0, 0} ? "BOX" : "INTERFACE_" + std::to_string(pair[0]) + "_" + std::to_string(pair[1]), of[k], r);
   }
+}
+
+// Region 0 as Gmsh's tag max + 1, "background" (a copy), when there is one.
+std::optional<TetMesh> gmsh_background(const TetMesh& m) {
+  const std::set<int> regions = regions_of(m);
+  if (!regions.count(0)) return std::nullopt;
+  TetMesh t = m;
+  const int tag = *regions.rbegin() + 1;
+  for (int& r : t.tet_region) r = r == 0 ? tag : r;
+  for (int& r : t.triangle_region) r = r == 0 ? tag : r;
+  const auto name = m.region_names.find(0);
+  t.region_names[tag] = name == m.region_names.end() || name->second.empty() ? "background" : name->second;
+  t.region_names.erase(0);
+  return t;
 }
 
 } // namespace
@@ -345,9 +362,12 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
   AtomicOutput out(path, (ext == ".vtu" && !options.ascii) || (ext == ".msh" && options.msh_binary));
   std::ostream& o = out.stream();
   o.precision(17);
-  if (ext == ".msh") (options.msh_version == "2.2" ? write_msh22 : write_msh41)(o, mesh, options.msh_binary);
+  if (ext == ".msh") {
+    const std::optional<TetMesh> tagged = gmsh_background(mesh);
+    (options.msh_version == "2.2" ? write_msh22 : write_msh41)(o, tagged ? *tagged : mesh, options.msh_binary);
+  }
   else if (ext == ".mesh") write_medit(o, mesh);
-  else if (ext == ".vtu") write_vtu(o, mesh, !options.ascii);
+  else if (ext == ".vtu") write_vtu(o, mesh, !options.ascii, options.vtu_cell_data);
   else write_inp(o, mesh);
   out.commit();
 }

@@ -23,8 +23,13 @@ struct TetWriteOptions {
   std::string msh_version = "4.1";  // or "2.2"
   bool ascii = false;       // .vtu in ASCII (else appended raw data, zlib-compressed, as VTK writes)
   bool msh_binary = false;  // .msh in Gmsh's binary form (else ASCII)
+  std::string vtu_cell_data = "region";  // .vtu: the regions' cell data array (seg2tet: "label")
 };
 
+// Region 0 (seg2tet --outside's background) is Gmsh's physical tag max + 1,
+// named "background" unless the mesh names it (Gmsh's tag 0 is no group);
+// the other formats write 0. A box face (region 0, pair {0, 0}) is in the
+// interface group "box" (Abaqus: surface BOX).
 // Throws Error on failure (no file left), UsageError on an unknown extension.
 void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWriteOptions& options = {});
 
@@ -33,7 +38,9 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
 // as VTK and meshio write them), legacy .vtk (UNSTRUCTURED_GRID, ASCII or
 // BINARY, 4.2 or 5.1), Abaqus .inp (write_inp's and Gmsh's: a tetrahedron's
 // region the R of its element set REGION_R or PhysicalVolumeR, the
-// triangles those of surfaces BOUNDARY_R and triangle elements):
+// triangles those of surfaces BOUNDARY_R and triangle elements; .vtu's
+// regions its cell data "region" or "label"; a .msh's physical volume
+// "background" region 0):
 // tetrahedra and triangles with their regions. Throws
 // Error naming the file on anything malformed.
 TetMesh read_tet_mesh(const std::string& path);

@@ -218,7 +218,7 @@ void read_msh_elements(MshValues& v, bool v4, TetMesh& m, const NodeIds& ids,
 }
 
 // $PhysicalNames: "dim tag \"name\"" a line; the surface groups' names kept.
-void read_msh_physical_names(Tokens& t, std::map<int, std::string>& names) {
+void read_msh_physical_names(Tokens& t, std::map<int, std::string>& names, int& background) {
   const std::size_t n = t.count("physical name");
   for (std::size_t k = 0; k < n; ++k) {
     const long long dim = t.integer(), tag = t.integer();
@@ -228,6 +228,7 @@ void read_msh_physical_names(Tokens& t, std::map<int, std::string>& names) {
     const std::size_t a = rest.find('"'), b = rest.rfind('"');
     if (a == std::string::npos || b == a) t.fail("a physical name without its double quotes");
     if (dim == 2) names[int(tag)] = rest.substr(a + 1, b - a - 1);
+    if (dim == 3 && rest.substr(a + 1, b - a - 1) == "background") background = int(tag);
   }
 }
 
@@ -281,7 +282,7 @@ mesh_detail::MshFile read_msh(std::istream& in, const std::string& path) {
       v.data_ends(s);
       if (t.next() != "$EndElements") throw Error("malformed $Elements", path);
     } else if (s == "$PhysicalNames" || s == "$LabelPairs") {
-      if (s == "$PhysicalNames") read_msh_physical_names(t, file.physical_names);
+      if (s == "$PhysicalNames") read_msh_physical_names(t, file.physical_names, file.background);
       else read_msh_label_pairs(t, file.label_pairs);
       if (t.next() != "$End" + s.substr(1)) throw Error("malformed " + s, path);
     } else if (!s.empty() && s[0] == '$' && s.rfind("$End", 0) != 0) {
@@ -289,6 +290,12 @@ mesh_detail::MshFile read_msh(std::istream& in, const std::string& path) {
     } else {
       throw Error("unexpected '" + s + "'", path);
     }
+  }
+  // The background's tag back to region 0 (write_tet_mesh's).
+  const int bg = file.background;
+  if (bg != 0) {
+    for (int& r : m.tet_region) r = r == bg ? 0 : r;
+    for (int& r : m.triangle_region) r = r == bg ? 0 : r;
   }
   return file;
 }

@@ -208,7 +208,9 @@ TetMesh read_vtu(const std::string& path) {
   TetMesh m;
   const VtuArray<double> xyz = f.values<double>("Points", "");
   const VtuArray<long long> con = f.values<long long>("", "connectivity"), off = f.values<long long>("", "offsets"),
-                            types = f.values<long long>("", "types"), reg = f.values<long long>("CellData", "region", false);
+                            types = f.values<long long>("", "types"), reg_region = f.values<long long>("CellData", "region", false);
+  // seg2tet's is "label".
+  const VtuArray<long long> reg = reg_region.values.empty() ? f.values<long long>("CellData", "label", false) : reg_region;
   const auto& p = xyz.values;
   if (p.size() % 3) throw Error("the point count is not a multiple of 3", path);
   for (std::size_t i = 0; i < p.size(); i += 3) m.points.push_back({p[i], p[i + 1], p[i + 2]});

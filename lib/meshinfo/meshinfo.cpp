@@ -592,8 +592,7 @@ MeshInfo label_tet_mesh_info(const TetMesh& mesh, const std::string& mesh_name, 
   Json tj = tetrahedra_section(mesh, q, cert.conformity);
   std::map<std::int32_t, double> voxels;
   const double voxel = x.spacing[0] * x.spacing[1] * x.spacing[2];
-  for (std::int32_t v : x.data)
-    if (v != 0) voxels[v] += voxel;
+  for (std::int32_t v : x.data) voxels[v] += voxel;  // 0 too: seg2tet --outside's region 0
   tj["regions"] = regions_section(mesh, q, &voxels,
                                   cert.state[TetLabelCertificate::kInterfaces] >= 0 ? &cert.interfaces : nullptr);
   r.report["tetrahedra"] = tj;

@@ -139,6 +139,16 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
       res.tet_conformity = tet_conformity(res.tets);
       res.tet_quality = tet_quality(res.tets);
       res.tet_boundary_mismatch = boundary_mismatch(res.tets);
+      if (o.tets.outside) {
+        res.outside = true;
+        res.box_volume = c.box_volume;
+        res.box_points = c.box_points;
+        res.box_refused = c.box_refused;
+        res.box_covered = c.box_covered;
+        res.box_filled = std::abs(res.tet_quality.total_volume - c.box_volume) <= 1e-9 * c.box_volume;
+        res.background_voxel_volume = double(std::count(wc.data.begin(), wc.data.end(), 0)) * wc.spacing[0] *
+                                      wc.spacing[1] * wc.spacing[2];
+      }
     }
     points = std::move(c.points), triangles = std::move(c.triangles), pairs = std::move(c.pairs);
     res.seconds.push_back({"mesh", since(t0)});
@@ -262,6 +272,22 @@ Json LabelSurfaceNetsResult::to_json() const {
     t["boundaries_match"] = tet_boundary_mismatch.empty();
     t["voxel_centres_checked"] = centres_checked;
     t["voxel_centres_wrong"] = centres_wrong;
+    if (outside) {
+      Json b = Json::object();
+      const auto q = tet_quality.by_region.find(0);
+      const auto v = tet_quality.volume_by_region.find(0);
+      const double volume = v == tet_quality.volume_by_region.end() ? 0.0 : v->second;
+      b["tetrahedra"] = q == tet_quality.by_region.end() ? std::size_t(0) : q->second.tetrahedra;
+      b["volume"] = volume;
+      b["voxel_volume"] = background_voxel_volume;
+      b["volume_ratio"] = background_voxel_volume > 0 ? volume / background_voxel_volume : 0.0;
+      b["box_volume"] = box_volume;
+      b["box_filled"] = box_filled;
+      b["box_covered"] = box_covered;
+      b["box_points"] = box_points;
+      b["box_refused"] = box_refused;
+      t["outside"] = b;
+    }
     st["tetrahedra"] = t;
     st["all_certified"] = all && failed_guarantee().empty();
   }
@@ -284,6 +310,8 @@ std::string LabelSurfaceNetsResult::failed_guarantee() const {
            " faces in three or more, " + std::to_string(c.inconsistent_faces) + " faces traversed alike)";
   }
   if (!tet_boundary_mismatch.empty()) return "tetrahedra: " + tet_boundary_mismatch;
+  if (outside && !box_filled) return "tetrahedra: --outside: they do not fill the image box (volume differs)";
+  if (outside && !box_covered) return "tetrahedra: --outside: the box triangles do not cover the image box's faces";
   if (centres_wrong > 0)
     return "tetrahedra: " + std::to_string(centres_wrong) + " of " + std::to_string(centres_checked) +
            " voxel centres in a tetrahedron of another label";

@@ -68,6 +68,13 @@ struct LabelSurfaceNetsResult {
   double cell_ratio = 0;
   bool cell_refinement_stopped = false;  // rounds or points exhausted
   std::size_t centres_checked = 0, centres_wrong = 0;
+  // tets.outside: region 0 fills the image box B too (its label 0 voxel
+  // centres among those checked): the tetrahedra's volume B's (box_filled,
+  // 1e-9 relative), the box triangles on B's faces and of its area
+  // (box_covered); region 0's volume against the background's voxels.
+  bool outside = false, box_filled = false, box_covered = false;
+  double box_volume = 0, background_voxel_volume = 0;
+  long long box_points = 0, box_refused = 0;
   int smooth_rounds = 0;
   bool separate = false;
   // Seconds of each stage, in order: repair, complex, mesh, smoothing, certificate.

@@ -1,8 +1,8 @@
 #include "volume/tet_refinement.hpp"
 
 #include "surface/delmesh.hpp"
+#include "mesh/box_refinement.hpp"
 #include "surface/mesher_options.hpp"
-#include "volume/box_refinement.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>
@@ -17,13 +17,18 @@ using namespace surface_detail;
 
 namespace {
 
+struct VertexId {
+  int operator()(Vh v) const { return v->info().id; }
+};
+using Box = BoxRefinement<Tr, VertexId>;
+
 double d2(const Point& a, const Point& b) { return CGAL::to_double(CGAL::squared_distance(a, b)); }
 
 // One round of cell refinement, run by DELMESH once the certificate holds,
 // round after round with REFINE between (DelMesh::set_after_certificate).
 class CellRefinement {
 public:
-  CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt, const BoxRefinement* box)
+  CellRefinement(const SurfaceSampler& f, const TetRefinementOptions& opt, const Box* box)
       : f_(f), opt_(opt), box_(box), guard_(1e-3 * f.grid().delta) {}
 
   // Which side of S a local point is on (SurfaceSampler::inside_at).
@@ -199,9 +204,9 @@ private:
       // bunny at a quarter voxel: 154 slivers left, all in region 2 and
       // mostly at the box, when they did not; none when they do).
       if (box_) {
-        const BoxRefinement::Split split = box_->split_for(tr, cc, zone_);
-        if (beyond || split.kind != BoxRefinement::kNone) {
-          if (split.kind != BoxRefinement::kSegment && split.kind != BoxRefinement::kFacet) {
+        const Box::Split split = box_->split_for(tr, cc, zone_);
+        if (beyond || split.kind != Box::kNone) {
+          if (split.kind != Box::kSegment && split.kind != Box::kFacet) {
             ++box_refused;
             passed_.push_back(e);
             continue;
@@ -264,7 +269,7 @@ private:
 
   const SurfaceSampler& f_;
   const TetRefinementOptions& opt_;
-  const BoxRefinement* box_;
+  const Box* box_;
   // No sliver or facet point below 1e-3 voxel (the insertion floor of
   // box_refinement.hpp's termination argument).
   const double guard_;
@@ -280,7 +285,7 @@ private:
 // coordinates; the boundary triangles: region 1's, then (--outside) the
 // box's; whether region 1's boundary is the set of restricted facets and
 // the box's lies on B.
-void extract(const DelMesh& dm, const CellRefinement& inside, const BoxRefinement* box, const ImplicitSurface& surface,
+void extract(const DelMesh& dm, const CellRefinement& inside, const Box* box, const ImplicitSurface& surface,
              TetRefinementResult& r) {
   const Tr& tr = dm.triangulation();
   std::vector<int> index(dm.vertices().size(), -1);
@@ -382,7 +387,7 @@ TetRefinementResult tetrahedral_mesh(const ImplicitSurface& surface, const TetRe
   DelMesh dm(surface, opt.surface);
   // --outside: B is the image extent, the voxels' boxes around the samples
   // (box_refinement.hpp says why it is half a voxel from S at least).
-  std::optional<BoxRefinement> box;
+  std::optional<Box> box;
   if (opt.outside) {
     const CubeGrid& g = dm.grid();
     const double gap = std::min({g.s[0], g.s[1], g.s[2]}) / 2;

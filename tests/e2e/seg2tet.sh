@@ -131,6 +131,62 @@ assert r[region == 1].max() > 1.2, r[region == 1].max()
 PY
 }
 
+# --outside: the background too, region 0 up to the image box B (the map is
+# rotated: B is the world box around its voxels), certified (the voxel
+# centres of label 0 in region 0's tetrahedra: the tool's check, and
+# meshinfo's); in the files as meshio reads them, the tetrahedra fill the
+# box of the points (volume within 1e-9), region 0 is Gmsh's group
+# "background" (tag 6: the largest label + 1) bounded by the group "box" of
+# triangles on the box's faces, --cell-size 0=3 bounds region 0's
+# circumradii alone, and the .vtu names its cell data "label".
+case_outside_fills_the_box() {
+  expect 0 seg2tet "$(labels)" out.msh --outside --cell-size 0=3 --stats s.json -q || return
+  expect 0 seg2tet "$(labels)" out.vtu --outside --cell-size 0=3 -q || return
+  [[ $(json s.json all_certified) == True && $(json s.json tetrahedra.voxel_centres_wrong) == 0 ]] ||
+    fail "not certified: $(json s.json tetrahedra)"
+  local py; py=$(python_with meshio)
+  if [[ -n $py ]]; then  # the files as meshio reads them
+  "$py" - out.msh out.vtu > box.txt 2>&1 <<'PY' || fail "the box: $(cat box.txt)"
+import sys, meshio, numpy as np
+m = meshio.read(sys.argv[1])
+assert m.field_data['background'].tolist() == [6, 3] and m.field_data['box'][1] == 2, m.field_data
+def cells(kind):
+    data = [(c.data, d) for c, d in zip(m.cells, m.cell_data['gmsh:physical']) if c.type == kind]
+    return np.concatenate([c for c, _ in data]), np.concatenate([d for _, d in data])
+tets, region = cells('tetra')
+p = m.points[tets]
+e = p[:, 1:] - p[:, :1]
+vol = np.linalg.det(e) / 6
+assert (vol > 0).all(), 'a tetrahedron not positively oriented'
+lo, hi = m.points.min(0), m.points.max(0)
+box = np.prod(hi - lo)
+assert abs(vol.sum() - box) <= 1e-9 * box, (vol.sum(), box)
+assert set(np.unique(region)) == {1, 2, 5, 6}, np.unique(region)
+# The triangles on the box's faces add up to its area.
+tri = np.concatenate([c.data for c in m.cells if c.type == 'triangle'])
+q = m.points[tri]
+on = ((np.abs(q - lo) < 1e-12 * np.abs(lo).max()).all(1) | (np.abs(q - hi) < 1e-12 * np.abs(hi).max()).all(1)).any(1)
+area = np.linalg.norm(np.cross(q[:, 1] - q[:, 0], q[:, 2] - q[:, 0]), axis=1)[on].sum() / 2
+d = hi - lo
+assert abs(area - 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0])) <= 1e-9 * area, area
+# --cell-size 0=3: region 0's circumradii alone within 3.
+x = np.linalg.solve(e, 0.5 * (e * e).sum(2)[..., None])[..., 0]
+r = np.sqrt((x * x).sum(1))
+assert r[region == 6].max() <= 3 * (1 + 1e-9), r[region == 6].max()
+v = meshio.read(sys.argv[2])
+label = np.concatenate([d for c, d in zip(v.cells, v.cell_data['label']) if c.type == 'tetra'])
+assert sorted(set(label.tolist())) == [0, 1, 2, 5] and (label == 0).sum() == (region == 6).sum(), np.unique(label)
+PY
+  else echo "no python with meshio (python3-meshio): the files unchecked"; fi
+  # Any mesher's regions against the map (meshinfo reads the .msh's
+  # "background" and the .vtu's label 0 as region 0).
+  local f
+  for f in out.msh out.vtu; do
+    OUT=report.txt expect 0 meshinfo $f --image "$(labels)" || return
+    grep -q "tetrahedra CERTIFIED against the label map" report.txt || fail "meshinfo $f: $(tail -3 report.txt)"
+  done
+}
+
 # Refused in one line, nothing written: stdout, an unknown extension, a
 # ratio under 2, the per-label mesher's options, --cell-size items that are
 # not S or L=S, twice, or name a label not in the map.
