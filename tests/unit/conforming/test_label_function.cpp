@@ -266,5 +266,5 @@ TEST_CASE("lambda's walk finds every run of one label longer than its step", "[c
   }
   CHECK(segments > 7000);
   CHECK(runs > 10000);
-  CHECK(close > 250);
+  CHECK(close > 100);
 }
