@@ -233,7 +233,7 @@ double LabelFunction::value(std::int32_t label, const Vec3& p) const {
 
 std::int32_t LabelFunction::label(const Vec3& p) const { return label_at(p, grid_.continuous_index(p)); }
 
-std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* known) const {
+std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* known, Seen* seen) const {
   std::size_t c[3];
   for (int i = 0; i < 3; ++i) {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
@@ -283,6 +283,7 @@ std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* 
     if (known && known->k[0] == k && !std::isnan(known->v[0])) v = known->v[0];
     else if (known && known->k[1] == k && !std::isnan(known->v[1])) v = known->v[1];
     else v = fn.sign * fn.f.value(p);
+    if (seen && seen->n < 4) seen->k[seen->n] = k, seen->v[seen->n++] = v;
     if (v < fbest || (v == fbest && k < best)) fbest = v, best = k;
     return v < 0;
   };
@@ -341,7 +342,7 @@ bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
 constexpr double kChangeTolerance = 1e-4;
 
 double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before,
-                             std::int32_t after) const {
+                             std::int32_t after, const Seen& s0, const Seen& s1) const {
   const double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) / min_spacing_;  // voxels
   auto at = [&](double t) { return Vec3{a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}; };
   // Between `before` and `after` alone lambda is the higher ranked one (hi)
@@ -356,13 +357,16 @@ double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1,
   const Function& fh = *f_[fh_index];
   const Function& fl = *f_[fl_index];
   Known klo{{fh_index, fl_index}, {NAN, NAN}}, khi = klo;
-  auto h = [&](double t, Known& k) {
+  // At t0 and t1 (the walk's samples) the f values the walk read there.
+  auto h = [&](double t, Known& k, const Seen& s) {
     const Vec3 p = at(t);
-    const double vh = fh.sign * fh.f.value(p);
+    double vh, vl;
+    if (!s.find(fh_index, vh)) vh = fh.sign * fh.f.value(p);
     k.v[0] = vh, k.v[1] = NAN;
     double r = vh;
     if (vh >= 0) {
-      const double vl = k.v[1] = fl.sign * fl.f.value(p);
+      if (!s.find(fl_index, vl)) vl = fl.sign * fl.f.value(p);
+      k.v[1] = vl;
       r = vh - std::max(0.0, vl);
       // On the root itself lambda's ties decide (0 is not negative; equal
       // in a gap: the lower label), as label() will.
@@ -371,14 +375,14 @@ double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1,
     return before_high ? r : -r;
   };
   double lo = t0, hi = t1;
-  double hlo = h(lo, klo), hhi = h(hi, khi);
+  double hlo = h(lo, klo, s0), hhi = h(hi, khi, s1);
   if (hlo < 0 && hhi > 0) {
     Known kt = klo;
     int side = 0;
     for (int it = 0; it < 60 && (hi - lo) * len > kChangeTolerance; ++it) {
       double t = (lo * hhi - hi * hlo) / (hhi - hlo);
       if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-      const double ht = h(t, kt);
+      const double ht = h(t, kt, Seen());
       if (ht < 0) {
         lo = t, hlo = ht, klo = kt;
         if (side == -1) hhi *= 0.5;
@@ -429,13 +433,15 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
   const double dt = step / len;
   std::int32_t prev = ends ? ends[0] : label(a);
   double tprev = 0;
-  auto visit = [&](double t, std::int32_t l) {
+  Seen seen_prev, seen;  // the f values read at tprev, and at the sample being visited
+  auto visit = [&](double t, std::int32_t l, const Seen& s) {
     if (l != prev) {
-      const double tc = bisect(a, d, tprev, t, prev, l);
+      const double tc = bisect(a, d, tprev, t, prev, l, seen_prev, s);
       out.push_back({tc, prev, l});
       prev = l;
     }
     tprev = t;
+    seen_prev = s;
     return max_changes == 0 || out.size() < max_changes;
   };
   if (t0 <= t1) {
@@ -444,7 +450,7 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
       const Vec3 q{qa[0] + t * dq[0], qa[1] + t * dq[1], qa[2] + t * dq[2]};
       std::int32_t l;
       if (pure_cube(q, l)) {
-        if (!visit(t, l)) return;
+        if (!visit(t, l, Seen())) return;
         // To the cube's exit (or the end): lambda is l all along.
         double exit = t1;
         for (int i = 0; i < 3; ++i) {
@@ -453,15 +459,17 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
           const double s = ((dq[i] > 0 ? c + 1 : c) - qa[i]) / dq[i];
           if (s > t) exit = std::min(exit, s);
         }
-        if (!visit(std::min(exit, t1), l)) return;
+        if (!visit(std::min(exit, t1), l, Seen())) return;
         t = std::min(exit, t1) + 1e-12;
         continue;
       }
-      if (!visit(t, label_at({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}, q))) return;
+      seen.n = 0;
+      l = label_at({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}, q, nullptr, &seen);
+      if (!visit(t, l, seen)) return;
       t += dt;
     }
   }
-  visit(1, ends ? ends[1] : label(b));
+  visit(1, ends ? ends[1] : label(b), Seen());
 }
 
 bool LabelFunction::first_change(const Vec3& a, const Vec3& b, Vec3& x, double step) const {

@@ -78,9 +78,24 @@ private:
     std::size_t k[2];
     double v[2];
   };
-  // q: p's continuous index; known: f values at p to use, not read again.
-  std::int32_t label_at(const Vec3& p, const Vec3& q, const Known* known = nullptr) const;
-  double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after) const;
+  // The f values label_at read at a walk's sample (up to four; n = 0: none
+  // read there), for the bisection that starts or ends at it.
+  struct Seen {
+    std::size_t n = 0;
+    std::size_t k[4];
+    double v[4];
+    bool find(std::size_t label, double& value) const {
+      for (std::size_t i = 0; i < n; ++i)
+        if (k[i] == label) return value = v[i], true;
+      return false;
+    }
+  };
+  // q: p's continuous index; known: f values at p to use, not read again;
+  // seen: where to keep those read.
+  std::int32_t label_at(const Vec3& p, const Vec3& q, const Known* known = nullptr, Seen* seen = nullptr) const;
+  // s0, s1: the f values read at t0 and t1.
+  double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after,
+                const Seen& s0, const Seen& s1) const;
 
   Geometry grid_;
   std::vector<std::int32_t> labels_;  // ascending, 0 first

@@ -1,6 +1,7 @@
 // The labelling function lambda (conforming/label_function.hpp): the
 // voxel's label at every voxel centre, 0 beyond the grid, and its changes
 // found where the labels of two neighbouring centres differ.
+#include "conforming/conforming_surface.hpp"
 #include "conforming/label_function.hpp"
 #include "label_maps.hpp"
 #include "wellcomposed/well_composed_partition.hpp"
@@ -201,4 +202,69 @@ TEST_CASE("lambda's changes are placed within 1e-4 voxel", "[conforming]") {
   CHECK(segments == 4500);
   CHECK(changes > 1000);
   CHECK(afters >= changes * 98 / 100);
+}
+
+// The walk's promise at the mesher's step (ConformingOptions::step): every
+// run of one label along a segment longer than the step holds a sample, so
+// the labels of those runs are among the changes', in order (a shorter run,
+// a corner cut, may be missed). Random segments through noisy, anisotropic
+// maps, scanned every 1/100 voxel; runs of less than twice the step between
+// two others make sure a walk of a coarser step fails.
+TEST_CASE("lambda's walk finds every run of one label longer than its step", "[conforming]") {
+  const double step = ConformingOptions().step;
+  std::mt19937_64 rng(17);
+  std::size_t runs = 0, close = 0, segments = 0;
+  for (int count : {12, 30, 60}) {
+    LabelImage x = make_well_composed_partition(voronoi_map(rng, 12, count)).image;
+    x.spacing = {0.8, 1.0, 1.3};
+    x.origin = {3, -2, 1};
+    const LabelFunction f(x, 0.3 * 0.8);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<LabelFunction::Change> ch;
+    for (int n = 0; n < 2500; ++n) {
+      const Vec3 c{u(rng) * double(x.size[0] - 1), u(rng) * double(x.size[1] - 1), u(rng) * double(x.size[2] - 1)};
+      Vec3 e;
+      for (int m = 0; m < 3; ++m) e[m] = std::clamp(c[m] + 6 * u(rng) - 3, 0.0, double(x.size[m] - 1));
+      const Vec3 a = x.world(c[0], c[1], c[2]), b = x.world(e[0], e[1], e[2]);
+      double len = 0;
+      for (int m = 0; m < 3; ++m) len += (b[m] - a[m]) * (b[m] - a[m]);
+      len = std::sqrt(len) / 0.8;  // voxels of the smallest spacing, as the step
+      if (len < 1) continue;
+      ++segments;
+      f.changes(a, b, ch, step);
+      std::vector<std::int32_t> found{f.label(a)};
+      for (const auto& h : ch) found.push_back(h.after);
+      // The fine scan's runs; those longer than the step (their samples'
+      // extent, a lower bound), consecutive repeats merged.
+      const std::size_t m = std::size_t(std::ceil(len / 0.01));
+      auto at = [&](std::size_t j) {
+        const double t = double(j) / double(m);
+        return f.label(Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])});
+      };
+      std::vector<std::int32_t> long_runs;
+      std::size_t start = 0;
+      std::int32_t l = at(0);
+      for (std::size_t j = 1; j <= m + 1; ++j) {
+        const std::int32_t next = j <= m ? at(j) : l + 1;
+        if (next == l) continue;
+        const double extent = double(j - 1 - start) * len / double(m);
+        if (extent > step) {
+          ++runs;
+          if (start > 0 && j <= m && extent < 2 * step) ++close;
+          if (long_runs.empty() || long_runs.back() != l) long_runs.push_back(l);
+        }
+        start = j, l = next;
+      }
+      // A subsequence of the labels found.
+      std::size_t k = 0;
+      for (std::int32_t r : long_runs) {
+        while (k < found.size() && found[k] != r) ++k;
+        INFO("segment " << n << " of the map of " << count << " labels");
+        REQUIRE(k < found.size());
+      }
+    }
+  }
+  CHECK(segments > 7000);
+  CHECK(runs > 10000);
+  CHECK(close > 100);
 }
