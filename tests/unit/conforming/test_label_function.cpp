@@ -43,6 +43,14 @@ void check_centres(const LabelImage& x, const LabelFunction& f) {
   CHECK(pairs > 0);
 }
 
+// A repaired Voronoi map of `count` labels on 12^3 anisotropic voxels, origin moved.
+LabelImage anisotropic_map(std::mt19937_64& rng, int count) {
+  LabelImage x = make_well_composed_partition(voronoi_map(rng, 12, count)).image;
+  x.spacing = {0.8, 1.0, 1.3};
+  x.origin = {3, -2, 1};
+  return x;
+}
+
 } // namespace
 
 TEST_CASE("lambda is the voxel's label at every voxel centre and changes between labels", "[conforming]") {
@@ -82,9 +90,7 @@ TEST_CASE("lambda at random points is its definition from the labels' f", "[conf
   std::mt19937_64 rng(11);
   std::size_t checked = 0, ranked = 0, gaps = 0, most = 0;
   for (int count : {5, 5, 12, 24, 60, 90, 200}) {
-    LabelImage x = make_well_composed_partition(voronoi_map(rng, 12, count)).image;
-    x.spacing = {0.8, 1.0, 1.3};
-    x.origin = {3, -2, 1};
+    const LabelImage x = anisotropic_map(rng, count);
     const LabelFunction f(x, 0.3 * 0.8);
     std::map<std::int32_t, std::size_t> voxels{{0, 0}};
     for (std::int32_t v : x.data) ++voxels[v];
@@ -155,9 +161,7 @@ TEST_CASE("lambda's changes are placed within 1e-4 voxel", "[conforming]") {
   std::mt19937_64 rng(5);
   std::size_t changes = 0, afters = 0, segments = 0;
   for (int count : {4, 12, 30}) {
-    LabelImage x = make_well_composed_partition(voronoi_map(rng, 12, count)).image;
-    x.spacing = {0.8, 1.0, 1.3};
-    x.origin = {3, -2, 1};
+    const LabelImage x = anisotropic_map(rng, count);
     const LabelFunction f(x, 0.3 * 0.8);
     std::uniform_real_distribution<double> u(0, 1);
     std::vector<LabelFunction::Change> ch;
@@ -215,9 +219,7 @@ TEST_CASE("lambda's walk finds every run of one label longer than its step", "[c
   std::mt19937_64 rng(17);
   std::size_t runs = 0, close = 0, segments = 0;
   for (int count : {12, 30, 60}) {
-    LabelImage x = make_well_composed_partition(voronoi_map(rng, 12, count)).image;
-    x.spacing = {0.8, 1.0, 1.3};
-    x.origin = {3, -2, 1};
+    const LabelImage x = anisotropic_map(rng, count);
     const LabelFunction f(x, 0.3 * 0.8);
     std::uniform_real_distribution<double> u(0, 1);
     std::vector<LabelFunction::Change> ch;
