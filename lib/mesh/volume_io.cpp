@@ -128,7 +128,9 @@ void write_msh22(std::ostream& o, const TetMesh& m, bool binary) {
 // Gmsh 4.1: one surface entity (tag R) and one volume entity (tag R) per
 // region, each in the physical group R of its dimension; with pairs, a
 // surface entity per (region, pair), in R's group and its own.
-void write_msh41(std::ostream& o, const TetMesh& m, bool binary) {
+// background: the tag region 0 is written as (gmsh_background), 0 if none;
+// the pairs still name region 0 as 0.
+void write_msh41(std::ostream& o, const TetMesh& m, bool binary, int background) {
   const std::set<int> regions = regions_of(m);
   std::array<double, 3> lo{0, 0, 0}, hi{0, 0, 0};
   for (int i = 0; i < 3 && !m.points.empty(); ++i) {
@@ -174,7 +176,7 @@ void write_msh41(std::ostream& o, const TetMesh& m, bool binary) {
     for (std::size_t k = 0; k < entities.of.size(); ++k) {
       const auto& pair = entities.of[k].second;
       if (entities.of[k].first == r) bounding.push_back(int(k) + 1);  // its region (the box's: the background's)
-      else if (pair[1] == r) bounding.push_back(-int(k) - 1);
+      else if ((pair[1] == 0 && background ? background : pair[1]) == r) bounding.push_back(-int(k) - 1);
     }
     w.z(1).i(r).z(bounding.size());
     for (const int b : bounding) w.i(b);
@@ -364,7 +366,8 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
   o.precision(17);
   if (ext == ".msh") {
     const std::optional<TetMesh> tagged = gmsh_background(mesh);
-    (options.msh_version == "2.2" ? write_msh22 : write_msh41)(o, tagged ? *tagged : mesh, options.msh_binary);
+    if (options.msh_version == "2.2") write_msh22(o, tagged ? *tagged : mesh, options.msh_binary);
+    else write_msh41(o, tagged ? *tagged : mesh, options.msh_binary, tagged ? *regions_of(*tagged).rbegin() : 0);
   }
   else if (ext == ".mesh") write_medit(o, mesh);
   else if (ext == ".vtu") write_vtu(o, mesh, !options.ascii, options.vtu_cell_data);

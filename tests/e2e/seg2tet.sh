@@ -173,6 +173,21 @@ assert abs(area - 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0])) <= 1e-9 * area,
 x = np.linalg.solve(e, 0.5 * (e * e).sum(2)[..., None])[..., 0]
 r = np.sqrt((x * x).sum(1))
 assert r[region == 6].max() <= 3 * (1 + 1e-9), r[region == 6].max()
+# Gmsh 4.1's entities: the background's volume bounded by the box
+# (positive) and by every L|0 interface, of which it is the front (negative).
+text = open(sys.argv[1]).read().split('$Entities\n')[1].split('$EndEntities')[0].split('\n')
+counts = [int(x) for x in text[0].split()]
+surfaces = [l.split() for l in text[1:1 + counts[2]]]
+volumes = [l.split() for l in text[1 + counts[2]:1 + counts[2] + counts[3]]]
+name = {int(t): n for n, (t, dim) in m.field_data.items() if dim == 2}
+expected = set()
+for s in surfaces:
+    phys = name[int(s[9])] if int(s[7]) > 1 else ''
+    if phys == 'box': expected.add(int(s[0]))
+    elif phys.endswith('|0'): expected.add(-int(s[0]))
+bg = [v for v in volumes if int(v[8]) == 6][0]
+got = {int(x) for x in bg[10:10 + int(bg[9])]}
+assert len(expected) > 1 and got == expected, (got, expected)
 v = meshio.read(sys.argv[2])
 label = np.concatenate([d for c, d in zip(v.cells, v.cell_data['label']) if c.type == 'tetra'])
 assert sorted(set(label.tolist())) == [0, 1, 2, 5] and (label == 0).sum() == (region == 6).sum(), np.unique(label)
