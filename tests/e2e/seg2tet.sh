@@ -31,13 +31,12 @@ assert t['quality']['max_radius_edge_ratio'] <= 2 + 1e-9, t['quality']
 PY
   local py; py=$(python_with meshio)
   [[ -n $py ]] || { echo "skipped: no python with meshio (python3-meshio)"; return; }
-  "$py" - all.msh > meshio.txt 2>&1 <<'PY' || fail "meshio: $(cat meshio.txt)"
+  "$py" - all.msh "$E2E" > meshio.txt 2>&1 <<'PY' || fail "meshio: $(cat meshio.txt)"
 import sys, meshio, numpy as np
+sys.path.insert(0, sys.argv[2]); from tet_cells import cells, volumes
 m = meshio.read(sys.argv[1])
-tets = np.concatenate([c.data for c in m.cells if c.type == 'tetra'])
-region = np.concatenate([d for c, d in zip(m.cells, m.cell_data['gmsh:physical']) if c.type == 'tetra'])
-p = m.points[tets]
-vol = np.einsum('ij,ij->i', np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]), p[:, 3] - p[:, 0]) / 6
+tets, region = cells(m, 'tetra')
+vol = volumes(m.points[tets])
 assert (vol > 0).all(), 'a tetrahedron not positively oriented'
 voxel = 0.6 * 0.7 * 0.8
 # Voxels per label of labels_image.py (before the repair, which moves a few).
@@ -117,15 +116,12 @@ case_cell_size_per_label() {
   expect 0 seg2tet "$(labels)" s.msh --cell-size 2=1 -q || return
   local py; py=$(python_with meshio)
   [[ -n $py ]] || { echo "skipped: no python with meshio (python3-meshio)"; return; }
-  "$py" - s.msh > radii.txt 2>&1 <<'PY' || fail "circumradii: $(cat radii.txt)"
-import sys, meshio, numpy as np
+  "$py" - s.msh "$E2E" > radii.txt 2>&1 <<'PY' || fail "circumradii: $(cat radii.txt)"
+import sys, meshio
+sys.path.insert(0, sys.argv[2]); from tet_cells import cells, circumradii
 m = meshio.read(sys.argv[1])
-tets = np.concatenate([c.data for c in m.cells if c.type == 'tetra'])
-region = np.concatenate([d for c, d in zip(m.cells, m.cell_data['gmsh:physical']) if c.type == 'tetra'])
-p = m.points[tets]
-e = p[:, 1:] - p[:, :1]  # circumcentre offset x: e x = |e|^2 / 2, row by row
-x = np.linalg.solve(e, 0.5 * (e * e).sum(2)[..., None])[..., 0]
-r = np.sqrt((x * x).sum(1))
+tets, region = cells(m, 'tetra')
+r = circumradii(m.points[tets])
 assert r[region == 2].max() <= 1 + 1e-9, r[region == 2].max()
 assert r[region == 1].max() > 1.2, r[region == 1].max()
 PY
@@ -146,17 +142,13 @@ case_outside_fills_the_box() {
     fail "not certified: $(json s.json tetrahedra)"
   local py; py=$(python_with meshio)
   if [[ -n $py ]]; then  # the files as meshio reads them
-  "$py" - out.msh out.vtu > box.txt 2>&1 <<'PY' || fail "the box: $(cat box.txt)"
+  "$py" - out.msh out.vtu "$E2E" > box.txt 2>&1 <<'PY' || fail "the box: $(cat box.txt)"
 import sys, meshio, numpy as np
+sys.path.insert(0, sys.argv[3]); from tet_cells import cells, circumradii, volumes
 m = meshio.read(sys.argv[1])
 assert m.field_data['background'].tolist() == [6, 3] and m.field_data['box'][1] == 2, m.field_data
-def cells(kind):
-    data = [(c.data, d) for c, d in zip(m.cells, m.cell_data['gmsh:physical']) if c.type == kind]
-    return np.concatenate([c for c, _ in data]), np.concatenate([d for _, d in data])
-tets, region = cells('tetra')
-p = m.points[tets]
-e = p[:, 1:] - p[:, :1]
-vol = np.linalg.det(e) / 6
+tets, region = cells(m, 'tetra')
+vol = volumes(m.points[tets])
 assert (vol > 0).all(), 'a tetrahedron not positively oriented'
 lo, hi = m.points.min(0), m.points.max(0)
 box = np.prod(hi - lo)
@@ -170,8 +162,7 @@ area = np.linalg.norm(np.cross(q[:, 1] - q[:, 0], q[:, 2] - q[:, 0]), axis=1)[on
 d = hi - lo
 assert abs(area - 2 * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0])) <= 1e-9 * area, area
 # --cell-size 0=3: region 0's circumradii alone within 3.
-x = np.linalg.solve(e, 0.5 * (e * e).sum(2)[..., None])[..., 0]
-r = np.sqrt((x * x).sum(1))
+r = circumradii(m.points[tets])
 assert r[region == 6].max() <= 3 * (1 + 1e-9), r[region == 6].max()
 # Gmsh 4.1's entities: the background's volume bounded by the box
 # (positive) and by every L|0 interface, of which it is the front (negative).
@@ -189,7 +180,7 @@ bg = [v for v in volumes if int(v[8]) == 6][0]
 got = {int(x) for x in bg[10:10 + int(bg[9])]}
 assert len(expected) > 1 and got == expected, (got, expected)
 v = meshio.read(sys.argv[2])
-label = np.concatenate([d for c, d in zip(v.cells, v.cell_data['label']) if c.type == 'tetra'])
+_, label = cells(v, 'tetra', 'label')
 assert sorted(set(label.tolist())) == [0, 1, 2, 5] and (label == 0).sum() == (region == 6).sum(), np.unique(label)
 PY
   else echo "no python with meshio (python3-meshio): the files unchecked"; fi
