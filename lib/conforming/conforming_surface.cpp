@@ -1,12 +1,11 @@
 #include "conforming/mesher.hpp"
 
 #include "implicit/parallel.hpp"
-#include "mesh/located_cells.hpp"
 #include "util/error.hpp"
 #include "util/memory.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <string>
 #include <unordered_map>
 
@@ -46,48 +45,6 @@ ConformingSurface Mesher::run() {
     if (rounds_ == r) break;
   }
   tets_output(out);
-  return out;
-}
-
-ConformingSurface Mesher::certified_rounds() {
-  ConformingSurface out = output();
-  // Rounds repair a patch sampled too coarsely (a small patch in pieces
-  // where the curves around it are), not a labelling that disagrees with
-  // K(X), where refining does not converge: they run while each round
-  // leaves fewer failing places (a large patch's places are all its curve
-  // edges: the brain map's went 4,986, 4,709, none), at most
-  // certificate_rounds counted across calls; seg2tet calls again after its
-  // cells, and a surface certified before them starts a fresh count there.
-  std::size_t round_start = 0;  // the points when this call's last round began (0: none yet)
-  while (o_.certificate && rounds_ < o_.certificate_rounds && !max_hit_) {
-    // VoxelSides' cached cells (16 bytes a voxel next to an interface) not
-    // held beside the certificate's peak: a round after it locates them
-    // again (the same cells). seg2tet's cell stage refines again anyway.
-    if (!o_.tets.on) {
-      std::vector<SideVoxel>().swap(side_voxels_);
-      release_free_memory();
-    }
-    const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
-    out.certified_as_is = true;
-    // A certified surface that seg2tet's cells broke starts a fresh count.
-    const std::size_t before = places_ == 0 ? std::size_t(-1) : places_;
-    places_ = bad.size();
-    if (o_.progress && !bad.empty())
-      o_.progress("certificate: " + std::to_string(bad.size()) + " failing places after " + std::to_string(rounds_) +
-                  " rounds");
-    if (bad.empty() || bad.size() >= before) break;
-    // A round that more than doubled the points and left more than half
-    // the places is refining what does not converge (noisy maps at 7:1
-    // anisotropy went 4K, 17K, 64K, 225K points over 14^3 voxels with the
-    // places at 1367, 1355, 1309): no more rounds. (The brain's grew its
-    // points 1.36x, 1.62x.)
-    if (round_start > 0 && points_ > 2 * round_start && 2 * bad.size() > before) break;
-    round_start = points_;
-    if (!refine_near(bad)) break;
-    ++rounds_;
-    refine();
-    out = output();
-  }
   return out;
 }
 
@@ -403,137 +360,6 @@ std::int32_t Mesher::split_pair(const std::vector<std::array<int, 2>>& link, con
   for (std::size_t i = 1; i < starts.size(); ++i)
     if (starts[i] == starts[i - 1]) return starts[i];
   return kUnknown;
-}
-
-// Every voxel centre next to an interface in a cell of its own label.
-void Mesher::voxel_sides() {
-  // The voxels next to an interface, each once, in the faces' order: the
-  // same list every call.
-  if (side_voxels_.empty()) {
-    if (x_.count() > std::numeric_limits<std::uint32_t>::max())
-      throw Error("the conforming mesher takes label maps of at most 2^32 voxels");
-    // Two sweeps: the count (seen 1), then the list (seen 2), of one size.
-    std::vector<char> seen(x_.count(), 0);
-    std::size_t count = 0;
-    for (int sweep = 1; sweep <= 2; ++sweep) {
-      if (sweep == 2) side_voxels_.reserve(count);
-      for (std::uint64_t key : k_.faces) {
-        const auto q = k_.corner(InterfaceComplex::face_corner(key));
-        const int a = InterfaceComplex::face_axis(key);
-        for (int s = 0; s < 2; ++s) {
-          std::array<std::ptrdiff_t, 3> v{std::ptrdiff_t(q[0]), std::ptrdiff_t(q[1]), std::ptrdiff_t(q[2])};
-          v[a] -= s;
-          if (!x_.inside(v[0], v[1], v[2])) continue;
-          char& done = seen[x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2]))];
-          if (done == sweep) continue;
-          done = char(sweep);
-          if (sweep == 1) ++count;
-          else side_voxels_.push_back({Ch(), 0, std::uint32_t(x_.index(std::size_t(v[0]), std::size_t(v[1]), std::size_t(v[2])))});
-        }
-      }
-    }
-  }
-  const auto& cells = tr_.tds().cells();
-  for (SideVoxel& sv : side_voxels_) {
-    const auto i = std::ptrdiff_t(sv.voxel % x_.size[0]), j = std::ptrdiff_t(sv.voxel / x_.size[0] % x_.size[1]),
-               k = std::ptrdiff_t(sv.voxel / x_.size[0] / x_.size[1]);
-    const Vec3 p = voxel_centre(i, j, k);
-    Ch c;
-    // The cell that held the centre strictly inside at the last call, still
-    // there (its uid unchanged: uids are never reused): the one locate would
-    // find, and hint_ as locate leaves it, without the walk. Else locate.
-    if (sv.cell != Ch() && cells.is_used(sv.cell) && sv.cell->info().uid == sv.uid) {
-      c = sv.cell;
-      hint_ = c;
-    } else {
-      Tr::Locate_type lt;
-      int li, lj;
-      c = tr_.locate(pt(p), lt, li, lj, hint_);
-      hint_ = c;
-      const bool keep = lt == Tr::CELL && c->info().uid != 0;
-      sv.cell = keep ? c : Ch();
-      sv.uid = keep ? c->info().uid : 0;
-      // On a facet, edge or vertex of W: every cell there must be its label.
-      if (lt != Tr::CELL && lt != Tr::OUTSIDE_CONVEX_HULL) {
-        located_cells(tr_, c, lt, li, lj, cells_);
-        const std::int32_t own = voxel_label(i, j, k);
-        for (Ch n : cells_)
-          if (label(n) != own) c = n;
-      }
-    }
-    const std::int32_t own = voxel_label(i, j, k);
-    if (label(c) == own) continue;
-    Candidate cand;
-    if (!f_.first_change(p, centre(c), cand.x, o_.step)) continue;
-    cand.step = kVoxelSide;
-    cand.priority = dist2(cand.x, p);
-    sides_.push_back(cand);
-  }
-}
-
-// The surface centres of the restricted facets in the voxels within one
-// of the voxel holding each place.
-bool Mesher::refine_near(const std::vector<Vec3>& places) {
-  std::vector<char> near(x_.count(), 0);
-  for (const Vec3& p : places) {
-    const Vec3 q = x_.continuous_index(p);
-    const auto i = std::ptrdiff_t(std::floor(q[0] + 0.5)), j = std::ptrdiff_t(std::floor(q[1] + 0.5)),
-               k = std::ptrdiff_t(std::floor(q[2] + 0.5));
-    for (std::ptrdiff_t dz = -1; dz <= 1; ++dz)
-      for (std::ptrdiff_t dy = -1; dy <= 1; ++dy)
-        for (std::ptrdiff_t dx = -1; dx <= 1; ++dx)
-          if (x_.inside(i + dx, j + dy, k + dz))
-            near[x_.index(std::size_t(i + dx), std::size_t(j + dy), std::size_t(k + dz))] = 1;
-  }
-  // A facet's surface centre lies on its Voronoi edge, whose ends' voxel
-  // box (rounded as the centre is) holds its voxel: facets with no near
-  // voxel in that box are passed over without the walk along the edge.
-  auto may_be_near = [&](const Vec3& a, const Vec3& b) {
-    const Vec3 qa = x_.continuous_index(a), qb = x_.continuous_index(b);
-    std::ptrdiff_t lo[3], hi[3];
-    std::size_t volume = 1;
-    for (int m = 0; m < 3; ++m) {
-      lo[m] = std::max<std::ptrdiff_t>(0, std::ptrdiff_t(std::floor(std::min(qa[m], qb[m]) + 0.5)));
-      hi[m] = std::min<std::ptrdiff_t>(std::ptrdiff_t(x_.size[m]) - 1, std::ptrdiff_t(std::floor(std::max(qa[m], qb[m]) + 0.5)));
-      if (!(lo[m] <= hi[m])) return false;
-      volume *= std::size_t(hi[m] - lo[m] + 1);
-    }
-    if (volume > 512) return true;
-    for (std::ptrdiff_t k = lo[2]; k <= hi[2]; ++k)
-      for (std::ptrdiff_t j = lo[1]; j <= hi[1]; ++j)
-        for (std::ptrdiff_t i = lo[0]; i <= hi[0]; ++i)
-          if (near[x_.index(std::size_t(i), std::size_t(j), std::size_t(k))]) return true;
-    return false;
-  };
-  // CGAL gives each facet from the cell of the lower address: the walk
-  // goes from the smaller circumcentre (uid on a tie) and the centres are
-  // sorted, the same every run (the walk's bisection depends on its
-  // direction, the vertex ids on the order). They go in larger surface
-  // balls first, each unless a vertex is already within a quarter of its
-  // ball's radius: the centres of two neighbouring facets can lie 1e-4
-  // voxel apart, and QUALITY would then grade the mesh down to them
-  // (hundreds of triangles, and seg2tet's slivers, in a thousandth of a voxel).
-  std::vector<std::pair<double, Vec3>> centres;  // (squared radius, centre)
-  for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
-    Ch c = f->first, n = c->neighbor(f->second);
-    if (tr_.is_infinite(c) || tr_.is_infinite(n) || label(c) == label(n) || !may_be_near(centre(c), centre(n)))
-      continue;
-    if (std::make_pair(centre(n), n->info().uid) < std::make_pair(centre(c), c->info().uid)) std::swap(c, n);
-    const int i = c->index(n);
-    Vec3 x;
-    if (!surface_centre(c, i, x)) continue;
-    const Vec3 q = x_.continuous_index(x);
-    const auto vi = std::ptrdiff_t(std::floor(q[0] + 0.5)), vj = std::ptrdiff_t(std::floor(q[1] + 0.5)),
-               vk = std::ptrdiff_t(std::floor(q[2] + 0.5));
-    if (x_.inside(vi, vj, vk) && near[x_.index(std::size_t(vi), std::size_t(vj), std::size_t(vk))])
-      centres.emplace_back(dist2(x, vec(c->vertex((i + 1) & 3)->point())), x);
-  }
-  std::sort(centres.begin(), centres.end(), [](const auto& a, const auto& b) {
-    return a.first != b.first ? a.first > b.first : a.second < b.second;
-  });
-  bool any = false;
-  for (const auto& [r2, x] : centres) any = insert(x, kCertificate, Ch(), r2 / 16) || any;
-  return any;
 }
 
 // Still the facet it was found on (the same two cells)? Its cell still in

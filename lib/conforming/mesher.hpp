@@ -1,8 +1,9 @@
 // The restricted Delaunay mesher of a label map's partition (private to
 // lib/conforming): the triangulation and its state, shared by the surface
-// stage (conforming_surface.cpp: seeds, REFINE, the certificate's rounds,
-// the surface output) and seg2tet's cell stage (conforming_cells.cpp: the
-// labelled cells refined, the tetrahedra output). One CGAL header set.
+// stage (conforming_surface.cpp: seeds, REFINE, the surface output;
+// conforming_rounds.cpp: VoxelSides, the certificate's rounds) and seg2tet's
+// cell stage (conforming_cells.cpp: the labelled cells refined, the
+// tetrahedra output). One CGAL header set.
 #pragma once
 
 #include "conforming/conforming_surface.hpp"
@@ -134,12 +135,13 @@ private:
   static bool one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at);
   static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
                                  const std::vector<std::array<int, 2>>& at, std::vector<std::int32_t>& seq);
-  void voxel_sides();
   bool current(const Candidate& c, Ch& cell);
   bool insert_all(std::vector<Candidate>& cands);
+  ConformingSurface output();
+  // VoxelSides and the certificate's rounds (conforming_rounds.cpp).
+  void voxel_sides();
   ConformingSurface certified_rounds();
   bool refine_near(const std::vector<Vec3>& places);
-  ConformingSurface output();
 
   // The cell stage (conforming_cells.cpp).
   struct BadCell {
