@@ -3,6 +3,7 @@
 #include "mesh/surface_io.hpp"
 #include "mesh/triangle_quality.hpp"
 #include "mesh/voxel_sides.hpp"
+#include "meshinfo/label_report.hpp"
 #include "meshinfo/tet_labels.hpp"
 #include "planar/image_pslg.hpp"
 #include "planar/planar_formats.hpp"
@@ -161,6 +162,12 @@ Json mesh_report(const PolyMesh& m) {
     j["bounding_box"] = bb;
   }
   if (tris) j["triangle_quality"] = triangle_quality_report(m.points, m.faces).to_json();
+  if (!m.interfaces.empty() && tris == m.faces.size()) {
+    std::vector<std::array<int, 3>> t;
+    t.reserve(tris);
+    for (const auto& f : m.faces) t.push_back({f[0], f[1], f[2]});
+    j["label_surfaces"] = label_report(m.points, t, m.interfaces);
+  }
   if (quads && m.planar) {
     std::vector<Point2> pts;
     for (const auto& p : m.points) pts.push_back({p[0], p[1]});
@@ -184,6 +191,51 @@ Json image_comparison(const MeshTopology& image, const SurfaceCertificate& cert)
 }
 
 namespace {
+
+// A line per label's surface and per interface (label_report), with the
+// interface certificate's voxel volume, verdict and K(X) patches when an
+// image was given.
+void format_label_surfaces(std::ostream& o, const Json& r) {
+  const Json* image = r.contains("interface_image") ? &r.at("interface_image") : nullptr;
+  auto in_image = [&](const char* list, const char* key, const Json& value) -> const Json* {
+    if (!image) return nullptr;
+    for (const Json& e : image->at(list).items())
+      if (e.at(key).kind() == value.kind() && (value.kind() == Json::Kind::String ? e.at(key).string() == value.string()
+                                                                                   : e.at(key).integer() == value.integer()))
+        return &e;
+    return nullptr;
+  };
+  const Json& ls = r.at("label_surfaces");
+  char buf[512];
+  for (const Json& l : ls.at("labels").items()) {
+    std::string euler;
+    for (const Json& e : l.at("euler").items()) euler += " " + std::to_string(e.integer());
+    const long long label = l.at("label").integer();
+    std::snprintf(buf, sizeof buf,
+                  "label %-6lld %lld triangles, %lld component(s), euler%s, %s %s %s, area %.6g, volume %.6g, "
+                  "smallest angle %.2f",
+                  label, l.at("triangles").integer(), l.at("components").integer(), euler.c_str(),
+                  l.at("closed").boolean() ? "closed" : "NOT CLOSED", l.at("manifold").boolean() ? "manifold" : "NON-MANIFOLD",
+                  l.at("oriented").boolean() ? "oriented" : "NOT ORIENTED", l.at("area").number(), l.at("volume").number(),
+                  l.at("min_angle").number());
+    o << buf << (label == 0 ? " (the labels' union)" : "");
+    if (const Json* c = in_image("labels", "label", l.at("label"))) {
+      std::snprintf(buf, sizeof buf, "; voxels' volume %.6g, certificate %s", c->at("voxel_volume").number(),
+                    c->at("verdict").string() == "ok" ? "holds" : c->at("verdict").string().c_str());
+      o << buf;
+    }
+    o << "\n";
+  }
+  for (const Json& i : ls.at("interfaces").items()) {
+    std::snprintf(buf, sizeof buf, "interface %-6s %lld triangles in %lld patch(es), area %.6g, smallest angle %.2f",
+                  i.at("pair").string().c_str(), i.at("triangles").integer(), i.at("patches").integer(),
+                  i.at("area").number(), i.at("min_angle").number());
+    o << buf;
+    if (const Json* c = in_image("interfaces", "pair", i.at("pair")))
+      o << "; K(X) " << c->at("complex_patches").integer() << " patch(es)";
+    o << "\n";
+  }
+}
 
 // The 3D certificate's lines: the verdict, then each check.
 void format_certificate(std::ostream& o, const Json& c) {
@@ -238,6 +290,7 @@ std::string format_report(const Json& r) {
     << (t.at("manifold").boolean() ? "yes" : "no") << ", oriented " << (t.at("oriented").boolean() ? "yes" : "no")
     << ", boundary loops " << t.at("boundary_loops").integer() << ", non-manifold edges "
     << t.at("nonmanifold_edges").integer() << ", non-manifold vertices " << t.at("nonmanifold_vertices").integer()
+    << (r.contains("label_surfaces") ? " (all labels' interfaces together: each label's own surface below)" : "")
     << "\n";
   if (r.contains("triangle_quality")) {
     const Json& q = r.at("triangle_quality");
@@ -312,6 +365,7 @@ std::string format_report(const Json& r) {
     }
     if (q.contains("foreground_voxel_volume")) o << "  foreground voxel volume " << q.at("foreground_voxel_volume").number() << "\n";
   }
+  if (r.contains("label_surfaces")) format_label_surfaces(o, r);
   if (r.contains("interface_image")) {
     const Json& im = r.at("interface_image");
     o << "labels      " << im.at("labels").items().size() << " (0 the background), interfaces " << im.at("interfaces").items().size()
