@@ -103,7 +103,15 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     const Point pp(p[0], p[1], p[2]);
     Tr::Locate_type lt;
     int li, lj;
-    const Ch c = tr.locate(pp, lt, li, lj, hint);
+    // The walk starts from a vertex of the cell the centre was last found
+    // in (an insertion replaced that cell by cells around the new point,
+    // next to the vertex's), not from the last centre's cell (the centres
+    // come in grid order, but a row of active cubes jumps across the shape
+    // to the next): fewer steps to the same cell, when one cell holds p.
+    // Else (p on a facet, edge or vertex, or outside W's hull, where the
+    // walk decides which cell it finds), the walk from the last centre's.
+    Ch c = tr.locate(pp, lt, li, lj, s.near != Vh() && tr.tds().vertices().is_used(s.near) ? s.near->cell() : hint);
+    if (lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
     hint = c;
     // The cells holding p: one, or those around the facet, edge or vertex it lies on.
     located_cells(tr, c, lt, li, lj, cells);
@@ -114,7 +122,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
         bad = h;
         break;
       }
-    s.cell = Ch(), s.vertices = 0;
+    s.cell = Ch(), s.vertices = 0, s.near = c->vertex(tr.is_infinite(c->vertex(0)) ? 1 : 0);
     if (bad == Ch()) {
       if (cells.size() == 1) s.cell = c, s.vertices = vertices_of(tr, c);  // on a facet: looked at again
       continue;

@@ -39,9 +39,11 @@ private:
   // Per centre (grid order, found once: a walk over the active cubes took
   // 7% of the bunny's instructions a run): the cell it was last found right
   // in, the cell's vertices (a hash of their ids: a cell's memory is
-  // reused) and the centre's grid key.
+  // reused), one of them (where its next walk starts) and the centre's
+  // grid key.
   struct Seen {
     Ch cell;
+    Vh near;
     std::uint64_t vertices = 0;
     std::uint64_t key = 0;
   };
