@@ -14,8 +14,7 @@ namespace imgmesh::surface_detail {
 namespace {
 
 // Every corner of an active cube once, from the active cube of least key
-// that holds it: grid order, and neighbouring centres one after the other
-// (each locate starts from the last one's cell).
+// that holds it: grid order, and neighbouring centres one after the other.
 template <class F> void for_each_centre(const CubeGrid& g, F&& visit) {
   for (const ActiveCube& kc : g.sorted_cubes()) {
     const auto [x, y, z] = g.cube_of_key(kc.key());
@@ -110,8 +109,9 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     // to the next): fewer steps to the same cell, when one cell holds p.
     // Else (p on a facet, edge or vertex, or outside W's hull, where the
     // walk decides which cell it finds), the walk from the last centre's.
-    Ch c = tr.locate(pp, lt, li, lj, s.near != Vh() && tr.tds().vertices().is_used(s.near) ? s.near->cell() : hint);
-    if (lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
+    const bool from_near = near_starts_ && s.near != Vh() && tr.tds().vertices().is_used(s.near);
+    Ch c = tr.locate(pp, lt, li, lj, from_near ? s.near->cell() : hint);
+    if (from_near && lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
     hint = c;
     // The cells holding p: one, or those around the facet, edge or vertex it lies on.
     located_cells(tr, c, lt, li, lj, cells);
