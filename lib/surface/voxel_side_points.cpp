@@ -92,6 +92,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
   Ch hint = near->cell();
   std::vector<Ch> cells;
   std::unordered_set<const void*> refined;  // membership only: the order is the centres'
+  long last[3] = {-9, -9, -9};
   for (Seen& s : seen_) {
     // A centre still in the cell it was found right in is right. (The walk
     // starts from the last cell a walk found: a centre outside W's hull or
@@ -102,14 +103,17 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     const Point pp(p[0], p[1], p[2]);
     Tr::Locate_type lt;
     int li, lj;
-    // The walk starts from a vertex of the cell the centre was last found
-    // in (an insertion replaced that cell by cells around the new point,
-    // next to the vertex's), not from the last centre's cell (the centres
-    // come in grid order, but a row of active cubes jumps across the shape
-    // to the next): fewer steps to the same cell, when one cell holds p.
-    // Else (p on a facet, edge or vertex, or outside W's hull, where the
-    // walk decides which cell it finds), the walk from the last centre's.
-    const bool from_near = near_starts_ && s.near != Vh() && tr.tds().vertices().is_used(s.near);
+    // The walk starts from the last centre's cell when that centre is a
+    // grid neighbour, else (the centres come in grid order, but a row of
+    // active cubes jumps across the shape to the next) from a vertex of the
+    // cell p was last found in (an insertion replaced that cell by cells
+    // around the new point, next to the vertex's): fewer steps to the same
+    // cell, when one cell holds p. Else (p on a facet, edge or vertex, or
+    // outside W's hull, where the walk decides which cell it finds), the
+    // walk from the last centre's, as always.
+    const bool adjacent = std::abs(x - last[0]) <= 1 && std::abs(y - last[1]) <= 1 && std::abs(z - last[2]) <= 1;
+    last[0] = x, last[1] = y, last[2] = z;
+    const bool from_near = near_starts_ && !adjacent && s.near != Vh() && tr.tds().vertices().is_used(s.near);
     Ch c = tr.locate(pp, lt, li, lj, from_near ? s.near->cell() : hint);
     if (from_near && lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
     hint = c;
