@@ -88,16 +88,31 @@ VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::a
                        const Foreground& foreground, const std::array<Index3, 2>* box) {
   const SurfaceGeometry g(points, triangles, component, components);
   VoxelSides r;
+  // The centres a batch at a time (their memory bounded), each batch's
+  // sides found per vertical line (SurfaceGeometry::sides).
+  constexpr std::size_t kBatch = std::size_t(1) << 20;
+  std::vector<Vec3> at;
+  std::vector<char> fg;
+  auto count = [&] {
+    const std::vector<int> side = g.sides(at);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      if (side[i] == 0) ++r.on_surface;
+      else if (fg[i] && side[i] > 0) ++r.foreground_outside;
+      else if (!fg[i] && side[i] < 0) ++r.background_inside;
+    }
+    at.clear();
+    fg.clear();
+  };
   for_each_centre_next_to_boundary(
       grid, foreground,
       [&](std::size_t i, std::size_t j, std::size_t k, bool in) {
         ++r.checked;
-        const int side = g.side(grid.world(double(i), double(j), double(k)));
-        if (side == 0) ++r.on_surface;
-        else if (in && side > 0) ++r.foreground_outside;
-        else if (!in && side < 0) ++r.background_inside;
+        at.push_back(grid.world(double(i), double(j), double(k)));
+        fg.push_back(in);
+        if (at.size() == kBatch) count();
       },
       box);
+  count();
   return r;
 }
 
