@@ -92,6 +92,16 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
   Ch hint = near->cell();
   std::vector<Ch> cells;
   std::unordered_set<const void*> refined;  // membership only: the order is the centres'
+  // Cells' sides this pass (W does not change during it), by address:
+  // neighbouring centres often share a cell (its circumcentre costs ~500
+  // instructions).
+  constexpr std::size_t kSlots = 1 << 12;
+  std::vector<std::pair<const void*, bool>> sides(kSlots, {nullptr, false});
+  auto side_of = [&](Ch h) {
+    auto& slot = sides[(reinterpret_cast<std::uintptr_t>(&*h) >> 4) & (kSlots - 1)];
+    if (slot.first != &*h) slot = {&*h, cell_inside(tr, f, h)};
+    return slot.second;
+  };
   long last[3] = {-9, -9, -9};
   for (Seen& s : seen_) {
     // A centre still in the cell it was found right in is right. (The walk
@@ -122,7 +132,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     const bool in = g.neg(x, y, z);
     Ch bad;
     for (Ch h : cells)
-      if (cell_inside(tr, f, h) != in) {
+      if (side_of(h) != in) {
         bad = h;
         break;
       }
