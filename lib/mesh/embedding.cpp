@@ -305,4 +305,101 @@ int SurfaceGeometry::side(const Vec3& p) const {
   return s == CGAL::ON_BOUNDED_SIDE ? -1 : s == CGAL::ON_BOUNDARY ? 0 : 1;
 }
 
+// A closed surface crosses a line an even number of times, so the parity
+// of the crossings above a point is that of those below, and of CGAL's
+// vertical ray (up or down): the same side, decided by the same exact
+// predicates, where no degeneracy sends CGAL to a random ray. The
+// triangles over each line: those whose box in x and y holds it (exact
+// comparisons), dealt to the lines once (an AABB traversal per line cost
+// more than the rays it saved).
+std::vector<int> SurfaceGeometry::sides(const std::vector<Vec3>& points) const {
+  const Mesh& m = impl_->mesh;
+  std::vector<int> out(points.size(), 1);
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const Vec3 &p = points[a], &q = points[b];
+    return p[0] != q[0] ? p[0] < q[0] : p[1] != q[1] ? p[1] < q[1] : a < b;
+  });
+  // The lines (distinct x, y), in that order: line l's points are
+  // order[first[l] .. first[l + 1]).
+  std::vector<std::size_t> first;
+  for (std::size_t g = 0; g < order.size(); ++g)
+    if (g == 0 || points[order[g]][0] != points[order[g - 1]][0] || points[order[g]][1] != points[order[g - 1]][1])
+      first.push_back(g);
+  const std::size_t lines = first.size();
+  first.push_back(order.size());
+  auto line_x = [&](std::size_t l) { return points[order[first[l]]][0]; };
+  auto line_y = [&](std::size_t l) { return points[order[first[l]]][1]; };
+  // Each triangle's lines, twice: counted, then dealt (CSR).
+  std::vector<std::size_t> at(lines + 1, 0);
+  std::vector<Face> over;
+  auto deal = [&](bool fill) {
+    for (Face f : faces(m)) {
+      double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
+      for (Mesh::Vertex_index v : CGAL::vertices_around_face(m.halfedge(f), m)) {
+        const K::Point_3& c = m.point(v);
+        x0 = std::min(x0, c.x()), x1 = std::max(x1, c.x()), y0 = std::min(y0, c.y()), y1 = std::max(y1, c.y());
+      }
+      // The lines with x0 <= x <= x1 and y0 <= y <= y1.
+      std::size_t l = std::size_t(std::lower_bound(first.begin(), first.end() - 1, x0,
+                                                   [&](std::size_t g, double x) { return points[order[g]][0] < x; }) -
+                                  first.begin());
+      while (l < lines && line_x(l) <= x1) {
+        const double x = line_x(l);
+        std::size_t e = l;  // past this x's lines
+        while (e < lines && line_x(e) == x) ++e;
+        for (std::size_t k = l; k < e; ++k) {
+          if (line_y(k) < y0) continue;
+          if (line_y(k) > y1) break;
+          if (fill) over[at[k]++] = f;
+          else ++at[k + 1];
+        }
+        l = e;
+      }
+    }
+  };
+  deal(false);
+  for (std::size_t l = 0; l < lines; ++l) at[l + 1] += at[l];
+  over.resize(at[lines]);
+  std::vector<std::size_t> begin(at.begin(), at.end() - 1);
+  deal(true);  // at[l] ends at line l's end
+  std::vector<int> above;
+  for (std::size_t l = 0; l < lines; ++l) {
+    const std::size_t g = first[l], n = first[l + 1] - g;
+    const K::Point_2 q(line_x(l), line_y(l));
+    bool column = true;
+    above.assign(n, 0);
+    for (std::size_t t = begin[l]; t < at[l] && column; ++t) {
+      std::array<K::Point_3, 3> c;
+      int k = 0;
+      for (Mesh::Vertex_index v : CGAL::vertices_around_face(m.halfedge(over[t]), m)) c[std::size_t(k++)] = m.point(v);
+      const K::Point_2 a(c[0].x(), c[0].y()), b(c[1].x(), c[1].y()), d(c[2].x(), c[2].y());
+      const CGAL::Orientation o[3] = {CGAL::orientation(a, b, q), CGAL::orientation(b, d, q), CGAL::orientation(d, a, q)};
+      const bool pos = o[0] == CGAL::POSITIVE || o[1] == CGAL::POSITIVE || o[2] == CGAL::POSITIVE;
+      const bool neg = o[0] == CGAL::NEGATIVE || o[1] == CGAL::NEGATIVE || o[2] == CGAL::NEGATIVE;
+      if (pos && neg) continue;  // the line passes beside the triangle
+      if (!(pos || neg) || o[0] == CGAL::COLLINEAR || o[1] == CGAL::COLLINEAR || o[2] == CGAL::COLLINEAR) {
+        column = false;  // on an edge or vertex, or a vertical triangle
+        break;
+      }
+      // Crossed inside: above p when p is on the side of the plane its
+      // normal points away from (the normal up when the projection turns
+      // left, down when it turns right).
+      const CGAL::Orientation up = pos ? CGAL::POSITIVE : CGAL::NEGATIVE;
+      for (std::size_t i = 0; i < n; ++i) {
+        const Vec3& p = points[order[g + i]];
+        const CGAL::Orientation s = CGAL::orientation(c[0], c[1], c[2], K::Point_3(p[0], p[1], p[2]));
+        if (s == CGAL::COPLANAR) above[i] = -(1 << 20);  // on the triangle: side() says so
+        else if (s != up) ++above[i];
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t k = order[g + i];
+      out[k] = column && above[i] >= 0 ? (above[i] & 1 ? -1 : 1) : side(points[k]);
+    }
+  }
+  return out;
+}
+
 } // namespace imgmesh

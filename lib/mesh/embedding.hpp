@@ -75,6 +75,12 @@ public:
   // Closed surface only: -1 when p is inside (enclosed by an odd number of
   // components), 0 on a triangle, 1 outside.
   int side(const Vec3& p) const;
+  // side() of every point, faster where many share x and y (a voxel
+  // grid's columns when its axes are the world's): per vertical line, the
+  // triangles over it found once, each point's side the parity of the
+  // crossings above it (exact; where the line meets a triangle's edge,
+  // vertex or plane, or a point lies on one, side() as such).
+  std::vector<int> sides(const std::vector<Vec3>& points) const;
 
 private:
   struct Impl;

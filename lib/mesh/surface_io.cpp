@@ -20,6 +20,7 @@
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -466,11 +467,30 @@ void check_stl_coordinates(const std::string& path) {
   check_extent(extent.value(), path);
 }
 
+// A line of numbers by std::to_chars, the same text as the stream's at
+// precision 17 (printf's %.17g, which to_chars' general format is defined
+// by) in a fraction of the time (the bunny's output was 1.4% of its run).
 void write_off(std::ostream& out, const SurfaceMesh& m) {
-  out.precision(17);
   out << "OFF\n" << m.points.size() << ' ' << m.triangles.size() << " 0\n";
-  for (const auto& p : m.points) out << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
-  for (const auto& f : m.triangles) out << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
+  char line[128];
+  for (const auto& p : m.points) {
+    char* e = line;
+    for (int k = 0; k < 3; ++k) {
+      e = std::to_chars(e, line + sizeof line, p[std::size_t(k)], std::chars_format::general, 17).ptr;
+      *e++ = k < 2 ? ' ' : '\n';
+    }
+    out.write(line, e - line);
+  }
+  for (const auto& f : m.triangles) {
+    char* e = line;
+    *e++ = '3';
+    for (int v : f) {
+      *e++ = ' ';
+      e = std::to_chars(e, line + sizeof line, v).ptr;
+    }
+    *e++ = '\n';
+    out.write(line, e - line);
+  }
 }
 
 // The unit normal of triangle f as STL stores it (0 when degenerate).

@@ -3,6 +3,8 @@
 #include "mesh/embedding.hpp"
 
 #include <algorithm>
+#include <cstddef>
+#include <vector>
 
 namespace imgmesh {
 
@@ -26,29 +28,51 @@ namespace {
 // visit(i, j, k, in) for every voxel with a face on bdCA(X): a
 // face-neighbour (or the outside, for foreground) on the other side.
 // Beyond box (grown by one voxel) no voxel has a foreground neighbour.
+// foreground is asked once per voxel of the scanned box grown by one (not
+// once per face-neighbour: its calls were most of the bunny's count), the
+// answers kept for three z-slices at a time.
 template <class Visit>
 void for_each_centre_next_to_boundary(const Geometry& grid, const Foreground& foreground, Visit visit,
                                       const std::array<Index3, 2>* box = nullptr) {
-  const auto fg = [&](std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) {
-    return grid.inside(x, y, z) && foreground(std::size_t(x), std::size_t(y), std::size_t(z));
-  };
   std::size_t lo[3] = {0, 0, 0}, end[3] = {grid.size[0], grid.size[1], grid.size[2]};
   if (box)
     for (int a = 0; a < 3; ++a) {
       lo[a] = std::size_t(std::clamp<std::ptrdiff_t>((*box)[0][a] - 1, 0, std::ptrdiff_t(grid.size[a])));
       end[a] = std::size_t(std::clamp<std::ptrdiff_t>((*box)[1][a] + 2, 0, std::ptrdiff_t(grid.size[a])));
     }
-  for (std::size_t k = lo[2]; k < end[2]; ++k)
+  if (lo[0] >= end[0] || lo[1] >= end[1] || lo[2] >= end[2]) return;
+  // A slice: x in [lo0 - 1, end0], y in [lo1 - 1, end1]; 0 beyond the grid.
+  const std::size_t nx = end[0] - lo[0] + 2, ny = end[1] - lo[1] + 2;
+  std::vector<char> slices[3];
+  auto fill = [&](std::vector<char>& s, std::ptrdiff_t z) {
+    s.assign(nx * ny, 0);
+    if (z < 0 || z >= std::ptrdiff_t(grid.size[2])) return;
+    for (std::size_t v = 0; v < ny; ++v) {
+      const std::ptrdiff_t y = std::ptrdiff_t(lo[1] + v) - 1;
+      if (y < 0 || y >= std::ptrdiff_t(grid.size[1])) continue;
+      for (std::size_t u = 0; u < nx; ++u) {
+        const std::ptrdiff_t x = std::ptrdiff_t(lo[0] + u) - 1;
+        if (x >= 0 && x < std::ptrdiff_t(grid.size[0]))
+          s[v * nx + u] = foreground(std::size_t(x), std::size_t(y), std::size_t(z));
+      }
+    }
+  };
+  fill(slices[0], std::ptrdiff_t(lo[2]) - 1);
+  fill(slices[1], std::ptrdiff_t(lo[2]));
+  for (std::size_t k = lo[2]; k < end[2]; ++k) {
+    fill(slices[2], std::ptrdiff_t(k) + 1);
+    const std::vector<char>&below = slices[0], &here = slices[1], &above = slices[2];
     for (std::size_t j = lo[1]; j < end[1]; ++j)
       for (std::size_t i = lo[0]; i < end[0]; ++i) {
-        const std::ptrdiff_t x = std::ptrdiff_t(i), y = std::ptrdiff_t(j), z = std::ptrdiff_t(k);
-        const bool in = foreground(i, j, k);
-        bool next = false;
-        for (int a = 0; a < 3 && !next; ++a)
-          for (int s : {-1, 1})
-            next = next || fg(x + (a == 0) * s, y + (a == 1) * s, z + (a == 2) * s) != in;
-        if (next) visit(i, j, k, in);
+        const std::size_t at = (j - lo[1] + 1) * nx + (i - lo[0] + 1);
+        const char in = here[at];
+        const bool next = here[at - 1] != in || here[at + 1] != in || here[at - nx] != in || here[at + nx] != in ||
+                          below[at] != in || above[at] != in;
+        if (next) visit(i, j, k, in != 0);
       }
+    std::swap(slices[0], slices[1]);
+    std::swap(slices[1], slices[2]);
+  }
 }
 } // namespace
 
@@ -64,16 +88,31 @@ VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::a
                        const Foreground& foreground, const std::array<Index3, 2>* box) {
   const SurfaceGeometry g(points, triangles, component, components);
   VoxelSides r;
+  // The centres a batch at a time (their memory bounded), each batch's
+  // sides found per vertical line (SurfaceGeometry::sides).
+  constexpr std::size_t kBatch = std::size_t(1) << 20;
+  std::vector<Vec3> at;
+  std::vector<char> fg;
+  auto count = [&] {
+    const std::vector<int> side = g.sides(at);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      if (side[i] == 0) ++r.on_surface;
+      else if (fg[i] && side[i] > 0) ++r.foreground_outside;
+      else if (!fg[i] && side[i] < 0) ++r.background_inside;
+    }
+    at.clear();
+    fg.clear();
+  };
   for_each_centre_next_to_boundary(
       grid, foreground,
       [&](std::size_t i, std::size_t j, std::size_t k, bool in) {
         ++r.checked;
-        const int side = g.side(grid.world(double(i), double(j), double(k)));
-        if (side == 0) ++r.on_surface;
-        else if (in && side > 0) ++r.foreground_outside;
-        else if (!in && side < 0) ++r.background_inside;
+        at.push_back(grid.world(double(i), double(j), double(k)));
+        fg.push_back(in);
+        if (at.size() == kBatch) count();
       },
       box);
+  count();
   return r;
 }
 

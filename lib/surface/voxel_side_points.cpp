@@ -14,8 +14,7 @@ namespace imgmesh::surface_detail {
 namespace {
 
 // Every corner of an active cube once, from the active cube of least key
-// that holds it: grid order, and neighbouring centres one after the other
-// (each locate starts from the last one's cell).
+// that holds it: grid order, and neighbouring centres one after the other.
 template <class F> void for_each_centre(const CubeGrid& g, F&& visit) {
   for (const ActiveCube& kc : g.sorted_cubes()) {
     const auto [x, y, z] = g.cube_of_key(kc.key());
@@ -93,6 +92,17 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
   Ch hint = near->cell();
   std::vector<Ch> cells;
   std::unordered_set<const void*> refined;  // membership only: the order is the centres'
+  // Cells' sides this pass (W does not change during it), by address:
+  // neighbouring centres often share a cell (its circumcentre costs ~500
+  // instructions).
+  constexpr std::size_t kSlots = 1 << 12;
+  std::vector<std::pair<const void*, bool>> sides(kSlots, {nullptr, false});
+  auto side_of = [&](Ch h) {
+    auto& slot = sides[(reinterpret_cast<std::uintptr_t>(&*h) >> 4) & (kSlots - 1)];
+    if (slot.first != &*h) slot = {&*h, cell_inside(tr, f, h)};
+    return slot.second;
+  };
+  long last[3] = {-9, -9, -9};
   for (Seen& s : seen_) {
     // A centre still in the cell it was found right in is right. (The walk
     // starts from the last cell a walk found: a centre outside W's hull or
@@ -103,18 +113,30 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     const Point pp(p[0], p[1], p[2]);
     Tr::Locate_type lt;
     int li, lj;
-    const Ch c = tr.locate(pp, lt, li, lj, hint);
+    // The walk starts from the last centre's cell when that centre is a
+    // grid neighbour, else (the centres come in grid order, but a row of
+    // active cubes jumps across the shape to the next) from a vertex of the
+    // cell p was last found in (an insertion replaced that cell by cells
+    // around the new point, next to the vertex's): fewer steps to the same
+    // cell, when one cell holds p. Else (p on a facet, edge or vertex, or
+    // outside W's hull, where the walk decides which cell it finds), the
+    // walk from the last centre's, as always.
+    const bool adjacent = std::abs(x - last[0]) <= 1 && std::abs(y - last[1]) <= 1 && std::abs(z - last[2]) <= 1;
+    last[0] = x, last[1] = y, last[2] = z;
+    const bool from_near = near_starts_ && !adjacent && s.near != Vh() && tr.tds().vertices().is_used(s.near);
+    Ch c = tr.locate(pp, lt, li, lj, from_near ? s.near->cell() : hint);
+    if (from_near && lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
     hint = c;
     // The cells holding p: one, or those around the facet, edge or vertex it lies on.
     located_cells(tr, c, lt, li, lj, cells);
     const bool in = g.neg(x, y, z);
     Ch bad;
     for (Ch h : cells)
-      if (cell_inside(tr, f, h) != in) {
+      if (side_of(h) != in) {
         bad = h;
         break;
       }
-    s.cell = Ch(), s.vertices = 0;
+    s.cell = Ch(), s.vertices = 0, s.near = c->vertex(tr.is_infinite(c->vertex(0)) ? 1 : 0);
     if (bad == Ch()) {
       if (cells.size() == 1) s.cell = c, s.vertices = vertices_of(tr, c);  // on a facet: looked at again
       continue;

@@ -19,6 +19,11 @@ namespace imgmesh::surface_detail {
 
 class VoxelSidePoints {
 public:
+  // near_starts: a centre's walk starts from a vertex of the cell it was
+  // last found in (false, for tests: always from the last centre's cell;
+  // the same answers, in more steps).
+  explicit VoxelSidePoints(bool near_starts = true) : near_starts_(near_starts) {}
+
   // Every corner of an active cube (a voxel centre within a voxel of S;
   // f = g there, of the voxel's sign) whose Delaunay cell lies on the
   // other side of S (a centre on a facet, edge or vertex: any of the cells
@@ -39,13 +44,16 @@ private:
   // Per centre (grid order, found once: a walk over the active cubes took
   // 7% of the bunny's instructions a run): the cell it was last found right
   // in, the cell's vertices (a hash of their ids: a cell's memory is
-  // reused) and the centre's grid key.
+  // reused), one of them (where its next walk starts) and the centre's
+  // grid key.
   struct Seen {
     Ch cell;
+    Vh near;
     std::uint64_t vertices = 0;
     std::uint64_t key = 0;
   };
   std::vector<Seen> seen_;
+  bool near_starts_;
 };
 
 } // namespace imgmesh::surface_detail

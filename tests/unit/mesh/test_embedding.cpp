@@ -75,3 +75,46 @@ TEST_CASE("soup_crossing_pairs: triangles that only touch, at coordinates no flo
     CHECK(pairs_of(p, {{0, 1, 2}, {1, 4, 5}}).empty());
   }
 }
+
+TEST_CASE("SurfaceGeometry::sides: each point's side() on lines through vertices, edges and faces", "[embedding]") {
+  // Two octahedra (outward), one tilted off the axes, the other's top and
+  // bottom vertices on a line of points; the points on a 0.25 grid, many
+  // on triangles, on lines through edges and vertices, inside and outside.
+  std::vector<Vec3> p;
+  std::vector<std::array<int, 3>> t;
+  std::vector<int> comp;
+  auto octahedron = [&](const Vec3& c, const std::array<Vec3, 3>& axes, int id) {
+    const int base = int(p.size());
+    for (const Vec3& a : axes) {
+      p.push_back({c[0] + a[0], c[1] + a[1], c[2] + a[2]});
+      p.push_back({c[0] - a[0], c[1] - a[1], c[2] - a[2]});
+    }
+    // Vertices 0/1: +-x, 2/3: +-y, 4/5: +-z; faces outward (right-handed axes).
+    for (int sx : {0, 1})
+      for (int sy : {0, 1})
+        for (int sz : {0, 1}) {
+          std::array<int, 3> f{base + sx, base + 2 + sy, base + 4 + sz};
+          if ((sx + sy + sz) % 2) std::swap(f[1], f[2]);
+          t.push_back(f);
+          comp.push_back(id);
+        }
+  };
+  octahedron({2, 2, 2}, {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}}, 0);
+  octahedron({6, 2, 2}, {Vec3{1.5, 0.5, 0.25}, Vec3{-0.5, 1.5, 0.5}, Vec3{0.25, -0.5, 1.5}}, 1);
+  const SurfaceGeometry g(p, t, comp, 2);
+  std::vector<Vec3> q;
+  for (double x = 0.5; x <= 8.5; x += 0.25)
+    for (double y = 0.5; y <= 3.5; y += 0.25)
+      for (double z = 0.25; z <= 4; z += 0.25) q.push_back({x, y, z});
+  const std::vector<int> s = g.sides(q);
+  REQUIRE(s.size() == q.size());
+  long count[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    const int want = g.side(q[i]);
+    ++count[want + 1];
+    if (s[i] != want) FAIL_CHECK("point " << q[i][0] << ' ' << q[i][1] << ' ' << q[i][2] << ": " << s[i] << " != " << want);
+  }
+  CHECK(count[0] > 100);  // inside
+  CHECK(count[1] > 10);   // on a triangle
+  CHECK(count[2] > 1000); // outside
+}

@@ -72,3 +72,36 @@ TEST_CASE("VoxelSides: the wrong centres of a pass that remembers the last are t
     CHECK(clearance2 > 0);
   }
 }
+
+TEST_CASE("VoxelSides: where a centre's walk starts changes no point, order or count") {
+  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
+  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
+    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
+  });
+  RestrictedDelaunayOptions o;
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  const double guard = 1e-3 * m.grid().delta;
+  // From the cells centres were last found in, and from the last centre's
+  // cell alone, on the same W pass after pass. The seeds alone leave many
+  // foreground centres outside W's hull, where the walk picks the cell.
+  VoxelSidePoints near(true), last(false);
+  Candidates pts;
+  int passes = 0;
+  for (; passes < 6; ++passes) {
+    long long wrong_near = 0, wrong_last = 0, refused_near = 0, refused_last = 0;
+    pts = near(m.triangulation(), m.sampler(), m.vertices().back(), guard, wrong_near, refused_near);
+    const Candidates ref = last(m.triangulation(), m.sampler(), m.vertices().back(), guard, wrong_last, refused_last);
+    CHECK(wrong_near == wrong_last);
+    CHECK(refused_near == refused_last);
+    REQUIRE(pts.size() == ref.size());
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      CHECK(pts[k].first == ref[k].first);
+      CHECK(pts[k].second == ref[k].second);
+    }
+    if (pts.empty()) break;
+    for (std::size_t k = 0; k < pts.size(); k += 3) m.insert(pts[k].first, kVoxelSide);
+  }
+  CHECK(passes >= 2);
+}
