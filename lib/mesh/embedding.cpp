@@ -305,4 +305,146 @@ int SurfaceGeometry::side(const Vec3& p) const {
   return s == CGAL::ON_BOUNDED_SIDE ? -1 : s == CGAL::ON_BOUNDARY ? 0 : 1;
 }
 
+struct LineSides::Impl {
+  const std::vector<Vec3>& points;
+  const std::vector<std::array<int, 3>>& triangles;
+  int axis, u, v;  // the rays' axis; (u, v, axis) a cyclic order of (x, y, z)
+  // Bins of side h over the (u, v) box of the triangles from (u0, v0): per
+  // bin (u fastest) its triangles, those whose (u, v) box meets it.
+  bool binned = false;  // else (non-finite points, too many triangles) every line grazes
+  double u0 = 0, v0 = 0, u1 = -1, v1 = -1, h = 1;
+  std::size_t nu = 0, nv = 0;
+  std::vector<std::uint32_t> start, items;
+  // The last line: its (u, v), whether it grazes, and the triangles it
+  // crosses with the sign of their normal's axis component (the
+  // projection's orientation).
+  bool cached = false, grazing = false;
+  double lu = 0, lv = 0;
+  std::vector<std::pair<std::uint32_t, CGAL::Orientation>> crossed;
+
+  Impl(const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t, int a)
+      : points(p), triangles(t), axis(a), u((a + 1) % 3), v((a + 2) % 3) {}
+  std::size_t bin(double x, double lo, std::size_t n) const {
+    return std::min(n - 1, std::size_t((x - lo) / h));  // monotone in x: a box's bins hold its points'
+  }
+  void box(const std::array<int, 3>& t, int a, double& lo, double& hi) const {
+    lo = hi = points[std::size_t(t[0])][a];
+    for (int c = 1; c < 3; ++c) {
+      lo = std::min(lo, points[std::size_t(t[std::size_t(c)])][a]);
+      hi = std::max(hi, points[std::size_t(t[std::size_t(c)])][a]);
+    }
+  }
+  void line(double pu, double pv);
+};
+
+LineSides::LineSides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles, int axis)
+    : impl_(std::make_unique<Impl>(points, triangles, axis)) {
+  Impl& m = *impl_;
+  if (triangles.size() > std::numeric_limits<std::uint32_t>::max() / 8) return;
+  for (const auto& t : triangles)
+    for (int c : t)
+      if (!std::isfinite(points[std::size_t(c)][0]) || !std::isfinite(points[std::size_t(c)][1]) ||
+          !std::isfinite(points[std::size_t(c)][2]))
+        return;
+  m.binned = true;
+  if (triangles.empty()) return;
+  // Bins the size of a mean triangle's (u, v) box, at most 4 a triangle.
+  double extent = 0;
+  m.u0 = m.v0 = std::numeric_limits<double>::infinity();
+  m.u1 = m.v1 = -std::numeric_limits<double>::infinity();
+  for (const auto& t : triangles) {
+    double ulo, uhi, vlo, vhi;
+    m.box(t, m.u, ulo, uhi);
+    m.box(t, m.v, vlo, vhi);
+    m.u0 = std::min(m.u0, ulo), m.u1 = std::max(m.u1, uhi), m.v0 = std::min(m.v0, vlo), m.v1 = std::max(m.v1, vhi);
+    extent += std::max(uhi - ulo, vhi - vlo);
+  }
+  m.h = extent / double(triangles.size());
+  const double cap = 4.0 * double(triangles.size()) + 16;
+  if (!(m.h > 0) || ((m.u1 - m.u0) / m.h + 1) * ((m.v1 - m.v0) / m.h + 1) > cap)
+    m.h = std::max({m.h, (m.u1 - m.u0 + m.v1 - m.v0) / std::sqrt(cap), 1e-300});
+  m.nu = std::size_t((m.u1 - m.u0) / m.h) + 1;
+  m.nv = std::size_t((m.v1 - m.v0) / m.h) + 1;
+  m.start.assign(m.nu * m.nv + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      for (std::size_t b = 1; b < m.start.size(); ++b) m.start[b] += m.start[b - 1];
+      m.items.resize(m.start.back());
+    }
+    for (std::size_t ti = 0; ti < triangles.size(); ++ti) {
+      double ulo, uhi, vlo, vhi;
+      m.box(triangles[ti], m.u, ulo, uhi);
+      m.box(triangles[ti], m.v, vlo, vhi);
+      for (std::size_t bv = m.bin(vlo, m.v0, m.nv); bv <= m.bin(vhi, m.v0, m.nv); ++bv)
+        for (std::size_t bu = m.bin(ulo, m.u0, m.nu); bu <= m.bin(uhi, m.u0, m.nu); ++bu) {
+          const std::size_t b = bv * m.nu + bu;
+          if (pass == 0) ++m.start[b + 1];
+          else m.items[m.start[b]++] = std::uint32_t(ti);
+        }
+    }
+  }
+  for (std::size_t b = m.start.size() - 1; b > 0; --b) m.start[b] = m.start[b - 1];  // back to each bin's first
+  m.start[0] = 0;
+}
+
+LineSides::~LineSides() = default;
+
+void LineSides::Impl::line(double pu, double pv) {
+  cached = true, lu = pu, lv = pv, grazing = false;
+  crossed.clear();
+  if (!binned) {
+    grazing = true;
+    return;
+  }
+  if (triangles.empty() || !(pu >= u0 && pu <= u1 && pv >= v0 && pv <= v1)) return;
+  const std::size_t b = bin(pv, v0, nv) * nu + bin(pu, u0, nu);
+  const K::Point_2 q(pu, pv);
+  for (std::uint32_t i = start[b]; i < start[b + 1]; ++i) {
+    const auto& t = triangles[items[i]];
+    double lo, hi;
+    box(t, u, lo, hi);
+    if (pu < lo || pu > hi) continue;
+    box(t, v, lo, hi);
+    if (pv < lo || pv > hi) continue;
+    const Vec3 &a = points[std::size_t(t[0])], &b1 = points[std::size_t(t[1])], &c = points[std::size_t(t[2])];
+    const K::Point_2 pa(a[u], a[v]), pb(b1[u], b1[v]), pc(c[u], c[v]);
+    const CGAL::Orientation o = CGAL::orientation(pa, pb, pc);
+    if (o == CGAL::COLLINEAR) {
+      // Along the rays: its projection a segment (or a point), which the
+      // line meets (within the box, on its line) or misses.
+      const K::Point_2& far = pa != pb ? pb : pc;
+      if (pa == far || CGAL::orientation(pa, far, q) == CGAL::COLLINEAR) {
+        grazing = true;
+        return;
+      }
+      continue;
+    }
+    const CGAL::Orientation e[3] = {CGAL::orientation(pa, pb, q), CGAL::orientation(pb, pc, q), CGAL::orientation(pc, pa, q)};
+    if (e[0] == -o || e[1] == -o || e[2] == -o) continue;  // outside the closed projection
+    if (e[0] == CGAL::COLLINEAR || e[1] == CGAL::COLLINEAR || e[2] == CGAL::COLLINEAR) {  // on its edge or corner
+      grazing = true;
+      return;
+    }
+    crossed.emplace_back(items[i], o);
+  }
+}
+
+int LineSides::side(const Vec3& p) {
+  Impl& m = *impl_;
+  if (!m.cached || p[std::size_t(m.u)] != m.lu || p[std::size_t(m.v)] != m.lv) m.line(p[std::size_t(m.u)], p[std::size_t(m.v)]);
+  if (m.grazing) return kGrazing;
+  // (b - a) x (c - a) . (p - a) = n_axis (p_axis - t_axis) on the line: the
+  // ray crosses the triangle (t_axis > p_axis) where the orientation has
+  // the sign opposite to n_axis's.
+  const K::Point_3 x(p[0], p[1], p[2]);
+  std::size_t n = 0;
+  for (const auto& [t, o] : m.crossed) {
+    const auto& tri = m.triangles[t];
+    const CGAL::Orientation s = CGAL::orientation(point(m.points, tri[0]), point(m.points, tri[1]), point(m.points, tri[2]), x);
+    if (s == CGAL::COPLANAR) return 0;
+    n += s == -o;
+  }
+  return n % 2 ? -1 : 1;
+}
+
 } // namespace imgmesh

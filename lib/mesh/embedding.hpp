@@ -47,6 +47,32 @@ std::vector<std::array<std::size_t, 2>> soup_crossing_pairs(const std::vector<Ve
                                                             const std::vector<std::array<int, 3>>& triangles,
                                                             std::size_t cap = std::size_t(-1));
 
+// Sides of points against a closed surface (each edge in an even number
+// of triangles), without SurfaceGeometry's mesh and tree: a ray along the
+// axis from each point, through the triangles whose projection on the
+// plane of the other two axes holds the point's strictly (a grid of bins
+// over that plane finds them; the list is kept while points come on one
+// line, as voxel centres do along x), each crossed beyond the point or not
+// by one exact orientation; inside when an odd number are. Any ray's
+// parity is the same, so these are SurfaceGeometry::side's answers; a line
+// through the projection of an edge or a vertex has none (kGrazing: ask
+// another axis's, or SurfaceGeometry::side). points and triangles are kept
+// by reference.
+class LineSides {
+public:
+  static constexpr int kGrazing = 2;
+  LineSides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles, int axis = 0);
+  ~LineSides();
+  LineSides(const LineSides&) = delete;
+  LineSides& operator=(const LineSides&) = delete;
+  // -1 inside, 0 on a triangle, 1 outside, or kGrazing.
+  int side(const Vec3& p);
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 class SurfaceGeometry {
 public:
   // triangles: a 2-manifold, consistently oriented surface (mesh_topology

@@ -75,3 +75,46 @@ TEST_CASE("soup_crossing_pairs: triangles that only touch, at coordinates no flo
     CHECK(pairs_of(p, {{0, 1, 2}, {1, 4, 5}}).empty());
   }
 }
+
+TEST_CASE("LineSides: SurfaceGeometry::side's answers along every axis, grazing lines told", "[embedding]") {
+  // A cube [0, 2]^3 split into 12 triangles, and inside it (enclosed: its
+  // points are outside) a tetrahedron off the lattice; the points: a
+  // lattice of step 0.5 from -0.5 (lines through the cube's edges and
+  // corners graze; points on its faces are on the surface) and a lattice of
+  // step 0.37 (lines that cross the tetrahedron).
+  std::vector<Vec3> p;
+  for (int m = 0; m < 8; ++m) p.push_back({m & 1 ? 2.0 : 0.0, m & 2 ? 2.0 : 0.0, m & 4 ? 2.0 : 0.0});
+  std::vector<std::array<int, 3>> t = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                                       {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  p.push_back({0.31, 0.42, 0.23});
+  p.push_back({1.63, 0.51, 0.37});
+  p.push_back({0.72, 1.71, 0.41});
+  p.push_back({0.83, 0.77, 1.69});
+  // Oriented out of the tetrahedron (as the cube's faces are out of it).
+  for (std::array<int, 3> f : {std::array<int, 3>{8, 10, 9}, {8, 9, 11}, {8, 11, 10}, {9, 10, 11}}) t.push_back(f);
+  const std::vector<int> component{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1};
+  const SurfaceGeometry g(p, t, component, 2);
+  std::vector<Vec3> q;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      for (int k = 0; k < 6; ++k) q.push_back({-0.5 + 0.5 * i, -0.5 + 0.5 * j, -0.5 + 0.5 * k});
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 7; ++j)
+      for (int k = 0; k < 7; ++k) q.push_back({-0.2 + 0.37 * i, -0.2 + 0.37 * j, -0.2 + 0.37 * k});
+  for (int axis = 0; axis < 3; ++axis) {
+    LineSides lines(p, t, axis);
+    std::array<int, 4> seen{0, 0, 0, 0};  // inside, on, outside, grazing
+    for (const Vec3& x : q) {
+      const int s = lines.side(x);
+      ++seen[std::size_t(s + 1)];
+      if (s == LineSides::kGrazing) continue;
+      INFO("axis " << axis << " point " << x[0] << " " << x[1] << " " << x[2]);
+      CHECK(s == g.side(x));
+    }
+    INFO("axis " << axis);
+    CHECK(seen[0] > 0);
+    CHECK(seen[1] > 0);
+    CHECK(seen[2] > 0);
+    CHECK(seen[3] > 0);
+  }
+}
