@@ -447,4 +447,58 @@ int LineSides::side(const Vec3& p) {
   return n % 2 ? -1 : 1;
 }
 
+std::vector<int> nesting_depths(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                const std::vector<int>& component, std::size_t components,
+                                const std::vector<int>& component_of) {
+  const std::size_t n = components;
+  std::vector<std::array<Vec3, 2>> box(n, {Vec3{INFINITY, INFINITY, INFINITY}, Vec3{-INFINITY, -INFINITY, -INFINITY}});
+  std::vector<std::vector<std::size_t>> samples(n);  // per component, its vertices ascending
+  for (std::size_t v = 0; v < component_of.size(); ++v) {
+    const int c = component_of[v];
+    if (c < 0) continue;
+    for (int a = 0; a < 3; ++a) {
+      box[std::size_t(c)][0][a] = std::min(box[std::size_t(c)][0][a], points[v][a]);
+      box[std::size_t(c)][1][a] = std::max(box[std::size_t(c)][1][a], points[v][a]);
+    }
+    samples[std::size_t(c)].push_back(v);
+  }
+  auto within = [](const Vec3& p, const std::array<Vec3, 2>& b) {
+    return p[0] >= b[0][0] && p[1] >= b[0][1] && p[2] >= b[0][2] && p[0] <= b[1][0] && p[1] <= b[1][1] && p[2] <= b[1][2];
+  };
+  std::vector<int> depth(n, 0);
+  std::vector<std::array<int, 3>> own;  // component b's triangles
+  for (std::size_t b = 0; b < n; ++b) {
+    std::unique_ptr<LineSides> lines[3];
+    std::unique_ptr<SurfaceGeometry> rays;
+    auto side = [&](const Vec3& p) {
+      for (int a = 0; a < 3; ++a) {
+        if (!lines[a]) lines[a] = std::make_unique<LineSides>(points, own, a);
+        if (const int s = lines[a]->side(p); s != LineSides::kGrazing) return s;
+      }
+      if (!rays) rays = std::make_unique<SurfaceGeometry>(points, own, std::vector<int>(own.size(), 0), 1);
+      return rays->side(p);
+    };
+    bool built = false;
+    for (std::size_t a = 0; a < n; ++a) {
+      // Only a component whose first vertex is in b's box can be inside b.
+      if (a == b || samples[a].empty() || !within(points[samples[a][0]], box[b])) continue;
+      if (!built) {
+        own.clear();
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+          if (std::size_t(component[t]) == b) own.push_back(triangles[t]);
+        built = true;
+      }
+      // a's first vertex not on b's surface (the two meet only where
+      // triangles intersect, which the certificate refuses anyway).
+      for (std::size_t x : samples[a]) {
+        const int s = side(points[x]);
+        if (s == 0) continue;
+        depth[a] += s < 0;
+        break;
+      }
+    }
+  }
+  return depth;
+}
+
 } // namespace imgmesh

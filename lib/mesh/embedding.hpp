@@ -73,6 +73,14 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
+// SurfaceGeometry(points, triangles, component, components)
+// .nesting_depths(component_of), by each component's LineSides (along x,
+// then y, z where a line grazes; its SurfaceGeometry's rays where all do):
+// the same depths without the mesh, trees and search tree of them all.
+std::vector<int> nesting_depths(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                const std::vector<int>& component, std::size_t components,
+                                const std::vector<int>& component_of);
+
 class SurfaceGeometry {
 public:
   // triangles: a 2-manifold, consistently oriented surface (mesh_topology

@@ -118,3 +118,35 @@ TEST_CASE("LineSides: SurfaceGeometry::side's answers along every axis, grazing 
     CHECK(seen[3] > 0);
   }
 }
+
+TEST_CASE("nesting_depths: SurfaceGeometry's depths, a vertex on another's surface passed over", "[embedding]") {
+  // Three cubes, [0, 4]^3, [1, 3]^3 in it and [1.5, 2.5]^3 in that, and a
+  // fourth [6, 7]^3 beside them; the innermost's first vertex lies on no
+  // other's surface, a fifth cube's [0, 1]^3 first vertex (0, 0, 0) on the
+  // outer's corner: passed over for its next.
+  std::vector<Vec3> p;
+  std::vector<std::array<int, 3>> t;
+  std::vector<int> component;
+  const std::vector<std::array<int, 3>> faces = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                                                 {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+  auto cube = [&](double lo, double hi) {
+    const int base = int(p.size());
+    for (int m = 0; m < 8; ++m) p.push_back({m & 1 ? hi : lo, m & 2 ? hi : lo, m & 4 ? hi : lo});
+    const int c = component.empty() ? 0 : component.back() + 1;
+    for (const auto& f : faces) {
+      t.push_back({f[0] + base, f[1] + base, f[2] + base});
+      component.push_back(c);
+    }
+  };
+  cube(0, 4);
+  cube(1, 3);
+  cube(1.5, 2.5);
+  cube(6, 7);
+  cube(0, 1);
+  std::vector<int> component_of(p.size());
+  for (std::size_t v = 0; v < p.size(); ++v) component_of[v] = int(v / 8);
+  const std::vector<int> expected =
+      SurfaceGeometry(p, t, component, 5).nesting_depths(component_of);
+  CHECK(expected == std::vector<int>{0, 1, 2, 0, 1});
+  CHECK(nesting_depths(p, t, component, 5, component_of) == expected);
+}
