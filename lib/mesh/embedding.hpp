@@ -3,7 +3,8 @@
 // a shared edge or vertex (CGAL Polygon_mesh_processing's
 // self_intersections, exact predicates), how its components nest and which
 // side of it a point is on (CGAL's Side_of_triangle_mesh: rays against the
-// triangles, exact predicates, another ray when one grazes an edge), and
+// triangles, exact predicates, another ray when one grazes an edge; for
+// many points, LineSides: axis-parallel rays through bins, exact), and
 // distances to a component's triangles (an AABB tree); the same
 // intersection test on a triangle soup (any number of triangles at an edge,
 // as surface nets' interfaces meet along curves), pair by pair or over all
