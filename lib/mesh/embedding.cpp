@@ -305,101 +305,200 @@ int SurfaceGeometry::side(const Vec3& p) const {
   return s == CGAL::ON_BOUNDED_SIDE ? -1 : s == CGAL::ON_BOUNDARY ? 0 : 1;
 }
 
-// A closed surface crosses a line an even number of times, so the parity
-// of the crossings above a point is that of those below, and of CGAL's
-// vertical ray (up or down): the same side, decided by the same exact
-// predicates, where no degeneracy sends CGAL to a random ray. The
-// triangles over each line: those whose box in x and y holds it (exact
-// comparisons), dealt to the lines once (an AABB traversal per line cost
-// more than the rays it saved).
-std::vector<int> SurfaceGeometry::sides(const std::vector<Vec3>& points) const {
-  const Mesh& m = impl_->mesh;
-  std::vector<int> out(points.size(), 1);
-  std::vector<std::size_t> order(points.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    const Vec3 &p = points[a], &q = points[b];
-    return p[0] != q[0] ? p[0] < q[0] : p[1] != q[1] ? p[1] < q[1] : a < b;
-  });
-  // The lines (distinct x, y), in that order: line l's points are
-  // order[first[l] .. first[l + 1]).
-  std::vector<std::size_t> first;
-  for (std::size_t g = 0; g < order.size(); ++g)
-    if (g == 0 || points[order[g]][0] != points[order[g - 1]][0] || points[order[g]][1] != points[order[g - 1]][1])
-      first.push_back(g);
-  const std::size_t lines = first.size();
-  first.push_back(order.size());
-  auto line_x = [&](std::size_t l) { return points[order[first[l]]][0]; };
-  auto line_y = [&](std::size_t l) { return points[order[first[l]]][1]; };
-  // Each triangle's lines, twice: counted, then dealt (CSR).
-  std::vector<std::size_t> at(lines + 1, 0);
-  std::vector<Face> over;
-  auto deal = [&](bool fill) {
-    for (Face f : faces(m)) {
-      double x0 = HUGE_VAL, x1 = -HUGE_VAL, y0 = HUGE_VAL, y1 = -HUGE_VAL;
-      for (Mesh::Vertex_index v : CGAL::vertices_around_face(m.halfedge(f), m)) {
-        const K::Point_3& c = m.point(v);
-        x0 = std::min(x0, c.x()), x1 = std::max(x1, c.x()), y0 = std::min(y0, c.y()), y1 = std::max(y1, c.y());
-      }
-      // The lines with x0 <= x <= x1 and y0 <= y <= y1.
-      std::size_t l = std::size_t(std::lower_bound(first.begin(), first.end() - 1, x0,
-                                                   [&](std::size_t g, double x) { return points[order[g]][0] < x; }) -
-                                  first.begin());
-      while (l < lines && line_x(l) <= x1) {
-        const double x = line_x(l);
-        std::size_t e = l;  // past this x's lines
-        while (e < lines && line_x(e) == x) ++e;
-        for (std::size_t k = l; k < e; ++k) {
-          if (line_y(k) < y0) continue;
-          if (line_y(k) > y1) break;
-          if (fill) over[at[k]++] = f;
-          else ++at[k + 1];
-        }
-        l = e;
-      }
-    }
-  };
-  deal(false);
-  for (std::size_t l = 0; l < lines; ++l) at[l + 1] += at[l];
-  over.resize(at[lines]);
-  std::vector<std::size_t> begin(at.begin(), at.end() - 1);
-  deal(true);  // at[l] ends at line l's end
-  std::vector<int> above;
-  for (std::size_t l = 0; l < lines; ++l) {
-    const std::size_t g = first[l], n = first[l + 1] - g;
-    const K::Point_2 q(line_x(l), line_y(l));
-    bool column = true;
-    above.assign(n, 0);
-    for (std::size_t t = begin[l]; t < at[l] && column; ++t) {
-      std::array<K::Point_3, 3> c;
-      int k = 0;
-      for (Mesh::Vertex_index v : CGAL::vertices_around_face(m.halfedge(over[t]), m)) c[std::size_t(k++)] = m.point(v);
-      const K::Point_2 a(c[0].x(), c[0].y()), b(c[1].x(), c[1].y()), d(c[2].x(), c[2].y());
-      const CGAL::Orientation o[3] = {CGAL::orientation(a, b, q), CGAL::orientation(b, d, q), CGAL::orientation(d, a, q)};
-      const bool pos = o[0] == CGAL::POSITIVE || o[1] == CGAL::POSITIVE || o[2] == CGAL::POSITIVE;
-      const bool neg = o[0] == CGAL::NEGATIVE || o[1] == CGAL::NEGATIVE || o[2] == CGAL::NEGATIVE;
-      if (pos && neg) continue;  // the line passes beside the triangle
-      if (!(pos || neg) || o[0] == CGAL::COLLINEAR || o[1] == CGAL::COLLINEAR || o[2] == CGAL::COLLINEAR) {
-        column = false;  // on an edge or vertex, or a vertical triangle
-        break;
-      }
-      // Crossed inside: above p when p is on the side of the plane its
-      // normal points away from (the normal up when the projection turns
-      // left, down when it turns right).
-      const CGAL::Orientation up = pos ? CGAL::POSITIVE : CGAL::NEGATIVE;
-      for (std::size_t i = 0; i < n; ++i) {
-        const Vec3& p = points[order[g + i]];
-        const CGAL::Orientation s = CGAL::orientation(c[0], c[1], c[2], K::Point_3(p[0], p[1], p[2]));
-        if (s == CGAL::COPLANAR) above[i] = -(1 << 20);  // on the triangle: side() says so
-        else if (s != up) ++above[i];
-      }
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t k = order[g + i];
-      out[k] = column && above[i] >= 0 ? (above[i] & 1 ? -1 : 1) : side(points[k]);
+struct LineSides::Impl {
+  const std::vector<Vec3>& points;
+  const std::vector<std::array<int, 3>>& triangles;
+  int axis, u, v;  // the rays' axis; (u, v, axis) a cyclic order of (x, y, z)
+  // Bins of side h over the (u, v) box of the triangles from (u0, v0): per
+  // bin (u fastest) its triangles, those whose (u, v) box meets it.
+  bool binned = false;  // else (non-finite points, too many triangles) every line grazes
+  double u0 = 0, v0 = 0, u1 = -1, v1 = -1, h = 1;
+  std::size_t nu = 0, nv = 0;
+  std::vector<std::uint32_t> start, items;
+  // The last line: its (u, v), whether it grazes, and the triangles it
+  // crosses with the sign of their normal's axis component (the
+  // projection's orientation).
+  bool cached = false, grazing = false;
+  double lu = 0, lv = 0;
+  std::vector<std::pair<std::uint32_t, CGAL::Orientation>> crossed;
+
+  Impl(const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t, int a)
+      : points(p), triangles(t), axis(a), u((a + 1) % 3), v((a + 2) % 3) {}
+  std::size_t bin(double x, double lo, std::size_t n) const {
+    return std::min(n - 1, std::size_t((x - lo) / h));  // monotone in x: a box's bins hold its points'
+  }
+  void box(const std::array<int, 3>& t, int a, double& lo, double& hi) const {
+    lo = hi = points[std::size_t(t[0])][a];
+    for (int c = 1; c < 3; ++c) {
+      lo = std::min(lo, points[std::size_t(t[std::size_t(c)])][a]);
+      hi = std::max(hi, points[std::size_t(t[std::size_t(c)])][a]);
     }
   }
-  return out;
+  void line(double pu, double pv);
+};
+
+LineSides::LineSides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles, int axis)
+    : impl_(std::make_unique<Impl>(points, triangles, axis)) {
+  Impl& m = *impl_;
+  if (triangles.size() > std::numeric_limits<std::uint32_t>::max() / 8) return;
+  for (const auto& t : triangles)
+    for (int c : t)
+      if (!std::isfinite(points[std::size_t(c)][0]) || !std::isfinite(points[std::size_t(c)][1]) ||
+          !std::isfinite(points[std::size_t(c)][2]))
+        return;
+  m.binned = true;
+  if (triangles.empty()) return;
+  // Bins the size of a mean triangle's (u, v) box, at most 4 a triangle.
+  double extent = 0;
+  m.u0 = m.v0 = std::numeric_limits<double>::infinity();
+  m.u1 = m.v1 = -std::numeric_limits<double>::infinity();
+  for (const auto& t : triangles) {
+    double ulo, uhi, vlo, vhi;
+    m.box(t, m.u, ulo, uhi);
+    m.box(t, m.v, vlo, vhi);
+    m.u0 = std::min(m.u0, ulo), m.u1 = std::max(m.u1, uhi), m.v0 = std::min(m.v0, vlo), m.v1 = std::max(m.v1, vhi);
+    extent += std::max(uhi - ulo, vhi - vlo);
+  }
+  m.h = extent / double(triangles.size());
+  const double cap = 4.0 * double(triangles.size()) + 16;
+  if (!(m.h > 0) || ((m.u1 - m.u0) / m.h + 1) * ((m.v1 - m.v0) / m.h + 1) > cap)
+    m.h = std::max({m.h, (m.u1 - m.u0 + m.v1 - m.v0) / std::sqrt(cap), 1e-300});
+  m.nu = std::size_t((m.u1 - m.u0) / m.h) + 1;
+  m.nv = std::size_t((m.v1 - m.v0) / m.h) + 1;
+  m.start.assign(m.nu * m.nv + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    if (pass == 1) {
+      for (std::size_t b = 1; b < m.start.size(); ++b) m.start[b] += m.start[b - 1];
+      m.items.resize(m.start.back());
+    }
+    for (std::size_t ti = 0; ti < triangles.size(); ++ti) {
+      double ulo, uhi, vlo, vhi;
+      m.box(triangles[ti], m.u, ulo, uhi);
+      m.box(triangles[ti], m.v, vlo, vhi);
+      for (std::size_t bv = m.bin(vlo, m.v0, m.nv); bv <= m.bin(vhi, m.v0, m.nv); ++bv)
+        for (std::size_t bu = m.bin(ulo, m.u0, m.nu); bu <= m.bin(uhi, m.u0, m.nu); ++bu) {
+          const std::size_t b = bv * m.nu + bu;
+          if (pass == 0) ++m.start[b + 1];
+          else m.items[m.start[b]++] = std::uint32_t(ti);
+        }
+    }
+  }
+  for (std::size_t b = m.start.size() - 1; b > 0; --b) m.start[b] = m.start[b - 1];  // back to each bin's first
+  m.start[0] = 0;
+}
+
+LineSides::~LineSides() = default;
+
+void LineSides::Impl::line(double pu, double pv) {
+  cached = true, lu = pu, lv = pv, grazing = false;
+  crossed.clear();
+  if (!binned) {
+    grazing = true;
+    return;
+  }
+  if (triangles.empty() || !(pu >= u0 && pu <= u1 && pv >= v0 && pv <= v1)) return;
+  const std::size_t b = bin(pv, v0, nv) * nu + bin(pu, u0, nu);
+  const K::Point_2 q(pu, pv);
+  for (std::uint32_t i = start[b]; i < start[b + 1]; ++i) {
+    const auto& t = triangles[items[i]];
+    double lo, hi;
+    box(t, u, lo, hi);
+    if (pu < lo || pu > hi) continue;
+    box(t, v, lo, hi);
+    if (pv < lo || pv > hi) continue;
+    const Vec3 &a = points[std::size_t(t[0])], &b1 = points[std::size_t(t[1])], &c = points[std::size_t(t[2])];
+    const K::Point_2 pa(a[u], a[v]), pb(b1[u], b1[v]), pc(c[u], c[v]);
+    const CGAL::Orientation o = CGAL::orientation(pa, pb, pc);
+    if (o == CGAL::COLLINEAR) {
+      // Along the rays: its projection a segment (or a point), which the
+      // line meets (within the box, on its line) or misses.
+      const K::Point_2& far = pa != pb ? pb : pc;
+      if (pa == far || CGAL::orientation(pa, far, q) == CGAL::COLLINEAR) {
+        grazing = true;
+        return;
+      }
+      continue;
+    }
+    const CGAL::Orientation e[3] = {CGAL::orientation(pa, pb, q), CGAL::orientation(pb, pc, q), CGAL::orientation(pc, pa, q)};
+    if (e[0] == -o || e[1] == -o || e[2] == -o) continue;  // outside the closed projection
+    if (e[0] == CGAL::COLLINEAR || e[1] == CGAL::COLLINEAR || e[2] == CGAL::COLLINEAR) {  // on its edge or corner
+      grazing = true;
+      return;
+    }
+    crossed.emplace_back(items[i], o);
+  }
+}
+
+int LineSides::side(const Vec3& p) {
+  Impl& m = *impl_;
+  if (!m.cached || p[std::size_t(m.u)] != m.lu || p[std::size_t(m.v)] != m.lv) m.line(p[std::size_t(m.u)], p[std::size_t(m.v)]);
+  if (m.grazing) return kGrazing;
+  // (b - a) x (c - a) . (p - a) = n_axis (p_axis - t_axis) on the line: the
+  // ray crosses the triangle (t_axis > p_axis) where the orientation has
+  // the sign opposite to n_axis's.
+  const K::Point_3 x(p[0], p[1], p[2]);
+  std::size_t n = 0;
+  for (const auto& [t, o] : m.crossed) {
+    const auto& tri = m.triangles[t];
+    const CGAL::Orientation s = CGAL::orientation(point(m.points, tri[0]), point(m.points, tri[1]), point(m.points, tri[2]), x);
+    if (s == CGAL::COPLANAR) return 0;
+    n += s == -o;
+  }
+  return n % 2 ? -1 : 1;
+}
+
+std::vector<int> nesting_depths(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                const std::vector<int>& component, std::size_t components,
+                                const std::vector<int>& component_of) {
+  const std::size_t n = components;
+  std::vector<std::array<Vec3, 2>> box(n, {Vec3{INFINITY, INFINITY, INFINITY}, Vec3{-INFINITY, -INFINITY, -INFINITY}});
+  std::vector<std::vector<std::size_t>> samples(n);  // per component, its vertices ascending
+  for (std::size_t v = 0; v < component_of.size(); ++v) {
+    const int c = component_of[v];
+    if (c < 0) continue;
+    for (int a = 0; a < 3; ++a) {
+      box[std::size_t(c)][0][a] = std::min(box[std::size_t(c)][0][a], points[v][a]);
+      box[std::size_t(c)][1][a] = std::max(box[std::size_t(c)][1][a], points[v][a]);
+    }
+    samples[std::size_t(c)].push_back(v);
+  }
+  auto within = [](const Vec3& p, const std::array<Vec3, 2>& b) {
+    return p[0] >= b[0][0] && p[1] >= b[0][1] && p[2] >= b[0][2] && p[0] <= b[1][0] && p[1] <= b[1][1] && p[2] <= b[1][2];
+  };
+  std::vector<int> depth(n, 0);
+  std::vector<std::array<int, 3>> own;  // component b's triangles
+  for (std::size_t b = 0; b < n; ++b) {
+    std::unique_ptr<LineSides> lines[3];
+    std::unique_ptr<SurfaceGeometry> rays;
+    auto side = [&](const Vec3& p) {
+      for (int a = 0; a < 3; ++a) {
+        if (!lines[a]) lines[a] = std::make_unique<LineSides>(points, own, a);
+        if (const int s = lines[a]->side(p); s != LineSides::kGrazing) return s;
+      }
+      if (!rays) rays = std::make_unique<SurfaceGeometry>(points, own, std::vector<int>(own.size(), 0), 1);
+      return rays->side(p);
+    };
+    bool built = false;
+    for (std::size_t a = 0; a < n; ++a) {
+      // Only a component whose first vertex is in b's box can be inside b.
+      if (a == b || samples[a].empty() || !within(points[samples[a][0]], box[b])) continue;
+      if (!built) {
+        own.clear();
+        for (std::size_t t = 0; t < triangles.size(); ++t)
+          if (std::size_t(component[t]) == b) own.push_back(triangles[t]);
+        built = true;
+      }
+      // a's first vertex not on b's surface (the two meet only where
+      // triangles intersect, which the certificate refuses anyway).
+      for (std::size_t x : samples[a]) {
+        const int s = side(points[x]);
+        if (s == 0) continue;
+        depth[a] += s < 0;
+        break;
+      }
+    }
+  }
+  return depth;
 }
 
 } // namespace imgmesh

@@ -3,7 +3,8 @@
 // a shared edge or vertex (CGAL Polygon_mesh_processing's
 // self_intersections, exact predicates), how its components nest and which
 // side of it a point is on (CGAL's Side_of_triangle_mesh: rays against the
-// triangles, exact predicates, another ray when one grazes an edge), and
+// triangles, exact predicates, another ray when one grazes an edge; for
+// many points, LineSides: axis-parallel rays through bins, exact), and
 // distances to a component's triangles (an AABB tree); the same
 // intersection test on a triangle soup (any number of triangles at an edge,
 // as surface nets' interfaces meet along curves), pair by pair or over all
@@ -47,6 +48,40 @@ std::vector<std::array<std::size_t, 2>> soup_crossing_pairs(const std::vector<Ve
                                                             const std::vector<std::array<int, 3>>& triangles,
                                                             std::size_t cap = std::size_t(-1));
 
+// Sides of points against a closed surface (each edge in an even number
+// of triangles), without SurfaceGeometry's mesh and tree: a ray along the
+// axis from each point, through the triangles whose projection on the
+// plane of the other two axes holds the point's strictly (a grid of bins
+// over that plane finds them; the list is kept while points come on one
+// line, as voxel centres do along x), each crossed beyond the point or not
+// by one exact orientation; inside when an odd number are. Any ray's
+// parity is the same, so these are SurfaceGeometry::side's answers; a line
+// through the projection of an edge or a vertex has none (kGrazing: ask
+// another axis's, or SurfaceGeometry::side). points and triangles are kept
+// by reference.
+class LineSides {
+public:
+  static constexpr int kGrazing = 2;
+  LineSides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles, int axis = 0);
+  ~LineSides();
+  LineSides(const LineSides&) = delete;
+  LineSides& operator=(const LineSides&) = delete;
+  // -1 inside, 0 on a triangle, 1 outside, or kGrazing.
+  int side(const Vec3& p);
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// SurfaceGeometry(points, triangles, component, components)
+// .nesting_depths(component_of), by each component's LineSides (along x,
+// then y, z where a line grazes; its SurfaceGeometry's rays where all do):
+// the same depths without the mesh, trees and search tree of them all.
+std::vector<int> nesting_depths(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
+                                const std::vector<int>& component, std::size_t components,
+                                const std::vector<int>& component_of);
+
 class SurfaceGeometry {
 public:
   // triangles: a 2-manifold, consistently oriented surface (mesh_topology
@@ -75,12 +110,6 @@ public:
   // Closed surface only: -1 when p is inside (enclosed by an odd number of
   // components), 0 on a triangle, 1 outside.
   int side(const Vec3& p) const;
-  // side() of every point, faster where many share x and y (a voxel
-  // grid's columns when its axes are the world's): per vertical line, the
-  // triangles over it found once, each point's side the parity of the
-  // crossings above it (exact; where the line meets a triangle's edge,
-  // vertex or plane, or a point lies on one, side() as such).
-  std::vector<int> sides(const std::vector<Vec3>& points) const;
 
 private:
   struct Impl;

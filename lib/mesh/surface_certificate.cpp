@@ -224,8 +224,8 @@ SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::v
       check_intersections(c, points, triangles, options.intersections_cap);
     else
       set(c, C::kIntersections, true);
-    // The nesting from the caller when it knows it, else by rays (a CGAL
-    // Surface_mesh and AABB trees only where components may nest).
+    // The nesting from the caller when it knows it, else by rays (along
+    // lines, nesting_depths: no CGAL mesh or tree unless one grazes).
     const std::size_t n = c.topology.components.size();
     std::vector<int> depth = n > 1 && options.nesting ? options.nesting(c.topology) : std::vector<int>();
     if (depth.size() != n) {
@@ -233,7 +233,7 @@ SurfaceCertificate certify_surface(const std::vector<Vec3>& points, const std::v
       if (n > 1) {
         std::vector<int> component(triangles.size());
         for (std::size_t t = 0; t < triangles.size(); ++t) component[t] = c.topology.component_of[std::size_t(triangles[t][0])];
-        depth = SurfaceGeometry(points, triangles, component, n).nesting_depths(c.topology.component_of);
+        depth = nesting_depths(points, triangles, component, n, c.topology.component_of);
       }
     }
     check_outward(c, points, triangles, std::move(depth));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace imgmesh {
@@ -86,33 +87,32 @@ std::size_t centres_next_to_boundary(const BinaryImage& img) {
 VoxelSides voxel_sides(const std::vector<Vec3>& points, const std::vector<std::array<int, 3>>& triangles,
                        const std::vector<int>& component, std::size_t components, const Geometry& grid,
                        const Foreground& foreground, const std::array<Index3, 2>* box) {
-  const SurfaceGeometry g(points, triangles, component, components);
+  // Rays along the lines of centres (x); where one grazes an edge or a
+  // vertex, along y, then z (their bins made when first needed), then
+  // SurfaceGeometry's (a mesh and a tree of every triangle).
+  std::unique_ptr<LineSides> lines[3];
+  lines[0] = std::make_unique<LineSides>(points, triangles, 0);
+  std::unique_ptr<SurfaceGeometry> g;
   VoxelSides r;
-  // The centres a batch at a time (their memory bounded), each batch's
-  // sides found per vertical line (SurfaceGeometry::sides).
-  constexpr std::size_t kBatch = std::size_t(1) << 20;
-  std::vector<Vec3> at;
-  std::vector<char> fg;
-  auto count = [&] {
-    const std::vector<int> side = g.sides(at);
-    for (std::size_t i = 0; i < at.size(); ++i) {
-      if (side[i] == 0) ++r.on_surface;
-      else if (fg[i] && side[i] > 0) ++r.foreground_outside;
-      else if (!fg[i] && side[i] < 0) ++r.background_inside;
-    }
-    at.clear();
-    fg.clear();
-  };
   for_each_centre_next_to_boundary(
       grid, foreground,
       [&](std::size_t i, std::size_t j, std::size_t k, bool in) {
         ++r.checked;
-        at.push_back(grid.world(double(i), double(j), double(k)));
-        fg.push_back(in);
-        if (at.size() == kBatch) count();
+        const Vec3 p = grid.world(double(i), double(j), double(k));
+        int side = LineSides::kGrazing;
+        for (int a = 0; a < 3 && side == LineSides::kGrazing; ++a) {
+          if (!lines[a]) lines[a] = std::make_unique<LineSides>(points, triangles, a);
+          side = lines[a]->side(p);
+        }
+        if (side == LineSides::kGrazing) {
+          if (!g) g = std::make_unique<SurfaceGeometry>(points, triangles, component, components);
+          side = g->side(p);
+        }
+        if (side == 0) ++r.on_surface;
+        else if (in && side > 0) ++r.foreground_outside;
+        else if (!in && side < 0) ++r.background_inside;
       },
       box);
-  count();
   return r;
 }
 

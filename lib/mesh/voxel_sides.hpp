@@ -1,9 +1,9 @@
 // Which side of a closed surface each voxel centre next to the voxel
 // boundary bdCA(X) lies on (issue 38): a foreground centre should be inside
-// the surface, a background one outside. Sides by exact crossing parity
-// on the vertical lines of centres (SurfaceGeometry::sides; CGAL's
-// Side_of_triangle_mesh rays where a line is degenerate), inside meaning
-// enclosed by an odd number of the surface's components. Reported
+// the surface, a background one outside. Sides by exact ray tests along
+// the lines of centres (LineSides; SurfaceGeometry::side, CGAL's
+// Side_of_triangle_mesh, where a line grazes an edge or a vertex), inside
+// meaning enclosed by an odd number of the surface's components. Reported
 // by meshinfo --image and by the surface mesher's own certificate (which
 // fails on a wrong centre unless --no-voxel-sides).
 #pragma once
