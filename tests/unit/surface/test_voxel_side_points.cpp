@@ -41,17 +41,23 @@ long long wrong_by_walks(const DelMesh& m) {
   }
   return wrong;
 }
+// A sphere beside a torus (test_delmesh.cpp's), DELMESH seeded on them.
+struct Seeded {
+  FunctionSurface s{test::box(29, 19, 15), [](const Vec3& p) {
+                      return std::min(test::sphere_f(p, {6.4, 8.3, 7.2}, 3.9), test::torus_f(p, {20.1, 9.2, 7.4}, 5.2, 2.1));
+                    }};
+  RestrictedDelaunayOptions o;
+  DelMesh m{s, o};
+  Seeded() {
+    m.prepare();
+    m.seeds();
+  }
+};
 } // namespace
 
 TEST_CASE("VoxelSides: the wrong centres of a pass that remembers the last are those a walk to each finds") {
-  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
-  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
-    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
-  });
-  RestrictedDelaunayOptions o;
-  DelMesh m(s, o);
-  m.prepare();
-  m.seeds();
+  Seeded seeded;
+  DelMesh& m = seeded.m;
   const double guard = 1e-3 * m.grid().delta;
   VoxelSidePoints kept;
   long long wrong = 0, refused = 0;
@@ -68,20 +74,14 @@ TEST_CASE("VoxelSides: the wrong centres of a pass that remembers the last are t
   }
   // Every point found lies on S.
   for (const auto& [x, clearance2] : pts) {
-    CHECK(std::abs(s.value(x)) < 1e-6);
+    CHECK(std::abs(seeded.s.value(x)) < 1e-6);
     CHECK(clearance2 > 0);
   }
 }
 
 TEST_CASE("VoxelSides: where a centre's walk starts changes no point, order or count") {
-  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
-  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
-    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
-  });
-  RestrictedDelaunayOptions o;
-  DelMesh m(s, o);
-  m.prepare();
-  m.seeds();
+  Seeded seeded;
+  DelMesh& m = seeded.m;
   const double guard = 1e-3 * m.grid().delta;
   // From the cells centres were last found in, and from the last centre's
   // cell alone, on the same W pass after pass. The seeds alone leave many
