@@ -8,6 +8,7 @@
 #include "cli/cli.hpp"
 #include "image/io.hpp"
 #include "mesh/surface_io.hpp"
+#include "mesh/topology.hpp"
 #include "segmentation/label_surface_nets.hpp"
 #include "segmentation/label_surfaces.hpp"
 #include "shared_options.hpp"
@@ -69,12 +70,8 @@ int run_fast(cli::Tool& tool, const std::string& in, const std::string& out, Lab
     const std::vector<long long> euler = l->surface.topology.sorted_euler();
     std::ostringstream msg;
     msg << "label " << l->label << (name == res.mesh.label_names.end() ? "" : " (" + name->second + ")") << ": "
-        << l->triangles << " triangles, " << euler.size() << " components, Euler characteristics";
-    for (std::size_t i = 0, j; i < euler.size(); i = j) {  // ascending: each value and how often
-      for (j = i; j < euler.size() && euler[j] == euler[i];) ++j;
-      msg << (i ? ", " : " ") << euler[i] << (j - i > 1 ? " (x" + std::to_string(j - i) + ")" : "");
-    }
-    msg << "; volume " << l->volume << " against " << l->voxel_volume << " of voxels";
+        << l->triangles << " triangles, " << euler.size() << " components, Euler characteristics "
+        << euler_summary(euler) << "; volume " << l->volume << " against " << l->voxel_volume << " of voxels";
     tool.debug(msg.str());
   }
   return tool.finish(res);

@@ -27,6 +27,16 @@ std::vector<long long> MeshTopology::sorted_euler() const {
   return e;
 }
 
+std::string euler_summary(std::vector<long long> euler) {
+  std::sort(euler.begin(), euler.end());
+  std::string out;
+  for (std::size_t i = 0, j; i < euler.size(); i = j) {
+    for (j = i; j < euler.size() && euler[j] == euler[i];) ++j;
+    out += (i ? ", " : "") + std::to_string(euler[i]) + (j - i > 1 ? " (x" + std::to_string(j - i) + ")" : "");
+  }
+  return out;
+}
+
 Json MeshTopology::to_json() const {
   Json j = Json::object();
   j["components"] = components.size();

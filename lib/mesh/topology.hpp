@@ -48,6 +48,10 @@ struct MeshTopology {
   Json to_json() const;
 };
 
+// Euler characteristics as people read them: ascending, each value once with
+// how often ("-2, 0, 2 (x32)"), whatever their order.
+std::string euler_summary(std::vector<long long> euler);
+
 // Faces as corner lists (offsets has faces + 1 entries into corners). Throws
 // Error on an id out of range or a face with fewer than 3 distinct corners.
 MeshTopology mesh_topology(std::size_t num_vertices, const std::vector<int>& corners,

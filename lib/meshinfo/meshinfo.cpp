@@ -208,13 +208,13 @@ void format_label_surfaces(std::ostream& o, const Json& r) {
   const Json& ls = r.at("label_surfaces");
   char buf[512];
   for (const Json& l : ls.at("labels").items()) {
-    std::string euler;
-    for (const Json& e : l.at("euler").items()) euler += " " + std::to_string(e.integer());
+    std::vector<long long> euler;
+    for (const Json& e : l.at("euler").items()) euler.push_back(e.integer());
     const long long label = l.at("label").integer();
-    std::snprintf(buf, sizeof buf,
-                  "label %-6lld %lld triangles, %lld component(s), euler%s, %s %s %s, area %.6g, volume %.6g, "
-                  "smallest angle %.2f",
-                  label, l.at("triangles").integer(), l.at("components").integer(), euler.c_str(),
+    std::snprintf(buf, sizeof buf, "label %-6lld %lld triangles, %lld component(s), euler ", label,
+                  l.at("triangles").integer(), l.at("components").integer());
+    o << buf << euler_summary(euler);
+    std::snprintf(buf, sizeof buf, ", %s %s %s, area %.6g, volume %.6g, smallest angle %.2f",
                   l.at("closed").boolean() ? "closed" : "NOT CLOSED", l.at("manifold").boolean() ? "manifold" : "NON-MANIFOLD",
                   l.at("oriented").boolean() ? "oriented" : "NOT ORIENTED", l.at("area").number(), l.at("volume").number(),
                   l.at("min_angle").number());

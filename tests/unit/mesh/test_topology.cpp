@@ -587,3 +587,10 @@ TEST_CASE("voxel_boundary: the faces of X, each once, oriented, on ascending cor
     }
   }
 }
+
+TEST_CASE("euler_summary: ascending, each value once with how often", "[topology]") {
+  CHECK(euler_summary({2, -2, 2, 0, 2}) == "-2, 0, 2 (x3)");
+  CHECK(euler_summary({-1502, 2, 2}) == "-1502, 2 (x2)");
+  CHECK(euler_summary({2}) == "2");
+  CHECK(euler_summary({}).empty());
+}

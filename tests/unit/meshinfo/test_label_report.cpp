@@ -95,7 +95,8 @@ TEST_CASE("label_report: each label's closed surface and each interface of two c
   m.interfaces = c.pairs;
   m.format = "ply";
   const std::string text = format_report(mesh_report(m));
-  CHECK(text.find("label 2      12 triangles, 1 component(s), euler 2, closed manifold oriented") != std::string::npos);
+  CHECK(text.find("label 2      12 triangles, 1 component(s), euler 2, closed manifold oriented, area 6, volume 1") !=
+        std::string::npos);
   CHECK(text.find("interface 2|1    2 triangles in 1 patch(es)") != std::string::npos);
 }
 
