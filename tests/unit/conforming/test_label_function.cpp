@@ -19,6 +19,18 @@ using namespace imgmesh::test;
 
 namespace {
 
+// The point at t of segment [a, b].
+Vec3 along(const Vec3& a, const Vec3& b, double t) {
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
+// [a, b]'s length in voxels of the smallest spacing h (the walk's step's unit).
+double voxels(const Vec3& a, const Vec3& b, double h) {
+  double len = 0;
+  for (int m = 0; m < 3; ++m) len += (b[m] - a[m]) * (b[m] - a[m]);
+  return std::sqrt(len) / h;
+}
+
 // Every voxel centre carries its label; between face neighbours of
 // different labels lambda changes, first from the first one's label, and
 // the change lies between them; no change between two centres of one
@@ -183,11 +195,8 @@ TEST_CASE("lambda's changes are placed within 1e-4 voxel", "[conforming]") {
       }
       f.changes(a, b, ch);
       ++segments;
-      double len = 0;
-      for (int m = 0; m < 3; ++m) len += (b[m] - a[m]) * (b[m] - a[m]);
-      len = std::sqrt(len) / 0.8;  // voxels of the smallest spacing
-      const double dt = 0.5e-4 / len;
-      auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
+      const double dt = 0.5e-4 / voxels(a, b, 0.8);
+      auto at = [&](double t) { return along(a, b, t); };
       for (const auto& c : ch) {
         bool before = false, other = false, after = false;
         for (int j = 1; j <= 20; ++j) {
@@ -228,9 +237,7 @@ TEST_CASE("lambda's walk finds every run of one label longer than its step", "[c
       Vec3 e;
       for (int m = 0; m < 3; ++m) e[m] = std::clamp(c[m] + 6 * u(rng) - 3, 0.0, double(x.size[m] - 1));
       const Vec3 a = x.world(c[0], c[1], c[2]), b = x.world(e[0], e[1], e[2]);
-      double len = 0;
-      for (int m = 0; m < 3; ++m) len += (b[m] - a[m]) * (b[m] - a[m]);
-      len = std::sqrt(len) / 0.8;  // voxels of the smallest spacing, as the step
+      const double len = voxels(a, b, 0.8);  // as the step
       if (len < 1) continue;
       ++segments;
       f.changes(a, b, ch, step);
@@ -240,8 +247,7 @@ TEST_CASE("lambda's walk finds every run of one label longer than its step", "[c
       // extent, a lower bound), consecutive repeats merged.
       const std::size_t m = std::size_t(std::ceil(len / 0.01));
       auto at = [&](std::size_t j) {
-        const double t = double(j) / double(m);
-        return f.label(Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])});
+        return f.label(along(a, b, double(j) / double(m)));
       };
       std::vector<std::int32_t> long_runs;
       std::size_t start = 0;
