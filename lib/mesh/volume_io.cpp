@@ -340,12 +340,13 @@ void write_inp(std::ostream& o, const TetMesh& m) {
   }
 }
 
-// Region 0 as Gmsh's tag max + 1, "background" (a copy), when there is one.
-std::optional<TetMesh> gmsh_background(const TetMesh& m) {
+// Region 0 as Gmsh's tag max + 1, "background" (a copy), when there is
+// one; tag: that tag.
+std::optional<TetMesh> gmsh_background(const TetMesh& m, int& tag) {
   const std::set<int> regions = regions_of(m);
   if (!regions.count(0)) return std::nullopt;
   TetMesh t = m;
-  const int tag = *regions.rbegin() + 1;
+  tag = *regions.rbegin() + 1;
   for (int& r : t.tet_region) r = r == 0 ? tag : r;
   for (int& r : t.triangle_region) r = r == 0 ? tag : r;
   const auto name = m.region_names.find(0);
@@ -365,9 +366,10 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
   std::ostream& o = out.stream();
   o.precision(17);
   if (ext == ".msh") {
-    const std::optional<TetMesh> tagged = gmsh_background(mesh);
+    int background = 0;
+    const std::optional<TetMesh> tagged = gmsh_background(mesh, background);
     if (options.msh_version == "2.2") write_msh22(o, tagged ? *tagged : mesh, options.msh_binary);
-    else write_msh41(o, tagged ? *tagged : mesh, options.msh_binary, tagged ? *regions_of(*tagged).rbegin() : 0);
+    else write_msh41(o, tagged ? *tagged : mesh, options.msh_binary, background);
   }
   else if (ext == ".mesh") write_medit(o, mesh);
   else if (ext == ".vtu") write_vtu(o, mesh, !options.ascii, options.vtu_cell_data);
