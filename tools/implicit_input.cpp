@@ -10,13 +10,17 @@ MesherInput read_mesher_input(const cli::Tool& tool, const std::string& in, cons
   RestrictedDelaunayOptions options;
   ScanFrame frame;
   bool placed = false;
+  float clamp = 0;
   PartitionOfUnity f = read_implicit(
       in,
       [&](const Geometry& grid) {
         options = surface_options.resolve(grid.spacing);
-        return PartitionOfUnity::clamp_for(grid, options.max_distance);
+        return clamp = PartitionOfUnity::clamp_for(grid, options.max_distance);
       },
       &frame, &placed);
+  if (f.samples().clamp() < clamp)
+    tool.info("note: the file's samples are clamped for a --max-distance up to 0.5 voxel: meshed on them (the same "
+              "surface and signs; the |f| <= 2 E test sees them clamped; wc2implicit --full-distance keeps them all)");
   if (frame.present() && !placed)
     tool.info("note: the crop's margin does not cover this --max-distance: meshed on the crop's own grid (the same "
               "surface; its points may differ by rounding from those of the scan's whole grid, img2wc --full-grid)");

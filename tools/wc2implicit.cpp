@@ -7,6 +7,7 @@
 #include "util/path.hpp"
 
 #include <chrono>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -20,6 +21,11 @@ int main(int argc, char** argv) {
   tool.app.add_option("IN", in, "Well-composed 3D binary image (nonzero = foreground; - for stdin)")->required();
   tool.app.add_option("OUT", out, "Implicit function file (.nrrd; - for NRRD on stdout)")->required();
   tool.data_output(out, cli::Stream::Binary);
+  bool full_distance = false;
+  tool.app.add_flag("--full-distance", full_distance,
+                    "Write g at every voxel centre (the whole distance map) instead of a narrow band: by default "
+                    "the samples are clamped to +-T, T = 2 |spacing| + 1 voxel, beyond which the meshers at a "
+                    "--max-distance up to 0.5 voxel clamp them anyway (a file many times smaller, written faster)");
   tool.add_threads();
   return tool.run(argc, argv, [&] {
     if (out != "-" && extension_of(out) != ".nrrd")
@@ -46,10 +52,12 @@ int main(int argc, char** argv) {
     }
     tool.report_progress("writing");
     t0 = std::chrono::steady_clock::now();
-    write_implicit(out, f, frame);
+    const float clamp = full_distance ? std::numeric_limits<float>::infinity() : covered_clamp(f.samples());
+    write_implicit(out, f, frame, clamp);
     tool.stats["input"] = in;
     tool.stats["output"] = out;
     tool.stats["read_seconds"] = read_s;
+    tool.stats["clamp"] = full_distance ? Json() : Json(double(clamp));
     tool.stats["write_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     tool.debug("g_min " + std::to_string(f.g_min()) + ", L_max " + std::to_string(f.l_max()) + ", d " +
                std::to_string(f.d()[0]) + " " + std::to_string(f.d()[1]) + " " + std::to_string(f.d()[2]));

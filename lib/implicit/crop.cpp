@@ -149,10 +149,12 @@ std::array<std::size_t, 3> crop_margin(const Vec3& spacing, double clamp) {
   return m;
 }
 
-std::array<std::size_t, 3> crop_margin(const Geometry& grid) {
-  const double e = kCropMaxDistance * std::min({grid.spacing[0], grid.spacing[1], grid.spacing[2]});
-  return crop_margin(grid.spacing, PartitionOfUnity::clamp_for(grid, e));
+float covered_clamp(const Geometry& grid) {
+  const double e = kCoveredMaxDistance * std::min({grid.spacing[0], grid.spacing[1], grid.spacing[2]});
+  return PartitionOfUnity::clamp_for(grid, e);
 }
+
+std::array<std::size_t, 3> crop_margin(const Geometry& grid) { return crop_margin(grid.spacing, covered_clamp(grid)); }
 
 // ---- well_composed_crop ----
 

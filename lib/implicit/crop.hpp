@@ -67,16 +67,23 @@ struct ScanFrame {
             const Geometry& crop_before);
 };
 
-// The meshers' --max-distance that the crops of img2wc and seg2mesh cover,
-// in units of the smallest voxel spacing (their default is 0.3).
-inline constexpr double kCropMaxDistance = 0.5;
+// The meshers' --max-distance that the project's files serve exactly, in
+// units of the smallest voxel spacing (the meshers' defaults are 0.3 and
+// 0.4): the crops of img2wc and seg2mesh keep background out to its clamp,
+// and wc2implicit clamps g's samples to it.
+inline constexpr double kCoveredMaxDistance = 0.5;
+// That clamp, PartitionOfUnity::clamp_for at kCoveredMaxDistance: a narrow
+// band around S, as level-set tools keep one (OpenVDB's background value).
+// A mesher with a larger --max-distance meshes f on samples clamped here:
+// the same S and the same signs, only its |f| <= 2 E test answers on them.
+float covered_clamp(const Geometry& grid);
 
 // Per axis, the background voxels a crop keeps beyond the foreground's box
 // for samples clamped at T: every voxel centre beyond is at least T from
 // bdCA(X) (m + 1/2 voxels from the foreground's voxels), and the cells that
 // L_max is taken over lie inside (PartitionOfUnity::weight_margin).
 std::array<std::size_t, 3> crop_margin(const Vec3& spacing, double clamp);
-// The margin of img2wc's and seg2mesh's crops: clamp_for at kCropMaxDistance.
+// The margin of img2wc's and seg2mesh's crops: crop_margin at covered_clamp.
 std::array<std::size_t, 3> crop_margin(const Geometry& grid);
 
 // Fills out[0 .. n) with the foreground (0/1) of the scan's row (y, z), x

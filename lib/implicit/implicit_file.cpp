@@ -6,6 +6,7 @@
 #include "util/error.hpp"
 #include "wellcomposed/well_composed.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cerrno>
@@ -167,11 +168,19 @@ PartitionOfUnity read_implicit(const std::string& path, const std::function<floa
   }
   NrrdFloatStream samples(header, data, path);
   const Geometry& grid = samples.geometry();
+  float file_clamp = std::numeric_limits<float>::infinity();
+  it = fields.find("imgmesh_clamp");
+  if (it != fields.end()) {
+    std::istringstream in(it->second);
+    std::string extra;
+    if (!(in >> file_clamp) || (in >> extra) || !(file_clamp >= PartitionOfUnity::clamp_for(grid, 0)))
+      throw Error("bad imgmesh_clamp field '" + it->second + "' (want one number, at least 2 |spacing|)", path);
+  }
   const ScanFrame frame = ScanFrame::from_keys(fields, grid, path);
   if (frame_out) *frame_out = frame;
   const std::size_t slice = grid.size[0] * grid.size[1];
   try {
-    const float t = clamp ? clamp(grid) : std::numeric_limits<float>::infinity();
+    const float t = std::min(clamp ? clamp(grid) : std::numeric_limits<float>::infinity(), file_clamp);
     return function_in_scan(grid, frame, d, t, [&](float* out) { samples.read(out, slice); }, placed);
   } catch (const UsageError&) {
     throw;

@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <string>
 
 namespace imgmesh {
@@ -64,18 +65,25 @@ PartitionOfUnity implicit_in_scan(const BinaryImage& wc, ScanFrame frame, float 
                                   bool* placed = nullptr, std::size_t band_bytes = SampleGrid::kBandBytes,
                                   SampleGrid::Storage storage = SampleGrid::Storage::automatic);
 
-// The file's fields imgmesh_kind and imgmesh_version.
+// The file's fields imgmesh_kind and imgmesh_version; imgmesh_clamp:=T
+// (optional) says that its samples are g clamped to [-T, T].
 inline constexpr const char* kImplicitKind = "pu-implicit";
 inline constexpr const char* kImplicitVersion = "1";
 
 // Written through ITK (implicit_write.cpp, library imgmesh_implicit_write);
 // read without it (image/nrrd_float.hpp), so that the meshers load no ITK.
-// A crop's file carries its scan frame (crop.hpp).
-void write_implicit(const std::string& path, const PartitionOfUnity& f, const ScanFrame& frame = {});
+// A crop's file carries its scan frame (crop.hpp). clamp: the samples are
+// written clamped to [-clamp, clamp] (wc2implicit: covered_clamp, a narrow
+// band that gzip shrinks to almost nothing beyond), with imgmesh_clamp;
+// infinite: as f holds them.
+void write_implicit(const std::string& path, const PartitionOfUnity& f, const ScanFrame& frame = {},
+                    float clamp = std::numeric_limits<float>::infinity());
 // Rejects anything that is not a pu-implicit file of a known version with a
 // clear Error (wrong kind, missing or bad d, zero or NaN samples, 2D...).
 // clamp: given the file's grid, the clamp of g's samples (the meshers:
-// PartitionOfUnity::clamp_for); none: f itself. The samples are read as
+// PartitionOfUnity::clamp_for); none: f itself. A file clamped at a smaller
+// T (imgmesh_clamp) gives f on samples clamped there: f.samples().clamp()
+// says which. The samples are read as
 // they stream (gzip too), into f's blocks: never the dense grid unless f
 // keeps it. A crop's f with a clamp is placed back in its scan's grid when
 // its margin allows (function_in_scan): *frame is the file's, *placed says

@@ -98,11 +98,19 @@ case_pipes_carry_the_crop() {
 # grid, said on stderr, the surface still certified against its voxels.
 case_max_distance_beyond_the_margin_meshes_the_crop_alone() {
   local big; big=$(shared big.nrrd big_map) || return
-  expect 0 img2wc "$big" --label 7 crop-wc.nrrd -q && expect 0 wc2implicit crop-wc.nrrd crop-f.nrrd -q &&
+  # g whole (--full-distance): a clamp beyond the margin, so the crop's own grid.
+  expect 0 img2wc "$big" --label 7 crop-wc.nrrd -q && expect 0 wc2implicit crop-wc.nrrd crop-f.nrrd -q --full-distance &&
     expect 0 implicit2mesh crop-f.nrrd crop.off --max-distance 3 || return
   grep -q "margin does not cover" err.txt || fail "no note on stderr: $(cat err.txt)"
   OUT=info.txt expect 0 meshinfo crop.off --image crop-wc.nrrd -q && grep -q MATCHES info.txt ||
     fail "not certified: $(cat info.txt)"
+  # The default narrow band: meshed on its clamped samples, in the scan's frame.
+  expect 0 wc2implicit crop-wc.nrrd band-f.nrrd -q && expect 0 implicit2mesh band-f.nrrd band.off --max-distance 3 || return
+  grep -q "clamped for a --max-distance up to 0.5 voxel" err.txt || fail "no note on stderr: $(cat err.txt)"
+  grep -q "margin does not cover" err.txt && fail "the band's clamp is within the margin: $(cat err.txt)"
+  OUT=info.txt expect 0 meshinfo band.off --image crop-wc.nrrd -q && grep -q MATCHES info.txt ||
+    fail "not certified: $(cat info.txt)"
+  [[ $(stat -c %s band-f.nrrd) -lt $(stat -c %s crop-f.nrrd) ]] || fail "the band's file is no smaller than g whole"
 }
 
 run_cases "$@"
