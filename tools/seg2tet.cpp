@@ -70,8 +70,6 @@ int main(int argc, char** argv) {
 
     tool.report_progress("reading " + in);
     LabelImage image = read_labels(in, &opt.names);
-    if (std::any_of(image.data.begin(), image.data.end(), [](std::int32_t v) { return v < 0; }))
-      throw Error("negative label values: a region is a label above 0 (relabel the map)", in);
     for (const auto& e : tets.cell_size_by_label)  // a typo would bound nothing, silently (0: --outside's region 0)
       if (e.first != 0 && std::find(image.data.begin(), image.data.end(), e.first) == image.data.end())
         throw UsageError("--cell-size: label " + std::to_string(e.first) + " is not in the map");

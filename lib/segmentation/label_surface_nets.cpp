@@ -79,6 +79,9 @@ SurfaceMesh output_mesh(std::vector<Vec3>& points, std::vector<std::array<int, 3
 
 LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurfaceNetsOptions& opt) {
   if (opt.smooth_rounds < 0) throw Error("the smoothing rounds must be 0 or more");
+  // The labelling function's background 0 ranks below every label: a region is a label above 0.
+  if (opt.conforming && std::any_of(image.data.begin(), image.data.end(), [](std::int32_t v) { return v < 0; }))
+    throw Error("negative label values: a region is a label above 0 (relabel the map)");
   const auto say = [&](const std::string& what) {
     if (opt.progress) opt.progress(what);
   };

@@ -436,6 +436,7 @@ def nrrd(name, kind, sizes, data, fmt):
 nrrd('flat.nrrd', 'int16', [6, 5], [1] * 12 + [0] * 18, 'h')
 nrrd('float.nrrd', 'float', [4, 4, 4], [0.5] * 64, 'f')
 nrrd('empty.nrrd', 'int16', [4, 4, 4], [0] * 64, 'h')
+nrrd('negative.nrrd', 'int16', [4, 4, 4], [0] * 21 + [-3, 4] + [0] * 41, 'h')
 PY
   local in why
   for in in flat.nrrd:"a 3D label image is needed" float.nrrd:"not a label image" empty.nrrd:"no label"; do
@@ -443,6 +444,15 @@ PY
     expect 1 seg2mesh "$in" x.vtp --fast
     [[ $(wc -l < err.txt) == 1 && ! -e x.vtp ]] || fail "$in: $(wc -l < err.txt) lines, x.vtp left: $(cat err.txt)"
     grep -q "^seg2mesh: $in: .*$why" err.txt || fail "$in: '$(cat err.txt)' does not say '$why'"
+  done
+  # A negative label: --fast meshes it, the conforming mesher (whose
+  # background 0 ranks below every region) refuses it in one line.
+  expect 0 seg2mesh negative.nrrd x.vtp --fast -q && rm x.vtp || return
+  for in in "seg2mesh negative.nrrd x.vtp --conforming" "seg2tet negative.nrrd x.msh"; do
+    # shellcheck disable=SC2086
+    expect 1 $in
+    [[ $(wc -l < err.txt) == 1 && ! -e x.vtp && ! -e x.msh ]] || fail "$in: $(cat err.txt)"
+    grep -q "^seg2[a-z]*: negative.nrrd: negative label values" err.txt || fail "$in: $(cat err.txt)"
   done
   expect 2 seg2mesh "$(labels)" x.vtp --fast --ratio 2
   grep -q "^seg2mesh: --ratio is the Delaunay mesher's" err.txt || fail "--fast --ratio: $(cat err.txt)"
