@@ -506,7 +506,7 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
         continue;
       }
       seen.n = 0;
-      if (t < proven && inside(q)) {
+      if ((t < proven && inside(q)) || (t == 0 && ends)) {  // a's label: the caller's
         l = prev;
       } else {
         double m;
