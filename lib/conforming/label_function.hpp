@@ -43,8 +43,8 @@
 // its least sample by (1 - eta) |l| delta_m <= 0.078 * 0.2 delta_m, the
 // next axis's rows 1.0312-Lipschitz): s = delta_min / 2 for a label
 // carried by none of the voxels label_at reads (near_bound_), s = 1.5
-// delta_min for one not among the cube's candidates (far_bound_), and
-// beyond its crop f_L is its clamp, larger. A walk's sample where lambda
+// delta_min for one not among the cube's candidates (far_bound_) (the
+// clamp T >= 2 |delta| keeps both), and beyond its crop f_L is T, larger. A walk's sample where lambda
 // = a by f_a < 0 thus gives a margin (the least of -f_a and the bounds
 // or values of the labels ranked above a) that lambda keeps for margin /
 // (kLipschitz sum_m |dq_m| delta_m) of t: the walk reads no f there.
