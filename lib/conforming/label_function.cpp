@@ -94,6 +94,10 @@ LabelFunction::LabelFunction(LabelFunction&&) noexcept = default;
 LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned threads) : grid_(x.geometry()) {
   if (x.dimension != 3) throw Error("the labelling function needs a 3D label image");
   min_spacing_ = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
+  // The bounds of f_L where label_at reads none of L's voxels (header).
+  const double overshoot = 0.0166 * (x.spacing[0] + x.spacing[1] + x.spacing[2]);
+  near_bound_ = std::max(0.0, 0.5 * min_spacing_ - overshoot);
+  far_bound_ = std::max(0.0, 1.5 * min_spacing_ - overshoot);
   // Each label's box, and the union's.
   std::vector<std::int32_t> present;
   std::vector<std::size_t> counts;
@@ -233,7 +237,9 @@ double LabelFunction::value(std::int32_t label, const Vec3& p) const {
 
 std::int32_t LabelFunction::label(const Vec3& p) const { return label_at(p, grid_.continuous_index(p)); }
 
-std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* known, Seen* seen) const {
+std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* known, Seen* seen,
+                                     double* margin) const {
+  if (margin) *margin = 0;
   std::size_t c[3];
   for (int i = 0; i < 3; ++i) {
     if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
@@ -277,6 +283,7 @@ std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* 
   };
   std::size_t best = 0;
   double fbest = std::numeric_limits<double>::infinity();
+  double read = 0;  // the f evaluate read last
   auto evaluate = [&](std::size_t k) {
     const Function& fn = *f_[k];
     double v;
@@ -285,13 +292,34 @@ std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* 
     else v = fn.sign * fn.f.value(p);
     if (seen && seen->n < 4) seen->k[seen->n] = k, seen->v[seen->n++] = v;
     if (v < fbest || (v == fbest && k < best)) fbest = v, best = k;
+    read = v;
     return v < 0;
   };
   if (~near != 0) {
     if (labels_.size() <= 64) {
+      // The least f of the labels ranked above, read (all >= 0).
+      double above = std::numeric_limits<double>::infinity();
       for (std::uint64_t m = near; m; m &= m - 1) {
         const std::size_t k = by_rank_[std::size_t(__builtin_ctzll(m))];
-        if ((cand >> (k % 64) & 1) && in_crop(k) && evaluate(k)) return labels_[k];
+        if (!(cand >> (k % 64) & 1) || !in_crop(k)) continue;
+        if (!evaluate(k)) {
+          above = std::min(above, read);
+          continue;
+        }
+        if (margin) {
+          // lambda stays k while f_k < 0 and every label ranked above
+          // has f >= 0 (the rank rule); those not read: a candidate here
+          // that no voxel read carries, f >= near_bound_; the others
+          // (not candidates, beyond their crop) f >= far_bound_.
+          double mk = std::min({-read, above, far_bound_});
+          for (std::uint64_t c = cand; c; c &= c - 1) {
+            const std::size_t j = std::size_t(__builtin_ctzll(c));
+            if (j < labels_.size() && rank_[j] > rank_[k] && !(near >> (pos_[j] % 64) & 1) && in_crop(j))
+              mk = std::min(mk, near_bound_);
+          }
+          *margin = std::max(0.0, mk);
+        }
+        return labels_[k];
       }
     } else {
       std::vector<std::size_t> ks;
@@ -322,6 +350,12 @@ std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* 
   for (const std::size_t* it = first; it != last; ++it)
     if (evaluate(*it)) return labels_[*it];
   return labels_[best];
+}
+
+bool LabelFunction::inside(const Vec3& q) const {
+  for (int i = 0; i < 3; ++i)
+    if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return false;
+  return true;
 }
 
 bool LabelFunction::pure_cube(const Vec3& q, std::int32_t& label) const {
@@ -431,6 +465,14 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
     t0 = std::max(t0, s0), t1 = std::min(t1, s1);
   }
   const double dt = step / len;
+  // Along the segment |d f_L / dt| <= kLipschitz sum_m |dq_m| delta_m
+  // (header): a sample whose label_at gave the margin m proves lambda
+  // there until t + m / slope; the samples up to it are that label without
+  // label_at (the same samples, so the same changes, only fewer f read).
+  double slope = 0;
+  for (int i = 0; i < 3; ++i) slope += std::fabs(dq[i]) * grid_.spacing[i];
+  slope *= kLipschitz;
+  double proven = -1;  // lambda is prev on [the last sample read, proven]
   std::int32_t prev = ends ? ends[0] : label(a);
   double tprev = 0;
   Seen seen_prev, seen;  // the f values read at tprev, and at the sample being visited
@@ -464,7 +506,13 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
         continue;
       }
       seen.n = 0;
-      l = label_at({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}, q, nullptr, &seen);
+      if ((t < proven && inside(q)) || (t == 0 && ends)) {  // a's label: the caller's
+        l = prev;
+      } else {
+        double m;
+        l = label_at({a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]}, q, nullptr, &seen, &m);
+        proven = m > 0 && slope > 0 ? t + m / slope : -1;
+      }
       if (!visit(t, l, seen)) return;
       t += dt;
     }

@@ -25,6 +25,29 @@
 // their cells, and g_L is 1-Lipschitz with |g_L| >= delta/2 at the centres,
 // so f_a < 0 < f_L (L != a; f_0 through the union likewise) on the whole
 // cube: lambda is a there. Segment walks skip pure cubes.
+//
+// Slope. Per axis m, f (f_L, and f_U) contracts g's samples with weights
+// c (partition_of_unity.cpp's Stencil) that sum to 1: (1 - r, r) inside a
+// cell, and within d_m <= delta_m / 5 of a plane where two cells blend
+// (-(1 - eta) l, 1 + (1 - 2 eta) l, eta l), l = x / delta_m for the offset
+// x from the plane, eta = pu_eta(u), u = (d - x) / (2 d). So d f / d x_m
+// combines g's differences along m (each at most delta_m: g is
+// 1-Lipschitz, clamped or not) with sum |dc| delta_m <= 1 + max_u
+// |eta'(u) (1 - 2u)| = 1.6544, times each other axis's sum |c| <= 1 + 2
+// (d / delta) max_u (1 - eta)(1 - 2u) <= 1 + 0.4 * 0.0780 = 1.0312 (the
+// maxima of pu_eta's, numerically): |d f / d x_m| <= 1.6544 * 1.0312^2 =
+// 1.7593 (outside the domain f is its nearest point's: no steeper), and
+// |f(p) - f(q)| <= kLipschitz sum_m |p_m - q_m| (physical units along the
+// grid's axes). Without reading f_L: where every sample f reads has g_L >=
+// s, f_L >= s - 0.0166 (delta_0 + delta_1 + delta_2) (a blend undershoots
+// its least sample by (1 - eta) |l| delta_m <= 0.078 * 0.2 delta_m, the
+// next axis's rows 1.0312-Lipschitz): s = delta_min / 2 for a label
+// carried by none of the voxels label_at reads (near_bound_), s = 1.5
+// delta_min for one not among the cube's candidates (far_bound_) (the
+// clamp T >= 2 |delta| keeps both), and beyond its crop f_L is T, larger. A walk's sample where lambda
+// = a by f_a < 0 thus gives a margin (the least of -f_a and the bounds
+// or values of the labels ranked above a) that lambda keeps for margin /
+// (kLipschitz sum_m |dq_m| delta_m) of t: the walk reads no f there.
 #pragma once
 #include "image/grid.hpp"
 #include "implicit/partition_of_unity.hpp"
@@ -38,6 +61,9 @@ namespace imgmesh {
 
 class LabelFunction {
 public:
+  // The bound on every f_L's slope (header): 1.7593, rounded up.
+  static constexpr double kLipschitz = 1.77;
+
   // X well-composed (every label's indicator and the union's: img2wc
   // --labels' output); max_distance: the mesher's, for the clamp (world
   // units). Throws Error on a 2D image, an image without labels, or a label
@@ -59,7 +85,8 @@ public:
   };
   // The changes of lambda along [a, b] (world), in order: lambda sampled at
   // steps of at most `step` voxels (the smallest spacing) inside cubes that
-  // are not pure, each change then bisected to 1e-4 of a voxel. Changes
+  // are not pure (those within a sample's margin, header, known without
+  // reading f), each change then bisected to 1e-4 of a voxel. Changes
   // closer than `step` may be missed: the certificate decides. Stops after
   // `max_changes` (0: no limit). ends, when given: lambda(a) and lambda(b),
   // known to the caller.
@@ -92,7 +119,14 @@ private:
   };
   // q: p's continuous index; known: f values at p to use, not read again;
   // seen: where to keep those read.
-  std::int32_t label_at(const Vec3& p, const Vec3& q, const Known* known = nullptr, Seen* seen = nullptr) const;
+  // margin: where given, a bound m >= 0 such that lambda is the label
+  // returned wherever every f_L differs from its value at p by less than m
+  // (0: none known).
+  std::int32_t label_at(const Vec3& p, const Vec3& q, const Known* known = nullptr, Seen* seen = nullptr,
+                        double* margin = nullptr) const;
+  // q (a continuous index) in the box of voxel centres, where lambda is
+  // not 0 by that rule alone.
+  bool inside(const Vec3& q) const;
   // s0, s1: the f values read at t0 and t1.
   double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after,
                 const Seen& s0, const Seen& s1) const;
@@ -132,6 +166,7 @@ private:
   }
   std::vector<std::vector<std::size_t>> bit_labels_;
   double min_spacing_ = 1;
+  double near_bound_ = 0, far_bound_ = 0;
 };
 
 } // namespace imgmesh
