@@ -197,3 +197,21 @@ TEST_CASE("points off S: a Voronoi cell proved to miss S skips EdgeSurface, ever
   CHECK(m.cells_missed() < inserted);
   CHECK(stale_facets(m) == 0);  // (break: every cell "proved" -> restricted facets missed)
 }
+
+TEST_CASE("DELMESH: a cavity's boundary facet whose Voronoi edge shrank away from S keeps its answer, EdgeSurface agrees") {
+  // Every facet skipped so is checked by EdgeSurface as it is skipped
+  // (compare_missed_cells throws on a restricted one), and every facet's
+  // answer is current at the end.
+  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
+  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
+    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
+  });
+  RestrictedDelaunayOptions o;
+  o.compare_missed_cells = true;
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  REQUIRE_NOTHROW(m.refine());
+  CHECK(m.vertices().size() > 100);
+  CHECK(stale_facets(m) == 0);  // (break: shrunk_misses true for every restricted facet -> throws)
+}
