@@ -124,8 +124,7 @@ int CubeGrid::comp_at(const Vec3& q) const {
 
 // Illinois regula falsi with a bisection safeguard (when the bracket
 // shrinks slowly).
-bool SurfaceSampler::bisect(Vec3 a, Vec3 b, double fa, Vec3& x) const {
-  double fb = value(b);
+bool SurfaceSampler::bisect(Vec3 a, Vec3 b, double fa, double fb, Vec3& x) const {
   const bool ia = inside(fa);
   if (inside(fb) == ia) return false;
   const double tol2 = std::pow(1e-11 * grid_.delta, 2);

@@ -135,7 +135,9 @@ public:
   // The point x of S on segment [a, b] (fa = f(a)), to ~1e-11 delta, when
   // the ends have opposite signs; false (x untouched) when they do not: the
   // pair brackets no root, and a point found there need not be on S.
-  bool bisect(Vec3 a, Vec3 b, double fa, Vec3& x) const;
+  bool bisect(Vec3 a, Vec3 b, double fa, Vec3& x) const { return bisect(a, b, fa, value(b), x); }
+  // The same with fb = f(b) known (EdgeSurface has both ends' values).
+  bool bisect(Vec3 a, Vec3 b, double fa, double fb, Vec3& x) const;
 
 private:
   const ImplicitSurface& f_;

@@ -125,7 +125,9 @@ private:
   void enqueue_facet(Ch c, int i);
   void enqueue_vertex(Vh v);
   void after_insertion(Vh v);
-  void compute_new_cells(Vh missed = Vh());
+  void compute_new_cells(Vh inserted, Vh missed = Vh());
+  enum Shrunk { kRecompute, kMisses, kKeepCrossing };
+  Shrunk shrunk_edge(Ch n, int j, Vh v) const;
   bool cell_misses_surface(Vh v);
   void add_vertex(Vh v, Origin origin, const Vec3& x);
   bool remove_vertex(Vh v);

@@ -98,12 +98,13 @@ struct EdgePiece {
   bool monotone;
 };
 // The sign changes of f found along the edge, as pairs (t before, t after)
-// with f at the first; a tangency's double root is a pair (t, t), twice.
+// with f at both (the root finder needs no evaluation of its own at the
+// ends); a tangency's double root is a pair (t, t), twice.
 struct SignChanges {
   std::vector<std::pair<double, double>> ch;
-  std::vector<double> fv;
+  std::vector<std::pair<double, double>> fv;
   void clear() { ch.clear(), fv.clear(); }
-  void add(double ta, double tb, double fa) { ch.emplace_back(ta, tb), fv.push_back(fa); }
+  void add(double ta, double tb, double fa, double fb) { ch.emplace_back(ta, tb), fv.emplace_back(fa, fb); }
 };
 
 // EdgeSurface's walk along segment [a, b] = a + t d: the pieces of it in
@@ -130,7 +131,7 @@ struct EdgeWalk {
   void decide(double ta, double tb, int depth);
   void changes(const EdgePiece& p, SignChanges& c) const;
   void dip(double ta, double tb, bool in, SignChanges& c) const;
-  bool root(const std::pair<double, double>& c, double fa, Vec3& x) const;
+  bool root(const std::pair<double, double>& c, const std::pair<double, double>& fab, Vec3& x) const;
 };
 
 } // namespace
@@ -250,8 +251,8 @@ void EdgeWalk::dip(double ta, double tb, bool in, SignChanges& ch) const {
     for (double tt : {c, d}) {
       const double ft = tt == c ? fc : fd;
       if (SurfaceSampler::inside(ft) != in) {  // crossed: two sign changes around tt
-        ch.add(ta, tt, f.value(at(ta)));
-        ch.add(tt, tb, ft);
+        ch.add(ta, tt, f.value(at(ta)), ft);
+        ch.add(tt, tb, ft, std::nan(""));  // f(tb): evaluated if this root is wanted
         return;
       }
     }
@@ -264,8 +265,8 @@ void EdgeWalk::dip(double ta, double tb, bool in, SignChanges& ch) const {
   }
   const double tm = s * fc < s * fd ? c : d, fm = std::min(std::abs(fc), std::abs(fd));
   if (fm < 1e-9 * grid.delta) {  // tangency: a double root
-    ch.add(tm, tm, fm);
-    ch.add(tm, tm, fm);
+    ch.add(tm, tm, fm, fm);
+    ch.add(tm, tm, fm, fm);
   }
 }
 
@@ -273,8 +274,8 @@ void EdgeWalk::dip(double ta, double tb, bool in, SignChanges& ch) const {
 // samples at delta/8 (and the dips between them).
 void EdgeWalk::changes(const EdgePiece& p, SignChanges& ch) const {
   if (p.monotone) {
-    const double fa = f.value(at(p.ta));
-    if (SurfaceSampler::inside(fa) != SurfaceSampler::inside(f.value(at(p.tb)))) ch.add(p.ta, p.tb, fa);
+    const double fa = f.value(at(p.ta)), fb = f.value(at(p.tb));
+    if (SurfaceSampler::inside(fa) != SurfaceSampler::inside(fb)) ch.add(p.ta, p.tb, fa, fb);
     return;
   }
   const double step = grid.delta / 8;
@@ -285,7 +286,7 @@ void EdgeWalk::changes(const EdgePiece& p, SignChanges& ch) const {
     const double t = k == m ? p.tb : p.ta + (p.tb - p.ta) * k / m;
     const double fc = f.value(at(t));
     if (SurfaceSampler::inside(fc) != SurfaceSampler::inside(fp)) {
-      ch.add(tp, t, fp);
+      ch.add(tp, t, fp, fc);
     } else if (k >= 2 && SurfaceSampler::inside(fq) == SurfaceSampler::inside(fp) && std::abs(fp) < std::abs(fq) &&
                std::abs(fp) < std::abs(fc) && std::abs(fp) < std::abs(fq - fp) + std::abs(fc - fp)) {
       dip(tq, t, SurfaceSampler::inside(fp), ch);
@@ -298,13 +299,15 @@ void EdgeWalk::changes(const EdgePiece& p, SignChanges& ch) const {
 }
 
 // The root of a sign change (a tangency's double root is its point). The
-// pairs come from f's own values, so they bracket; bisect checks it.
-bool EdgeWalk::root(const std::pair<double, double>& c, double fa, Vec3& x) const {
+// pairs come from f's own values, so they bracket; bisect checks it. f at
+// the far end is known but after a dip's crossing (NaN there).
+bool EdgeWalk::root(const std::pair<double, double>& c, const std::pair<double, double>& fab, Vec3& x) const {
   if (c.first == c.second) {
     x = at(c.first);
     return true;
   }
-  return f.bisect(at(c.first), at(c.second), fa, x);
+  const Vec3 b = at(c.second);
+  return f.bisect(at(c.first), b, fab.first, std::isnan(fab.second) ? f.value(b) : fab.second, x);
 }
 
 void CellCentres::assign(const Tr& tr, const std::vector<Ch>& cells) {

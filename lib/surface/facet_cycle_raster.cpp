@@ -202,17 +202,24 @@ void FacetRaster::collect_cube_spans(const long c0[3], const long c1[3]) {
       } else if (lo_d > 0 || hi_d < 0) {
         continue;
       }
+      const double cy[2] = {double(y) * grid.s[1] - m[1], double(y + 1) * grid.s[1] - m[1]};
+      const double cz[2] = {double(z) * grid.s[2] - m[2], double(z + 1) * grid.s[2] - m[2]};
       for (long x = x0; x <= x1; ++x) {
         if (!grid.active(x, y, z)) continue;
-        double dlo = INFINITY, dhi = -INFINITY, alo = INFINITY, ahi = -INFINITY, blo = INFINITY, bhi = -INFINITY;
-        for (int k = 0; k < 8; ++k) {
-          const Vec3 c{double(x + (k & 1)) * grid.s[0] - m[0], double(y + ((k >> 1) & 1)) * grid.s[1] - m[1],
-                       double(z + ((k >> 2) & 1)) * grid.s[2] - m[2]};
-          const double dn = dot(c, n), au = dot(c, u), bv = dot(c, v);
-          dlo = std::min(dlo, dn), dhi = std::max(dhi, dn);
-          alo = std::min(alo, au), ahi = std::max(ahi, au), blo = std::min(blo, bv), bhi = std::max(bhi, bv);
-        }
+        // The 8 corners' extremes along n, u and v (relative to m): a dot
+        // product rounds monotonically in each term, so per axis the end
+        // that makes its term least (most) gives the least (most) of the
+        // corners' dot products, bit for bit, from 2 of them, not 8.
+        const double cx[2] = {double(x) * grid.s[0] - m[0], double(x + 1) * grid.s[0] - m[0]};
+        const auto extremes = [&](const Vec3& w, double& lo, double& hi) {
+          lo = cx[w[0] < 0] * w[0] + cy[w[1] < 0] * w[1] + cz[w[2] < 0] * w[2];
+          hi = cx[w[0] >= 0] * w[0] + cy[w[1] >= 0] * w[1] + cz[w[2] >= 0] * w[2];
+        };
+        double dlo, dhi, alo, ahi, blo, bhi;
+        extremes(n, dlo, dhi);
         if (dlo > eps || dhi < -eps) continue;  // Pi misses the cube
+        extremes(u, alo, ahi);
+        extremes(v, blo, bhi);
         const long j0 = std::max(0L, floor_long((blo - eps - b0) / step) - 1);
         const long j1 = std::min(nb - 1, ceil_long((bhi + eps - b0) / step) + 1);
         const long s0 = floor_long((alo - eps - a0) / step) - 1, e0 = ceil_long((ahi + eps - a0) / step) + 1;

@@ -42,7 +42,10 @@ struct RestrictedDelaunayOptions {
   // FacetCycle and HandleDetection even where their Voronoi cell provably
   // misses S (the same mesh either way). compare_missed_cells (tests only):
   // EdgeSurface runs on the facets of a point so proved all the same, and
-  // throws Error if one is restricted.
+  // on the cavity's boundary facets whose Voronoi edge shrank away from S
+  // (DelMesh::shrunk_edge), and throws Error if one is restricted, or if a
+  // facet that keeps its crossing has another (or none, or one farther
+  // than 1e-9 voxel from the kept one).
   bool prove_missed_cells = true;
   bool compare_missed_cells = false;
   bool seed_deletion = false;   // SAMPLETOPOLOGY as published: TOPOLOGY alone, then delete the seeds (7.6.2)
