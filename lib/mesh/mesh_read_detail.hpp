@@ -100,7 +100,9 @@ struct MshFile {
   TetMesh mesh;  // its tetrahedra and triangles, each with its physical tag (else its entity's)
   std::map<int, std::string> physical_names;      // of the dimension-2 groups, by tag
   std::map<int, std::array<int, 2>> label_pairs;  // $LabelPairs: a group's (behind, front)
-  int background = 0;  // the tag of the physical volume "background" (region 0, volume_io.hpp), 0: none
+  // Region 0's tag (volume_io.hpp): $BackgroundRegion's, else the physical
+  // volume named "background" (files without the section); 0: none.
+  int background = 0;
 };
 // .msh 2.2 or 4.1, ASCII or binary; Error naming the file on anything malformed.
 MshFile read_msh_file(const std::string& path);

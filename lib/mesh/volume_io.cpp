@@ -370,6 +370,12 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
     const std::optional<TetMesh> tagged = gmsh_background(mesh, background);
     if (options.msh_version == "2.2") write_msh22(o, tagged ? *tagged : mesh, options.msh_binary);
     else write_msh41(o, tagged ? *tagged : mesh, options.msh_binary, background);
+    // Region 0's tag (0: none) in a section Gmsh and meshio skip, where the
+    // name "background" alone would mislead our reader: region 0 present
+    // (named otherwise, or not), or another region so named.
+    if (tagged || std::any_of(mesh.region_names.begin(), mesh.region_names.end(),
+                              [](const auto& n) { return n.second == "background"; }))
+      o << "$BackgroundRegion\n" << background << "\n$EndBackgroundRegion\n";
   }
   else if (ext == ".mesh") write_medit(o, mesh);
   else if (ext == ".vtu") write_vtu(o, mesh, !options.ascii, options.vtu_cell_data);

@@ -27,8 +27,10 @@ struct TetWriteOptions {
 };
 
 // Region 0 (seg2tet --outside's background) is Gmsh's physical tag max + 1,
-// named "background" unless the mesh names it (Gmsh's tag 0 is no group);
-// the other formats write 0. A box face (region 0, pair {0, 0}) is in the
+// named "background" unless the mesh names it (Gmsh's tag 0 is no group),
+// and its tag goes in a $BackgroundRegion section (0: none) whenever region
+// 0 is present or another region is named "background", so that names do
+// not decide; the other formats write 0. A box face (region 0, pair {0, 0}) is in the
 // interface group "box" (Abaqus: surface BOX).
 // Throws Error on failure (no file left), UsageError on an unknown extension.
 void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWriteOptions& options = {});
@@ -40,7 +42,7 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
 // region the R of its element set REGION_R or PhysicalVolumeR, the
 // triangles those of surfaces BOUNDARY_R and triangle elements; .vtu's
 // regions its cell data "region" or "label"; a .msh's physical volume
-// "background" region 0):
+// $BackgroundRegion's tag, else its physical volume "background", region 0):
 // tetrahedra and triangles with their regions. Throws
 // Error naming the file on anything malformed.
 TetMesh read_tet_mesh(const std::string& path);

@@ -281,9 +281,10 @@ mesh_detail::MshFile read_msh(std::istream& in, const std::string& path) {
       read_msh_elements(v, v4, m, ids, physical);
       v.data_ends(s);
       if (t.next() != "$EndElements") throw Error("malformed $Elements", path);
-    } else if (s == "$PhysicalNames" || s == "$LabelPairs") {
+    } else if (s == "$PhysicalNames" || s == "$LabelPairs" || s == "$BackgroundRegion") {
       if (s == "$PhysicalNames") read_msh_physical_names(t, file.physical_names, file.background);
-      else read_msh_label_pairs(t, file.label_pairs);
+      else if (s == "$LabelPairs") read_msh_label_pairs(t, file.label_pairs);
+      else if ((file.background = int(t.integer())) < 0) t.fail("a negative background tag");
       if (t.next() != "$End" + s.substr(1)) throw Error("malformed " + s, path);
     } else if (!s.empty() && s[0] == '$' && s.rfind("$End", 0) != 0) {
       t.skip_to("$End" + s.substr(1));

@@ -271,6 +271,21 @@ TEST_CASE("triangles with label pairs: a group per pair, the regions read back")
       return e;
     };
     CHECK(with_regions(read_tet_mesh(dir + "/p.msh")) == with_regions(m));
+    // Names do not decide region 0: a region 3 named "background" stays 3;
+    // a region 0 named "air" comes back as 0.
+    for (const int zero : {3, 0}) {
+      TetMesh n = m;
+      if (zero == 0) {
+        for (int& r : n.tet_region) r = r == 3 ? 0 : r;
+        for (int& r : n.triangle_region) r = r == 3 ? 0 : r;
+        for (auto& p : n.triangle_pair) p[1] = p[1] == 3 ? 0 : p[1];
+        n.region_names[0] = "air";
+      } else {
+        n.region_names[3] = "background";
+      }
+      write_tet_mesh(dir + "/n.msh", n, o);
+      CHECK(with_regions(read_tet_mesh(dir + "/n.msh")) == with_regions(n));
+    }
     const std::string text = bytes(dir + "/p.msh");
     CHECK((text.find("\"grey matter|3\"") != std::string::npos) == (version == "4.1"));
     CHECK(text.find("\"grey matter boundary\"") != std::string::npos);
