@@ -27,22 +27,24 @@ void DelMesh::enqueue_facet(Ch c, int i) {
   const FacetInfo& fi = c->facet[i];
   if (!(fi.state & kRestricted)) return;
   const auto [a, b, d] = facet_vertices(c, i);
-  if ((fi.state & kMulti) && opt_.topology_steps) queue_.push({kQVorEdge, fi.r2, seq_++, a, b, d, c, i, fi.computed});
+  const auto push = [&](Kind kind) { queue_.push({fi.r2, seq_++, c, fi.computed, std::uint8_t(kind), std::uint8_t(i)}); };
+  if ((fi.state & kMulti) && opt_.topology_steps) push(kQVorEdge);
   const Vec3 pa = vec(a->point()), pb = vec(b->point()), pd = vec(d->point());
   if (topology_only_) return;
-  if (quality_refines(pa, pb, pd, opt_.ratio)) queue_.push({kQQuality, fi.r2, seq_++, a, b, d, c, i, fi.computed});
+  if (quality_refines(pa, pb, pd, opt_.ratio)) push(kQQuality);
   if (opt_.max_distance > 0 && (distance_refines(pa, pb, pd, Vec3{fi.x[0], fi.x[1], fi.x[2]}, opt_.max_distance) ||
                                 centroid_refines(sampler_, pa, pb, pd, opt_.max_distance)))
-    queue_.push({kQDistance, fi.r2, seq_++, a, b, d, c, i, fi.computed});
+    push(kQDistance);
 }
 
 // A vertex is queued at most once per check: the check runs on the state at
 // pop time, which includes every change since it was queued.
 void DelMesh::enqueue_vertex(Vh v) {
-  if (!(v->info().queued & 1) && opt_.topology_steps) queue_.push({kQTopoDisk, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
+  const auto push = [&](Kind kind) { queue_.push({0, seq_++, Ch(), std::uint32_t(v->info().id), std::uint8_t(kind), 0}); };
+  if (!(v->info().queued & 1) && opt_.topology_steps) push(kQTopoDisk);
   v->info().queued |= 1;
   if (topology_only_) return;
-  if (!(v->info().queued & 2)) queue_.push({kQSmooth, 0, seq_++, v, Vh(), Vh(), Ch(), 0, 0});
+  if (!(v->info().queued & 2)) push(kQSmooth);
   v->info().queued |= 2;
 }
 
@@ -399,28 +401,13 @@ void DelMesh::seeds() {
   if (tr_.dimension() < 3) throw Error("cannot place four non-coplanar seed points on the surface");
 }
 
-// The queued facet, if its cell is still alive and still holds its three
-// vertices at the queued index (O(1); a dead facet's cell died with it, and a
-// re-created facet was queued again from its new cell).
-bool DelMesh::facet_of(const Item& it, Ch& c, int& i) const {
-  if (!tr_.tds().cells().is_used(it.cell)) return false;
-  c = it.cell;
-  i = it.index;
-  for (int m = 1; m < 4; ++m) {
-    Vh w = c->vertex((i + m) & 3);
-    if (w != it.a && w != it.b && w != it.c) return false;
-  }
-  return true;
-}
-
-// A facet entry whose facet is gone or was recomputed (never true again).
+// A facet entry whose facet is gone or was recomputed (never true again):
+// its cell died (or was re-created at the same address, with facets
+// computed anew) or the facet's record is of a later computation (O(1)).
 bool DelMesh::stale(const Item& it) const {
   if (it.kind == kQTopoDisk || it.kind == kQSmooth) return false;
-  Ch c;
-  int i;
-  if (!facet_of(it, c, i)) return true;
-  const FacetInfo& fi = c->facet[i];
-  return !(fi.state & kRestricted) || fi.computed != it.computed;
+  if (!tr_.tds().cells().is_used(it.cell) || !it.cell->facet.restricted(it.index)) return true;
+  return it.cell->facet[it.index].computed != it.stamp;
 }
 
 // Drops the stale entries; the heap order of the others is total (kind,
@@ -442,23 +429,24 @@ void DelMesh::drain() {
     const Item it = queue_.top();
     queue_.pop();
     if (it.kind == kQTopoDisk || it.kind == kQSmooth) {
-      it.a->info().queued &= std::uint8_t(it.kind == kQTopoDisk ? ~1 : ~2);
+      const Vh a = vertices_[it.stamp];
+      if (a == Vh()) continue;  // deleted since (seed deletion)
+      a->info().queued &= std::uint8_t(it.kind == kQTopoDisk ? ~1 : ~2);
       Facet worst;
       if (it.kind == kQTopoDisk) {
         phase_ = "topology";
-        if (topo_disk_(tr_, it.a, &worst)) continue;
+        if (topo_disk_(tr_, a, &worst)) continue;
         if (!insert(facet_center(worst), kTopoDisk, worst)) refuse_topology("TopoDisk", facet_center(worst));
       } else {
         phase_ = "smooth";
-        if (smooth_(tr_, it.a, opt_.roughness, &worst)) continue;
+        if (smooth_(tr_, a, opt_.roughness, &worst)) continue;
         if (worst.first->facet[worst.second].r2 < guard2 || !insert(facet_center(worst), kSmooth, worst)) ++refused_;
       }
       continue;
     }
-    Ch c;
-    int i;
     if (stale(it)) continue;  // facet destroyed or recomputed since
-    facet_of(it, c, i);
+    const Ch c = it.cell;
+    const int i = it.index;
     const FacetInfo& fi = c->facet[i];
     const Vec3 x{fi.x[0], fi.x[1], fi.x[2]};
     if (it.kind == kQVorEdge) {

@@ -106,20 +106,24 @@ public:
 private:
   using Clock = std::chrono::steady_clock;
   enum Kind { kQVorEdge, kQTopoDisk, kQQuality, kQSmooth, kQDistance };
+  // 32 bytes (the queue holds a few entries a facet): a facet entry names
+  // its facet by (cell, index) and the computation it queued, which no other
+  // facet's record ever carries (every computation is stamped anew, and a
+  // record lives on one facet); a vertex entry names its vertex by id.
   struct Item {
-    int kind;
     double prio;
     std::uint64_t seq;
-    Vh a, b, c;  // a facet (a, b, c) or a vertex a
-    Ch cell;     // the facet as (cell, index) when it was queued
-    int index;
-    std::uint32_t computed;  // FacetInfo::computed when it was queued
+    Ch cell;
+    std::uint32_t stamp;  // a facet's FacetInfo::computed when queued; a vertex's id
+    std::uint8_t kind;
+    std::uint8_t index;
     bool operator<(const Item& o) const {  // std::priority_queue pops the largest
       if (kind != o.kind) return kind > o.kind;
       if (prio != o.prio) return prio < o.prio;
       return seq > o.seq;
     }
   };
+  static_assert(sizeof(Item) == 32, "a queue entry: 32 bytes");
 
   void compute_facet(Ch c, int i);
   void enqueue_facet(Ch c, int i);
@@ -136,7 +140,6 @@ private:
   void requeue_grown();
   void mark_restricted(Ch c, int i);
   void drain();
-  bool facet_of(const Item& it, Ch& c, int& i) const;
   bool stale(const Item& it) const;
   void purge();
   bool insert_batch(const Candidates& pts, Origin origin);

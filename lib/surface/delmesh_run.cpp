@@ -61,7 +61,7 @@ bool DelMesh::handle_vertex_pass() {
 // one went in.
 bool DelMesh::voxel_sides_pass() {
   phase_ = "voxel sides";
-  const Candidates pts = voxel_side_points_(tr_, sampler_, walk_start_, 1e-3 * grid_.delta, voxel_sides_wrong_, refused_);
+  const Candidates pts = voxel_side_points_(tr_, sampler_, vertices_, walk_start_, 1e-3 * grid_.delta, voxel_sides_wrong_, refused_);
   // A point waits for the next pass once one of this pass went in nearer
   // to it than W was: one point often puts a run of centres right (fewer
   // points, and fewer for QUALITY to repair around them).

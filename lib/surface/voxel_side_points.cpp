@@ -15,9 +15,13 @@ namespace {
 
 // Every corner of an active cube once, from the active cube of least key
 // that holds it: grid order, and neighbouring centres one after the other.
-template <class F> void for_each_centre(const CubeGrid& g, F&& visit) {
+// Per sorted active cube, the corners it visits (bit e for corner e).
+std::vector<std::uint8_t> centre_corners(const CubeGrid& g) {
+  std::vector<std::uint8_t> corners;
+  corners.reserve(g.sorted_cubes().size());
   for (const ActiveCube& kc : g.sorted_cubes()) {
     const auto [x, y, z] = g.cube_of_key(kc.key());
+    unsigned bits = 0;
     for (int e = 0; e < 8; ++e) {
       const long p[3] = {x + (e & 1), y + (e >> 1 & 1), z + (e >> 2 & 1)};
       bool first = true;
@@ -25,9 +29,11 @@ template <class F> void for_each_centre(const CubeGrid& g, F&& visit) {
         const long q[3] = {p[0] - (o & 1), p[1] - (o >> 1 & 1), p[2] - (o >> 2 & 1)};
         first = !(g.active(q[0], q[1], q[2]) && g.key(q[0], q[1], q[2]) < kc.key());
       }
-      if (first) visit(p[0], p[1], p[2]);
+      if (first) bits |= 1u << e;
     }
+    corners.push_back(std::uint8_t(bits));
   }
+  return corners;
 }
 
 // A cell's vertices as one number, whatever their order.
@@ -75,18 +81,16 @@ bool crossing(const SurfaceSampler& f, Vec3 a, Vec3 b, Vec3& x) {
 
 } // namespace
 
-Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh near, double guard, long long& wrong,
-                                        long long& refused) {
+Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& by_id, Vh near,
+                                        double guard, long long& wrong, long long& refused) {
   const CubeGrid& g = f.grid();
-  if (seen_.empty()) {  // counted first: sized exactly
+  if (corners_.empty()) {
+    corners_ = centre_corners(g);
     std::size_t n = 0;
-    for_each_centre(g, [&n](long, long, long) { ++n; });
-    seen_.reserve(n);
-    for_each_centre(g, [this, &g](long x, long y, long z) {
-      Seen s;
-      s.key = std::uint64_t(g.key(x, y, z));
-      seen_.push_back(s);
-    });
+    for (std::uint8_t bits : corners_) n += std::size_t(__builtin_popcount(bits));
+    cell_.assign(n, Ch());
+    vertices_.assign(n, 0);
+    near_.assign(n, 0);
   }
   Candidates pts;
   Ch hint = near->cell();
@@ -103,12 +107,12 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     return slot.second;
   };
   long last[3] = {-9, -9, -9};
-  for (Seen& s : seen_) {
+  // Centre k, at grid point (x, y, z).
+  const auto visit = [&](std::size_t k, long x, long y, long z) {
     // A centre still in the cell it was found right in is right. (The walk
     // starts from the last cell a walk found: a centre outside W's hull or
     // on a facet may be found in another cell from another start.)
-    if (s.cell != Ch() && tr.tds().cells().is_used(s.cell) && vertices_of(tr, s.cell) == s.vertices) continue;
-    const auto [x, y, z] = g.cube_of_key((long long)s.key);
+    if (cell_[k] != Ch() && tr.tds().cells().is_used(cell_[k]) && vertices_of(tr, cell_[k]) == vertices_[k]) return;
     const Vec3 p{double(x) * g.s[0], double(y) * g.s[1], double(z) * g.s[2]};
     const Point pp(p[0], p[1], p[2]);
     Tr::Locate_type lt;
@@ -123,8 +127,9 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
     // walk from the last centre's, as always.
     const bool adjacent = std::abs(x - last[0]) <= 1 && std::abs(y - last[1]) <= 1 && std::abs(z - last[2]) <= 1;
     last[0] = x, last[1] = y, last[2] = z;
-    const bool from_near = near_starts_ && !adjacent && s.near != Vh() && tr.tds().vertices().is_used(s.near);
-    Ch c = tr.locate(pp, lt, li, lj, from_near ? s.near->cell() : hint);
+    const Vh from = near_[k] == 0 ? Vh() : by_id[near_[k] - 1];
+    const bool from_near = near_starts_ && !adjacent && from != Vh();
+    Ch c = tr.locate(pp, lt, li, lj, from_near ? from->cell() : hint);
     if (from_near && lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
     hint = c;
     // The cells holding p: one, or those around the facet, edge or vertex it lies on.
@@ -136,13 +141,14 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
         bad = h;
         break;
       }
-    s.cell = Ch(), s.vertices = 0, s.near = c->vertex(tr.is_infinite(c->vertex(0)) ? 1 : 0);
+    cell_[k] = Ch(), vertices_[k] = 0;
+    near_[k] = std::uint32_t(c->vertex(tr.is_infinite(c->vertex(0)) ? 1 : 0)->info().id + 1);
     if (bad == Ch()) {
-      if (cells.size() == 1) s.cell = c, s.vertices = vertices_of(tr, c);  // on a facet: looked at again
-      continue;
+      if (cells.size() == 1) cell_[k] = c, vertices_[k] = vertices_of(tr, c);  // on a facet: looked at again
+      return;
     }
     ++wrong;
-    if (!refined.insert(&*bad).second) continue;  // one point per cell and pass
+    if (!refined.insert(&*bad).second) return;  // one point per cell and pass
     // The surface centre of the cell's restricted facet with the largest
     // ball, if that is at least half p's distance to W (DELMESH's usual
     // point, well spaced) and the guard; else the point of S towards the
@@ -154,14 +160,21 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, Vh
       if (bad->facet.restricted(i) && bad->facet[i].r2 >= least && (best < 0 || bad->facet[i].r2 > bad->facet[best].r2)) best = i;
     if (best >= 0) {
       pts.emplace_back(facet_center(Facet(bad, best)), bad->facet[best].r2);
-      continue;
+      return;
     }
     Vec3 q;
-    if (!crossing(f, p, far_end(tr, g, bad, p), q)) continue;
+    if (!crossing(f, p, far_end(tr, g, bad, p), q)) return;
     const Vh nv = tr.nearest_vertex(Point(q[0], q[1], q[2]), bad);
     const double clearance2 = dist2(q, vec(nv->point()));
     if (clearance2 < guard * guard) ++refused;
     else pts.emplace_back(q, clearance2);
+  };
+  std::size_t k = 0;
+  const auto& cubes = g.sorted_cubes();
+  for (std::size_t i = 0; i < cubes.size(); ++i) {
+    const auto [x, y, z] = g.cube_of_key(cubes[i].key());
+    for (int e = 0; e < 8; ++e)
+      if (corners_[i] >> e & 1) visit(k++, x + (e & 1), y + (e >> 1 & 1), z + (e >> 2 & 1));
   }
   return pts;
 }

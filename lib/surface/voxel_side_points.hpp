@@ -33,26 +33,29 @@ public:
   // W), unless that is under guard^2 (counted in `refused`). `wrong`: the
   // centres found on the wrong side. A centre found on its side is not
   // looked at again while its cell stands.
-  Candidates operator()(const Tr& tr, const SurfaceSampler& f, Vh near, double guard, long long& wrong,
-                        long long& refused);
+  Candidates operator()(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& by_id, Vh near, double guard,
+                        long long& wrong, long long& refused);
 
   // The per-centre memory let go (the surface mesher's certificate, at its
   // peak): the next call looks at every centre again.
-  void release() { std::vector<Seen>().swap(seen_); }
+  void release() {
+    std::vector<std::uint8_t>().swap(corners_);
+    std::vector<Ch>().swap(cell_);
+    std::vector<std::uint64_t>().swap(vertices_);
+    std::vector<std::uint32_t>().swap(near_);
+  }
 
 private:
   // Per centre (grid order, found once: a walk over the active cubes took
-  // 7% of the bunny's instructions a run): the cell it was last found right
-  // in, the cell's vertices (a hash of their ids: a cell's memory is
-  // reused), one of them (where its next walk starts) and the centre's
-  // grid key.
-  struct Seen {
-    Ch cell;
-    Vh near;
-    std::uint64_t vertices = 0;
-    std::uint64_t key = 0;
-  };
-  std::vector<Seen> seen_;
+  // 7% of the bunny's instructions a run), 20 bytes in three arrays: the
+  // cell it was last found right in, the cell's vertices (a hash of their
+  // ids: a cell's memory is reused) and one of them, by id + 1 (where its
+  // next walk starts; `by_id` is null where a vertex was deleted). Per
+  // active cube (sorted): the corners it visits, bit e for corner e.
+  std::vector<std::uint8_t> corners_;
+  std::vector<Ch> cell_;
+  std::vector<std::uint64_t> vertices_;
+  std::vector<std::uint32_t> near_;
   bool near_starts_;
 };
 

@@ -62,14 +62,14 @@ TEST_CASE("VoxelSides: the wrong centres of a pass that remembers the last are t
   VoxelSidePoints kept;
   long long wrong = 0, refused = 0;
   // The seeds alone: most foreground centres lie outside W's hull.
-  Candidates pts = kept(m.triangulation(), m.sampler(), m.vertices()[0], guard, wrong, refused);
+  Candidates pts = kept(m.triangulation(), m.sampler(), m.vertices(), m.vertices()[0], guard, wrong, refused);
   CHECK(wrong == wrong_by_walks(m));
   REQUIRE(wrong > 10);
   // Passes on a changing W: each remembers the last.
   for (int pass = 0; pass < 4 && !pts.empty(); ++pass) {
     for (std::size_t k = 0; k < pts.size(); k += 2) m.insert(pts[k].first, kVoxelSide);
     wrong = 0;
-    pts = kept(m.triangulation(), m.sampler(), m.vertices().back(), guard, wrong, refused);
+    pts = kept(m.triangulation(), m.sampler(), m.vertices(), m.vertices().back(), guard, wrong, refused);
     CHECK(wrong == wrong_by_walks(m));
   }
   // Every point found lies on S.
@@ -91,8 +91,8 @@ TEST_CASE("VoxelSides: where a centre's walk starts changes no point, order or c
   int passes = 0;
   for (; passes < 6; ++passes) {
     long long wrong_near = 0, wrong_last = 0, refused_near = 0, refused_last = 0;
-    pts = near(m.triangulation(), m.sampler(), m.vertices().back(), guard, wrong_near, refused_near);
-    const Candidates ref = last(m.triangulation(), m.sampler(), m.vertices().back(), guard, wrong_last, refused_last);
+    pts = near(m.triangulation(), m.sampler(), m.vertices(), m.vertices().back(), guard, wrong_near, refused_near);
+    const Candidates ref = last(m.triangulation(), m.sampler(), m.vertices(), m.vertices().back(), guard, wrong_last, refused_last);
     CHECK(wrong_near == wrong_last);
     CHECK(refused_near == refused_last);
     REQUIRE(pts.size() == ref.size());
