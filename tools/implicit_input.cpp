@@ -1,6 +1,9 @@
 #include "implicit_input.hpp"
 
+#include "implicit/crop.hpp"
 #include "implicit/implicit_file.hpp"
+
+#include <sstream>
 
 namespace imgmesh {
 
@@ -18,9 +21,13 @@ MesherInput read_mesher_input(const cli::Tool& tool, const std::string& in, cons
         return clamp = PartitionOfUnity::clamp_for(grid, options.max_distance);
       },
       &frame, &placed);
-  if (f.samples().clamp() < clamp)
-    tool.info("note: the file's samples are clamped for a --max-distance up to 0.5 voxel: meshed on them (the same "
-              "surface and signs; the |f| <= 2 E test sees them clamped; wc2implicit --full-distance keeps them all)");
+  if (f.samples().clamp() < clamp) {
+    std::ostringstream note;
+    note << "note: the file's samples are clamped for a --max-distance up to " << kCoveredMaxDistance
+         << " voxel: meshed on them (the same surface and signs; the |f| <= 2 E test sees them clamped; "
+            "wc2implicit --full-distance keeps them all)";
+    tool.info(note.str());
+  }
   if (frame.present() && !placed)
     tool.info("note: the crop's margin does not cover this --max-distance: meshed on the crop's own grid (the same "
               "surface; its points may differ by rounding from those of the scan's whole grid, img2wc --full-grid)");

@@ -350,7 +350,7 @@ std::optional<TetMesh> gmsh_background(const TetMesh& m, int& tag) {
   for (int& r : t.tet_region) r = r == 0 ? tag : r;
   for (int& r : t.triangle_region) r = r == 0 ? tag : r;
   const auto name = m.region_names.find(0);
-  t.region_names[tag] = name == m.region_names.end() || name->second.empty() ? "background" : name->second;
+  t.region_names[tag] = name == m.region_names.end() || name->second.empty() ? kBackgroundName : name->second;
   t.region_names.erase(0);
   return t;
 }
@@ -374,7 +374,7 @@ void write_tet_mesh(const std::string& path, const TetMesh& mesh, const TetWrite
     // name "background" alone would mislead our reader: region 0 present
     // (named otherwise, or not), or another region so named.
     if (tagged || std::any_of(mesh.region_names.begin(), mesh.region_names.end(),
-                              [](const auto& n) { return n.second == "background"; }))
+                              [](const auto& n) { return n.second == kBackgroundName; }))
       o << "$BackgroundRegion\n" << background << "\n$EndBackgroundRegion\n";
   }
   else if (ext == ".mesh") write_medit(o, mesh);

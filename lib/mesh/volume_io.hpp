@@ -26,6 +26,9 @@ struct TetWriteOptions {
   std::string vtu_cell_data = "region";  // .vtu: the regions' cell data array (seg2tet: "label")
 };
 
+// Gmsh's name of region 0 when the mesh gives none (writer and reader).
+inline constexpr const char* kBackgroundName = "background";
+
 // Region 0 (seg2tet --outside's background) is Gmsh's physical tag max + 1,
 // named "background" unless the mesh names it (Gmsh's tag 0 is no group),
 // and its tag goes in a $BackgroundRegion section (0: none) whenever region

@@ -228,7 +228,7 @@ void read_msh_physical_names(Tokens& t, std::map<int, std::string>& names, int& 
     const std::size_t a = rest.find('"'), b = rest.rfind('"');
     if (a == std::string::npos || b == a) t.fail("a physical name without its double quotes");
     if (dim == 2) names[int(tag)] = rest.substr(a + 1, b - a - 1);
-    if (dim == 3 && rest.substr(a + 1, b - a - 1) == "background") background = int(tag);
+    if (dim == 3 && rest.substr(a + 1, b - a - 1) == kBackgroundName) background = int(tag);
   }
 }
 
