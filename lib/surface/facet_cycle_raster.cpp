@@ -204,8 +204,7 @@ void FacetRaster::collect_cube_spans(const long c0[3], const long c1[3]) {
       }
       const double cy[2] = {double(y) * grid.s[1] - m[1], double(y + 1) * grid.s[1] - m[1]};
       const double cz[2] = {double(z) * grid.s[2] - m[2], double(z + 1) * grid.s[2] - m[2]};
-      for (long x = x0; x <= x1; ++x) {
-        if (!grid.active(x, y, z)) continue;
+      grid.for_active_on_line(x0, x1, y, z, [&](long x) {
         // The 8 corners' extremes along n, u and v (relative to m): a dot
         // product rounds monotonically in each term, so per axis the end
         // that makes its term least (most) gives the least (most) of the
@@ -217,14 +216,14 @@ void FacetRaster::collect_cube_spans(const long c0[3], const long c1[3]) {
         };
         double dlo, dhi, alo, ahi, blo, bhi;
         extremes(n, dlo, dhi);
-        if (dlo > eps || dhi < -eps) continue;  // Pi misses the cube
+        if (dlo > eps || dhi < -eps) return;  // Pi misses the cube
         extremes(u, alo, ahi);
         extremes(v, blo, bhi);
         const long j0 = std::max(0L, floor_long((blo - eps - b0) / step) - 1);
         const long j1 = std::min(nb - 1, ceil_long((bhi + eps - b0) / step) + 1);
         const long s0 = floor_long((alo - eps - a0) / step) - 1, e0 = ceil_long((ahi + eps - a0) / step) + 1;
         if (j0 <= j1) s.cube_spans.push_back({j0, j1, s0, e0});
-      }
+      });
     }
 }
 
