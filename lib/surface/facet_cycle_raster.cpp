@@ -164,13 +164,16 @@ void FacetRaster::find_spans(FacetWalk how) {
   cube_of(xlo, c0);
   cube_of(xhi, c1);
   grid.sampled_cubes(b0, b1);
-  double cubes = 1;
+  double lines = 1;
   for (int k = 0; k < 3; ++k) {
     c0[k] = std::max(c0[k], b0[k]);
     c1[k] = std::min(c1[k], b1[k]);
-    cubes *= double(std::max(0L, c1[k] - c0[k] + 1));
+    if (k > 0) lines *= double(std::max(0L, c1[k] - c0[k] + 1));
   }
-  if (!(cubes < 16 * cost || how == FacetWalk::kCompare)) return;  // walking every row is cheaper
+  // collect_cube_spans pays by the box's lines along x (each holds ~3 cubes
+  // near Pi, read a word at a time), not by its cubes: a box of many lines
+  // against few samples is cheaper walked row by row.
+  if (!(lines < 16 * cost || how == FacetWalk::kCompare)) return;
   walk_all = false;
   collect_cube_spans(c0, c1);
   // No active cube that Pi meets among the samples' cubes: every sample
