@@ -192,13 +192,17 @@ void FacetRaster::collect_cube_spans(const long c0[3], const long c1[3]) {
   const double sn[3] = {grid.s[0] * n[0], grid.s[1] * n[1], grid.s[2] * n[2]};
   const double off_lo = std::min(0.0, sn[0]) + std::min(0.0, sn[1]) + std::min(0.0, sn[2]);
   const double off_hi = std::max(0.0, sn[0]) + std::max(0.0, sn[1]) + std::max(0.0, sn[2]);
-  for (long z = c0[2]; z <= c1[2]; ++z)
+  // The lines' x ranges need not round as the test does: a cube of slack.
+  const bool slanted = std::abs(sn[0]) > 1e-9 * grid.delta;
+  const double inv_sn0 = slanted ? 1 / sn[0] : 0;
+  for (long z = c0[2]; z <= c1[2]; ++z) {
+    const double ez = -m[0] * n[0] + (double(z) * grid.s[2] - m[2]) * n[2];
     for (long y = c0[1]; y <= c1[1]; ++y) {
-      const double e = -m[0] * n[0] + (double(y) * grid.s[1] - m[1]) * n[1] + (double(z) * grid.s[2] - m[2]) * n[2];
+      const double e = ez + (double(y) * grid.s[1] - m[1]) * n[1];
       const double lo_d = -2 * eps - off_hi - e, hi_d = 2 * eps - off_lo - e;  // lo_d <= x sn_0 <= hi_d
       long x0 = c0[0], x1 = c1[0];
-      if (std::abs(sn[0]) > 1e-9 * grid.delta) {
-        double t0 = lo_d / sn[0], t1 = hi_d / sn[0];
+      if (slanted) {
+        double t0 = lo_d * inv_sn0, t1 = hi_d * inv_sn0;
         if (t0 > t1) std::swap(t0, t1);
         x0 = std::max(x0, long(std::max(t0, double(x0 - 1))) - 1);
         x1 = std::min(x1, long(std::min(t1, double(x1 + 1))) + 1);
@@ -228,6 +232,7 @@ void FacetRaster::collect_cube_spans(const long c0[3], const long c1[3]) {
         if (j0 <= j1) s.cube_spans.push_back({j0, j1, s0, e0});
       });
     }
+  }
 }
 
 // Per row (row_span[j] .. row_span[j + 1]) the (s, e) of the cubes over it,
