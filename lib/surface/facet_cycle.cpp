@@ -95,7 +95,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     throw fail("samples of both signs though no block of the facet's rectangle, or no cube, is active");
   if (!(h.any_neg && h.any_pos)) return kNone;
   h.join_regions();
-  h.open_regions();
+  if (!h.open_regions()) return kNone;  // every region reaches h's border
   h.enclosed_pairs();
   return h.cycle_point(out) ? FacetAnswer::kCycle : kNone;
 }
@@ -144,11 +144,14 @@ void FacetRaster::join_regions() {
 // exact border point beyond a sample next to the border must be the
 // region's (else S passes in between and the region may be enclosed, as
 // when a thin feature's cross-section nearly fills a narrow facet).
-void FacetRaster::open_regions() {
-  for (std::size_t r = 0; r < s.runs.size(); ++r) {
+bool FacetRaster::open_regions() {
+  long closed = 0;
+  for (std::size_t r = 0; r < s.runs.size(); ++r) closed += find(long(r)) == long(r);
+  for (std::size_t r = 0; r < s.runs.size() && closed > 0; ++r) {
     const long root = find(long(r));
-    if (!s.open[std::size_t(root)] && exits(s.runs[r])) s.open[std::size_t(root)] = 1;
+    if (!s.open[std::size_t(root)] && exits(s.runs[r])) s.open[std::size_t(root)] = 1, --closed;
   }
+  return closed > 0;
 }
 
 bool FacetRaster::sign_at(double a, double b) const {

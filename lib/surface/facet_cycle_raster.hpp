@@ -84,9 +84,10 @@ struct FacetRaster {
   // "span") whose runs differ from the samples' signs by definition.
   const char* sign_runs(FacetWalk how);
   // The sign regions (4-connected runs of one sign), and those that reach
-  // h's border (open); the others are enclosed by a cycle of S.
+  // h's border (open); the others are enclosed by a cycle of S. False when
+  // every region is open (it stops there: no cycle).
   void join_regions();
-  void open_regions();
+  bool open_regions();
   // The enclosed regions' sample pairs across S, farthest from p first;
   // the first that brackets a root of f gives x on S.
   void enclosed_pairs();
