@@ -26,6 +26,7 @@ bool FacetRaster::extent(bool bounded, double va0, double va1, double vb0, doubl
     const double a = dot(sub(c, m), u), b = dot(sub(c, m), v);
     ba0 = std::min(ba0, a); ba1 = std::max(ba1, a); bb0 = std::min(bb0, b); bb1 = std::max(bb1, b);
   }
+  this->bounded = bounded;
   if (!bounded) { va0 = ba0; va1 = ba1; vb0 = bb0; vb1 = bb1; }
   a0 = std::max(va0, ba0); a1 = std::min(va1, ba1); b0 = std::max(vb0, bb0); b1 = std::min(vb1, bb1);
   if (!(a0 < a1 && b0 < b1)) return false;
@@ -101,7 +102,9 @@ void FacetRaster::rows(bool all) {
     if (k >= box_from && !all && loose(h)) continue;
     (h.A > 1e-15 ? s.hp_hi : h.A < -1e-15 ? s.hp_lo : s.hp_flat).push_back(h);
   }
-  for (long j = 0; j < nb; ++j) {
+  long j0 = 0, j1 = nb - 1;
+  if (!all && !bounded) row_range(j0, j1);
+  for (long j = j0; j <= j1; ++j) {
     const double b = b0 + j * step;
     bool empty = false;
     for (const FacetHalfPlane& h : s.hp_flat) empty = empty || h.C - h.B * b < 0;
@@ -116,6 +119,41 @@ void FacetRaster::rows(bool all) {
     s.hi[j] = floor_long((ahi - a0) / step);
     if (s.hi[j] >= s.lo[j]) ++rows_used;
   }
+}
+
+// An unbounded h's extent is the box's, mostly rows that miss h (the
+// bunny's: 97% of them): only the rows j0..j1 near h, from the polygon of
+// the half-planes each pushed out by a step (it holds every point within a
+// step of h, and its rounding is far below that), clipped from the
+// rectangle; find_rows(true) checks that the others are empty.
+void FacetRaster::row_range(long& j0, long& j1) const {
+  std::vector<std::array<double, 2>>& poly = s.poly;
+  std::vector<std::array<double, 2>>& next = s.poly_next;
+  poly = {{a0 - step, b0 - step}, {a1 + step, b0 - step}, {a1 + step, b_last + step}, {a0 - step, b_last + step}};
+  for (const auto* hs : {&s.hp_hi, &s.hp_lo, &s.hp_flat})
+    for (const FacetHalfPlane& h : *hs) {
+      const double C = h.C + step * std::hypot(h.A, h.B);
+      next.clear();
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        const auto& x = poly[i];
+        const auto& y = poly[(i + 1) % poly.size()];
+        const double dx = h.A * x[0] + h.B * x[1] - C, dy = h.A * y[0] + h.B * y[1] - C;
+        if (dx <= 0) next.push_back(x);
+        if ((dx < 0 && dy > 0) || (dx > 0 && dy < 0)) {
+          const double t = dx / (dx - dy);
+          next.push_back({x[0] + t * (y[0] - x[0]), x[1] + t * (y[1] - x[1])});
+        }
+      }
+      std::swap(poly, next);
+    }
+  if (poly.empty()) {  // h is empty
+    j1 = j0 - 1;
+    return;
+  }
+  double lo = INFINITY, hi = -INFINITY;
+  for (const auto& x : poly) lo = std::min(lo, x[1]), hi = std::max(hi, x[1]);
+  j0 = std::max(j0, floor_long((lo - b0) / step) - 1);
+  j1 = std::min(j1, ceil_long((hi - b0) / step) + 1);
 }
 
 bool FacetRaster::find_rows(bool compare) {
