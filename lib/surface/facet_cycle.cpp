@@ -127,6 +127,7 @@ void FacetRaster::join_regions() {
   s.parent.resize(s.runs.size());
   s.open.assign(s.runs.size(), 0);
   for (std::size_t r = 0; r < s.runs.size(); ++r) s.parent[r] = long(r);
+  regions = long(s.runs.size());
   for (long j = 0; j < nb; ++j)
     for (long r = s.row_run[j]; r < s.row_run[j + 1]; ++r) {
       const FacetRun& x = s.runs[std::size_t(r)];
@@ -135,7 +136,9 @@ void FacetRaster::join_regions() {
         const FacetRun& y = s.runs[std::size_t(r2)];
         if (y.e < x.s) continue;
         if (y.s > x.e) break;
-        if (y.sg == x.sg) s.parent[std::size_t(find(r))] = find(r2);
+        if (y.sg != x.sg) continue;
+        const long a = find(r), b = find(r2);
+        if (a != b) s.parent[std::size_t(a)] = b, --regions;
       }
     }
 }
@@ -145,8 +148,7 @@ void FacetRaster::join_regions() {
 // region's (else S passes in between and the region may be enclosed, as
 // when a thin feature's cross-section nearly fills a narrow facet).
 bool FacetRaster::open_regions() {
-  long closed = 0;
-  for (std::size_t r = 0; r < s.runs.size(); ++r) closed += find(long(r)) == long(r);
+  long closed = regions;
   for (std::size_t r = 0; r < s.runs.size() && closed > 0; ++r) {
     const long root = find(long(r));
     if (!s.open[std::size_t(root)] && exits(s.runs[r])) s.open[std::size_t(root)] = 1, --closed;

@@ -59,6 +59,7 @@ struct FacetRaster {
   double step = 0, b_last = 0, eps = 0;   // the samples' step, the last row's b, rounding
   long nb = 0;                            // rows
   long rows_used = 0;                     // rows with a sample in h
+  long regions = 0;                       // sign regions (join_regions)
   bool no_active = false;                 // no active cube near h: every sample takes one sign
   bool walk_all = true;                   // walk every row cube by cube (no spans)
   bool bounded = true;                    // h's extent is its Voronoi vertices' (else the box's)
