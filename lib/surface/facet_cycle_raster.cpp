@@ -303,11 +303,12 @@ void FacetRaster::fill(long j, long s0, long e0) {
 
 // Samples s0..e0 of row j in one active cube (xs: sample s0): one run of
 // the enclosure's sign where the enclosure of f on their bounding box
-// excludes 0 (tried for 4 samples or more), else halved while 8 or more
-// (where S crosses near one end, the other half is often decided), else
-// f's sign at each.
+// excludes 0 (tried for 2 samples or more: it costs about 2/5 of a value
+// of f; from 4, the bunny's FacetCycle took 3% more instructions), else
+// halved while 8 or more (where S crosses near one end, the other half is
+// often decided), else f's sign at each.
 void FacetRaster::decide(long j, long s0, long e0, const Vec3& xs) {
-  if (e0 >= s0 + 3) {
+  if (e0 >= s0 + 1) {
     const Vec3 xe = point(e0, j);
     Vec3 blo, bhi;
     for (int k = 0; k < 3; ++k) {
