@@ -95,7 +95,7 @@ FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e
     throw fail("samples of both signs though no block of the facet's rectangle, or no cube, is active");
   if (!(h.any_neg && h.any_pos)) return kNone;
   h.join_regions();
-  h.open_regions();
+  if (!h.open_regions()) return kNone;  // every region reaches h's border
   h.enclosed_pairs();
   return h.cycle_point(out) ? FacetAnswer::kCycle : kNone;
 }
@@ -127,6 +127,7 @@ void FacetRaster::join_regions() {
   s.parent.resize(s.runs.size());
   s.open.assign(s.runs.size(), 0);
   for (std::size_t r = 0; r < s.runs.size(); ++r) s.parent[r] = long(r);
+  regions = long(s.runs.size());
   for (long j = 0; j < nb; ++j)
     for (long r = s.row_run[j]; r < s.row_run[j + 1]; ++r) {
       const FacetRun& x = s.runs[std::size_t(r)];
@@ -135,7 +136,9 @@ void FacetRaster::join_regions() {
         const FacetRun& y = s.runs[std::size_t(r2)];
         if (y.e < x.s) continue;
         if (y.s > x.e) break;
-        if (y.sg == x.sg) s.parent[std::size_t(find(r))] = find(r2);
+        if (y.sg != x.sg) continue;
+        const long a = find(r), b = find(r2);
+        if (a != b) s.parent[std::size_t(a)] = b, --regions;
       }
     }
 }
@@ -144,11 +147,13 @@ void FacetRaster::join_regions() {
 // exact border point beyond a sample next to the border must be the
 // region's (else S passes in between and the region may be enclosed, as
 // when a thin feature's cross-section nearly fills a narrow facet).
-void FacetRaster::open_regions() {
-  for (std::size_t r = 0; r < s.runs.size(); ++r) {
+bool FacetRaster::open_regions() {
+  long closed = regions;
+  for (std::size_t r = 0; r < s.runs.size() && closed > 0; ++r) {
     const long root = find(long(r));
-    if (!s.open[std::size_t(root)] && exits(s.runs[r])) s.open[std::size_t(root)] = 1;
+    if (!s.open[std::size_t(root)] && exits(s.runs[r])) s.open[std::size_t(root)] = 1, --closed;
   }
+  return closed > 0;
 }
 
 bool FacetRaster::sign_at(double a, double b) const {

@@ -35,6 +35,7 @@ struct FacetScratch {
   std::vector<FacetHalfPlane> hp_hi, hp_lo, hp_flat;  // by the sign of A, for the rows
   std::vector<long> lo, hi;                           // each row's first and last sample
   std::vector<double> alo_row, ahi_row;               // h's exact border on each row
+  std::vector<std::array<double, 2>> poly, poly_next;  // h widened, for the rows near it
   std::vector<FacetCubeSpan> cube_spans;
   std::vector<std::pair<long, long>> spans;           // row j's: [row_span[j], row_span[j + 1]), by s
   std::vector<long> row_span, fill_at;
@@ -58,8 +59,10 @@ struct FacetRaster {
   double step = 0, b_last = 0, eps = 0;   // the samples' step, the last row's b, rounding
   long nb = 0;                            // rows
   long rows_used = 0;                     // rows with a sample in h
+  long regions = 0;                       // sign regions (join_regions)
   bool no_active = false;                 // no active cube near h: every sample takes one sign
   bool walk_all = true;                   // walk every row cube by cube (no spans)
+  bool bounded = true;                    // h's extent is its Voronoi vertices' (else the box's)
   bool any_neg = false, any_pos = false;  // samples of each sign
 
   // Pi, the bisector plane of pq, and its frame; false if p == q.
@@ -84,9 +87,10 @@ struct FacetRaster {
   // "span") whose runs differ from the samples' signs by definition.
   const char* sign_runs(FacetWalk how);
   // The sign regions (4-connected runs of one sign), and those that reach
-  // h's border (open); the others are enclosed by a cycle of S.
+  // h's border (open); the others are enclosed by a cycle of S. False when
+  // every region is open (it stops there: no cycle).
   void join_regions();
-  void open_regions();
+  bool open_regions();
   // The enclosed regions' sample pairs across S, farthest from p first;
   // the first that brackets a root of f gives x on S.
   void enclosed_pairs();
@@ -103,6 +107,7 @@ private:
   double inv_s[3] = {0, 0, 0}, inv_u[3] = {0, 0, 0}, inv_step = 0;
   bool loose(const FacetHalfPlane& h) const;
   void rows(bool all);
+  void row_range(long& j0, long& j1) const;
   void collect_cube_spans(const long c0[3], const long c1[3]);
   void deal_spans();
   void build_runs(FacetWalk mode);
