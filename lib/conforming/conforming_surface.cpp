@@ -16,6 +16,11 @@ const char* const kStepName[kSteps] = {"seed",        "vor_edge", "topo_disk",  
                                        "voxel_side",  "certificate", "cell",     "cell_facet", "off_surface"};
 static_assert(kSteps == std::tuple_size<decltype(ConformingSurface::inserted)>::value, "one count a step");
 
+// The point at t of the segment [a, b].
+static Vec3 on_edge(const Vec3& a, const Vec3& b, double t) {
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
 // Circumradius over shortest edge.
 double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double ab = dist2(a, b), bc = dist2(b, c), ca = dist2(c, a);
@@ -175,68 +180,75 @@ void Mesher::walk_facets() {
   implicit_detail::parallel_for(long(pending_.size()), threads, [&](long lo, long hi, unsigned) {
     for (long j = lo; j < hi; ++j) known(pending_[std::size_t(j)]);
   });
-  walk_changes_.resize(threads);
+  walk_brackets_.resize(threads);
   implicit_detail::parallel_for(long(walks_.size()), threads, [&](long lo, long hi, unsigned t) {
-    std::vector<LabelFunction::Change>& ch = walk_changes_[t];
+    std::vector<LabelFunction::Bracket>& br = walk_brackets_[t];
     for (long j = lo; j < hi; ++j) {
       FacetWalk& w = walks_[std::size_t(j)];
-      w.changes = 0;
+      w.step = kSteps;
       Ch c = w.c, n = c->neighbor(w.i);
       if (tr_.is_infinite(c) || tr_.is_infinite(n)) continue;
       bool corner = false;  // a bounding-box corner: outside, in 0
       for (int q = 1; q < 4; ++q) corner = corner || c->vertex((w.i + q) & 3)->info() < 0;
       if (corner) continue;
       const std::int32_t ends[2] = {c->info().label, n->info().label};
-      f_.changes(c->info().centre, n->info().centre, ch, o_.step, 0, ends);
-      w.changes = ch.size();
-      if (!ch.empty()) w.first = ch.front().t, w.last = ch.back().t;
+      const Vec3 &a = c->info().centre, &b = n->info().centre;
+      f_.brackets(a, b, br, o_.step, 0, ends);
+      if (br.empty()) continue;
+      if (br.size() >= 2 || ends[0] == ends[1]) {
+        w.step = kVorEdge;
+        w.first = f_.place(a, b, br.front()), w.last = f_.place(a, b, br.back());
+        continue;
+      }
+      // One change: placed (the bisection) only when the facet needs its
+      // surface centre wherever between the two samples it lies.
+      w.step = facet_step(c, w.i, on_edge(a, b, br[0].t0), on_edge(a, b, br[0].t1));
+      if (w.step == kSteps) continue;
+      w.first = w.last = f_.place(a, b, br[0]);
+      if (w.step == kDistance) w.step = facet_step(c, w.i, on_edge(a, b, w.first), on_edge(a, b, w.first));
     }
   });
   for (const FacetWalk& w : walks_)
-    if (w.changes > 0) check_facet(w);
+    if (w.step != kSteps) check_facet(w);
 }
 
-// VorEdge, QUALITY and the distance bound on a facet whose Voronoi edge
-// lambda changes along.
+// What a restricted facet (c, i) whose Voronoi edge lambda changes along
+// once needs, its surface centre given as x0 = x1, or as two points of the
+// edge that it lies between (each coordinate of on_edge() is monotone in
+// t): kOffSurface, kQuality, kDistance (the bound fails somewhere between
+// them), kSteps (nothing, anywhere between them).
+int Mesher::facet_step(Ch c, int i, const Vec3& x0, const Vec3& x1) const {
+  const auto v = facet_vertices(c, i);
+  // A vertex off the interfaces (a cell's circumcentre, seg2tet): the
+  // facet's surface centre goes in, so every surface vertex lies on one.
+  if (!on_surface_[std::size_t(v[0]->info())] || !on_surface_[std::size_t(v[1]->info())] ||
+      !on_surface_[std::size_t(v[2]->info())])
+    return kOffSurface;
+  const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
+  if (radius_edge_ratio(p0, p1, p2) > o_.ratio) return kQuality;
+  return beyond_distance(p0, p1, p2, x0, x1, o_.max_distance) ? kDistance : kSteps;
+}
+
+// The candidate of a facet that needs one (walk_facets): VorEdge its
+// change farthest from the facet's first vertex, else its surface centre.
 void Mesher::check_facet(const FacetWalk& w) {
   Ch c = w.c, n = c->neighbor(w.i);
   const Vec3 a = centre(c), b = centre(n);
-  const std::int32_t la = label(c), lb = label(n);
-  const auto v = facet_vertices(c, w.i);
+  const Vec3 p0 = vec(facet_vertices(c, w.i)[0]->point());
   Candidate cand;
   cand.cell = c, cand.facet = w.i;
   cand.cells = {c->info().uid, n->info().uid};
-  const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
-  auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
-  if (w.changes >= 2 || la == lb) {
-    const Vec3 first = at(w.first), last = at(w.last);
+  cand.step = w.step;
+  if (w.step == kVorEdge) {
+    const Vec3 first = on_edge(a, b, w.first), last = on_edge(a, b, w.last);
     cand.x = dist2(first, p0) >= dist2(last, p0) ? first : last;
-    cand.step = kVorEdge;
     cand.priority = dist2(cand.x, p0);
     topology_.push_back(cand);
     return;
   }
-  cand.x = at(w.first);
+  cand.x = on_edge(a, b, w.first);
   cand.priority = dist2(cand.x, p0);
-  // A vertex off the interfaces (a cell's circumcentre, seg2tet): the
-  // facet's surface centre goes in, so every surface vertex lies on one.
-  if (!on_surface_[std::size_t(v[0]->info())] || !on_surface_[std::size_t(v[1]->info())] ||
-      !on_surface_[std::size_t(v[2]->info())]) {
-    cand.step = kOffSurface;
-    quality_.push_back(cand);
-    return;
-  }
-  if (radius_edge_ratio(p0, p1, p2) > o_.ratio) {
-    cand.step = kQuality;
-    quality_.push_back(cand);
-    return;
-  }
-  const Vec3 nrm = cross(sub(p1, p0), sub(p2, p0));
-  const double nn = dot(nrm, nrm), h = dot(nrm, sub(cand.x, p0));
-  if (nn > 0 && h * h > o_.max_distance * o_.max_distance * nn) {
-    cand.step = kDistance;
-    quality_.push_back(cand);
-  }
+  quality_.push_back(cand);
 }
 
 // TopoDisk per label at v: for each label around v (not all one), the
@@ -423,7 +435,7 @@ void Mesher::refine() {
       for (int i = 0; i < 4; ++i) {
         Ch n = c->neighbor(i);
         if (is_fresh(n) && n->info().uid < c->info().uid) continue;
-        walks_.push_back({c, i, 0, 0, 0});
+        walks_.push_back({c, i, kSteps, 0, 0});
       }
       for (int i = 0; i < 4; ++i) {
         const int id = c->vertex(i)->info();
