@@ -105,6 +105,29 @@ bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
   return true;
 }
 
+// v's cells, in incident_cells' order (CGAL's depth-first walk from
+// v->cell(), its marks), without its allocations: the same candidates.
+void Mesher::star(Vh v, std::vector<Ch>& out) {
+  out.clear();
+  const Ch d = v->cell();
+  d->tds_data().mark_in_conflict();
+  out.push_back(d);
+  stack_.assign(1, d);
+  while (!stack_.empty()) {
+    const Ch c = stack_.back();
+    stack_.pop_back();
+    for (int i = 0; i < 4; ++i) {
+      if (c->vertex(i) == v) continue;
+      const Ch n = c->neighbor(i);
+      if (!n->tds_data().is_clear()) continue;
+      n->tds_data().mark_in_conflict();
+      stack_.push_back(n);
+      out.push_back(n);
+    }
+  }
+  for (Ch c : out) c->tds_data().clear();
+}
+
 // The two voxels of a face of K(X), and lambda's change between their centres.
 bool Mesher::face_point(std::uint64_t key, Vec3& p) const {
   const auto q = k_.corner(InterfaceComplex::face_corner(key));
@@ -254,8 +277,7 @@ void Mesher::check_facet(const FacetWalk& w) {
 // TopoDisk per label at v: for each label around v (not all one), the
 // facets between its cells and the others' form one cycle in v's link.
 void Mesher::check_vertex(Vh v) {
-  cells_.clear();
-  tr_.incident_cells(v, std::back_inserter(cells_));
+  star(v, cells_);
   std::int32_t first = label(cells_[0]);
   bool one = true;
   for (Ch c : cells_) one = one && label(c) == first;
@@ -284,12 +306,12 @@ void Mesher::check_vertex(Vh v) {
     // facets one fan: a patch that comes back to v after other patches
     // is two fans there (the mesh's patch pinched or split where K(X)'s
     // is not, on a tiny patch: the curves sampled too coarsely).
+    const bool cycle = one_cycle(link_, at_);
+    // Two labels: one pair, so one fan (split_pair has nothing to find);
+    // the other label's facets around v are these.
+    if (cycle && labels_.size() == 2) return;
     std::int32_t pair = kUnknown;
-    if (one_cycle(link_, at_) && (pair = split_pair(link_, other_, at_, seq_)) == kUnknown) {
-      // Two labels: the other's facets around v are these.
-      if (labels_.size() == 2) return;
-      continue;
-    }
+    if (cycle && (pair = split_pair(link_, other_, at_, seq_)) == kUnknown) continue;
     // The surface centre of v's largest restricted facet with l on a side
     // (of the pair l|pair when that is what failed).
     Candidate best;
@@ -386,9 +408,32 @@ bool Mesher::current(const Candidate& c, Ch& cell) {
   if (!tr_.tds().cells().is_used(c.cell) || c.cell->info().uid != c.cells[0] ||
       c.cell->neighbor(c.facet)->info().uid != c.cells[1])
     return false;
-  const auto v = facet_vertices(c.cell, c.facet);
-  int i, j, k;
-  return tr_.is_facet(v[0], v[1], v[2], cell, i, j, k);
+  // is_facet(v[0], v[1], v[2])'s cell: the first of the two that v[0]'s
+  // incident cells (their walk, star's) reach, the walk stopped there.
+  const Vh v0 = facet_vertices(c.cell, c.facet)[0];
+  const Ch n = c.cell->neighbor(c.facet), d = v0->cell();
+  cell = d == c.cell || d == n ? d : Ch();
+  d->tds_data().mark_in_conflict();
+  cells_.assign(1, d);
+  stack_.assign(1, d);
+  while (cell == Ch()) {
+    const Ch top = stack_.back();
+    stack_.pop_back();
+    for (int i = 0; i < 4; ++i) {
+      if (top->vertex(i) == v0) continue;
+      const Ch f = top->neighbor(i);
+      if (!f->tds_data().is_clear()) continue;
+      f->tds_data().mark_in_conflict();
+      stack_.push_back(f);
+      cells_.push_back(f);
+      if (f == c.cell || f == n) {
+        cell = f;
+        break;
+      }
+    }
+  }
+  for (Ch x : cells_) x->tds_data().clear();
+  return true;
 }
 
 bool Mesher::insert_all(std::vector<Candidate>& cands) {
@@ -422,8 +467,7 @@ void Mesher::refine() {
       for (auto c = tr_.all_cells_begin(); c != tr_.all_cells_end(); ++c) take(c);
     } else {
       for (Vh v : new_vertices_) {
-        cells_.clear();
-        tr_.incident_cells(v, std::back_inserter(cells_));
+        star(v, cells_);
         for (Ch c : cells_) take(c);
       }
     }

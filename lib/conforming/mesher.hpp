@@ -132,6 +132,7 @@ private:
     return v;
   }
   bool insert(const Vec3& p, int step, Ch start = Ch(), double gap2 = 0);
+  void star(Vh v, std::vector<Ch>& out);
   bool surface_centre(Ch c, int i, Vec3& x);
 
   // The surface stage (conforming_surface.cpp).
@@ -199,7 +200,7 @@ private:
   std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
-  std::vector<Ch> fresh_, cells_, pending_;
+  std::vector<Ch> fresh_, cells_, pending_, stack_;
   std::vector<FacetWalk> walks_;
   std::vector<std::vector<LabelFunction::Bracket>> walk_brackets_;  // per thread
   std::vector<Vh> new_vertices_;
