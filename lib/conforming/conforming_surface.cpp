@@ -201,12 +201,28 @@ void Mesher::walk_facets() {
   pending_.erase(std::unique(pending_.begin() + older, pending_.end()), pending_.end());
   const unsigned threads = implicit_detail::resolve_threads(o_.threads);
   implicit_detail::parallel_for(long(pending_.size()), threads, [&](long lo, long hi, unsigned) {
-    for (long j = lo; j < hi; ++j) known(pending_[std::size_t(j)]);
+    for (long j = lo; j < hi; ++j) {
+      // As the walks below: the cell eight ahead, its vertices four ahead.
+      if (j + 8 < hi) prefetch_cell(pending_[std::size_t(j + 8)]);
+      if (j + 4 < hi)
+        for (int q = 0; q < 4; ++q) __builtin_prefetch(&*pending_[std::size_t(j + 4)]->vertex(q));
+      known(pending_[std::size_t(j)]);
+    }
   });
   walk_brackets_.resize(threads);
   implicit_detail::parallel_for(long(walks_.size()), threads, [&](long lo, long hi, unsigned t) {
     std::vector<LabelFunction::Bracket>& br = walk_brackets_[t];
     for (long j = lo; j < hi; ++j) {
+      // The cells and vertices of walks ahead fetched while this one walks
+      // (their first reads, misses, were a sixth of the walks' time): the
+      // cell eight ahead, then four ahead its neighbour and the facet's
+      // vertices (the corner test).
+      if (j + 8 < hi) prefetch_cell(walks_[std::size_t(j + 8)].c);
+      if (j + 4 < hi) {
+        const FacetWalk& a = walks_[std::size_t(j + 4)];
+        prefetch_cell(a.c->neighbor(a.i));
+        for (int q = 1; q < 4; ++q) __builtin_prefetch(&*a.c->vertex((a.i + q) & 3));
+      }
       FacetWalk& w = walks_[std::size_t(j)];
       w.step = kSteps;
       Ch c = w.c, n = c->neighbor(w.i);
