@@ -91,8 +91,14 @@ bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
     ++refused_;
     return false;
   }
-  Vh near = tr_.nearest_vertex(pt(p), c);
-  if (dist2(vec(near->point()), p) < std::max(gap2, 1e-12 * voxel_ * voxel_)) {
+  // Far inside the cell that holds p (rounding aside, which is far less
+  // than the floor) no vertex is within the floor: no search for the
+  // nearest.
+  const double floor2 = std::max(gap2, 1e-12 * voxel_ * voxel_);
+  if (!(lt == Tr::CELL && inner_distance2({vec(c->vertex(0)->point()), vec(c->vertex(1)->point()),
+                                           vec(c->vertex(2)->point()), vec(c->vertex(3)->point())},
+                                          p) > 4 * floor2) &&
+      dist2(vec(tr_.nearest_vertex(pt(p), c)->point()), p) < floor2) {
     ++refused_;
     return false;
   }

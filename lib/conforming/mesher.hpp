@@ -75,6 +75,22 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double dist2(const Vec3& a, const Vec3& b) { return dot(sub(a, b), sub(a, b)); }
 
+// For p strictly inside the cell (a, b, c, d): the least squared distance
+// from p to the planes of its facets (0 for a flat one). A ball about p
+// of that radius lies in the cell, so in its circumball, which holds no
+// vertex: no vertex of a Delaunay triangulation is nearer to p.
+inline double inner_distance2(const std::array<Vec3, 4>& v, const Vec3& p) {
+  double d2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 &a = v[std::size_t((i + 1) & 3)], &b = v[std::size_t((i + 2) & 3)], &c = v[std::size_t((i + 3) & 3)];
+    const Vec3 n = cross(sub(b, a), sub(c, a));
+    const double nn = dot(n, n), h = dot(n, sub(p, a));
+    if (!(nn > 0)) return 0;
+    d2 = std::min(d2, h * h / nn);
+  }
+  return d2;
+}
+
 // The distance bound: a surface centre x farther than e from the plane of
 // the facet (p0, p1, p2), (nrm . (x - p0))^2 > e^2 |nrm|^2 with nrm = (p1 -
 // p0) x (p2 - p0). x0 = x1: at x = x0. Else at some x whose coordinates
@@ -139,6 +155,7 @@ private:
     std::sort(v.begin(), v.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
     return v;
   }
+  // p unless within sqrt(gap2) (at least 1e-6 voxel) of a vertex.
   bool insert(const Vec3& p, int step, Ch start = Ch(), double gap2 = 0);
   void star(Vh v, std::vector<Ch>& out);
   bool surface_centre(Ch c, int i, Vec3& x);
