@@ -75,17 +75,18 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double dist2(const Vec3& a, const Vec3& b) { return dot(sub(a, b), sub(a, b)); }
 
-// For p strictly inside the cell (a, b, c, d): the least squared distance
-// from p to the planes of its facets (0 for a flat one). A ball about p
-// of that radius lies in the cell, so in its circumball, which holds no
-// vertex: no vertex of a Delaunay triangulation is nearer to p.
+// For p strictly inside the cell v: the least squared distance from p to
+// the planes of its facets. A ball about p of that radius lies in the
+// cell, so in its circumball, which holds no vertex: no vertex of a
+// Delaunay triangulation is nearer to p. 0 when a facet is nearly a
+// segment (sin of an angle under 1e-6: its plane's rounding unbounded).
 inline double inner_distance2(const std::array<Vec3, 4>& v, const Vec3& p) {
   double d2 = std::numeric_limits<double>::infinity();
   for (int i = 0; i < 4; ++i) {
     const Vec3 &a = v[std::size_t((i + 1) & 3)], &b = v[std::size_t((i + 2) & 3)], &c = v[std::size_t((i + 3) & 3)];
-    const Vec3 n = cross(sub(b, a), sub(c, a));
+    const Vec3 ab = sub(b, a), ac = sub(c, a), n = cross(ab, ac);
     const double nn = dot(n, n), h = dot(n, sub(p, a));
-    if (!(nn > 0)) return 0;
+    if (!(nn > 1e-12 * dot(ab, ab) * dot(ac, ac))) return 0;
     d2 = std::min(d2, h * h / nn);
   }
   return d2;
