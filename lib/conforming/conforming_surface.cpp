@@ -16,6 +16,11 @@ const char* const kStepName[kSteps] = {"seed",        "vor_edge", "topo_disk",  
                                        "voxel_side",  "certificate", "cell",     "cell_facet", "off_surface"};
 static_assert(kSteps == std::tuple_size<decltype(ConformingSurface::inserted)>::value, "one count a step");
 
+// The point at t of the segment [a, b].
+static Vec3 on_edge(const Vec3& a, const Vec3& b, double t) {
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
 // Circumradius over shortest edge.
 double radius_edge_ratio(const Vec3& a, const Vec3& b, const Vec3& c) {
   const double ab = dist2(a, b), bc = dist2(b, c), ca = dist2(c, a);
@@ -86,8 +91,14 @@ bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
     ++refused_;
     return false;
   }
-  Vh near = tr_.nearest_vertex(pt(p), c);
-  if (dist2(vec(near->point()), p) < std::max(gap2, 1e-12 * voxel_ * voxel_)) {
+  // Far inside the cell that holds p (rounding aside, which is far less
+  // than the floor) no vertex is within the floor: no search for the
+  // nearest.
+  const double floor2 = std::max(gap2, 1e-12 * voxel_ * voxel_);
+  if (!(lt == Tr::CELL && inner_distance2({vec(c->vertex(0)->point()), vec(c->vertex(1)->point()),
+                                           vec(c->vertex(2)->point()), vec(c->vertex(3)->point())},
+                                          p) > 4 * floor2) &&
+      dist2(vec(tr_.nearest_vertex(pt(p), c)->point()), p) < floor2) {
     ++refused_;
     return false;
   }
@@ -98,6 +109,29 @@ bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
   hint_ = v->cell();
   ++inserted_[step];
   return true;
+}
+
+// v's cells, in incident_cells' order (CGAL's depth-first walk from
+// v->cell(), its marks), without its allocations: the same candidates.
+void Mesher::star(Vh v, std::vector<Ch>& out) {
+  out.clear();
+  const Ch d = v->cell();
+  d->tds_data().mark_in_conflict();
+  out.push_back(d);
+  stack_.assign(1, d);
+  while (!stack_.empty()) {
+    const Ch c = stack_.back();
+    stack_.pop_back();
+    for (int i = 0; i < 4; ++i) {
+      if (c->vertex(i) == v) continue;
+      const Ch n = c->neighbor(i);
+      if (!n->tds_data().is_clear()) continue;
+      n->tds_data().mark_in_conflict();
+      stack_.push_back(n);
+      out.push_back(n);
+    }
+  }
+  for (Ch c : out) c->tds_data().clear();
 }
 
 // The two voxels of a face of K(X), and lambda's change between their centres.
@@ -173,77 +207,99 @@ void Mesher::walk_facets() {
   pending_.erase(std::unique(pending_.begin() + older, pending_.end()), pending_.end());
   const unsigned threads = implicit_detail::resolve_threads(o_.threads);
   implicit_detail::parallel_for(long(pending_.size()), threads, [&](long lo, long hi, unsigned) {
-    for (long j = lo; j < hi; ++j) known(pending_[std::size_t(j)]);
-  });
-  walk_changes_.resize(threads);
-  implicit_detail::parallel_for(long(walks_.size()), threads, [&](long lo, long hi, unsigned t) {
-    std::vector<LabelFunction::Change>& ch = walk_changes_[t];
     for (long j = lo; j < hi; ++j) {
+      // As the walks below: the cell eight ahead, its vertices four ahead.
+      if (j + 8 < hi) prefetch_cell(pending_[std::size_t(j + 8)]);
+      if (j + 4 < hi)
+        for (int q = 0; q < 4; ++q) __builtin_prefetch(&*pending_[std::size_t(j + 4)]->vertex(q));
+      known(pending_[std::size_t(j)]);
+    }
+  });
+  walk_brackets_.resize(threads);
+  implicit_detail::parallel_for(long(walks_.size()), threads, [&](long lo, long hi, unsigned t) {
+    std::vector<LabelFunction::Bracket>& br = walk_brackets_[t];
+    for (long j = lo; j < hi; ++j) {
+      // The cells and vertices of walks ahead fetched while this one walks
+      // (their first reads, misses, were a sixth of the walks' time): the
+      // cell eight ahead, then four ahead its neighbour and the facet's
+      // vertices (the corner test).
+      if (j + 8 < hi) prefetch_cell(walks_[std::size_t(j + 8)].c);
+      if (j + 4 < hi) {
+        const FacetWalk& a = walks_[std::size_t(j + 4)];
+        prefetch_cell(a.c->neighbor(a.i));
+        for (int q = 1; q < 4; ++q) __builtin_prefetch(&*a.c->vertex((a.i + q) & 3));
+      }
       FacetWalk& w = walks_[std::size_t(j)];
-      w.changes = 0;
+      w.step = kSteps;
       Ch c = w.c, n = c->neighbor(w.i);
       if (tr_.is_infinite(c) || tr_.is_infinite(n)) continue;
       bool corner = false;  // a bounding-box corner: outside, in 0
       for (int q = 1; q < 4; ++q) corner = corner || c->vertex((w.i + q) & 3)->info() < 0;
       if (corner) continue;
       const std::int32_t ends[2] = {c->info().label, n->info().label};
-      f_.changes(c->info().centre, n->info().centre, ch, o_.step, 0, ends);
-      w.changes = ch.size();
-      if (!ch.empty()) w.first = ch.front().t, w.last = ch.back().t;
+      const Vec3 &a = c->info().centre, &b = n->info().centre;
+      f_.brackets(a, b, br, o_.step, 0, ends);
+      if (br.empty()) continue;
+      if (br.size() >= 2 || ends[0] == ends[1]) {
+        w.step = kVorEdge;
+        w.first = f_.place(a, b, br.front()), w.last = f_.place(a, b, br.back());
+        continue;
+      }
+      // One change: placed (the bisection) only when the facet needs its
+      // surface centre wherever between the two samples it lies.
+      w.step = facet_step(c, w.i, on_edge(a, b, br[0].t0), on_edge(a, b, br[0].t1));
+      if (w.step == kSteps) continue;
+      w.first = w.last = f_.place(a, b, br[0]);
+      if (w.step == kDistance) w.step = facet_step(c, w.i, on_edge(a, b, w.first), on_edge(a, b, w.first));
     }
   });
   for (const FacetWalk& w : walks_)
-    if (w.changes > 0) check_facet(w);
+    if (w.step != kSteps) check_facet(w);
 }
 
-// VorEdge, QUALITY and the distance bound on a facet whose Voronoi edge
-// lambda changes along.
+// What a restricted facet (c, i) whose Voronoi edge lambda changes along
+// once needs, its surface centre given as x0 = x1, or as two points of the
+// edge that it lies between (each coordinate of on_edge() is monotone in
+// t): kOffSurface, kQuality, kDistance (the bound fails somewhere between
+// them), kSteps (nothing, anywhere between them).
+int Mesher::facet_step(Ch c, int i, const Vec3& x0, const Vec3& x1) const {
+  const auto v = facet_vertices(c, i);
+  // A vertex off the interfaces (a cell's circumcentre, seg2tet): the
+  // facet's surface centre goes in, so every surface vertex lies on one.
+  if (!on_surface_[std::size_t(v[0]->info())] || !on_surface_[std::size_t(v[1]->info())] ||
+      !on_surface_[std::size_t(v[2]->info())])
+    return kOffSurface;
+  const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
+  if (radius_edge_ratio(p0, p1, p2) > o_.ratio) return kQuality;
+  return beyond_distance(p0, p1, p2, x0, x1, o_.max_distance) ? kDistance : kSteps;
+}
+
+// The candidate of a facet that needs one (walk_facets): VorEdge its
+// change farthest from the facet's first vertex, else its surface centre.
 void Mesher::check_facet(const FacetWalk& w) {
   Ch c = w.c, n = c->neighbor(w.i);
   const Vec3 a = centre(c), b = centre(n);
-  const std::int32_t la = label(c), lb = label(n);
-  const auto v = facet_vertices(c, w.i);
+  const Vec3 p0 = vec(facet_vertices(c, w.i)[0]->point());
   Candidate cand;
   cand.cell = c, cand.facet = w.i;
   cand.cells = {c->info().uid, n->info().uid};
-  const Vec3 p0 = vec(v[0]->point()), p1 = vec(v[1]->point()), p2 = vec(v[2]->point());
-  auto at = [&](double t) { return Vec3{a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])}; };
-  if (w.changes >= 2 || la == lb) {
-    const Vec3 first = at(w.first), last = at(w.last);
+  cand.step = w.step;
+  if (w.step == kVorEdge) {
+    const Vec3 first = on_edge(a, b, w.first), last = on_edge(a, b, w.last);
     cand.x = dist2(first, p0) >= dist2(last, p0) ? first : last;
-    cand.step = kVorEdge;
     cand.priority = dist2(cand.x, p0);
     topology_.push_back(cand);
     return;
   }
-  cand.x = at(w.first);
+  cand.x = on_edge(a, b, w.first);
   cand.priority = dist2(cand.x, p0);
-  // A vertex off the interfaces (a cell's circumcentre, seg2tet): the
-  // facet's surface centre goes in, so every surface vertex lies on one.
-  if (!on_surface_[std::size_t(v[0]->info())] || !on_surface_[std::size_t(v[1]->info())] ||
-      !on_surface_[std::size_t(v[2]->info())]) {
-    cand.step = kOffSurface;
-    quality_.push_back(cand);
-    return;
-  }
-  if (radius_edge_ratio(p0, p1, p2) > o_.ratio) {
-    cand.step = kQuality;
-    quality_.push_back(cand);
-    return;
-  }
-  const Vec3 nrm = cross(sub(p1, p0), sub(p2, p0));
-  const double nn = dot(nrm, nrm), h = dot(nrm, sub(cand.x, p0));
-  if (nn > 0 && h * h > o_.max_distance * o_.max_distance * nn) {
-    cand.step = kDistance;
-    quality_.push_back(cand);
-  }
+  quality_.push_back(cand);
 }
 
 // TopoDisk per label at v: for each label around v (not all one), the
 // facets between its cells and the others' form one cycle in v's link.
 void Mesher::check_vertex(Vh v) {
-  cells_.clear();
-  tr_.incident_cells(v, std::back_inserter(cells_));
+  star(v, cells_);
   std::int32_t first = label(cells_[0]);
   bool one = true;
   for (Ch c : cells_) one = one && label(c) == first;
@@ -272,12 +328,12 @@ void Mesher::check_vertex(Vh v) {
     // facets one fan: a patch that comes back to v after other patches
     // is two fans there (the mesh's patch pinched or split where K(X)'s
     // is not, on a tiny patch: the curves sampled too coarsely).
+    const bool cycle = one_cycle(link_, at_);
+    // Two labels: one pair, so one fan (split_pair has nothing to find);
+    // the other label's facets around v are these.
+    if (cycle && labels_.size() == 2) return;
     std::int32_t pair = kUnknown;
-    if (one_cycle(link_, at_) && (pair = split_pair(link_, other_, at_, seq_)) == kUnknown) {
-      // Two labels: the other's facets around v are these.
-      if (labels_.size() == 2) return;
-      continue;
-    }
+    if (cycle && (pair = split_pair(link_, other_, at_, seq_)) == kUnknown) continue;
     // The surface centre of v's largest restricted facet with l on a side
     // (of the pair l|pair when that is what failed).
     Candidate best;
@@ -374,9 +430,32 @@ bool Mesher::current(const Candidate& c, Ch& cell) {
   if (!tr_.tds().cells().is_used(c.cell) || c.cell->info().uid != c.cells[0] ||
       c.cell->neighbor(c.facet)->info().uid != c.cells[1])
     return false;
-  const auto v = facet_vertices(c.cell, c.facet);
-  int i, j, k;
-  return tr_.is_facet(v[0], v[1], v[2], cell, i, j, k);
+  // is_facet(v[0], v[1], v[2])'s cell: the first of the two that v[0]'s
+  // incident cells (their walk, star's) reach, the walk stopped there.
+  const Vh v0 = facet_vertices(c.cell, c.facet)[0];
+  const Ch n = c.cell->neighbor(c.facet), d = v0->cell();
+  cell = d == c.cell || d == n ? d : Ch();
+  d->tds_data().mark_in_conflict();
+  cells_.assign(1, d);
+  stack_.assign(1, d);
+  while (cell == Ch()) {
+    const Ch top = stack_.back();
+    stack_.pop_back();
+    for (int i = 0; i < 4; ++i) {
+      if (top->vertex(i) == v0) continue;
+      const Ch f = top->neighbor(i);
+      if (!f->tds_data().is_clear()) continue;
+      f->tds_data().mark_in_conflict();
+      stack_.push_back(f);
+      cells_.push_back(f);
+      if (f == c.cell || f == n) {
+        cell = f;
+        break;
+      }
+    }
+  }
+  for (Ch x : cells_) x->tds_data().clear();
+  return true;
 }
 
 bool Mesher::insert_all(std::vector<Candidate>& cands) {
@@ -410,8 +489,7 @@ void Mesher::refine() {
       for (auto c = tr_.all_cells_begin(); c != tr_.all_cells_end(); ++c) take(c);
     } else {
       for (Vh v : new_vertices_) {
-        cells_.clear();
-        tr_.incident_cells(v, std::back_inserter(cells_));
+        star(v, cells_);
         for (Ch c : cells_) take(c);
       }
     }
@@ -423,7 +501,7 @@ void Mesher::refine() {
       for (int i = 0; i < 4; ++i) {
         Ch n = c->neighbor(i);
         if (is_fresh(n) && n->info().uid < c->info().uid) continue;
-        walks_.push_back({c, i, 0, 0, 0});
+        walks_.push_back({c, i, kSteps, 0, 0});
       }
       for (int i = 0; i < 4; ++i) {
         const int id = c->vertex(i)->info();

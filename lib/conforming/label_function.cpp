@@ -441,9 +441,8 @@ double LabelFunction::bisect(const Vec3& a, const Vec3& d, double t0, double t1,
   return 0.5 * (t0 + t1);
 }
 
-void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& out, double step,
-                            std::size_t max_changes, const std::int32_t* ends) const {
-  out.clear();
+template <class Found>
+void LabelFunction::walk(const Vec3& a, const Vec3& b, double step, const std::int32_t* ends, Found found) const {
   const Vec3 d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const Vec3 qa = grid_.continuous_index(a), qb = grid_.continuous_index(b);
   const Vec3 dq{qb[0] - qa[0], qb[1] - qa[1], qb[2] - qa[2]};
@@ -477,14 +476,14 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
   double tprev = 0;
   Seen seen_prev, seen;  // the f values read at tprev, and at the sample being visited
   auto visit = [&](double t, std::int32_t l, const Seen& s) {
+    bool more = true;
     if (l != prev) {
-      const double tc = bisect(a, d, tprev, t, prev, l, seen_prev, s);
-      out.push_back({tc, prev, l});
+      more = found(Bracket{tprev, t, prev, l, seen_prev, s});
       prev = l;
     }
     tprev = t;
     seen_prev = s;
-    return max_changes == 0 || out.size() < max_changes;
+    return more;
   };
   if (t0 <= t1) {
     double t = t0;
@@ -518,6 +517,29 @@ void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& o
     }
   }
   visit(1, ends ? ends[1] : label(b), Seen());
+}
+
+void LabelFunction::brackets(const Vec3& a, const Vec3& b, std::vector<Bracket>& out, double step,
+                             std::size_t max_changes, const std::int32_t* ends) const {
+  out.clear();
+  walk(a, b, step, ends, [&](const Bracket& c) {
+    out.push_back(c);
+    return max_changes == 0 || out.size() < max_changes;
+  });
+}
+
+double LabelFunction::place(const Vec3& a, const Vec3& b, const Bracket& c) const {
+  const Vec3 d{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+  return bisect(a, d, c.t0, c.t1, c.before, c.after, c.s0, c.s1);
+}
+
+void LabelFunction::changes(const Vec3& a, const Vec3& b, std::vector<Change>& out, double step,
+                            std::size_t max_changes, const std::int32_t* ends) const {
+  out.clear();
+  walk(a, b, step, ends, [&](const Bracket& c) {
+    out.push_back({place(a, b, c), c.before, c.after});
+    return max_changes == 0 || out.size() < max_changes;
+  });
 }
 
 bool LabelFunction::first_change(const Vec3& a, const Vec3& b, Vec3& x, double step) const {

@@ -97,14 +97,6 @@ public:
   bool first_change(const Vec3& a, const Vec3& b, Vec3& x, double step = 0.25) const;
 
 private:
-  struct Function;
-  std::size_t index_of(std::int32_t label) const;
-  bool pure_cube(const Vec3& q, std::int32_t& label) const;
-  // f of up to two labels (indices) at a point, read already (NaN: not).
-  struct Known {
-    std::size_t k[2];
-    double v[2];
-  };
   // The f values label_at read at a walk's sample (up to four; n = 0: none
   // read there), for the bisection that starts or ends at it.
   struct Seen {
@@ -117,6 +109,32 @@ private:
       return false;
     }
   };
+
+public:
+  // A change of lambda as the walk finds it, not yet placed: lambda is
+  // `before` at the sample t0 and `after` at the next one, t1. place()
+  // gives its t, the very t changes() gives (bisect's inputs kept), in
+  // [t0, t1]: a caller that needs only where the change may be skips the
+  // bisection.
+  struct Bracket {
+    double t0 = 0, t1 = 0;
+    std::int32_t before = 0, after = 0;
+    Seen s0, s1;  // the f values read at t0 and t1
+  };
+  // changes(), each change left as its bracket.
+  void brackets(const Vec3& a, const Vec3& b, std::vector<Bracket>& out, double step = 0.25,
+                std::size_t max_changes = 0, const std::int32_t* ends = nullptr) const;
+  double place(const Vec3& a, const Vec3& b, const Bracket& c) const;
+
+private:
+  struct Function;
+  std::size_t index_of(std::int32_t label) const;
+  bool pure_cube(const Vec3& q, std::int32_t& label) const;
+  // f of up to two labels (indices) at a point, read already (NaN: not).
+  struct Known {
+    std::size_t k[2];
+    double v[2];
+  };
   // q: p's continuous index; known: f values at p to use, not read again;
   // seen: where to keep those read.
   // margin: where given, a bound m >= 0 such that lambda is the label
@@ -127,6 +145,10 @@ private:
   // q (a continuous index) in the box of voxel centres, where lambda is
   // not 0 by that rule alone.
   bool inside(const Vec3& q) const;
+  // The walk along [a, b] (changes()'s), each change's bracket given to
+  // found(bracket), which says whether to go on.
+  template <class Found>
+  void walk(const Vec3& a, const Vec3& b, double step, const std::int32_t* ends, Found found) const;
   // s0, s1: the f values read at t0 and t1.
   double bisect(const Vec3& a, const Vec3& d, double t0, double t1, std::int32_t before, std::int32_t after,
                 const Seen& s0, const Seen& s1) const;

@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <optional>
@@ -57,6 +58,14 @@ constexpr double kTopologyGap = 0.01;
 
 enum Step { kSeed, kVorEdge, kTopoDisk, kPatchFan, kQuality, kDistance, kVoxelSide, kCertificate, kCell, kCellFacet, kOffSurface, kSteps };
 
+// A cell's memory asked for ahead of its use (cells are scattered: a
+// walk over many reads each first from memory).
+inline void prefetch_cell(Ch c) {
+  const char* p = reinterpret_cast<const char*>(&*c);
+  __builtin_prefetch(p);
+  __builtin_prefetch(p + 64);
+  __builtin_prefetch(p + sizeof(*c) - 1);
+}
 inline Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
 inline Point pt(const Vec3& v) { return Point(v[0], v[1], v[2]); }
 inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -65,6 +74,43 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 inline double dist2(const Vec3& a, const Vec3& b) { return dot(sub(a, b), sub(a, b)); }
+
+// For p strictly inside the cell v: the least squared distance from p to
+// the planes of its facets. A ball about p of that radius lies in the
+// cell, so in its circumball, which holds no vertex: no vertex of a
+// Delaunay triangulation is nearer to p. 0 when a facet is nearly a
+// segment (sin of an angle under 1e-6: its plane's rounding unbounded).
+inline double inner_distance2(const std::array<Vec3, 4>& v, const Vec3& p) {
+  double d2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 4; ++i) {
+    const Vec3 &a = v[std::size_t((i + 1) & 3)], &b = v[std::size_t((i + 2) & 3)], &c = v[std::size_t((i + 3) & 3)];
+    const Vec3 ab = sub(b, a), ac = sub(c, a), n = cross(ab, ac);
+    const double nn = dot(n, n), h = dot(n, sub(p, a));
+    if (!(nn > 1e-12 * dot(ab, ab) * dot(ac, ac))) return 0;
+    d2 = std::min(d2, h * h / nn);
+  }
+  return d2;
+}
+
+// The distance bound: a surface centre x farther than e from the plane of
+// the facet (p0, p1, p2), (nrm . (x - p0))^2 > e^2 |nrm|^2 with nrm = (p1 -
+// p0) x (p2 - p0). x0 = x1: at x = x0. Else at some x whose coordinates
+// each lie between x0's and x1's: false only when false at every such x
+// (each rounded term nrm_m (x_m - p0_m) is monotone in x_m, the rounded
+// sums in their terms: h = nrm . (x - p0) lies between its values at two
+// corners, and h * h grows with |h|).
+inline bool beyond_distance(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& x0, const Vec3& x1,
+                            double e) {
+  const Vec3 nrm = cross(sub(p1, p0), sub(p2, p0)), y0 = sub(x0, p0), y1 = sub(x1, p0);
+  Vec3 lo, hi;
+  for (int m = 0; m < 3; ++m) {
+    const bool up = nrm[m] >= 0;
+    lo[m] = up ? std::min(y0[m], y1[m]) : std::max(y0[m], y1[m]);
+    hi[m] = up ? std::max(y0[m], y1[m]) : std::min(y0[m], y1[m]);
+  }
+  const double nn = dot(nrm, nrm), h = std::max(std::fabs(dot(nrm, lo)), std::fabs(dot(nrm, hi)));
+  return nn > 0 && h * h > e * e * nn;
+}
 
 // A point to insert, from a facet (cell, facet: the facet as found, cells:
 // the uids of its two cells then: it is stale once either changed) or a
@@ -110,7 +156,9 @@ private:
     std::sort(v.begin(), v.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
     return v;
   }
+  // p unless within sqrt(gap2) (at least 1e-6 voxel) of a vertex.
   bool insert(const Vec3& p, int step, Ch start = Ch(), double gap2 = 0);
+  void star(Vh v, std::vector<Ch>& out);
   bool surface_centre(Ch c, int i, Vec3& x);
 
   // The surface stage (conforming_surface.cpp).
@@ -121,15 +169,18 @@ private:
   void release_lists();
   bool keep_lists_ = false;  // seg2tet's cell rounds: REFINE's lists kept for the next
   bool is_fresh(Ch c) const { return c->info().uid >= fresh_first_; }
-  // A facet of the pass and lambda's changes along its Voronoi edge: how
-  // many (0 also for a facet not walked), the first's and the last's t.
+  // A facet of the pass, what it needs (kVorEdge, kOffSurface, kQuality,
+  // kDistance; kSteps: nothing, also for a facet not walked) and the t of
+  // lambda's first and last change along its Voronoi edge (where it needs
+  // them).
   struct FacetWalk {
     Ch c;
     int i;
-    std::size_t changes;
+    int step;
     double first, last;
   };
   void walk_facets();
+  int facet_step(Ch c, int i, const Vec3& x0, const Vec3& x1) const;
   void check_facet(const FacetWalk& w);
   void check_vertex(Vh v);
   static bool one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at);
@@ -175,9 +226,9 @@ private:
   std::size_t places_ = std::size_t(-1);  // the last certificate's failing places
   bool max_hit_ = false;
   std::uint32_t uid_ = 0, fresh_first_ = 0;
-  std::vector<Ch> fresh_, cells_, pending_;
+  std::vector<Ch> fresh_, cells_, pending_, stack_;
   std::vector<FacetWalk> walks_;
-  std::vector<std::vector<LabelFunction::Change>> walk_changes_;  // per thread
+  std::vector<std::vector<LabelFunction::Bracket>> walk_brackets_;  // per thread
   std::vector<Vh> new_vertices_;
   std::vector<std::pair<int, Vh>> touched_;  // (id, vertex), each once
   std::vector<char> touched_mark_;           // per vertex id: in touched_

@@ -5,6 +5,7 @@
 // triangles within the ratio bound.
 #include "conforming/conforming_surface.hpp"
 #include "conforming/label_function.hpp"
+#include "conforming/mesher.hpp"
 #include "label_maps.hpp"
 #include "mesh/triangle_quality.hpp"
 #include "surfacenets/interface_certificate.hpp"
@@ -292,4 +293,106 @@ TEST_CASE("the certificate's rounds put no two vertices a hair apart", "[conform
     INFO("shortest edge " << shortest);
     CHECK(shortest > 0.01);
   }
+}
+
+// The distance bound decided on a bracket (walk_facets: the change not
+// placed): beyond_distance on the box of x0 and x1 false only when false at
+// every point of the box. Random facets and boxes, the bound a few ulps
+// around the largest distance at a corner, so that the decisions are close;
+// the box's corners and points inside.
+TEST_CASE("the distance bound on a bracket holds wherever in it the point is", "[conforming]") {
+  using namespace conforming_detail;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1), s(0, 1);
+  std::size_t settled = 0, refused = 0;
+  for (int n = 0; n < 20000; ++n) {
+    Vec3 p[3], x0, x1;
+    for (auto& q : p)
+      for (int m = 0; m < 3; ++m) q[m] = 10 + u(rng);
+    for (int m = 0; m < 3; ++m) x0[m] = 10 + u(rng), x1[m] = x0[m] + 0.3 * u(rng);
+    auto inside = [&](int corner) {  // corner 0..7 of the box, else a point in it
+      Vec3 x;
+      for (int m = 0; m < 3; ++m) {
+        const double w = corner >= 0 ? double(corner >> m & 1) : s(rng);
+        x[m] = w == 0 ? x0[m] : w == 1 ? x1[m] : x0[m] + w * (x1[m] - x0[m]);
+      }
+      return x;
+    };
+    const Vec3 nrm = cross(sub(p[1], p[0]), sub(p[2], p[0]));
+    const double nn = dot(nrm, nrm);
+    double e = 0;
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 y = inside(c);
+      const double h = dot(nrm, sub(y, p[0]));
+      // At a point: the bound's own formula.
+      CHECK(beyond_distance(p[0], p[1], p[2], y, y, 0.1) == (h * h > 0.1 * 0.1 * nn));
+      e = std::max(e, std::fabs(h) / std::sqrt(nn));
+    }
+    e *= 1 + 1e-15 * double(n % 7 - 3);
+    if (beyond_distance(p[0], p[1], p[2], x0, x1, e)) {
+      ++refused;
+      continue;
+    }
+    ++settled;
+    for (int c = -8; c < 8; ++c) {
+      const Vec3 x = inside(c < 0 ? -1 : c);
+      REQUIRE_FALSE(beyond_distance(p[0], p[1], p[2], x, x, e));
+    }
+  }
+  CHECK(settled > 5000);
+  CHECK(refused > 5000);
+}
+
+// insert()'s floor without the nearest-vertex search: inner_distance2 is
+// the squared radius of the largest ball about p inside the cell (so none
+// of its vertices is nearer): points a hair inside that radius, in every
+// direction, are inside the cell, one a hair beyond it, towards the
+// nearest facet's plane, is not. Random cells, flat ones among them.
+TEST_CASE("the ball of inner_distance2 lies in the cell", "[conforming]") {
+  using namespace conforming_detail;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1), s(0, 1);
+  auto inside = [](const std::array<Vec3, 4>& v, const Vec3& q) {  // all four facets see q on v's side
+    for (int i = 0; i < 4; ++i) {
+      const Vec3 &a = v[std::size_t((i + 1) & 3)], &b = v[std::size_t((i + 2) & 3)], &c = v[std::size_t((i + 3) & 3)];
+      const Vec3 n = cross(sub(b, a), sub(c, a));
+      if (dot(n, sub(q, a)) * dot(n, sub(v[std::size_t(i)], a)) <= 0) return false;
+    }
+    return true;
+  };
+  std::size_t beyond = 0;
+  for (int n = 0; n < 3000; ++n) {
+    std::array<Vec3, 4> v;
+    for (auto& q : v)
+      for (int m = 0; m < 3; ++m) q[m] = 50 + u(rng);
+    if (n % 3 == 0) v[3][2] = 50 + 1e-3 * u(rng), v[0][2] = v[1][2] = v[2][2] = 50;  // nearly flat
+    double w[4], sum = 0;
+    for (double& x : w) sum += x = s(rng) + 1e-3;
+    Vec3 p{0, 0, 0};
+    for (int i = 0; i < 4; ++i)
+      for (int m = 0; m < 3; ++m) p[m] += w[i] / sum * v[std::size_t(i)][m];
+    const double d2 = inner_distance2(v, p), r = std::sqrt(d2);
+    REQUIRE(d2 > 0);
+    for (const Vec3& q : v) REQUIRE(dist2(q, p) >= d2);
+    for (int k = 0; k < 20; ++k) {
+      Vec3 dir{u(rng), u(rng), u(rng)};
+      const double len = std::sqrt(dot(dir, dir));
+      Vec3 q;
+      for (int m = 0; m < 3; ++m) q[m] = p[m] + (1 - 1e-6) * r * dir[m] / len;
+      REQUIRE(inside(v, q));
+    }
+    // Towards the nearest facet's plane, a hair beyond: outside.
+    for (int i = 0; i < 4; ++i) {
+      const Vec3 &a = v[std::size_t((i + 1) & 3)], &b = v[std::size_t((i + 2) & 3)], &c = v[std::size_t((i + 3) & 3)];
+      const Vec3 nrm = cross(sub(b, a), sub(c, a));
+      const double h = dot(nrm, sub(p, a)), nn = dot(nrm, nrm);
+      if (h * h / nn > d2 * (1 + 1e-9)) continue;
+      Vec3 q;
+      for (int m = 0; m < 3; ++m) q[m] = p[m] - (1 + 1e-6) * r * (h > 0 ? 1 : -1) * nrm[m] / std::sqrt(nn);
+      CHECK_FALSE(inside(v, q));
+      ++beyond;
+      break;
+    }
+  }
+  CHECK(beyond == 3000);
 }

@@ -169,6 +169,9 @@ TEST_CASE("lambda at random points is its definition from the labels' f", "[conf
 // label, nearly always its `after` (else a third label lies between, closer
 // than the walk's step). Random segments through interfaces of noisy,
 // anisotropic maps: overlaps, gaps, ties on the voxel faces, three labels.
+// brackets() gives the same changes unplaced, each between its two
+// samples, and place() each one's t, bit for bit (the mesher decides on
+// the bracket where that suffices).
 TEST_CASE("lambda's changes are placed within 1e-4 voxel", "[conforming]") {
   std::mt19937_64 rng(5);
   std::size_t changes = 0, afters = 0, segments = 0;
@@ -177,6 +180,7 @@ TEST_CASE("lambda's changes are placed within 1e-4 voxel", "[conforming]") {
     const LabelFunction f(x, 0.3 * 0.8);
     std::uniform_real_distribution<double> u(0, 1);
     std::vector<LabelFunction::Change> ch;
+    std::vector<LabelFunction::Bracket> br;
     for (int n = 0; n < 1500; ++n) {
       // Half the segments from a voxel centre to a face neighbour's (the
       // seeds' and VoxelSides' walks), half between random points.
@@ -194,6 +198,19 @@ TEST_CASE("lambda's changes are placed within 1e-4 voxel", "[conforming]") {
         b = x.world(c[0] + 3 * u(rng) - 1.5, c[1] + 3 * u(rng) - 1.5, c[2] + 3 * u(rng) - 1.5);
       }
       f.changes(a, b, ch);
+      f.brackets(a, b, br);
+      REQUIRE(br.size() == ch.size());
+      for (std::size_t k = 0; k < ch.size(); ++k) {
+        CHECK(br[k].before == ch[k].before);
+        CHECK(br[k].after == ch[k].after);
+        REQUIRE(br[k].t0 < br[k].t1);
+        REQUIRE(br[k].t0 <= ch[k].t);
+        REQUIRE(ch[k].t <= br[k].t1);
+        REQUIRE(f.place(a, b, br[k]) == ch[k].t);
+        // The samples' labels: no change between them is missed.
+        CHECK(f.label(along(a, b, br[k].t0)) == br[k].before);
+        CHECK(f.label(along(a, b, br[k].t1)) == br[k].after);
+      }
       ++segments;
       const double dt = 0.5e-4 / voxels(a, b, 0.8);
       auto at = [&](double t) { return along(a, b, t); };
