@@ -112,14 +112,16 @@ bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
 }
 
 // v's cells, in incident_cells' order (CGAL's depth-first walk from
-// v->cell(), its marks), without its allocations: the same candidates.
-void Mesher::star(Vh v, std::vector<Ch>& out) {
+// v->cell(), its marks), without its allocations: the same candidates;
+// the walk stops at the first of stop_a, stop_b it reaches, returned.
+Ch Mesher::star(Vh v, std::vector<Ch>& out, Ch stop_a, Ch stop_b) {
   out.clear();
   const Ch d = v->cell();
   d->tds_data().mark_in_conflict();
   out.push_back(d);
   stack_.assign(1, d);
-  while (!stack_.empty()) {
+  Ch stopped = d == stop_a || d == stop_b ? d : Ch();
+  while (stopped == Ch() && !stack_.empty()) {
     const Ch c = stack_.back();
     stack_.pop_back();
     for (int i = 0; i < 4; ++i) {
@@ -129,9 +131,14 @@ void Mesher::star(Vh v, std::vector<Ch>& out) {
       n->tds_data().mark_in_conflict();
       stack_.push_back(n);
       out.push_back(n);
+      if (n == stop_a || n == stop_b) {
+        stopped = n;
+        break;
+      }
     }
   }
   for (Ch c : out) c->tds_data().clear();
+  return stopped;
 }
 
 // The two voxels of a face of K(X), and lambda's change between their centres.
@@ -432,29 +439,7 @@ bool Mesher::current(const Candidate& c, Ch& cell) {
     return false;
   // is_facet(v[0], v[1], v[2])'s cell: the first of the two that v[0]'s
   // incident cells (their walk, star's) reach, the walk stopped there.
-  const Vh v0 = facet_vertices(c.cell, c.facet)[0];
-  const Ch n = c.cell->neighbor(c.facet), d = v0->cell();
-  cell = d == c.cell || d == n ? d : Ch();
-  d->tds_data().mark_in_conflict();
-  cells_.assign(1, d);
-  stack_.assign(1, d);
-  while (cell == Ch()) {
-    const Ch top = stack_.back();
-    stack_.pop_back();
-    for (int i = 0; i < 4; ++i) {
-      if (top->vertex(i) == v0) continue;
-      const Ch f = top->neighbor(i);
-      if (!f->tds_data().is_clear()) continue;
-      f->tds_data().mark_in_conflict();
-      stack_.push_back(f);
-      cells_.push_back(f);
-      if (f == c.cell || f == n) {
-        cell = f;
-        break;
-      }
-    }
-  }
-  for (Ch x : cells_) x->tds_data().clear();
+  cell = star(facet_vertices(c.cell, c.facet)[0], cells_, c.cell, c.cell->neighbor(c.facet));
   return true;
 }
 
