@@ -240,11 +240,9 @@ std::int32_t LabelFunction::label(const Vec3& p) const { return label_at(p, grid
 std::int32_t LabelFunction::label_at(const Vec3& p, const Vec3& q, const Known* known, Seen* seen,
                                      double* margin) const {
   if (margin) *margin = 0;
+  if (!inside(q)) return 0;
   std::size_t c[3];
-  for (int i = 0; i < 3; ++i) {
-    if (!(q[i] >= 0 && q[i] <= double(grid_.size[i] - 1))) return 0;
-    c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
-  }
+  for (int i = 0; i < 3; ++i) c[i] = std::min(std::size_t(q[i]), grid_.size[i] - (grid_.size[i] > 1 ? 2 : 1));
   // The voxels every f reads at p: per axis the cube's two and, within a
   // quarter voxel of a plane (where two cells may blend: d <= delta / 5),
   // the one beyond it. A label none of them carries has f > 0 at p, by the
