@@ -150,11 +150,11 @@ int main(int argc, char** argv) {
     if (tool.progress()) opt.progress = [&](const std::string& msg) { tool.report_progress(msg); };
 
     tool.report_progress("reading " + in);
-    const NarrowLabelImage image = read_labels_narrow(in, &opt.names);  // held throughout: 1 or 2 bytes a voxel
+    NarrowLabelImage image = read_labels_narrow(in, &opt.names);  // 1 or 2 bytes a voxel, until the last crop
     opt.mesher = surface_options.resolve(image.geometry().spacing);
     opt.mesher.seed = tool.seed();
-    const LabelSurfacesResult res =
-        naming_input(in, [&] { return image.visit([&](const auto& im) { return mesh_label_surfaces(im, opt); }); });
+    const LabelSurfacesResult res = naming_input(
+        in, [&] { return image.visit([&](auto& im) { return mesh_label_surfaces(std::move(im), opt); }); });
     write_surface(out, res.mesh, write_opt);
 
     tool.stats["input"] = in;

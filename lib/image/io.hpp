@@ -63,6 +63,7 @@ struct NarrowLabelImage {
   const Geometry& geometry() const { return bytes == 1 ? u8.geometry() : bytes == 2 ? u16.geometry() : i32.geometry(); }
   // f(the image that holds the voxels); f returns the same type for each.
   template <class F> auto visit(F&& f) const { return bytes == 1 ? f(u8) : bytes == 2 ? f(u16) : f(i32); }
+  template <class F> auto visit(F&& f) { return bytes == 1 ? f(u8) : bytes == 2 ? f(u16) : f(i32); }
 };
 // read_labels' values (and its errors), so held.
 NarrowLabelImage read_labels_narrow(const std::string& path, LabelNames* names = nullptr);

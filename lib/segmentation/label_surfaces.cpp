@@ -2,7 +2,8 @@
 // box first (the longest runs start early, so the pool ends together), each
 // running the three chapters' library calls on its own crop of the label
 // image (its box plus a margin, crop.hpp); nothing is shared between labels
-// but the read-only label image.
+// but the read-only label image, whose voxels are let go once the last
+// label's crop is made (the meshers' peak does not hold the scan).
 #include "segmentation/label_surfaces.hpp"
 
 #include "implicit/crop.hpp"
@@ -15,6 +16,7 @@
 #include <atomic>
 #include <chrono>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <numeric>
 #include <set>
@@ -30,7 +32,7 @@ namespace {
 // clamped blocks: f is built from g a band at a time, implicit_in_scan).
 template <class T>
 LabelSurface mesh_one_label(const Image<T>& image, long long label, std::size_t voxels, const VoxelBox& box,
-                            const LabelSurfacesOptions& opt, int threads) {
+                            const LabelSurfacesOptions& opt, int threads, const std::function<void()>& crop_made) {
   const auto t0 = std::chrono::steady_clock::now();
   LabelSurface out;
   out.label = label;
@@ -39,13 +41,19 @@ LabelSurface mesh_one_label(const Image<T>& image, long long label, std::size_t 
   WellComposedOptions wco;
   wco.mode = opt.mode;
   wco.seed = opt.mesher.seed;
-  WellComposedCrop wc = well_composed_crop(
-      image, box,
-      [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
-        const T* v = &image(x0, y, z);
-        for (std::size_t i = 0; i < n; ++i) row[i] = v[i] == label;
-      },
-      wco);
+  WellComposedCrop wc = [&] {
+    struct Made {  // whether the crop is made or its making threw
+      const std::function<void()>& f;
+      ~Made() { f(); }
+    } made{crop_made};
+    return well_composed_crop(
+        image, box,
+        [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
+          const T* v = &image(x0, y, z);
+          for (std::size_t i = 0; i < n; ++i) row[i] = v[i] == label;
+        },
+        wco);
+  }();
   out.changed = wc.result.changed;
   out.crop = wc.result.image.size;
   out.well_composed_failure = wc.result.failed_guarantee();
@@ -119,7 +127,7 @@ template <class T> std::vector<long long> chosen_labels(const Image<T>& image, c
   return labels;
 }
 
-template <class T> LabelSurfacesResult mesh_label_surfaces(const Image<T>& image, const LabelSurfacesOptions& opt) {
+template <class T> LabelSurfacesResult mesh_label_surfaces(Image<T> image, const LabelSurfacesOptions& opt) {
   const std::vector<long long> labels = chosen_labels(image, opt.labels);
   std::vector<std::size_t> voxels;
   std::vector<VoxelBox> boxes;
@@ -141,8 +149,16 @@ template <class T> LabelSurfacesResult mesh_label_surfaces(const Image<T>& image
   const int threads = std::max(1, opt.threads / res.jobs);
   res.labels.resize(labels.size());
   std::vector<std::exception_ptr> errors(labels.size());
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> next{0}, cropped{0};
   std::mutex progress_mutex;
+  // Called by each label once its crop is made (or its making failed): the
+  // last one lets the voxels go, no thread reading them any more.
+  const auto crop_made = [&] {
+    if (++cropped == labels.size()) {
+      std::vector<T>().swap(image.data);
+      release_free_memory();
+    }
+  };
   auto worker = [&] {
     for (std::size_t k; (k = next++) < order.size();) {
       const std::size_t i = order[k];
@@ -152,7 +168,7 @@ template <class T> LabelSurfacesResult mesh_label_surfaces(const Image<T>& image
                      std::to_string(labels.size()) + ")");
       }
       try {
-        res.labels[i] = mesh_one_label(image, labels[i], voxels[i], boxes[i], opt, threads);
+        res.labels[i] = mesh_one_label(image, labels[i], voxels[i], boxes[i], opt, threads, crop_made);
       } catch (...) {
         errors[i] = std::current_exception();
       }
@@ -188,7 +204,7 @@ template <class T> LabelSurfacesResult mesh_label_surfaces(const Image<T>& image
 #define IMGMESH_LABEL_TYPE(T)                                                                             \
   template std::vector<long long> labels_present(const Image<T>&);                                           \
   template std::vector<long long> chosen_labels(const Image<T>&, const std::vector<long long>&);             \
-  template LabelSurfacesResult mesh_label_surfaces(const Image<T>&, const LabelSurfacesOptions&);
+  template LabelSurfacesResult mesh_label_surfaces(Image<T>, const LabelSurfacesOptions&);
 IMGMESH_LABEL_TYPE(std::uint8_t)
 IMGMESH_LABEL_TYPE(std::uint16_t)
 IMGMESH_LABEL_TYPE(std::int32_t)

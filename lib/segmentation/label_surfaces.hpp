@@ -67,7 +67,8 @@ template <class T> std::vector<long long> chosen_labels(const Image<T>& image, c
 
 // Throws Error on a label absent from the image (naming those present), an
 // image without labels, or a 2D image; an Error while meshing a label is
-// thrown again as "label L: ...".
-template <class T> LabelSurfacesResult mesh_label_surfaces(const Image<T>& image, const LabelSurfacesOptions& options);
+// thrown again as "label L: ...". Takes the image (move it in): its voxels
+// are let go once every label's crop is made.
+template <class T> LabelSurfacesResult mesh_label_surfaces(Image<T> image, const LabelSurfacesOptions& options);
 
 } // namespace imgmesh
