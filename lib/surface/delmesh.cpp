@@ -3,6 +3,7 @@
 #include "surface/edge_surface.hpp"
 #include "surface/facet_cycle.hpp"
 #include "surface/seeds.hpp"
+#include "surface/star.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>
@@ -368,7 +369,7 @@ void DelMesh::mark_restricted(Ch c, int i) {
 // An edge's Voronoi facet changed only if both its ends are in the cavity.
 void DelMesh::after_insertion(Vh v) {
   cells_buf_.clear();
-  tr_.incident_cells(v, std::back_inserter(cells_buf_));
+  star_cells(tr_, v, cells_buf_);
   centres_.assign(tr_, cells_buf_);
   const bool missed = cell_misses_surface(v);
   compute_new_cells(v, missed ? v : Vh());

@@ -1,6 +1,7 @@
 #include "surface/handle_detection.hpp"
 
 #include "implicit/parallel.hpp"
+#include "surface/star.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -13,7 +14,7 @@ namespace imgmesh::surface_detail {
 void voronoi_cell(const Tr& tr, Vh p, std::vector<HalfSpace>& hs) {
   thread_local std::vector<Vh> adj;
   adj.clear();
-  tr.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
+  star_vertices_threadsafe(tr, p, adj);
   const Vec3 pp = vec(p->point());
   hs.clear();
   for (Vh w : adj)
@@ -148,7 +149,7 @@ HandleAnswer CellMarch::test(Vec3& q) {
 // V(p), the reach of p's surface Delaunay balls and V(p)'s bounding box.
 void CellMarch::cell(const Tr& tr, Vh p) {
   s.cells.clear();
-  tr.incident_cells_threadsafe(p, std::back_inserter(s.cells));
+  star_cells_threadsafe(tr, p, s.cells);
   for (Ch c : s.cells)
     for (int i = 0; i < 4; ++i)
       if (c->vertex(i) != p && c->facet.restricted(i)) reach2 = std::max(reach2, dist2(facet_center(Facet(c, i)), pp));
@@ -411,7 +412,7 @@ bool CellMarch::far_point(const ClippedComplex& k, Vec3& q) const {
 static bool refinement_point(const Tr& tr, Vh p, Vec3& x) {
   thread_local std::vector<Ch> cells;
   cells.clear();
-  tr.incident_cells_threadsafe(p, std::back_inserter(cells));
+  star_cells_threadsafe(tr, p, cells);
   const Vec3 pp = vec(p->point());
   double best = -1;
   for (Ch c : cells)
