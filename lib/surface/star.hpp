@@ -15,42 +15,42 @@
 
 namespace imgmesh::surface_detail {
 
-// A set of addresses (cells, vertices) for one walk at a time: open
-// addressing, at most a quarter full; clear() forgets only what went in.
-class AddressSet {
+// A set of nonzero keys (addresses of cells and vertices, cube keys + 1)
+// for one walk at a time: open addressing, at most a quarter full;
+// clear() forgets only what went in.
+class KeySet {
 public:
-  // True if p was not in the set.
-  bool insert(const void* p) {
+  // True if key was not in the set.
+  bool insert(std::uint64_t key) {
     if (4 * (used_.size() + 1) > slots_.size()) grow();
-    std::size_t h = slot(p);
-    while (slots_[h] != nullptr) {
-      if (slots_[h] == p) return false;
+    std::size_t h = slot(key);
+    while (slots_[h] != 0) {
+      if (slots_[h] == key) return false;
       h = (h + 1) & (slots_.size() - 1);
     }
-    slots_[h] = p;
+    slots_[h] = key;
     used_.push_back(h);
     return true;
   }
+  bool insert(const void* p) { return insert(std::uint64_t(reinterpret_cast<std::uintptr_t>(p))); }
   void clear() {
-    for (std::size_t h : used_) slots_[h] = nullptr;
+    for (std::size_t h : used_) slots_[h] = 0;
     used_.clear();
   }
 
 private:
-  std::size_t slot(const void* p) const {
-    return std::size_t((std::uint64_t(reinterpret_cast<std::uintptr_t>(p)) * 0x9E3779B97F4A7C15ull) >> shift_);
-  }
+  std::size_t slot(std::uint64_t key) const { return std::size_t((key * 0x9E3779B97F4A7C15ull) >> shift_); }
   void grow() {
-    std::vector<const void*> old;
+    std::vector<std::uint64_t> old;
     old.reserve(used_.size());
     for (std::size_t h : used_) old.push_back(slots_[h]);
-    slots_.assign(slots_.empty() ? 256 : 2 * slots_.size(), nullptr);
+    slots_.assign(slots_.empty() ? 256 : 2 * slots_.size(), 0);
     shift_ = 64;
     for (std::size_t n = slots_.size(); n > 1; n >>= 1) --shift_;
     used_.clear();
-    for (const void* p : old) insert(p);
+    for (std::uint64_t key : old) insert(key);
   }
-  std::vector<const void*> slots_;
+  std::vector<std::uint64_t> slots_;
   std::vector<std::size_t> used_;
   int shift_ = 64;
 };
@@ -90,7 +90,7 @@ inline void star_cells_threadsafe(const Tr& tr, Vh v, std::vector<Ch>& out) {
     tr.incident_cells_threadsafe(v, std::back_inserter(out));
     return;
   }
-  thread_local AddressSet seen;
+  thread_local KeySet seen;
   seen.clear();
   const std::size_t first = out.size();
   out.push_back(v->cell());
@@ -113,7 +113,7 @@ inline void star_vertices_threadsafe(const Tr& tr, Vh v, std::vector<Vh>& out) {
     return;
   }
   thread_local std::vector<Ch> cells;
-  thread_local AddressSet seen;
+  thread_local KeySet seen;
   cells.clear();
   star_cells_threadsafe(tr, v, cells);
   seen.clear();
