@@ -478,7 +478,7 @@ void DelMesh::progress() {
 bool DelMesh::insert_batch(const Candidates& pts, Origin origin) {
   bool any = false;
   for (const auto& [x, clearance2] : pts) {
-    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), walk_start_->cell());
+    Vh nv = nearest_vertex(tr_, Point(x[0], x[1], x[2]), walk_start_->cell());
     if (dist2(x, vec(nv->point())) < clearance2 / 4) {
       ++refused_;
       continue;

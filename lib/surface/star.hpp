@@ -1,6 +1,6 @@
 // The star of a vertex of W: the cells and the vertices around it, listed
-// as CGAL's incident_cells, incident_cells_threadsafe and
-// adjacent_vertices_threadsafe list them, in the same order (restricted
+// as CGAL's incident_cells, incident_cells_threadsafe, adjacent_vertices
+// and adjacent_vertices_threadsafe list them, in the same order (restricted
 // facets' ties and V(p)'s half-spaces, which HandleDetection clips by in
 // turn, follow it), without their heap work: a stack and a vector per call,
 // and in the thread-safe forms a hash-set node per cell and per vertex
@@ -105,23 +105,79 @@ inline void star_cells_threadsafe(const Tr& tr, Vh v, std::vector<Ch>& out) {
   }
 }
 
-// tr.adjacent_vertices_threadsafe(v, out): each vertex of those cells but
-// v (the infinite one too), once, where it first appears.
-inline void star_vertices_threadsafe(const Tr& tr, Vh v, std::vector<Vh>& out) {
-  if (tr.dimension() < 3) {
-    tr.adjacent_vertices_threadsafe(v, std::back_inserter(out));
-    return;
-  }
-  thread_local std::vector<Ch> cells;
+// Each vertex of `cells` but v (the infinite one too), once, where it
+// first appears: CGAL's Vertex_extractor.
+inline void star_vertices_of(Vh v, const std::vector<Ch>& cells, std::vector<Vh>& out) {
   thread_local KeySet seen;
-  cells.clear();
-  star_cells_threadsafe(tr, v, cells);
   seen.clear();
   for (Ch c : cells)
     for (int j = 0; j < 4; ++j) {
       const Vh w = c->vertex(j);
       if (w != v && seen.insert(&*w)) out.push_back(w);
     }
+}
+
+// tr.adjacent_vertices(v, out) (one thread at a time): the vertices
+// marked while listed, not kept in a set.
+inline void star_vertices(const Tr& tr, Vh v, std::vector<Vh>& out) {
+  if (tr.dimension() < 3) {
+    tr.adjacent_vertices(v, std::back_inserter(out));
+    return;
+  }
+  thread_local std::vector<Ch> cells;
+  cells.clear();
+  star_cells(tr, v, cells);
+  const std::size_t first = out.size();
+  for (Ch c : cells)
+    for (int j = 0; j < 4; ++j) {
+      const Vh w = c->vertex(j);
+      if (w == v || w->info().listed) continue;
+      w->info().listed = 1;
+      out.push_back(w);
+    }
+  for (std::size_t k = first; k < out.size(); ++k) out[k]->info().listed = 0;
+}
+
+// tr.adjacent_vertices_threadsafe(v, out).
+inline void star_vertices_threadsafe(const Tr& tr, Vh v, std::vector<Vh>& out) {
+  if (tr.dimension() < 3) {
+    tr.adjacent_vertices_threadsafe(v, std::back_inserter(out));
+    return;
+  }
+  thread_local std::vector<Ch> cells;
+  cells.clear();
+  star_cells_threadsafe(tr, v, cells);
+  star_vertices_of(v, cells, out);
+}
+
+// tr.nearest_vertex(p, start) (one thread at a time): the vertex of p's
+// cell nearest to p, then while one is nearer, the nearest of its
+// neighbours (ties: the vertex held). The walk to p's cell goes in floating
+// point first (as VoxelSides' does); from `start`, as CGAL's, when p is not
+// inside one cell.
+inline Vh nearest_vertex(const Tr& tr, const Point& p, Ch start) {
+  if (tr.dimension() < 3) return tr.nearest_vertex(p, start);
+  Tr::Locate_type lt;
+  int li, lj;
+  Ch c = tr.locate(p, lt, li, lj, tr.inexact_locate(p, start));
+  if (lt != Tr::CELL) c = tr.locate(p, lt, li, lj, start);
+  if (lt == Tr::VERTEX) return c->vertex(li);
+  const auto compare = tr.geom_traits().compare_distance_3_object();
+  const auto nearer = [&](Vh v, Vh w) {  // CGAL's nearest_vertex(p, v, w)
+    if (tr.is_infinite(v)) return w;
+    if (tr.is_infinite(w)) return v;
+    return compare(p, w->point(), v->point()) == CGAL::SMALLER ? w : v;
+  };
+  Vh nearest = nearer(nearer(nearer(c->vertex(0), c->vertex(1)), c->vertex(2)), c->vertex(3));
+  thread_local std::vector<Vh> around;
+  for (;;) {
+    around.clear();
+    star_vertices(tr, nearest, around);
+    Vh next = nearest;
+    for (Vh w : around) next = nearer(next, w);
+    if (next == nearest) return nearest;
+    nearest = next;
+  }
 }
 
 } // namespace imgmesh::surface_detail

@@ -3,6 +3,7 @@
 #include "surface/voxel_side_points.hpp"
 
 #include "mesh/located_cells.hpp"
+#include "surface/star.hpp"
 #include "util/hash.hpp"
 
 #include <algorithm>
@@ -158,7 +159,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     // ball, if that is at least half p's distance to W (DELMESH's usual
     // point, well spaced) and the guard; else the point of S towards the
     // circumcentre.
-    const double d2 = dist2(p, vec(tr.nearest_vertex(pp, bad)->point()));
+    const double d2 = dist2(p, vec(nearest_vertex(tr, pp, bad)->point()));
     const double least = std::max(d2 / 4, guard * guard);
     int best = -1;
     for (int i = 0; i < 4; ++i)
@@ -169,7 +170,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     }
     Vec3 q;
     if (!crossing(f, p, far_end(tr, g, bad, p), q)) return;
-    const Vh nv = tr.nearest_vertex(Point(q[0], q[1], q[2]), bad);
+    const Vh nv = nearest_vertex(tr, Point(q[0], q[1], q[2]), bad);
     const double clearance2 = dist2(q, vec(nv->point()));
     if (clearance2 < guard * guard) ++refused;
     else pts.emplace_back(q, clearance2);

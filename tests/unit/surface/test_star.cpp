@@ -1,7 +1,7 @@
 // A vertex's star (star.hpp) against CGAL's own walks: the same cells and
 // vertices in the same order, on every vertex of a triangulation with
 // small stars and large ones (a point inside a sphere of points, and the
-// infinite vertex: the address sets grow).
+// infinite vertex: the address sets grow); the nearest vertex as CGAL's.
 #include "surface/star.hpp"
 
 #include <catch2/catch.hpp>
@@ -44,8 +44,24 @@ TEST_CASE("star: the cells and vertices around each vertex, in CGAL's order") {
     tr.adjacent_vertices_threadsafe(v, std::back_inserter(cgal_v));
     star_vertices_threadsafe(tr, v, ours_v);
     REQUIRE(ours_v == cgal_v);
+    cgal_v.clear(), ours_v.clear();
+    tr.adjacent_vertices(v, std::back_inserter(cgal_v));
+    star_vertices(tr, v, ours_v);
+    REQUIRE(ours_v == cgal_v);
   }
   CHECK(largest > 256);
+  // nearest_vertex: random points, grid points (on facets and edges of
+  // cells: ties) and the vertices themselves, from every fiftieth cell.
+  std::vector<Point> queries;
+  for (int k = 0; k < 200; ++k) queries.emplace_back(5 * unit() - 0.5, 5 * unit() - 0.5, 5 * unit() - 0.5);
+  for (int x = 0; x < 5; ++x)
+    for (int y = 0; y < 5; ++y)
+      for (int z = 0; z < 5; ++z) queries.emplace_back(x, y, z);
+  for (int k = 0; k < 20; ++k) queries.push_back(all[std::size_t(1 + 7 * k)]->point());
+  int n = 0;
+  for (auto c = tr.all_cells_begin(); c != tr.all_cells_end(); ++c)
+    if (n++ % 50 == 0)
+      for (const Point& q : queries) REQUIRE(nearest_vertex(tr, q, c) == tr.nearest_vertex(q, c));
   // The marks star_cells sets are cleared: CGAL's walk after it sees them all.
   for (auto c = tr.all_cells_begin(); c != tr.all_cells_end(); ++c) REQUIRE(c->tds_data().is_clear());
 }
