@@ -1,4 +1,5 @@
 #include "surface/certificate.hpp"
+#include "surface/star.hpp"
 #include "util/memory.hpp"
 
 #include <algorithm>
@@ -238,7 +239,7 @@ MeasuredGuarantees measure_guarantees(const Tr& tr, const SurfaceSampler& sample
   for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
     const Vec3& x = centers[k];
     const double r2 = dist2(x, mesh.points[mesh.triangles[k][0]]);
-    Vh nv = tr.nearest_vertex(Point(x[0], x[1], x[2]), fs[k].facet().first);
+    Vh nv = nearest_vertex(tr, Point(x[0], x[1], x[2]), fs[k].facet().first);
     if (dist2(x, vec(nv->point())) < r2 * (1 - 1e-9)) ++rd_violations;
   }
   MeasuredGuarantees m;

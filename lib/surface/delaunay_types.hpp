@@ -41,12 +41,13 @@ inline constexpr const char* kOriginName[kOrigins] = {"seed", "vor_edge", "topo_
 // A vertex placed on S (by the surface mesher), not by implicit2tet off S.
 inline bool on_surface(std::uint8_t origin) { return origin < kVolume; }
 
-struct VInfo {  // 16 bytes: the two bytes last (a vertex of 56 bytes, not 64)
+struct VInfo {  // 16 bytes: the three bytes last (a vertex of 56 bytes, not 64)
   int id = -1;
   int comp = -1;  // S component (active-cube component) the vertex lies on
   std::uint32_t stamp = 0;  // last insertion that collected this vertex
   std::uint8_t origin = kSeed;
   std::uint8_t queued = 0;  // 1: TopoDisk check queued, 2: SMOOTH check queued
+  std::uint8_t listed = 0;  // star_vertices' mark while it lists a star (star.hpp)
 };
 
 enum : std::uint8_t { kComputed = 1, kRestricted = 2, kMulti = 4 };

@@ -3,6 +3,7 @@
 #include "surface/edge_surface.hpp"
 #include "surface/facet_cycle.hpp"
 #include "surface/seeds.hpp"
+#include "surface/star.hpp"
 #include "util/error.hpp"
 
 #include <algorithm>
@@ -368,7 +369,7 @@ void DelMesh::mark_restricted(Ch c, int i) {
 // An edge's Voronoi facet changed only if both its ends are in the cavity.
 void DelMesh::after_insertion(Vh v) {
   cells_buf_.clear();
-  tr_.incident_cells(v, std::back_inserter(cells_buf_));
+  star_cells(tr_, v, cells_buf_);
   centres_.assign(tr_, cells_buf_);
   const bool missed = cell_misses_surface(v);
   compute_new_cells(v, missed ? v : Vh());
@@ -477,7 +478,7 @@ void DelMesh::progress() {
 bool DelMesh::insert_batch(const Candidates& pts, Origin origin) {
   bool any = false;
   for (const auto& [x, clearance2] : pts) {
-    Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), walk_start_->cell());
+    Vh nv = nearest_vertex(tr_, Point(x[0], x[1], x[2]), walk_start_->cell());
     if (dist2(x, vec(nv->point())) < clearance2 / 4) {
       ++refused_;
       continue;

@@ -6,6 +6,7 @@
 
 #include "surface/certificate.hpp"
 #include "surface/facet_cycle.hpp"
+#include "surface/star.hpp"
 #include "util/error.hpp"
 #include "util/memory.hpp"
 
@@ -67,7 +68,7 @@ bool DelMesh::voxel_sides_pass() {
   // points, and fewer for QUALITY to repair around them).
   bool any = false;
   for (const auto& [x, clearance2] : pts) {
-    const Vh nv = tr_.nearest_vertex(Point(x[0], x[1], x[2]), walk_start_->cell());
+    const Vh nv = nearest_vertex(tr_, Point(x[0], x[1], x[2]), walk_start_->cell());
     if (any && dist2(x, vec(nv->point())) < 0.99 * clearance2) continue;
     if (insert(x, kVoxelSide)) any = true;
     else refused_ += !max_hit_;

@@ -1,6 +1,7 @@
 #include "surface/facet_cycle.hpp"
 
 #include "surface/facet_cycle_raster.hpp"
+#include "surface/star.hpp"
 
 #include "implicit/parallel.hpp"
 #include "util/error.hpp"
@@ -253,7 +254,7 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
   auto neighbours = [&](Vh a, auto&& take) {
     ++stamp;
     cells.clear();
-    tr.incident_cells(a, std::back_inserter(cells));
+    star_cells(tr, a, cells);
     for (Ch c : cells)
       for (int k = 0; k < 4; ++k) {
         const Vh b = c->vertex(k);

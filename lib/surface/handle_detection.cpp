@@ -1,6 +1,7 @@
 #include "surface/handle_detection.hpp"
 
 #include "implicit/parallel.hpp"
+#include "surface/star.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -13,7 +14,7 @@ namespace imgmesh::surface_detail {
 void voronoi_cell(const Tr& tr, Vh p, std::vector<HalfSpace>& hs) {
   thread_local std::vector<Vh> adj;
   adj.clear();
-  tr.adjacent_vertices_threadsafe(p, std::back_inserter(adj));
+  star_vertices_threadsafe(tr, p, adj);
   const Vec3 pp = vec(p->point());
   hs.clear();
   for (Vh w : adj)
@@ -148,7 +149,7 @@ HandleAnswer CellMarch::test(Vec3& q) {
 // V(p), the reach of p's surface Delaunay balls and V(p)'s bounding box.
 void CellMarch::cell(const Tr& tr, Vh p) {
   s.cells.clear();
-  tr.incident_cells_threadsafe(p, std::back_inserter(s.cells));
+  star_cells_threadsafe(tr, p, s.cells);
   for (Ch c : s.cells)
     for (int i = 0; i < 4; ++i)
       if (c->vertex(i) != p && c->facet.restricted(i)) reach2 = std::max(reach2, dist2(facet_center(Facet(c, i)), pp));
@@ -411,7 +412,7 @@ bool CellMarch::far_point(const ClippedComplex& k, Vec3& q) const {
 static bool refinement_point(const Tr& tr, Vh p, Vec3& x) {
   thread_local std::vector<Ch> cells;
   cells.clear();
-  tr.incident_cells_threadsafe(p, std::back_inserter(cells));
+  star_cells_threadsafe(tr, p, cells);
   const Vec3 pp = vec(p->point());
   double best = -1;
   for (Ch c : cells)
@@ -434,10 +435,12 @@ bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p) {
   const Vec3 pp = vec(p->point());
   thread_local std::vector<HalfSpace> hs;
   voronoi_cell(tr, p, hs);
-  const auto corner = [&](long x, long y, long z) { return Vec3{x * grid.s[0], y * grid.s[1], z * grid.s[2]}; };
   auto outside = [&](long x, long y, long z) {  // wholly beyond one face of V(p)
+    // beyond_face's corners, their coordinates computed once a cube.
+    const double cx[2] = {x * grid.s[0], (x + 1) * grid.s[0]}, cy[2] = {y * grid.s[1], (y + 1) * grid.s[1]},
+                 cz[2] = {z * grid.s[2], (z + 1) * grid.s[2]};
     for (const HalfSpace& e : hs)
-      if (beyond_face(e, x, y, z, corner)) return true;
+      if (dot(e.d, Vec3{cx[e.d[0] < 0], cy[e.d[1] < 0], cz[e.d[2] < 0]}) > e.c) return true;
     return false;
   };
   long c0[3];
@@ -445,31 +448,34 @@ bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p) {
   if (!grid.active(c0[0], c0[1], c0[2])) return false;
   const long nx = grid.n[0], ny = grid.n[1];
   auto key = [&](long x, long y, long z) { return x + nx * (y + ny * z); };
-  thread_local std::vector<long long> cubes, faces, edges;
+  thread_local std::vector<long long> faces, edges;
   thread_local std::vector<std::array<long, 3>> stack;
-  cubes.assign(1, key(c0[0], c0[1], c0[2]));
+  thread_local KeySet tested;  // keys + 1 of the cubes met
+  tested.clear();
+  tested.insert(std::uint64_t(key(c0[0], c0[1], c0[2]) + 1));
+  std::size_t cubes = 1;  // reached
   faces.clear();
   edges.clear();
   stack.assign(1, {c0[0], c0[1], c0[2]});
-  auto seen = [&](long long k) { return std::find(cubes.begin(), cubes.end(), k) != cubes.end(); };
+  // The corners (bit k: corner (k & 1, k >> 1 & 1, k >> 2 & 1)) on side
+  // `side` of axis a.
+  static constexpr unsigned kFace[3][2] = {{0x55, 0xaa}, {0x33, 0xcc}, {0x0f, 0xf0}};
   while (!stack.empty()) {
     const auto [x, y, z] = stack.back();
     stack.pop_back();
-    if (cubes.size() > 512) return false;  // V(p) still large: the full test
-    bool sg[8];
-    for (int k = 0; k < 8; ++k) sg[k] = grid.neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1));
+    if (cubes > 512) return false;  // V(p) still large: the full test
+    unsigned sg = 0;  // bit k: corner k inside
+    for (int k = 0; k < 8; ++k) sg |= unsigned(grid.neg(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1))) << k;
     // 12 edges: corner pairs differing in one bit; key (corner, axis).
     for (int k = 0; k < 8; ++k)
       for (int a = 0; a < 3; ++a)
-        if (!(k >> a & 1) && sg[k] != sg[k | 1 << a])
+        if (!(k >> a & 1) && ((sg >> k ^ sg >> (k | 1 << a)) & 1))
           edges.push_back(3 * key(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) + a);
     // 6 faces: axis a, side 0/1; key (min corner, axis).
     for (int a = 0; a < 3; ++a)
       for (int side = 0; side < 2; ++side) {
-        bool any_in = false, any_out = false;
-        for (int k = 0; k < 8; ++k)
-          if ((k >> a & 1) == side) (sg[k] ? any_in : any_out) = true;
-        if (!(any_in && any_out)) continue;
+        const unsigned m = kFace[a][side];
+        if (!(sg & m) || !(~sg & m)) continue;  // not mixed
         long f[3] = {x, y, z};
         f[a] += side;
         faces.push_back(3 * key(f[0], f[1], f[2]) + a);
@@ -477,8 +483,10 @@ bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p) {
         nbr[a] += side ? 1 : -1;
         if (!grid.active(nbr[0], nbr[1], nbr[2])) continue;
         const long long kn = key(nbr[0], nbr[1], nbr[2]);
-        if (seen(kn) || outside(nbr[0], nbr[1], nbr[2])) continue;
-        cubes.push_back(kn);
+        // Each cube tested once: reached, or wholly outside V(p) (the same
+        // answer from any side).
+        if (!tested.insert(std::uint64_t(kn + 1)) || outside(nbr[0], nbr[1], nbr[2])) continue;
+        ++cubes;
         stack.push_back({nbr[0], nbr[1], nbr[2]});
       }
   }
@@ -486,7 +494,7 @@ bool handle_free(const Tr& tr, const CubeGrid& grid, Vh p) {
   std::sort(edges.begin(), edges.end());
   const long long F = std::unique(faces.begin(), faces.end()) - faces.begin();
   const long long E = std::unique(edges.begin(), edges.end()) - edges.begin();
-  return static_cast<long long>(cubes.size()) - F + E == 1;
+  return static_cast<long long>(cubes) - F + E == 1;
 }
 
 // One vertex: the cheap certificate (when `cheap`), then the full test; an

@@ -1,5 +1,7 @@
 #include "surface/topo_disk.hpp"
 
+#include "surface/star.hpp"
+
 #include <algorithm>
 
 namespace imgmesh::surface_detail {
@@ -7,7 +9,7 @@ namespace imgmesh::surface_detail {
 void restricted_around(const Tr& tr, Vh v, std::vector<Facet>& facets, std::vector<Ch>& cells) {
   facets.clear();
   cells.clear();
-  tr.incident_cells(v, std::back_inserter(cells));
+  star_cells(tr, v, cells);
   for (Ch c : cells) {
     const int iv = c->index(v);
     for (int i = 0; i < 4; ++i) {

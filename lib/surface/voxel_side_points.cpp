@@ -3,6 +3,7 @@
 #include "surface/voxel_side_points.hpp"
 
 #include "mesh/located_cells.hpp"
+#include "surface/star.hpp"
 #include "util/hash.hpp"
 
 #include <algorithm>
@@ -121,16 +122,21 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     // grid neighbour, else (the centres come in grid order, but a row of
     // active cubes jumps across the shape to the next) from a vertex of the
     // cell p was last found in (an insertion replaced that cell by cells
-    // around the new point, next to the vertex's): fewer steps to the same
-    // cell, when one cell holds p. Else (p on a facet, edge or vertex, or
-    // outside W's hull, where the walk decides which cell it finds), the
-    // walk from the last centre's, as always.
+    // around the new point, next to the vertex's). It goes in floating
+    // point first (CGAL's inexact_locate, which its locate runs first only
+    // for the plain Epick kernel, not for these traits): a voxel's step
+    // crosses ~6 cells, thin ones near S, each a filtered orientation test
+    // or more and a random draw in the exact walk. The exact walk from
+    // where it stops ends in the same cell when one cell holds p. Else (p
+    // on a facet, edge or vertex, or outside W's hull, where the walk
+    // decides which cell it finds), the exact walk from the last centre's,
+    // as always.
     const bool adjacent = std::abs(x - last[0]) <= 1 && std::abs(y - last[1]) <= 1 && std::abs(z - last[2]) <= 1;
     last[0] = x, last[1] = y, last[2] = z;
     const Vh from = near_[k] == 0 ? Vh() : by_id[near_[k] - 1];
     const bool from_near = near_starts_ && !adjacent && from != Vh();
-    Ch c = tr.locate(pp, lt, li, lj, from_near ? from->cell() : hint);
-    if (from_near && lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
+    Ch c = tr.locate(pp, lt, li, lj, tr.inexact_locate(pp, from_near ? from->cell() : hint));
+    if (lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
     hint = c;
     // The cells holding p: one, or those around the facet, edge or vertex it lies on.
     located_cells(tr, c, lt, li, lj, cells);
@@ -153,7 +159,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     // ball, if that is at least half p's distance to W (DELMESH's usual
     // point, well spaced) and the guard; else the point of S towards the
     // circumcentre.
-    const double d2 = dist2(p, vec(tr.nearest_vertex(pp, bad)->point()));
+    const double d2 = dist2(p, vec(nearest_vertex(tr, pp, bad)->point()));
     const double least = std::max(d2 / 4, guard * guard);
     int best = -1;
     for (int i = 0; i < 4; ++i)
@@ -164,7 +170,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     }
     Vec3 q;
     if (!crossing(f, p, far_end(tr, g, bad, p), q)) return;
-    const Vh nv = tr.nearest_vertex(Point(q[0], q[1], q[2]), bad);
+    const Vh nv = nearest_vertex(tr, Point(q[0], q[1], q[2]), bad);
     const double clearance2 = dist2(q, vec(nv->point()));
     if (clearance2 < guard * guard) ++refused;
     else pts.emplace_back(q, clearance2);

@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <set>
+
 using namespace imgmesh;
 using namespace imgmesh::surface_detail;
 
@@ -19,7 +21,90 @@ Vh lone_vertex(DelMesh& m, const Vec3& p) {
   REQUIRE(m.insert(p, kSeed));
   return m.vertices().back();
 }
+
+// handle_free's certificate done plainly: the active cubes reached from
+// p's cube through mixed faces, but for those with every corner beyond one
+// face of V(p), in a set; their mixed faces and crossed edges in sets (each
+// corner's sign read anew); a disk when cubes - faces + edges is 1 and at
+// most 512 cubes were reached.
+bool plain_handle_free(const Tr& tr, const CubeGrid& g, Vh p) {
+  std::vector<HalfSpace> hs;
+  voronoi_cell(tr, p, hs);
+  using Cube = std::array<long, 3>;
+  auto corner = [&](const Cube& c, int k) { return Cube{c[0] + (k & 1), c[1] + (k >> 1 & 1), c[2] + (k >> 2 & 1)}; };
+  auto beyond = [&](const Cube& c) {
+    for (const HalfSpace& e : hs) {
+      bool all = true;
+      for (int k = 0; k < 8 && all; ++k) {
+        const Cube q = corner(c, k);
+        all = dot(e.d, Vec3{q[0] * g.s[0], q[1] * g.s[1], q[2] * g.s[2]}) > e.c;
+      }
+      if (all) return true;
+    }
+    return false;
+  };
+  const Vec3 pp = vec(p->point());
+  Cube c0;
+  for (int k = 0; k < 3; ++k) c0[std::size_t(k)] = std::clamp(long(std::floor(pp[k] / g.s[k])), 0L, g.n[k] - 2);
+  if (!g.active(c0[0], c0[1], c0[2])) return false;
+  std::set<Cube> reached{c0};
+  std::set<std::array<long, 4>> faces, edges;
+  std::vector<Cube> todo{c0};
+  while (!todo.empty()) {
+    const Cube c = todo.back();
+    todo.pop_back();
+    auto neg = [&](int k) { const Cube q = corner(c, k); return g.neg(q[0], q[1], q[2]); };
+    for (int k = 0; k < 8; ++k)
+      for (int a = 0; a < 3; ++a)
+        if (!(k >> a & 1) && neg(k) != neg(k | 1 << a)) {
+          const Cube q = corner(c, k);
+          edges.insert({q[0], q[1], q[2], a});
+        }
+    for (int a = 0; a < 3; ++a)
+      for (int side = 0; side < 2; ++side) {
+        std::set<bool> signs;
+        for (int k = 0; k < 8; ++k)
+          if ((k >> a & 1) == side) signs.insert(neg(k));
+        if (signs.size() < 2) continue;
+        Cube f = c, n = c;
+        f[std::size_t(a)] += side;
+        n[std::size_t(a)] += side ? 1 : -1;
+        faces.insert({f[0], f[1], f[2], a});
+        if (g.active(n[0], n[1], n[2]) && !reached.count(n) && !beyond(n)) {
+          reached.insert(n);
+          todo.push_back(n);
+        }
+      }
+  }
+  return reached.size() <= 512 && long(reached.size()) - long(faces.size()) + long(edges.size()) == 1;
+}
 } // namespace
+
+TEST_CASE("HandleDetection's cheap certificate answers as the plain count does, yes and no, on a coarse torus") {
+  const Vec3 c{12.2, 11.9, 7.1};
+  FunctionSurface s(test::box(25, 25, 15), [&](const Vec3& x) { return test::torus_f(x, c, 7, 2.6); });
+  DelMesh m(s, RestrictedDelaunayOptions{});
+  m.prepare();
+  m.seeds();
+  int yes = 0, no = 0;
+  auto compare = [&] {
+    for (Vh v : m.vertices()) {
+      const bool plain = plain_handle_free(m.triangulation(), m.grid(), v);
+      REQUIRE(handle_free(m.triangulation(), m.grid(), v) == plain);
+      (plain ? yes : no) += 1;
+    }
+  };
+  for (int n : {4, 8, 12}) {  // points of S, further apart, then closer
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n / 2; ++j) {
+        const double u = 2 * M_PI * (i + 0.31 * j) / n, v = 2 * M_PI * (j + 0.17) / (n / 2), q = 7 + 2.6 * std::cos(v);
+        m.insert(Vec3{c[0] + q * std::cos(u), c[1] + q * std::sin(u), c[2] + 2.6 * std::sin(v)}, kSeed);
+      }
+    compare();
+  }
+  CHECK(yes > 0);
+  CHECK(no > 0);
+}
 
 TEST_CASE("HandleDetection: a whole torus inside V(p) has a handle; the point returned is on S, in V(p)") {
   const Vec3 c{12.2, 11.9, 7.1};
