@@ -505,12 +505,23 @@ void Mesher::refine() {
         const int id = c->vertex(i)->info();
         if (id >= 0 && inner_[std::size_t(id)] != c->info().label) inner_[std::size_t(id)] = kUnknown;
       }
-    // By id, not address: the same candidates in the same order every run.
-    std::sort(touched_.begin(), touched_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    // Checked in the order found (around each new vertex in turn: a
+    // vertex's cells mostly the last ones walked, in cache; by id they were
+    // cache misses), each check on its own; their candidates (one at most
+    // a vertex) then put in the order of their vertices' ids: the same
+    // candidates in the same order every run.
+    const std::size_t first = topology_.size();
+    candidate_ids_.clear();
     for (const auto& t : touched_) {
       touched_mark_[std::size_t(t.first)] = 0;
-      if (inner_[std::size_t(t.first)] == kUnknown) check_vertex(t.second);
+      if (inner_[std::size_t(t.first)] != kUnknown) continue;
+      check_vertex(t.second);
+      if (topology_.size() > first + candidate_ids_.size()) candidate_ids_.push_back({t.first, candidate_ids_.size()});
     }
+    std::sort(candidate_ids_.begin(), candidate_ids_.end());
+    by_id_.clear();
+    for (const auto& [id, k] : candidate_ids_) by_id_.push_back(topology_[first + k]);
+    std::copy(by_id_.begin(), by_id_.end(), topology_.begin() + std::ptrdiff_t(first));
     if (o_.progress)
       o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
                   std::to_string(topology_.size()) + " topology, " + std::to_string(quality_.size()) + " quality");

@@ -234,6 +234,8 @@ private:
   std::vector<std::pair<int, Vh>> touched_;  // (id, vertex), each once
   std::vector<char> touched_mark_;           // per vertex id: in touched_
   std::vector<std::int32_t> inner_;          // per vertex id: its cells' one label, else kUnknown
+  std::vector<std::pair<int, std::size_t>> candidate_ids_;  // (vertex id, its candidate's rank in the pass's checks)
+  std::vector<Candidate> by_id_;
   std::vector<std::int32_t> labels_;
   std::vector<std::array<int, 2>> link_;
   std::vector<std::int32_t> other_, seq_;
