@@ -184,9 +184,18 @@ private:
   int facet_step(Ch c, int i, const Vec3& x0, const Vec3& x1) const;
   void check_facet(const FacetWalk& w);
   void check_vertex(Vh v);
-  static bool one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at);
-  static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
-                                 const std::vector<std::array<int, 2>>& at, std::vector<std::int32_t>& seq);
+  // A vertex of v's link as check_vertex names it: its address (a name
+  // without reading the vertex, which was a cache miss a link vertex);
+  // the bounding box's eight corners, which share the id -1, one name (as
+  // their id made them).
+  using LinkEdge = std::array<std::intptr_t, 2>;
+  std::intptr_t link_vertex(Vh w) const {
+    const auto a = reinterpret_cast<std::intptr_t>(&*w);
+    return std::find(corners_.begin(), corners_.end(), a) != corners_.end() ? corners_[0] : a;
+  }
+  static bool one_cycle(const std::vector<LinkEdge>& link, std::vector<LinkEdge>& at);
+  static std::int32_t split_pair(const std::vector<LinkEdge>& link, const std::vector<std::int32_t>& other,
+                                 const std::vector<LinkEdge>& at, std::vector<std::int32_t>& seq);
   bool current(const Candidate& c, Ch& cell);
   bool insert_all(std::vector<Candidate>& cands);
   ConformingSurface output();
@@ -237,9 +246,10 @@ private:
   std::vector<std::pair<int, std::size_t>> candidate_ids_;  // (vertex id, its candidate's rank in the pass's checks)
   std::vector<Candidate> by_id_;
   std::vector<std::int32_t> labels_;
-  std::vector<std::array<int, 2>> link_;
+  std::vector<LinkEdge> link_;
   std::vector<std::int32_t> other_, seq_;
-  std::vector<std::array<int, 2>> at_;
+  std::vector<LinkEdge> at_;
+  std::array<std::intptr_t, 8> corners_{};  // the bounding box's corners' addresses (seg2tet --outside: none, 0)
   std::vector<LabelFunction::Change> changes_;
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)
