@@ -130,6 +130,9 @@ Ch Mesher::star(Vh v, std::vector<Ch>& out, Ch stop_a, Ch stop_b) {
       const Ch n = c->neighbor(i);
       if (!n->tds_data().is_clear()) continue;
       n->tds_data().mark_in_conflict();
+      // n's neighbours asked for now, while the walk goes on elsewhere:
+      // their first reads were the walk's cost (a chain of cache misses).
+      for (int k = 0; k < 4; ++k) prefetch_cell(n->neighbor(k));
       stack_.push_back(n);
       out.push_back(n);
       if (n == stop_a || n == stop_b) {
