@@ -517,7 +517,12 @@ void Mesher::refine() {
     // candidates in the same order every run.
     const std::size_t first = topology_.size();
     candidate_ids_.clear();
-    for (const auto& t : touched_) {
+    for (std::size_t k = 0; k < touched_.size(); ++k) {
+      const auto& t = touched_[k];
+      // The next vertices' first cells asked for ahead (their stars' walks
+      // start there).
+      if (k + 2 < touched_.size()) __builtin_prefetch(&*touched_[k + 2].second);
+      if (k + 1 < touched_.size()) prefetch_cell(touched_[k + 1].second->cell());
       touched_mark_[std::size_t(t.first)] = 0;
       if (inner_[std::size_t(t.first)] != kUnknown) continue;
       check_vertex(t.second);
