@@ -331,7 +331,7 @@ void Mesher::check_vertex(Vh v) {
         LinkEdge e;
         int m = 0;
         for (int q = 0; q < 4; ++q)
-          if (q != j && q != iv) e[std::size_t(m++)] = link_vertex(c->vertex(q));
+          if (q != j && q != iv) e[std::size_t(m++)] = link_name(reinterpret_cast<std::intptr_t>(&*c->vertex(q)), corners_);
         link_.push_back(e);
         other_.push_back(label(c->neighbor(j)));
       }
@@ -528,10 +528,7 @@ void Mesher::refine() {
       check_vertex(t.second);
       if (topology_.size() > first + candidate_ids_.size()) candidate_ids_.push_back({t.first, candidate_ids_.size()});
     }
-    std::sort(candidate_ids_.begin(), candidate_ids_.end());
-    by_id_.clear();
-    for (const auto& [id, k] : candidate_ids_) by_id_.push_back(topology_[first + k]);
-    std::copy(by_id_.begin(), by_id_.end(), topology_.begin() + std::ptrdiff_t(first));
+    order_by_id(topology_, first, candidate_ids_, by_id_);
     if (o_.progress)
       o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
                   std::to_string(topology_.size()) + " topology, " + std::to_string(quality_.size()) + " quality");
