@@ -311,15 +311,13 @@ void Mesher::check_facet(const FacetWalk& w) {
 // facets between its cells and the others' form one cycle in v's link.
 void Mesher::check_vertex(Vh v) {
   star(v, cells_);
-  std::int32_t first = label(cells_[0]);
-  bool one = true;
-  for (Ch c : cells_) one = one && label(c) == first;
-  if (v->info() >= 0) inner_[std::size_t(v->info())] = one ? first : kUnknown;
+  labels_.clear();  // each label once (a few, not a sort of every cell's)
+  for (Ch c : cells_)
+    if (std::find(labels_.begin(), labels_.end(), label(c)) == labels_.end()) labels_.push_back(label(c));
+  const bool one = labels_.size() == 1;
+  if (v->info() >= 0) inner_[std::size_t(v->info())] = one ? labels_[0] : kUnknown;
   if (one) return;
-  labels_.clear();
-  for (Ch c : cells_) labels_.push_back(label(c));
   std::sort(labels_.begin(), labels_.end());
-  labels_.erase(std::unique(labels_.begin(), labels_.end()), labels_.end());
   for (std::int32_t l : labels_) {
     link_.clear();
     other_.clear();
