@@ -74,6 +74,7 @@ void Mesher::bounding_box() {
     const double k = (c & 4) ? double(x_.size[2]) + 2.5 : -3.5;
     Vh v = tr_.insert(pt(x_.world(i, j, k)));
     v->info() = -1;
+    corners_[std::size_t(c)] = reinterpret_cast<std::intptr_t>(&*v);
   }
 }
 
@@ -129,6 +130,9 @@ Ch Mesher::star(Vh v, std::vector<Ch>& out, Ch stop_a, Ch stop_b) {
       const Ch n = c->neighbor(i);
       if (!n->tds_data().is_clear()) continue;
       n->tds_data().mark_in_conflict();
+      // n's neighbours asked for now, while the walk goes on elsewhere:
+      // their first reads were the walk's cost (a chain of cache misses).
+      for (int k = 0; k < 4; ++k) prefetch_cell(n->neighbor(k));
       stack_.push_back(n);
       out.push_back(n);
       if (n == stop_a || n == stop_b) {
@@ -307,15 +311,13 @@ void Mesher::check_facet(const FacetWalk& w) {
 // facets between its cells and the others' form one cycle in v's link.
 void Mesher::check_vertex(Vh v) {
   star(v, cells_);
-  std::int32_t first = label(cells_[0]);
-  bool one = true;
-  for (Ch c : cells_) one = one && label(c) == first;
-  if (v->info() >= 0) inner_[std::size_t(v->info())] = one ? first : kUnknown;
+  labels_.clear();  // each label once (a few, not a sort of every cell's)
+  for (Ch c : cells_)
+    if (std::find(labels_.begin(), labels_.end(), label(c)) == labels_.end()) labels_.push_back(label(c));
+  const bool one = labels_.size() == 1;
+  if (v->info() >= 0) inner_[std::size_t(v->info())] = one ? labels_[0] : kUnknown;
   if (one) return;
-  labels_.clear();
-  for (Ch c : cells_) labels_.push_back(label(c));
   std::sort(labels_.begin(), labels_.end());
-  labels_.erase(std::unique(labels_.begin(), labels_.end()), labels_.end());
   for (std::int32_t l : labels_) {
     link_.clear();
     other_.clear();
@@ -324,10 +326,11 @@ void Mesher::check_vertex(Vh v) {
       const int iv = c->index(v);
       for (int j = 0; j < 4; ++j) {
         if (j == iv || label(c->neighbor(j)) == l) continue;
-        int e[2], m = 0;
+        LinkEdge e;
+        int m = 0;
         for (int q = 0; q < 4; ++q)
-          if (q != j && q != iv) e[m++] = tr_.is_infinite(c->vertex(q)) ? -2 : c->vertex(q)->info();
-        link_.push_back({e[0], e[1]});
+          if (q != j && q != iv) e[std::size_t(m++)] = link_name(reinterpret_cast<std::intptr_t>(&*c->vertex(q)), corners_);
+        link_.push_back(e);
         other_.push_back(label(c->neighbor(j)));
       }
     }
@@ -376,23 +379,23 @@ void Mesher::check_vertex(Vh v) {
 
 // Each link vertex in two link edges, the edges one closed walk. at: per
 // link vertex its two (vertex, edge) entries, sorted (split_pair's too).
-bool Mesher::one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at) {
+bool Mesher::one_cycle(const std::vector<LinkEdge>& link, std::vector<LinkEdge>& at) {
   if (link.size() < 3) return false;
   at.clear();
   for (std::size_t e = 0; e < link.size(); ++e)
-    for (int s = 0; s < 2; ++s) at.push_back({link[e][s], int(e)});
+    for (int s = 0; s < 2; ++s) at.push_back({link[e][std::size_t(s)], std::intptr_t(e)});
   std::sort(at.begin(), at.end());
   for (std::size_t i = 0; i < at.size(); i += 2)
     if (at[i + 1][0] != at[i][0] || (i + 2 < at.size() && at[i + 2][0] == at[i][0])) return false;
   // The walk from link[0][0] along link[0], each step to the vertex's other
   // neighbour, back to link[0][0] after every edge.
-  int prev = link[0][0], cur = link[0][1];
+  std::intptr_t prev = link[0][0], cur = link[0][1];
   std::size_t steps = 1;
   while (cur != link[0][0]) {
-    const std::array<int, 2>* a = &*std::lower_bound(at.begin(), at.end(), std::array<int, 2>{cur, -1});
-    auto other_end = [&](int e) { return link[std::size_t(e)][0] == cur ? link[std::size_t(e)][1] : link[std::size_t(e)][0]; };
-    const int n0 = other_end(a[0][1]), n1 = other_end(a[1][1]);
-    const int next = n0 == prev ? n1 : n0;
+    const LinkEdge* a = &*std::lower_bound(at.begin(), at.end(), LinkEdge{cur, -1});
+    auto other_end = [&](std::intptr_t e) { return link[std::size_t(e)][0] == cur ? link[std::size_t(e)][1] : link[std::size_t(e)][0]; };
+    const std::intptr_t n0 = other_end(a[0][1]), n1 = other_end(a[1][1]);
+    const std::intptr_t next = n0 == prev ? n1 : n0;
     prev = cur, cur = next;
     if (++steps > link.size()) return false;
   }
@@ -402,14 +405,14 @@ bool Mesher::one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<
 // The link's edges (one cycle: one_cycle's `at`) in cyclic order: a label
 // of `other` (the label across each edge's facet) in two runs or more (the
 // smallest such), else kUnknown.
-std::int32_t Mesher::split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
-                                const std::vector<std::array<int, 2>>& at, std::vector<std::int32_t>& seq) {
+std::int32_t Mesher::split_pair(const std::vector<LinkEdge>& link, const std::vector<std::int32_t>& other,
+                                const std::vector<LinkEdge>& at, std::vector<std::int32_t>& seq) {
   seq.clear();
   std::size_t e = 0;
-  int cur = link[0][1];
+  std::intptr_t cur = link[0][1];
   for (std::size_t n = 0; n < link.size(); ++n) {
     seq.push_back(other[e]);
-    const std::array<int, 2>* a = &*std::lower_bound(at.begin(), at.end(), std::array<int, 2>{cur, -1});
+    const LinkEdge* a = &*std::lower_bound(at.begin(), at.end(), LinkEdge{cur, -1});
     e = std::size_t(a[0][1]) == e ? std::size_t(a[1][1]) : std::size_t(a[0][1]);
     cur = link[e][0] == cur ? link[e][1] : link[e][0];
   }
@@ -505,12 +508,25 @@ void Mesher::refine() {
         const int id = c->vertex(i)->info();
         if (id >= 0 && inner_[std::size_t(id)] != c->info().label) inner_[std::size_t(id)] = kUnknown;
       }
-    // By id, not address: the same candidates in the same order every run.
-    std::sort(touched_.begin(), touched_.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (const auto& t : touched_) {
+    // Checked in the order found (around each new vertex in turn: a
+    // vertex's cells mostly the last ones walked, in cache; by id they were
+    // cache misses), each check on its own; their candidates (one at most
+    // a vertex) then put in the order of their vertices' ids: the same
+    // candidates in the same order every run.
+    const std::size_t first = topology_.size();
+    candidate_ids_.clear();
+    for (std::size_t k = 0; k < touched_.size(); ++k) {
+      const auto& t = touched_[k];
+      // The next vertices' first cells asked for ahead (their stars' walks
+      // start there).
+      if (k + 2 < touched_.size()) __builtin_prefetch(&*touched_[k + 2].second);
+      if (k + 1 < touched_.size()) prefetch_cell(touched_[k + 1].second->cell());
       touched_mark_[std::size_t(t.first)] = 0;
-      if (inner_[std::size_t(t.first)] == kUnknown) check_vertex(t.second);
+      if (inner_[std::size_t(t.first)] != kUnknown) continue;
+      check_vertex(t.second);
+      if (topology_.size() > first + candidate_ids_.size()) candidate_ids_.push_back({t.first, candidate_ids_.size()});
     }
+    order_by_id(topology_, first, candidate_ids_, by_id_);
     if (o_.progress)
       o_.progress("pass " + std::to_string(passes_) + ": " + std::to_string(points_) + " points; candidates: " +
                   std::to_string(topology_.size()) + " topology, " + std::to_string(quality_.size()) + " quality");

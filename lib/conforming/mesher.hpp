@@ -112,6 +112,25 @@ inline bool beyond_distance(const Vec3& p0, const Vec3& p1, const Vec3& p2, cons
   return nn > 0 && h * h > e * e * nn;
 }
 
+// A vertex of a link as check_vertex names it: its address (a name without
+// reading the vertex, which was a cache miss a link vertex); the bounding
+// box's eight corners (their addresses; 0 when there are none), which share
+// the id -1, one name, as their id made them.
+inline std::intptr_t link_name(std::intptr_t address, const std::array<std::intptr_t, 8>& corners) {
+  return std::find(corners.begin(), corners.end(), address) != corners.end() ? corners[0] : address;
+}
+
+// The list's entries from `first` on (one a vertex; ids: each one's vertex
+// id and its rank among them) put in the order of their vertices' ids.
+template <class T>
+void order_by_id(std::vector<T>& list, std::size_t first, std::vector<std::pair<int, std::size_t>>& ids,
+                 std::vector<T>& scratch) {
+  std::sort(ids.begin(), ids.end());
+  scratch.clear();
+  for (const auto& [id, k] : ids) scratch.push_back(list[first + k]);
+  std::copy(scratch.begin(), scratch.end(), list.begin() + std::ptrdiff_t(first));
+}
+
 // A point to insert, from a facet (cell, facet: the facet as found, cells:
 // the uids of its two cells then: it is stale once either changed) or a
 // voxel centre.
@@ -184,9 +203,10 @@ private:
   int facet_step(Ch c, int i, const Vec3& x0, const Vec3& x1) const;
   void check_facet(const FacetWalk& w);
   void check_vertex(Vh v);
-  static bool one_cycle(const std::vector<std::array<int, 2>>& link, std::vector<std::array<int, 2>>& at);
-  static std::int32_t split_pair(const std::vector<std::array<int, 2>>& link, const std::vector<std::int32_t>& other,
-                                 const std::vector<std::array<int, 2>>& at, std::vector<std::int32_t>& seq);
+  using LinkEdge = std::array<std::intptr_t, 2>;  // two link_name()s
+  static bool one_cycle(const std::vector<LinkEdge>& link, std::vector<LinkEdge>& at);
+  static std::int32_t split_pair(const std::vector<LinkEdge>& link, const std::vector<std::int32_t>& other,
+                                 const std::vector<LinkEdge>& at, std::vector<std::int32_t>& seq);
   bool current(const Candidate& c, Ch& cell);
   bool insert_all(std::vector<Candidate>& cands);
   ConformingSurface output();
@@ -234,10 +254,13 @@ private:
   std::vector<std::pair<int, Vh>> touched_;  // (id, vertex), each once
   std::vector<char> touched_mark_;           // per vertex id: in touched_
   std::vector<std::int32_t> inner_;          // per vertex id: its cells' one label, else kUnknown
+  std::vector<std::pair<int, std::size_t>> candidate_ids_;  // (vertex id, its candidate's rank in the pass's checks)
+  std::vector<Candidate> by_id_;
   std::vector<std::int32_t> labels_;
-  std::vector<std::array<int, 2>> link_;
+  std::vector<LinkEdge> link_;
   std::vector<std::int32_t> other_, seq_;
-  std::vector<std::array<int, 2>> at_;
+  std::vector<LinkEdge> at_;
+  std::array<std::intptr_t, 8> corners_{};  // the bounding box's corners' addresses (seg2tet --outside: none, 0)
   std::vector<LabelFunction::Change> changes_;
   std::vector<Candidate> topology_, quality_, sides_;
   std::vector<char> on_surface_;  // per vertex id: on an interface (not a cell's circumcentre)

@@ -396,3 +396,21 @@ TEST_CASE("the ball of inner_distance2 lies in the cell", "[conforming]") {
   }
   CHECK(beyond == 3000);
 }
+
+// The vertex checks run in any order; their candidates (one a vertex) then
+// go after the facets' in the order of their vertices' ids, as checks by id
+// made them. And a link vertex's name: its address, the bounding box's
+// corners (which share the id -1) one name.
+TEST_CASE("vertex checks' candidates in vertex-id order, corners one link vertex", "[conforming]") {
+  using namespace conforming_detail;
+  std::vector<int> list{100, 101, 7, 3, 5, 9};  // two facets' candidates, then vertices 7, 3, 5, 9's
+  std::vector<std::pair<int, std::size_t>> ids{{7, 0}, {3, 1}, {5, 2}, {9, 3}};
+  std::vector<int> scratch;
+  order_by_id(list, 2, ids, scratch);
+  CHECK(list == std::vector<int>{100, 101, 3, 5, 7, 9});
+  const std::array<std::intptr_t, 8> corners{80, 88, 96, 104, 112, 120, 128, 136};
+  for (std::intptr_t c : corners) CHECK(link_name(c, corners) == 80);
+  CHECK(link_name(84, corners) == 84);
+  CHECK(link_name(1000, corners) == 1000);
+  CHECK(link_name(1000, {}) == 1000);  // seg2tet --outside: no shared corners
+}
