@@ -276,11 +276,14 @@ struct IdSet {
     }
   }
   bool has(int id) const { return std::size_t(id) < in.size() && in[std::size_t(id)]; }
+  // The ids' memory goes too: a pass after the queues drain takes every
+  // vertex inserted since the last (up to all of them), and capacity kept
+  // for the next pass was held through the end of REFINE, the run's peak.
   void clear() {
     for (int id : ids) in[std::size_t(id)] = 0;
-    ids.clear();
+    std::vector<int>().swap(ids);
   }
-  // An empty set's memory (clear() keeps it for reuse) back to the heap.
+  // An empty set's memory (clear() keeps the flags for reuse) back to the heap.
   void release() {
     if (!ids.empty()) return;
     std::vector<int>().swap(ids);
