@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <new>
 #include <utility>
 
@@ -18,9 +19,9 @@ namespace {
 // every one misses the TLB. Let the kernel back a large pool with
 // transparent huge pages (a hint; no effect elsewhere). Call before the
 // pages are first written.
-void prefer_huge_pages(std::vector<float>& pool) {
+template <class T> void prefer_huge_pages(std::vector<T>& pool) {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
-  const std::size_t bytes = pool.capacity() * sizeof(float);
+  const std::size_t bytes = pool.capacity() * sizeof(T);
   if (bytes < (std::size_t(8) << 20)) return;
   const std::uintptr_t huge = std::uintptr_t(2) << 20;
   const std::uintptr_t begin = (reinterpret_cast<std::uintptr_t>(pool.data()) + huge - 1) & ~(huge - 1);
@@ -97,6 +98,41 @@ void SampleGrid::after_blocks(Storage storage) {
   const std::size_t block_bytes = (pool_.size() + table_.size()) * sizeof(float);
   if (storage == Storage::automatic && (dense_bytes < block_bytes || dense_bytes - block_bytes < kBlocksWorth))
     blocks_to_dense();
+  else
+    code_pool();
+}
+
+// Codes in the order the values first come in the pool (deterministic: the
+// pool's order is), found in an open-addressing table of their bits; the
+// float pool is let go once coded (the float and coded pools are held
+// together only here, long before the meshers' peak).
+void SampleGrid::code_pool() {
+  constexpr std::size_t kSlots = 2 * kCodes;  // at most half full
+  struct Entry {
+    std::uint32_t bits;
+    std::uint32_t code;  // + 1; 0: empty
+  };
+  std::vector<Entry> table(kSlots, Entry{0, 0});
+  std::vector<float> palette;
+  std::vector<std::uint16_t> codes;
+  codes.reserve(pool_.size());
+  prefer_huge_pages(codes);
+  for (const float v : pool_) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, sizeof bits);
+    std::size_t i = (bits * 0x9E3779B1u) >> 15;  // 17 bits: kSlots
+    while (table[i].code != 0 && table[i].bits != bits) i = (i + 1) & (kSlots - 1);
+    if (table[i].code == 0) {
+      if (palette.size() == kCodes) return;  // too many values: floats kept
+      table[i] = {bits, std::uint32_t(palette.size()) + 1};
+      palette.push_back(v);
+    }
+    codes.push_back(std::uint16_t(table[i].code - 1));
+  }
+  static_assert(2 * kCodes == std::size_t(1) << 17, "the hash's 17 bits index the table");
+  codes_ = std::move(codes);
+  palette_ = std::move(palette);
+  std::vector<float>().swap(pool_);
 }
 
 void SampleGrid::stream_dense(const std::array<std::size_t, 3>& box_size, const SliceReader& next_slice,
@@ -292,6 +328,8 @@ bool SampleGrid::finite() const {
     if (!std::isfinite(v)) return false;
   for (std::size_t i = 2 * kBlockSamples; i < pool_.size(); ++i)  // the stored blocks (T may be infinite)
     if (!std::isfinite(pool_[i])) return false;
+  for (std::size_t i = 2 * kBlockSamples; i < codes_.size(); ++i)
+    if (!std::isfinite(palette_[codes_[i]])) return false;
   return true;
 }
 

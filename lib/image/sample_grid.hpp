@@ -9,7 +9,11 @@
 // samples of opposite signs lie within a voxel of the boundary, so under T).
 // Blocks cost each evaluation of f about 7% more instructions (bunny,
 // callgrind), so by default they are used only where they save at least
-// kBlocksWorth bytes. Plain data, no ITK.
+// kBlocksWorth bytes. The blocks' samples are then held as 16-bit codes
+// into a palette of their distinct values when there are at most kCodes of
+// them, as there are in a distance map (sums of squared multiples of the
+// spacing: 272 values on a CT's liver): the same floats in half the
+// memory, which the meshers hold through their peak. Plain data, no ITK.
 //
 // The samples may come streamed, a z-slice at a time (the implicit function
 // file as it is read: never the dense grid when blocks are used), and may
@@ -32,6 +36,7 @@ public:
   static constexpr long kB = 1L << kShift, kMask = kB - 1;  // block side
   static constexpr long kBlockSamples = kB * kB * kB;
   static constexpr std::size_t kBlocksWorth = std::size_t(32) << 20;
+  static constexpr std::size_t kCodes = std::size_t(1) << 16;
   enum class Storage { automatic, dense, blocks };
 
   // Fills `slice` with the next z-slice of the samples given (x fastest, then y).
@@ -64,16 +69,20 @@ public:
 
   float operator()(std::size_t x, std::size_t y, std::size_t z) const {
     if (dense()) return dense_[std::size_t(long(x) + s1_ * long(y) + s2_ * long(z))];
-    return block(long(x) >> kShift, long(y) >> kShift, long(z) >> kShift)[local(long(x), long(y), long(z))];
+    const long b = (long(x) >> kShift) + nb_[0] * ((long(y) >> kShift) + nb_[1] * (long(z) >> kShift));
+    return sample(slot(b) + std::size_t(local(long(x), long(y), long(z))));
   }
   bool dense() const { return !dense_.empty(); }
+  // Blocks of codes into palette() (else blocks of floats).
+  bool coded() const { return !codes_.empty(); }
   // Dense storage: the samples, x fastest.
   const float* dense_data() const { return dense_.data(); }
-  // Blocks: the first sample of block (bx, by, bz); sample (x, y, z) of the
-  // grid is at local(x, y, z) in its block.
-  const float* block(long bx, long by, long bz) const { return block_at(bx + nb_[0] * (by + nb_[1] * bz)); }
-  // Block number bx + nb(0) (by + nb(1) bz)'s first sample.
-  const float* block_at(long b) const { return pool_.data() + std::size_t(table_[std::size_t(b)]) * kBlockSamples; }
+  // Blocks of floats: block number bx + nb(0) (by + nb(1) bz)'s first
+  // sample; sample (x, y, z) of the grid is at local(x, y, z) in its block.
+  const float* block_at(long b) const { return pool_.data() + slot(b); }
+  // Blocks of codes: the same, its sample the palette's value at the code.
+  const std::uint16_t* code_block_at(long b) const { return codes_.data() + slot(b); }
+  const float* palette() const { return palette_.data(); }
   long nb(int axis) const { return nb_[axis]; }
   static long local(long x, long y, long z) { return (x & kMask) + kB * ((y & kMask) + kB * (z & kMask)); }
   // The samples at the 8 corners of the cube with lowest corner (x, y, z),
@@ -85,8 +94,8 @@ public:
       return;
     }
     if ((x & kMask) < kMask && (y & kMask) < kMask && (z & kMask) < kMask) {
-      const float* b = block(x >> kShift, y >> kShift, z >> kShift) + local(x, y, z);
-      for (int m = 0; m < 8; ++m) c[m] = b[(m & 1) + kB * ((m >> 1) & 1) + kB * kB * ((m >> 2) & 1)];
+      const std::size_t b = slot((x >> kShift) + nb_[0] * ((y >> kShift) + nb_[1] * (z >> kShift))) + std::size_t(local(x, y, z));
+      for (int m = 0; m < 8; ++m) c[m] = sample(b + std::size_t((m & 1) + kB * ((m >> 1) & 1) + kB * kB * ((m >> 2) & 1)));
       return;
     }
     // Across blocks: per axis the two samples' block offsets and local parts.
@@ -98,7 +107,7 @@ public:
                           {kB * kB * (z & kMask), kB * kB * ((z + 1) & kMask)}};
     for (int m = 0; m < 8; ++m) {
       const int a = m & 1, b = (m >> 1) & 1, d = (m >> 2) & 1;
-      c[m] = block_at(o[0][a] + o[1][b] + o[2][d])[l[0][a] + l[1][b] + l[2][d]];
+      c[m] = sample(slot(o[0][a] + o[1][b] + o[2][d]) + std::size_t(l[0][a] + l[1][b] + l[2][d]));
     }
   }
 
@@ -110,7 +119,10 @@ public:
   const Index3& box_hi() const { return box_hi_; }
   // Blocks: how many, how many stored (dense: 0 and 0).
   std::size_t blocks() const { return table_.size(); }
-  std::size_t stored_blocks() const { return pool_.empty() ? 0 : pool_.size() / kBlockSamples - 2; }
+  std::size_t stored_blocks() const {
+    const std::size_t n = coded() ? codes_.size() : pool_.size();
+    return n == 0 ? 0 : n / kBlockSamples - 2;
+  }
   // Every sample finite (with T infinite: g's own samples).
   bool finite() const;
   // The samples as a dense image (g', for writing and tests).
@@ -122,6 +134,9 @@ private:
   // Blocks 0 and 1: the constant +T and -T blocks; then the stored ones.
   // The table's zeros (+T: every block outside the box) cost no memset.
   std::vector<float> pool_;
+  // Coded blocks: pool_'s samples as codes into palette_ (pool_ then empty).
+  std::vector<std::uint16_t> codes_;
+  std::vector<float> palette_;
   ZeroedVector<std::uint32_t> table_;
   long nb_[3] = {0, 0, 0};
   float clamp_ = std::numeric_limits<float>::infinity();
@@ -144,6 +159,11 @@ private:
   void add_blocks(const long c0[3], const long c1[3], const float* chunk);
   // The stored blocks put in the order of their numbers.
   void sort_pool();
+  // The pool as codes when its samples take at most kCodes values.
+  void code_pool();
+  // Blocks: the first sample of block b in pool_ or codes_, and sample i there.
+  std::size_t slot(long b) const { return std::size_t(table_[std::size_t(b)]) * kBlockSamples; }
+  float sample(std::size_t i) const { return coded() ? palette_[codes_[i]] : pool_[i]; }
   void after_blocks(Storage storage);
   void blocks_to_dense();
 };

@@ -66,6 +66,7 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace imgmesh {
@@ -488,16 +489,25 @@ template <bool Gradient> void PartitionOfUnity::locate(const Vec3& p, Stencil& s
     s.row[0] = g_.dense_data() + first[0] + first[1] * stride_[1] + first[2] * stride_[2];
     return;
   }
-  // Blocks: the rows of samples: per axis y, z each sample's block offset and local
-  // part, then one table lookup a row; a row that straddles two blocks
-  // along x is copied.
+  if (g_.coded()) block_rows<std::uint16_t>(first, s);
+  else block_rows<float>(first, s);
+}
+
+// Blocks: the rows of samples: per axis y, z each sample's block offset and local
+// part, then one table lookup a row; a row that straddles two blocks
+// along x is copied.
+template <class T> void PartitionOfUnity::block_rows(const long first[3], Stencil& s) const {
   constexpr long kB = SampleGrid::kB, kMask = SampleGrid::kMask;
   constexpr int kShift = SampleGrid::kShift;
+  const auto block_at = [this](long b) {
+    if constexpr (std::is_same_v<T, float>) return g_.block_at(b);
+    else return g_.code_block_at(b);
+  };
   const long x0 = first[0], lx = x0 & kMask, bx = x0 >> kShift;
   const long nb0 = g_.nb(0), nb01 = g_.nb(0) * g_.nb(1);
   const long ly = first[1] & kMask, lz = first[2] & kMask;
   if (lx + s.n[0] <= kB && ly + s.n[1] <= kB && lz + s.n[2] <= kB) {  // one block
-    const float* base = g_.block_at(bx + nb0 * (first[1] >> kShift) + nb01 * (first[2] >> kShift)) + lx + kB * ly + kB * kB * lz;
+    const T* base = block_at(bx + nb0 * (first[1] >> kShift) + nb01 * (first[2] >> kShift)) + lx + kB * ly + kB * kB * lz;
     for (int l = 0; l < s.n[2]; ++l)
       for (int j = 0; j < s.n[1]; ++j) s.row[l * 3 + j] = base + kB * j + kB * kB * l;
     return;
@@ -515,14 +525,16 @@ template <bool Gradient> void PartitionOfUnity::locate(const Vec3& p, Stencil& s
   }
   if (lx + s.n[0] <= kB) {
     for (int l = 0; l < s.n[2]; ++l)
-      for (int j = 0; j < s.n[1]; ++j) s.row[l * 3 + j] = g_.block_at(bx + yo[j] + zo[l]) + lx + yl[j] + zl[l];
+      for (int j = 0; j < s.n[1]; ++j) s.row[l * 3 + j] = block_at(bx + yo[j] + zo[l]) + lx + yl[j] + zl[l];
     return;
   }
   for (int l = 0; l < s.n[2]; ++l)
     for (int j = 0; j < s.n[1]; ++j) {
-      const float* lo = g_.block_at(bx + yo[j] + zo[l]) + yl[j] + zl[l];
-      const float* hi = g_.block_at(bx + 1 + yo[j] + zo[l]) + yl[j] + zl[l];
-      float* r = s.buf[l * 3 + j];
+      const T* lo = block_at(bx + yo[j] + zo[l]) + yl[j] + zl[l];
+      const T* hi = block_at(bx + 1 + yo[j] + zo[l]) + yl[j] + zl[l];
+      T* r;
+      if constexpr (std::is_same_v<T, float>) r = s.buf.floats[l * 3 + j];
+      else r = s.buf.codes[l * 3 + j];
       for (int i = 0; i < s.n[0]; ++i) r[i] = lx + i < kB ? lo[lx + i] : hi[lx + i - kB];
       s.row[l * 3 + j] = r;
     }
@@ -530,19 +542,29 @@ template <bool Gradient> void PartitionOfUnity::locate(const Vec3& p, Stencil& s
 
 // Start loading the rows of samples the stencil uses.
 void PartitionOfUnity::prefetch(const Stencil& s) const {
+  const std::size_t size = g_.coded() ? sizeof(std::uint16_t) : sizeof(float);
   for (int l = 0; l < s.n[2]; ++l)
     for (int j = 0; j < s.n[1]; ++j) {
-      const float* row = g_.dense() ? s.row[0] + j * stride_[1] + l * stride_[2] : s.row[l * 3 + j];
+      const char* row = g_.dense() ? static_cast<const char*>(s.row[0]) + (j * stride_[1] + l * stride_[2]) * long(sizeof(float))
+                                   : static_cast<const char*>(s.row[l * 3 + j]);
       __builtin_prefetch(row);
-      __builtin_prefetch(row + s.n[0] - 1);
+      __builtin_prefetch(row + std::size_t(s.n[0] - 1) * size);
     }
 }
 
 namespace {
 
+// A row of coded samples: its values the palette's at its codes.
+struct CodedRow {
+  const std::uint16_t* codes;
+  const float* palette;
+  float operator[](int i) const { return palette[codes[i]]; }
+};
+
 // f = sum_{i,j,l} g c[0][i] c[1][j] c[2][l] over N0 x N1 x N2 samples,
 // contracted axis by axis; each gradient component (grid axes) swaps one
-// axis's c for dc. Fixed sizes: fully unrolled.
+// axis's c for dc. Fixed sizes: fully unrolled. rows(j, l): a row's
+// samples, a float pointer or a CodedRow.
 template <bool Gradient, int N0, int N1, int N2, class Rows>
 double contract(Rows rows, const double (*c)[3], const double (*dc)[3], double* gs) {
   double f = 0;
@@ -550,7 +572,7 @@ double contract(Rows rows, const double (*c)[3], const double (*dc)[3], double* 
   for (int l = 0; l < N2; ++l) {
     double fy = 0, fyx = 0, fyy = 0;
     for (int j = 0; j < N1; ++j) {
-      const float* row = rows(j, l);
+      const auto row = rows(j, l);
       double fx = 0, fxx = 0;
       for (int i = 0; i < N0; ++i) {
         fx += c[0][i] * double(row[i]);
@@ -594,11 +616,14 @@ template <bool Gradient> double PartitionOfUnity::combine(const Stencil& s, Vec3
     }
   };
   if (g_.dense()) {
-    const float* base = s.row[0];
+    const float* base = static_cast<const float*>(s.row[0]);
     const long s1 = stride_[1], s2 = stride_[2];
     f = shape([=](int j, int l) { return base + j * s1 + l * s2; });
+  } else if (g_.coded()) {
+    const float* palette = g_.palette();
+    f = shape([&](int j, int l) { return CodedRow{static_cast<const std::uint16_t*>(s.row[l * 3 + j]), palette}; });
   } else {
-    f = shape([&](int j, int l) { return s.row[l * 3 + j]; });
+    f = shape([&](int j, int l) { return static_cast<const float*>(s.row[l * 3 + j]); });
   }
   if (Gradient) {
     // Grid-axis derivatives to world: p = origin + D s, so df/dp = D df/ds.

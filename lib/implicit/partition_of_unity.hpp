@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 
 namespace imgmesh {
@@ -107,12 +108,17 @@ private:
   // that axis, 3 where two cells blend); c[a] are the per-axis coefficients,
   // dc[a] their derivatives along axis a (physical units). row[l * 3 + j]:
   // the n[0] samples (i = 0.., j, l), contiguous in a block, or copied into
-  // buf where they straddle two blocks. n[0] = 0 for a NaN point.
+  // buf where they straddle two blocks; floats, or codes into the palette
+  // when the blocks are coded (dense: row[0] only, a float). n[0] = 0 for a
+  // NaN point.
   struct Stencil {
-    const float* row[9];
+    const void* row[9];
     int n[3];
     double c[3][3], dc[3][3];
-    float buf[9][3];
+    union {
+      float floats[9][3];
+      std::uint16_t codes[9][3];
+    } buf;
   };
   PartitionOfUnity() = default;
   static void check_grid(const Geometry& g);
@@ -120,6 +126,9 @@ private:
   // evaluation's constants from g_.
   void finish(const Vec3& bound);
   template <bool Gradient> void locate(const Vec3& p, Stencil& s) const;
+  // The rows of a stencil whose samples start at `first`, in blocks of T
+  // (float, or std::uint16_t codes).
+  template <class T> void block_rows(const long first[3], Stencil& s) const;
   void prefetch(const Stencil& s) const;
   template <bool Gradient> double combine(const Stencil& s, Vec3* gradient) const;
   template <bool Gradient> void evaluate_many(const Vec3* points, std::size_t n, double* f, Vec3* gradients) const;

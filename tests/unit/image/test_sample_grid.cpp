@@ -56,6 +56,7 @@ TEST_CASE("SampleGrid with a clamp T holds g clamped to [-T, T] and stores only 
   const float t = 2.5f;
   const SampleGrid s(g, t, SampleGrid::Storage::blocks), d(g, t, SampleGrid::Storage::dense);
   CHECK(s.stored_blocks() < s.blocks() / 2);
+  CHECK(s.coded());  // fewer than kCodes values
   CHECK(d.to_image().data == s.to_image().data);
   for (std::size_t z = 0; z < g.size[2]; ++z)
     for (std::size_t y = 0; y < g.size[1]; ++y)
@@ -188,7 +189,12 @@ TEST_CASE("SampleGrid from bands of x is SampleGrid from slices: the same sample
         for (std::size_t y = 0; y < geo.size[1]; ++y)
           for (std::size_t x = 0; x < geo.size[0]; ++x)
             if (banded(x, y, zz) != slices(x, y, zz)) FAIL("sample " << x << " " << y << " " << zz << " differs");
-      if (!banded.dense())
+      REQUIRE(banded.coded() == slices.coded());
+      if (banded.coded())
+        for (long b = 0; b < long(banded.blocks()); ++b)
+          if (banded.code_block_at(b) - banded.code_block_at(0) != slices.code_block_at(b) - slices.code_block_at(0))
+            FAIL("block " << b << " is elsewhere in the pool");
+      if (!banded.dense() && !banded.coded())
         for (long b = 0; b < long(banded.blocks()); ++b)
           if (banded.block_at(b) - banded.block_at(0) != slices.block_at(b) - slices.block_at(0))
             FAIL("block " << b << " is elsewhere in the pool");

@@ -555,6 +555,42 @@ TEST_CASE("f on clamped samples: f's signs everywhere, f itself wherever |f| <= 
   CHECK_THROWS_AS(PartitionOfUnity(f.samples().to_image(), f.d(), 1, 0.5f * PartitionOfUnity::clamp_for(f.samples(), 0)), Error);
 }
 
+// Blocks of a distance map hold 16-bit codes into a palette of its few
+// values (here made a few thousand, more than a byte's codes: 11 steps of
+// noise); with noise of every value it takes more than kCodes values and
+// its blocks stay floats. Either gives dense f's numbers, one point at a
+// time or many.
+TEST_CASE("f on coded blocks and on float blocks is f on dense samples", "[pu]") {
+  const Vec3 sp{0.6, 0.7, 1.3};
+  const FloatImage g = implicit_from_well_composed(random_wc(48, 44, 40, 91, sp, 3)).samples().to_image();
+  FloatImage stepped = g, noisy = g;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (float& v : stepped.data) v += float(std::round(10 * u(rng)) * 1e-3);
+  for (float& v : noisy.data) v += float(0.01 * (u(rng) - 0.5));
+  for (const bool coded : {true, false}) {
+    const FloatImage& im = coded ? stepped : noisy;
+    const float t = coded ? PartitionOfUnity::clamp_for(im, 0) : std::numeric_limits<float>::infinity();
+    const PartitionOfUnity dense(im, {0, 0, 0}, 1, t, SampleGrid::Storage::dense);
+    const PartitionOfUnity blocks(im, dense.d(), 1, t, SampleGrid::Storage::blocks);
+    REQUIRE(blocks.samples().coded() == coded);
+    REQUIRE(!blocks.samples().dense());
+    std::vector<Vec3> ps;
+    for (int i = 0; i < 20000; ++i)
+      ps.push_back(im.world(u(rng) * double(im.size[0] - 1), u(rng) * double(im.size[1] - 1), u(rng) * double(im.size[2] - 1)));
+    std::vector<double> fd(ps.size()), fb(ps.size());
+    std::vector<Vec3> gd(ps.size()), gb(ps.size());
+    dense.values(ps.data(), ps.size(), fd.data(), gd.data());
+    blocks.values(ps.data(), ps.size(), fb.data(), gb.data());
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      INFO("coded " << coded << ", point " << i);
+      REQUIRE(fb[i] == fd[i]);
+      REQUIRE(gb[i] == gd[i]);
+      REQUIRE(blocks.value(ps[i]) == fd[i]);
+    }
+  }
+}
+
 TEST_CASE("d depends on g near S only: the cells of the foreground's box grown by weight_margin", "[pu]") {
   for (unsigned seed = 1; seed <= 3; ++seed) {
     const Vec3 sp = seed == 2 ? Vec3{0.6, 0.6, 1.3} : Vec3{1, 1, 1};
