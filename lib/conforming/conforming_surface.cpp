@@ -1,6 +1,7 @@
 #include "conforming/mesher.hpp"
 
 #include "implicit/parallel.hpp"
+#include "mesh/star_walk.hpp"
 #include "util/error.hpp"
 #include "util/memory.hpp"
 
@@ -117,32 +118,12 @@ bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
 // the walk stops at the first of stop_a, stop_b it reaches, returned.
 Ch Mesher::star(Vh v, std::vector<Ch>& out, Ch stop_a, Ch stop_b) {
   out.clear();
-  const Ch d = v->cell();
-  d->tds_data().mark_in_conflict();
-  out.push_back(d);
-  stack_.assign(1, d);
-  Ch stopped = d == stop_a || d == stop_b ? d : Ch();
-  while (stopped == Ch() && !stack_.empty()) {
-    const Ch c = stack_.back();
-    stack_.pop_back();
-    for (int i = 0; i < 4; ++i) {
-      if (c->vertex(i) == v) continue;
-      const Ch n = c->neighbor(i);
-      if (!n->tds_data().is_clear()) continue;
-      n->tds_data().mark_in_conflict();
-      // n's neighbours asked for now, while the walk goes on elsewhere:
-      // their first reads were the walk's cost (a chain of cache misses).
-      for (int k = 0; k < 4; ++k) prefetch_cell(n->neighbor(k));
-      stack_.push_back(n);
-      out.push_back(n);
-      if (n == stop_a || n == stop_b) {
-        stopped = n;
-        break;
-      }
-    }
-  }
-  for (Ch c : out) c->tds_data().clear();
-  return stopped;
+  return star_walk(v, out, stack_, [&](Ch n) {
+    // n's neighbours asked for now, while the walk goes on elsewhere:
+    // their first reads were the walk's cost (a chain of cache misses).
+    for (int k = 0; k < 4; ++k) prefetch_cell(n->neighbor(k));
+    return n == stop_a || n == stop_b;
+  });
 }
 
 // The two voxels of a face of K(X), and lambda's change between their centres.
