@@ -166,7 +166,7 @@ void Mesher::refine_cells() {
       const Point q = beyond ? box_->project(pt(cc)) : pt(cc);
       Tr::Locate_type lt;
       int li, lj;
-      const Ch at = tr_.locate(q, lt, li, lj, e.c);
+      const Ch at = locate_from(tr_, q, lt, li, lj, e.c);
       zone_.clear();
       if (lt == Tr::VERTEX) {
         if (!beyond) continue;
@@ -299,7 +299,7 @@ void Mesher::tets_output(ConformingSurface& out) {
         Tr::Locate_type lt;
         int li, lj;
         const Ch start = i > 0 ? hint : j > 0 ? row : slice;
-        const Ch c = tr_.locate(pt(voxel_centre(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k))), lt, li, lj, start);
+        const Ch c = locate_from(tr_, pt(voxel_centre(std::ptrdiff_t(i), std::ptrdiff_t(j), std::ptrdiff_t(k))), lt, li, lj, start);
         hint = c;
         if (i == 0) {
           row = c;

@@ -100,7 +100,7 @@ void Mesher::voxel_sides() {
     } else {
       Tr::Locate_type lt;
       int li, lj;
-      c = tr_.locate(pt(p), lt, li, lj, hint_);
+      c = locate_from(tr_, pt(p), lt, li, lj, hint_);
       hint_ = c;
       const bool keep = lt == Tr::CELL && c->info().uid != 0;
       sv.cell = keep ? c : Ch();

@@ -1,6 +1,7 @@
 #include "conforming/mesher.hpp"
 
 #include "implicit/parallel.hpp"
+#include "mesh/located_cells.hpp"
 #include "mesh/star_walk.hpp"
 #include "util/error.hpp"
 #include "util/memory.hpp"
@@ -88,7 +89,7 @@ bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
   }
   Tr::Locate_type lt;
   int li, lj;
-  Ch c = tr_.locate(pt(p), lt, li, lj, start != Ch() ? start : hint_);
+  Ch c = locate_from(tr_, pt(p), lt, li, lj, start != Ch() ? start : hint_);
   if (lt == Tr::VERTEX) {
     ++refused_;
     return false;
