@@ -46,7 +46,7 @@ struct VInfo {  // 16 bytes: the three bytes last (a vertex of 56 bytes, not 64)
   int comp = -1;  // S component (active-cube component) the vertex lies on
   std::uint32_t stamp = 0;  // last insertion that collected this vertex
   std::uint8_t origin = kSeed;
-  std::uint8_t queued = 0;  // 1: TopoDisk check queued, 2: SMOOTH check queued
+  std::uint8_t queued = 0;  // 1: TopoDisk check queued, 2: SMOOTH check queued; DelMesh: 4, 8, 16
   std::uint8_t listed = 0;  // star_vertices' mark while it lists a star (star.hpp)
 };
 

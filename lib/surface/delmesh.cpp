@@ -5,9 +5,11 @@
 #include "surface/seeds.hpp"
 #include "surface/star.hpp"
 #include "util/error.hpp"
+#include "util/hash.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace imgmesh::surface_detail {
 
@@ -39,9 +41,12 @@ void DelMesh::enqueue_facet(Ch c, int i) {
 }
 
 // A vertex is queued at most once per check: the check runs on the state at
-// pop time, which includes every change since it was queued.
-void DelMesh::enqueue_vertex(Vh v) {
+// pop time, which includes every change since it was queued. `changed`: its
+// restricted facets changed (else an insertion only came near it): both
+// checks are stale.
+void DelMesh::enqueue_vertex(Vh v, bool changed) {
   const auto push = [&](Kind kind) { queue_.push({0, seq_++, Ch(), std::uint32_t(v->info().id), std::uint8_t(kind), 0}); };
+  if (changed) v->info().queued |= kStale;
   if (!(v->info().queued & 1) && opt_.topology_steps) push(kQTopoDisk);
   v->info().queued |= 1;
   if (topology_only_) return;
@@ -95,10 +100,14 @@ bool DelMesh::insert(const Vec3& x, Origin origin, Facet hint) {
       if (!tr_.is_infinite(w) && w->point() == p) return false;
     }
   // Vertices whose restricted facets die: TopoDisk/SMOOTH re-check them.
+  // Those of the facets inside the cavity changed; the cavity's boundary
+  // facets stay, and compute_new_cells says which changed.
   ++stamp_;
   touched_.clear();
+  for (Ch c : zone_cells_) c->tds_data().mark_in_conflict();
   for (Ch c : zone_cells_)
-    for (int i = 0; i < 4; ++i) mark_restricted(c, i);
+    for (int i = 0; i < 4; ++i) mark_restricted(c, i, c->neighbor(i)->tds_data().is_in_conflict());
+  for (Ch c : zone_cells_) c->tds_data().clear();
   Vh v = tr_.insert_in_hole(p, zone_cells_.begin(), zone_cells_.end(), zone_facets_[0].first, zone_facets_[0].second);
   add_vertex(v, origin, x);
   after_insertion(v);
@@ -250,32 +259,76 @@ void DelMesh::compute_new_cells(Vh inserted, Vh missed) {
     if (k.cell->facet.computed(k.i)) continue;
     const Ch n = k.cell->neighbor(k.i);
     const int j = n->index(k.cell);
-    const Shrunk shrunk = inserted != Vh() && k.cell->vertex(k.i) == inserted ? shrunk_edge(n, j, inserted) : kRecompute;
-    if (shrunk == kKeepCrossing) {  // the old record, stamped and queued anew
-      FacetInfo fi = n->facet[j];
-      if (opt_.compare_missed_cells) {
-        const FacetInfo now = edge_surface_of(tr_, sampler_, k.cell, k.i, centres_);
-        if (!(now.state & kRestricted) || (now.state & kMulti) ||
-            dist2(Vec3{now.x[0], now.x[1], now.x[2]}, Vec3{fi.x[0], fi.x[1], fi.x[2]}) > 1e-18 * grid_.delta * grid_.delta)
-          throw Error("a facet whose Voronoi edge shrank keeps a surface centre EdgeSurface does not find");
-      }
-      fi.computed = ++computed_;
-      FacetRefs::set(k.cell->facet, k.i, n->facet, j, fi);
-      enqueue_facet(k.cell, k.i);
+    const bool boundary = inserted != Vh() && k.cell->vertex(k.i) == inserted;  // of the cavity: it stayed
+    const Shrunk shrunk = boundary ? shrunk_edge(n, j, inserted) : kRecompute;
+    // A boundary facet's old answer (n's until set below): a change in it
+    // makes its vertices' TopoDisk and SMOOTH checks stale.
+    if (boundary && shrunk != kKeepCrossing) {
+      const bool was = n->facet.restricted(j);
+      const FacetInfo old = was ? n->facet[j] : FacetInfo();
+      settle_facet(k.cell, k.i, n, j, shrunk, k.c == at_missed);
+      if (was ? !same_answer(old, k.cell->facet[k.i]) : k.cell->facet.restricted(k.i)) mark_changed(k.cell, k.i);
       continue;
     }
-    if (k.c != at_missed && shrunk != kMisses) {
-      compute_facet(k.cell, k.i);
-      continue;
-    }
-    FacetInfo fi;
-    fi.state = kComputed;
-    if (opt_.compare_missed_cells && (edge_surface_of(tr_, sampler_, k.cell, k.i, centres_).state & kRestricted))
-      throw Error(k.c == at_missed ? "a point's Voronoi cell proved to miss S has a restricted facet"
-                                   : "a facet whose Voronoi edge shrank away from S is restricted");
-    fi.computed = ++computed_;
-    FacetRefs::set(k.cell->facet, k.i, n->facet, j, fi);
+    settle_facet(k.cell, k.i, n, j, shrunk, k.c == at_missed);
   }
+}
+
+// Facet i of new cell c (facet j of its neighbour n) by shrunk_edge's
+// answer: its old record kept, EdgeSurface's, or not restricted (`missed`:
+// a facet at a vertex whose cell misses S).
+void DelMesh::settle_facet(Ch c, int i, Ch n, int j, Shrunk shrunk, bool missed) {
+  if (shrunk == kKeepCrossing) {  // the old record, stamped and queued anew
+    FacetInfo fi = n->facet[j];
+    if (opt_.compare_missed_cells) {
+      const FacetInfo now = edge_surface_of(tr_, sampler_, c, i, centres_);
+      if (!(now.state & kRestricted) || (now.state & kMulti) ||
+          dist2(Vec3{now.x[0], now.x[1], now.x[2]}, Vec3{fi.x[0], fi.x[1], fi.x[2]}) > 1e-18 * grid_.delta * grid_.delta)
+        throw Error("a facet whose Voronoi edge shrank keeps a surface centre EdgeSurface does not find");
+    }
+    fi.computed = ++computed_;
+    FacetRefs::set(c->facet, i, n->facet, j, fi);
+    enqueue_facet(c, i);
+    return;
+  }
+  if (!missed && shrunk != kMisses) {
+    compute_facet(c, i);
+    return;
+  }
+  FacetInfo fi;
+  fi.state = kComputed;
+  if (opt_.compare_missed_cells && (edge_surface_of(tr_, sampler_, c, i, centres_).state & kRestricted))
+    throw Error(missed ? "a point's Voronoi cell proved to miss S has a restricted facet"
+                       : "a facet whose Voronoi edge shrank away from S is restricted");
+  fi.computed = ++computed_;
+  FacetRefs::set(c->facet, i, n->facet, j, fi);
+}
+
+// compare_stale_checks: the restricted facets at v, by their vertices and
+// answers (those sides and order TopoDisk and SMOOTH read them in aside).
+std::uint64_t DelMesh::restricted_signature(Vh v) {
+  std::vector<Facet> facets;
+  std::vector<Ch> cells;
+  restricted_around(tr_, v, facets, cells);
+  std::uint64_t sum = 0;
+  for (const Facet& f : facets) {
+    const FacetInfo& fi = f.first->facet[f.second];
+    std::uint64_t h = fi.state;
+    for (const Vh w : facet_vertices(f.first, f.second)) h = mix64(h ^ std::uint64_t(w->info().id + 1));
+    for (const double x : {fi.x[0], fi.x[1], fi.x[2], fi.r2, double(fi.grad[0]), double(fi.grad[1]), double(fi.grad[2])}) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &x, 8);
+      h = mix64(h ^ bits);
+    }
+    sum += h;
+  }
+  return sum;
+}
+
+// What TopoDisk and SMOOTH read of a restricted facet: all of EdgeSurface's
+// answer but the computation's stamp.
+bool DelMesh::same_answer(const FacetInfo& a, const FacetInfo& b) {
+  return a.state == b.state && a.r2 == b.r2 && std::equal(a.x, a.x + 3, b.x) && std::equal(a.grad, a.grad + 3, b.grad);
 }
 
 // A facet of the cavity's boundary, facet j of the cell n outside it,
@@ -352,8 +405,9 @@ bool DelMesh::cell_misses_surface(Vh v) {
   return no_zero(no_zero, lo, hi, 0);
 }
 
-// Remember the finite vertices of facet (c, i) if it is restricted.
-void DelMesh::mark_restricted(Ch c, int i) {
+// Remember the finite vertices of facet (c, i) if it is restricted, as
+// changed by the insertion under way if `changed`.
+void DelMesh::mark_restricted(Ch c, int i, bool changed) {
   if (!c->facet.restricted(i)) return;
   for (int m = 1; m < 4; ++m) {
     Vh w = c->vertex((i + m) & 3);
@@ -362,6 +416,13 @@ void DelMesh::mark_restricted(Ch c, int i) {
       touched_.push_back(w);
     }
   }
+  if (changed) mark_changed(c, i);
+}
+
+// A restricted facet (c, i), before or after the insertion under way,
+// that the insertion changed (its vertices are in touched_).
+void DelMesh::mark_changed(Ch c, int i) {
+  for (int m = 1; m < 4; ++m) c->vertex((i + m) & 3)->info().queued |= kChanged;
 }
 
 // The new cells are exactly the cells incident to v: recompute their facets
@@ -374,13 +435,16 @@ void DelMesh::after_insertion(Vh v) {
   const bool missed = cell_misses_surface(v);
   compute_new_cells(v, missed ? v : Vh());
   for (Ch c : cells_buf_)
-    for (int i = 0; i < 4; ++i) mark_restricted(c, i);
+    for (int i = 0; i < 4; ++i) mark_restricted(c, i, c->vertex(i) != v);  // the facets at v are new
   // A vertex whose cell misses S never has a restricted facet (the cell
   // only shrinks; a deleted neighbour re-queues it, requeue_grown): TopoDisk
   // and SMOOTH would pass it.
   if (!missed) enqueue_vertex(v);
   std::sort(touched_.begin(), touched_.end(), [](Vh a, Vh b) { return a->info().id < b->info().id; });
-  for (Vh w : touched_) enqueue_vertex(w);
+  for (Vh w : touched_) {
+    enqueue_vertex(w, w->info().queued & kChanged);
+    w->info().queued &= std::uint8_t(~kChanged);
+  }
   if (missed) {
     ++cells_missed_;
     return;
@@ -432,15 +496,32 @@ void DelMesh::drain() {
     if (it.kind == kQTopoDisk || it.kind == kQSmooth) {
       const Vh a = vertices_[it.stamp];
       if (a == Vh()) continue;  // deleted since (seed deletion)
-      a->info().queued &= std::uint8_t(it.kind == kQTopoDisk ? ~1 : ~2);
+      const bool topo = it.kind == kQTopoDisk;
+      const std::uint8_t stale = topo ? kStaleTopoDisk : kStaleSmooth;
+      a->info().queued &= std::uint8_t(~(topo ? 1 : 2));
+      phase_ = topo ? "topology" : "smooth";
+      // Not stale: its restricted facets are as they were when this check
+      // last passed; it passes again (an insertion only came near).
       Facet worst;
-      if (it.kind == kQTopoDisk) {
-        phase_ = "topology";
-        if (topo_disk_(tr_, a, &worst)) continue;
+      std::vector<std::uint64_t>& passed = passed_[topo ? 0 : 1];  // compare_stale_checks only
+      if (!(a->info().queued & stale)) {
+        if (opt_.compare_stale_checks && (passed.size() <= it.stamp || passed[it.stamp] != restricted_signature(a)))
+          throw Error(std::string(topo ? "TopoDisk" : "SMOOTH") + " skipped at a vertex whose restricted facets changed");
+        ++checks_skipped_;
+        continue;
+      }
+      a->info().queued &= std::uint8_t(~stale);
+      if (topo ? topo_disk_(tr_, a, &worst) : smooth_(tr_, a, opt_.roughness, &worst)) {
+        if (opt_.compare_stale_checks) {
+          if (passed.size() <= it.stamp) passed.resize(vertices_.size());
+          passed[it.stamp] = restricted_signature(a);
+        }
+        continue;
+      }
+      a->info().queued |= stale;  // failed: checked again when next queued, as it is
+      if (topo) {
         if (!insert(facet_center(worst), kTopoDisk, worst)) refuse_topology("TopoDisk", facet_center(worst));
       } else {
-        phase_ = "smooth";
-        if (smooth_(tr_, a, opt_.roughness, &worst)) continue;
         if (worst.first->facet[worst.second].r2 < guard2 || !insert(facet_center(worst), kSmooth, worst)) ++refused_;
       }
       continue;

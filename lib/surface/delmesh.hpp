@@ -102,10 +102,16 @@ public:
   long long inserted(Origin origin) const { return inserted_[origin]; }
   // Points off S whose Voronoi cell was proved to miss S when inserted.
   long long cells_missed() const { return cells_missed_; }
+  // TopoDisk and SMOOTH checks not run: not stale (they would pass).
+  long long checks_skipped() const { return checks_skipped_; }
 
 private:
   using Clock = std::chrono::steady_clock;
   enum Kind { kQVorEdge, kQTopoDisk, kQQuality, kQSmooth, kQDistance };
+  // VInfo::queued past its two queued bits: a check is stale while the
+  // vertex's restricted facets changed since it last passed (or it failed);
+  // kChanged: by the insertion under way.
+  static constexpr std::uint8_t kStaleTopoDisk = 4, kStaleSmooth = 8, kStale = 12, kChanged = 16;
   // 32 bytes (the queue holds a few entries a facet): a facet entry names
   // its facet by (cell, index) and the computation it queued, which no other
   // facet's record ever carries (every computation is stamped anew, and a
@@ -127,7 +133,7 @@ private:
 
   void compute_facet(Ch c, int i);
   void enqueue_facet(Ch c, int i);
-  void enqueue_vertex(Vh v);
+  void enqueue_vertex(Vh v, bool changed = true);
   void after_insertion(Vh v);
   void compute_new_cells(Vh inserted, Vh missed = Vh());
   enum Shrunk { kRecompute, kMisses, kKeepCrossing };
@@ -138,7 +144,11 @@ private:
   bool delete_and_restore(Vh v);
   void delete_seeds();
   void requeue_grown();
-  void mark_restricted(Ch c, int i);
+  void settle_facet(Ch c, int i, Ch n, int j, Shrunk shrunk, bool missed);
+  static bool same_answer(const FacetInfo& a, const FacetInfo& b);
+  std::uint64_t restricted_signature(Vh v);
+  void mark_restricted(Ch c, int i, bool changed);
+  void mark_changed(Ch c, int i);
   void drain();
   bool stale(const Item& it) const;
   void purge();
@@ -190,6 +200,10 @@ private:
   bool topology_only_ = false;
   long long seeds_deleted_ = 0;
   long long cells_missed_ = 0;
+  long long checks_skipped_ = 0;
+  // compare_stale_checks: per vertex id, restricted_signature when its
+  // TopoDisk (0) and SMOOTH (1) checks last passed.
+  std::vector<std::uint64_t> passed_[2];
   std::vector<int> comp_vertices_;  // vertices per S component
   long long facet_cycle_checks_ = 0, facet_cycle_passes_ = 0;
   long long facet_cycle_skipped_ = 0;  // edges the last FacetCycle pass could not rasterise

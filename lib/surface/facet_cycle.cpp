@@ -13,13 +13,23 @@
 
 namespace imgmesh::surface_detail {
 
-// A cell has six edges, three at p: each centre once for p's edges (a
-// cell keeps no centre of its own).
+// A cell keeps no centre of its own; its six edges are checked in one
+// pass, by the ids of their ends, mostly one after the other (its four
+// vertices' edges).
 Vec3 CentreMemo::operator()(const Tr& tr, Ch c) {
-  for (const auto& [d, x] : kept)
-    if (d == c) return x;
-  kept.emplace_back(c, vec(tr.dual(c)));
-  return kept.back().second;
+  const auto slot = [](const void* p) { return std::size_t((reinterpret_cast<std::uintptr_t>(p) >> 3) * 0x9E3779B97F4A7C15ull >> 52); };
+  static_assert(kSlots == std::size_t(1) << 12, "slot(): 64 - 52 bits");
+  if (table.empty()) table.assign(kSlots, {nullptr, Vec3{}});
+  std::size_t k = slot(&*c);
+  for (; table[k].first; k = (k + 1) & (kSlots - 1))
+    if (table[k].first == &*c) return table[k].second;
+  if (2 * ++used > kSlots) {
+    std::fill(table.begin(), table.end(), std::pair<const void*, Vec3>{nullptr, Vec3{}});
+    used = 1;
+    k = slot(&*c);
+  }
+  table[k] = {&*c, vec(tr.dual(c))};
+  return table[k].second;
 }
 
 // h's half-planes on Pi, then its extent. h is convex, so it is cut out by
@@ -311,9 +321,8 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
     found.assign(edges.size(), std::uint8_t(FacetAnswer::kNone));
     for (auto& c : cycles) c.clear();
     implicit_detail::parallel_for(long(edges.size()), nt, [&](long a, long b, unsigned t) {
-      CentreMemo memo;  // of the cells around edges[k].lo
+      CentreMemo memo;  // W does not change during the pass
       for (long k = a; k < b; ++k) {
-        if (k == a || edges[std::size_t(k)].lo != edges[std::size_t(k - 1)].lo) memo.kept.clear();
         Vec3 x;
         const FacetAnswer answer = facet_cycle(tr, f, edge(edges[std::size_t(k)]), x, how, &memo);
         found[std::size_t(k)] = std::uint8_t(answer);

@@ -15,8 +15,8 @@ namespace imgmesh::surface_detail {
 // Does S have a closed curve inside the Voronoi facet dual to edge e = pq?
 // kCycle: x is a point of it (on S) far from p, e's first vertex; kSkipped:
 // the facet is too large to rasterise now (not an answer).
-// Thread-safe. `memo` (optional) keeps the circumcentres of cells around p
-// for the next edge at p; the caller clears it when p changes.
+// Thread-safe. `memo` (optional) keeps the circumcentres of the cells it
+// was asked about, for later edges around them (W must not change meanwhile).
 enum class FacetAnswer { kNone, kCycle, kSkipped };
 // How the rows are walked: only the stretches near active cubes (where the
 // cost says so, else every row cube by cube), every row cube by cube, or
@@ -24,8 +24,12 @@ enum class FacetAnswer { kNone, kCycle, kSkipped };
 // cube's corner sign if inactive, else f's), throwing Error unless their
 // runs agree: the walks are optimisations that must change no sign.
 enum class FacetWalk { kSpans, kFull, kCompare };
+// Open addressing on the cell's address, at most half full, emptied when
+// full (128 KB): a cell has six edges, each checked once a pass.
 struct CentreMemo {
-  std::vector<std::pair<Ch, Vec3>> kept;
+  static constexpr std::size_t kSlots = 1 << 12;
+  std::vector<std::pair<const void*, Vec3>> table;
+  std::size_t used = 0;
   Vec3 operator()(const Tr& tr, Ch c);
 };
 FacetAnswer facet_cycle(const Tr& tr, const SurfaceSampler& f, const Tr::Edge& e, Vec3& x, FacetWalk how = FacetWalk::kSpans,

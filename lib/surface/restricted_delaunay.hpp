@@ -48,6 +48,10 @@ struct RestrictedDelaunayOptions {
   // than 1e-9 voxel from the kept one).
   bool prove_missed_cells = true;
   bool compare_missed_cells = false;
+  // Tests only: a TopoDisk or SMOOTH check that is not stale (the vertex's
+  // restricted facets unchanged since it last passed) runs all the same,
+  // and throws Error if it fails.
+  bool compare_stale_checks = false;
   bool seed_deletion = false;   // SAMPLETOPOLOGY as published: TOPOLOGY alone, then delete the seeds (7.6.2)
   // VoxelSides (issue 38): refine until every voxel centre next to a sign
   // change of g lies on its own side of the surface (delmesh.hpp); the

@@ -218,3 +218,21 @@ TEST_CASE("DELMESH: a cavity's boundary facet whose Voronoi edge shrank keeps it
   CHECK(m.vertices().size() > 100);
   CHECK(stale_facets(m) == 0);  // (break: shrunk_edge kMisses for every restricted facet -> throws)
 }
+
+TEST_CASE("DELMESH: TopoDisk and SMOOTH run only where a vertex's restricted facets changed, the others would pass") {
+  // Every check skipped as not stale runs all the same (compare_stale_checks
+  // throws where one fails): an insertion near a vertex that changed none of
+  // its restricted facets (a cavity's boundary facet kept) leaves its answers.
+  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
+  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
+    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
+  });
+  RestrictedDelaunayOptions o;
+  o.compare_stale_checks = true;
+  DelMesh m(s, o);
+  m.prepare();
+  m.seeds();
+  REQUIRE_NOTHROW(m.refine());
+  CHECK(m.vertices().size() > 200);
+  CHECK(m.checks_skipped() > 100);  // (break: a boundary facet's change not marked -> a skipped check fails, throws)
+}
