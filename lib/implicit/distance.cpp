@@ -165,18 +165,18 @@ void signed_distance_band(const BinaryImage& wc, std::size_t x0, std::size_t x1,
       for (long job = j0; job < j1; ++job) {
         const long ic = job / batches_per_row, ib0 = (job % batches_per_row) * kBatch;
         const long m = std::min(kBatch, nb - ib0);
-        // Line q's voxel t: in the image, and in the band (when there).
-        auto image_at = [&](long q, long t) {
-          return (ib0 + q) * stride[b] + ic * stride[c] + t * stride[a] + (a == 0 ? 0 : long(x0));
-        };
-        auto band_at = [&](long q, long t) {
-          return (ib0 + q) * bstride[b] + ic * bstride[c] + (a == 0 ? t - long(x0) : t * bstride[a]);
-        };
-        for (long t = 0; t < len; ++t)
-          for (long q = 0; q < m; ++q) {
-            labs[q * len + t] = lab[image_at(q, t)] != 0;
-            if (a > 0) vals[q * len + t] = buf[band_at(q, t)];
-          }
+        // Line q's voxel t: in the image at image0 + q stride[b] + t
+        // stride[a], in the band at band0 + q bstride[b] + t bstride[a]
+        // (along x, t - x0).
+        const std::uint8_t* image0 = lab + ib0 * stride[b] + ic * stride[c] + (a == 0 ? 0 : long(x0));
+        float* band0 = buf + ib0 * bstride[b] + ic * bstride[c];
+        for (long t = 0; t < len; ++t) {
+          const std::uint8_t* in = image0 + t * stride[a];
+          for (long q = 0; q < m; ++q) labs[q * len + t] = in[q * stride[b]] != 0;
+          if (a == 0) continue;
+          const float* from = band0 + t * bstride[a];
+          for (long q = 0; q < m; ++q) vals[q * len + t] = from[q * bstride[b]];
+        }
         for (long q = 0; q < m; ++q) {
           if (a == 0) {
             first_pass_line(&vals[q * len], &labs[q * len], len, delta2);
@@ -185,8 +185,10 @@ void signed_distance_band(const BinaryImage& wc, std::size_t x0, std::size_t x1,
             pass_line(&vals[q * len], &labs[q * len], len, delta2, 0, work);
           }
         }
-        for (long t = a == 0 ? long(x0) : 0; t < (a == 0 ? long(x1) : len); ++t)
-          for (long q = 0; q < m; ++q) buf[band_at(q, t)] = float(vals[q * len + t]);
+        for (long t = a == 0 ? long(x0) : 0; t < (a == 0 ? long(x1) : len); ++t) {
+          float* to = band0 + (a == 0 ? t - long(x0) : t * bstride[a]);
+          for (long q = 0; q < m; ++q) to[q * bstride[b]] = float(vals[q * len + t]);
+        }
       }
     });
   }
