@@ -26,8 +26,11 @@ std::vector<std::uint8_t> centre_corners(const CubeGrid& g) {
       const long p[3] = {x + (e & 1), y + (e >> 1 & 1), z + (e >> 2 & 1)};
       bool first = true;
       for (int o = 1; o < 8 && first; ++o) {
-        const long q[3] = {p[0] - (o & 1), p[1] - (o >> 1 & 1), p[2] - (o >> 2 & 1)};
-        first = !(g.active(q[0], q[1], q[2]) && g.key(q[0], q[1], q[2]) < kc.key());
+        // Cube p - o = kc + (e - o) has the lesser key exactly when e - o
+        // is negative in (z, y, x) order: only those are looked up.
+        const int d[3] = {(e & 1) - (o & 1), (e >> 1 & 1) - (o >> 1 & 1), (e >> 2 & 1) - (o >> 2 & 1)};
+        if (!(d[2] < 0 || (d[2] == 0 && (d[1] < 0 || (d[1] == 0 && d[0] < 0))))) continue;
+        first = !g.active(p[0] - (o & 1), p[1] - (o >> 1 & 1), p[2] - (o >> 2 & 1));
       }
       if (first) bits |= 1u << e;
     }
