@@ -51,10 +51,11 @@ void CubeGrid::label() {
   comp.reserve(active_cubes);
   long c0[3], c1[3];
   sampled_cubes(c0, c1);
+  // The active cubes a line at a time (not a lookup per cube of the box).
   for (long z = c0[2]; z <= c1[2]; ++z)
     for (long y = c0[1]; y <= c1[1]; ++y)
-      for (long x = c0[0]; x <= c1[0]; ++x) {
-        if (!active(x, y, z) || labelled(x, y, z)) continue;
+      for_active_on_line(c0[0], c1[0], y, z, [&](long x) {
+        if (labelled(x, y, z)) return;
         if (components == (1 << ActiveCube::kCompBits) - 1)
           throw Error("the surface has more than " + std::to_string(components) + " components");
         const int c = components++;
@@ -84,7 +85,7 @@ void CubeGrid::label() {
               stack.push_back(r);
             }
         }
-      }
+      });
   std::sort(comp.begin(), comp.end());
 }
 
