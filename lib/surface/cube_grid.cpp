@@ -15,8 +15,8 @@ CubeGrid::CubeGrid(const SampleGrid& img) : g(img) {
   }
   delta = std::min({s[0], s[1], s[2]});
   if (n[0] < 2 || n[1] < 2 || n[2] < 2) return;
-  cube_active.resize((std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)) + 63) / 64);  // zeros, no memset
-  block_active.assign(std::size_t(nb[0] * nb[1] * nb[2]), 0);
+  block_brick.resize(std::size_t(nb[0] * nb[1] * nb[2]));  // zeros, no memset
+  bricks.assign(kBlock, 0);  // brick 0: no active cube
   long c0[3], c1[3];
   sampled_cubes(c0, c1);
   for (long z = c0[2]; z <= c1[2]; ++z)
@@ -27,17 +27,22 @@ CubeGrid::CubeGrid(const SampleGrid& img) : g(img) {
         bool mixed = false;
         for (int k = 1; k < 8; ++k) mixed = mixed || ((c[k] < 0) != (c[0] < 0));
         if (!mixed) continue;
-        set_bit(cube_active, cube_index(x, y, z));
+        std::uint32_t& brick = block_brick[block_index(x >> kBlockShift, y >> kBlockShift, z >> kBlockShift)];
+        if (brick == 0) {
+          brick = std::uint32_t(bricks.size() / kBlock);
+          bricks.resize(bricks.size() + kBlock, 0);
+        }
+        bricks[std::size_t(kBlock * brick + (z & kBlockMask))] |= std::uint64_t(1) << ((x & kBlockMask) + kBlock * (y & kBlockMask));
         ++active_cubes;
-        block_active[std::size_t(x / kBlock + nb[0] * (y / kBlock + nb[1] * (z / kBlock)))] = 1;
       }
+  bricks.shrink_to_fit();  // grown by doubling: held through the run
 }
 
 // The labelled cubes are marked in a bit set of their own; the pairs are
 // sorted by key at the end.
 void CubeGrid::label() {
   std::vector<std::array<long, 3>> stack;
-  ZeroedVector<std::uint64_t> done(cube_active.size());
+  ZeroedVector<std::uint64_t> done((std::size_t((n[0] - 1) * (n[1] - 1) * (n[2] - 1)) + 63) / 64);
   auto labelled = [&](long x, long y, long z) { return test_bit(done, cube_index(x, y, z)); };
   auto set = [&](long x, long y, long z, int c) {
     set_bit(done, cube_index(x, y, z));
@@ -46,10 +51,11 @@ void CubeGrid::label() {
   comp.reserve(active_cubes);
   long c0[3], c1[3];
   sampled_cubes(c0, c1);
+  // The active cubes a line at a time (not a lookup per cube of the box).
   for (long z = c0[2]; z <= c1[2]; ++z)
     for (long y = c0[1]; y <= c1[1]; ++y)
-      for (long x = c0[0]; x <= c1[0]; ++x) {
-        if (!active(x, y, z) || labelled(x, y, z)) continue;
+      for_active_on_line(c0[0], c1[0], y, z, [&](long x) {
+        if (labelled(x, y, z)) return;
         if (components == (1 << ActiveCube::kCompBits) - 1)
           throw Error("the surface has more than " + std::to_string(components) + " components");
         const int c = components++;
@@ -79,7 +85,7 @@ void CubeGrid::label() {
               stack.push_back(r);
             }
         }
-      }
+      });
   std::sort(comp.begin(), comp.end());
 }
 

@@ -265,31 +265,42 @@ inline Vec3 facet_center(const Facet& f) {
 // distance to W when found), for DELMESH's insert_batch.
 using Candidates = std::vector<std::pair<Vec3, double>>;
 
-// Vertex ids, each once, in the order they came, with O(1) membership.
-struct IdSet {
-  std::vector<char> in;
-  std::vector<int> ids;
+// A set of vertex ids: a bit an id, visited in increasing order. Its users
+// sort what they visit, so the order ids came in need not be kept: a list
+// of them (4 bytes an id, and a byte per id for membership) held every
+// vertex by the end of REFINE, twice (FacetCycle's and HandleDetection's
+// sets), at the run's peak.
+class IdSet {
+public:
   void add(int id) {
-    if (std::size_t(id) >= in.size()) in.resize(std::size_t(id) + 1, 0);
-    if (!in[std::size_t(id)]) {
-      in[std::size_t(id)] = 1;
-      ids.push_back(id);
-    }
+    const std::size_t w = std::size_t(id) >> 6;
+    if (w >= bits_.size()) bits_.resize(w + 1, 0);
+    const std::uint64_t bit = std::uint64_t(1) << (id & 63);
+    count_ += !(bits_[w] & bit);
+    bits_[w] |= bit;
   }
-  bool has(int id) const { return std::size_t(id) < in.size() && in[std::size_t(id)]; }
-  // The ids' memory goes too: a pass after the queues drain takes every
-  // vertex inserted since the last (up to all of them), and capacity kept
-  // for the next pass was held through the end of REFINE, the run's peak.
+  bool has(int id) const {
+    const std::size_t w = std::size_t(id) >> 6;
+    return w < bits_.size() && (bits_[w] >> (id & 63) & 1);
+  }
+  std::size_t size() const { return count_; }
+  // f(id) for each id, in increasing order.
+  template <class F> void for_each(F&& f) const {
+    for (std::size_t w = 0; w < bits_.size(); ++w)
+      for (std::uint64_t b = bits_[w]; b; b &= b - 1) f(int(w << 6) + __builtin_ctzll(b));
+  }
   void clear() {
-    for (int id : ids) in[std::size_t(id)] = 0;
-    std::vector<int>().swap(ids);
+    std::fill(bits_.begin(), bits_.end(), 0);
+    count_ = 0;
   }
-  // An empty set's memory (clear() keeps the flags for reuse) back to the heap.
+  // An empty set's memory back to the heap.
   void release() {
-    if (!ids.empty()) return;
-    std::vector<int>().swap(ids);
-    std::vector<char>().swap(in);
+    if (count_ == 0) std::vector<std::uint64_t>().swap(bits_);
   }
+
+private:
+  std::vector<std::uint64_t> bits_;
+  std::size_t count_ = 0;
 };
 
 } // namespace imgmesh::surface_detail

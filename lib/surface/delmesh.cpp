@@ -139,6 +139,7 @@ bool DelMesh::remove_vertex(Vh v) {
   if (v->info().comp >= 0) --comp_vertices_[std::size_t(v->info().comp)];
   cells_buf_.clear();
   tr_.remove_and_give_new_cells(v, std::back_inserter(cells_buf_));
+  voxel_side_points_.release();  // its cells' largest ids no longer tell them apart
   if (tr_.dimension() < 3) {  // the rest is coplanar: put it back (bootstrap)
     insert(x, origin);
     --inserted_[origin];

@@ -35,14 +35,13 @@ bool DelMesh::facet_cycle_pass() {
 // vertex whose Voronoi cell changed since its last check. True if a point
 // went in.
 bool DelMesh::handle_vertex_pass() {
-  std::sort(cell_changed_.ids.begin(), cell_changed_.ids.end());
   std::vector<Vh> todo;
   // HandleDetection is about the sample P on S: implicit2tet's points off
   // S are not checked (their cells hold no piece of S to test).
-  for (int id : cell_changed_.ids) {
+  cell_changed_.for_each([&](int id) {
     const Vh v = vertices_[std::size_t(id)];
     if (v != Vh() && on_surface(v->info().origin)) todo.push_back(v);
-  }
+  });
   cell_changed_.clear();
   const Candidates pts = handle_points(tr_, sampler_, todo, opt_.threads, handle_checks_);
   if (handle_trial_ && !pts.empty()) {  // the deleted handle point goes back

@@ -279,14 +279,14 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
     auto low = [&](int id) {
       if (!is_low[std::size_t(id)]) is_low[std::size_t(id)] = 1, lows.push_back(id);
     };
-    for (int ia : changed.ids) {
+    changed.for_each([&](int ia) {
       const Vh a = vertices[std::size_t(ia)];
-      if (a == Vh()) continue;  // deleted
+      if (a == Vh()) return;  // deleted
       low(ia);
       neighbours(a, [&](Vh b, Ch) {
         if (b->info().id < ia && !changed.has(b->info().id)) low(b->info().id);
       });
-    }
+    });
   }
   std::sort(lows.begin(), lows.end());
   // An edge by the ids of its ends and a cell at it; p (its first vertex): lo.

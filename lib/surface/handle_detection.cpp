@@ -514,20 +514,27 @@ static bool check_vertex(const Tr& tr, const SurfaceSampler& f, Vh p, bool cheap
 
 static Candidates check_all(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& todo, bool cheap, int threads,
                             HandleChecks& checks) {
-  std::vector<char> found(todo.size(), 0);
-  std::vector<Vec3> xs(todo.size());
+  // The few points found, per thread with their vertex's index, not a
+  // point per vertex checked: the pass after the queues drain checks every
+  // vertex, and that array (24 bytes a vertex) was the run's peak (CT liver).
+  const unsigned nt = implicit_detail::resolve_threads(unsigned(std::max(1, threads)));
+  std::vector<std::vector<std::pair<std::size_t, Vec3>>> found(nt);
   std::atomic<long long> full{0}, undecided{0}, unresolved{0};
-  implicit_detail::parallel_for(long(todo.size()), unsigned(std::max(1, threads)), [&](long a, long b, unsigned) {
-    for (long k = a; k < b; ++k)
-      found[std::size_t(k)] = check_vertex(tr, f, todo[std::size_t(k)], cheap, xs[std::size_t(k)], full, undecided, unresolved);
+  implicit_detail::parallel_for(long(todo.size()), nt, [&](long a, long b, unsigned t) {
+    for (long k = a; k < b; ++k) {
+      Vec3 x;
+      if (check_vertex(tr, f, todo[std::size_t(k)], cheap, x, full, undecided, unresolved)) found[t].emplace_back(std::size_t(k), x);
+    }
   });
   checks.full += full.load();
   checks.certified += static_cast<long long>(todo.size()) - full.load();
   checks.undecided += undecided.load();
   checks.unresolved += unresolved.load();
+  std::vector<std::pair<std::size_t, Vec3>> all;
+  for (const auto& v : found) all.insert(all.end(), v.begin(), v.end());
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   Candidates pts;
-  for (std::size_t k = 0; k < todo.size(); ++k)
-    if (found[k]) pts.emplace_back(xs[k], dist2(xs[k], vec(todo[k]->point())));
+  for (const auto& [k, x] : all) pts.emplace_back(x, dist2(x, vec(todo[k]->point())));
   return pts;
 }
 

@@ -4,7 +4,6 @@
 
 #include "mesh/located_cells.hpp"
 #include "surface/star.hpp"
-#include "util/hash.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -27,8 +26,11 @@ std::vector<std::uint8_t> centre_corners(const CubeGrid& g) {
       const long p[3] = {x + (e & 1), y + (e >> 1 & 1), z + (e >> 2 & 1)};
       bool first = true;
       for (int o = 1; o < 8 && first; ++o) {
-        const long q[3] = {p[0] - (o & 1), p[1] - (o >> 1 & 1), p[2] - (o >> 2 & 1)};
-        first = !(g.active(q[0], q[1], q[2]) && g.key(q[0], q[1], q[2]) < kc.key());
+        // Cube p - o = kc + (e - o) has the lesser key exactly when e - o
+        // is negative in (z, y, x) order: only those are looked up.
+        const int d[3] = {(e & 1) - (o & 1), (e >> 1 & 1) - (o >> 1 & 1), (e >> 2 & 1) - (o >> 2 & 1)};
+        if (!(d[2] < 0 || (d[2] == 0 && (d[1] < 0 || (d[1] == 0 && d[0] < 0))))) continue;
+        first = !g.active(p[0] - (o & 1), p[1] - (o >> 1 & 1), p[2] - (o >> 2 & 1));
       }
       if (first) bits |= 1u << e;
     }
@@ -37,11 +39,12 @@ std::vector<std::uint8_t> centre_corners(const CubeGrid& g) {
   return corners;
 }
 
-// A cell's vertices as one number, whatever their order.
-std::uint64_t vertices_of(const Tr& tr, Ch c) {
-  std::uint64_t h = 0;
-  for (int i = 0; i < 4; ++i) h += mix64(std::uint64_t(tr.is_infinite(c->vertex(i)) ? 0 : c->vertex(i)->info().id + 1));
-  return h;
+// A cell's largest vertex id, + 1 (a cell has three finite vertices or four).
+std::uint32_t top_of(const Tr& tr, Ch c) {
+  int top = -1;
+  for (int i = 0; i < 4; ++i)
+    if (!tr.is_infinite(c->vertex(i))) top = std::max(top, c->vertex(i)->info().id);
+  return std::uint32_t(top + 1);
 }
 
 // The cell's side of S: its circumcentre's (f == 0 outside, as everywhere;
@@ -90,8 +93,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     std::size_t n = 0;
     for (std::uint8_t bits : corners_) n += std::size_t(__builtin_popcount(bits));
     cell_.assign(n, Ch());
-    vertices_.assign(n, 0);
-    near_.assign(n, 0);
+    top_.assign(n, 0);
   }
   Candidates pts;
   Ch hint = near->cell();
@@ -113,7 +115,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     // A centre still in the cell it was found right in is right. (The walk
     // starts from the last cell a walk found: a centre outside W's hull or
     // on a facet may be found in another cell from another start.)
-    if (cell_[k] != Ch() && tr.tds().cells().is_used(cell_[k]) && vertices_of(tr, cell_[k]) == vertices_[k]) return;
+    if (cell_[k] != Ch() && tr.tds().cells().is_used(cell_[k]) && top_of(tr, cell_[k]) == top_[k]) return;
     const Vec3 p{double(x) * g.s[0], double(y) * g.s[1], double(z) * g.s[2]};
     const Point pp(p[0], p[1], p[2]);
     Tr::Locate_type lt;
@@ -133,7 +135,7 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     // as always.
     const bool adjacent = std::abs(x - last[0]) <= 1 && std::abs(y - last[1]) <= 1 && std::abs(z - last[2]) <= 1;
     last[0] = x, last[1] = y, last[2] = z;
-    const Vh from = near_[k] == 0 ? Vh() : by_id[near_[k] - 1];
+    const Vh from = top_[k] == 0 ? Vh() : by_id[top_[k] - 1];
     const bool from_near = near_starts_ && !adjacent && from != Vh();
     Ch c = tr.locate(pp, lt, li, lj, tr.inexact_locate(pp, from_near ? from->cell() : hint));
     if (lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
@@ -147,10 +149,10 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
         bad = h;
         break;
       }
-    cell_[k] = Ch(), vertices_[k] = 0;
-    near_[k] = std::uint32_t(c->vertex(tr.is_infinite(c->vertex(0)) ? 1 : 0)->info().id + 1);
+    cell_[k] = Ch();
+    top_[k] = top_of(tr, c);
     if (bad == Ch()) {
-      if (cells.size() == 1) cell_[k] = c, vertices_[k] = vertices_of(tr, c);  // on a facet: looked at again
+      if (cells.size() == 1) cell_[k] = c;  // on a facet: looked at again
       return;
     }
     ++wrong;

@@ -37,25 +37,31 @@ public:
                         long long& wrong, long long& refused);
 
   // The per-centre memory let go (the surface mesher's certificate, at its
-  // peak): the next call looks at every centre again.
+  // peak; a vertex removal, after which a cell's largest id no longer tells
+  // it from the cells made later at its address): the next call looks at
+  // every centre again.
   void release() {
     std::vector<std::uint8_t>().swap(corners_);
     std::vector<Ch>().swap(cell_);
-    std::vector<std::uint64_t>().swap(vertices_);
-    std::vector<std::uint32_t>().swap(near_);
+    std::vector<std::uint32_t>().swap(top_);
   }
 
 private:
   // Per centre (grid order, found once: a walk over the active cubes took
-  // 7% of the bunny's instructions a run), 20 bytes in three arrays: the
-  // cell it was last found right in, the cell's vertices (a hash of their
-  // ids: a cell's memory is reused) and one of them, by id + 1 (where its
-  // next walk starts; `by_id` is null where a vertex was deleted). Per
-  // active cube (sorted): the corners it visits, bit e for corner e.
+  // 7% of the bunny's instructions a run), 12 bytes in two arrays: the cell
+  // it was last found right in (a cell's memory is reused), and the largest
+  // vertex id of the cell it was last found in, + 1: where its next walk
+  // starts (`by_id` is null where a vertex was deleted), and what tells that
+  // cell from a later one at its address. Every cell made since holds the
+  // vertex whose insertion made it, of an id larger than any before (W
+  // only grows between passes: vertex removal releases this memory), so
+  // that cell stands exactly when its address holds a cell of that largest
+  // id (a hash of the four ids, in 8 bytes more a centre, told it nearly
+  // always). Per active cube (sorted): the corners it visits, bit e for
+  // corner e.
   std::vector<std::uint8_t> corners_;
   std::vector<Ch> cell_;
-  std::vector<std::uint64_t> vertices_;
-  std::vector<std::uint32_t> near_;
+  std::vector<std::uint32_t> top_;
   bool near_starts_;
 };
 

@@ -132,6 +132,24 @@ TEST_CASE("inactive_box: true only for boxes inside the grid that meet no active
           const Vec3 m{x + 0.5, y + 0.5, z + 0.5};
           REQUIRE(!grid.inactive_box(m, m));
         }
+  // Boxes of all sizes and places (across the blocks of 8^3 cubes whose
+  // layers it masks to the box's rows and columns) against a look at each
+  // cube they meet.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> at(0, 19.9), extent(0, 7);
+  int met = 0, missed = 0;
+  for (int t = 0; t < 3000; ++t) {
+    Vec3 lo, hi;
+    for (int a = 0; a < 3; ++a) lo[a] = at(rng), hi[a] = std::min(20.0, lo[a] + extent(rng));
+    bool any = false;
+    for (long z = long(lo[2]); z <= std::min(19L, long(hi[2])); ++z)
+      for (long y = long(lo[1]); y <= std::min(19L, long(hi[1])); ++y)
+        for (long x = long(lo[0]); x <= std::min(19L, long(hi[0])); ++x) any = any || grid.active(x, y, z);
+    REQUIRE(grid.inactive_box(lo, hi) == !any);
+    ++(any ? met : missed);
+  }
+  CHECK(met > 500);
+  CHECK(missed > 500);
 }
 
 TEST_CASE("edge_surface's stages: the segment clipped to the box of voxel centres; its lattice plane crossings, in order") {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <map>
+#include <vector>
 
 using namespace imgmesh;
 using namespace imgmesh::surface_detail;
@@ -100,6 +101,31 @@ TEST_CASE("cube grid: active cubes are the mixed ones, each in one component, li
         }
         active += mixed;
       }
+  // The lines' active cubes (a block's brick at a time) and the blocks'
+  // activity are active()'s, from every start to every end of a line.
+  for (long z = 0; z + 1 < grid.n[2]; ++z)
+    for (long y = 0; y + 1 < grid.n[1]; ++y)
+      for (long x0 = 0; x0 + 1 < grid.n[0]; x0 += 3)
+        for (long x1 = x0; x1 + 1 < grid.n[0]; x1 += 5) {
+          std::vector<long> seen, expected;
+          grid.for_active_on_line(x0, x1, y, z, [&](long x) { seen.push_back(x); });
+          for (long x = x0; x <= x1; ++x)
+            if (grid.active(x, y, z)) expected.push_back(x);
+          REQUIRE(seen == expected);
+        }
+  long active_blocks = 0;
+  for (long bz = 0; bz < grid.nb[2]; ++bz)
+    for (long by = 0; by < grid.nb[1]; ++by)
+      for (long bx = 0; bx < grid.nb[0]; ++bx) {
+        bool any = false;
+        for (long z = bz * CubeGrid::kBlock; z < (bz + 1) * CubeGrid::kBlock; ++z)
+          for (long y = by * CubeGrid::kBlock; y < (by + 1) * CubeGrid::kBlock; ++y)
+            for (long x = bx * CubeGrid::kBlock; x < (bx + 1) * CubeGrid::kBlock; ++x) any = any || grid.active(x, y, z);
+        CHECK(grid.block(bx, by, bz) == any);
+        active_blocks += any;
+      }
+  CHECK(active_blocks > 1);
+  CHECK(active_blocks < grid.nb[0] * grid.nb[1] * grid.nb[2]);
   const auto& cubes = grid.sorted_cubes();
   CHECK(long(cubes.size()) == active);
   for (std::size_t i = 1; i < cubes.size(); ++i) CHECK(cubes[i - 1].key() < cubes[i].key());
