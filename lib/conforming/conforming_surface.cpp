@@ -81,15 +81,15 @@ void Mesher::bounding_box() {
 }
 
 // start: a cell near p where the caller knows one (the walk starts there;
-// the triangulation is the same whatever the start).
-bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
+// the triangulation is the same whatever the start); near: see locate_from.
+bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2, Ch near) {
   if (points_ >= o_.max_points) {
     max_hit_ = true;
     return false;
   }
   Tr::Locate_type lt;
   int li, lj;
-  Ch c = locate_from(tr_, pt(p), lt, li, lj, start != Ch() ? start : hint_);
+  Ch c = locate_from(tr_, pt(p), lt, li, lj, start != Ch() ? start : hint_, near);
   if (lt == Tr::VERTEX) {
     ++refused_;
     return false;
