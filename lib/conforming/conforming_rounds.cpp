@@ -165,7 +165,16 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
   // ball's radius: the centres of two neighbouring facets can lie 1e-4
   // voxel apart, and QUALITY would then grade the mesh down to them
   // (hundreds of triangles, and seg2tet's slivers, in a thousandth of a voxel).
-  std::vector<std::pair<double, Vec3>> centres;  // (squared radius, centre)
+  // (squared radius, centre, a vertex of its facet: vertices stay, its
+  // cells a walk's start near the centre; from hint_, the last point
+  // inserted, in this order of radii, the walks crossed the mesh: a sixth
+  // of the brain map's time)
+  struct Centre {
+    double r2;
+    Vec3 x;
+    Vh v;
+  };
+  std::vector<Centre> centres;
   for (auto f = tr_.finite_facets_begin(); f != tr_.finite_facets_end(); ++f) {
     Ch c = f->first, n = c->neighbor(f->second);
     if (tr_.is_infinite(c) || tr_.is_infinite(n) || label(c) == label(n) || !may_be_near(centre(c), centre(n)))
@@ -178,13 +187,12 @@ bool Mesher::refine_near(const std::vector<Vec3>& places) {
     const auto vi = std::ptrdiff_t(std::floor(q[0] + 0.5)), vj = std::ptrdiff_t(std::floor(q[1] + 0.5)),
                vk = std::ptrdiff_t(std::floor(q[2] + 0.5));
     if (x_.inside(vi, vj, vk) && near[x_.index(std::size_t(vi), std::size_t(vj), std::size_t(vk))])
-      centres.emplace_back(dist2(x, vec(c->vertex((i + 1) & 3)->point())), x);
+      centres.push_back({dist2(x, vec(c->vertex((i + 1) & 3)->point())), x, c->vertex((i + 1) & 3)});
   }
-  std::sort(centres.begin(), centres.end(), [](const auto& a, const auto& b) {
-    return a.first != b.first ? a.first > b.first : a.second < b.second;
-  });
+  std::sort(centres.begin(), centres.end(),
+            [](const Centre& a, const Centre& b) { return a.r2 != b.r2 ? a.r2 > b.r2 : a.x < b.x; });
   bool any = false;
-  for (const auto& [r2, x] : centres) any = insert(x, kCertificate, Ch(), r2 / 16) || any;
+  for (const Centre& c : centres) any = insert(c.x, kCertificate, Ch(), c.r2 / 16, c.v->cell()) || any;
   return any;
 }
 

@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 
 namespace imgmesh {
 namespace conforming_detail {
@@ -81,15 +80,15 @@ void Mesher::bounding_box() {
 }
 
 // start: a cell near p where the caller knows one (the walk starts there;
-// the triangulation is the same whatever the start).
-bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2) {
+// the triangulation is the same whatever the start); near: see locate_from.
+bool Mesher::insert(const Vec3& p, int step, Ch start, double gap2, Ch near) {
   if (points_ >= o_.max_points) {
     max_hit_ = true;
     return false;
   }
   Tr::Locate_type lt;
   int li, lj;
-  Ch c = locate_from(tr_, pt(p), lt, li, lj, start != Ch() ? start : hint_);
+  Ch c = locate_from(tr_, pt(p), lt, li, lj, start != Ch() ? start : hint_, near);
   if (lt == Tr::VERTEX) {
     ++refused_;
     return false;
@@ -540,11 +539,25 @@ void Mesher::release_lists() {
 // numbered by first use: CGAL's storage order depends on addresses.
 ConformingSurface Mesher::output() {
   ConformingSurface out;
-  std::unordered_map<int, int> id;
+  // Per vertex id its point's index (-1: none yet); the ids below 0 (the
+  // bounding box's corners, one id for all; seg2tet --outside's) apart.
+  std::vector<int> id(points_, -1);
+  std::vector<std::pair<int, int>> negative;
   auto index = [&](Vh v) {
-    auto [it, added] = id.try_emplace(v->info(), int(out.points.size()));
-    if (added) out.points.push_back(vec(v->point()));
-    return it->second;
+    const int i = v->info();
+    int* at = nullptr;
+    if (i >= 0) {
+      at = &id[std::size_t(i)];
+    } else {
+      auto it = std::find_if(negative.begin(), negative.end(), [&](const std::pair<int, int>& e) { return e.first == i; });
+      if (it == negative.end()) it = negative.insert(negative.end(), {i, -1});
+      at = &it->second;
+    }
+    if (*at < 0) {
+      *at = int(out.points.size());
+      out.points.push_back(vec(v->point()));
+    }
+    return *at;
   };
   struct Face {
     std::array<int, 3> key;  // sorted ids

@@ -176,7 +176,8 @@ private:
     return v;
   }
   // p unless within sqrt(gap2) (at least 1e-6 voxel) of a vertex.
-  bool insert(const Vec3& p, int step, Ch start = Ch(), double gap2 = 0);
+  // near: a cell nearer p than start (locate_from).
+  bool insert(const Vec3& p, int step, Ch start = Ch(), double gap2 = 0, Ch near = Ch());
   // Ch() when no stop cell was reached (all of v's cells gathered).
   Ch star(Vh v, std::vector<Ch>& out, Ch stop_a = Ch(), Ch stop_b = Ch());
   bool surface_centre(Ch c, int i, Vec3& x);

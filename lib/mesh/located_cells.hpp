@@ -16,11 +16,13 @@ namespace imgmesh {
 // exact walk from where it stops finds the same cell when one cell holds
 // p strictly inside; else (p on a facet, edge or vertex, or outside the
 // hull, where the walk decides which cell it finds) the exact walk from
-// start, as locate alone would.
+// start, as locate alone would. near: where the floating-point walk starts
+// instead of start (a cell nearer p), with the same answers.
 template <class Tr>
 typename Tr::Cell_handle locate_from(const Tr& tr, const typename Tr::Point& p, typename Tr::Locate_type& lt, int& li,
-                                     int& lj, typename Tr::Cell_handle start) {
-  typename Tr::Cell_handle c = tr.locate(p, lt, li, lj, tr.inexact_locate(p, start));
+                                     int& lj, typename Tr::Cell_handle start,
+                                     typename Tr::Cell_handle near = typename Tr::Cell_handle()) {
+  typename Tr::Cell_handle c = tr.locate(p, lt, li, lj, tr.inexact_locate(p, near != typename Tr::Cell_handle() ? near : start));
   if (lt != Tr::CELL) c = tr.locate(p, lt, li, lj, start);
   return c;
 }

@@ -573,7 +573,7 @@ InterfaceCertificate certify(const std::vector<Vec3>& points, const std::vector<
   co.place_tolerance = c.place_tolerance;
   co.intersections_cap = options.intersections_cap;
   co.intersections = false;  // each label's triangles are among the whole mesh's, tested here
-  check_intersections(c, points, triangles, pairs, options);
+  if (options.check_crossings) check_intersections(c, points, triangles, pairs, options);
   const surfacenets_detail::NetCells cells =
       options.lattice ? surfacenets_detail::net_cells(points, triangles, pairs, image, k) : surfacenets_detail::NetCells();
   c.on_lattice = cells.holds;
@@ -592,6 +592,12 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
                                             const LabelImage& image, const InterfaceComplex& k,
                                             const InterfaceCertificateOptions& options) {
   return certify(points, triangles, pairs, image, k, options);
+}
+
+void add_crossings(InterfaceCertificate& c, const std::vector<Vec3>& points,
+                   const std::vector<std::array<int, 3>>& triangles,
+                   const std::vector<std::array<std::int32_t, 2>>& pairs, const InterfaceCertificateOptions& options) {
+  check_intersections(c, points, triangles, pairs, options);
 }
 
 InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,

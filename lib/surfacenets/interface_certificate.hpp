@@ -94,6 +94,11 @@ struct InterfaceCertificateOptions {
   // its cell, which it checks). Empty: CGAL's box intersection over every
   // triangle, for any mesh.
   std::function<std::vector<std::array<std::size_t, 2>>()> crossings;
+  // false: the whole mesh's crossings not searched (intersections "not
+  // checked": the certificate does not hold), for a caller that wants
+  // failing_places, which does not read them (the conforming mesher's
+  // rounds), and adds them (add_crossings) to the one certificate it keeps.
+  bool check_crossings = true;
   unsigned threads = 1;  // labels and interfaces certified at once (the same certificate whatever the number)
   // Each label's nesting and voxel sides from the lattice when the mesh is
   // a surface-nets mesh of K(X) with every vertex strictly inside its cell
@@ -197,6 +202,12 @@ InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
                                             const std::vector<std::array<std::int32_t, 2>>& pairs,
                                             const NarrowLabelImage& image, const InterfaceComplex& k,
                                             const InterfaceCertificateOptions& options = {});
+// The whole mesh's crossings (the intersections check) added to a
+// certificate made without them (check_crossings false) of this mesh: the
+// certificate certify_interface_mesh with them gives.
+void add_crossings(InterfaceCertificate& c, const std::vector<Vec3>& points,
+                   const std::vector<std::array<int, 3>>& triangles,
+                   const std::vector<std::array<std::int32_t, 2>>& pairs, const InterfaceCertificateOptions& options = {});
 // The same, K(X) built here.
 InterfaceCertificate certify_interface_mesh(const std::vector<Vec3>& points,
                                             const std::vector<std::array<int, 3>>& triangles,

@@ -317,6 +317,30 @@ TEST_CASE("interface certificate: a vertex moved out of its cell, a|b crossing c
   CHECK(std::find(b.begin(), b.end(), a[1]) == b.end());
 }
 
+TEST_CASE("interface certificate: the crossings added later, the same certificate", "[surfacenets]") {
+  // The conforming mesher's rounds certify without the crossings; the one
+  // certificate kept gets them after (label_surface_nets.cpp).
+  const LabelImage img = four_labels_around_an_edge();
+  const InterfaceComplex k = interface_complex(img);
+  const InterfaceMesh m = interface_mesh(img, k);
+  for (const double move : {0.0, 1.4}) {  // none; a|b crossing c|d (the test above)
+    Soup s = soup_of(m);
+    const std::uint64_t corner = 4 + m.lattice[0] * (5 + m.lattice[1] * 2);
+    const auto v = std::size_t(std::lower_bound(m.corners.begin(), m.corners.end(), corner) - m.corners.begin());
+    s.points[v] = {s.points[v][0] + move, s.points[v][1] + move / 2, s.points[v][2] - move / 2};
+    const Cert full = certify(s, img);
+    CHECK(full.ok() == (move == 0));
+    InterfaceCertificateOptions without;
+    without.check_crossings = false;
+    Cert c = certify_interface_mesh(s.points, s.triangles, s.pairs, img, k, without);
+    CHECK(c.state[Cert::kIntersections] == -1);
+    CHECK_FALSE(c.ok());  // never holds unchecked
+    CHECK(c.failing_places(s.points, s.triangles, s.pairs, k, img) == full.failing_places(s.points, s.triangles, s.pairs, k, img));
+    add_crossings(c, s.points, s.triangles, s.pairs);
+    CHECK(c.to_json().dump() == full.to_json().dump());
+  }
+}
+
 TEST_CASE("interface certificate: a split pinch is refused", "[surfacenets]") {
   const LabelImage img = pinched_block();
   const InterfaceComplex k = interface_complex(img);
