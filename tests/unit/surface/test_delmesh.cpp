@@ -41,13 +41,16 @@ int stale_facets(const DelMesh& m) {
   }
   return stale;
 }
+
+// Two components of S, one of genus 1, on a 29x19x15 grid.
+double sphere_and_torus(const Vec3& p) {
+  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
+  return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
+}
 } // namespace
 
 TEST_CASE("DELMESH: seeds on S, refinement keeps every facet's EdgeSurface answer current, points on S") {
-  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
-  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
-    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
-  });
+  FunctionSurface s(test::box(29, 19, 15), sphere_and_torus);
   RestrictedDelaunayOptions o;
   DelMesh m(s, o);
   m.prepare();
@@ -205,10 +208,7 @@ TEST_CASE("DELMESH: a cavity's boundary facet whose Voronoi edge shrank keeps it
   // Every facet skipped so is checked by EdgeSurface as it is skipped
   // (compare_missed_cells throws on a restricted one), and every facet's
   // answer is current at the end.
-  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
-  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
-    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
-  });
+  FunctionSurface s(test::box(29, 19, 15), sphere_and_torus);
   RestrictedDelaunayOptions o;
   o.compare_missed_cells = true;
   DelMesh m(s, o);
@@ -223,10 +223,7 @@ TEST_CASE("DELMESH: TopoDisk and SMOOTH run only where a vertex's restricted fac
   // Every check skipped as not stale runs all the same (compare_stale_checks
   // throws where one fails): an insertion near a vertex that changed none of
   // its restricted facets (a cavity's boundary facet kept) leaves its answers.
-  const Vec3 a{6.4, 8.3, 7.2}, c{20.1, 9.2, 7.4};
-  FunctionSurface s(test::box(29, 19, 15), [&](const Vec3& p) {
-    return std::min(test::sphere_f(p, a, 3.9), test::torus_f(p, c, 5.2, 2.1));
-  });
+  FunctionSurface s(test::box(29, 19, 15), sphere_and_torus);
   RestrictedDelaunayOptions o;
   o.compare_stale_checks = true;
   DelMesh m(s, o);
