@@ -7,6 +7,7 @@
 // (on the bunny 326,000 allocations; on the elephant these walks were 13%
 // of the CPU samples).
 #pragma once
+#include "mesh/located_cells.hpp"
 #include "mesh/star_walk.hpp"
 #include "surface/delaunay_types.hpp"
 
@@ -137,14 +138,13 @@ inline void star_vertices_threadsafe(const Tr& tr, Vh v, std::vector<Vh>& out) {
 // tr.nearest_vertex(p, start) (one thread at a time): the vertex of p's
 // cell nearest to p, then while one is nearer, the nearest of its
 // neighbours (ties: the vertex held). The walk to p's cell goes in floating
-// point first (as VoxelSides' does); from `start`, as CGAL's, when p is not
+// point first (locate_from); from `start`, as CGAL's, when p is not
 // inside one cell.
 inline Vh nearest_vertex(const Tr& tr, const Point& p, Ch start) {
   if (tr.dimension() < 3) return tr.nearest_vertex(p, start);
   Tr::Locate_type lt;
   int li, lj;
-  Ch c = tr.locate(p, lt, li, lj, tr.inexact_locate(p, start));
-  if (lt != Tr::CELL) c = tr.locate(p, lt, li, lj, start);
+  const Ch c = locate_from(tr, p, lt, li, lj, start);
   if (lt == Tr::VERTEX) return c->vertex(li);
   const auto compare = tr.geom_traits().compare_distance_3_object();
   const auto nearer = [&](Vh v, Vh w) {  // CGAL's nearest_vertex(p, v, w)

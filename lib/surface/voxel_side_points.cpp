@@ -125,20 +125,15 @@ Candidates VoxelSidePoints::operator()(const Tr& tr, const SurfaceSampler& f, co
     // active cubes jumps across the shape to the next) from a vertex of the
     // cell p was last found in (an insertion replaced that cell by cells
     // around the new point, next to the vertex's). It goes in floating
-    // point first (CGAL's inexact_locate, which its locate runs first only
-    // for the plain Epick kernel, not for these traits): a voxel's step
-    // crosses ~6 cells, thin ones near S, each a filtered orientation test
-    // or more and a random draw in the exact walk. The exact walk from
-    // where it stops ends in the same cell when one cell holds p. Else (p
-    // on a facet, edge or vertex, or outside W's hull, where the walk
-    // decides which cell it finds), the exact walk from the last centre's,
-    // as always.
+    // point first (locate_from): a voxel's step crosses ~6 cells, thin
+    // ones near S, each a filtered orientation test or more and a random
+    // draw in the exact walk. Where p is not inside one cell the exact walk
+    // from the last centre's decides, as always.
     const bool adjacent = std::abs(x - last[0]) <= 1 && std::abs(y - last[1]) <= 1 && std::abs(z - last[2]) <= 1;
     last[0] = x, last[1] = y, last[2] = z;
     const Vh from = top_[k] == 0 ? Vh() : by_id[top_[k] - 1];
     const bool from_near = near_starts_ && !adjacent && from != Vh();
-    Ch c = tr.locate(pp, lt, li, lj, tr.inexact_locate(pp, from_near ? from->cell() : hint));
-    if (lt != Tr::CELL) c = tr.locate(pp, lt, li, lj, hint);
+    Ch c = locate_from(tr, pp, lt, li, lj, hint, from_near ? from->cell() : Ch());
     hint = c;
     // The cells holding p: one, or those around the facet, edge or vertex it lies on.
     located_cells(tr, c, lt, li, lj, cells);
