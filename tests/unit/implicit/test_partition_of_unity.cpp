@@ -591,6 +591,30 @@ TEST_CASE("f on coded blocks and on float blocks is f on dense samples", "[pu]")
   }
 }
 
+// weight_constant computes L_k only where a cheaper bound of it exceeds the
+// largest so far: on rough samples (not a distance: every cell's L_k
+// differs, many near the maximum) that must still give the brute force's.
+TEST_CASE("L_max on rough samples is the brute force's, smooth cells skipped or not", "[pu]") {
+  std::mt19937 rng(11);
+  for (const Vec3 sp : {Vec3{1, 1, 1}, Vec3{0.6, 1.4, 0.9}}) {
+    for (double rough : {0.05, 0.5, 3.0}) {
+      FloatImage g(grid(14, 11, 9, sp));
+      std::uniform_real_distribution<double> u(-rough, rough);
+      for (std::size_t z = 0; z < 9; ++z)
+        for (std::size_t y = 0; y < 11; ++y)
+          for (std::size_t x = 0; x < 14; ++x) {
+            const double smooth = 0.3 * double(x) * sp[0] - 2.0 + 0.1 * double(y * z);
+            double v = smooth + u(rng);
+            if (std::abs(v) < 0.01) v = 0.01;
+            g(x, y, z) = float(v);
+          }
+      double gm, lm;
+      PartitionOfUnity::weight_constant(g, &gm, &lm);
+      REQUIRE(lm == Approx(brute_lmax(g, PartitionOfUnity::weight_margin(sp))).epsilon(1e-9));
+    }
+  }
+}
+
 TEST_CASE("d depends on g near S only: the cells of the foreground's box grown by weight_margin", "[pu]") {
   for (unsigned seed = 1; seed <= 3; ++seed) {
     const Vec3 sp = seed == 2 ? Vec3{0.6, 0.6, 1.3} : Vec3{1, 1, 1};
