@@ -84,6 +84,13 @@ public:
   const std::uint16_t* code_block_at(long b) const { return codes_.data() + slot(b); }
   const float* palette() const { return palette_.data(); }
   long nb(int axis) const { return nb_[axis]; }
+  // Block (bx, by, bz) holds only +clamp (1) or only -clamp (-1): the
+  // shared constant blocks; 0 where it holds samples of its own, or dense.
+  int constant_block(long bx, long by, long bz) const {
+    if (dense()) return 0;
+    const std::uint32_t t = table_[std::size_t(bx + nb_[0] * (by + nb_[1] * bz))];
+    return t == 0 ? 1 : t == 1 ? -1 : 0;
+  }
   static long local(long x, long y, long z) { return (x & kMask) + kB * ((y & kMask) + kB * (z & kMask)); }
   // The samples at the 8 corners of the cube with lowest corner (x, y, z),
   // corner m at (x + (m & 1), y + (m >> 1 & 1), z + (m >> 2 & 1)).

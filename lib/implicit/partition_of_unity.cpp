@@ -174,23 +174,33 @@ class StreamedBound {
 public:
   explicit StreamedBound(const Geometry& box)
       : nx_(long(box.size[0])), ny_(long(box.size[1])), n_(std::size_t(nx_ * ny_)), two_(2 * n_),
+        near_rows_(2 * std::size_t(ny_)),
         inv_{1 / box.spacing[0], 1 / box.spacing[1], 1 / box.spacing[2]},
         r_(PartitionOfUnity::near_radius(box.spacing)) {}
   void add(const float* slice) {
-    for (std::size_t i = 0; i < n_; ++i) {
-      const float v = slice[i];
-      if (!std::isfinite(v) || v == 0) throw Error(kBadSamples);
-      g_min = std::min(g_min, double(std::fabs(v)));
+    // Which rows hold a sample under r: a cell near S has a corner in one.
+    std::uint8_t* near_row = near_rows_.data() + (z_ & 1) * std::size_t(ny_);
+    for (long y = 0; y < ny_; ++y) {
+      bool near = false;
+      for (long x = 0; x < nx_; ++x) {
+        const float v = slice[x + y * nx_];
+        if (!std::isfinite(v) || v == 0) throw Error(kBadSamples);
+        g_min = std::min(g_min, double(std::fabs(v)));
+        near = near || std::fabs(v) < r_;
+      }
+      near_row[y] = near;
     }
     float* cur = two_.data() + (z_ & 1) * n_;
     std::copy_n(slice, n_, cur);
     if (z_ > 0) {
       const float* prev = two_.data() + ((z_ - 1) & 1) * n_;
+      const std::uint8_t* prev_near = near_rows_.data() + ((z_ - 1) & 1) * std::size_t(ny_);
       const long s2 = long(cur - prev);
       for (long y = 0; y + 1 < ny_; ++y)
-        for (long x = 0; x + 1 < nx_; ++x)
-          if (cell_near(prev + x + y * nx_, nx_, s2, r_))
-            l_near = std::max(l_near, cell_lipschitz(prev + x + y * nx_, nx_, s2, inv_));
+        if (near_row[y] || near_row[y + 1] || prev_near[y] || prev_near[y + 1])
+          for (long x = 0; x + 1 < nx_; ++x)
+            if (cell_near(prev + x + y * nx_, nx_, s2, r_))
+              l_near = std::max(l_near, cell_lipschitz(prev + x + y * nx_, nx_, s2, inv_));
     }
     ++z_;
   }
@@ -200,6 +210,7 @@ private:
   long nx_, ny_;
   std::size_t n_;
   std::vector<float> two_;
+  std::vector<std::uint8_t> near_rows_;  // per row of the last two slices
   double inv_[3], r_;
   std::size_t z_ = 0;
 };

@@ -19,9 +19,29 @@ CubeGrid::CubeGrid(const SampleGrid& img) : g(img) {
   bricks.assign(kBlock, 0);  // brick 0: no active cube
   long c0[3], c1[3];
   sampled_cubes(c0, c1);
+  // The cubes of a line a sample block's width at a time: none is active
+  // where every block their corners lie in is constant of one sign (most
+  // of a thin tissue's box, read from blocks).
+  constexpr int kShift = SampleGrid::kShift;
+  const auto one_sign = [&](long bx0, long bx1, long y, long z) {
+    const int sign = g.constant_block(bx0, y >> kShift, z >> kShift);
+    if (sign == 0) return false;
+    for (long by : {y >> kShift, (y + 1) >> kShift})
+      for (long bz : {z >> kShift, (z + 1) >> kShift})
+        for (long bx : {bx0, bx1})
+          if (g.constant_block(bx, by, bz) != sign) return false;
+    return true;
+  };
   for (long z = c0[2]; z <= c1[2]; ++z)
     for (long y = c0[1]; y <= c1[1]; ++y)
       for (long x = c0[0]; x <= c1[0]; ++x) {
+        if ((x == c0[0] || (x & SampleGrid::kMask) == 0)) {
+          const long last = std::min(c1[0], x | SampleGrid::kMask);  // this block's cubes on the line
+          if (one_sign(x >> kShift, (last + 1) >> kShift, y, z)) {
+            x = last;
+            continue;
+          }
+        }
         double c[8];
         g.cube(x, y, z, c);
         bool mixed = false;

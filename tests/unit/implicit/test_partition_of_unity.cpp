@@ -295,9 +295,11 @@ namespace {
 // vertex with |g| < R) need instead of L_max (6.4.2 at their vertices): max
 // over them of sum_i M_i d_i / min |g(v)|, which must be < 1, and their
 // largest M_i, at most 1.8^2 (g is 1-Lipschitz); `near_inside`: every cell
-// with a vertex under R lies in the grown box.
+// with a vertex under R lies in the grown box; `near_max`: the largest L_k
+// of those cells.
 double brute_lmax(const FloatImage& g, const std::array<std::size_t, 3>& margin, const Vec3& d = {0, 0, 0},
-                  double* beyond = nullptr, double* m_beyond = nullptr, bool* near_inside = nullptr) {
+                  double* beyond = nullptr, double* m_beyond = nullptr, bool* near_inside = nullptr,
+                  double* near_max = nullptr) {
   double best = 0;
   const double r = 0.65 * (g.spacing[0] + g.spacing[1] + g.spacing[2]);
   long lo[3] = {1L << 40, 1L << 40, 1L << 40}, hi[3] = {-(1L << 40), -(1L << 40), -(1L << 40)};
@@ -336,6 +338,7 @@ double brute_lmax(const FloatImage& g, const std::array<std::size_t, 3>& margin,
               M[2] = std::max(M[2], std::abs(b + dd * Y + f * X + h * X * Y) / g.spacing[2]);
             }
         if (in_box) best = std::max(best, std::sqrt(3.0) * std::max({M[0], M[1], M[2]}));
+        if (near_max && least < r) *near_max = std::max(*near_max, std::sqrt(3.0) * std::max({M[0], M[1], M[2]}));
         if (least < r && !in_box && near_inside) *near_inside = false;
         if (least >= r) {
           if (beyond) *beyond = std::max(*beyond, (M[0] * d[0] + M[1] * d[1] + M[2] * d[2]) / least);
@@ -672,6 +675,42 @@ TEST_CASE("f streamed a slice at a time is the constructor's f, checks included"
                                                    std::copy_n(g.data.data() + z++ * 100, 100, slice);
                                                  }),
                       Catch::Contains("finite and nonzero"));
+}
+
+// streamed() measures only the cells between rows that hold a sample
+// under R: its L_max must be the largest L_k of every cell near S.
+TEST_CASE("f streamed: L_max is the largest L_k of the cells with a vertex under R (brute force)", "[pu]") {
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const Vec3 sp = seed % 3 == 0 ? Vec3{0.7, 1.2, 0.9} : Vec3{1, 1, 1};
+    const FloatImage g = implicit_from_well_composed(random_wc(21, 23, 12, seed + 90, sp, 2)).samples().to_image();
+    std::size_t z = 0;
+    const std::size_t n = g.size[0] * g.size[1];
+    const PartitionOfUnity f = PartitionOfUnity::streamed(g, {0, 0, 0}, g, {0.01, 0.01, 0.01},
+                                                          std::numeric_limits<float>::infinity(), [&](float* slice) {
+                                                            std::copy_n(g.data.data() + z++ * n, n, slice);
+                                                          });
+    double near_max = 0;
+    brute_lmax(g, {0, 0, 0}, {0, 0, 0}, nullptr, nullptr, nullptr, &near_max);
+    REQUIRE(near_max > 0);
+    REQUIRE(f.l_max() == Approx(near_max).epsilon(1e-9));
+  }
+  // One sample under R among rough ones far above it: the largest L_k of
+  // the eight cells at it, whichever rows and slices they span.
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<double> u(3, 6);
+  for (int trial = 0; trial < 40; ++trial) {
+    FloatImage g(grid(7, 6, 5));
+    for (float& v : g.data) v = float(u(rng));
+    g(1 + trial % 5, 1 + trial / 5 % 4, 1 + trial / 20 % 3) = 0.5f;
+    std::size_t z = 0;
+    const PartitionOfUnity f = PartitionOfUnity::streamed(g, {0, 0, 0}, g, {0.001, 0.001, 0.001},
+                                                          std::numeric_limits<float>::infinity(), [&](float* slice) {
+                                                            std::copy_n(g.data.data() + z++ * 42, 42, slice);
+                                                          });
+    double near_max = 0;
+    brute_lmax(g, {0, 0, 0}, {0, 0, 0}, nullptr, nullptr, nullptr, &near_max);
+    REQUIRE(f.l_max() == Approx(near_max).epsilon(1e-9));
+  }
 }
 
 TEST_CASE("f from bands of x is the constructor's d and streamed f's numbers, the cells across bands included", "[pu]") {

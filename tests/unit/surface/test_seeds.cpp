@@ -133,3 +133,44 @@ TEST_CASE("cube grid: active cubes are the mixed ones, each in one component, li
   CHECK(grid.comp_at(Vec3{kBall[0] + 3.6, kBall[1], kBall[2]}) !=
         grid.comp_at(Vec3{kTorus[0] + 4.1 + 1.1, kTorus[1], kTorus[2]}));
 }
+
+// From blocks, a line's cubes are skipped a sample block at a time where
+// every block their corners lie in is one of the constant ones (+T or -T):
+// the active cubes must still be the mixed ones, with -T blocks inside a
+// large ball, +T blocks outside it, and stored blocks at a thin shell. g is
+// 8-Lipschitz, so a constant block may meet a mixed cube.
+TEST_CASE("cube grid from clamped blocks: the active cubes are the mixed ones") {
+  const Geometry box = test::box(37, 30, 27);
+  FloatImage g(box);
+  for (std::size_t z = 0; z < box.size[2]; ++z)
+    for (std::size_t y = 0; y < box.size[1]; ++y)
+      for (std::size_t x = 0; x < box.size[0]; ++x) {
+        const Vec3 p{double(x), double(y), double(z)};
+        const double ball = test::sphere_f(p, {14.2, 13.7, 12.9}, 10.3);
+        const double shell = std::abs(test::sphere_f(p, {29.1, 19.6, 15.2}, 4.4)) - 0.8;
+        g(x, y, z) = float(8 * std::min(ball, shell));  // steep: clamped samples next to a change of sign
+      }
+  const SampleGrid samples(g, 2.5f, SampleGrid::Storage::blocks);
+  int plus = 0, minus = 0, stored = 0;
+  for (long bz = 0; bz < samples.nb(2); ++bz)
+    for (long by = 0; by < samples.nb(1); ++by)
+      for (long bx = 0; bx < samples.nb(0); ++bx) {
+        const int c = samples.constant_block(bx, by, bz);
+        (c > 0 ? plus : c < 0 ? minus : stored) += 1;
+      }
+  REQUIRE(plus > 0);
+  REQUIRE(minus > 0);
+  REQUIRE(stored > 0);
+  CubeGrid grid(samples);
+  long active = 0;
+  for (long z = 0; z + 1 < grid.n[2]; ++z)
+    for (long y = 0; y + 1 < grid.n[1]; ++y)
+      for (long x = 0; x + 1 < grid.n[0]; ++x) {
+        bool mixed = false;
+        for (int k = 1; k < 8; ++k)
+          mixed = mixed || (samples(x + (k & 1), y + ((k >> 1) & 1), z + ((k >> 2) & 1)) < 0) != (samples(x, y, z) < 0);
+        REQUIRE(grid.active(x, y, z) == mixed);
+        active += mixed;
+      }
+  REQUIRE(active == grid.active_cubes);
+}
