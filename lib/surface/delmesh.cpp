@@ -546,7 +546,7 @@ void DelMesh::drain() {
 void DelMesh::progress() {
   if (opt_.progress && vertices_.size() >= last_progress_ + 5000) {
     last_progress_ = vertices_.size();
-    opt_.progress(phase_ + ": " + std::to_string(tr_.number_of_vertices()) + " points");
+    opt_.progress(std::string(phase_) + ": " + std::to_string(tr_.number_of_vertices()) + " points");
   }
 }
 
