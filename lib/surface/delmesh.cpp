@@ -517,6 +517,20 @@ void DelMesh::drain() {
           if (passed.size() <= it.stamp) passed.resize(vertices_.size());
           passed[it.stamp] = restricted_signature(a);
         }
+        // SMOOTH on the facets TopoDisk just listed: where it passes, a's
+        // SMOOTH check is no longer stale. Every TopoDisk entry pops before
+        // any SMOOTH one, and every change at a queues TopoDisk and makes
+        // both checks stale again, so at its SMOOTH pop a's facets are these
+        // exactly when the check is not stale (on the armadillo, every
+        // SMOOTH check ran on the facets of the TopoDisk check before it;
+        // this saves its walk around a).
+        if (topo && !topology_only_ && (a->info().queued & kStaleSmooth) && smooth_(a, topo_disk_.facets(), opt_.roughness, &worst)) {
+          a->info().queued &= std::uint8_t(~kStaleSmooth);
+          if (opt_.compare_stale_checks) {
+            if (passed_[1].size() <= it.stamp) passed_[1].resize(vertices_.size());
+            passed_[1][it.stamp] = passed[it.stamp];
+          }
+        }
         continue;
       }
       a->info().queued |= stale;  // failed: checked again when next queued, as it is
