@@ -248,7 +248,10 @@ void DelMesh::compute_new_cells(Vh inserted, Vh missed) {
         const Vh w = c->vertex((i + m) & 3);
         ids[m - 1] = tr_.is_infinite(w) ? -1 : w->info().id;
       }
-      std::sort(ids.begin(), ids.end());
+      // Three compare-exchanges (std::sort's call on three ints cost more).
+      if (ids[1] < ids[0]) std::swap(ids[0], ids[1]);
+      if (ids[2] < ids[1]) std::swap(ids[1], ids[2]);
+      if (ids[1] < ids[0]) std::swap(ids[0], ids[1]);
       const auto u = [&](int k) { return std::uint32_t(ids[std::size_t(k)] + 1); };
       order.push_back({std::uint64_t(u(0)) << 32 | u(1), u(2), i, c});
     }
