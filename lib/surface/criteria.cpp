@@ -51,9 +51,13 @@ bool roughness_within(std::vector<std::pair<int, Vec3>>& normals, double g) {
 
 bool Smooth::operator()(const Tr& tr, Vh v, double g, Facet* worst) {
   restricted_around(tr, v, facets_, cells_);
+  return (*this)(v, facets_, g, worst);
+}
+
+bool Smooth::operator()(Vh v, const std::vector<Facet>& facets, double g, Facet* worst) {
   normals_.clear();  // (other vertex of the edge, oriented unit normal)
   double best = -1;
-  for (const Facet& f : facets_) {
+  for (const Facet& f : facets) {
     const FacetInfo& fi = f.first->facet[f.second];
     if (!(fi.state & kRestricted)) continue;
     const std::array<Vh, 3> fv = facet_vertices(f.first, f.second);

@@ -39,6 +39,8 @@ public:
   // facets, is at most g. Else false, and *worst is v's restricted facet
   // with the largest surface Delaunay ball.
   bool operator()(const Tr& tr, Vh v, double g, Facet* worst);
+  // The same on v's restricted facets as restricted_around lists them.
+  bool operator()(Vh v, const std::vector<Facet>& facets, double g, Facet* worst);
 
 private:
   std::vector<Facet> facets_;

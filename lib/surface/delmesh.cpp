@@ -248,7 +248,10 @@ void DelMesh::compute_new_cells(Vh inserted, Vh missed) {
         const Vh w = c->vertex((i + m) & 3);
         ids[m - 1] = tr_.is_infinite(w) ? -1 : w->info().id;
       }
-      std::sort(ids.begin(), ids.end());
+      // Three compare-exchanges (std::sort's call on three ints cost more).
+      if (ids[1] < ids[0]) std::swap(ids[0], ids[1]);
+      if (ids[2] < ids[1]) std::swap(ids[1], ids[2]);
+      if (ids[1] < ids[0]) std::swap(ids[0], ids[1]);
       const auto u = [&](int k) { return std::uint32_t(ids[std::size_t(k)] + 1); };
       order.push_back({std::uint64_t(u(0)) << 32 | u(1), u(2), i, c});
     }
@@ -517,6 +520,20 @@ void DelMesh::drain() {
           if (passed.size() <= it.stamp) passed.resize(vertices_.size());
           passed[it.stamp] = restricted_signature(a);
         }
+        // SMOOTH on the facets TopoDisk just listed: where it passes, a's
+        // SMOOTH check is no longer stale. Every TopoDisk entry pops before
+        // any SMOOTH one, and every change at a queues TopoDisk and makes
+        // both checks stale again, so at its SMOOTH pop a's facets are these
+        // exactly when the check is not stale (on the armadillo, every
+        // SMOOTH check ran on the facets of the TopoDisk check before it;
+        // this saves its walk around a).
+        if (topo && !topology_only_ && (a->info().queued & kStaleSmooth) && smooth_(a, topo_disk_.facets(), opt_.roughness, &worst)) {
+          a->info().queued &= std::uint8_t(~kStaleSmooth);
+          if (opt_.compare_stale_checks) {
+            if (passed_[1].size() <= it.stamp) passed_[1].resize(vertices_.size());
+            passed_[1][it.stamp] = passed[it.stamp];
+          }
+        }
         continue;
       }
       a->info().queued |= stale;  // failed: checked again when next queued, as it is
@@ -546,7 +563,7 @@ void DelMesh::drain() {
 void DelMesh::progress() {
   if (opt_.progress && vertices_.size() >= last_progress_ + 5000) {
     last_progress_ = vertices_.size();
-    opt_.progress(phase_ + ": " + std::to_string(tr_.number_of_vertices()) + " points");
+    opt_.progress(std::string(phase_) + ": " + std::to_string(tr_.number_of_vertices()) + " points");
   }
 }
 

@@ -185,7 +185,7 @@ private:
   std::string topology_refused_first_;
   bool max_hit_ = false;
   std::size_t last_progress_ = 0;
-  std::string phase_ = "seeds";
+  const char* phase_ = "seeds";  // for progress(); a literal (drain() sets it at every pop)
   TopoDisk topo_disk_;
   Smooth smooth_;
   // FacetCycle: vertices inserted since the last pass. Insertions create

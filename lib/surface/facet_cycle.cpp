@@ -252,11 +252,12 @@ bool FacetRaster::cycle_point(Vec3& x) {
 Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::vector<Vh>& vertices, const IdSet& changed,
                               std::uint32_t& stamp, int threads, long long& checks, std::vector<int>& skipped,
                               FacetWalk how, std::size_t chunk) {
-  // The edges with a new end (a vertex of `changed`), each once, in the
-  // order of their ids (lo, hi): every lower end's edges to higher ids, by
-  // id. The lower ends are the new vertices and their older neighbours of
-  // smaller id. The edges are checked a chunk at a time (of at least
-  // `chunk` edges, a lower end's edges in one chunk), not gathered first:
+  // The edges with a new end (a vertex of `changed`), each once: every
+  // lower end's edges to higher ids, by id (the points come back in the
+  // order of the edges' ids (lo, hi)). The lower ends are the new vertices
+  // and their older neighbours of smaller id. The edges are checked a
+  // chunk at a time (of at least `chunk` edges, a lower end's edges in one
+  // chunk), not gathered first:
   // the first pass takes every edge, and its list was the run's peak
   // (brain label 4: 6 MB of edges beside the triangulation).
   std::vector<Ch> cells;
@@ -288,7 +289,28 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
       });
     });
   }
-  std::sort(lows.begin(), lows.end());
+  // The lower ends in Morton order of their cubes, not by id (ids follow
+  // the refinement's priorities, all over S): an edge's cells are looked at
+  // again from its other ends' edges, which then come soon after, while
+  // their circumcentres are still in the memo (and their cells in cache).
+  // The points are put back in edge order below.
+  {
+    const CubeGrid& g = f.grid();
+    const auto morton = [&](int id) {
+      const Vec3 x = vec(vertices[std::size_t(id)]->point());
+      std::uint64_t key = 0;
+      for (int k = 0; k < 3; ++k) {
+        const auto c = std::uint64_t(std::clamp(floor_long(x[k] / g.s[k]), 0L, g.n[k] - 2));
+        for (int b = 0; b < 21; ++b) key |= (c >> b & 1) << (3 * b + k);
+      }
+      return key;
+    };
+    std::vector<std::pair<std::uint64_t, int>> keyed;
+    keyed.reserve(lows.size());
+    for (int id : lows) keyed.emplace_back(morton(id), id);
+    std::sort(keyed.begin(), keyed.end());
+    for (std::size_t k = 0; k < keyed.size(); ++k) lows[k] = keyed[k].second;
+  }
   // An edge by the ids of its ends and a cell at it; p (its first vertex): lo.
   struct EdgeAt { int lo, hi; Ch c; };
   std::vector<EdgeAt> edges;
@@ -301,8 +323,8 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
   const unsigned nt = implicit_detail::resolve_threads(unsigned(std::max(1, threads)));
   std::vector<std::uint8_t> found;
   std::vector<std::vector<std::pair<std::size_t, Vec3>>> cycles(nt);
-  std::vector<std::pair<std::size_t, Vec3>> all;
-  Candidates pts;
+  // The cycle points with their edges' ends (lo, hi), put in edge order at the end.
+  std::vector<std::pair<std::pair<int, int>, Vec3>> all;
   skipped.clear();
   for (std::size_t next = 0; next < lows.size();) {
     edges.clear();
@@ -331,11 +353,12 @@ Candidates facet_cycle_points(const Tr& tr, const SurfaceSampler& f, const std::
     });
     for (std::size_t k = 0; k < edges.size(); ++k)
       if (found[k] == std::uint8_t(FacetAnswer::kSkipped)) skipped.push_back(edges[k].lo);
-    all.clear();
-    for (const auto& c : cycles) all.insert(all.end(), c.begin(), c.end());
-    std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-    for (const auto& [k, x] : all) pts.emplace_back(x, dist2(x, vec(vertices[std::size_t(edges[k].lo)]->point())));
+    for (const auto& c : cycles)
+      for (const auto& [k, x] : c) all.push_back({{edges[k].lo, edges[k].hi}, x});
   }
+  std::sort(all.begin(), all.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  Candidates pts;
+  for (const auto& [e, x] : all) pts.emplace_back(x, dist2(x, vec(vertices[std::size_t(e.first)]->point())));
   return pts;
 }
 

@@ -20,6 +20,8 @@ public:
   // The link of a vertex, as edges between vertex ids, is one cycle: every
   // link vertex in two link edges, and the edges one closed walk.
   bool one_cycle(const std::vector<std::pair<int, int>>& link);
+  // The restricted facets at the vertex last checked (restricted_around's).
+  const std::vector<Facet>& facets() const { return facets_; }
 
 private:
   // Scratch (no allocation per check).

@@ -130,8 +130,14 @@ TEST_CASE("FacetCycle's pass: on a thin torus after the seeds it finds cycle poi
 }
 
 TEST_CASE("FacetCycle's pass in chunks: every edge with a new end checked once, the same points in the same order for any chunk") {
-  const Vec3 c{11.6, 11.3, 4.6};
-  FunctionSurface s(test::box(24, 24, 10), [&](const Vec3& p) { return test::torus_f(p, c, 8.1, 1.1); });
+  // Six tori (components, each seeded): cycles all over the box, so that
+  // the points' order (by their edges' ids) is not the checks' order.
+  FunctionSurface s(test::box(40, 28, 10), [&](const Vec3& p) {
+    double d = INFINITY;
+    for (int k = 0; k < 6; ++k)
+      d = std::min(d, test::torus_f(p, Vec3{7.6 + 12.3 * (k % 3), 7.3 + 12.6 * (k / 3), 4.6 + 0.2 * (k % 2)}, 4.3 + 0.2 * k, 1.1));
+    return d;
+  });
   RestrictedDelaunayOptions o;
   DelMesh m(s, o);
   m.prepare();
