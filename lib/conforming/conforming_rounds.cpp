@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace imgmesh {
@@ -149,9 +150,9 @@ void Mesher::voxel_sides() {
                         std::ptrdiff_t(v / x_.size[0] / x_.size[1]));
   };
   // A voxel whose cached cell is gone located (from start; the
-  // floating-point walk from starts.near), its entry refreshed.
-  auto locate_voxel = [&](SideVoxel& sv, Ch start, const WalkStarts& starts, Tr::Locate_type& lt, int& li, int& lj) {
-    const Ch c = locate_from(tr_, pt(centre_of(sv.voxel)), lt, li, lj, start, starts.near(sv.voxel));
+  // floating-point walk from starts->near when given), its entry refreshed.
+  auto locate_voxel = [&](SideVoxel& sv, Ch start, const WalkStarts* starts, Tr::Locate_type& lt, int& li, int& lj) {
+    const Ch c = locate_from(tr_, pt(centre_of(sv.voxel)), lt, li, lj, start, starts ? starts->near(sv.voxel) : Ch());
     const bool keep = lt == Tr::CELL && c->info().uid != 0;
     sv.cell = keep ? c : Ch();
     sv.uid = keep ? c->info().uid : 0;
@@ -176,12 +177,15 @@ void Mesher::voxel_sides() {
         SideVoxel& sv = side_voxels_[std::size_t(n)];
         Tr::Locate_type lt;
         int li, lj;
-        hint = cached(sv) ? sv.cell : locate_voxel(sv, hint, s, lt, li, lj);
+        hint = cached(sv) ? sv.cell : locate_voxel(sv, hint, &s, lt, li, lj);
         s.seen(sv.voxel, hint);
       }
     });
   }
-  WalkStarts starts(x_);
+  // The loop's own starts when it locates them all (with threads, the few
+  // left walk from the voxel before).
+  std::optional<WalkStarts> starts;
+  if (threads == 1) starts.emplace(x_);
   for (SideVoxel& sv : side_voxels_) {
     const auto i = std::ptrdiff_t(sv.voxel % x_.size[0]), j = std::ptrdiff_t(sv.voxel / x_.size[0] % x_.size[1]),
                k = std::ptrdiff_t(sv.voxel / x_.size[0] / x_.size[1]);
@@ -193,7 +197,7 @@ void Mesher::voxel_sides() {
     } else {
       Tr::Locate_type lt;
       int li, lj;
-      c = locate_voxel(sv, hint_, starts, lt, li, lj);
+      c = locate_voxel(sv, hint_, starts ? &*starts : nullptr, lt, li, lj);
       hint_ = c;
       // On a facet, edge or vertex of W: every cell there must be its label.
       if (lt != Tr::CELL && lt != Tr::OUTSIDE_CONVEX_HULL) {
@@ -203,7 +207,7 @@ void Mesher::voxel_sides() {
           if (label(n) != own) c = n;
       }
     }
-    starts.seen(sv.voxel, hint_);
+    if (starts) starts->seen(sv.voxel, hint_);
     const std::int32_t own = voxel_label(i, j, k);
     if (label(c) == own) continue;
     Candidate cand;
