@@ -140,7 +140,8 @@ TEST_CASE("a winding triple curve and a one-voxel layer are certified", "[confor
 
 
 // The pass's walks along the Voronoi edges run on `threads` threads, each
-// into its facet's slot: the same mesh whatever their number.
+// into its facet's slot, and VoxelSides' voxels are located on them first,
+// each into its own entry: the same mesh whatever their number.
 TEST_CASE("the same mesh whatever the number of threads", "[conforming]") {
   const LabelImage x = noisy_map(2);
   const LabelFunction f(x, 0.3);
