@@ -25,13 +25,14 @@ namespace {
 // The label's (or, label < 0, the union's) indicator made a function as
 // seg2mesh makes a label's: its box plus the crop margin, f clamped and
 // placed in X's grid.
-PartitionOfUnity indicator_function(const LabelImage& x, std::int32_t label, const VoxelBox& box, double max_distance,
+template <class T>
+PartitionOfUnity indicator_function(const Image<T>& x, std::int32_t label, const VoxelBox& box, double max_distance,
                                     unsigned threads) {
   WellComposedCrop wc = well_composed_crop(
       x, box,
       [&](std::size_t y, std::size_t z, std::size_t x0, std::size_t n, std::uint8_t* row) {
-        const std::int32_t* v = &x(x0, y, z);
-        for (std::size_t i = 0; i < n; ++i) row[i] = label < 0 ? v[i] != 0 : v[i] == label;
+        const T* v = &x(x0, y, z);
+        for (std::size_t i = 0; i < n; ++i) row[i] = label < 0 ? v[i] != 0 : std::int32_t(v[i]) == label;
       },
       WellComposedOptions{});
   if (wc.result.changed != 0)
@@ -70,14 +71,14 @@ void window(const Geometry& g, int axis, int lo, int hi, T outside, std::vector<
 
 // Per cube the bits of the labels near it (candidates, below), in words of
 // W bits: bit k % 64 for label index k (W holds every label up to 64).
-template <class W>
-std::vector<W> candidate_words(const LabelImage& x, const std::vector<std::int32_t>& labels) {
+template <class W, class T>
+std::vector<W> candidate_words(const Image<T>& x, const std::vector<std::int32_t>& labels) {
   std::vector<W> cand(x.count(), 0);
   std::int32_t last = 0;
   W bit = 1;
   for (std::size_t v = 0; v < x.count(); ++v) {
-    if (x.data[v] != last) {
-      last = x.data[v];
+    if (std::int32_t(x.data[v]) != last) {
+      last = std::int32_t(x.data[v]);
       bit = W(W(1) << (std::size_t(std::lower_bound(labels.begin(), labels.end(), last) - labels.begin()) % 64));
     }
     cand[v] = last == 0 ? 1 : bit;
@@ -92,6 +93,14 @@ LabelFunction::~LabelFunction() = default;
 LabelFunction::LabelFunction(LabelFunction&&) noexcept = default;
 
 LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned threads) : grid_(x.geometry()) {
+  build(x, max_distance, threads);
+}
+
+LabelFunction::LabelFunction(const NarrowLabelImage& x, double max_distance, unsigned threads) : grid_(x.geometry()) {
+  x.visit([&](const auto& im) { build(im, max_distance, threads); });
+}
+
+template <class T> void LabelFunction::build(const Image<T>& x, double max_distance, unsigned threads) {
   if (x.dimension != 3) throw Error("the labelling function needs a 3D label image");
   min_spacing_ = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
   // The bounds of f_L where label_at reads none of L's voxels (header).
@@ -106,7 +115,7 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   for (std::size_t z = 0; z < x.size[2]; ++z)
     for (std::size_t y = 0; y < x.size[1]; ++y)
       for (std::size_t i = 0; i < x.size[0]; ++i) {
-        const std::int32_t v = x(i, y, z);
+        const std::int32_t v = std::int32_t(x(i, y, z));
         if (v == 0) continue;
         auto it = std::lower_bound(present.begin(), present.end(), v);
         const std::size_t k = std::size_t(it - present.begin());
@@ -150,10 +159,10 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
   // pure (min == max over the 4x4x4 voxels around: window [-1, 2] per
   // axis, 0 beyond the grid).
   if (labels_.size() <= 0x7fff && x.size[0] > 1 && x.size[1] > 1 && x.size[2] > 1) {
-    std::vector<std::int32_t> lo(x.data), hi(x.data);
+    std::vector<T> lo(x.data), hi(x.data);
     for (int axis = 0; axis < 3; ++axis) {
-      window(x, axis, -1, 2, 0, lo, [](std::int32_t a, std::int32_t b) { return std::min(a, b); });
-      window(x, axis, -1, 2, 0, hi, [](std::int32_t a, std::int32_t b) { return std::max(a, b); });
+      window(x, axis, -1, 2, T(0), lo, [](T a, T b) { return std::min(a, b); });
+      window(x, axis, -1, 2, T(0), hi, [](T a, T b) { return std::max(a, b); });
     }
     const bool narrow = labels_.size() <= 0x7f;
     code_pure_ = narrow ? 0x80 : 0x8000;
@@ -163,8 +172,8 @@ LabelFunction::LabelFunction(const LabelImage& x, double max_distance, unsigned 
       std::int32_t last = 0;
       unsigned place = unsigned(pos_[0]);
       for (std::size_t v = 0; v < x.count(); ++v) {
-        if (x.data[v] != last) {
-          last = x.data[v];
+        if (std::int32_t(x.data[v]) != last) {
+          last = std::int32_t(x.data[v]);
           place = unsigned(pos_[std::size_t(std::lower_bound(labels_.begin(), labels_.end(), last) - labels_.begin())]);
         }
         codes[v] = static_cast<std::remove_reference_t<decltype(codes[v])>>(place | (lo[v] == hi[v] ? code_pure_ : 0));
