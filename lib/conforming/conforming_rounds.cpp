@@ -37,6 +37,7 @@ ConformingSurface Mesher::certified_rounds() {
       release_free_memory();
     }
     const auto bad = o_.certificate(out.points, out.triangles, out.pairs);
+    release_free_memory();  // the certificate's pages (its threads' arenas), before REFINE grows on them
     out.certified_as_is = true;
     // A certified surface that seg2tet's cells broke starts a fresh count.
     const std::size_t before = places_ == 0 ? std::size_t(-1) : places_;

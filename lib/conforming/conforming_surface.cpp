@@ -626,9 +626,10 @@ Json ConformingSurface::to_json() const {
   return j;
 }
 
-ConformingSurface conforming_surface(const LabelFunction& lambda, const LabelImage& x, const InterfaceComplex& k,
+ConformingSurface conforming_surface(const LabelFunction& lambda, const NarrowLabelImage& x, const InterfaceComplex& k,
                                      const ConformingOptions& options) {
-  if (k.dimension != 3 || k.lattice != std::array<std::size_t, 3>{x.size[0] + 1, x.size[1] + 1, x.size[2] + 1})
+  const Geometry& g = x.geometry();
+  if (k.dimension != 3 || k.lattice != std::array<std::size_t, 3>{g.size[0] + 1, g.size[1] + 1, g.size[2] + 1})
     throw Error("internal: the interface complex is not the label image's");
   return conforming_detail::Mesher(lambda, x, k, options).run();
 }

@@ -153,8 +153,9 @@ struct ConformingSurface {
   Json to_json() const;
 };
 
-// Throws Error when K(X) is not that of `x`.
-ConformingSurface conforming_surface(const LabelFunction& lambda, const LabelImage& x, const InterfaceComplex& k,
+// Throws Error when K(X) is not that of `x` (X held in the narrowest type
+// its labels fit: image/narrow_labels.hpp).
+ConformingSurface conforming_surface(const LabelFunction& lambda, const NarrowLabelImage& x, const InterfaceComplex& k,
                                      const ConformingOptions& options = {});
 
 } // namespace imgmesh

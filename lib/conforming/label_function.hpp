@@ -50,6 +50,7 @@
 // (kLipschitz sum_m |dq_m| delta_m) of t: the walk reads no f there.
 #pragma once
 #include "image/grid.hpp"
+#include "image/io.hpp"
 #include "implicit/partition_of_unity.hpp"
 
 #include <array>
@@ -69,6 +70,8 @@ public:
   // units). Throws Error on a 2D image, an image without labels, or a label
   // whose indicator the chapter 5 repair would change.
   LabelFunction(const LabelImage& x, double max_distance, unsigned threads = 1);
+  // X held in the narrowest type its labels fit (image/narrow_labels.hpp).
+  LabelFunction(const NarrowLabelImage& x, double max_distance, unsigned threads = 1);
   ~LabelFunction();
   LabelFunction(LabelFunction&&) noexcept;
 
@@ -128,6 +131,7 @@ public:
 
 private:
   struct Function;
+  template <class T> void build(const Image<T>& x, double max_distance, unsigned threads);
   std::size_t index_of(std::int32_t label) const;
   bool pure_cube(const Vec3& q, std::int32_t& label) const;
   // f of up to two labels (indices) at a point, read already (NaN: not).

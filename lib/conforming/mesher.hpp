@@ -145,9 +145,9 @@ struct Candidate {
 
 class Mesher {
 public:
-  Mesher(const LabelFunction& lambda, const LabelImage& x, const InterfaceComplex& k, const ConformingOptions& o)
-      : f_(lambda), x_(x), k_(k), o_(o) {
-    voxel_ = std::min({x.spacing[0], x.spacing[1], x.spacing[2]});
+  Mesher(const LabelFunction& lambda, const NarrowLabelImage& x, const InterfaceComplex& k, const ConformingOptions& o)
+      : f_(lambda), x_(x.geometry()), image_(x), k_(k), o_(o) {
+    voxel_ = std::min({x_.spacing[0], x_.spacing[1], x_.spacing[2]});
     if (!(o_.max_distance > 0)) o_.max_distance = 0.3 * voxel_;
   }
   ConformingSurface run();
@@ -169,7 +169,7 @@ private:
   Vec3 voxel_centre(std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) const {
     return x_.world(double(i), double(j), double(k));
   }
-  std::int32_t voxel_label(std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) const { return x_.at(i, j, k, 0); }
+  std::int32_t voxel_label(std::ptrdiff_t i, std::ptrdiff_t j, std::ptrdiff_t k) const { return image_.at(i, j, k); }
   std::array<Vh, 3> facet_vertices(Ch c, int i) const {  // sorted by id
     std::array<Vh, 3> v{c->vertex((i + 1) & 3), c->vertex((i + 2) & 3), c->vertex((i + 3) & 3)};
     std::sort(v.begin(), v.end(), [](Vh a, Vh b) { return a->info() < b->info(); });
@@ -235,7 +235,8 @@ private:
   void box_output(ConformingSurface& out);
 
   const LabelFunction& f_;
-  const LabelImage& x_;
+  const Geometry& x_;  // X's grid
+  const NarrowLabelImage& image_;  // X
   const InterfaceComplex& k_;
   ConformingOptions o_;
   double voxel_ = 1;

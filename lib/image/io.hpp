@@ -64,6 +64,10 @@ struct NarrowLabelImage {
   // f(the image that holds the voxels); f returns the same type for each.
   template <class F> auto visit(F&& f) const { return bytes == 1 ? f(u8) : bytes == 2 ? f(u16) : f(i32); }
   template <class F> auto visit(F&& f) { return bytes == 1 ? f(u8) : bytes == 2 ? f(u16) : f(i32); }
+  // The label at a possibly outside index (outside: 0).
+  std::int32_t at(std::ptrdiff_t x, std::ptrdiff_t y, std::ptrdiff_t z) const {
+    return bytes == 1 ? u8.at(x, y, z) : bytes == 2 ? u16.at(x, y, z) : i32.at(x, y, z);
+  }
 };
 // read_labels' values (and its errors), so held.
 NarrowLabelImage read_labels_narrow(const std::string& path, LabelNames* names = nullptr);

@@ -78,7 +78,8 @@ void SampleGrid::set_box(const Index3& lo, const std::array<std::size_t, 3>& box
     whole = whole && lo[i] == 0 && box_size[i] == size[i];
     box_lo_[i] = lo[i];
     box_hi_[i] = lo[i] + std::ptrdiff_t(box_size[i]) - 1;
-    nb_[i] = (long(size[i]) + kB - 1) / kB;
+    first_block_[i] = (long(box_lo_[i]) >> kShift) - 1;
+    nb_[i] = (long(box_hi_[i]) >> kShift) - first_block_[i] + 2;
   }
   if (!whole && !std::isfinite(clamp_)) throw Error("internal: the samples outside the box need a finite clamp");
   s1_ = long(size[0]);
@@ -169,8 +170,7 @@ void SampleGrid::stream_dense(const std::array<std::size_t, 3>& box_size, const 
 
 void SampleGrid::start_blocks() {
   ZeroedVector<std::uint32_t>(std::size_t(nb_[0] * nb_[1] * nb_[2])).swap(table_);  // outside the box: +T
-  std::size_t bound = 2;
-  for (int i = 0; i < 3; ++i) bound *= std::size_t((long(box_hi_[i]) >> kShift) - (long(box_lo_[i]) >> kShift) + 1);
+  const std::size_t bound = 2 + blocks();
   // Room for every block the box meets: only the pages written take memory,
   // so the pool never moves (growing it would hold it twice).
   try {
@@ -208,7 +208,7 @@ void SampleGrid::add_blocks(const long c0[3], const long c1[3], const float* chu
         // All clamped: one sign (two neighbouring samples of opposite signs
         // lie within a voxel of S); kept all the same if not.
         keep = keep || (negative && positive);
-        std::uint32_t& entry = table_[std::size_t(bx + nb_[0] * (by + nb_[1] * bz))];
+        std::uint32_t& entry = table_[std::size_t(table_block(0, bx) + nb_[0] * (table_block(1, by) + nb_[1] * table_block(2, bz)))];
         if (!keep) {
           entry = negative ? 1 : 0;
           continue;

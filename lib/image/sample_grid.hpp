@@ -23,6 +23,7 @@
 #include "image/grid.hpp"
 #include "util/zeroed.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -69,7 +70,8 @@ public:
 
   float operator()(std::size_t x, std::size_t y, std::size_t z) const {
     if (dense()) return dense_[std::size_t(long(x) + s1_ * long(y) + s2_ * long(z))];
-    const long b = (long(x) >> kShift) + nb_[0] * ((long(y) >> kShift) + nb_[1] * (long(z) >> kShift));
+    const long b = table_block(0, long(x) >> kShift) +
+                   nb_[0] * (table_block(1, long(y) >> kShift) + nb_[1] * table_block(2, long(z) >> kShift));
     return sample(slot(b) + std::size_t(local(long(x), long(y), long(z))));
   }
   bool dense() const { return !dense_.empty(); }
@@ -77,18 +79,25 @@ public:
   bool coded() const { return !codes_.empty(); }
   // Dense storage: the samples, x fastest.
   const float* dense_data() const { return dense_.data(); }
-  // Blocks of floats: block number bx + nb(0) (by + nb(1) bz)'s first
+  // Blocks: the table holds the blocks the box meets and a layer of +T
+  // blocks around them (not the grid's: 4 bytes a block of the scan, per
+  // label, were most of seg2mesh --conforming's labelling function), nb(a)
+  // along axis a. Grid block b along axis a is table block table_block(a,
+  // b); one beyond the layer reads as the layer (+T, as every block
+  // outside the box).
+  long nb(int axis) const { return nb_[axis]; }
+  long table_block(int axis, long b) const { return std::clamp(b - first_block_[axis], 0L, nb_[axis] - 1); }
+  // Blocks of floats: table block number bx + nb(0) (by + nb(1) bz)'s first
   // sample; sample (x, y, z) of the grid is at local(x, y, z) in its block.
   const float* block_at(long b) const { return pool_.data() + slot(b); }
   // Blocks of codes: the same, its sample the palette's value at the code.
   const std::uint16_t* code_block_at(long b) const { return codes_.data() + slot(b); }
   const float* palette() const { return palette_.data(); }
-  long nb(int axis) const { return nb_[axis]; }
-  // Block (bx, by, bz) holds only +clamp (1) or only -clamp (-1): the
+  // Grid block (bx, by, bz) holds only +clamp (1) or only -clamp (-1): the
   // shared constant blocks; 0 where it holds samples of its own, or dense.
   int constant_block(long bx, long by, long bz) const {
     if (dense()) return 0;
-    const std::uint32_t t = table_[std::size_t(bx + nb_[0] * (by + nb_[1] * bz))];
+    const std::uint32_t t = table_[std::size_t(table_block(0, bx) + nb_[0] * (table_block(1, by) + nb_[1] * table_block(2, bz)))];
     return t == 0 ? 1 : t == 1 ? -1 : 0;
   }
   static long local(long x, long y, long z) { return (x & kMask) + kB * ((y & kMask) + kB * (z & kMask)); }
@@ -101,14 +110,15 @@ public:
       return;
     }
     if ((x & kMask) < kMask && (y & kMask) < kMask && (z & kMask) < kMask) {
-      const std::size_t b = slot((x >> kShift) + nb_[0] * ((y >> kShift) + nb_[1] * (z >> kShift))) + std::size_t(local(x, y, z));
+      const std::size_t b = slot(table_block(0, x >> kShift) + nb_[0] * (table_block(1, y >> kShift) + nb_[1] * table_block(2, z >> kShift))) +
+                            std::size_t(local(x, y, z));
       for (int m = 0; m < 8; ++m) c[m] = sample(b + std::size_t((m & 1) + kB * ((m >> 1) & 1) + kB * kB * ((m >> 2) & 1)));
       return;
     }
     // Across blocks: per axis the two samples' block offsets and local parts.
-    const long o[3][2] = {{x >> kShift, (x + 1) >> kShift},
-                          {nb_[0] * (y >> kShift), nb_[0] * ((y + 1) >> kShift)},
-                          {nb_[0] * nb_[1] * (z >> kShift), nb_[0] * nb_[1] * ((z + 1) >> kShift)}};
+    const long o[3][2] = {{table_block(0, x >> kShift), table_block(0, (x + 1) >> kShift)},
+                          {nb_[0] * table_block(1, y >> kShift), nb_[0] * table_block(1, (y + 1) >> kShift)},
+                          {nb_[0] * nb_[1] * table_block(2, z >> kShift), nb_[0] * nb_[1] * table_block(2, (z + 1) >> kShift)}};
     const long l[3][2] = {{x & kMask, (x + 1) & kMask},
                           {kB * (y & kMask), kB * ((y + 1) & kMask)},
                           {kB * kB * (z & kMask), kB * kB * ((z + 1) & kMask)}};
@@ -124,8 +134,10 @@ public:
   // outside it reads +clamp (loops over the grid may stop at it).
   const Index3& box_lo() const { return box_lo_; }
   const Index3& box_hi() const { return box_hi_; }
-  // Blocks: how many, how many stored (dense: 0 and 0).
-  std::size_t blocks() const { return table_.size(); }
+  // Blocks: how many the box meets, how many stored (dense: 0 and 0).
+  std::size_t blocks() const {
+    return table_.empty() ? 0 : std::size_t((nb_[0] - 2) * (nb_[1] - 2) * (nb_[2] - 2));
+  }
   std::size_t stored_blocks() const {
     const std::size_t n = coded() ? codes_.size() : pool_.size();
     return n == 0 ? 0 : n / kBlockSamples - 2;
@@ -145,7 +157,8 @@ private:
   std::vector<std::uint16_t> codes_;
   std::vector<float> palette_;
   ZeroedVector<std::uint32_t> table_;
-  long nb_[3] = {0, 0, 0};
+  long nb_[3] = {0, 0, 0};           // the table's blocks along each axis
+  long first_block_[3] = {0, 0, 0};  // the grid block of its first (a +T block before the box's)
   float clamp_ = std::numeric_limits<float>::infinity();
   Index3 box_lo_{0, 0, 0}, box_hi_{-1, -1, -1};
 

@@ -538,11 +538,13 @@ template <class T> void PartitionOfUnity::block_rows(const long first[3], Stenci
     if constexpr (std::is_same_v<T, float>) return g_.block_at(b);
     else return g_.code_block_at(b);
   };
-  const long x0 = first[0], lx = x0 & kMask, bx = x0 >> kShift;
+  // Block numbers are the table's (SampleGrid::table_block).
+  const long x0 = first[0], lx = x0 & kMask, bx = g_.table_block(0, x0 >> kShift);
   const long nb0 = g_.nb(0), nb01 = g_.nb(0) * g_.nb(1);
   const long ly = first[1] & kMask, lz = first[2] & kMask;
   if (lx + s.n[0] <= kB && ly + s.n[1] <= kB && lz + s.n[2] <= kB) {  // one block
-    const T* base = block_at(bx + nb0 * (first[1] >> kShift) + nb01 * (first[2] >> kShift)) + lx + kB * ly + kB * kB * lz;
+    const T* base = block_at(bx + nb0 * g_.table_block(1, first[1] >> kShift) + nb01 * g_.table_block(2, first[2] >> kShift)) +
+                    lx + kB * ly + kB * kB * lz;
     for (int l = 0; l < s.n[2]; ++l)
       for (int j = 0; j < s.n[1]; ++j) s.row[l * 3 + j] = base + kB * j + kB * kB * l;
     return;
@@ -550,12 +552,12 @@ template <class T> void PartitionOfUnity::block_rows(const long first[3], Stenci
   long yo[3], yl[3], zo[3], zl[3];
   for (int j = 0; j < s.n[1]; ++j) {
     const long y = first[1] + j;
-    yo[j] = nb0 * (y >> kShift);
+    yo[j] = nb0 * g_.table_block(1, y >> kShift);
     yl[j] = kB * (y & kMask);
   }
   for (int l = 0; l < s.n[2]; ++l) {
     const long z = first[2] + l;
-    zo[l] = nb01 * (z >> kShift);
+    zo[l] = nb01 * g_.table_block(2, z >> kShift);
     zl[l] = kB * kB * (z & kMask);
   }
   if (lx + s.n[0] <= kB) {
@@ -563,10 +565,11 @@ template <class T> void PartitionOfUnity::block_rows(const long first[3], Stenci
       for (int j = 0; j < s.n[1]; ++j) s.row[l * 3 + j] = block_at(bx + yo[j] + zo[l]) + lx + yl[j] + zl[l];
     return;
   }
+  const long bx1 = g_.table_block(0, (x0 >> kShift) + 1);
   for (int l = 0; l < s.n[2]; ++l)
     for (int j = 0; j < s.n[1]; ++j) {
       const T* lo = block_at(bx + yo[j] + zo[l]) + yl[j] + zl[l];
-      const T* hi = block_at(bx + 1 + yo[j] + zo[l]) + yl[j] + zl[l];
+      const T* hi = block_at(bx1 + yo[j] + zo[l]) + yl[j] + zl[l];
       T* r;
       if constexpr (std::is_same_v<T, float>) r = s.buf.floats[l * 3 + j];
       else r = s.buf.codes[l * 3 + j];

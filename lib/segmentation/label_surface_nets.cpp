@@ -106,6 +106,10 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   const InterfaceComplex k = interface_complex(wc);
   res.complex = k.to_json();
   res.seconds.push_back({"complex", since(t0)});
+  // Past K(X) the partition is only read: held in the narrowest type its
+  // labels fit (a byte a voxel for up to 255, not 4).
+  const Geometry grid = wc.geometry();
+  const NarrowLabelImage narrow = narrow_labels(std::move(partition.image));
 
   std::vector<Vec3> points;
   std::vector<std::array<int, 3>> triangles;
@@ -114,10 +118,10 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
   co.threads = std::max(1u, opt.threads);
   if (opt.conforming) {
     ConformingOptions o = opt.conforming_options;
-    if (!(o.max_distance > 0)) o.max_distance = 0.3 * std::min({wc.spacing[0], wc.spacing[1], wc.spacing[2]});
+    if (!(o.max_distance > 0)) o.max_distance = 0.3 * std::min({grid.spacing[0], grid.spacing[1], grid.spacing[2]});
     t0 = Clock::now();
     say("labelling function");
-    const LabelFunction lambda(wc, o.max_distance, std::max(1u, opt.threads));
+    const LabelFunction lambda(narrow, o.max_distance, std::max(1u, opt.threads));
     res.seconds.push_back({"function", since(t0)});
     t0 = Clock::now();
     say("conforming surface");
@@ -132,10 +136,10 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
     rounds.check_crossings = false;
     o.certificate = [&](const std::vector<Vec3>& p, const std::vector<std::array<int, 3>>& t,
                         const std::vector<std::array<std::int32_t, 2>>& l) {
-      last = certify_interface_mesh(p, t, l, wc, k, rounds);
-      return last.failing_places(p, t, l, k, wc);
+      last = certify_interface_mesh(p, t, l, narrow, k, rounds);
+      return last.failing_places(p, t, l, k, grid);
     };
-    ConformingSurface c = conforming_surface(lambda, wc, k, o);
+    ConformingSurface c = conforming_surface(lambda, narrow, k, o);
     res.conforming = c.to_json();
     if (o.tets.on) {
       res.tetrahedra = true;
@@ -154,8 +158,8 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
         res.box_refused = c.box_refused;
         res.box_covered = c.box_covered;
         res.box_filled = std::abs(res.tet_quality.total_volume - c.box_volume) <= 1e-9 * c.box_volume;
-        res.background_voxel_volume = double(std::count(wc.data.begin(), wc.data.end(), 0)) * wc.spacing[0] *
-                                      wc.spacing[1] * wc.spacing[2];
+        const auto zeros = narrow.visit([](const auto& im) { return std::count(im.data.begin(), im.data.end(), 0); });
+        res.background_voxel_volume = double(zeros) * grid.spacing[0] * grid.spacing[1] * grid.spacing[2];
       }
     }
     points = std::move(c.points), triangles = std::move(c.triangles), pairs = std::move(c.pairs);
@@ -168,13 +172,9 @@ LabelSurfaceNetsResult mesh_label_surface_nets(LabelImage image, const LabelSurf
       add_crossings(last, points, triangles, pairs, co);
       res.certificate = std::move(last);
     } else {
-      res.certificate = certify_interface_mesh(points, triangles, pairs, wc, k, co);
+      res.certificate = certify_interface_mesh(points, triangles, pairs, narrow, k, co);
     }
   } else {
-    // Past K(X) the partition is only read, by the certificate: held in the
-    // narrowest type its labels fit (a byte a voxel for up to 255, not 4).
-    const Geometry grid = wc.geometry();
-    const NarrowLabelImage narrow = narrow_labels(std::move(partition.image));
     t0 = Clock::now();
     say("surface nets");
     InterfaceMesh m = interface_mesh(grid, k);

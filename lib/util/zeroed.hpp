@@ -2,7 +2,7 @@
 // comes from calloc (large blocks: the kernel's zero pages, untouched until
 // written) and sizing it (vector(n), resize(n) on a fresh vector) writes no
 // element. For tables over a whole scan of which a small label writes a few
-// pages (SampleGrid's block table, CubeGrid's bit sets): a memset of all of
+// pages (CubeGrid's bit sets; SampleGrid's block table, its box's): a memset of all of
 // them cost a label of 13 voxels of a 512x512x400 scan most of its time.
 #pragma once
 #include <cstddef>

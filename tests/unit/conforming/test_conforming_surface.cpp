@@ -6,6 +6,7 @@
 #include "conforming/conforming_surface.hpp"
 #include "conforming/label_function.hpp"
 #include "conforming/mesher.hpp"
+#include "image/narrow_labels.hpp"
 #include "label_maps.hpp"
 #include "mesh/triangle_quality.hpp"
 #include "surfacenets/interface_certificate.hpp"
@@ -33,7 +34,7 @@ InterfaceCertificate mesh_and_certify(const LabelImage& x, ConformingSurface& m,
                        const std::vector<std::array<std::int32_t, 2>>& l) {
     return certify_interface_mesh(p, t, l, x, k, co).failing_places(p, t, l, k, x);
   };
-  m = conforming_surface(f, x, k, oc);
+  m = conforming_surface(f, narrow_labels(x), k, oc);
   return certify_interface_mesh(m.points, m.triangles, m.pairs, x, k, co);
 }
 
@@ -146,10 +147,11 @@ TEST_CASE("the same mesh whatever the number of threads", "[conforming]") {
   const LabelImage x = noisy_map(2);
   const LabelFunction f(x, 0.3);
   const InterfaceComplex k = interface_complex(x);
+  const NarrowLabelImage narrow = narrow_labels(x);
   ConformingOptions o;
-  const ConformingSurface one = conforming_surface(f, x, k, o);
+  const ConformingSurface one = conforming_surface(f, narrow, k, o);
   o.threads = 3;
-  const ConformingSurface three = conforming_surface(f, x, k, o);
+  const ConformingSurface three = conforming_surface(f, narrow, k, o);
   CHECK(one.passes == three.passes);
   CHECK(one.pairs == three.pairs);
   CHECK(one.triangles == three.triangles);
@@ -183,7 +185,7 @@ TEST_CASE("VoxelSides leaves no voxel centre on the wrong side", "[conforming]")
     const InterfaceComplex k = interface_complex(x);
     ConformingOptions o;
     o.max_distance = 0.6;  // coarse: centres near the surface fall on the wrong side unless refined
-    const ConformingSurface m = conforming_surface(f, x, k, o);
+    const ConformingSurface m = conforming_surface(f, narrow_labels(x), k, o);
     InterfaceCertificateOptions co;
     co.lattice = false;
     const InterfaceCertificate c = certify_interface_mesh(m.points, m.triangles, m.pairs, x, k, co);

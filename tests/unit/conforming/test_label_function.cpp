@@ -3,6 +3,7 @@
 // found where the labels of two neighbouring centres differ.
 #include "conforming/conforming_surface.hpp"
 #include "conforming/label_function.hpp"
+#include "image/narrow_labels.hpp"
 #include "label_maps.hpp"
 #include "wellcomposed/well_composed_partition.hpp"
 
@@ -334,4 +335,28 @@ TEST_CASE("every label's f keeps the slope bound of lambda's walk", "[conforming
   }
   CHECK(pairs > 50000);
   CHECK(steepest > 1.4);
+}
+
+// seg2mesh holds X in the narrowest type its labels fit: the same lambda
+// from one byte a voxel and from two (labels past 255), everywhere, as
+// from the int32 map of the same labels.
+TEST_CASE("lambda from a map held in one or two bytes a voxel is the int32 map's", "[conforming]") {
+  std::mt19937_64 rng(5);
+  const LabelImage x = anisotropic_map(rng, 40);
+  LabelImage wide = x;  // the labels past 255, their order kept
+  for (std::int32_t& v : wide.data)
+    if (v != 0) v += 1000;
+  const NarrowLabelImage bytes1 = narrow_labels(x), bytes2 = narrow_labels(wide);
+  REQUIRE(bytes1.bytes == 1);
+  REQUIRE(bytes2.bytes == 2);
+  const LabelFunction f(x, 0.3 * 0.8), f1(bytes1, 0.3 * 0.8), f2(bytes2, 0.3 * 0.8);
+  check_centres(x, f1);
+  check_centres(wide, f2);
+  std::uniform_real_distribution<double> u(-1.5, 12.5);
+  for (int n = 0; n < 3000; ++n) {
+    const Vec3 p = x.world(u(rng), u(rng), u(rng));
+    const std::int32_t l = f.label(p);
+    REQUIRE(f1.label(p) == l);
+    REQUIRE(f2.label(p) == (l == 0 ? 0 : l + 1000));
+  }
 }

@@ -106,9 +106,9 @@ TEST_CASE("SampleGrid streamed a slice at a time from a box of the grid: the box
     CHECK(s.box_lo() == lo);
     CHECK(s.box_hi() == Index3{lo[0] + 18, lo[1] + 13, lo[2] + 10});
     std::size_t near = 0;
-    for (long bz = 0; bz < s.nb(2) && !s.dense(); ++bz)
-      for (long by = 0; by < s.nb(1); ++by)
-        for (long bx = 0; bx < s.nb(0); ++bx) {
+    for (long bz = 0; bz < 6 && !s.dense(); ++bz)  // the grid's blocks
+      for (long by = 0; by < 8; ++by)
+        for (long bx = 0; bx < 11; ++bx) {
           bool any = false;
           for (long k = bz * 4; k < std::min(22L, bz * 4 + 4); ++k)
             for (long j = by * 4; j < std::min(30L, by * 4 + 4); ++j)

@@ -152,9 +152,11 @@ TEST_CASE("cube grid from clamped blocks: the active cubes are the mixed ones") 
       }
   const SampleGrid samples(g, 2.5f, SampleGrid::Storage::blocks);
   int plus = 0, minus = 0, stored = 0;
-  for (long bz = 0; bz < samples.nb(2); ++bz)
-    for (long by = 0; by < samples.nb(1); ++by)
-      for (long bx = 0; bx < samples.nb(0); ++bx) {
+  constexpr long kB = SampleGrid::kB;  // the grid's blocks, not the table's
+  const long blocks[3] = {(long(box.size[0]) + kB - 1) / kB, (long(box.size[1]) + kB - 1) / kB, (long(box.size[2]) + kB - 1) / kB};
+  for (long bz = 0; bz < blocks[2]; ++bz)
+    for (long by = 0; by < blocks[1]; ++by)
+      for (long bx = 0; bx < blocks[0]; ++bx) {
         const int c = samples.constant_block(bx, by, bz);
         (c > 0 ? plus : c < 0 ? minus : stored) += 1;
       }
