@@ -70,7 +70,7 @@ ConformingSurface Mesher::certified_rounds() {
 // column (7 cells a walk).
 class WalkStarts {
 public:
-  explicit WalkStarts(const LabelImage& x)
+  explicit WalkStarts(const Geometry& x)
       : nx_(std::ptrdiff_t(x.size[0])), ny_(std::ptrdiff_t(x.size[1])), column_(x.size[0] * x.size[1]) {}
   // A cell nearer voxel v than the voxel before's (whose cell the caller
   // starts from), or Ch().
