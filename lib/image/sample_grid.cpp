@@ -208,7 +208,7 @@ void SampleGrid::add_blocks(const long c0[3], const long c1[3], const float* chu
         // All clamped: one sign (two neighbouring samples of opposite signs
         // lie within a voxel of S); kept all the same if not.
         keep = keep || (negative && positive);
-        std::uint32_t& entry = table_[std::size_t(table_block(0, bx) + nb_[0] * (table_block(1, by) + nb_[1] * table_block(2, bz)))];
+        std::uint32_t& entry = table_[std::size_t(table_index(bx, by, bz))];
         if (!keep) {
           entry = negative ? 1 : 0;
           continue;

@@ -70,9 +70,8 @@ public:
 
   float operator()(std::size_t x, std::size_t y, std::size_t z) const {
     if (dense()) return dense_[std::size_t(long(x) + s1_ * long(y) + s2_ * long(z))];
-    const long b = table_block(0, long(x) >> kShift) +
-                   nb_[0] * (table_block(1, long(y) >> kShift) + nb_[1] * table_block(2, long(z) >> kShift));
-    return sample(slot(b) + std::size_t(local(long(x), long(y), long(z))));
+    return sample(slot(table_index(long(x) >> kShift, long(y) >> kShift, long(z) >> kShift)) +
+                  std::size_t(local(long(x), long(y), long(z))));
   }
   bool dense() const { return !dense_.empty(); }
   // Blocks of codes into palette() (else blocks of floats).
@@ -87,6 +86,10 @@ public:
   // outside the box).
   long nb(int axis) const { return nb_[axis]; }
   long table_block(int axis, long b) const { return std::clamp(b - first_block_[axis], 0L, nb_[axis] - 1); }
+  // The table's number of grid block (bx, by, bz).
+  long table_index(long bx, long by, long bz) const {
+    return table_block(0, bx) + nb_[0] * (table_block(1, by) + nb_[1] * table_block(2, bz));
+  }
   // Blocks of floats: table block number bx + nb(0) (by + nb(1) bz)'s first
   // sample; sample (x, y, z) of the grid is at local(x, y, z) in its block.
   const float* block_at(long b) const { return pool_.data() + slot(b); }
@@ -97,7 +100,7 @@ public:
   // shared constant blocks; 0 where it holds samples of its own, or dense.
   int constant_block(long bx, long by, long bz) const {
     if (dense()) return 0;
-    const std::uint32_t t = table_[std::size_t(table_block(0, bx) + nb_[0] * (table_block(1, by) + nb_[1] * table_block(2, bz)))];
+    const std::uint32_t t = table_[std::size_t(table_index(bx, by, bz))];
     return t == 0 ? 1 : t == 1 ? -1 : 0;
   }
   static long local(long x, long y, long z) { return (x & kMask) + kB * ((y & kMask) + kB * (z & kMask)); }
@@ -110,7 +113,7 @@ public:
       return;
     }
     if ((x & kMask) < kMask && (y & kMask) < kMask && (z & kMask) < kMask) {
-      const std::size_t b = slot(table_block(0, x >> kShift) + nb_[0] * (table_block(1, y >> kShift) + nb_[1] * table_block(2, z >> kShift))) +
+      const std::size_t b = slot(table_index(x >> kShift, y >> kShift, z >> kShift)) +
                             std::size_t(local(x, y, z));
       for (int m = 0; m < 8; ++m) c[m] = sample(b + std::size_t((m & 1) + kB * ((m >> 1) & 1) + kB * kB * ((m >> 2) & 1)));
       return;
